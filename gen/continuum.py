@@ -1,0 +1,208 @@
+"""Derivation of continuum (ANCF) element kernels: element x material x rule.
+
+At a quadrature point the deformation gradient is linear in the element
+coordinates, F = sum_a q_a g_a^T, with g_a = grad N_a a constant of the point
+(tabulated once per element geometry, only the entries that are not identically
+zero, equal or opposite entries sharing one slot).  For an isotropic energy
+W(I1, I2, J):
+
+  P = dW/dF  = sum_m W_m dI_m/dF
+  A = d2W/dF2 = sum_mn W_mn dI_m/dF (x) dI_n/dF + sum_m W_m d2I_m/dF2
+  f_a   = sum_qp w P g_a                         (internal force, 3 per node)
+  K_ab  = sum_qp w sum_JL g_aJ g_bL A[:,J,:,L]   (tangent block, 3x3 per pair)
+
+with the invariant derivatives of gen/invariants.py.  Only the upper triangle of
+K is computed; the kernel mirrors it.  The material part A is a 3x3x3x3 tensor
+(45 distinct entries) contracted with per-node gradient vectors, so the cost per
+point grows with the number of node pairs, not with ndof^2 x (terms of W).
+"""
+from dataclasses import dataclass
+
+import sympy as sp
+
+from gen.element import B, H, L, XI, Y, Z, shape_gradients
+from gen.invariants import cofactor, first_derivatives, second_derivatives
+from gen.program import Program, lower
+from gen.quadrature import box_rule
+
+INVARIANTS = ("I1", "I2", "J")
+
+
+@dataclass
+class GradientSlots:
+    exprs: list        # canonical gradient expressions, one per table slot
+    ref: dict          # (a, J) -> (slot, sign)
+
+
+def gradient_slots(elem):
+    """Assign table slots to the structurally nonzero shape-function gradients."""
+    exprs, ref = [], {}
+    for a, grad in enumerate(shape_gradients(elem)):
+        for J, g in enumerate(grad):
+            if g == 0:
+                continue
+            for k, e in enumerate(exprs):
+                if sp.expand(g - e) == 0:
+                    ref[(a, J)] = (k, 1)
+                    break
+                if sp.expand(g + e) == 0:
+                    ref[(a, J)] = (k, -1)
+                    break
+            else:
+                ref[(a, J)] = (len(exprs), 1)
+                exprs.append(g)
+    return GradientSlots(exprs, ref)
+
+
+def qp_coords(s):
+    """Unit-cube rule point -> (xi, y, z) of the element box."""
+    return {XI: s[0], Y: (s[1] - 0.5) * B, Z: (s[2] - 0.5) * H}
+
+
+@dataclass
+class PartSpec:
+    energy: str        # energy part ("all" or a material part name)
+    rule: list         # [((sx, sy, sz), weight on the unit cube)]
+    tab_offset: int    # first table entry of this part
+    stride: int        # table entries per point: weight, then gradient slots
+
+
+def rule_parts(elem, integration):
+    slots = gradient_slots(elem)
+    parts, off = [], 0
+    for rp in elem.rule(integration):
+        rule = box_rule(rp.points)
+        stride = 1 + len(slots.exprs)
+        parts.append(PartSpec(rp.energy, rule, off, stride))
+        off += stride * len(rule)
+    return slots, parts, off
+
+
+def tabulate_program(elem, integration):
+    """Program filling tab[] from geom[] = {l, b, h}: per point w*l*b*h, then g slots."""
+    slots, parts, ntab = rule_parts(elem, integration)
+    geom = {L: sp.Symbol("geom[0]", positive=True), B: sp.Symbol("geom[1]", positive=True),
+            H: sp.Symbol("geom[2]", positive=True)}
+    prog = Program()
+    for part in parts:
+        for p, (s, w) in enumerate(part.rule):
+            base = part.tab_offset + p * part.stride
+            prog.output(f"tab[{base}]", (sp.Float(w) * L * B * H).subs(geom), op="=")
+            sub = qp_coords(s)
+            for k, e in enumerate(slots.exprs):
+                prog.output(f"tab[{base + 1 + k}]", sp.expand(e.subs(sub)).subs(geom), op="=")
+    return prog, ntab
+
+
+def material_energy(mat, part, I1, I2, J, params):
+    if part == "all":
+        return mat.energy(I1, I2, J, params)
+    parts = getattr(mat, "energy_parts", None)
+    if parts is None:
+        raise ValueError(f"material {mat.NAME} does not split its energy into parts")
+    return parts(I1, I2, J, params)[part]
+
+
+def body_program(elem, mat, part, want):
+    """Per-quadrature-point program for one rule part.
+
+    want: "energy" (output e), "force" (f) or "tangent" (f and upper K)."""
+    slots = gradient_slots(elem)
+    ndof, nsh = elem.ndof, elem.nshape
+    prog = Program()
+    q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
+    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    params = {name: sp.Symbol(f"mat[{k}]", real=True) for k, name in enumerate(mat.PARAMS)}
+    w = t[0]
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
+
+    # Deformation gradient, collected per gradient slot (sum over slots of slot * q-combination).
+    Fm = sp.zeros(3, 3)
+    for i in range(3):
+        for J in range(3):
+            expr = sum(q[3 * a + i] * g(a, J) for a in range(nsh))
+            expr = sp.collect(sp.expand(expr), t[1:])
+            Fm[i, J] = prog.define(f"F{i}{J}", expr)
+    Cm = sp.zeros(3, 3)
+    bm = sp.zeros(3, 3)
+    for I in range(3):
+        for Jj in range(I, 3):
+            Cm[I, Jj] = Cm[Jj, I] = prog.define(f"C{I}{Jj}", sum(Fm[k, I] * Fm[k, Jj] for k in range(3)))
+            bm[I, Jj] = bm[Jj, I] = prog.define(f"b{I}{Jj}", sum(Fm[I, k] * Fm[Jj, k] for k in range(3)))
+    cof_expr = cofactor(Fm)
+    cof = sp.Matrix(3, 3, lambda i, j: prog.define(f"cof{i}{j}", cof_expr[i, j]))
+    I1 = prog.define("I1", Cm[0, 0] + Cm[1, 1] + Cm[2, 2])
+    I2 = prog.define("I2", Cm[0, 0] * Cm[1, 1] + Cm[1, 1] * Cm[2, 2] + Cm[0, 0] * Cm[2, 2]
+                     - Cm[0, 1]**2 - Cm[1, 2]**2 - Cm[0, 2]**2)
+    Jdet = prog.define("J", sum(Fm[i, 0] * cof[i, 0] for i in range(3)))
+    inv = {"I1": I1, "I2": I2, "J": Jdet}
+
+    W = material_energy(mat, part, I1, I2, Jdet, params)
+    if want == "energy":
+        prog.output("e", w * W)
+        return prog, params
+
+    # Material derivatives (times the point weight) as named scalars.
+    Wm = {}
+    for m in INVARIANTS:
+        d = sp.diff(W, inv[m])
+        if d != 0:
+            Wm[m] = prog.define(f"W_{m}", w * d)
+    Wmn = {}
+    if want == "tangent":
+        for x, m in enumerate(INVARIANTS):
+            for n in INVARIANTS[x:]:
+                d = sp.diff(W, inv[m], inv[n])
+                if d != 0:
+                    Wmn[(m, n)] = Wmn[(n, m)] = prog.define(f"W_{m}{n}", w * d)
+
+    dI = first_derivatives(Fm, Cm, I1, cof)
+    P = sp.Matrix(3, 3, lambda i, J: prog.define(
+        f"P{i}{J}", sum(Wm[m] * dI[m][i, J] for m in Wm)))
+    for a in range(nsh):
+        for i in range(3):
+            prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
+    if want == "force":
+        return prog, params
+
+    d2I = second_derivatives(Fm, Cm, bm, I1)
+    A = {}
+    for i in range(3):
+        for J in range(3):
+            for k in range(3):
+                for Ll in range(3):
+                    if 3 * i + J > 3 * k + Ll:
+                        continue
+                    expr = sum(Wmn[(m, n)] * dI[m][i, J] * dI[n][k, Ll] for (m, n) in Wmn)
+                    expr += sum(Wm[m] * d2I[m](i, J, k, Ll) for m in Wm)
+                    expr = sp.expand(expr)
+                    A[(i, J, k, Ll)] = 0 if expr == 0 else prog.define(f"A{i}{J}{k}{Ll}", expr)
+
+    def Aget(i, J, k, Ll):
+        return A[(i, J, k, Ll)] if 3 * i + J <= 3 * k + Ll else A[(k, Ll, i, J)]
+
+    for r in range(ndof):
+        a, i = divmod(r, 3)
+        for c in range(r, ndof):
+            b, k = divmod(c, 3)
+            expr = 0
+            for J in range(3):
+                gaJ = g(a, J)
+                if gaJ == 0:
+                    continue
+                for Ll in range(3):
+                    gbL = g(b, Ll)
+                    if gbL == 0:
+                        continue
+                    expr += gaJ * gbL * Aget(i, J, k, Ll)
+            if expr != 0:
+                prog.output(f"K[{r * ndof + c}]", expr)
+    return prog, params
+
+
+def lowered_body(elem, mat, part, want):
+    prog, params = body_program(elem, mat, part, want)
+    return lower(prog, hoistable=params.values())

@@ -1,0 +1,134 @@
+"""Generate out/kernels/: every element, every element x material pair, and index.json.
+
+Incremental: a file whose header carries the hash of its current generator
+inputs is not re-derived.  `check` re-derives everything in memory and compares
+byte for byte with what is on disk.
+"""
+import json
+import re
+import sys
+import time
+from pathlib import Path
+
+from gen.elements import all_elements
+from gen.emit import core_paths, element_source, input_hash, pair_source
+from gen.materials import all_materials
+
+HASH_RE = re.compile(r"input hash: sha256:([0-9a-f]{64})")
+
+
+def _existing_hash(path):
+    try:
+        with open(path, encoding="utf-8") as fh:
+            head = fh.read(4096)
+    except OSError:
+        return None
+    m = HASH_RE.search(head)
+    return m.group(1) if m else None
+
+
+def plan(elements=None, materials=None):
+    """All (kind, name, inputs, producer) units of generation, in fixed order."""
+    elements = elements or all_elements()
+    materials = materials or all_materials()
+    units = []
+    for ename, (elem, epath) in elements.items():
+        units.append(("element", ename, [epath],
+                      lambda elem=elem, epath=epath: element_source(elem, epath)[:2]))
+        for mname, (mat, mpath) in materials.items():
+            units.append(("pair", f"{ename}_{mname}", [epath, mpath],
+                          lambda elem=elem, epath=epath, mat=mat, mpath=mpath:
+                          pair_source(elem, epath, mat, mpath)[:2]))
+    return units
+
+
+def index_data(elements=None, materials=None):
+    from gen.continuum import rule_parts
+    elements = elements or all_elements()
+    materials = materials or all_materials()
+    out = {"elements": {}, "materials": {}, "pairs": []}
+    for ename, (elem, _) in elements.items():
+        rules = {}
+        for r in elem.rule_names:
+            _, parts, ntab = rule_parts(elem, r)
+            rules[r] = {"ntab": ntab, "points": [len(p.rule) for p in parts]}
+        out["elements"][ename] = {
+            "kind": "continuum",
+            "title": elem.title,
+            "ndof": elem.ndof,
+            "nodes": [{"xi": str(n.xi), "vectors": list(n.vectors)} for n in elem.nodes],
+            "integrations": rules,
+            "default_integration": elem.default_rule,
+        }
+        for mname in materials:
+            for r in elem.rule_names:
+                out["pairs"].append({"element": ename, "material": mname, "integration": r,
+                                     "symbol": f"bk_pair_{ename}_{mname}_{r}",
+                                     "files": [f"{ename}.c", f"{ename}_{mname}.c"]})
+    for mname, (mat, _) in materials.items():
+        out["materials"][mname] = {"title": mat.TITLE, "params": list(mat.PARAMS)}
+    return out
+
+
+def generate(outdir, check=False, force=False, log=print):
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    stale = []
+    for kind, name, inputs, produce in plan():
+        h = input_hash(list(inputs) + core_paths())
+        hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
+        if not check and not force and _existing_hash(hpath) == h and cpath.exists():
+            log(f"  {name}: up to date")
+            continue
+        t0 = time.time()
+        htxt, ctxt = produce()
+        dt = time.time() - t0
+        if check:
+            for p, txt in ((hpath, htxt), (cpath, ctxt)):
+                if not p.exists() or p.read_text(encoding="utf-8") != txt:
+                    stale.append(str(p))
+            log(f"  {name}: checked ({dt:.1f} s)")
+        else:
+            hpath.write_text(htxt, encoding="utf-8")
+            cpath.write_text(ctxt, encoding="utf-8")
+            log(f"  {name}: generated ({dt:.1f} s)")
+    idx = json.dumps(index_data(), indent=1, sort_keys=True) + "\n"
+    ipath = outdir / "index.json"
+    if check:
+        if not ipath.exists() or ipath.read_text(encoding="utf-8") != idx:
+            stale.append(str(ipath))
+    else:
+        ipath.write_text(idx, encoding="utf-8")
+    # Files on disk that the generator no longer produces.
+    expected = {f"{n}.{x}" for _, n, _, _ in plan() for x in ("h", "c")} | {"index.json"}
+    extra = sorted(p.name for p in outdir.iterdir() if p.name not in expected)
+    if check:
+        stale += [str(outdir / e) for e in extra]
+    else:
+        for e in extra:
+            (outdir / e).unlink()
+            log(f"  removed stale {e}")
+    return stale
+
+
+def main(argv):
+    import argparse
+    ap = argparse.ArgumentParser(prog="build.sh gen", description="Regenerate the C kernels in out/kernels/.")
+    ap.add_argument("--check", action="store_true", help="fail if the committed kernels differ from a fresh generation")
+    ap.add_argument("--force", action="store_true", help="re-derive every kernel even if its input hash is unchanged")
+    ap.add_argument("--out", default=str(Path(__file__).resolve().parent.parent / "out" / "kernels"))
+    a = ap.parse_args(argv)
+    stale = generate(a.out, check=a.check, force=a.force)
+    if a.check:
+        if stale:
+            print("gen --check: generated kernels are stale:", file=sys.stderr)
+            for s in stale:
+                print(f"  {s}", file=sys.stderr)
+            print("run ./build.sh gen and commit out/kernels/", file=sys.stderr)
+            return 1
+        print("gen --check: out/kernels/ is up to date")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

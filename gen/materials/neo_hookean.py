@@ -1,0 +1,16 @@
+"""Compressible Neo-Hookean: W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2.
+
+Small-strain limit: Hooke's law with the Lame constants lambda, mu.
+"""
+from sympy import log
+
+from gen.materials import lame
+
+NAME = "neo_hookean"
+TITLE = "compressible Neo-Hookean"
+PARAMS = ("lambda", "mu")
+INPUTS = ((("E", "nu"), lame), (("lambda", "mu"), lambda lam, mu: (lam, mu)))
+
+
+def energy(I1, I2, J, p):
+    return p["mu"] / 2 * (I1 - 3) - p["mu"] * log(J) + p["lambda"] / 2 * log(J)**2

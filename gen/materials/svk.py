@@ -1,0 +1,18 @@
+"""St. Venant–Kirchhoff: W = lambda/2 (tr E)^2 + mu tr(E^2), E = (C - I)/2.
+
+In invariants: tr E = (I1 - 3)/2 and tr(E^2) = (I1^2 - 2 I2 - 2 I1 + 3)/4.
+Small-strain limit: Hooke's law with E = mu (3 lambda + 2 mu)/(lambda + mu),
+nu = lambda / (2 (lambda + mu)).
+"""
+from gen.materials import lame
+
+NAME = "svk"
+TITLE = "St. Venant-Kirchhoff"
+PARAMS = ("lambda", "mu")
+INPUTS = ((("E", "nu"), lame), (("lambda", "mu"), lambda lam, mu: (lam, mu)))
+
+
+def energy(I1, I2, J, p):
+    trE = (I1 - 3) / 2
+    trE2 = (I1**2 - 2 * I2 - 2 * I1 + 3) / 4
+    return p["lambda"] / 2 * trE**2 + p["mu"] * trE2

@@ -1,0 +1,32 @@
+/* linsolve.h -- sparse direct solves with KLU (SuiteSparse).
+ *
+ * The symbolic analysis (fill-reducing ordering, block triangular form) is
+ * computed once for a pattern by bk_lin_init() and reused by every numeric
+ * factorization.  The solver owns its KLU objects; the pattern arrays stay
+ * owned by the caller and must outlive the solver.
+ */
+#ifndef BK_LINSOLVE_H
+#define BK_LINSOLVE_H
+
+#include <klu.h>
+
+typedef struct bk_linsolver {
+    int n;
+    const int *Ap, *Ai;
+    klu_common common;
+    klu_symbolic *sym;
+    klu_numeric *num;
+    int nanalyze, nfactor;   /* counters, for the summary */
+    double rcond;            /* crude reciprocal condition estimate of the last factorization */
+} bk_linsolver;
+
+enum { BK_LIN_OK = 0, BK_LIN_SINGULAR = 1, BK_LIN_ERROR = 2 };
+
+int bk_lin_init(bk_linsolver *s, int n, const int *Ap, const int *Ai);
+/* Factors the matrix with values Ax on the analysed pattern. */
+int bk_lin_factor(bk_linsolver *s, double *Ax);
+/* Solves A x = b in place (b has n entries). */
+int bk_lin_solve(bk_linsolver *s, double *b);
+void bk_lin_free(bk_linsolver *s);
+
+#endif

@@ -1,0 +1,312 @@
+/* model.c -- reading the model file written by gen/scene.py.
+ *
+ * The format is a flat stream of whitespace-separated tokens: a keyword, then
+ * the numbers that keyword announces, in a fixed order.  The scene has been
+ * validated in Python; errors here mean a damaged or mismatched model file and
+ * are reported as such.
+ */
+#include "model.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct reader {
+    FILE *fp;
+    const char *path;
+    FILE *err;
+    int failed;
+    char tok[256];
+} reader;
+
+static void fail(reader *r, const char *fmt, ...)
+{
+    if (r->failed)
+        return;
+    r->failed = 1;
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(r->err, "error: %s: ", r->path);
+    vfprintf(r->err, fmt, ap);
+    fprintf(r->err, "\n");
+    va_end(ap);
+}
+
+static const char *next(reader *r, const char *what)
+{
+    if (r->failed)
+        return NULL;
+    if (fscanf(r->fp, "%255s", r->tok) != 1) {
+        fail(r, "model file ends early: expected %s", what);
+        return NULL;
+    }
+    return r->tok;
+}
+
+static void expect(reader *r, const char *kw)
+{
+    const char *t = next(r, kw);
+    if (t && strcmp(t, kw) != 0)
+        fail(r, "expected keyword '%s', found '%s'", kw, t);
+}
+
+static double num(reader *r, const char *what)
+{
+    const char *t = next(r, what);
+    if (!t)
+        return 0.0;
+    char *end;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (*end != '\0' || errno == ERANGE || !isfinite(v)) {
+        fail(r, "%s: expected a finite number, found '%s'", what, t);
+        return 0.0;
+    }
+    return v;
+}
+
+static int inum(reader *r, const char *what, int lo, int hi)
+{
+    const char *t = next(r, what);
+    if (!t)
+        return lo;
+    char *end;
+    errno = 0;
+    long v = strtol(t, &end, 10);
+    if (*end != '\0' || errno == ERANGE || v < lo || v > hi) {
+        fail(r, "%s: expected an integer in [%d, %d], found '%s'", what, lo, hi, t);
+        return lo;
+    }
+    return (int)v;
+}
+
+static void *xcalloc(reader *r, size_t n, size_t size)
+{
+    if (r->failed)
+        return NULL;
+    void *p = calloc(n ? n : 1, size);
+    if (!p)
+        fail(r, "out of memory (%zu x %zu bytes)", n, size);
+    return p;
+}
+
+static const bk_pair *find_pair(const char *sym, const bk_pair *const *avail, int navail)
+{
+    for (int i = 0; i < navail; ++i) {
+        char buf[256];
+        snprintf(buf, sizeof buf, "%s_%s_%s", avail[i]->element->name, avail[i]->material,
+                 avail[i]->integration);
+        if (strcmp(buf, sym) == 0)
+            return avail[i];
+    }
+    return NULL;
+}
+
+#define MAXN 100000000
+
+bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navail, FILE *err)
+{
+    reader R = {0}, *r = &R;
+    r->path = path;
+    r->err = err;
+    r->fp = fopen(path, "r");
+    if (!r->fp) {
+        fprintf(err, "error: %s: cannot open model file: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    bk_model *m = calloc(1, sizeof *m);
+    if (!m) {
+        fclose(r->fp);
+        fprintf(err, "error: out of memory\n");
+        return NULL;
+    }
+    expect(r, "beamkit-model");
+    if (inum(r, "format version", 1, 1) != 1)
+        fail(r, "unsupported model format");
+    expect(r, "name");
+    const char *t = next(r, "scene name");
+    if (t && strlen(t) >= sizeof m->name)
+        fail(r, "scene name longer than %zu characters", sizeof m->name - 1);
+    else if (t)
+        memcpy(m->name, t, strlen(t) + 1);
+    expect(r, "analysis");
+    t = next(r, "analysis type");
+    if (t && strcmp(t, "static") == 0)
+        m->analysis = BK_STATIC;
+    else if (t)
+        fail(r, "analysis '%s' is not supported by this solver (expected static)", t);
+    expect(r, "length_scale");
+    m->length_scale = num(r, "length_scale");
+    expect(r, "static");
+    m->stat.load_steps = inum(r, "static.load_steps", 1, MAXN);
+    m->stat.max_iter = inum(r, "static.max_iterations", 1, 10000);
+    m->stat.max_cutbacks = inum(r, "static.max_cutbacks", 0, 60);
+    m->stat.rtol = num(r, "static.rtol");
+    m->stat.utol = num(r, "static.utol");
+
+    expect(r, "ndof");
+    m->ndof = inum(r, "ndof", 1, MAXN);
+    expect(r, "q0");
+    m->q0 = xcalloc(r, (size_t)m->ndof, sizeof *m->q0);
+    for (int i = 0; i < m->ndof && !r->failed; ++i)
+        m->q0[i] = num(r, "q0 entry");
+
+    expect(r, "pairs");
+    m->npair = inum(r, "pairs", 1, 1000);
+    m->pairs = xcalloc(r, (size_t)m->npair, sizeof *m->pairs);
+    for (int i = 0; i < m->npair && !r->failed; ++i) {
+        expect(r, "pair");
+        t = next(r, "kernel name");
+        if (!t)
+            break;
+        m->pairs[i] = find_pair(t, avail, navail);
+        if (!m->pairs[i])
+            fail(r, "kernel '%s' is not linked into this solver (rebuild with ./build.sh run)", t);
+        else if (m->pairs[i]->element->nshape > 128)
+            fail(r, "kernel '%s' has more than 128 shape functions", t);
+    }
+
+    expect(r, "mats");
+    m->nmat = inum(r, "mats", 1, MAXN);
+    m->mats = xcalloc(r, (size_t)m->nmat, sizeof *m->mats);
+    for (int i = 0; i < m->nmat && !r->failed; ++i) {
+        expect(r, "mat");
+        m->mats[i].rho = num(r, "density");
+        m->mats[i].nparam = inum(r, "parameter count", 0, 8);
+        for (int k = 0; k < m->mats[i].nparam; ++k)
+            m->mats[i].params[k] = num(r, "material parameter");
+    }
+
+    expect(r, "geoms");
+    m->ngeom = inum(r, "geoms", 1, MAXN);
+    m->geoms = xcalloc(r, (size_t)m->ngeom, sizeof *m->geoms);
+    m->tabs = xcalloc(r, (size_t)m->ngeom, sizeof *m->tabs);
+    for (int i = 0; i < m->ngeom && !r->failed; ++i) {
+        expect(r, "geom");
+        int p = inum(r, "geometry kernel", 0, m->npair - 1);
+        for (int k = 0; k < 3; ++k)
+            m->geoms[i][k] = num(r, "geometry");
+        if (r->failed)
+            break;
+        m->tabs[i] = xcalloc(r, (size_t)m->pairs[p]->ntab, sizeof(double));
+        if (m->tabs[i])
+            m->pairs[p]->tabulate(m->geoms[i], m->tabs[i]);
+    }
+
+    expect(r, "elements");
+    m->nelem = inum(r, "elements", 1, MAXN);
+    m->elems = xcalloc(r, (size_t)m->nelem, sizeof *m->elems);
+    for (int i = 0; i < m->nelem && !r->failed; ++i) {
+        bk_elem *e = &m->elems[i];
+        expect(r, "element");
+        e->pair = inum(r, "element kernel", 0, m->npair - 1);
+        e->geom = inum(r, "element geometry", 0, m->ngeom - 1);
+        e->mat = inum(r, "element material", 0, m->nmat - 1);
+        int nd = inum(r, "element DOF count", 1, 10000);
+        if (r->failed)
+            break;
+        const bk_pair *p = m->pairs[e->pair];
+        if (nd != p->element->ndof)
+            fail(r, "element %d: %d DOFs given, kernel %s has %d", i, nd, p->element->name, p->element->ndof);
+        if (m->mats[e->mat].nparam != p->nparam)
+            fail(r, "element %d: material has %d parameters, kernel expects %d", i,
+                 m->mats[e->mat].nparam, p->nparam);
+        e->dofs = xcalloc(r, (size_t)nd, sizeof *e->dofs);
+        for (int k = 0; k < nd && !r->failed; ++k)
+            e->dofs[k] = inum(r, "element DOF", 0, m->ndof - 1);
+    }
+
+    expect(r, "fixed");
+    m->nfixed = inum(r, "fixed", 0, MAXN);
+    m->fixed = xcalloc(r, (size_t)m->nfixed, sizeof *m->fixed);
+    for (int i = 0; i < m->nfixed && !r->failed; ++i)
+        m->fixed[i] = inum(r, "fixed DOF", 0, m->ndof - 1);
+
+    expect(r, "lincons");
+    m->nlincon = inum(r, "lincons", 0, MAXN);
+    m->lincons = xcalloc(r, (size_t)m->nlincon, sizeof *m->lincons);
+    for (int i = 0; i < m->nlincon && !r->failed; ++i) {
+        bk_lincon *c = &m->lincons[i];
+        expect(r, "lincon");
+        c->nterm = inum(r, "constraint terms", 1, 10000);
+        c->dof = xcalloc(r, (size_t)c->nterm, sizeof *c->dof);
+        c->coef = xcalloc(r, (size_t)c->nterm, sizeof *c->coef);
+        for (int k = 0; k < c->nterm && !r->failed; ++k) {
+            c->dof[k] = inum(r, "constraint DOF", 0, m->ndof - 1);
+            c->coef[k] = num(r, "constraint coefficient");
+        }
+        c->rhs = num(r, "constraint right-hand side");
+    }
+
+    expect(r, "forces");
+    m->nforce = inum(r, "forces", 0, MAXN);
+    m->forces = xcalloc(r, (size_t)m->nforce, sizeof *m->forces);
+    for (int i = 0; i < m->nforce && !r->failed; ++i) {
+        bk_force_load *f = &m->forces[i];
+        expect(r, "force");
+        f->elem = inum(r, "force element", 0, m->nelem - 1);
+        f->xi = num(r, "force xi");
+        f->y = num(r, "force y");
+        f->z = num(r, "force z");
+        for (int k = 0; k < 3; ++k)
+            f->value[k] = num(r, "force value");
+    }
+
+    expect(r, "gravity");
+    m->has_gravity = inum(r, "gravity flag", 0, 1);
+    if (m->has_gravity)
+        for (int k = 0; k < 3; ++k)
+            m->gravity[k] = num(r, "gravity");
+
+    expect(r, "sensors");
+    m->nsensor = inum(r, "sensors", 0, MAXN);
+    m->sensors = xcalloc(r, (size_t)m->nsensor, sizeof *m->sensors);
+    for (int i = 0; i < m->nsensor && !r->failed; ++i) {
+        bk_sensor *s = &m->sensors[i];
+        expect(r, "sensor");
+        t = next(r, "sensor name");
+        if (t && strlen(t) >= sizeof s->name)
+            fail(r, "sensor name longer than %zu characters", sizeof s->name - 1);
+        else if (t)
+            memcpy(s->name, t, strlen(t) + 1);
+        s->elem = inum(r, "sensor element", 0, m->nelem - 1);
+        s->xi = num(r, "sensor xi");
+    }
+    expect(r, "end");
+    fclose(r->fp);
+    if (r->failed) {
+        bk_model_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+void bk_model_free(bk_model *m)
+{
+    if (!m)
+        return;
+    free(m->q0);
+    free(m->pairs);
+    free(m->geoms);
+    if (m->tabs)
+        for (int i = 0; i < m->ngeom; ++i)
+            free(m->tabs[i]);
+    free(m->tabs);
+    free(m->mats);
+    if (m->elems)
+        for (int i = 0; i < m->nelem; ++i)
+            free(m->elems[i].dofs);
+    free(m->elems);
+    free(m->fixed);
+    if (m->lincons)
+        for (int i = 0; i < m->nlincon; ++i) {
+            free(m->lincons[i].dof);
+            free(m->lincons[i].coef);
+        }
+    free(m->lincons);
+    free(m->forces);
+    free(m->sensors);
+    free(m);
+}

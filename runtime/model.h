@@ -1,0 +1,92 @@
+/* model.h -- the discretized scene the solver works on.
+ *
+ * A model is read from the model file that gen/scene.py writes (the scene's
+ * TOML, validated and meshed).  The runtime never sees TOML.  All arrays are
+ * owned by the model and released by bk_model_free().
+ */
+#ifndef BK_MODEL_H
+#define BK_MODEL_H
+
+#include <stdio.h>
+
+#include "bk_kernel.h"
+
+enum bk_analysis { BK_STATIC = 0 };
+
+typedef struct bk_elem {
+    int pair;          /* index into model->pairs                          */
+    int geom;          /* index into model->geoms (and model->tabs)        */
+    int mat;           /* index into model->mats                           */
+    int *dofs;         /* [ndof of the element] global DOF of each local DOF */
+} bk_elem;
+
+typedef struct bk_mat {
+    int nparam;
+    double params[8];
+    double rho;        /* kg/m^3 */
+} bk_mat;
+
+typedef struct bk_force_load {   /* point force at a material point of an element */
+    int elem;
+    double xi, y, z;   /* element coordinates of the point */
+    double value[3];   /* N */
+} bk_force_load;
+
+typedef struct bk_sensor {
+    char name[64];
+    int elem;
+    double xi;         /* along the element axis, on the centreline */
+} bk_sensor;
+
+typedef struct bk_lincon {       /* sum_k coef[k] q[dof[k]] = rhs */
+    int nterm;
+    int *dof;
+    double *coef;
+    double rhs;
+} bk_lincon;
+
+typedef struct bk_static_opts {
+    int load_steps;
+    int max_iter;
+    int max_cutbacks;
+    double rtol;       /* residual tolerance relative to the load        */
+    double utol;       /* increment tolerance relative to the displacement */
+} bk_static_opts;
+
+typedef struct bk_model {
+    char name[128];
+    enum bk_analysis analysis;
+    double length_scale;         /* m, for increment tolerances         */
+    int ndof;
+    double *q0;                  /* [ndof] reference configuration       */
+    int npair;
+    const bk_pair **pairs;       /* resolved kernel descriptors          */
+    int ngeom;                   /* distinct (kernel, geometry) combinations */
+    double (*geoms)[3];          /* {l, b, h} per geometry               */
+    double **tabs;               /* [ngeom] tabulated constants, from the
+                                    tabulate() of the kernel the geometry
+                                    was declared with                    */
+    int nmat;
+    bk_mat *mats;
+    int nelem;
+    bk_elem *elems;
+    int nfixed;
+    int *fixed;                  /* DOFs held at their reference value   */
+    int nlincon;
+    bk_lincon *lincons;
+    int nforce;
+    bk_force_load *forces;
+    int has_gravity;
+    double gravity[3];
+    int nsensor;
+    bk_sensor *sensors;
+    bk_static_opts stat;
+} bk_model;
+
+/* Reads a model file.  `avail` lists the kernel descriptors linked into this
+ * solver.  On error returns NULL and writes one line to `err` naming the file
+ * and what was expected. */
+bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navail, FILE *err);
+void bk_model_free(bk_model *m);
+
+#endif

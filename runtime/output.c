@@ -1,0 +1,134 @@
+/* output.c -- sensors.csv and summary.json. */
+#include "output.h"
+
+#include <errno.h>
+#include <string.h>
+
+#include "system.h"
+
+int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
+{
+    memset(o, 0, sizeof *o);
+    o->m = m;
+    snprintf(o->dir, sizeof o->dir, "%s", dir);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/sensors.csv", dir);
+    o->sensors = fopen(path, "w");
+    if (!o->sensors) {
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+        return -1;
+    }
+    fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
+    fflush(o->sensors);
+    return 0;
+}
+
+static void sensor_state(const bk_model *m, const bk_sensor *s, const double *q, double *pos,
+                         double *disp, double *grad)
+{
+    double p0[3];
+    bk_eval_point(m, q, s->elem, s->xi, 0.0, 0.0, pos, grad);
+    bk_eval_point(m, m->q0, s->elem, s->xi, 0.0, 0.0, p0, NULL);
+    for (int i = 0; i < 3; ++i)
+        disp[i] = pos[i] - p0[i];
+}
+
+void bk_output_step(bk_output *o, int step, double t, const double *q)
+{
+    if (!o->sensors)
+        return;
+    for (int k = 0; k < o->m->nsensor; ++k) {
+        const bk_sensor *s = &o->m->sensors[k];
+        double pos[3], disp[3], g[9];
+        sensor_state(o->m, s, q, pos, disp, g);
+        /* d1 = r_y, d2 = r_z (section axes), d3 = r_x (axis) */
+        fprintf(o->sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                step, t, s->name, pos[0], pos[1], pos[2], disp[0], disp[1], disp[2],
+                g[3], g[4], g[5], g[6], g[7], g[8], g[0], g[1], g[2]);
+    }
+    fflush(o->sensors);
+}
+
+static void json_string(FILE *fp, const char *s)
+{
+    fputc('"', fp);
+    for (; *s; ++s) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(fp, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(fp, "\\u%04x", c);
+        else
+            fputc(c, fp);
+    }
+    fputc('"', fp);
+}
+
+static void json_vec(FILE *fp, const double *v)
+{
+    fprintf(fp, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+}
+
+int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err)
+{
+    char path[1200], tmp[1210];
+    snprintf(path, sizeof path, "%s/summary.json", o->dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *fp = fopen(tmp, "w");
+    if (!fp) {
+        fprintf(err, "error: %s: cannot write: %s\n", tmp, strerror(errno));
+        return -1;
+    }
+    const bk_model *m = o->m;
+    fprintf(fp, "{\n  \"scene\": ");
+    json_string(fp, m->name);
+    fprintf(fp, ",\n  \"analysis\": \"static\",\n");
+    fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
+    fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
+    fprintf(fp, "  \"steps\": %d,\n", info->steps);
+    fprintf(fp, "  \"newton_iterations\": %d,\n", info->newton_iterations);
+    fprintf(fp, "  \"cutbacks\": %d,\n", info->cutbacks);
+    fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
+    fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
+    fprintf(fp, "  \"load_factor\": %.17g,\n", info->load_factor);
+    fprintf(fp, "  \"strain_energy\": %.17g,\n", info->strain_energy);
+    fprintf(fp, "  \"dofs\": %d,\n  \"elements\": %d,\n", m->ndof, m->nelem);
+    fprintf(fp, "  \"error\": ");
+    if (info->message[0])
+        json_string(fp, info->message);
+    else
+        fprintf(fp, "null");
+    fprintf(fp, ",\n  \"sensors\": {");
+    for (int k = 0; k < m->nsensor; ++k) {
+        const bk_sensor *s = &m->sensors[k];
+        double pos[3], disp[3], g[9];
+        sensor_state(m, s, q, pos, disp, g);
+        fprintf(fp, "%s\n    ", k ? "," : "");
+        json_string(fp, s->name);
+        fprintf(fp, ": {\"position\": ");
+        json_vec(fp, pos);
+        fprintf(fp, ", \"displacement\": ");
+        json_vec(fp, disp);
+        fprintf(fp, ", \"d1\": ");
+        json_vec(fp, g + 3);
+        fprintf(fp, ", \"d2\": ");
+        json_vec(fp, g + 6);
+        fprintf(fp, ", \"d3\": ");
+        json_vec(fp, g);
+        fprintf(fp, "}");
+    }
+    fprintf(fp, "%s}\n}\n", m->nsensor ? "\n  " : "");
+    if (fclose(fp) != 0 || rename(tmp, path) != 0) {
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+void bk_output_close(bk_output *o)
+{
+    if (o->sensors)
+        fclose(o->sensors);
+    o->sensors = NULL;
+}

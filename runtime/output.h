@@ -1,0 +1,36 @@
+/* output.h -- result files of a run: sensors.csv (one row per output step and
+ * sensor, flushed as it is written so an interrupted run keeps its results) and
+ * summary.json (written at the end, also when the solve failed). */
+#ifndef BK_OUTPUT_H
+#define BK_OUTPUT_H
+
+#include <stdio.h>
+
+#include "model.h"
+
+typedef struct bk_output {
+    const bk_model *m;
+    char dir[1024];
+    FILE *sensors;           /* owned */
+} bk_output;
+
+typedef struct bk_run_info {
+    int converged;
+    double wall_s;
+    int steps;
+    int newton_iterations;
+    int cutbacks;
+    int factorizations;
+    int analyses;
+    double load_factor;
+    double strain_energy;
+    char message[1024];      /* empty when converged */
+} bk_run_info;
+
+int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err);
+/* One row per sensor for the configuration q at output step `step`, time t. */
+void bk_output_step(bk_output *o, int step, double t, const double *q);
+int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
+void bk_output_close(bk_output *o);
+
+#endif

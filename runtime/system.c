@@ -1,0 +1,324 @@
+/* system.c -- equation numbering, sparse pattern, assembly. */
+#include "system.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BK_MAXSHAPE 128
+
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+static int find_slot(const bk_system *s, int row, int col)
+{
+    const int *lo = s->Ai + s->Ap[col], *hi = s->Ai + s->Ap[col + 1];
+    const int *p = bsearch(&row, lo, (size_t)(hi - lo), sizeof *lo, cmp_int);
+    return p ? (int)(p - s->Ai) : -1;
+}
+
+bk_system *bk_system_create(const bk_model *m, FILE *err)
+{
+    bk_system *s = calloc(1, sizeof *s);
+    if (!s)
+        goto oom;
+    s->m = m;
+    s->eq = malloc((size_t)m->ndof * sizeof *s->eq);
+    if (!s->eq)
+        goto oom;
+    for (int i = 0; i < m->ndof; ++i)
+        s->eq[i] = 0;
+    for (int i = 0; i < m->nfixed; ++i)
+        s->eq[m->fixed[i]] = -1;
+    for (int i = 0; i < m->ndof; ++i)
+        s->eq[i] = s->eq[i] < 0 ? -1 : s->nfree++;
+    s->ncon = m->nlincon;
+    s->neq = s->nfree + s->ncon;
+    s->cscale = 1.0;
+
+    /* Count entries per column (duplicates included). */
+    long *cnt = calloc((size_t)s->neq + 1, sizeof *cnt);
+    if (!cnt)
+        goto oom;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        int nd = m->pairs[el->pair]->element->ndof;
+        if (nd > s->maxdof)
+            s->maxdof = nd;
+        int nf = 0;
+        for (int k = 0; k < nd; ++k)
+            nf += s->eq[el->dofs[k]] >= 0;
+        for (int k = 0; k < nd; ++k)
+            if (s->eq[el->dofs[k]] >= 0)
+                cnt[s->eq[el->dofs[k]]] += nf;
+    }
+    for (int c = 0; c < s->ncon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        for (int k = 0; k < lc->nterm; ++k) {
+            int q = s->eq[lc->dof[k]];
+            if (q >= 0) {
+                cnt[q] += 1;
+                cnt[s->nfree + c] += 1;
+            }
+        }
+    }
+    /* Fill buckets, then sort and deduplicate each column. */
+    long *off = calloc((size_t)s->neq + 1, sizeof *off);
+    if (!off) {
+        free(cnt);
+        goto oom;
+    }
+    for (int j = 0; j < s->neq; ++j)
+        off[j + 1] = off[j] + cnt[j];
+    int *rows = malloc((size_t)(off[s->neq] ? off[s->neq] : 1) * sizeof *rows);
+    if (!rows) {
+        free(cnt);
+        free(off);
+        goto oom;
+    }
+    memset(cnt, 0, ((size_t)s->neq + 1) * sizeof *cnt);
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        int nd = m->pairs[el->pair]->element->ndof;
+        for (int b = 0; b < nd; ++b) {
+            int col = s->eq[el->dofs[b]];
+            if (col < 0)
+                continue;
+            for (int a = 0; a < nd; ++a) {
+                int row = s->eq[el->dofs[a]];
+                if (row >= 0)
+                    rows[off[col] + cnt[col]++] = row;
+            }
+        }
+    }
+    for (int c = 0; c < s->ncon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        int cc = s->nfree + c;
+        for (int k = 0; k < lc->nterm; ++k) {
+            int q = s->eq[lc->dof[k]];
+            if (q >= 0) {
+                rows[off[q] + cnt[q]++] = cc;
+                rows[off[cc] + cnt[cc]++] = q;
+            }
+        }
+    }
+    s->Ap = malloc(((size_t)s->neq + 1) * sizeof *s->Ap);
+    if (!s->Ap) {
+        free(cnt);
+        free(off);
+        free(rows);
+        goto oom;
+    }
+    long nnz = 0;
+    for (int j = 0; j < s->neq; ++j) {
+        int *col = rows + off[j];
+        long n = cnt[j];
+        qsort(col, (size_t)n, sizeof *col, cmp_int);
+        s->Ap[j] = (int)nnz;
+        for (long k = 0; k < n; ++k)
+            if (k == 0 || col[k] != col[k - 1])
+                rows[nnz++] = col[k];
+    }
+    s->Ap[s->neq] = (int)nnz;
+    s->nnz = nnz;
+    free(cnt);
+    free(off);
+    s->Ai = realloc(rows, (size_t)(nnz ? nnz : 1) * sizeof *rows);
+    if (!s->Ai) {
+        free(rows);
+        goto oom;
+    }
+
+    /* Scatter maps. */
+    s->eslot_off = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_off);
+    if (!s->eslot_off)
+        goto oom;
+    long tot = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int nd = m->pairs[m->elems[e].pair]->element->ndof;
+        s->eslot_off[e] = (int)tot;
+        tot += (long)nd * nd;
+    }
+    s->eslot_off[m->nelem] = (int)tot;
+    s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
+    if (!s->eslot)
+        goto oom;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        int nd = m->pairs[el->pair]->element->ndof;
+        int *sl = s->eslot + s->eslot_off[e];
+        for (int r = 0; r < nd; ++r)
+            for (int c = 0; c < nd; ++c) {
+                int row = s->eq[el->dofs[r]], col = s->eq[el->dofs[c]];
+                sl[r * nd + c] = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
+            }
+    }
+    s->cslot_off = malloc(((size_t)s->ncon + 1) * sizeof *s->cslot_off);
+    if (!s->cslot_off)
+        goto oom;
+    tot = 0;
+    for (int c = 0; c < s->ncon; ++c) {
+        s->cslot_off[c] = (int)tot;
+        tot += 2L * m->lincons[c].nterm;
+    }
+    s->cslot_off[s->ncon] = (int)tot;
+    s->cslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->cslot);
+    if (!s->cslot)
+        goto oom;
+    for (int c = 0; c < s->ncon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        int *sl = s->cslot + s->cslot_off[c];
+        for (int k = 0; k < lc->nterm; ++k) {
+            int q = s->eq[lc->dof[k]];
+            sl[2 * k] = q >= 0 ? find_slot(s, s->nfree + c, q) : -1;
+            sl[2 * k + 1] = q >= 0 ? find_slot(s, q, s->nfree + c) : -1;
+        }
+    }
+    s->fe = malloc((size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->fe);
+    s->Ke = malloc((size_t)(s->maxdof ? s->maxdof : 1) * (size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->Ke);
+    if (!s->fe || !s->Ke)
+        goto oom;
+    return s;
+oom:
+    fprintf(err, "error: out of memory while building the system of '%s'\n", m->name);
+    bk_system_free(s);
+    return NULL;
+}
+
+void bk_system_free(bk_system *s)
+{
+    if (!s)
+        return;
+    free(s->eq);
+    free(s->Ap);
+    free(s->Ai);
+    free(s->eslot_off);
+    free(s->eslot);
+    free(s->cslot);
+    free(s->cslot_off);
+    free(s->fe);
+    free(s->Ke);
+    free(s);
+}
+
+int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    double qe[BK_MAXSHAPE * 3];
+    memset(fint, 0, (size_t)m->ndof * sizeof *fint);
+    if (Ax)
+        memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
+    int bad = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        int nd = p->element->ndof;
+        for (int k = 0; k < nd; ++k)
+            qe[k] = q[el->dofs[k]];
+        const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
+        if (Ax)
+            p->force_tangent(qe, tab, mat, s->fe, s->Ke);
+        else
+            p->force(qe, tab, mat, s->fe);
+        for (int k = 0; k < nd; ++k) {
+            if (!isfinite(s->fe[k]))
+                bad = 1;
+            fint[el->dofs[k]] += s->fe[k];
+        }
+        if (Ax) {
+            const int *sl = s->eslot + s->eslot_off[e];
+            for (int k = 0; k < nd * nd; ++k)
+                if (sl[k] >= 0)
+                    Ax[sl[k]] += s->Ke[k];
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+double bk_strain_energy(const bk_system *s, const double *q)
+{
+    const bk_model *m = s->m;
+    double qe[BK_MAXSHAPE * 3], U = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        for (int k = 0; k < p->element->ndof; ++k)
+            qe[k] = q[el->dofs[k]];
+        U += p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params);
+    }
+    return U;
+}
+
+void bk_external_load(const bk_system *s, double *fext)
+{
+    const bk_model *m = s->m;
+    double N[BK_MAXSHAPE];
+    memset(fext, 0, (size_t)m->ndof * sizeof *fext);
+    for (int i = 0; i < m->nforce; ++i) {
+        const bk_force_load *f = &m->forces[i];
+        const bk_elem *el = &m->elems[f->elem];
+        const bk_element *et = m->pairs[el->pair]->element;
+        et->shape(m->geoms[el->geom], f->xi, f->y, f->z, N, NULL);
+        for (int a = 0; a < et->nshape; ++a)
+            for (int k = 0; k < 3; ++k)
+                fext[el->dofs[3 * a + k]] += N[a] * f->value[k];
+    }
+    if (m->has_gravity) {
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_elem *el = &m->elems[e];
+            const bk_element *et = m->pairs[el->pair]->element;
+            double rho = m->mats[el->mat].rho;
+            et->volume(m->geoms[el->geom], N);
+            for (int a = 0; a < et->nshape; ++a)
+                for (int k = 0; k < 3; ++k)
+                    fext[el->dofs[3 * a + k]] += rho * N[a] * m->gravity[k];
+        }
+    }
+}
+
+void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,
+                             double *r, double *Ax)
+{
+    const bk_model *m = s->m;
+    for (int c = 0; c < s->ncon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        const int *sl = s->cslot + s->cslot_off[c];
+        double g = -lc->rhs;
+        for (int k = 0; k < lc->nterm; ++k) {
+            g += lc->coef[k] * q[lc->dof[k]];
+            int qe = s->eq[lc->dof[k]];
+            if (qe >= 0)
+                r[qe] += s->cscale * lc->coef[k] * nu[c];
+            if (Ax && sl[2 * k] >= 0) {
+                Ax[sl[2 * k]] += s->cscale * lc->coef[k];
+                Ax[sl[2 * k + 1]] += s->cscale * lc->coef[k];
+            }
+        }
+        r[s->nfree + c] = s->cscale * g;
+    }
+}
+
+void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double y, double z,
+                   double *pos, double *grad)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_element *et = m->pairs[el->pair]->element;
+    double N[BK_MAXSHAPE], dN[3 * BK_MAXSHAPE];
+    et->shape(m->geoms[el->geom], xi, y, z, N, grad ? dN : NULL);
+    for (int i = 0; i < 3; ++i)
+        pos[i] = 0.0;
+    if (grad)
+        for (int i = 0; i < 9; ++i)
+            grad[i] = 0.0;
+    for (int a = 0; a < et->nshape; ++a)
+        for (int i = 0; i < 3; ++i) {
+            double qa = q[el->dofs[3 * a + i]];
+            pos[i] += N[a] * qa;
+            if (grad)
+                for (int J = 0; J < 3; ++J)
+                    grad[3 * J + i] += dN[3 * a + J] * qa;
+        }
+}

@@ -1,0 +1,58 @@
+/* system.h -- the algebraic system of a model: equation numbering, the sparse
+ * pattern of the Newton matrix, and assembly of forces and tangents.
+ *
+ * Unknowns: the free DOFs (those not held fixed), then one multiplier per
+ * linear constraint.  The Newton matrix is
+ *     [ K    s G^T ]
+ *     [ s G  0     ]
+ * with s = cscale, a stiffness-sized factor that keeps the constraint rows on
+ * the scale of the stiffness rows.  The pattern and each element's scatter map
+ * into it are computed once; assembly does no allocation.
+ */
+#ifndef BK_SYSTEM_H
+#define BK_SYSTEM_H
+
+#include <stdio.h>
+
+#include "model.h"
+
+typedef struct bk_system {
+    const bk_model *m;
+    int nfree, ncon, neq;
+    int *eq;                 /* [ndof] equation of each DOF, -1 when fixed     */
+    int *Ap, *Ai;            /* CSC pattern, neq columns                      */
+    long nnz;
+    int *eslot_off;          /* [nelem+1] offsets into eslot                  */
+    int *eslot;              /* CSC index of element entry (r, c), -1 if fixed */
+    int *cslot;              /* per constraint term: CSC index of s G, s G^T  */
+    int *cslot_off;          /* [ncon+1]                                      */
+    double cscale;
+    int maxdof;              /* largest element DOF count                     */
+    double *fe, *Ke;         /* element work buffers (owned)                  */
+} bk_system;
+
+bk_system *bk_system_create(const bk_model *m, FILE *err);
+void bk_system_free(bk_system *s);
+
+/* Internal force over all DOFs into fint[ndof]; when Ax is not NULL also the
+ * tangent, written into Ax (nnz values, zeroed here).  Returns 0, or -1 when a
+ * kernel produced a non-finite value. */
+int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax);
+
+/* Strain energy of the configuration q (J). */
+double bk_strain_energy(const bk_system *s, const double *q);
+
+/* Generalized external load of unit load factor into fext[ndof] (zeroed here). */
+void bk_external_load(const bk_system *s, double *fext);
+
+/* Constraint part of the Newton system: adds s G^T nu to r[0..nfree), writes
+ * s (G q - rhs) into r[nfree..neq), and, when Ax is not NULL, s G and s G^T. */
+void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,
+                             double *r, double *Ax);
+
+/* Point evaluation on element e at (xi, y, z): position and, if grad != NULL,
+ * the columns r_x, r_y, r_z (grad[3*J+i] = d r_i / d x_J). */
+void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double y, double z,
+                   double *pos, double *grad);
+
+#endif
