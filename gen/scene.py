@@ -194,6 +194,8 @@ def apply_overrides(doc, sets, path):
         node = doc
         for depth, p in enumerate(parts[:-1]):
             if isinstance(node, dict):
+                if p not in node and p in ("static", "dynamic") and depth == 0:
+                    node[p] = {}
                 if p not in node:
                     raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")
                 node = node[p]
@@ -205,6 +207,14 @@ def apply_overrides(doc, sets, path):
                     raise SceneError(f"error: {path}: --set {key}: no entry named or numbered '{p}' in "
                                      f"'{'.'.join(parts[:depth])}'")
                 node = match[0]
+        last = parts[-1]
+        if isinstance(node, list) and last.isdigit():
+            i = int(last)
+            if i >= len(node) or isinstance(node[i], bool) or not isinstance(node[i], (int, float)):
+                raise SceneError(f"error: {path}: --set {key}: no number at index {i} of "
+                                 f"'{'.'.join(parts[:-1])}'")
+            node[i] = num
+            continue
         if not isinstance(node, dict):
             raise SceneError(f"error: {path}: --set {key}: '{'.'.join(parts[:-1])}' is not a table")
         old = node.get(parts[-1])
@@ -361,10 +371,12 @@ def build(path, sets=(), name=None):
     pairs, geoms, mats_used = [], [], []
     for bi, bt in enumerate(beams_doc):
         where = f"beam[{bi}]"
+        bname = get_name(ctx, bt, "name", where) if isinstance(bt.get("name"), str) else None
+        if bname is not None:
+            where = f"beam.{bname}"
         check_keys(ctx, bt, {"name", "element", "material", "section", "start", "end", "up",
                              "elements", "integration"}, where)
         bname = get_name(ctx, bt, "name", where)
-        where = f"beam.{bname}"
         if bname in beams:
             ctx.fail(f"{where}.name", f"duplicate beam name {bname!r}")
         ename = get_str(ctx, bt, "element", where, choices=sorted(index["elements"]))

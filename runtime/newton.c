@@ -1,6 +1,7 @@
 /* newton.c -- load-stepped Newton iteration for statics. */
 #include "newton.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,18 +50,27 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         bk_assemble_constraints(s, q, w->nu, w->r, w->Ax);
         double rnorm = norm2(w->r, s->neq);
         double ref = fmax(fabs(lam) * norm2(w->fext, m->ndof), norm2(w->fint, m->ndof));
-        double uscale = 0.0;
-        for (int i = 0; i < m->ndof; ++i)
+        double uscale = 0.0, qmax = 0.0, kmax = 0.0;
+        for (int i = 0; i < m->ndof; ++i) {
             uscale = fmax(uscale, fabs(q[i] - m->q0[i]));
+            qmax = fmax(qmax, fabs(q[i]));
+        }
+        for (int j = 0; j < s->nfree; ++j)
+            if (s->diag[j] >= 0)
+                kmax = fmax(kmax, fabs(w->Ax[s->diag[j]]));
         uscale = fmax(uscale, 1e-6 * lscale);
+        /* Round-off floors: forces of the size of K times a last-bit change of
+         * q, and increments of a few ulps of q. */
+        double rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
+        double dfloor = 64.0 * DBL_EPSILON * qmax;
         *rnorm_out = rnorm;
         *dnorm_out = dnorm;
         *iters = it;
         if (!isfinite(rnorm))
             return NEWTON_NONFINITE;
-        if (rnorm <= o->rtol * ref && (it > 0 || rnorm == 0.0) && dnorm <= o->utol * uscale)
+        if (rnorm == 0.0)
             return NEWTON_OK;
-        if (rnorm == 0.0 || dnorm <= 1e-15 * lscale)
+        if (it > 0 && rnorm <= fmax(o->rtol * ref, rfloor) && dnorm <= fmax(o->utol * uscale, dfloor))
             return NEWTON_OK;
         if (r0 < 0.0)
             r0 = fmax(rnorm, 1e-300);

@@ -177,6 +177,11 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             sl[2 * k + 1] = q >= 0 ? find_slot(s, q, s->nfree + c) : -1;
         }
     }
+    s->diag = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *s->diag);
+    if (!s->diag)
+        goto oom;
+    for (int j = 0; j < s->nfree; ++j)
+        s->diag[j] = find_slot(s, j, j);
     s->fe = malloc((size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->fe);
     s->Ke = malloc((size_t)(s->maxdof ? s->maxdof : 1) * (size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->Ke);
     if (!s->fe || !s->Ke)
@@ -199,6 +204,7 @@ void bk_system_free(bk_system *s)
     free(s->eslot);
     free(s->cslot);
     free(s->cslot_off);
+    free(s->diag);
     free(s->fe);
     free(s->Ke);
     free(s);

@@ -26,6 +26,7 @@ typedef struct bk_system {
     int *eslot;              /* CSC index of element entry (r, c), -1 if fixed */
     int *cslot;              /* per constraint term: CSC index of s G, s G^T  */
     int *cslot_off;          /* [ncon+1]                                      */
+    int *diag;               /* [nfree] CSC index of each free DOF's diagonal  */
     double cscale;
     int maxdof;              /* largest element DOF count                     */
     double *fe, *Ke;         /* element work buffers (owned)                  */

@@ -1,0 +1,231 @@
+/* kernel_check.c -- checks every linked element x material kernel against
+ * finite differences and rigid motions.  Linked with a kernel table of all
+ * generated pairs (bk_linked_pairs); tests/test_kernels.py builds it with the
+ * sanitizers on, runs it and asserts on the numbers it prints.
+ *
+ * Per pair and per element geometry, at NSTATE random deformed states:
+ *   fd_force    max_j |f_j - dU/dq_j (4th-order central difference)| / max|f|
+ *   fd_tangent  max_ij |K_ij - df_i/dq_j (4th-order central)| / max|K|
+ *   sym         max |K - K^T| / max|K|
+ *   consist     max |f(force) - f(force_tangent)| / max|f|
+ * and at NSTATE random rigid motions of the reference element:
+ *   rigid_energy  |U| / (energy of a unit strain)
+ *   rigid_force   max|f| / (force of a unit strain)
+ * Output: one line per pair and geometry, "key=value" fields.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bk_kernel.h"
+
+extern const bk_pair *const bk_linked_pairs[];
+extern const int bk_nlinked_pairs;
+
+#define NSTATE 20
+#define MAXD 256
+
+typedef struct rng {
+    unsigned long long s;
+} rng;
+
+static double urand(rng *r) /* uniform in [-1, 1) */
+{
+    r->s ^= r->s << 13;
+    r->s ^= r->s >> 7;
+    r->s ^= r->s << 17;
+    return 2.0 * ((double)(r->s >> 11) / 9007199254740992.0) - 1.0;
+}
+
+static void random_rotation(rng *r, double R[9])
+{
+    double q[4], n = 0.0;
+    do {
+        n = 0.0;
+        for (int i = 0; i < 4; ++i) {
+            q[i] = urand(r);
+            n += q[i] * q[i];
+        }
+    } while (n > 1.0 || n < 1e-3);
+    n = sqrt(n);
+    for (int i = 0; i < 4; ++i)
+        q[i] /= n;
+    double w = q[0], x = q[1], y = q[2], z = q[3];
+    double M[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
+                   2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                   2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+    memcpy(R, M, sizeof M);
+}
+
+/* Derivative orders of a nodal vector name: r, r_x, r_yz, ... */
+static void vec_order(const char *v, int o[3])
+{
+    o[0] = o[1] = o[2] = 0;
+    if (strncmp(v, "r_", 2) == 0)
+        for (const char *c = v + 2; *c; ++c)
+            o[*c - 'x']++;
+}
+
+/* Reference coordinates of the straight box rotated by R, shifted by x0. */
+static void reference(const bk_element *e, const double *geom, const double R[9], const double x0[3],
+                      double *q)
+{
+    for (int a = 0; a < e->nshape; ++a) {
+        int o[3];
+        vec_order(e->shape_vector[a], o);
+        double v[3] = {0, 0, 0};
+        if (o[0] + o[1] + o[2] == 0)
+            v[0] = e->node_xi[e->shape_node[a]] * geom[0];
+        else if (o[0] + o[1] + o[2] == 1)
+            v[o[0] ? 0 : o[1] ? 1 : 2] = 1.0;
+        for (int i = 0; i < 3; ++i) {
+            double s = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
+            q[3 * a + i] = s + ((o[0] + o[1] + o[2] == 0) ? x0[i] : 0.0);
+        }
+    }
+}
+
+/* Size of a perturbation of each DOF: positions ~ l, slopes ~ 1, curvatures ~ 1/h. */
+static void dof_scale(const bk_element *e, const double *geom, double *s)
+{
+    double hmin = fmin(geom[1], geom[2]);
+    for (int a = 0; a < e->nshape; ++a) {
+        int o[3];
+        vec_order(e->shape_vector[a], o);
+        int ord = o[0] + o[1] + o[2];
+        double v = ord == 0 ? geom[0] : ord == 1 ? 1.0 : 1.0 / hmin;
+        for (int i = 0; i < 3; ++i)
+            s[3 * a + i] = v;
+    }
+}
+
+static double param_value(const char *name, int k)
+{
+    const double E = 1.0e7, nu = 0.3;
+    if (!strcmp(name, "lambda"))
+        return E * nu / ((1 + nu) * (1 - 2 * nu));
+    if (!strcmp(name, "mu"))
+        return E / (2 * (1 + nu));
+    if (!strcmp(name, "kappa"))
+        return 5.0e7;
+    if (!strcmp(name, "lambda_m"))
+        return 3.0;
+    if (!strcmp(name, "c10"))
+        return 1.5e6;
+    if (!strcmp(name, "c01"))
+        return 3.0e5;
+    return 1.0e6 / (k + 1);
+}
+
+static double maxabs(const double *v, int n)
+{
+    double m = 0.0;
+    for (int i = 0; i < n; ++i)
+        m = fmax(m, fabs(v[i]));
+    return m;
+}
+
+int main(void)
+{
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    static const double geoms[2][3] = {{0.5, 0.2, 0.1}, {0.1, 0.01, 0.012}};
+    int bad = 0;
+    for (int ip = 0; ip < bk_nlinked_pairs; ++ip) {
+        const bk_pair *p = bk_linked_pairs[ip];
+        const bk_element *e = p->element;
+        int n = e->ndof;
+        if (n > MAXD) {
+            printf("pair=%s_%s_%s error=too_many_dofs\n", e->name, p->material, p->integration);
+            bad = 1;
+            continue;
+        }
+        double mat[16];
+        for (int k = 0; k < p->nparam; ++k)
+            mat[k] = param_value(p->param_names[k], k);
+        for (int ig = 0; ig < 2; ++ig) {
+            const double *geom = geoms[ig];
+            double *tab = malloc((size_t)p->ntab * sizeof *tab);
+            double *q0 = malloc(n * sizeof(double)), *q = malloc(n * sizeof(double));
+            double *f = malloc(n * sizeof(double)), *f2 = malloc(n * sizeof(double));
+            double *K = malloc((size_t)n * n * sizeof(double)), *Kd = malloc((size_t)n * n * sizeof(double));
+            double *fp = malloc(n * sizeof(double)), *fm = malloc(n * sizeof(double));
+            double *fp2 = malloc(n * sizeof(double)), *fm2 = malloc(n * sizeof(double));
+            double *sc = malloc(n * sizeof(double));
+            if (!tab || !q0 || !q || !f || !f2 || !K || !Kd || !fp || !fm || !fp2 || !fm2 || !sc)
+                return 3;
+            p->tabulate(geom, tab);
+            dof_scale(e, geom, sc);
+            rng r = {0x9e3779b97f4a7c15ULL ^ (unsigned long long)(ip * 7919 + ig * 104729 + 1)};
+            double R[9], x0[3];
+
+            /* Unit-strain scales from a small uniaxial stretch along the axis. */
+            const double eps = 1e-4;
+            double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, zero[3] = {0, 0, 0};
+            reference(e, geom, Rid, zero, q);
+            for (int a = 0; a < e->nshape; ++a)
+                q[3 * a] *= 1.0 + eps;           /* x components: positions and r_x */
+            double Ueps = p->energy(q, tab, mat);
+            p->force(q, tab, mat, f);
+            double fscale = maxabs(f, n) / eps, Uscale = Ueps / (eps * eps);
+
+            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0;
+
+            for (int st = 0; st < NSTATE; ++st) {
+                random_rotation(&r, R);
+                for (int i = 0; i < 3; ++i)
+                    x0[i] = urand(&r);
+                reference(e, geom, R, x0, q0);
+                /* rigid motion */
+                double U0 = p->energy(q0, tab, mat);
+                p->force(q0, tab, mat, f);
+                e_rigU = fmax(e_rigU, fabs(U0) / Uscale);
+                e_rigf = fmax(e_rigf, maxabs(f, n) / fscale);
+                /* deformed state */
+                for (int i = 0; i < n; ++i)
+                    q[i] = q0[i] + 0.08 * sc[i] * urand(&r);
+                p->force_tangent(q, tab, mat, f, K);
+                p->force(q, tab, mat, f2);
+                double fmax_ = maxabs(f, n), Kmax = maxabs(K, n * n);
+                for (int i = 0; i < n; ++i)
+                    e_con = fmax(e_con, fabs(f[i] - f2[i]) / fmax_);
+                for (int i = 0; i < n; ++i)
+                    for (int j = 0; j < n; ++j)
+                        e_sym = fmax(e_sym, fabs(K[i * n + j] - K[j * n + i]) / Kmax);
+                for (int j = 0; j < n; ++j) {
+                    double h = 1e-3 * sc[j], qj = q[j];
+                    double U[4];
+                    const double off[4] = {2, 1, -1, -2};
+                    for (int k = 0; k < 4; ++k) {
+                        q[j] = qj + off[k] * h;
+                        U[k] = p->energy(q, tab, mat);
+                    }
+                    q[j] = qj + h;
+                    p->force(q, tab, mat, fp);
+                    q[j] = qj - h;
+                    p->force(q, tab, mat, fm);
+                    q[j] = qj + 2 * h;
+                    p->force(q, tab, mat, fp2);
+                    q[j] = qj - 2 * h;
+                    p->force(q, tab, mat, fm2);
+                    q[j] = qj;
+                    double dU = (-U[0] + 8 * U[1] - 8 * U[2] + U[3]) / (12 * h);
+                    e_force = fmax(e_force, fabs(f[j] - dU) / fmax_);
+                    for (int i = 0; i < n; ++i)
+                        Kd[i * n + j] = (-fp2[i] + 8 * fp[i] - 8 * fm[i] + fm2[i]) / (12 * h);
+                }
+                for (int k = 0; k < n * n; ++k)
+                    e_tan = fmax(e_tan, fabs(K[k] - Kd[k]) / Kmax);
+            }
+            printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
+                   "rigid_energy=%.3e rigid_force=%.3e fscale=%.3e\n",
+                   e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,
+                   e_rigU, e_rigf, fscale);
+            if (!isfinite(e_force) || !isfinite(e_tan))
+                bad = 1;
+            free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);
+            free(fp); free(fm); free(fp2); free(fm2); free(sc);
+        }
+    }
+    return bad;
+}

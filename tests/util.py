@@ -1,0 +1,135 @@
+"""Helpers shared by the tests: running scenes, building test programs."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BUILD = ROOT / "out" / "build" / "tests"
+PY = "/usr/bin/python3"
+ENV = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONDONTWRITEBYTECODE="1")
+
+
+def run_cli(args, check=False, timeout=600):
+    """./build.sh ARGS -> CompletedProcess (text)."""
+    r = subprocess.run([str(ROOT / "build.sh")] + list(args), capture_output=True, text=True,
+                       env=ENV, timeout=timeout)
+    if check and r.returncode != 0:
+        raise AssertionError(f"./build.sh {' '.join(args)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
+    return r
+
+
+def run_scene(scene, sets=(), out=None, extra=()):
+    """Run a scene (name or path) and return (summary dict, sensor rows)."""
+    out = Path(out or tempfile.mkdtemp(prefix="bk-run-", dir=ensure_dir(BUILD / "runs")))
+    if out.exists() and not any(out.iterdir()):
+        pass
+    args = ["run", str(scene), "--quiet", "--out", str(out)] + list(extra)
+    for s in sets:
+        args += ["--set", s]
+    r = run_cli(args)
+    if r.returncode != 0:
+        raise AssertionError(f"scene {scene} {list(sets)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
+    return load_run(out)
+
+
+def load_run(out):
+    out = Path(out)
+    summary = json.loads((out / "summary.json").read_text())
+    with open(out / "sensors.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    return summary, rows
+
+
+def ensure_dir(p):
+    Path(p).mkdir(parents=True, exist_ok=True)
+    return Path(p)
+
+
+def tip(summary, name="tip"):
+    return summary["sensors"][name]["displacement"]
+
+
+def rel(a, b):
+    return abs(a - b) / abs(b)
+
+
+def all_pair_symbols(index=None):
+    from gen.scene import load_index
+    index = index or load_index()
+    return [f"{p['element']}_{p['material']}_{p['integration']}" for p in index["pairs"]], index
+
+
+def build_program(src, name, variant="sanitize", pairs=None):
+    """Compile tests/<src> and link it with the kernel table of `pairs`
+    (default: every generated pair).  Returns the executable path."""
+    from gen.solver_build import VARIANTS, _compile, build_solver, RUNTIME
+    allp, index = all_pair_symbols()
+    pairs = pairs or allp
+    src = ROOT / "tests" / src
+    obj = BUILD / variant / (Path(src).stem + ".o")
+    _compile(src, obj, VARIANTS[variant], list(RUNTIME.glob("*.h")), None)
+    return build_solver(pairs, BUILD / variant / name, index, variant, main_objs=[obj])
+
+
+def build_shared_kernels():
+    """All generated kernels as one shared library (for ctypes), rebuilt when stale."""
+    from gen.solver_build import CC, INCLUDES, KERNELS, WARN
+    srcs = sorted(KERNELS.glob("*.c"))
+    lib = ensure_dir(BUILD) / "libkernels.so"
+    if lib.exists() and lib.stat().st_mtime >= max(p.stat().st_mtime for p in srcs + sorted(KERNELS.glob("*.h"))):
+        return lib
+    cmd = [CC] + WARN + ["-O2", "-fPIC", "-shared"] + INCLUDES + [str(s) for s in srcs] + ["-o", str(lib), "-lm"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise AssertionError(f"building {lib} failed:\n{r.stderr[-3000:]}")
+    return lib
+
+
+class Kernel:
+    """ctypes access to one generated element x material x integration kernel."""
+
+    def __init__(self, element, material, integration="full", ntab=None, ndof=None):
+        import ctypes
+        import json
+        self.lib = ctypes.CDLL(str(build_shared_kernels()))
+        idx = json.loads((ROOT / "out" / "kernels" / "index.json").read_text())
+        e = idx["elements"][element]
+        self.ndof = e["ndof"]
+        self.ntab = e["integrations"][integration]["ntab"]
+        D = ctypes.POINTER(ctypes.c_double)
+        self._tab = getattr(self.lib, f"{element}_{integration}_tabulate")
+        self._energy = getattr(self.lib, f"{element}_{material}_{integration}_energy")
+        self._energy.restype = ctypes.c_double
+        self._force = getattr(self.lib, f"{element}_{material}_{integration}_force")
+        self._ft = getattr(self.lib, f"{element}_{material}_{integration}_force_tangent")
+        self.ct = ctypes
+
+    def _arr(self, a):
+        import numpy as np
+        a = np.ascontiguousarray(a, dtype=float)
+        return a, a.ctypes.data_as(self.ct.POINTER(self.ct.c_double))
+
+    def tabulate(self, geom):
+        import numpy as np
+        tab = np.zeros(self.ntab)
+        g, gp = self._arr(geom)
+        t, tp = self._arr(tab)
+        self._tab(gp, tp)
+        return t
+
+    def eval(self, q, tab, mat):
+        import numpy as np
+        q, qp = self._arr(q)
+        t, tp = self._arr(tab)
+        m, mp = self._arr(mat)
+        f = np.zeros(self.ndof)
+        K = np.zeros(self.ndof * self.ndof)
+        f, fp = self._arr(f)
+        K, Kp = self._arr(K)
+        U = self._energy(qp, tp, mp)
+        self._ft(qp, tp, mp, fp, Kp)
+        return U, f.copy(), K.reshape(self.ndof, self.ndof).copy()
