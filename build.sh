@@ -31,6 +31,8 @@ Commands:
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   scenes                 list the scenes in models/
+  report [--quick]       the seed cantilever tables, ours beside the paper's:
+                         out/report/seed_tables.md
   deps                   only install missing Debian packages
   bench                  the speed-against-error report (not implemented yet)
   --help                 this text
@@ -93,6 +95,10 @@ case "$cmd" in
         ;;
     scenes)
         exec "$PY" -m gen.cli scenes
+        ;;
+    report)
+        shift
+        exec "$PY" -m report.seed_tables "$@"
         ;;
     bench)
         echo "error: ./build.sh bench is not implemented yet (issue: speed against error)" >&2

@@ -57,6 +57,25 @@ def solver_for(model, index, variant="release", log=None):
     return build_solver(model["pairs"], ROOT / "out" / "bin" / f"{name}{suffix}", index, variant, log)
 
 
+def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=True):
+    """Validate, mesh, build and run one scene.  Returns (exit status, out dir).
+    Raises SceneError for bad input."""
+    path = scene_path(str(scene))
+    model = build(path, sets)
+    index = load_index()
+    out = prepare_out_dir(out or RUNS / model["name"], RUNS)
+    write_model(model, out / "model.dat")
+    log = None if quiet else (lambda s: print(s, file=sys.stderr))
+    try:
+        solver = solver_for(model, index, variant, log)
+    except Exception as e:
+        raise SceneError(f"error: building the solver for {path}: {e}")
+    cmd = [str(solver), str(out / "model.dat"), str(out)]
+    if verbose:
+        cmd.append("--verbose")
+    return subprocess.run(cmd).returncode, out
+
+
 def cmd_run(argv):
     ap = argparse.ArgumentParser(
         prog="build.sh run",
@@ -64,8 +83,9 @@ def cmd_run(argv):
                     "(summary.json, sensors.csv, model.dat) or to --out DIR.")
     ap.add_argument("scene", help="a name in models/ (without .toml) or a path to a .toml file")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                    help="override a numeric scene value, e.g. material.alu.E=3e7 or beam.arm.elements=20 "
-                         "(arrays of tables are addressed by name or index); no kernel regeneration")
+                    help="override a scene value, e.g. material.alu.E=3e7, beam.arm.elements=20 or "
+                         "beam.arm.integration=full (arrays of tables are addressed by name or index, "
+                         "array entries by index: load.0.value.2=-10); no kernel regeneration")
     ap.add_argument("--out", metavar="DIR", help="output directory (default out/runs/SCENE)")
     ap.add_argument("--quiet", action="store_true", help="print only errors")
     ap.add_argument("--verbose", action="store_true", help="log every load step")
@@ -73,23 +93,11 @@ def cmd_run(argv):
                     help="build and run the solver with AddressSanitizer and UBSan")
     a = ap.parse_args(argv)
     try:
-        path = scene_path(a.scene)
-        model = build(path, a.set)
-        index = load_index()
-        out = prepare_out_dir(a.out or RUNS / model["name"], RUNS)
-        write_model(model, out / "model.dat")
-        log = None if a.quiet else (lambda s: print(s, file=sys.stderr))
-        solver = solver_for(model, index, "sanitize" if a.sanitize else "release", log)
+        rc, out = execute(a.scene, a.set, a.out, "sanitize" if a.sanitize else "release",
+                          a.verbose, a.quiet)
     except SceneError as e:
         print(str(e), file=sys.stderr)
         return 1
-    except Exception as e:  # build errors
-        print(f"error: {e}", file=sys.stderr)
-        return 1
-    cmd = [str(solver), str(out / "model.dat"), str(out)]
-    if a.verbose:
-        cmd.append("--verbose")
-    rc = subprocess.run(cmd).returncode
     summ = out / "summary.json"
     if not a.quiet and summ.exists():
         print_summary(json.loads(summ.read_text()), out)

@@ -186,11 +186,11 @@ def apply_overrides(doc, sets, path):
         if "=" not in item:
             raise SceneError(f"error: --set {item}: expected KEY=VALUE")
         key, val = item.split("=", 1)
+        parts = key.split(".")
         try:
             num = int(val) if re.fullmatch(r"[+-]?\d+", val.strip()) else float(val)
         except ValueError:
-            raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
-        parts = key.split(".")
+            num = None
         node = doc
         for depth, p in enumerate(parts[:-1]):
             if isinstance(node, dict):
@@ -213,14 +213,21 @@ def apply_overrides(doc, sets, path):
             if i >= len(node) or isinstance(node[i], bool) or not isinstance(node[i], (int, float)):
                 raise SceneError(f"error: {path}: --set {key}: no number at index {i} of "
                                  f"'{'.'.join(parts[:-1])}'")
+            if num is None:
+                raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
             node[i] = num
             continue
         if not isinstance(node, dict):
             raise SceneError(f"error: {path}: --set {key}: '{'.'.join(parts[:-1])}' is not a table")
         old = node.get(parts[-1])
+        if isinstance(old, str):
+            node[parts[-1]] = val          # a string key (element, law, ...) takes the text
+            continue
         if old is not None and (isinstance(old, bool) or not isinstance(old, (int, float))):
             raise SceneError(f"error: {path}: --set {key}: the scene's value is {_typename(old)}, not a number")
-        node[parts[-1]] = num
+        if num is None and old is not None:
+            raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
+        node[parts[-1]] = val if num is None else num
     return doc
 
 
