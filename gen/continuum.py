@@ -25,7 +25,7 @@ from gen.invariants import cofactor, first_derivatives, second_derivatives
 from gen.program import Program, lower
 from gen.quadrature import box_rule
 
-INVARIANTS = ("I1", "I2", "J")
+INVARIANTS = ("I1", "I2", "J", "I4")
 
 
 @dataclass
@@ -94,13 +94,28 @@ def tabulate_program(elem, integration):
     return prog, ntab
 
 
-def material_energy(mat, part, I1, I2, J, params):
+def sri_split(mat, I1, I2, I4, J, params):
+    """(W_full_order, W_centreline) of a material for selective reduced integration.
+
+    A material may define sri_split(I1, I2, I4, J, p); otherwise the split is
+    isochoric / volumetric: W_iso = W(J^-2/3 I1, J^-4/3 I2, 1), W_vol = W - W_iso."""
+    own = getattr(mat, "sri_split", None)
+    if own is not None:
+        return own(I1, I2, I4, J, params)
+    W = mat.energy(I1, I2, J, params)
+    W_iso = mat.energy(J**sp.Rational(-2, 3) * I1, J**sp.Rational(-4, 3) * I2, sp.Integer(1), params)
+    return W_iso, W - W_iso
+
+
+def material_energy(mat, part, I1, I2, I4, J, params):
     if part == "all":
         return mat.energy(I1, I2, J, params)
-    parts = getattr(mat, "energy_parts", None)
-    if parts is None:
-        raise ValueError(f"material {mat.NAME} does not split its energy into parts")
-    return parts(I1, I2, J, params)[part]
+    full, centre = sri_split(mat, I1, I2, I4, J, params)
+    if part == "full_order":
+        return full
+    if part == "centreline":
+        return centre
+    raise ValueError(f"unknown energy part {part!r}")
 
 
 def body_program(elem, mat, part, want):
@@ -138,9 +153,10 @@ def body_program(elem, mat, part, want):
     I2 = prog.define("I2", Cm[0, 0] * Cm[1, 1] + Cm[1, 1] * Cm[2, 2] + Cm[0, 0] * Cm[2, 2]
                      - Cm[0, 1]**2 - Cm[1, 2]**2 - Cm[0, 2]**2)
     Jdet = prog.define("J", sum(Fm[i, 0] * cof[i, 0] for i in range(3)))
-    inv = {"I1": I1, "I2": I2, "J": Jdet}
+    I4 = Cm[0, 0]
+    inv = {"I1": I1, "I2": I2, "J": Jdet, "I4": I4}
 
-    W = material_energy(mat, part, I1, I2, Jdet, params)
+    W = material_energy(mat, part, I1, I2, I4, Jdet, params)
     if want == "energy":
         prog.output("e", w * W)
         return prog, params

@@ -31,7 +31,9 @@ def plan(elements=None, materials=None):
     """All (kind, name, inputs, producer) units of generation, in fixed order."""
     elements = elements or all_elements()
     materials = materials or all_materials()
-    units = []
+    from gen.loads import FILES as LOAD_FILES, loads_source
+    here = Path(__file__).resolve().parent
+    units = [("loads", "loads", [here / f for f in LOAD_FILES], lambda: loads_source()[:2])]
     for ename, (elem, epath) in elements.items():
         units.append(("element", ename, [epath],
                       lambda elem=elem, epath=epath: element_source(elem, epath)[:2]))
@@ -75,7 +77,7 @@ def generate(outdir, check=False, force=False, log=print):
     outdir.mkdir(parents=True, exist_ok=True)
     stale = []
     for kind, name, inputs, produce in plan():
-        h = input_hash(list(inputs) + core_paths())
+        h = input_hash(list(inputs) + (core_paths() if kind != "loads" else []))
         hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
         if not check and not force and _existing_hash(hpath) == h and cpath.exists():
             log(f"  {name}: up to date")

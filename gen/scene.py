@@ -505,18 +505,24 @@ def build(path, sets=(), name=None):
 
     # Loads
     forces = []
+    moments = []
     gravity = None
     for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
         where = f"load[{li}]"
-        ltype = get_str(ctx, lt, "type", where, choices=("force", "gravity"))
-        if ltype == "force":
-            check_keys(ctx, lt, {"type", "at", "value"}, where)
+        ltype = get_str(ctx, lt, "type", where, choices=("force", "moment", "gravity"))
+        if ltype in ("force", "moment"):
+            keys = {"type", "at", "value"} | ({"distribution"} if ltype == "force" else set())
+            check_keys(ctx, lt, keys, where)
             if "at" not in lt:
                 ctx.fail(f"{where}.at", "missing; expected a point like 'arm:end'")
             beam, s = parse_point(ctx, lt["at"], f"{where}.at", beams)
             val = get_vec3(ctx, lt, "value", where)
             e, xi = locate(beam, s)
-            forces.append((e, xi, 0.0, 0.0, val))
+            if ltype == "force":
+                dist = get_str(ctx, lt, "distribution", where, default="point", choices=("point", "section"))
+                forces.append((e, xi, 0.0, 0.0, 1 if dist == "section" else 0, val))
+            else:
+                moments.append((e, xi, val))
         else:
             check_keys(ctx, lt, {"type", "value"}, where)
             g = get_vec3(ctx, lt, "value", where)
@@ -559,7 +565,8 @@ def build(path, sets=(), name=None):
         "name": sname, "analysis": analysis, "ndof": ndof, "q0": q0,
         "length_scale": max(b["length"] for b in beams.values()),
         "pairs": pairs, "mats": mats_used, "geoms": geoms, "elements": elements,
-        "fixed": sorted(fixed), "lincons": lincons, "forces": forces, "gravity": gravity,
+        "fixed": sorted(fixed), "lincons": lincons, "forces": forces, "moments": moments,
+        "gravity": gravity,
         "sensors": sensors, "static": stat, "beams": beams,
     }
 
@@ -616,8 +623,11 @@ def write_model(model, path):
     for terms, rhs in model["lincons"]:
         out.append(f"lincon {len(terms)} " + " ".join(f"{d} {_f(c)}" for d, c in terms) + f" {_f(rhs)}")
     out.append(f"forces {len(model['forces'])}")
-    for e, xi, y, z, v in model["forces"]:
-        out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} " + " ".join(_f(x) for x in v))
+    for e, xi, y, z, dist, v in model["forces"]:
+        out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v))
+    out.append(f"moments {len(model['moments'])}")
+    for e, xi, v in model["moments"]:
+        out.append(f"moment {e} {_f(xi)} " + " ".join(_f(x) for x in v))
     g = model["gravity"]
     out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g))
     out.append(f"sensors {len(model['sensors'])}")

@@ -17,12 +17,20 @@ RUNTIME = ROOT / "runtime"
 KERNELS = ROOT / "out" / "kernels"
 BUILD = ROOT / "out" / "build"
 CC = os.environ.get("CC", "cc")
+JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
 RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "output.c", "main.c")
 LIBS = ["-lklu", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lm"]
 VARIANTS = {
     "release": ["-O2", "-march=native"],
     "sanitize": ["-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
+                 "-fno-sanitize-recover=all"],
+}
+# Generated kernels are long straight-line functions: debug info for them only
+# costs compile time, so the sanitizer build compiles them without -g.
+KERNEL_FLAGS = {
+    "release": ["-O2", "-march=native"],
+    "sanitize": ["-O1", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all"],
 }
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
@@ -37,8 +45,23 @@ def _newest(paths):
     return max((p.stat().st_mtime for p in paths if p.exists()), default=0.0)
 
 
+def _stale(src, obj, deps):
+    return not (obj.exists() and obj.stat().st_mtime >= max(src.stat().st_mtime, _newest(deps)))
+
+
+def _compile_many(jobs, log):
+    """Compile (src, obj, flags, deps) jobs that are stale, two at a time."""
+    from concurrent.futures import ThreadPoolExecutor
+    todo = [j for j in jobs if _stale(j[0], j[1], j[3])]
+    if not todo:
+        return
+    with ThreadPoolExecutor(max_workers=min(JOBS, len(todo))) as ex:
+        for f in [ex.submit(_compile, *j, log) for j in todo]:
+            f.result()
+
+
 def _compile(src, obj, flags, deps, log):
-    if obj.exists() and obj.stat().st_mtime >= max(src.stat().st_mtime, _newest(deps)):
+    if not _stale(src, obj, deps):
         return False
     obj.parent.mkdir(parents=True, exist_ok=True)
     cmd = [CC] + WARN + flags + INCLUDES + ["-c", str(src), "-o", str(obj)]
@@ -55,20 +78,20 @@ def _compile(src, obj, flags, deps, log):
 def runtime_objects(variant="release", log=None, extra_sources=()):
     flags = VARIANTS[variant]
     headers = list(RUNTIME.glob("*.h"))
-    objs = []
+    jobs = []
     for name in RUNTIME_SOURCES + tuple(extra_sources):
         src = RUNTIME / name
         obj = BUILD / variant / "runtime" / (Path(name).stem + ".o")
-        _compile(src, obj, flags, headers, log)
-        objs.append(obj)
-    return objs
+        jobs.append((src, obj, flags, headers + [KERNELS / "loads.h"]))
+    _compile_many(jobs, log)
+    return [j[1] for j in jobs]
 
 
 def kernel_objects(pairs, index, variant="release", log=None):
     """Objects for the element and pair files behind the given pair symbols
     (e.g. 'ancf3243_svk_full')."""
-    flags = VARIANTS[variant] + (["-O3"] if variant == "release" else [])
-    files = []
+    flags = KERNEL_FLAGS[variant]
+    files = ["loads.c"]
     for p in pairs:
         match = [x for x in index["pairs"] if f"{x['element']}_{x['material']}_{x['integration']}" == p]
         if not match:
@@ -76,15 +99,15 @@ def kernel_objects(pairs, index, variant="release", log=None):
         for f in match[0]["files"]:
             if f not in files:
                 files.append(f)
-    objs = []
+    jobs = []
     for f in files:
         src = KERNELS / f
         if not src.exists():
             raise BuildError(f"{src} is missing: run ./build.sh gen")
         obj = BUILD / variant / "kernels" / (Path(f).stem + ".o")
-        _compile(src, obj, flags, [src.with_suffix(".h"), RUNTIME / "bk_kernel.h"], log)
-        objs.append(obj)
-    return objs
+        jobs.append((src, obj, flags, [src.with_suffix(".h"), RUNTIME / "bk_kernel.h"]))
+    _compile_many(jobs, log)
+    return [j[1] for j in jobs]
 
 
 def kernel_table_source(pairs):

@@ -250,8 +250,21 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         f->xi = num(r, "force xi");
         f->y = num(r, "force y");
         f->z = num(r, "force z");
+        f->section = inum(r, "force distribution", 0, 1);
         for (int k = 0; k < 3; ++k)
             f->value[k] = num(r, "force value");
+    }
+
+    expect(r, "moments");
+    m->nmoment = inum(r, "moments", 0, MAXN);
+    m->moments = xcalloc(r, (size_t)m->nmoment, sizeof *m->moments);
+    for (int i = 0; i < m->nmoment && !r->failed; ++i) {
+        bk_moment_load *mo = &m->moments[i];
+        expect(r, "moment");
+        mo->elem = inum(r, "moment element", 0, m->nelem - 1);
+        mo->xi = num(r, "moment xi");
+        for (int k = 0; k < 3; ++k)
+            mo->value[k] = num(r, "moment value");
     }
 
     expect(r, "gravity");
@@ -307,6 +320,7 @@ void bk_model_free(bk_model *m)
         }
     free(m->lincons);
     free(m->forces);
+    free(m->moments);
     free(m->sensors);
     free(m);
 }

@@ -26,11 +26,18 @@ typedef struct bk_mat {
     double rho;        /* kg/m^3 */
 } bk_mat;
 
-typedef struct bk_force_load {   /* point force at a material point of an element */
+typedef struct bk_force_load {   /* force at a material point of an element */
     int elem;
     double xi, y, z;   /* element coordinates of the point */
+    int section;       /* 1: spread uniformly over the cross-section at xi */
     double value[3];   /* N */
 } bk_force_load;
+
+typedef struct bk_moment_load {  /* moment on the cross-section at xi (fixed in space) */
+    int elem;
+    double xi;
+    double value[3];   /* N m */
+} bk_moment_load;
 
 typedef struct bk_sensor {
     char name[64];
@@ -76,6 +83,8 @@ typedef struct bk_model {
     bk_lincon *lincons;
     int nforce;
     bk_force_load *forces;
+    int nmoment;
+    bk_moment_load *moments;
     int has_gravity;
     double gravity[3];
     int nsensor;

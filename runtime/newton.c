@@ -44,6 +44,7 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
     for (int it = 0;; ++it) {
         if (bk_assemble_internal(s, q, w->fint, w->Ax) != 0)
             return NEWTON_NONFINITE;
+        bk_assemble_follower(s, q, lam, w->fint, w->Ax);
         for (int i = 0; i < m->ndof; ++i)
             if (s->eq[i] >= 0)
                 w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];

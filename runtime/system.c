@@ -2,6 +2,8 @@
 #include "system.h"
 
 #include <math.h>
+
+#include "loads.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -267,7 +269,24 @@ void bk_external_load(const bk_system *s, double *fext)
         const bk_force_load *f = &m->forces[i];
         const bk_elem *el = &m->elems[f->elem];
         const bk_element *et = m->pairs[el->pair]->element;
-        et->shape(m->geoms[el->geom], f->xi, f->y, f->z, N, NULL);
+        const double *g = m->geoms[el->geom];
+        if (f->section) {
+            /* uniform over the rectangle b x h: 3 x 3 Gauss points, exact for
+             * shape functions up to degree 5 across the section */
+            static const double gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+            static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+            double Na[BK_MAXSHAPE];
+            for (int a = 0; a < et->nshape; ++a)
+                N[a] = 0.0;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) {
+                    et->shape(g, f->xi, 0.5 * g[1] * gp[i], 0.5 * g[2] * gp[j], Na, NULL);
+                    for (int a = 0; a < et->nshape; ++a)
+                        N[a] += gw[i] * gw[j] * Na[a];
+                }
+        } else {
+            et->shape(g, f->xi, f->y, f->z, N, NULL);
+        }
         for (int a = 0; a < et->nshape; ++a)
             for (int k = 0; k < 3; ++k)
                 fext[el->dofs[3 * a + k]] += N[a] * f->value[k];
@@ -282,6 +301,47 @@ void bk_external_load(const bk_system *s, double *fext)
                 for (int k = 0; k < 3; ++k)
                     fext[el->dofs[3 * a + k]] += rho * N[a] * m->gravity[k];
         }
+    }
+}
+
+void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    double N[BK_MAXSHAPE], dN[3 * BK_MAXSHAPE], Q[6], dQ[36];
+    for (int i = 0; i < m->nmoment; ++i) {
+        const bk_moment_load *mo = &m->moments[i];
+        const bk_elem *el = &m->elems[mo->elem];
+        const bk_element *et = m->pairs[el->pair]->element;
+        int ns = et->nshape, nd = et->ndof;
+        et->shape(m->geoms[el->geom], mo->xi, 0.0, 0.0, N, dN);
+        double ry[3] = {0, 0, 0}, rz[3] = {0, 0, 0};
+        for (int a = 0; a < ns; ++a)
+            for (int k = 0; k < 3; ++k) {
+                ry[k] += dN[3 * a + 1] * q[el->dofs[3 * a + k]];
+                rz[k] += dN[3 * a + 2] * q[el->dofs[3 * a + k]];
+            }
+        bk_section_moment(ry, rz, mo->value, Q, dQ);
+        for (int a = 0; a < ns; ++a)
+            for (int k = 0; k < 3; ++k)
+                fint[el->dofs[3 * a + k]] -= lam * (dN[3 * a + 1] * Q[k] + dN[3 * a + 2] * Q[3 + k]);
+        if (!Ax)
+            continue;
+        const int *sl = s->eslot + s->eslot_off[mo->elem];
+        for (int a = 0; a < ns; ++a)
+            for (int b = 0; b < ns; ++b) {
+                double ay = dN[3 * a + 1], az = dN[3 * a + 2], by = dN[3 * b + 1], bz = dN[3 * b + 2];
+                if ((ay == 0.0 && az == 0.0) || (by == 0.0 && bz == 0.0))
+                    continue;
+                for (int i = 0; i < 3; ++i)
+                    for (int k = 0; k < 3; ++k) {
+                        int slot = sl[(3 * a + i) * nd + 3 * b + k];
+                        if (slot < 0)
+                            continue;
+                        double v = ay * by * dQ[i * 6 + k] + ay * bz * dQ[i * 6 + 3 + k]
+                                 + az * by * dQ[(3 + i) * 6 + k] + az * bz * dQ[(3 + i) * 6 + 3 + k];
+                        Ax[slot] -= lam * v;
+                    }
+            }
     }
 }
 

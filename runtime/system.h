@@ -46,6 +46,11 @@ double bk_strain_energy(const bk_system *s, const double *q);
 /* Generalized external load of unit load factor into fext[ndof] (zeroed here). */
 void bk_external_load(const bk_system *s, double *fext);
 
+/* Configuration-dependent loads (moments on sections) at load factor lam:
+ * subtracts lam Q(q) from fint[ndof] and, when Ax is not NULL, adds
+ * -lam dQ/dq to the tangent. */
+void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax);
+
 /* Constraint part of the Newton system: adds s G^T nu to r[0..nfree), writes
  * s (G q - rhs) into r[nfree..neq), and, when Ax is not NULL, s G and s G^T. */
 void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,

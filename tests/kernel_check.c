@@ -23,7 +23,6 @@
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;
 
-#define NSTATE 20
 #define MAXD 256
 
 typedef struct rng {
@@ -126,14 +125,23 @@ static double maxabs(const double *v, int n)
     return m;
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
+    /* kernel_check [NSTATE [PAIR_SUBSTRING]] */
+    int NSTATE = argc > 1 ? atoi(argv[1]) : 20;
+    const char *only = argc > 2 ? argv[2] : NULL;
+    if (NSTATE < 1)
+        NSTATE = 1;
     setvbuf(stdout, NULL, _IOLBF, 0);
     static const double geoms[2][3] = {{0.5, 0.2, 0.1}, {0.1, 0.01, 0.012}};
     int bad = 0;
     for (int ip = 0; ip < bk_nlinked_pairs; ++ip) {
         const bk_pair *p = bk_linked_pairs[ip];
         const bk_element *e = p->element;
+        char pname[256];
+        snprintf(pname, sizeof pname, "%s_%s_%s", e->name, p->material, p->integration);
+        if (only && !strstr(pname, only))
+            continue;
         int n = e->ndof;
         if (n > MAXD) {
             printf("pair=%s_%s_%s error=too_many_dofs\n", e->name, p->material, p->integration);

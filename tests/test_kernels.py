@@ -14,15 +14,26 @@ def parse(out):
 
 
 def test_force_tangent_finite_differences_and_rigid_motion():
+    """20 random deformed states and 20 rigid motions per pair and geometry (optimized build)."""
+    exe = build_program("kernel_check.c", "kernel_check", "release")
+    check(exe, 20)
+
+
+def test_kernels_clean_under_asan_ubsan():
+    """The same checks, 2 states per pair, with AddressSanitizer + UBSan."""
     exe = build_program("kernel_check.c", "kernel_check", "sanitize")
-    r = subprocess.run([str(exe)], capture_output=True, text=True, timeout=900)
+    check(exe, 2)
+
+
+def check(exe, nstate):
+    r = subprocess.run([str(exe), str(nstate)], capture_output=True, text=True, timeout=1800)
     assert r.returncode == 0, f"kernel_check failed ({r.returncode}):\n{r.stdout}\n{r.stderr[-4000:]}"
     assert "runtime error" not in r.stderr and "Sanitizer" not in r.stderr, r.stderr[-4000:]
     rows = parse(r.stdout)
     assert rows, "no pairs checked"
     worst = []
     for d in rows:
-        assert int(d["states"]) >= 20
+        assert int(d["states"]) >= nstate
         checks = {"fd_force": 1e-6, "fd_tangent": 1e-6, "sym": 1e-14, "consist": 1e-12,
                   "rigid_energy": 1e-10, "rigid_force": 1e-10}
         for k, tol in checks.items():

@@ -14,3 +14,7 @@ INPUTS = ((("E", "nu"), lame), (("lambda", "mu"), lambda lam, mu: (lam, mu)))
 
 def energy(I1, I2, J, p):
     return p["mu"] / 2 * (I1 - 3) - p["mu"] * log(J) + p["lambda"] / 2 * log(J)**2
+
+
+def small_strain(lam, mu):
+    return mu * (3 * lam + 2 * mu) / (lam + mu), lam / (2 * (lam + mu))

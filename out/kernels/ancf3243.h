@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:4a23e9040d95a9268ac26bb31059b8dd91795e8b2aceadea11847fcdd4148760
+ * input hash: sha256:9a3e5304eadcfdb2b6821a375054a75beec5672dd5daf1311f358258ed8f76d1
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -29,5 +29,8 @@ void ancf3243_volume(const double *restrict geom, double *restrict v);
 /* integration "full": 12 points (all); tab[96] */
 #define ANCF3243_FULL_NTAB 96
 void ancf3243_full_tabulate(const double *restrict geom, double *restrict tab);
+/* integration "sri": 12 points (full_order), 3 points (centreline); tab[120] */
+#define ANCF3243_SRI_NTAB 120
+void ancf3243_sri_tabulate(const double *restrict geom, double *restrict tab);
 
 #endif
