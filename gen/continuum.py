@@ -21,11 +21,12 @@ from dataclasses import dataclass
 import sympy as sp
 
 from gen.element import B, H, L, XI, Y, Z, shape_gradients
-from gen.invariants import cofactor, first_derivatives, second_derivatives
+from gen.invariants import (COMPONENTS, cofactor, component_first, component_second,
+                            first_derivatives, second_derivatives)
 from gen.program import Program, lower
 from gen.quadrature import box_rule
 
-INVARIANTS = ("I1", "I2", "J", "I4")
+INVARIANTS = ("I1", "I2", "J")
 
 
 @dataclass
@@ -94,23 +95,24 @@ def tabulate_program(elem, integration):
     return prog, ntab
 
 
-def sri_split(mat, I1, I2, I4, J, params):
+def sri_split(mat, I1, I2, J, C, params):
     """(W_full_order, W_centreline) of a material for selective reduced integration.
 
-    A material may define sri_split(I1, I2, I4, J, p); otherwise the split is
+    A material may define sri_split(I1, I2, J, C, p) (C: the right Cauchy-Green
+    tensor in the element frame, x along the axis); otherwise the split is
     isochoric / volumetric: W_iso = W(J^-2/3 I1, J^-4/3 I2, 1), W_vol = W - W_iso."""
     own = getattr(mat, "sri_split", None)
     if own is not None:
-        return own(I1, I2, I4, J, params)
+        return own(I1, I2, J, C, params)
     W = mat.energy(I1, I2, J, params)
     W_iso = mat.energy(J**sp.Rational(-2, 3) * I1, J**sp.Rational(-4, 3) * I2, sp.Integer(1), params)
     return W_iso, W - W_iso
 
 
-def material_energy(mat, part, I1, I2, I4, J, params):
+def material_energy(mat, part, I1, I2, J, C, params):
     if part == "all":
         return mat.energy(I1, I2, J, params)
-    full, centre = sri_split(mat, I1, I2, I4, J, params)
+    full, centre = sri_split(mat, I1, I2, J, C, params)
     if part == "full_order":
         return full
     if part == "centreline":
@@ -153,29 +155,37 @@ def body_program(elem, mat, part, want):
     I2 = prog.define("I2", Cm[0, 0] * Cm[1, 1] + Cm[1, 1] * Cm[2, 2] + Cm[0, 0] * Cm[2, 2]
                      - Cm[0, 1]**2 - Cm[1, 2]**2 - Cm[0, 2]**2)
     Jdet = prog.define("J", sum(Fm[i, 0] * cof[i, 0] for i in range(3)))
-    I4 = Cm[0, 0]
-    inv = {"I1": I1, "I2": I2, "J": Jdet, "I4": I4}
+    inv = {"I1": I1, "I2": I2, "J": Jdet}
 
-    W = material_energy(mat, part, I1, I2, I4, Jdet, params)
+    W = material_energy(mat, part, I1, I2, Jdet, Cm, params)
+    # Variables W depends on: invariants, and components of C (element frame).
+    dvar = {m: first_derivatives(Fm, Cm, I1, cof)[m] for m in INVARIANTS}
+    d2var = dict(second_derivatives(Fm, Cm, bm, I1))
+    for (I, Jc) in COMPONENTS:
+        name = f"C{I}{Jc}"
+        inv[name] = Cm[I, Jc]
+        dvar[name] = component_first(Fm, I, Jc)
+        d2var[name] = component_second(I, Jc)
+    names = list(inv)
     if want == "energy":
         prog.output("e", w * W)
         return prog, params
 
     # Material derivatives (times the point weight) as named scalars.
     Wm = {}
-    for m in INVARIANTS:
+    for m in names:
         d = sp.diff(W, inv[m])
         if d != 0:
             Wm[m] = prog.define(f"W_{m}", w * d)
     Wmn = {}
     if want == "tangent":
-        for x, m in enumerate(INVARIANTS):
-            for n in INVARIANTS[x:]:
+        for x, m in enumerate(names):
+            for n in names[x:]:
                 d = sp.diff(W, inv[m], inv[n])
                 if d != 0:
-                    Wmn[(m, n)] = Wmn[(n, m)] = prog.define(f"W_{m}{n}", w * d)
+                    Wmn[(m, n)] = Wmn[(n, m)] = prog.define(f"W_{m}_{n}", w * d)
 
-    dI = first_derivatives(Fm, Cm, I1, cof)
+    dI = dvar
     P = sp.Matrix(3, 3, lambda i, J: prog.define(
         f"P{i}{J}", sum(Wm[m] * dI[m][i, J] for m in Wm)))
     for a in range(nsh):
@@ -184,7 +194,7 @@ def body_program(elem, mat, part, want):
     if want == "force":
         return prog, params
 
-    d2I = second_derivatives(Fm, Cm, bm, I1)
+    d2I = d2var
     A = {}
     for i in range(3):
         for J in range(3):

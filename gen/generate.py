@@ -72,11 +72,13 @@ def index_data(elements=None, materials=None):
     return out
 
 
-def generate(outdir, check=False, force=False, log=print):
+def generate(outdir, check=False, force=False, log=print, only=None):
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     stale = []
     for kind, name, inputs, produce in plan():
+        if only and not any(o in name for o in only.split(",")):
+            continue
         h = input_hash(list(inputs) + (core_paths() if kind != "loads" else []))
         hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
         if not check and not force and _existing_hash(hpath) == h and cpath.exists():
@@ -94,6 +96,8 @@ def generate(outdir, check=False, force=False, log=print):
             hpath.write_text(htxt, encoding="utf-8")
             cpath.write_text(ctxt, encoding="utf-8")
             log(f"  {name}: generated ({dt:.1f} s)")
+    if only:
+        return stale
     idx = json.dumps(index_data(), indent=1, sort_keys=True) + "\n"
     ipath = outdir / "index.json"
     if check:
@@ -118,9 +122,11 @@ def main(argv):
     ap = argparse.ArgumentParser(prog="build.sh gen", description="Regenerate the C kernels in out/kernels/.")
     ap.add_argument("--check", action="store_true", help="fail if the committed kernels differ from a fresh generation")
     ap.add_argument("--force", action="store_true", help="re-derive every kernel even if its input hash is unchanged")
+    ap.add_argument("--only", metavar="NAMES", help="only the units whose name contains one of these "
+                    "comma-separated substrings (no index, no stale-file cleanup)")
     ap.add_argument("--out", default=str(Path(__file__).resolve().parent.parent / "out" / "kernels"))
     a = ap.parse_args(argv)
-    stale = generate(a.out, check=a.check, force=a.force)
+    stale = generate(a.out, check=a.check, force=a.force, only=a.only)
     if a.check:
         if stale:
             print("gen --check: generated kernels are stale:", file=sys.stderr)

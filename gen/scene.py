@@ -501,7 +501,13 @@ def build(path, sets=(), name=None):
                         else:
                             lincons.append((terms, 0.0))
                 else:
-                    fixed.update(range(vb, vb + 3))
+                    # higher derivatives (r_yy, r_yz, r_zz, ...): no axial warping
+                    # of the root section, free deformation in its plane
+                    terms = [(vb + i, t[i]) for i in range(3) if abs(t[i]) > 1e-15]
+                    if len(terms) == 1:
+                        fixed.add(terms[0][0])
+                    else:
+                        lincons.append((terms, 0.0))
 
     # Loads
     forces = []
@@ -569,6 +575,13 @@ def build(path, sets=(), name=None):
         "gravity": gravity,
         "sensors": sensors, "static": stat, "beams": beams,
     }
+
+
+def vector_order(name):
+    if name == "r":
+        return (0, 0, 0)
+    letters = name[2:]
+    return (letters.count("x"), letters.count("y"), letters.count("z"))
 
 
 def eval_fraction(s):

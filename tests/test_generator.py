@@ -10,7 +10,8 @@ import sympy as sp
 
 from gen.element import L, XI, Y, Z, shape_functions
 from gen.elements import all_elements
-from gen.invariants import cofactor, first_derivatives, second_derivatives
+from gen.invariants import (COMPONENTS, cofactor, component_first, component_second,
+                            first_derivatives, second_derivatives)
 from util import ENV, PY, ROOT, run_cli
 
 
@@ -36,6 +37,10 @@ def test_invariant_derivatives_match_sympy_diff():
     inv = {"I1": I1, "I2": I2, "J": J}
     d1 = first_derivatives(Fs, C, I1, cofactor(Fs))
     d2 = second_derivatives(Fs, C, b, I1)
+    for (I, Jc) in COMPONENTS:        # components of C in the element frame
+        inv[f"C{I}{Jc}"] = C[I, Jc]
+        d1[f"C{I}{Jc}"] = component_first(Fs, I, Jc)
+        d2[f"C{I}{Jc}"] = component_second(I, Jc)
     vals = dict(zip(Fs, [1.1, 0.2, -0.3, 0.15, 0.9, 0.25, -0.1, 0.35, 1.2]))
     for name, expr in inv.items():
         for i in range(3):

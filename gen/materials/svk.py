@@ -18,16 +18,18 @@ def energy(I1, I2, J, p):
     return p["lambda"] / 2 * trE**2 + p["mu"] * trE2
 
 
-def sri_split(I1, I2, I4, J, p):
-    """Selective reduced integration: the uniaxial part E/2 E11^2 (E11 = (I4 - 1)/2,
-    the Green strain along the beam axis, E Young's modulus) at full order; the
-    rest, which carries the Poisson coupling of E11 with the transverse strains,
-    at the centreline.  The rest is >= 0 and vanishes in uniaxial stress, so bending
-    sees E I and a bar in tension the exact uniaxial law."""
+def sri_split(I1, I2, J, C, p):
+    """Selective reduced integration: at full order the uniaxial part E/2 E11^2
+    (E Young's modulus) and the transverse shears 2 mu (E12^2 + E13^2); at the
+    centreline the rest, which holds the Poisson coupling of E11 with the
+    transverse normal strains.  The rest is >= 0 and vanishes in uniaxial stress,
+    so bending sees E I, a bar in tension the exact uniaxial law, and torsion and
+    shear keep their full-order stiffness."""
     lam, mu = p["lambda"], p["mu"]
     E = mu * (3 * lam + 2 * mu) / (lam + mu)
-    W_axial = E / 2 * ((I4 - 1) / 2)**2
-    return W_axial, energy(I1, I2, J, p) - W_axial
+    E11, E12, E13 = (C[0, 0] - 1) / 2, C[0, 1] / 2, C[0, 2] / 2
+    W_full = E / 2 * E11**2 + 2 * mu * (E12**2 + E13**2)
+    return W_full, energy(I1, I2, J, p) - W_full
 
 
 def small_strain(lam, mu):

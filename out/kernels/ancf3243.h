@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:9a3e5304eadcfdb2b6821a375054a75beec5672dd5daf1311f358258ed8f76d1
+ * input hash: sha256:c573e5597b8574f415459e471f18ab920d8acaf79ee6805dca052ff8b6e442af
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z

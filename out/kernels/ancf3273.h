@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:a310f629d3afbc76f931289305ac4be7fcc4614516488d72ad82073110054184
+ * input hash: sha256:da07002eef0b288158b7464ed8f4db33b847fd1c99d22ec769773c8760313758
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -32,8 +32,8 @@ void ancf3273_shape(const double *restrict geom, double xi, double y, double z,
                     double *restrict N, double *restrict dN);
 void ancf3273_mass(const double *restrict geom, double *restrict m);
 void ancf3273_volume(const double *restrict geom, double *restrict v);
-/* integration "full": 27 points (all); tab[405] */
-#define ANCF3273_FULL_NTAB 405
+/* integration "full": 16 points (all); tab[240] */
+#define ANCF3273_FULL_NTAB 240
 void ancf3273_full_tabulate(const double *restrict geom, double *restrict tab);
 
 #endif

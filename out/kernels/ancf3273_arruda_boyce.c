@@ -8,8 +8,8 @@ static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
 double ancf3273_arruda_boyce_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -46,12 +46,12 @@ double ancf3273_arruda_boyce_full_energy(const double *restrict q, const double 
 void ancf3273_arruda_boyce_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
+    {   /* energy part "all": 16 quadrature points */
         const double x9 = (1.0/(mat[1]*mat[1]));
         const double x11 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
         const double x13 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
         const double x15 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
-        for (int p = 0; p < 27; ++p) {
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -168,12 +168,12 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
     for (int i = 0; i < 1764; ++i) K[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
+    {   /* energy part "all": 16 quadrature points */
         const double x45 = (1.0/(mat[1]*mat[1]));
         const double x49 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
         const double x53 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
         const double x57 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
-        for (int p = 0; p < 27; ++p) {
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -271,17 +271,17 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x114 = P00*t[10];
             const double x115 = P10*t[10];
             const double x116 = P20*t[10];
-            const double W_JJ = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (38115.0*x50/((J*J*J*J))) + (16093.0*x54/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J)))) + (6747.0*x58/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J*J*J))))) + mat[2]);
-            const double W_I1I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
-            const double x66 = 4.0*W_I1I1;
-            const double W_I1J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
-            const double x67 = 4.0*W_I1J;
-            const double A0000 = W_JJ*(cof00*cof00) + x0*x66 + x41*x67 + x65;
+            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (38115.0*x50/((J*J*J*J))) + (16093.0*x54/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J)))) + (6747.0*x58/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J*J*J))))) + mat[2]);
+            const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
+            const double x66 = 4.0*W_I1_I1;
+            const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
+            const double x67 = 4.0*W_I1_J;
+            const double A0000 = W_J_J*(cof00*cof00) + x0*x66 + x41*x67 + x65;
             const double x117 = (t[1]*t[1]);
             const double x118 = A0000*x117;
             const double x8 = F00*F10;
-            const double x68 = W_JJ*cof00;
-            const double x69 = 2.0*W_I1J;
+            const double x68 = W_J_J*cof00;
+            const double x69 = 2.0*W_I1_J;
             const double x70 = F00*x69;
             const double x71 = cof00*x69;
             const double A0010 = F10*x71 + cof10*x68 + cof10*x70 + x66*x8;
@@ -368,17 +368,17 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x185 = -A0002*t[14]*t[1] + x157;
             const double x186 = -A0012*t[14]*t[1] + x159;
             const double x187 = -A0022*t[14]*t[1] + x161;
-            const double A1010 = W_JJ*(cof10*cof10) + x1*x66 + x42*x67 + x65;
+            const double A1010 = W_J_J*(cof10*cof10) + x1*x66 + x42*x67 + x65;
             const double x188 = A1010*x117;
             const double x23 = F10*F20;
-            const double x84 = W_JJ*cof10;
+            const double x84 = W_J_J*cof10;
             const double x85 = F10*x69;
             const double x86 = cof10*x69;
             const double A1020 = F20*x86 + cof20*x84 + cof20*x85 + x23*x66;
             const double x189 = A1020*x117;
             const double x190 = A1010*x121;
             const double x191 = A1020*x121;
-            const double x76 = W_JJ*cof01;
+            const double x76 = W_J_J*cof01;
             const double x77 = F01*x69;
             const double x78 = cof01*x69;
             const double A0110 = F10*x78 + cof10*x76 + cof10*x77 + x40*x66 - x72;
@@ -391,7 +391,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double A1021 = F21*x86 + cof21*x84 + cof21*x85 + x30*x66 + x87;
             const double x195 = A1020*x125;
             const double x196 = A1021*x127 + x195;
-            const double x81 = W_JJ*cof02;
+            const double x81 = W_J_J*cof02;
             const double x82 = F02*x69;
             const double x83 = cof02*x69;
             const double A0210 = F02*F10*x66 + F10*x83 + cof10*x81 + cof10*x82 + x73;
@@ -438,18 +438,18 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x233 = -A0210*t[14]*t[1] + x159;
             const double x234 = -A1012*t[14]*t[1] + x213;
             const double x235 = -A1022*t[14]*t[1] + x215;
-            const double A2020 = W_JJ*(cof20*cof20) + x2*x66 + x43*x67 + x65;
+            const double A2020 = W_J_J*(cof20*cof20) + x2*x66 + x43*x67 + x65;
             const double x236 = A2020*x117;
             const double x237 = A2020*x121;
             const double A0120 = F01*F20*x66 + F20*x78 + cof20*x76 + cof20*x77 + x74;
             const double x238 = A0120*x127 + x131;
-            const double x89 = W_JJ*cof11;
+            const double x89 = W_J_J*cof11;
             const double x90 = F11*x69;
             const double x91 = cof11*x69;
             const double A1120 = F20*x91 + cof20*x89 + cof20*x90 + x31*x66 - x87;
             const double x239 = A1120*x127 + x195;
             const double x7 = F20*F21;
-            const double x96 = W_JJ*cof20;
+            const double x96 = W_J_J*cof20;
             const double x97 = F20*x69;
             const double x98 = cof20*x69;
             const double A2021 = F21*x98 + cof21*x96 + cof21*x97 + x66*x7;
@@ -457,7 +457,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x241 = A2021*x127 + x240;
             const double A0220 = F20*x83 + cof20*x81 + cof20*x82 + x34*x66 - x75;
             const double x242 = A0220*x127 + x138;
-            const double x93 = W_JJ*cof12;
+            const double x93 = W_J_J*cof12;
             const double x94 = F12*x69;
             const double x95 = cof12*x69;
             const double A1220 = F12*F20*x66 + F20*x95 + cof20*x93 + cof20*x94 + x88;
@@ -545,7 +545,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x322 = A2020*x284;
             const double x323 = A2020*x289;
             const double x324 = A2020*x294;
-            const double A0101 = F01*cof01*x67 + W_JJ*(cof01*cof01) + x3*x66 + x65;
+            const double A0101 = F01*cof01*x67 + W_J_J*(cof01*cof01) + x3*x66 + x65;
             const double x325 = (t[3]*t[3]);
             const double x326 = A0000*x325;
             const double x327 = (t[4]*t[4]);
@@ -661,7 +661,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x427 = -A0002*x416;
             const double x428 = -A0012*x416;
             const double x429 = -A0022*x416;
-            const double A1111 = F11*cof11*x67 + W_JJ*(cof11*cof11) + x17*x66 + x65;
+            const double A1111 = F11*cof11*x67 + W_J_J*(cof11*cof11) + x17*x66 + x65;
             const double x430 = A1010*x325;
             const double x431 = A1011*x328;
             const double x24 = F11*F21;
@@ -739,7 +739,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x497 = -A0210*x416;
             const double x498 = -A1012*x416;
             const double x499 = -A1022*x416;
-            const double A2121 = F21*cof21*x67 + W_JJ*(cof21*cof21) + x18*x66 + x65;
+            const double A2121 = F21*cof21*x67 + W_J_J*(cof21*cof21) + x18*x66 + x65;
             const double x500 = A2020*x325;
             const double x501 = A2021*x328;
             const double A0221 = F02*F21*x66 + F21*x83 + cof21*x81 + cof21*x82 + x80;
@@ -749,7 +749,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x504 = A1220*x328;
             const double x505 = A1021*x339 + x441;
             const double x22 = F21*F22;
-            const double A2122 = F21*cof22*x69 + F22*cof21*x69 + W_JJ*cof21*cof22 + x22*x66;
+            const double A2122 = F21*cof22*x69 + F22*cof21*x69 + W_J_J*cof21*cof22 + x22*x66;
             const double x506 = A2022*x328;
             const double x507 = A2020*x337;
             const double x508 = A2021*x339 + x507;
@@ -801,7 +801,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x554 = -A0220*x416;
             const double x555 = -A1220*x416;
             const double x556 = -A2022*x416;
-            const double A0202 = F02*cof02*x67 + W_JJ*(cof02*cof02) + x4*x66 + x65;
+            const double A0202 = F02*cof02*x67 + W_J_J*(cof02*cof02) + x4*x66 + x65;
             const double x557 = (t[5]*t[5]);
             const double x558 = A0000*x557;
             const double x559 = A0002*x339;
@@ -881,7 +881,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x629 = -A0212*t[14]*t[4];
             const double x630 = -A0022*x618;
             const double x631 = -A0222*t[14]*t[4];
-            const double A1212 = F12*cof12*x67 + W_JJ*(cof12*cof12) + x19*x66 + x65;
+            const double A1212 = F12*cof12*x67 + W_J_J*(cof12*cof12) + x19*x66 + x65;
             const double x632 = A1010*x557;
             const double x633 = A1012*x339;
             const double x25 = F12*F22;
@@ -937,7 +937,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x682 = -A1012*x618;
             const double x683 = -A1022*x618;
             const double x684 = -A1222*t[14]*t[4];
-            const double A2222 = F22*cof22*x67 + W_JJ*(cof22*cof22) + x26*x66 + x65;
+            const double A2222 = F22*cof22*x67 + W_J_J*(cof22*cof22) + x26*x66 + x65;
             const double x685 = A2020*x557;
             const double x686 = A2022*x339;
             const double x687 = A0120*x566;
@@ -2391,6 +2391,6 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
 
 const bk_pair bk_pair_ancf3273_arruda_boyce_full = {
     &bk_element_ancf3273, "arruda_boyce", "full", 3, param_names,
-    405, 27, 12764L, 161156L,
+    240, 16, 7572L, 95508L,
     ancf3273_full_tabulate, ancf3273_arruda_boyce_full_energy, ancf3273_arruda_boyce_full_force, ancf3273_arruda_boyce_full_force_tangent
 };

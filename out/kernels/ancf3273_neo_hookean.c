@@ -8,8 +8,8 @@ static const char *const param_names[2] = {"lambda", "mu"};
 double ancf3273_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -47,8 +47,8 @@ double ancf3273_neo_hookean_full_energy(const double *restrict q, const double *
 void ancf3273_neo_hookean_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
@@ -150,8 +150,8 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
     for (int i = 0; i < 1764; ++i) K[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
@@ -204,11 +204,11 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x43 = P00*t[10];
             const double x44 = P10*t[10];
             const double x45 = P20*t[10];
-            const double W_JJ = (t[0]*(mat[0] + mat[1] - x10)/((J*J)));
-            const double A0000 = W_JJ*(cof00*cof00) + x11;
+            const double W_J_J = (t[0]*(mat[0] + mat[1] - x10)/((J*J)));
+            const double A0000 = W_J_J*(cof00*cof00) + x11;
             const double x46 = (t[1]*t[1]);
             const double x47 = A0000*x46;
-            const double x12 = W_JJ*cof00;
+            const double x12 = W_J_J*cof00;
             const double A0010 = cof10*x12;
             const double x48 = A0010*x46;
             const double A0020 = cof20*x12;
@@ -227,7 +227,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x58 = A0010*x54;
             const double x59 = A0011*x56 + x58;
             const double x15 = F12*W_J;
-            const double A0021 = W_JJ*cof00*cof21 - x15;
+            const double A0021 = W_J_J*cof00*cof21 - x15;
             const double x60 = A0020*x54;
             const double x61 = A0021*x56 + x60;
             const double A0002 = cof02*x12;
@@ -235,7 +235,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x63 = A0000*x62;
             const double x64 = A0002*x56 + x63;
             const double x14 = F21*W_J;
-            const double A0012 = W_JJ*cof00*cof12 - x14;
+            const double A0012 = W_J_J*cof00*cof12 - x14;
             const double x65 = A0010*x62;
             const double x66 = A0012*x56 + x65;
             const double x16 = F11*W_J;
@@ -290,14 +290,14 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x114 = -A0002*t[14]*t[1] + x86;
             const double x115 = -A0012*t[14]*t[1] + x88;
             const double x116 = -A0022*t[14]*t[1] + x90;
-            const double A1010 = W_JJ*(cof10*cof10) + x11;
+            const double A1010 = W_J_J*(cof10*cof10) + x11;
             const double x117 = A1010*x46;
-            const double x21 = W_JJ*cof10;
+            const double x21 = W_J_J*cof10;
             const double A1020 = cof20*x21;
             const double x118 = A1020*x46;
             const double x119 = A1010*x50;
             const double x120 = A1020*x50;
-            const double A0110 = W_JJ*cof01*cof10 - x13;
+            const double A0110 = W_J_J*cof01*cof10 - x13;
             const double x121 = A0110*x56 + x58;
             const double A1011 = cof11*x21;
             const double x122 = A1010*x54;
@@ -306,14 +306,14 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double A1021 = cof21*x21 + x22;
             const double x124 = A1020*x54;
             const double x125 = A1021*x56 + x124;
-            const double x20 = W_JJ*cof02;
+            const double x20 = W_J_J*cof02;
             const double A0210 = cof10*x20 + x14;
             const double x126 = A0210*x56 + x65;
             const double A1012 = cof12*x21;
             const double x127 = A1010*x62;
             const double x128 = A1012*x56 + x127;
             const double x23 = F01*W_J;
-            const double A1022 = W_JJ*cof10*cof22 - x23;
+            const double A1022 = W_J_J*cof10*cof22 - x23;
             const double x129 = A1020*x62;
             const double x130 = A1022*x56 + x129;
             const double x131 = A0110*x71 + x73;
@@ -350,21 +350,21 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x162 = -A0210*t[14]*t[1] + x88;
             const double x163 = -A1012*t[14]*t[1] + x142;
             const double x164 = -A1022*t[14]*t[1] + x144;
-            const double A2020 = W_JJ*(cof20*cof20) + x11;
+            const double A2020 = W_J_J*(cof20*cof20) + x11;
             const double x165 = A2020*x46;
             const double x166 = A2020*x50;
-            const double x17 = W_JJ*cof01;
+            const double x17 = W_J_J*cof01;
             const double A0120 = cof20*x17 + x15;
             const double x167 = A0120*x56 + x60;
-            const double A1120 = W_JJ*cof11*cof20 - x22;
+            const double A1120 = W_J_J*cof11*cof20 - x22;
             const double x168 = A1120*x56 + x124;
-            const double x27 = W_JJ*cof20;
+            const double x27 = W_J_J*cof20;
             const double A2021 = cof21*x27;
             const double x169 = A2020*x54;
             const double x170 = A2021*x56 + x169;
-            const double A0220 = W_JJ*cof02*cof20 - x16;
+            const double A0220 = W_J_J*cof02*cof20 - x16;
             const double x171 = A0220*x56 + x67;
-            const double x26 = W_JJ*cof12;
+            const double x26 = W_J_J*cof12;
             const double A1220 = cof20*x26 + x23;
             const double x172 = A1220*x56 + x129;
             const double A2022 = cof22*x27;
@@ -449,7 +449,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x251 = A2020*x213;
             const double x252 = A2020*x218;
             const double x253 = A2020*x223;
-            const double A0101 = W_JJ*(cof01*cof01) + x11;
+            const double A0101 = W_J_J*(cof01*cof01) + x11;
             const double x254 = (t[3]*t[3]);
             const double x255 = A0000*x254;
             const double x256 = (t[4]*t[4]);
@@ -475,7 +475,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x271 = A0010*x266;
             const double x272 = A0110*x268 + x271;
             const double x19 = F10*W_J;
-            const double A0122 = W_JJ*cof01*cof22 - x19;
+            const double A0122 = W_J_J*cof01*cof22 - x19;
             const double x273 = A0022*x257;
             const double x274 = A0020*x266;
             const double x275 = A0120*x268 + x274;
@@ -562,15 +562,15 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x356 = -A0002*x345;
             const double x357 = -A0012*x345;
             const double x358 = -A0022*x345;
-            const double A1111 = W_JJ*(cof11*cof11) + x11;
+            const double A1111 = W_J_J*(cof11*cof11) + x11;
             const double x359 = A1010*x254;
             const double x360 = A1011*x257;
-            const double x24 = W_JJ*cof11;
+            const double x24 = W_J_J*cof11;
             const double A1121 = cof21*x24;
             const double x361 = A1021*x257;
             const double x362 = A1020*x254;
             const double x363 = A1120*x257 + x362;
-            const double A0211 = W_JJ*cof02*cof11 - x18;
+            const double A0211 = W_J_J*cof02*cof11 - x18;
             const double x364 = A0210*x257;
             const double x365 = A0011*x268 + x271;
             const double A1112 = cof12*x24;
@@ -639,16 +639,16 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x426 = -A0210*x345;
             const double x427 = -A1012*x345;
             const double x428 = -A1022*x345;
-            const double A2121 = W_JJ*(cof21*cof21) + x11;
+            const double A2121 = W_J_J*(cof21*cof21) + x11;
             const double x429 = A2020*x254;
             const double x430 = A2021*x257;
             const double A0221 = cof21*x20 + x19;
             const double x431 = A0220*x257;
             const double x432 = A0021*x268 + x274;
-            const double A1221 = W_JJ*cof12*cof21 - x25;
+            const double A1221 = W_J_J*cof12*cof21 - x25;
             const double x433 = A1220*x257;
             const double x434 = A1021*x268 + x370;
-            const double A2122 = W_JJ*cof21*cof22;
+            const double A2122 = W_J_J*cof21*cof22;
             const double x435 = A2022*x257;
             const double x436 = A2020*x266;
             const double x437 = A2021*x268 + x436;
@@ -700,7 +700,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x483 = -A0220*x345;
             const double x484 = -A1220*x345;
             const double x485 = -A2022*x345;
-            const double A0202 = W_JJ*(cof02*cof02) + x11;
+            const double A0202 = W_J_J*(cof02*cof02) + x11;
             const double x486 = (t[5]*t[5]);
             const double x487 = A0000*x486;
             const double x488 = A0002*x268;
@@ -778,7 +778,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x558 = -A0212*t[14]*t[4];
             const double x559 = -A0022*x547;
             const double x560 = -A0222*t[14]*t[4];
-            const double A1212 = W_JJ*(cof12*cof12) + x11;
+            const double A1212 = W_J_J*(cof12*cof12) + x11;
             const double x561 = A1010*x486;
             const double x562 = A1012*x268;
             const double A1222 = cof22*x26;
@@ -833,7 +833,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
             const double x611 = -A1012*x547;
             const double x612 = -A1022*x547;
             const double x613 = -A1222*t[14]*t[4];
-            const double A2222 = W_JJ*(cof22*cof22) + x11;
+            const double A2222 = W_J_J*(cof22*cof22) + x11;
             const double x614 = A2020*x486;
             const double x615 = A2022*x268;
             const double x616 = A0120*x495;
@@ -2287,6 +2287,6 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
 
 const bk_pair bk_pair_ancf3273_neo_hookean_full = {
     &bk_element_ancf3273, "neo_hookean", "full", 2, param_names,
-    405, 27, 9153L, 147609L,
+    240, 16, 5424L, 87472L,
     ancf3273_full_tabulate, ancf3273_neo_hookean_full_energy, ancf3273_neo_hookean_full_force, ancf3273_neo_hookean_full_force_tangent
 };

@@ -8,8 +8,8 @@ static const char *const param_names[2] = {"lambda", "mu"};
 double ancf3273_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -47,8 +47,8 @@ double ancf3273_svk_full_energy(const double *restrict q, const double *restrict
 void ancf3273_svk_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -164,8 +164,8 @@ void ancf3273_svk_full_force_tangent(const double *restrict q, const double *res
 {
     for (int i = 0; i < 42; ++i) f[i] = 0.0;
     for (int i = 0; i < 1764; ++i) K[i] = 0.0;
-    {   /* energy part "all": 27 quadrature points */
-        for (int p = 0; p < 27; ++p) {
+    {   /* energy part "all": 16 quadrature points */
+        for (int p = 0; p < 16; ++p) {
             const double *restrict t = tab + 0 + 15 * p;
             const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
             const double x0 = (F00*F00);
@@ -243,8 +243,8 @@ void ancf3273_svk_full_force_tangent(const double *restrict q, const double *res
             const double x89 = P20*t[10];
             const double x52 = 2.0*W_I2;
             const double x53 = -C00*x52;
-            const double W_I1I1 = 0.25*t[0]*(mat[0] + 2.0*mat[1]);
-            const double x54 = 4.0*W_I1I1;
+            const double W_I1_I1 = 0.25*t[0]*(mat[0] + 2.0*mat[1]);
+            const double x54 = 4.0*W_I1_I1;
             const double b00 = x0 + x3 + x4;
             const double x55 = I1*x52 + x45;
             const double x56 = -b00*x52 + x55;
@@ -2357,6 +2357,6 @@ void ancf3273_svk_full_force_tangent(const double *restrict q, const double *res
 
 const bk_pair bk_pair_ancf3273_svk_full = {
     &bk_element_ancf3273, "svk", "full", 2, param_names,
-    405, 27, 11340L, 154332L,
+    240, 16, 6720L, 91456L,
     ancf3273_full_tabulate, ancf3273_svk_full_energy, ancf3273_svk_full_force, ancf3273_svk_full_force_tangent
 };

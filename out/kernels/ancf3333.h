@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:3edd9468e200df14bda941df24b6ffaa3c500dde53d15b2142da40f19d4b1170
+ * input hash: sha256:b2d7dfde367e1a9e84951fd7fa3288ddac91aa62d36315d4c82bdabc7e241fa4
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z

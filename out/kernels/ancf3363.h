@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:42ede52ad58ed675a5cfd411badea46077c0718e56759caf14b5f3a2ad335ccf
+ * input hash: sha256:bf6627199aa367ccdfe59d01e03e887eed68cd7d34692446ec76a7f56e9ab76f
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz

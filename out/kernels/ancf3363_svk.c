@@ -219,8 +219,8 @@ void ancf3363_svk_full_force_tangent(const double *restrict q, const double *res
             const double P22 = F22*x45 + W_I2*(-C02*x49 - C12*x50 - C22*x51 + 2.0*F22*I1);
             const double x52 = 2.0*W_I2;
             const double x53 = -C00*x52;
-            const double W_I1I1 = 0.25*t[0]*(mat[0] + 2.0*mat[1]);
-            const double x54 = 4.0*W_I1I1;
+            const double W_I1_I1 = 0.25*t[0]*(mat[0] + 2.0*mat[1]);
+            const double x54 = 4.0*W_I1_I1;
             const double b00 = x0 + x3 + x4;
             const double x55 = I1*x52 + x45;
             const double x56 = -b00*x52 + x55;
