@@ -31,8 +31,9 @@ Commands:
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   scenes                 list the scenes in models/
-  report [--quick]       the seed cantilever tables, ours beside the paper's:
-                         out/report/seed_tables.md
+  report [--quick]       the seed cantilever tables, ours beside the paper's, and the
+                         nearly incompressible cantilever: out/report/seed_tables.md,
+                         out/report/incompressible.md
   deps                   only install missing Debian packages
   bench                  the speed-against-error report (not implemented yet)
   --help                 this text
@@ -98,7 +99,8 @@ case "$cmd" in
         ;;
     report)
         shift
-        exec "$PY" -m report.seed_tables "$@"
+        "$PY" -m report.seed_tables "$@"
+        exec "$PY" -m report.incompressible "$@"
         ;;
     bench)
         echo "error: ./build.sh bench is not implemented yet (issue: speed against error)" >&2

@@ -30,8 +30,8 @@ VARIANTS = [
     ("ancf3243 full", ["beam.arm.element=ancf3243", "beam.arm.integration=full"] + FREE, "ancf_full"),
     ("ancf3243 sri", ["beam.arm.element=ancf3243", "beam.arm.integration=sri"] + FREE, "ancf_full"),
     ("ancf3333", ["beam.arm.element=ancf3333", "beam.arm.integration=full"] + FREE, "ancf_full"),
-    ("ancf3273", ["beam.arm.element=ancf3273", "beam.arm.integration=full"] + FREE, "ancf_full"),
-    ("ancf3363", ["beam.arm.element=ancf3363", "beam.arm.integration=full"] + FREE, "ancf_full"),
+    ("ancf3273", ["beam.arm.element=ancf3273", "beam.arm.integration=reduced"] + FREE, "ancf_full"),
+    ("ancf3363", ["beam.arm.element=ancf3363", "beam.arm.integration=reduced"] + FREE, "ancf_full"),
 ]
 
 SCENES = {

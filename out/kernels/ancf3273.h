@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:da07002eef0b288158b7464ed8f4db33b847fd1c99d22ec769773c8760313758
+ * input hash: sha256:8694b1e3918871825508b8d71bf3904fb3ba5ef4f55a78e5f009ed96330ad730
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -32,8 +32,11 @@ void ancf3273_shape(const double *restrict geom, double xi, double y, double z,
                     double *restrict N, double *restrict dN);
 void ancf3273_mass(const double *restrict geom, double *restrict m);
 void ancf3273_volume(const double *restrict geom, double *restrict v);
-/* integration "full": 16 points (all); tab[240] */
-#define ANCF3273_FULL_NTAB 240
+/* integration "full": 27 points (all); tab[405] */
+#define ANCF3273_FULL_NTAB 405
 void ancf3273_full_tabulate(const double *restrict geom, double *restrict tab);
+/* integration "reduced": 12 points (all); tab[180] */
+#define ANCF3273_REDUCED_NTAB 180
+void ancf3273_reduced_tabulate(const double *restrict geom, double *restrict tab);
 
 #endif

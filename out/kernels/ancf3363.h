@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:bf6627199aa367ccdfe59d01e03e887eed68cd7d34692446ec76a7f56e9ab76f
+ * input hash: sha256:1c7fed3a6d936bc65de413fa9e8f89be59eb8fa4353c3083ffe7b9af6fa47799
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -39,5 +39,8 @@ void ancf3363_volume(const double *restrict geom, double *restrict v);
 /* integration "full": 27 points (all); tab[756] */
 #define ANCF3363_FULL_NTAB 756
 void ancf3363_full_tabulate(const double *restrict geom, double *restrict tab);
+/* integration "reduced": 12 points (all); tab[336] */
+#define ANCF3363_REDUCED_NTAB 336
+void ancf3363_reduced_tabulate(const double *restrict geom, double *restrict tab);
 
 #endif
