@@ -5,6 +5,7 @@ inputs is not re-derived.  `check` re-derives everything in memory and compares
 byte for byte with what is on disk.
 """
 import json
+import os
 import re
 import sys
 import time
@@ -28,20 +29,36 @@ def _existing_hash(path):
 
 
 def plan(elements=None, materials=None):
-    """All (kind, name, inputs, producer) units of generation, in fixed order."""
+    """All (kind, name, input paths) units of generation, in fixed order."""
+    from gen.loads import FILES as LOAD_FILES
     elements = elements or all_elements()
     materials = materials or all_materials()
-    from gen.loads import FILES as LOAD_FILES, loads_source
     here = Path(__file__).resolve().parent
-    units = [("loads", "loads", [here / f for f in LOAD_FILES], lambda: loads_source()[:2])]
+    units = [("loads", "loads", [here / f for f in LOAD_FILES])]
     for ename, (elem, epath) in elements.items():
-        units.append(("element", ename, [epath],
-                      lambda elem=elem, epath=epath: element_source(elem, epath)[:2]))
+        units.append(("element", ename, [epath]))
         for mname, (mat, mpath) in materials.items():
-            units.append(("pair", f"{ename}_{mname}", [epath, mpath],
-                          lambda elem=elem, epath=epath, mat=mat, mpath=mpath:
-                          pair_source(elem, epath, mat, mpath)[:2]))
+            units.append(("pair", f"{ename}_{mname}", [epath, mpath]))
     return units
+
+
+def produce(unit):
+    """(header text, source text, seconds) of one unit; runs in a worker process."""
+    kind, name, inputs = unit
+    t0 = time.time()
+    if kind == "loads":
+        from gen.loads import loads_source
+        h, c = loads_source()[:2]
+    elif kind == "element":
+        elem, epath = all_elements()[name]
+        h, c = element_source(elem, epath)[:2]
+    else:
+        elements = all_elements()
+        ename = next(e for e in elements if name.startswith(e + "_"))
+        elem, epath = elements[ename]
+        mat, mpath = all_materials()[name[len(ename) + 1:]]
+        h, c = pair_source(elem, epath, mat, mpath)[:2]
+    return h, c, time.time() - t0
 
 
 def index_data(elements=None, materials=None):
@@ -76,7 +93,8 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     stale = []
-    for kind, name, inputs, produce in plan():
+    todo = []
+    for kind, name, inputs in plan():
         if only and not any(o in name for o in only.split(",")):
             continue
         h = input_hash(list(inputs) + (core_paths() if kind != "loads" else []))
@@ -84,9 +102,19 @@ def generate(outdir, check=False, force=False, log=print, only=None):
         if not check and not force and _existing_hash(hpath) == h and cpath.exists():
             log(f"  {name}: up to date")
             continue
-        t0 = time.time()
-        htxt, ctxt = produce()
-        dt = time.time() - t0
+        todo.append((kind, name, inputs))
+    # Units are independent: derive them in parallel worker processes; results
+    # are written in plan order, so the output does not depend on scheduling.
+    workers = max(1, min(len(todo), os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
+    if workers > 1:
+        import multiprocessing as mp
+        from concurrent.futures import ProcessPoolExecutor
+        with ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("fork")) as ex:
+            results = list(ex.map(produce, todo))
+    else:
+        results = [produce(u) for u in todo]
+    for (kind, name, inputs), (htxt, ctxt, dt) in zip(todo, results):
+        hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
         if check:
             for p, txt in ((hpath, htxt), (cpath, ctxt)):
                 if not p.exists() or p.read_text(encoding="utf-8") != txt:
@@ -106,7 +134,7 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     else:
         ipath.write_text(idx, encoding="utf-8")
     # Files on disk that the generator no longer produces.
-    expected = {f"{n}.{x}" for _, n, _, _ in plan() for x in ("h", "c")} | {"index.json"}
+    expected = {f"{n}.{x}" for _, n, _ in plan() for x in ("h", "c")} | {"index.json"}
     extra = sorted(p.name for p in outdir.iterdir() if p.name not in expected)
     if check:
         stale += [str(outdir / e) for e in extra]

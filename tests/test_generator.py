@@ -61,17 +61,20 @@ def test_gen_check_passes_on_committed_kernels():
 
 
 def test_generation_is_byte_identical_across_hash_seeds():
+    """A representative subset (the load kernel, ancf3243 with every material, ancf3363 x
+    Arruda-Boyce) regenerated under two PYTHONHASHSEED values: identical to each other
+    and to the committed files (gen --check covers every file)."""
+    subset = "loads,ancf3243,ancf3363_arruda_boyce"
     outs = []
     for seed in ("0", "12345"):
         d = tempfile.mkdtemp(prefix="bk-gen-")
         env = dict(ENV, PYTHONHASHSEED=seed)
-        r = subprocess.run([PY, "-m", "gen.cli", "gen", "--force", "--out", d], env=env,
+        r = subprocess.run([PY, "-m", "gen.cli", "gen", "--force", "--only", subset, "--out", d], env=env,
                            capture_output=True, text=True, cwd=ROOT)
         assert r.returncode == 0, r.stderr
         outs.append(Path(d))
     names = sorted(p.name for p in outs[0].iterdir())
-    assert names == sorted(p.name for p in outs[1].iterdir())
-    assert names == sorted(p.name for p in (ROOT / "out" / "kernels").iterdir())
+    assert len(names) >= 10 and names == sorted(p.name for p in outs[1].iterdir()), names
     match, mismatch, errors = filecmp.cmpfiles(outs[0], outs[1], names, shallow=False)
     assert not mismatch and not errors, f"differ between hash seeds: {mismatch + errors}"
     match, mismatch, errors = filecmp.cmpfiles(outs[0], ROOT / "out" / "kernels", names, shallow=False)
