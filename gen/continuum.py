@@ -195,38 +195,55 @@ def body_program(elem, mat, part, want):
         return prog, params
 
     d2I = d2var
-    A = {}
-    for i in range(3):
-        for J in range(3):
-            for k in range(3):
-                for Ll in range(3):
-                    if 3 * i + J > 3 * k + Ll:
-                        continue
-                    expr = sum(Wmn[(m, n)] * dI[m][i, J] * dI[n][k, Ll] for (m, n) in Wmn)
-                    expr += sum(Wm[m] * d2I[m](i, J, k, Ll) for m in Wm)
-                    expr = sp.expand(expr)
-                    A[(i, J, k, Ll)] = 0 if expr == 0 else prog.define(f"A{i}{J}{k}{Ll}", expr)
+    for x, (i, J, k, Ll) in enumerate(A_INDEX):
+        expr = sum(Wmn[(m, n)] * dI[m][i, J] * dI[n][k, Ll] for (m, n) in Wmn)
+        expr += sum(Wm[m] * d2I[m](i, J, k, Ll) for m in Wm)
+        prog.output(f"A[{x}]", sp.expand(expr), op="=")
+    return prog, params
+
+
+# The 45 distinct entries of the symmetric 3x3x3x3 tangent dP/dF, (iJ) <= (kL).
+A_INDEX = tuple((i, J, k, L) for i in range(3) for J in range(3) for k in range(3) for L in range(3)
+                if 3 * i + J <= 3 * k + L)
+
+
+def contraction_programs(elem):
+    """Per row node a: K[(3a+i), (3b+k)] += sum_JL g_aJ g_bL A[i,J,k,L] for the upper
+    triangle, with A[45] (weighted dP/dF) and the table slots t[] as inputs.  This
+    part depends on the element only, so all materials share it."""
+    slots = gradient_slots(elem)
+    ndof, nsh = elem.ndof, elem.nshape
+    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    Asym = [sp.Symbol(f"A[{x}]", real=True) for x in range(len(A_INDEX))]
+    pos = {key: x for x, key in enumerate(A_INDEX)}
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
 
     def Aget(i, J, k, Ll):
-        return A[(i, J, k, Ll)] if 3 * i + J <= 3 * k + Ll else A[(k, Ll, i, J)]
+        return Asym[pos[(i, J, k, Ll)]] if 3 * i + J <= 3 * k + Ll else Asym[pos[(k, Ll, i, J)]]
 
-    for r in range(ndof):
-        a, i = divmod(r, 3)
-        for c in range(r, ndof):
-            b, k = divmod(c, 3)
-            expr = 0
-            for J in range(3):
-                gaJ = g(a, J)
-                if gaJ == 0:
-                    continue
-                for Ll in range(3):
-                    gbL = g(b, Ll)
-                    if gbL == 0:
+    progs = []
+    for a in range(nsh):
+        prog = Program()
+        for i in range(3):
+            r = 3 * a + i
+            for c in range(r, ndof):
+                b, k = divmod(c, 3)
+                expr = 0
+                for J in range(3):
+                    gaJ = g(a, J)
+                    if gaJ == 0:
                         continue
-                    expr += gaJ * gbL * Aget(i, J, k, Ll)
-            if expr != 0:
-                prog.output(f"K[{r * ndof + c}]", expr)
-    return prog, params
+                    for Ll in range(3):
+                        gbL = g(b, Ll)
+                        if gbL != 0:
+                            expr += gaJ * gbL * Aget(i, J, k, Ll)
+                if expr != 0:
+                    prog.output(f"K[{r * ndof + c}]", expr)
+        progs.append(prog)
+    return progs
 
 
 def lowered_body(elem, mat, part, want):

@@ -11,7 +11,9 @@ from pathlib import Path
 
 import sympy as sp
 
-from gen.continuum import lowered_body, rule_parts, tabulate_program
+from functools import lru_cache
+
+from gen.continuum import A_INDEX, contraction_programs, lowered_body, rule_parts, tabulate_program
 from gen.element import B, H, L, XI, Y, Z, shape_functions, shape_gradients
 from gen.program import Program, count_lowered, lower, print_c, Ops
 
@@ -127,9 +129,15 @@ void {name}_volume(const double *restrict geom, double *restrict v);
                  f" tab[{ntab}] */\n")
         htxt += f"#define {name.upper()}_{rname.upper()}_NTAB {ntab}\n"
         htxt += f"void {name}_{rname}_tabulate(const double *restrict geom, double *restrict tab);\n"
+    htxt += (f"/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;\n"
+             f" * A[{len(A_INDEX)}] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.\n"
+             f" * {contraction_ops(elem)} operations. */\n"
+             f"void {name}_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);\n")
     htxt += "\n#endif\n"
 
     c = ["/* " + BANNER + f" (see {name}.h) */", f'#include "{name}.h"', "#include <math.h>", "",
+         "#if defined(__GNUC__)", "#define BK_NOINLINE __attribute__((noinline))", "#else",
+         "#define BK_NOINLINE", "#endif", "",
          f"static const double node_xi[{len(elem.nodes)}] = {{{', '.join(f'{float(n.xi)!r}' for n in elem.nodes)}}};",
          f"static const int shape_node[{nsh}] = {{{', '.join(str(n) for n, _ in labels)}}};",
          f"static const char *const shape_vector[{nsh}] = {{{', '.join(chr(34) + v + chr(34) for _, v in labels)}}};",
@@ -148,6 +156,18 @@ void {name}_volume(const double *restrict geom, double *restrict v);
         tlow = lower(tprog, ())
         c += [f"void {name}_{rname}_tabulate(const double *restrict geom, double *restrict tab)", "{"]
         c += _prologue(tlow, "    ") + _block(tlow, "    ") + ["}", ""]
+    # The tangent contraction, one function per row node (keeps compile time linear).
+    lows = contraction_lowered(elem)
+    for a, low in enumerate(lows):
+        if not low.outputs:
+            continue
+        c += [f"static BK_NOINLINE void {name}_contract_row{a}(const double *restrict A, const double *restrict t,",
+              f"{' ' * (len(name) + 34)}double *restrict K)", "{"]
+        c += _prologue(low, "    ") + _block(low, "    ") + ["}", ""]
+    c += [f"void {name}_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K)",
+          "{"]
+    c += [f"    {name}_contract_row{a}(A, t, K);" for a, low in enumerate(lows) if low.outputs]
+    c += ["}", ""]
     c += [f"const bk_element bk_element_{name} = {{",
           f'    "{name}", "{elem.title}", {len(elem.nodes)}, {nsh}, {elem.ndof},',
           "    node_xi, shape_node, shape_vector,",
@@ -156,10 +176,22 @@ void {name}_volume(const double *restrict geom, double *restrict v);
     return htxt, "\n".join(c)
 
 
+@lru_cache(maxsize=None)
+def contraction_lowered(elem):
+    return tuple(lower(p, ()) for p in contraction_programs(elem))
+
+
+def contraction_ops(elem):
+    tot = Ops()
+    for low in contraction_lowered(elem):
+        tot += count_lowered(low)[1]
+    return tot
+
+
 # ----------------------------------------------------------------------------
 # Pair file
 
-def _kernel_fn(signature, ndof, parts, lows, zero, finish):
+def _kernel_fn(signature, ndof, parts, lows, zero, finish, contract=None):
     lines = [signature, "{"]
     lines += [f"    {z}" for z in zero]
     for part, low in zip(parts, lows):
@@ -167,7 +199,11 @@ def _kernel_fn(signature, ndof, parts, lows, zero, finish):
         lines += _prologue(low, "        ")
         lines.append(f"        for (int p = 0; p < {len(part.rule)}; ++p) {{")
         lines.append(f"            const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;")
+        if contract:
+            lines.append(f"            double A[{len(A_INDEX)}];")
         lines += _block(low, "            ")
+        if contract:
+            lines.append(f"            {contract}(A, t, K);")
         lines += ["        }", "    }"]
     lines += [f"    {x}" for x in finish]
     lines += ["}", ""]
@@ -201,6 +237,8 @@ def pair_source(elem, elem_path, mat, mat_path):
             per_qp = []
             for p, low in zip(parts, lows):
                 pro, body = count_lowered(low)
+                if want == "tangent":
+                    body += contraction_ops(elem)
                 per_call += pro
                 for _ in range(len(p.rule)):
                     per_call += body
@@ -217,7 +255,8 @@ def pair_source(elem, elem_path, mat, mat_path):
                                    [f"for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;",
                                     f"for (int i = 0; i < {ndof * ndof}; ++i) K[i] = 0.0;"],
                                    [f"for (int r = 1; r < {ndof}; ++r)",
-                                    f"    for (int c = 0; c < r; ++c) K[r * {ndof} + c] = K[c * {ndof} + r];"])
+                                    f"    for (int c = 0; c < r; ++c) K[r * {ndof} + c] = K[c * {ndof} + r];"],
+                                   contract=f"{elem.name}_tangent_contract")
             c += lines
             fns[want] = s.split("(")[0].split()[-1]
         c += [f"const bk_pair bk_pair_{name}_{rname} = {{",
@@ -247,6 +286,7 @@ def pair_source(elem, elem_path, mat, mat_path):
         for want, label in (("energy", "energy"), ("force", "force"), ("tangent", "force + upper tangent")):
             per_qp, per_call = counts[want]
             hdr.append(f" *     {label:<22} per point {' / '.join(map(str, per_qp))}; per element {per_call}")
+    hdr.append(f" * (force + tangent counts include {elem.name}_tangent_contract: {contraction_ops(elem).total()} per point)")
     hdr.append(" */")
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H

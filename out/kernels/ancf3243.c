@@ -2,6 +2,12 @@
 #include "ancf3243.h"
 #include <math.h>
 
+#if defined(__GNUC__)
+#define BK_NOINLINE __attribute__((noinline))
+#else
+#define BK_NOINLINE
+#endif
+
 static const double node_xi[2] = {0.0, 1.0};
 static const int shape_node[8] = {0, 0, 0, 0, 1, 1, 1, 1};
 static const char *const shape_vector[8] = {"r", "r_x", "r_y", "r_z", "r", "r_x", "r_y", "r_z"};
@@ -411,6 +417,531 @@ void ancf3243_sri_tabulate(const double *restrict geom, double *restrict tab)
     tab[117] = 0;
     tab[118] = 0.5872983346207419;
     tab[119] = 0.8872983346207417;
+}
+
+static BK_NOINLINE void ancf3243_contract_row0(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[1]*t[1]);
+    const double x1 = A[0]*x0;
+    const double x2 = A[3]*x0;
+    const double x3 = A[6]*x0;
+    const double x4 = t[1]*t[2];
+    const double x5 = A[3]*x4;
+    const double x6 = A[6]*x4;
+    const double x7 = t[1]*t[3];
+    const double x8 = A[0]*x7;
+    const double x9 = t[1]*t[4];
+    const double x10 = A[3]*x7;
+    const double x11 = A[6]*x7;
+    const double x12 = t[1]*t[5];
+    const double x13 = A[0]*x12;
+    const double x14 = A[3]*x12;
+    const double x15 = A[6]*x12;
+    const double x16 = -x2;
+    const double x17 = -x3;
+    const double x18 = t[1]*t[6];
+    const double x19 = A[3]*x18;
+    const double x20 = A[6]*x18;
+    const double x21 = A[24]*x0;
+    const double x22 = A[27]*x0;
+    const double x23 = A[27]*x4;
+    const double x24 = A[24]*x7;
+    const double x25 = A[27]*x7;
+    const double x26 = A[24]*x12;
+    const double x27 = A[27]*x12;
+    const double x28 = -x22;
+    const double x29 = A[27]*x18;
+    const double x30 = t[1]*t[7];
+    const double x31 = A[39]*x0;
+    const double x32 = A[39]*x7;
+    const double x33 = A[39]*x12;
+    K[0] += x1;
+    K[1] += x2;
+    K[2] += x3;
+    K[3] += A[0]*x4;
+    K[4] += x5;
+    K[5] += x6;
+    K[6] += A[1]*x9 + x8;
+    K[7] += A[4]*x9 + x10;
+    K[8] += A[7]*x9 + x11;
+    K[9] += A[2]*x9 + x13;
+    K[10] += A[5]*x9 + x14;
+    K[11] += A[8]*x9 + x15;
+    K[12] += -x1;
+    K[13] += x16;
+    K[14] += x17;
+    K[15] += A[0]*x18;
+    K[16] += x19;
+    K[17] += x20;
+    K[18] += A[1]*t[1]*t[7] - x8;
+    K[19] += A[4]*t[1]*t[7] - x10;
+    K[20] += A[7]*t[1]*t[7] - x11;
+    K[21] += A[2]*t[1]*t[7] - x13;
+    K[22] += A[5]*t[1]*t[7] - x14;
+    K[23] += A[8]*t[1]*t[7] - x15;
+    K[25] += x21;
+    K[26] += x22;
+    K[27] += x5;
+    K[28] += A[24]*x4;
+    K[29] += x23;
+    K[30] += A[11]*x9 + x10;
+    K[31] += A[25]*x9 + x24;
+    K[32] += A[28]*x9 + x25;
+    K[33] += A[18]*x9 + x14;
+    K[34] += A[26]*x9 + x26;
+    K[35] += A[29]*x9 + x27;
+    K[36] += x16;
+    K[37] += -x21;
+    K[38] += x28;
+    K[39] += x19;
+    K[40] += A[24]*x18;
+    K[41] += x29;
+    K[42] += A[11]*x30 - x10;
+    K[43] += A[25]*t[1]*t[7] - x24;
+    K[44] += A[28]*t[1]*t[7] - x25;
+    K[45] += A[18]*x30 - x14;
+    K[46] += A[26]*t[1]*t[7] - x26;
+    K[47] += A[29]*t[1]*t[7] - x27;
+    K[50] += x31;
+    K[51] += x6;
+    K[52] += x23;
+    K[53] += A[39]*x4;
+    K[54] += A[14]*x9 + x11;
+    K[55] += A[32]*x9 + x25;
+    K[56] += A[40]*x9 + x32;
+    K[57] += A[21]*x9 + x15;
+    K[58] += A[36]*x9 + x27;
+    K[59] += A[41]*x9 + x33;
+    K[60] += x17;
+    K[61] += x28;
+    K[62] += -x31;
+    K[63] += x20;
+    K[64] += x29;
+    K[65] += A[39]*x18;
+    K[66] += A[14]*x30 - x11;
+    K[67] += A[32]*t[1]*t[7] - x25;
+    K[68] += A[40]*t[1]*t[7] - x32;
+    K[69] += A[21]*x30 - x15;
+    K[70] += A[36]*t[1]*t[7] - x27;
+    K[71] += A[41]*t[1]*t[7] - x33;
+}
+
+static BK_NOINLINE void ancf3243_contract_row1(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[2]*t[2]);
+    const double x1 = t[2]*t[3];
+    const double x2 = A[0]*x1;
+    const double x3 = t[2]*t[4];
+    const double x4 = A[3]*x1;
+    const double x5 = A[6]*x1;
+    const double x6 = t[2]*t[5];
+    const double x7 = A[0]*x6;
+    const double x8 = A[3]*x6;
+    const double x9 = A[6]*x6;
+    const double x10 = t[1]*t[2];
+    const double x11 = -A[3]*x10;
+    const double x12 = -A[6]*x10;
+    const double x13 = t[2]*t[6];
+    const double x14 = A[3]*x13;
+    const double x15 = A[6]*x13;
+    const double x16 = A[24]*x1;
+    const double x17 = A[27]*x1;
+    const double x18 = A[24]*x6;
+    const double x19 = A[27]*x6;
+    const double x20 = -A[27]*x10;
+    const double x21 = A[27]*x13;
+    const double x22 = t[2]*t[7];
+    const double x23 = A[39]*x1;
+    const double x24 = A[39]*x6;
+    K[75] += A[0]*x0;
+    K[76] += A[3]*x0;
+    K[77] += A[6]*x0;
+    K[78] += A[1]*x3 + x2;
+    K[79] += A[4]*x3 + x4;
+    K[80] += A[7]*x3 + x5;
+    K[81] += A[2]*x3 + x7;
+    K[82] += A[5]*x3 + x8;
+    K[83] += A[8]*x3 + x9;
+    K[84] += -A[0]*x10;
+    K[85] += x11;
+    K[86] += x12;
+    K[87] += A[0]*x13;
+    K[88] += x14;
+    K[89] += x15;
+    K[90] += A[1]*t[2]*t[7] - x2;
+    K[91] += A[4]*t[2]*t[7] - x4;
+    K[92] += A[7]*t[2]*t[7] - x5;
+    K[93] += A[2]*t[2]*t[7] - x7;
+    K[94] += A[5]*t[2]*t[7] - x8;
+    K[95] += A[8]*t[2]*t[7] - x9;
+    K[100] += A[24]*x0;
+    K[101] += A[27]*x0;
+    K[102] += A[11]*x3 + x4;
+    K[103] += A[25]*x3 + x16;
+    K[104] += A[28]*x3 + x17;
+    K[105] += A[18]*x3 + x8;
+    K[106] += A[26]*x3 + x18;
+    K[107] += A[29]*x3 + x19;
+    K[108] += x11;
+    K[109] += -A[24]*x10;
+    K[110] += x20;
+    K[111] += x14;
+    K[112] += A[24]*x13;
+    K[113] += x21;
+    K[114] += A[11]*x22 - x4;
+    K[115] += A[25]*t[2]*t[7] - x16;
+    K[116] += A[28]*t[2]*t[7] - x17;
+    K[117] += A[18]*x22 - x8;
+    K[118] += A[26]*t[2]*t[7] - x18;
+    K[119] += A[29]*t[2]*t[7] - x19;
+    K[125] += A[39]*x0;
+    K[126] += A[14]*x3 + x5;
+    K[127] += A[32]*x3 + x17;
+    K[128] += A[40]*x3 + x23;
+    K[129] += A[21]*x3 + x9;
+    K[130] += A[36]*x3 + x19;
+    K[131] += A[41]*x3 + x24;
+    K[132] += x12;
+    K[133] += x20;
+    K[134] += -A[39]*x10;
+    K[135] += x15;
+    K[136] += x21;
+    K[137] += A[39]*x13;
+    K[138] += A[14]*x22 - x5;
+    K[139] += A[32]*t[2]*t[7] - x17;
+    K[140] += A[40]*t[2]*t[7] - x23;
+    K[141] += A[21]*x22 - x9;
+    K[142] += A[36]*t[2]*t[7] - x19;
+    K[143] += A[41]*t[2]*t[7] - x24;
+}
+
+static BK_NOINLINE void ancf3243_contract_row2(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[3]*t[3]);
+    const double x1 = A[0]*x0;
+    const double x2 = (t[4]*t[4]);
+    const double x3 = t[3]*t[4];
+    const double x4 = A[1]*x3;
+    const double x5 = A[4]*x3;
+    const double x6 = A[3]*x0;
+    const double x7 = A[11]*x3 + x6;
+    const double x8 = A[7]*x3;
+    const double x9 = A[6]*x0;
+    const double x10 = A[14]*x3 + x9;
+    const double x11 = t[3]*t[5];
+    const double x12 = t[4]*t[5];
+    const double x13 = A[0]*x11 + A[1]*x12;
+    const double x14 = A[3]*x11;
+    const double x15 = A[11]*x12 + x14;
+    const double x16 = A[6]*x11;
+    const double x17 = A[14]*x12 + x16;
+    const double x18 = t[1]*t[3];
+    const double x19 = t[1]*t[4];
+    const double x20 = A[3]*x18;
+    const double x21 = A[6]*x18;
+    const double x22 = t[3]*t[6];
+    const double x23 = t[4]*t[6];
+    const double x24 = A[3]*x22;
+    const double x25 = A[6]*x22;
+    const double x26 = A[24]*x0;
+    const double x27 = A[25]*x3;
+    const double x28 = A[28]*x3;
+    const double x29 = A[27]*x0;
+    const double x30 = A[32]*x3 + x29;
+    const double x31 = A[4]*x12;
+    const double x32 = A[24]*x11 + A[25]*x12;
+    const double x33 = A[27]*x11;
+    const double x34 = A[32]*x12 + x33;
+    const double x35 = A[27]*x18;
+    const double x36 = A[27]*x22;
+    const double x37 = t[3]*t[7];
+    const double x38 = t[4]*t[7];
+    const double x39 = -A[33]*t[4]*t[7];
+    const double x40 = A[39]*x0;
+    const double x41 = A[40]*x3;
+    const double x42 = A[7]*x12;
+    const double x43 = A[28]*x12 + x33;
+    const double x44 = A[39]*x11 + A[40]*x12;
+    K[150] += A[9]*x2 + x1 + 2.0*x4;
+    K[151] += A[12]*x2 + x5 + x7;
+    K[152] += A[15]*x2 + x10 + x8;
+    K[153] += A[10]*x2 + A[2]*x3 + x13;
+    K[154] += A[13]*x2 + A[5]*x3 + x15;
+    K[155] += A[16]*x2 + A[8]*x3 + x17;
+    K[156] += -A[0]*x18 - A[1]*x19;
+    K[157] += -A[11]*x19 - x20;
+    K[158] += -A[14]*x19 - x21;
+    K[159] += A[0]*x22 + A[1]*x23;
+    K[160] += A[11]*x23 + x24;
+    K[161] += A[14]*x23 + x25;
+    K[162] += A[1]*t[3]*t[7] + A[9]*t[4]*t[7] - x1 - x4;
+    K[163] += A[12]*t[4]*t[7] + A[4]*t[3]*t[7] - x7;
+    K[164] += A[15]*t[4]*t[7] + A[7]*t[3]*t[7] - x10;
+    K[165] += A[10]*t[4]*t[7] + A[2]*t[3]*t[7] - x13;
+    K[166] += A[13]*t[4]*t[7] + A[5]*t[3]*t[7] - x15;
+    K[167] += A[16]*t[4]*t[7] + A[8]*t[3]*t[7] - x17;
+    K[175] += A[30]*x2 + x26 + 2.0*x27;
+    K[176] += A[33]*x2 + x28 + x30;
+    K[177] += A[18]*x3 + A[19]*x2 + x14 + x31;
+    K[178] += A[26]*x3 + A[31]*x2 + x32;
+    K[179] += A[29]*x3 + A[34]*x2 + x34;
+    K[180] += -A[4]*x19 - x20;
+    K[181] += -A[24]*x18 - A[25]*x19;
+    K[182] += -A[32]*x19 - x35;
+    K[183] += A[4]*x23 + x24;
+    K[184] += A[24]*x22 + A[25]*x23;
+    K[185] += A[32]*x23 + x36;
+    K[186] += A[11]*x37 + A[12]*x38 - x5 - x6;
+    K[187] += A[25]*t[3]*t[7] + A[30]*t[4]*t[7] - x26 - x27;
+    K[188] += A[28]*t[3]*t[7] - x30 - x39;
+    K[189] += A[18]*x37 + A[19]*x38 - x14 - x31;
+    K[190] += A[26]*t[3]*t[7] + A[31]*t[4]*t[7] - x32;
+    K[191] += A[29]*t[3]*t[7] + A[34]*t[4]*t[7] - x34;
+    K[200] += A[42]*x2 + x40 + 2.0*x41;
+    K[201] += A[21]*x3 + A[22]*x2 + x16 + x42;
+    K[202] += A[36]*x3 + A[37]*x2 + x43;
+    K[203] += A[41]*x3 + A[43]*x2 + x44;
+    K[204] += -A[7]*x19 - x21;
+    K[205] += -A[28]*x19 - x35;
+    K[206] += -A[39]*x18 - A[40]*x19;
+    K[207] += A[7]*x23 + x25;
+    K[208] += A[28]*x23 + x36;
+    K[209] += A[39]*x22 + A[40]*x23;
+    K[210] += A[14]*x37 + A[15]*x38 - x8 - x9;
+    K[211] += A[32]*t[3]*t[7] - x28 - x29 - x39;
+    K[212] += A[40]*t[3]*t[7] + A[42]*t[4]*t[7] - x40 - x41;
+    K[213] += A[21]*x37 + A[22]*x38 - x16 - x42;
+    K[214] += A[36]*t[3]*t[7] + A[37]*t[4]*t[7] - x43;
+    K[215] += A[41]*t[3]*t[7] + A[43]*t[4]*t[7] - x44;
+}
+
+static BK_NOINLINE void ancf3243_contract_row3(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[5]*t[5]);
+    const double x1 = A[0]*x0;
+    const double x2 = (t[4]*t[4]);
+    const double x3 = t[4]*t[5];
+    const double x4 = A[2]*x3;
+    const double x5 = A[5]*x3;
+    const double x6 = A[3]*x0;
+    const double x7 = A[18]*x3 + x6;
+    const double x8 = A[8]*x3;
+    const double x9 = A[6]*x0;
+    const double x10 = A[21]*x3 + x9;
+    const double x11 = t[1]*t[5];
+    const double x12 = t[1]*t[4];
+    const double x13 = A[3]*x11;
+    const double x14 = A[6]*x11;
+    const double x15 = t[5]*t[6];
+    const double x16 = t[4]*t[6];
+    const double x17 = A[3]*x15;
+    const double x18 = A[6]*x15;
+    const double x19 = t[3]*t[5];
+    const double x20 = t[3]*t[4];
+    const double x21 = A[3]*x19;
+    const double x22 = A[6]*x19;
+    const double x23 = A[24]*x0;
+    const double x24 = A[26]*x3;
+    const double x25 = A[29]*x3;
+    const double x26 = A[27]*x0;
+    const double x27 = A[36]*x3 + x26;
+    const double x28 = A[27]*x11;
+    const double x29 = A[27]*x15;
+    const double x30 = t[5]*t[7];
+    const double x31 = t[4]*t[7];
+    const double x32 = A[27]*x19;
+    const double x33 = -A[38]*t[4]*t[7];
+    const double x34 = A[39]*x0;
+    const double x35 = A[41]*x3;
+    K[225] += A[17]*x2 + x1 + 2.0*x4;
+    K[226] += A[20]*x2 + x5 + x7;
+    K[227] += A[23]*x2 + x10 + x8;
+    K[228] += -A[0]*x11 - A[2]*x12;
+    K[229] += -A[18]*x12 - x13;
+    K[230] += -A[21]*x12 - x14;
+    K[231] += A[0]*x15 + A[2]*x16;
+    K[232] += A[18]*x16 + x17;
+    K[233] += A[21]*x16 + x18;
+    K[234] += -A[0]*x19 + A[10]*t[4]*t[7] + A[1]*t[5]*t[7] - A[2]*x20;
+    K[235] += -A[18]*x20 + A[19]*t[4]*t[7] + A[4]*t[5]*t[7] - x21;
+    K[236] += -A[21]*x20 + A[22]*t[4]*t[7] + A[7]*t[5]*t[7] - x22;
+    K[237] += A[17]*t[4]*t[7] + A[2]*t[5]*t[7] - x1 - x4;
+    K[238] += A[20]*t[4]*t[7] + A[5]*t[5]*t[7] - x7;
+    K[239] += A[23]*t[4]*t[7] + A[8]*t[5]*t[7] - x10;
+    K[250] += A[35]*x2 + x23 + 2.0*x24;
+    K[251] += A[38]*x2 + x25 + x27;
+    K[252] += -A[5]*x12 - x13;
+    K[253] += -A[24]*x11 - A[26]*x12;
+    K[254] += -A[36]*x12 - x28;
+    K[255] += A[5]*x16 + x17;
+    K[256] += A[24]*x15 + A[26]*x16;
+    K[257] += A[36]*x16 + x29;
+    K[258] += A[11]*x30 + A[13]*x31 - A[5]*x20 - x21;
+    K[259] += -A[24]*x19 + A[25]*t[5]*t[7] - A[26]*x20 + A[31]*t[4]*t[7];
+    K[260] += A[28]*t[5]*t[7] - A[36]*x20 + A[37]*t[4]*t[7] - x32;
+    K[261] += A[18]*x30 + A[20]*x31 - x5 - x6;
+    K[262] += A[26]*t[5]*t[7] + A[35]*t[4]*t[7] - x23 - x24;
+    K[263] += A[29]*t[5]*t[7] - x27 - x33;
+    K[275] += A[44]*x2 + x34 + 2.0*x35;
+    K[276] += -A[8]*x12 - x14;
+    K[277] += -A[29]*x12 - x28;
+    K[278] += -A[39]*x11 - A[41]*x12;
+    K[279] += A[8]*x16 + x18;
+    K[280] += A[29]*x16 + x29;
+    K[281] += A[39]*x15 + A[41]*x16;
+    K[282] += A[14]*x30 + A[16]*x31 - A[8]*x20 - x22;
+    K[283] += -A[29]*x20 + A[32]*t[5]*t[7] + A[34]*t[4]*t[7] - x32;
+    K[284] += -A[39]*x19 + A[40]*t[5]*t[7] - A[41]*x20 + A[43]*t[4]*t[7];
+    K[285] += A[21]*x30 + A[23]*x31 - x8 - x9;
+    K[286] += A[36]*t[5]*t[7] - x25 - x26 - x33;
+    K[287] += A[41]*t[5]*t[7] + A[44]*t[4]*t[7] - x34 - x35;
+}
+
+static BK_NOINLINE void ancf3243_contract_row4(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[1]*t[1]);
+    const double x1 = t[1]*t[6];
+    const double x2 = -A[3]*x1;
+    const double x3 = -A[6]*x1;
+    const double x4 = t[1]*t[3];
+    const double x5 = t[1]*t[7];
+    const double x6 = t[1]*t[5];
+    const double x7 = -A[27]*x1;
+    const double x8 = A[27]*x4;
+    const double x9 = A[27]*x6;
+    K[300] += A[0]*x0;
+    K[301] += A[3]*x0;
+    K[302] += A[6]*x0;
+    K[303] += -A[0]*x1;
+    K[304] += x2;
+    K[305] += x3;
+    K[306] += A[0]*x4 - A[1]*x5;
+    K[307] += A[3]*x4 - A[4]*x5;
+    K[308] += A[6]*x4 - A[7]*x5;
+    K[309] += A[0]*x6 - A[2]*x5;
+    K[310] += A[3]*x6 - A[5]*x5;
+    K[311] += A[6]*x6 - A[8]*x5;
+    K[325] += A[24]*x0;
+    K[326] += A[27]*x0;
+    K[327] += x2;
+    K[328] += -A[24]*x1;
+    K[329] += x7;
+    K[330] += -A[11]*x5 + A[3]*t[1]*t[3];
+    K[331] += A[24]*x4 - A[25]*x5;
+    K[332] += -A[28]*x5 + x8;
+    K[333] += -A[18]*x5 + A[3]*t[1]*t[5];
+    K[334] += A[24]*x6 - A[26]*x5;
+    K[335] += -A[29]*x5 + x9;
+    K[350] += A[39]*x0;
+    K[351] += x3;
+    K[352] += x7;
+    K[353] += -A[39]*x1;
+    K[354] += -A[14]*x5 + A[6]*t[1]*t[3];
+    K[355] += -A[32]*x5 + x8;
+    K[356] += A[39]*x4 - A[40]*x5;
+    K[357] += -A[21]*x5 + A[6]*t[1]*t[5];
+    K[358] += -A[36]*x5 + x9;
+    K[359] += A[39]*x6 - A[41]*x5;
+}
+
+static BK_NOINLINE void ancf3243_contract_row5(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[6]*t[6]);
+    const double x1 = t[3]*t[6];
+    const double x2 = A[3]*x1;
+    const double x3 = A[6]*x1;
+    const double x4 = t[5]*t[6];
+    const double x5 = A[3]*x4;
+    const double x6 = A[6]*x4;
+    const double x7 = t[6]*t[7];
+    const double x8 = A[27]*x1;
+    const double x9 = A[27]*x4;
+    K[375] += A[0]*x0;
+    K[376] += A[3]*x0;
+    K[377] += A[6]*x0;
+    K[378] += -A[0]*x1 + A[1]*t[6]*t[7];
+    K[379] += A[4]*t[6]*t[7] - x2;
+    K[380] += A[7]*t[6]*t[7] - x3;
+    K[381] += -A[0]*x4 + A[2]*t[6]*t[7];
+    K[382] += A[5]*t[6]*t[7] - x5;
+    K[383] += A[8]*t[6]*t[7] - x6;
+    K[400] += A[24]*x0;
+    K[401] += A[27]*x0;
+    K[402] += A[11]*x7 - x2;
+    K[403] += -A[24]*x1 + A[25]*t[6]*t[7];
+    K[404] += A[28]*t[6]*t[7] - x8;
+    K[405] += A[18]*x7 - x5;
+    K[406] += -A[24]*x4 + A[26]*t[6]*t[7];
+    K[407] += A[29]*t[6]*t[7] - x9;
+    K[425] += A[39]*x0;
+    K[426] += A[14]*x7 - x3;
+    K[427] += A[32]*t[6]*t[7] - x8;
+    K[428] += -A[39]*x1 + A[40]*t[6]*t[7];
+    K[429] += A[21]*x7 - x6;
+    K[430] += A[36]*t[6]*t[7] - x9;
+    K[431] += -A[39]*x4 + A[41]*t[6]*t[7];
+}
+
+static BK_NOINLINE void ancf3243_contract_row6(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[3]*t[3]);
+    const double x1 = (t[7]*t[7]);
+    const double x2 = t[3]*t[7];
+    const double x3 = 2.0*x2;
+    const double x4 = t[3]*t[5];
+    const double x5 = t[5]*t[7];
+    const double x6 = -A[3]*t[3]*t[5];
+    const double x7 = -A[6]*t[3]*t[5];
+    const double x8 = A[27]*x4;
+    K[450] += A[0]*x0 - A[1]*x3 + A[9]*x1;
+    K[451] += -A[11]*x2 + A[12]*x1 + A[3]*x0 - A[4]*x2;
+    K[452] += -A[14]*x2 + A[15]*x1 + A[6]*x0 - A[7]*x2;
+    K[453] += A[0]*x4 + A[10]*x1 - A[1]*x5 - A[2]*x2;
+    K[454] += -A[11]*x5 + A[13]*x1 - A[5]*x2 - x6;
+    K[455] += -A[14]*x5 + A[16]*x1 - A[8]*x2 - x7;
+    K[475] += A[24]*x0 - A[25]*x3 + A[30]*x1;
+    K[476] += A[27]*x0 - A[28]*x2 - A[32]*x2 + A[33]*x1;
+    K[477] += -A[18]*x2 + A[19]*x1 - A[4]*x5 - x6;
+    K[478] += A[24]*x4 - A[25]*x5 - A[26]*x2 + A[31]*x1;
+    K[479] += -A[29]*x2 - A[32]*x5 + A[34]*x1 + x8;
+    K[500] += A[39]*x0 - A[40]*x3 + A[42]*x1;
+    K[501] += -A[21]*x2 + A[22]*x1 - A[7]*x5 - x7;
+    K[502] += -A[28]*x5 - A[36]*x2 + A[37]*x1 + x8;
+    K[503] += A[39]*x4 - A[40]*x5 - A[41]*x2 + A[43]*x1;
+}
+
+static BK_NOINLINE void ancf3243_contract_row7(const double *restrict A, const double *restrict t,
+                                          double *restrict K)
+{
+    const double x0 = (t[5]*t[5]);
+    const double x1 = (t[7]*t[7]);
+    const double x2 = t[5]*t[7];
+    const double x3 = 2.0*x2;
+    K[525] += A[0]*x0 + A[17]*x1 - A[2]*x3;
+    K[526] += -A[18]*x2 + A[20]*x1 + A[3]*x0 - A[5]*x2;
+    K[527] += -A[21]*x2 + A[23]*x1 + A[6]*x0 - A[8]*x2;
+    K[550] += A[24]*x0 - A[26]*x3 + A[35]*x1;
+    K[551] += A[27]*x0 - A[29]*x2 - A[36]*x2 + A[38]*x1;
+    K[575] += A[39]*x0 - A[41]*x3 + A[44]*x1;
+}
+
+void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    ancf3243_contract_row0(A, t, K);
+    ancf3243_contract_row1(A, t, K);
+    ancf3243_contract_row2(A, t, K);
+    ancf3243_contract_row3(A, t, K);
+    ancf3243_contract_row4(A, t, K);
+    ancf3243_contract_row5(A, t, K);
+    ancf3243_contract_row6(A, t, K);
+    ancf3243_contract_row7(A, t, K);
 }
 
 const bk_element bk_element_ancf3243 = {

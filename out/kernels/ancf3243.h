@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:c573e5597b8574f415459e471f18ab920d8acaf79ee6805dca052ff8b6e442af
+ * input hash: sha256:09e486724fa6d22dc086819bbf97a88c2f11083f83826faae685b37370465b7d
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -32,5 +32,9 @@ void ancf3243_full_tabulate(const double *restrict geom, double *restrict tab);
 /* integration "sri": 12 points (full_order), 3 points (centreline); tab[120] */
 #define ANCF3243_SRI_NTAB 120
 void ancf3243_sri_tabulate(const double *restrict geom, double *restrict tab);
+/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
+ * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
+ * 1347 (653 add, 694 mul, 0 div, 0 call) operations. */
+void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

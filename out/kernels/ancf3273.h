@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:8694b1e3918871825508b8d71bf3904fb3ba5ef4f55a78e5f009ed96330ad730
+ * input hash: sha256:7417d303913aa5018a7d67774d40a8784a97bb95287453bac9ce516eb19b9e0b
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -38,5 +38,9 @@ void ancf3273_full_tabulate(const double *restrict geom, double *restrict tab);
 /* integration "reduced": 12 points (all); tab[180] */
 #define ANCF3273_REDUCED_NTAB 180
 void ancf3273_reduced_tabulate(const double *restrict geom, double *restrict tab);
+/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
+ * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
+ * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */
+void ancf3273_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

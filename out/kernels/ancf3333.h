@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:b2d7dfde367e1a9e84951fd7fa3288ddac91aa62d36315d4c82bdabc7e241fa4
+ * input hash: sha256:37e45965ec43ffbcbbf0e2717a1ef53dd0248a48be131557cdd61c0243ca1fb1
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -30,5 +30,9 @@ void ancf3333_volume(const double *restrict geom, double *restrict v);
 /* integration "full": 12 points (all); tab[156] */
 #define ANCF3333_FULL_NTAB 156
 void ancf3333_full_tabulate(const double *restrict geom, double *restrict tab);
+/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
+ * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
+ * 2028 (1017 add, 1011 mul, 0 div, 0 call) operations. */
+void ancf3333_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py)
- * input hash: sha256:1c7fed3a6d936bc65de413fa9e8f89be59eb8fa4353c3083ffe7b9af6fa47799
+ * input hash: sha256:2c6c3b80e549b7f12b697482e5493b500c6f54ffe5e5276cce1805349c0d8d9e
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -42,5 +42,9 @@ void ancf3363_full_tabulate(const double *restrict geom, double *restrict tab);
 /* integration "reduced": 12 points (all); tab[336] */
 #define ANCF3363_REDUCED_NTAB 336
 void ancf3363_reduced_tabulate(const double *restrict geom, double *restrict tab);
+/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
+ * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
+ * 11400 (5670 add, 5730 mul, 0 div, 0 call) operations. */
+void ancf3363_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif
