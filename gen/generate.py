@@ -30,11 +30,10 @@ def _existing_hash(path):
 
 def plan(elements=None, materials=None):
     """All (kind, name, input paths) units of generation, in fixed order."""
-    from gen.loads import FILES as LOAD_FILES
     elements = elements or all_elements()
     materials = materials or all_materials()
     here = Path(__file__).resolve().parent
-    units = [("loads", "loads", [here / f for f in LOAD_FILES])]
+    units = [("header", "rod_math", [here / "rodmath.py", here / "program.py"])]
     for ename, (elem, epath) in elements.items():
         units.append(("element", ename, [epath]))
         for mname, (mat, mpath) in materials.items():
@@ -46,9 +45,10 @@ def produce(unit):
     """(header text, source text, seconds) of one unit; runs in a worker process."""
     kind, name, inputs = unit
     t0 = time.time()
-    if kind == "loads":
-        from gen.loads import loads_source
-        h, c = loads_source()[:2]
+    if kind == "header":
+        from gen.emit import BANNER
+        from gen.rodmath import rod_math_header
+        h, c = rod_math_header(BANNER, input_hash(inputs)), None
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = element_source(elem, epath)[:2]
@@ -75,7 +75,10 @@ def index_data(elements=None, materials=None):
             "kind": "continuum",
             "title": elem.title,
             "ndof": elem.ndof,
-            "nodes": [{"xi": str(n.xi), "vectors": list(n.vectors)} for n in elem.nodes],
+            "nodes": [{"xi": str(n.xi), "fields": [[v, 3] for v in n.vectors]} for n in elem.nodes],
+            "internal": 0,
+            "section": "rectangle",
+            "moments": True,
             "integrations": rules,
             "default_integration": elem.default_rule,
         }
@@ -97,9 +100,9 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     for kind, name, inputs in plan():
         if only and not any(o in name for o in only.split(",")):
             continue
-        h = input_hash(list(inputs) + (core_paths() if kind != "loads" else []))
+        h = input_hash(list(inputs) + (core_paths() if kind != "header" else []))
         hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
-        if not check and not force and _existing_hash(hpath) == h and cpath.exists():
+        if not check and not force and _existing_hash(hpath) == h and (kind == "header" or cpath.exists()):
             log(f"  {name}: up to date")
             continue
         todo.append((kind, name, inputs))
@@ -115,14 +118,15 @@ def generate(outdir, check=False, force=False, log=print, only=None):
         results = [produce(u) for u in todo]
     for (kind, name, inputs), (htxt, ctxt, dt) in zip(todo, results):
         hpath, cpath = outdir / f"{name}.h", outdir / f"{name}.c"
+        files = [(hpath, htxt)] + ([(cpath, ctxt)] if ctxt is not None else [])
         if check:
-            for p, txt in ((hpath, htxt), (cpath, ctxt)):
+            for p, txt in files:
                 if not p.exists() or p.read_text(encoding="utf-8") != txt:
                     stale.append(str(p))
             log(f"  {name}: checked ({dt:.1f} s)")
         else:
-            hpath.write_text(htxt, encoding="utf-8")
-            cpath.write_text(ctxt, encoding="utf-8")
+            for p, txt in files:
+                p.write_text(txt, encoding="utf-8")
             log(f"  {name}: generated ({dt:.1f} s)")
     if only:
         return stale
@@ -134,7 +138,7 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     else:
         ipath.write_text(idx, encoding="utf-8")
     # Files on disk that the generator no longer produces.
-    expected = {f"{n}.{x}" for _, n, _ in plan() for x in ("h", "c")} | {"index.json"}
+    expected = {f"{n}.{x}" for k, n, _ in plan() for x in (("h",) if k == "header" else ("h", "c"))} | {"index.json"}
     extra = sorted(p.name for p in outdir.iterdir() if p.name not in expected)
     if check:
         stale += [str(outdir / e) for e in extra]

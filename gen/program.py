@@ -248,6 +248,12 @@ class CPrinter(C99CodePrinter):
     def _print_Symbol(self, expr):
         return expr.name
 
+    def _print_Function(self, expr):
+        name = getattr(expr.func, "c_name", None)
+        if name:
+            return f"{name}({', '.join(self._print(a) for a in expr.args)})"
+        return super()._print_Function(expr)
+
     def _print_Mul(self, expr):
         coeff, rest = expr.as_coeff_Mul()
         if coeff < 0:

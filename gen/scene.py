@@ -376,6 +376,7 @@ def build(path, sets=(), name=None):
     q0 = []
     elements = []
     pairs, geoms, mats_used = [], [], []
+    geom_index = {}
     for bi, bt in enumerate(beams_doc):
         where = f"beam[{bi}]"
         bname = get_name(ctx, bt, "name", where) if isinstance(bt.get("name"), str) else None
@@ -429,10 +430,6 @@ def build(path, sets=(), name=None):
             mats_used.append(mkey)
         midx = mats_used.index(mkey)
         l = length / nel
-        gkey = (pidx, l, sec[1], sec[2])
-        if gkey not in geoms:
-            geoms.append(gkey)
-        gidx = geoms.index(gkey)
 
         first_elem = len(elements)
         enodes = einfo["nodes"]
@@ -440,29 +437,39 @@ def build(path, sets=(), name=None):
         node_ids_of_beam = {}
         for k in range(nel):
             edofs = []
+            end_node = None
             for ni, nd in enumerate(enodes):
                 xi = float(eval_fraction(nd["xi"]))
-                key = None
+                fields = tuple((f, d) for f, d in nd["fields"])
                 if xi == 0.0 and prev_end is not None:
                     gid = prev_end
                 else:
                     s = (k + xi) * l
                     X = [start[i] + s * t[i] for i in range(3)]
                     gid = len(nodes)
-                    nodes.append((X, t, d1, d2, tuple(nd["vectors"])))
+                    nodes.append((X, t, d1, d2, fields))
                     dof_of_node.append(ndof)
-                    for vec in nd["vectors"]:
-                        q0.extend(reference_vector(vec, t, d1, d2, X))
-                    ndof += 3 * len(nd["vectors"])
+                    for f, dim in fields:
+                        q0.extend(reference_field(f, t, d1, d2, X))
+                    ndof += sum(d for _, d in fields)
                     node_ids_of_beam[round((k + xi) * 1e9) / 1e9] = gid
-                if nodes[gid][4] != tuple(nd["vectors"]):
+                if nodes[gid][4] != fields:
                     ctx.fail(f"{where}.element", "inconsistent node layout between elements")
                 base = dof_of_node[gid]
-                edofs.extend(range(base, base + 3 * len(nd["vectors"])))
+                edofs.extend(range(base, base + sum(d for _, d in fields)))
                 if xi == 1.0:
                     end_node = gid
+            # element-internal unknowns (multipliers of constrained theories)
+            nint = einfo.get("internal", 0)
+            edofs.extend(range(ndof, ndof + nint))
+            q0.extend([0.0] * nint)
+            ndof += nint
             prev_end = end_node
-            elements.append((pidx, gidx, midx, edofs))
+            gkey = (pidx, l, sec, "straight")
+            if gkey not in geom_index:
+                geom_index[gkey] = len(geoms)
+                geoms.append((pidx, len(elements), section_geometry(sec, l)))
+            elements.append((pidx, geom_index[gkey], midx, edofs))
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
                         "first_elem": first_elem, "t": t, "d1": d1, "d2": d2, "start": start,
                         "elem_len": l, "node_at": node_ids_of_beam, "kind": einfo["kind"]}
@@ -479,18 +486,23 @@ def build(path, sets=(), name=None):
         mode = get_str(ctx, ct, "cross_section", where, default="rigid", choices=("rigid", "free"))
         pos = s / beam["elem_len"]
         gid = beam["node_at"].get(round(pos * 1e9) / 1e9)
-        if gid is None or abs(pos - round(pos)) > 1e-9 and gid is None:
+        if gid is None:
             ctx.fail(f"{where}.a", f"a clamp must be at a node of beam {beam['name']!r} "
                      f"(every {beam['elem_len']:.6g} m), found arc length {s:.6g}")
         base = dof_of_node[gid]
-        vecs = nodes[gid][4]
+        fields = nodes[gid][4]
+        nfd = sum(d for _, d in fields)
         if mode == "rigid":
-            fixed.update(range(base, base + 3 * len(vecs)))
+            fixed.update(range(base, base + nfd))
         else:
             t, d1, d2 = beam["t"], beam["d1"], beam["d2"]
             normals = {"r_x": (d1, d2), "r_y": (t, d2), "r_z": (t, d1)}
-            for vi, vec in enumerate(vecs):
-                vb = base + 3 * vi
+            vb = base
+            for vec, dim in fields:
+                if dim != 3 or not vec.startswith("r"):
+                    fixed.update(range(vb, vb + dim))    # rotations: held
+                    vb += dim
+                    continue
                 if vec == "r":
                     fixed.update(range(vb, vb + 3))
                 elif vec in normals:
@@ -508,6 +520,7 @@ def build(path, sets=(), name=None):
                         fixed.add(terms[0][0])
                     else:
                         lincons.append((terms, 0.0))
+                vb += 3
 
     # Loads
     forces = []
@@ -577,13 +590,6 @@ def build(path, sets=(), name=None):
     }
 
 
-def vector_order(name):
-    if name == "r":
-        return (0, 0, 0)
-    letters = name[2:]
-    return (letters.count("x"), letters.count("y"), letters.count("z"))
-
-
 def eval_fraction(s):
     if "/" in s:
         a, b = s.split("/")
@@ -591,16 +597,51 @@ def eval_fraction(s):
     return float(s)
 
 
-def reference_vector(vec, t, d1, d2, x0):
-    if vec == "r":
+def reference_field(name, t, d1, d2, x0):
+    """Reference value of a nodal field for the section frame (t, d1, d2) at x0."""
+    if name == "r":
         return list(x0)
-    if vec == "r_x":
+    if name == "r_x":
         return list(t)
-    if vec == "r_y":
+    if name == "r_y":
         return list(d1)
-    if vec == "r_z":
+    if name == "r_z":
         return list(d2)
+    if name == "p":
+        return frame_quaternion(t, d1, d2)
     return [0.0, 0.0, 0.0]
+
+
+def frame_quaternion(t, d1, d2):
+    """Unit quaternion (s, x, y, z) of the rotation with columns (t, d1, d2)."""
+    R = [[t[i], d1[i], d2[i]] for i in range(3)]
+    tr = R[0][0] + R[1][1] + R[2][2]
+    if tr > 0:
+        w = math.sqrt(1 + tr) * 2
+        q = [w / 4, (R[2][1] - R[1][2]) / w, (R[0][2] - R[2][0]) / w, (R[1][0] - R[0][1]) / w]
+    elif R[0][0] > R[1][1] and R[0][0] > R[2][2]:
+        w = math.sqrt(1 + R[0][0] - R[1][1] - R[2][2]) * 2
+        q = [(R[2][1] - R[1][2]) / w, w / 4, (R[0][1] + R[1][0]) / w, (R[0][2] + R[2][0]) / w]
+    elif R[1][1] > R[2][2]:
+        w = math.sqrt(1 + R[1][1] - R[0][0] - R[2][2]) * 2
+        q = [(R[0][2] - R[2][0]) / w, (R[0][1] + R[1][0]) / w, w / 4, (R[1][2] + R[2][1]) / w]
+    else:
+        w = math.sqrt(1 + R[2][2] - R[0][0] - R[1][1]) * 2
+        q = [(R[1][0] - R[0][1]) / w, (R[0][2] + R[2][0]) / w, (R[1][2] + R[2][1]) / w, w / 4]
+    n = math.sqrt(sum(x * x for x in q))
+    return [x / n for x in q]
+
+
+def section_geometry(sec, l):
+    """geom[7] = {l, b, h, A, I1, I2, Ip} of a section (runtime/bk_kernel.h)."""
+    shape, b, h = sec
+    if shape == "rectangle":
+        A, I1, I2 = b * h, b * h**3 / 12, h * b**3 / 12
+    else:
+        r = b / 2
+        A, I1 = math.pi * r * r, math.pi * r**4 / 4
+        I2 = I1
+    return [l, b, h, A, I1, I2, I1 + I2]
 
 
 def _f(x):
@@ -624,8 +665,8 @@ def write_model(model, path):
     for params, rho in model["mats"]:
         out.append(f"mat {_f(rho)} {len(params)} " + " ".join(_f(v) for v in params))
     out.append(f"geoms {len(model['geoms'])}")
-    for p, l, b, h in model["geoms"]:
-        out.append(f"geom {p} {_f(l)} {_f(b)} {_f(h)}")
+    for p, e, g in model["geoms"]:
+        out.append(f"geom {p} {e} " + " ".join(_f(x) for x in g))
     out.append(f"elements {len(model['elements'])}")
     for p, g, m, dofs in model["elements"]:
         out.append(f"element {p} {g} {m} {len(dofs)} " + " ".join(map(str, dofs)))

@@ -82,7 +82,7 @@ def runtime_objects(variant="release", log=None, extra_sources=()):
     for name in RUNTIME_SOURCES + tuple(extra_sources):
         src = RUNTIME / name
         obj = BUILD / variant / "runtime" / (Path(name).stem + ".o")
-        jobs.append((src, obj, flags, headers + [KERNELS / "loads.h"]))
+        jobs.append((src, obj, flags, headers))
     _compile_many(jobs, log)
     return [j[1] for j in jobs]
 
@@ -91,7 +91,7 @@ def kernel_objects(pairs, index, variant="release", log=None):
     """Objects for the element and pair files behind the given pair symbols
     (e.g. 'ancf3243_svk_full')."""
     flags = KERNEL_FLAGS[variant]
-    files = ["loads.c"]
+    files = []
     for p in pairs:
         match = [x for x in index["pairs"] if f"{x['element']}_{x['material']}_{x['integration']}" == p]
         if not match:

@@ -1,22 +1,26 @@
 /* bk_kernel.h -- the whole contract between generated kernels and the runtime.
  *
  * The generator (gen/) writes, into out/kernels/, one file pair per element
- * (<element>.{c,h}: shape functions, mass, volume integrals, quadrature tables)
- * and one per element x material pair (<element>_<material>.{c,h}: energy,
- * internal force, tangent).  Each defines `const` descriptors of the types
- * below; the runtime only ever calls through them.
+ * (<element>.{c,h}: interpolation, mass and volume integrals, section frame,
+ * moment loads, per-element constants) and one per element x material pair
+ * (<element>_<material>.{c,h}: energy, internal force, tangent).  Each defines
+ * `const` descriptors of the types below; the runtime only calls through them.
  *
  * Layouts (all arrays are plain doubles, caller-owned):
- *   geom[3]      element geometry {l, b, h}: length, section width along the
- *                first section axis, height along the second (m).
- *   q[ndof]      element coordinates, node-major: for each nodal vector
- *                (shape_vector[a] at node shape_node[a]) its x, y, z.
- *   tab[ntab]    per-element constants from tabulate(geom): for each
- *                quadrature point the weight (times l b h) and the nonzero
- *                shape-function gradients.  Depends on geometry only.
+ *   geom[BK_NGEOM] element geometry: {l, b, h, A, I1, I2, Ip}: length, section
+ *                width along the first section axis d1, height along the
+ *                second d2, area, second moments about d1 and d2, polar moment
+ *                (SI units).  Continuum elements use l, b, h.
+ *   q[ndof]      element coordinates: per node its fields (nodal vectors of 3
+ *                components, quaternions of 4), then element-internal unknowns
+ *                (Lagrange multipliers of constrained beam theories).
+ *   q0[ndof]     the element's coordinates in the reference configuration.
+ *   tab[ntab]    per-element constants from tabulate(geom, q0): quadrature
+ *                weights, shape-function gradients, reference strains.
+ *                Congruent elements share one table.
  *   mat[nparam]  material parameters, named by param_names (SI units).
- *   f[ndof]      internal force dU/dq (N, or N m for slope coordinates).
- *   K[ndof*ndof] tangent dF/dq, row-major, full (kernels write the upper
+ *   f[ndof]      internal force dU/dq.
+ *   K[ndof*ndof] tangent df/dq, row-major, full (kernels write the upper
  *                triangle and mirror it).
  *
  * Kernels are pure: no allocation, no global state, no calls into the runtime;
@@ -25,23 +29,43 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
+#define BK_NGEOM 7
+
 typedef struct bk_element {
     const char *name;
     const char *title;
-    int nnode;                        /* nodes per element                          */
-    int nshape;                       /* shape functions (nodal vectors)            */
-    int ndof;                         /* 3 * nshape                                 */
+    int nnode;                        /* nodes per element                           */
+    int ndof;                         /* element coordinates, internal ones included */
     const double *node_xi;            /* [nnode] node positions along the axis, 0..1 */
-    const int *shape_node;            /* [nshape] node of each shape function       */
-    const char *const *shape_vector;  /* [nshape] "r", "r_x", "r_y", ...            */
-    /* N[a] at (xi in [0,1], y, z); dN (optional, may be NULL): [3*nshape] with
-     * dN[3a+J] = dN_a/dx_J in physical coordinates. */
+    /* Fields of the element coordinates, in order: name ("r", "r_x", "r_yz", ...
+     * nodal vectors; "p" nodal quaternion; "lambda" internal multiplier), the
+     * first element DOF and the dimension (3, 4 or 1). */
+    int nfield;
+    const char *const *field_name;
+    const int *field_dof;
+    const int *field_dim;
+    /* Coordinates of the straight element along +x with section axes +y, +z. */
+    void (*reference)(const double *restrict geom, double *restrict q0);
+    /* Position interpolation r(xi, y, z) = sum_a N_a q[shape_dof[a] + (0, 1, 2)]:
+     * used for point forces and gravity. */
+    int nshape;
+    const int *shape_dof;             /* [nshape]                                    */
     void (*shape)(const double *restrict geom, double xi, double y, double z,
-                  double *restrict N, double *restrict dN);
+                  double *restrict N);
     /* m[a*nshape+b] = integral of N_a N_b over the element volume (m^3). */
     void (*mass)(const double *restrict geom, double *restrict m);
     /* v[a] = integral of N_a over the element volume (m^3). */
     void (*volume)(const double *restrict geom, double *restrict v);
+    /* Centreline point xi: position pos[3] and section frame d[9] = d1, d2, d3
+     * (section axes, axis-like third vector); entries the element does not
+     * define are NaN. */
+    void (*frame)(const double *restrict geom, double xi, const double *restrict q,
+                  double *restrict pos, double *restrict d);
+    /* Moment M (N m, fixed in space) on the section at xi: generalized force
+     * Q[ndof] and its Jacobian dQ[ndof*ndof] (row-major).  NULL: the element
+     * carries no moments. */
+    void (*moment)(const double *restrict geom, double xi, const double *restrict q,
+                   const double *restrict M, double *restrict Q, double *restrict dQ);
 } bk_element;
 
 typedef struct bk_pair {
@@ -51,10 +75,11 @@ typedef struct bk_pair {
     int nparam;
     const char *const *param_names;
     int ntab;
-    int nqp;                          /* quadrature points over all rule parts      */
-    long ops_force;                   /* operations per element call (see header)   */
+    int nqp;                          /* quadrature points over all rule parts       */
+    long ops_force;                   /* operations per element call (see header)    */
     long ops_force_tangent;
-    void (*tabulate)(const double *restrict geom, double *restrict tab);
+    void (*tabulate)(const double *restrict geom, const double *restrict q0,
+                     double *restrict tab);
     double (*energy)(const double *restrict q, const double *restrict tab,
                      const double *restrict mat);
     void (*force)(const double *restrict q, const double *restrict tab,

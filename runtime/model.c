@@ -164,8 +164,8 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         m->pairs[i] = find_pair(t, avail, navail);
         if (!m->pairs[i])
             fail(r, "kernel '%s' is not linked into this solver (rebuild with ./build.sh run)", t);
-        else if (m->pairs[i]->element->nshape > 128)
-            fail(r, "kernel '%s' has more than 128 shape functions", t);
+        else if (m->pairs[i]->element->nshape > 128 || m->pairs[i]->element->ndof > 1024)
+            fail(r, "kernel '%s' is larger than this runtime supports", t);
     }
 
     expect(r, "mats");
@@ -182,17 +182,15 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     expect(r, "geoms");
     m->ngeom = inum(r, "geoms", 1, MAXN);
     m->geoms = xcalloc(r, (size_t)m->ngeom, sizeof *m->geoms);
+    m->geom_pair = xcalloc(r, (size_t)m->ngeom, sizeof *m->geom_pair);
+    m->geom_elem = xcalloc(r, (size_t)m->ngeom, sizeof *m->geom_elem);
     m->tabs = xcalloc(r, (size_t)m->ngeom, sizeof *m->tabs);
     for (int i = 0; i < m->ngeom && !r->failed; ++i) {
         expect(r, "geom");
-        int p = inum(r, "geometry kernel", 0, m->npair - 1);
-        for (int k = 0; k < 3; ++k)
+        m->geom_pair[i] = inum(r, "geometry kernel", 0, m->npair - 1);
+        m->geom_elem[i] = inum(r, "geometry element", 0, MAXN);
+        for (int k = 0; k < BK_NGEOM; ++k)
             m->geoms[i][k] = num(r, "geometry");
-        if (r->failed)
-            break;
-        m->tabs[i] = xcalloc(r, (size_t)m->pairs[p]->ntab, sizeof(double));
-        if (m->tabs[i])
-            m->pairs[p]->tabulate(m->geoms[i], m->tabs[i]);
     }
 
     expect(r, "elements");
@@ -216,6 +214,24 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         e->dofs = xcalloc(r, (size_t)nd, sizeof *e->dofs);
         for (int k = 0; k < nd && !r->failed; ++k)
             e->dofs[k] = inum(r, "element DOF", 0, m->ndof - 1);
+    }
+
+    /* Tables: each from the reference coordinates of one of its elements. */
+    for (int i = 0; i < m->ngeom && !r->failed; ++i) {
+        int e = m->geom_elem[i];
+        if (e >= m->nelem || m->elems[e].pair != m->geom_pair[i]) {
+            fail(r, "geometry %d: element %d does not use its kernel", i, e);
+            break;
+        }
+        const bk_pair *p = m->pairs[m->geom_pair[i]];
+        double *q0e = xcalloc(r, (size_t)p->element->ndof, sizeof *q0e);
+        m->tabs[i] = xcalloc(r, (size_t)(p->ntab ? p->ntab : 1), sizeof(double));
+        if (q0e && m->tabs[i]) {
+            for (int k = 0; k < p->element->ndof; ++k)
+                q0e[k] = m->q0[m->elems[e].dofs[k]];
+            p->tabulate(m->geoms[i], q0e, m->tabs[i]);
+        }
+        free(q0e);
     }
 
     expect(r, "fixed");
@@ -303,6 +319,8 @@ void bk_model_free(bk_model *m)
     free(m->q0);
     free(m->pairs);
     free(m->geoms);
+    free(m->geom_pair);
+    free(m->geom_elem);
     if (m->tabs)
         for (int i = 0; i < m->ngeom; ++i)
             free(m->tabs[i]);

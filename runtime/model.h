@@ -68,11 +68,11 @@ typedef struct bk_model {
     double *q0;                  /* [ndof] reference configuration       */
     int npair;
     const bk_pair **pairs;       /* resolved kernel descriptors          */
-    int ngeom;                   /* distinct (kernel, geometry) combinations */
-    double (*geoms)[3];          /* {l, b, h} per geometry               */
-    double **tabs;               /* [ngeom] tabulated constants, from the
-                                    tabulate() of the kernel the geometry
-                                    was declared with                    */
+    int ngeom;                   /* distinct (kernel, congruent element) tables */
+    double (*geoms)[BK_NGEOM];   /* geometry of each table (bk_kernel.h)  */
+    int *geom_pair;              /* kernel whose tabulate() builds it     */
+    int *geom_elem;              /* element whose reference coordinates it uses */
+    double **tabs;               /* [ngeom] tabulated constants            */
     int nmat;
     bk_mat *mats;
     int nelem;

@@ -2,6 +2,7 @@
 #include "output.h"
 
 #include <errno.h>
+#include <math.h>
 #include <string.h>
 
 #include "system.h"
@@ -27,8 +28,8 @@ static void sensor_state(const bk_model *m, const bk_sensor *s, const double *q,
                          double *disp, double *grad)
 {
     double p0[3];
-    bk_eval_point(m, q, s->elem, s->xi, 0.0, 0.0, pos, grad);
-    bk_eval_point(m, m->q0, s->elem, s->xi, 0.0, 0.0, p0, NULL);
+    bk_eval_point(m, q, s->elem, s->xi, pos, grad);
+    bk_eval_point(m, m->q0, s->elem, s->xi, p0, NULL);
     for (int i = 0; i < 3; ++i)
         disp[i] = pos[i] - p0[i];
 }
@@ -41,11 +42,11 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
         const bk_sensor *s = &o->m->sensors[k];
         double pos[3], disp[3], g[9];
         sensor_state(o->m, s, q, pos, disp, g);
-        /* d1 = r_y, d2 = r_z (section axes), d3 = r_x (axis) */
+        /* d1, d2 (section axes), d3 (axis-like); nan where undefined */
         fprintf(o->sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
                 "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
                 step, t, s->name, pos[0], pos[1], pos[2], disp[0], disp[1], disp[2],
-                g[3], g[4], g[5], g[6], g[7], g[8], g[0], g[1], g[2]);
+                g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
     fflush(o->sensors);
 }
@@ -67,7 +68,14 @@ static void json_string(FILE *fp, const char *s)
 
 static void json_vec(FILE *fp, const double *v)
 {
-    fprintf(fp, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+    fputc('[', fp);
+    for (int i = 0; i < 3; ++i) {
+        if (isfinite(v[i]))
+            fprintf(fp, "%s%.17g", i ? ", " : "", v[i]);
+        else
+            fprintf(fp, "%snull", i ? ", " : "");
+    }
+    fputc(']', fp);
 }
 
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err)
@@ -111,11 +119,11 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         fprintf(fp, ", \"displacement\": ");
         json_vec(fp, disp);
         fprintf(fp, ", \"d1\": ");
-        json_vec(fp, g + 3);
-        fprintf(fp, ", \"d2\": ");
-        json_vec(fp, g + 6);
-        fprintf(fp, ", \"d3\": ");
         json_vec(fp, g);
+        fprintf(fp, ", \"d2\": ");
+        json_vec(fp, g + 3);
+        fprintf(fp, ", \"d3\": ");
+        json_vec(fp, g + 6);
         fprintf(fp, "}");
     }
     fprintf(fp, "%s}\n}\n", m->nsensor ? "\n  " : "");

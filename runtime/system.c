@@ -2,12 +2,11 @@
 #include "system.h"
 
 #include <math.h>
-
-#include "loads.h"
 #include <stdlib.h>
 #include <string.h>
 
 #define BK_MAXSHAPE 128
+#define BK_MAXDOF 1024
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -215,7 +214,7 @@ void bk_system_free(bk_system *s)
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    double qe[BK_MAXSHAPE * 3];
+    double qe[BK_MAXDOF];
     memset(fint, 0, (size_t)m->ndof * sizeof *fint);
     if (Ax)
         memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
@@ -249,7 +248,7 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
 double bk_strain_energy(const bk_system *s, const double *q)
 {
     const bk_model *m = s->m;
-    double qe[BK_MAXSHAPE * 3], U = 0.0;
+    double qe[BK_MAXDOF], U = 0.0;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
@@ -280,16 +279,16 @@ void bk_external_load(const bk_system *s, double *fext)
                 N[a] = 0.0;
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) {
-                    et->shape(g, f->xi, 0.5 * g[1] * gp[i], 0.5 * g[2] * gp[j], Na, NULL);
+                    et->shape(g, f->xi, 0.5 * g[1] * gp[i], 0.5 * g[2] * gp[j], Na);
                     for (int a = 0; a < et->nshape; ++a)
                         N[a] += gw[i] * gw[j] * Na[a];
                 }
         } else {
-            et->shape(g, f->xi, f->y, f->z, N, NULL);
+            et->shape(g, f->xi, f->y, f->z, N);
         }
         for (int a = 0; a < et->nshape; ++a)
             for (int k = 0; k < 3; ++k)
-                fext[el->dofs[3 * a + k]] += N[a] * f->value[k];
+                fext[el->dofs[et->shape_dof[a] + k]] += N[a] * f->value[k];
     }
     if (m->has_gravity) {
         for (int e = 0; e < m->nelem; ++e) {
@@ -299,7 +298,7 @@ void bk_external_load(const bk_system *s, double *fext)
             et->volume(m->geoms[el->geom], N);
             for (int a = 0; a < et->nshape; ++a)
                 for (int k = 0; k < 3; ++k)
-                    fext[el->dofs[3 * a + k]] += rho * N[a] * m->gravity[k];
+                    fext[el->dofs[et->shape_dof[a] + k]] += rho * N[a] * m->gravity[k];
         }
     }
 }
@@ -307,41 +306,23 @@ void bk_external_load(const bk_system *s, double *fext)
 void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    double N[BK_MAXSHAPE], dN[3 * BK_MAXSHAPE], Q[6], dQ[36];
+    double qe[BK_MAXDOF];
     for (int i = 0; i < m->nmoment; ++i) {
         const bk_moment_load *mo = &m->moments[i];
         const bk_elem *el = &m->elems[mo->elem];
         const bk_element *et = m->pairs[el->pair]->element;
-        int ns = et->nshape, nd = et->ndof;
-        et->shape(m->geoms[el->geom], mo->xi, 0.0, 0.0, N, dN);
-        double ry[3] = {0, 0, 0}, rz[3] = {0, 0, 0};
-        for (int a = 0; a < ns; ++a)
-            for (int k = 0; k < 3; ++k) {
-                ry[k] += dN[3 * a + 1] * q[el->dofs[3 * a + k]];
-                rz[k] += dN[3 * a + 2] * q[el->dofs[3 * a + k]];
-            }
-        bk_section_moment(ry, rz, mo->value, Q, dQ);
-        for (int a = 0; a < ns; ++a)
-            for (int k = 0; k < 3; ++k)
-                fint[el->dofs[3 * a + k]] -= lam * (dN[3 * a + 1] * Q[k] + dN[3 * a + 2] * Q[3 + k]);
+        int nd = et->ndof;
+        for (int k = 0; k < nd; ++k)
+            qe[k] = q[el->dofs[k]];
+        et->moment(m->geoms[el->geom], mo->xi, qe, mo->value, s->fe, s->Ke);
+        for (int k = 0; k < nd; ++k)
+            fint[el->dofs[k]] -= lam * s->fe[k];
         if (!Ax)
             continue;
         const int *sl = s->eslot + s->eslot_off[mo->elem];
-        for (int a = 0; a < ns; ++a)
-            for (int b = 0; b < ns; ++b) {
-                double ay = dN[3 * a + 1], az = dN[3 * a + 2], by = dN[3 * b + 1], bz = dN[3 * b + 2];
-                if ((ay == 0.0 && az == 0.0) || (by == 0.0 && bz == 0.0))
-                    continue;
-                for (int i = 0; i < 3; ++i)
-                    for (int k = 0; k < 3; ++k) {
-                        int slot = sl[(3 * a + i) * nd + 3 * b + k];
-                        if (slot < 0)
-                            continue;
-                        double v = ay * by * dQ[i * 6 + k] + ay * bz * dQ[i * 6 + 3 + k]
-                                 + az * by * dQ[(3 + i) * 6 + k] + az * bz * dQ[(3 + i) * 6 + 3 + k];
-                        Ax[slot] -= lam * v;
-                    }
-            }
+        for (int k = 0; k < nd * nd; ++k)
+            if (sl[k] >= 0 && s->Ke[k] != 0.0)
+                Ax[sl[k]] -= lam * s->Ke[k];
     }
 }
 
@@ -367,24 +348,12 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
     }
 }
 
-void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double y, double z,
-                   double *pos, double *grad)
+void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d)
 {
     const bk_elem *el = &m->elems[e];
     const bk_element *et = m->pairs[el->pair]->element;
-    double N[BK_MAXSHAPE], dN[3 * BK_MAXSHAPE];
-    et->shape(m->geoms[el->geom], xi, y, z, N, grad ? dN : NULL);
-    for (int i = 0; i < 3; ++i)
-        pos[i] = 0.0;
-    if (grad)
-        for (int i = 0; i < 9; ++i)
-            grad[i] = 0.0;
-    for (int a = 0; a < et->nshape; ++a)
-        for (int i = 0; i < 3; ++i) {
-            double qa = q[el->dofs[3 * a + i]];
-            pos[i] += N[a] * qa;
-            if (grad)
-                for (int J = 0; J < 3; ++J)
-                    grad[3 * J + i] += dN[3 * a + J] * qa;
-        }
+    double qe[BK_MAXDOF], dd[9];
+    for (int k = 0; k < et->ndof; ++k)
+        qe[k] = q[el->dofs[k]];
+    et->frame(m->geoms[el->geom], xi, qe, pos, d ? d : dd);
 }

@@ -56,9 +56,8 @@ void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fin
 void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,
                              double *r, double *Ax);
 
-/* Point evaluation on element e at (xi, y, z): position and, if grad != NULL,
- * the columns r_x, r_y, r_z (grad[3*J+i] = d r_i / d x_J). */
-void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double y, double z,
-                   double *pos, double *grad);
+/* Centreline point xi of element e: position and (if d != NULL) the section
+ * frame d1, d2, d3 (NaN where the element defines none). */
+void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d);
 
 #endif

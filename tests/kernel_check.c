@@ -37,7 +37,7 @@ static double urand(rng *r) /* uniform in [-1, 1) */
     return 2.0 * ((double)(r->s >> 11) / 9007199254740992.0) - 1.0;
 }
 
-static void random_rotation(rng *r, double R[9])
+static void random_rotation(rng *r, double R[9], double qr[4])
 {
     double q[4], n = 0.0;
     do {
@@ -51,51 +51,56 @@ static void random_rotation(rng *r, double R[9])
     for (int i = 0; i < 4; ++i)
         q[i] /= n;
     double w = q[0], x = q[1], y = q[2], z = q[3];
+    for (int i = 0; i < 4; ++i)
+        qr[i] = q[i];
     double M[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
                    2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
                    2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
     memcpy(R, M, sizeof M);
 }
 
-/* Derivative orders of a nodal vector name: r, r_x, r_yz, ... */
-static void vec_order(const char *v, int o[3])
+/* Reference coordinates of the straight element (element->reference) moved by
+ * the rigid motion x -> R x + x0: positions move, slope vectors rotate,
+ * quaternions are pre-multiplied by the rotation's quaternion, multipliers stay. */
+static void rigid(const bk_element *e, const double *geom, const double R[9], const double qr[4],
+                  const double x0[3], double *q)
 {
-    o[0] = o[1] = o[2] = 0;
-    if (strncmp(v, "r_", 2) == 0)
-        for (const char *c = v + 2; *c; ++c)
-            o[*c - 'x']++;
-}
-
-/* Reference coordinates of the straight box rotated by R, shifted by x0. */
-static void reference(const bk_element *e, const double *geom, const double R[9], const double x0[3],
-                      double *q)
-{
-    for (int a = 0; a < e->nshape; ++a) {
-        int o[3];
-        vec_order(e->shape_vector[a], o);
-        double v[3] = {0, 0, 0};
-        if (o[0] + o[1] + o[2] == 0)
-            v[0] = e->node_xi[e->shape_node[a]] * geom[0];
-        else if (o[0] + o[1] + o[2] == 1)
-            v[o[0] ? 0 : o[1] ? 1 : 2] = 1.0;
-        for (int i = 0; i < 3; ++i) {
-            double s = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
-            q[3 * a + i] = s + ((o[0] + o[1] + o[2] == 0) ? x0[i] : 0.0);
+    e->reference(geom, q);
+    for (int f = 0; f < e->nfield; ++f) {
+        double *v = q + e->field_dof[f];
+        const char *name = e->field_name[f];
+        if (name[0] == 'r' && e->field_dim[f] == 3) {
+            double w[3];
+            for (int i = 0; i < 3; ++i)
+                w[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
+            for (int i = 0; i < 3; ++i)
+                v[i] = w[i] + (strcmp(name, "r") == 0 ? x0[i] : 0.0);
+        } else if (strcmp(name, "p") == 0) {
+            double s = v[0], x = v[1], y = v[2], z = v[3];
+            v[0] = qr[0] * s - qr[1] * x - qr[2] * y - qr[3] * z;
+            v[1] = qr[0] * x + qr[1] * s + qr[2] * z - qr[3] * y;
+            v[2] = qr[0] * y - qr[1] * z + qr[2] * s + qr[3] * x;
+            v[3] = qr[0] * z + qr[1] * y - qr[2] * x + qr[3] * s;
         }
     }
 }
 
-/* Size of a perturbation of each DOF: positions ~ l, slopes ~ 1, curvatures ~ 1/h. */
-static void dof_scale(const bk_element *e, const double *geom, double *s)
+/* Size of a perturbation of each DOF: positions ~ l, slopes and quaternions ~ 1,
+ * curvature-like vectors ~ 1/h, multipliers ~ 1e-3. */
+static void dof_scale(const bk_element *e, const double *geom, double *sc)
 {
     double hmin = fmin(geom[1], geom[2]);
-    for (int a = 0; a < e->nshape; ++a) {
-        int o[3];
-        vec_order(e->shape_vector[a], o);
-        int ord = o[0] + o[1] + o[2];
-        double v = ord == 0 ? geom[0] : ord == 1 ? 1.0 : 1.0 / hmin;
-        for (int i = 0; i < 3; ++i)
-            s[3 * a + i] = v;
+    for (int f = 0; f < e->nfield; ++f) {
+        const char *name = e->field_name[f];
+        double v = 1.0;
+        if (strcmp(name, "r") == 0)
+            v = geom[0];
+        else if (name[0] == 'r' && strlen(name) > 3)
+            v = 1.0 / hmin;
+        else if (strcmp(name, "lambda") == 0)
+            v = 1e-3;
+        for (int i = 0; i < e->field_dim[f]; ++i)
+            sc[e->field_dof[f] + i] = v;
     }
 }
 
@@ -133,7 +138,8 @@ int main(int argc, char **argv)
     if (NSTATE < 1)
         NSTATE = 1;
     setvbuf(stdout, NULL, _IOLBF, 0);
-    static const double geoms[2][3] = {{0.5, 0.2, 0.1}, {0.1, 0.01, 0.012}};
+    static const double geoms[2][BK_NGEOM] = {{0.5, 0.2, 0.1, 0.02, 1.6667e-5, 6.6667e-5, 8.3333e-5},
+                                               {0.1, 0.01, 0.012, 1.2e-4, 1.44e-9, 1.0e-9, 2.44e-9}};
     int bad = 0;
     for (int ip = 0; ip < bk_nlinked_pairs; ++ip) {
         const bk_pair *p = bk_linked_pairs[ip];
@@ -162,17 +168,20 @@ int main(int argc, char **argv)
             double *sc = malloc(n * sizeof(double));
             if (!tab || !q0 || !q || !f || !f2 || !K || !Kd || !fp || !fm || !fp2 || !fm2 || !sc)
                 return 3;
-            p->tabulate(geom, tab);
+            double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, qid[4] = {1, 0, 0, 0}, zero[3] = {0, 0, 0};
+            rigid(e, geom, Rid, qid, zero, q0);
+            p->tabulate(geom, q0, tab);
             dof_scale(e, geom, sc);
             rng r = {0x9e3779b97f4a7c15ULL ^ (unsigned long long)(ip * 7919 + ig * 104729 + 1)};
-            double R[9], x0[3];
+            double R[9], qr[4], x0[3];
 
-            /* Unit-strain scales from a small uniaxial stretch along the axis. */
+            /* Unit-strain scales from a small uniaxial stretch along the axis:
+             * x components of positions and nodal vectors scaled by 1 + eps. */
             const double eps = 1e-4;
-            double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, zero[3] = {0, 0, 0};
-            reference(e, geom, Rid, zero, q);
-            for (int a = 0; a < e->nshape; ++a)
-                q[3 * a] *= 1.0 + eps;           /* x components: positions and r_x */
+            rigid(e, geom, Rid, qid, zero, q);
+            for (int f = 0; f < e->nfield; ++f)
+                if (e->field_name[f][0] == 'r' && e->field_dim[f] == 3)
+                    q[e->field_dof[f]] *= 1.0 + eps;
             double Ueps = p->energy(q, tab, mat);
             p->force(q, tab, mat, f);
             double fscale = maxabs(f, n) / eps, Uscale = Ueps / (eps * eps);
@@ -180,10 +189,10 @@ int main(int argc, char **argv)
             double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0;
 
             for (int st = 0; st < NSTATE; ++st) {
-                random_rotation(&r, R);
+                random_rotation(&r, R, qr);
                 for (int i = 0; i < 3; ++i)
                     x0[i] = urand(&r);
-                reference(e, geom, R, x0, q0);
+                rigid(e, geom, R, qr, x0, q0);
                 /* rigid motion */
                 double U0 = p->energy(q0, tab, mat);
                 p->force(q0, tab, mat, f);

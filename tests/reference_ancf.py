@@ -25,7 +25,7 @@ def shape(xi, y, z, l):
 
 
 def gauss_points(geom, counts=(3, 2, 2)):
-    l, b, h = geom
+    l, b, h = geom[:3]
     pts = []
     gx = np.polynomial.legendre.leggauss(counts[0])
     gy = np.polynomial.legendre.leggauss(counts[1])

@@ -79,7 +79,7 @@ def reference_coordinates(elem, geom):
     q = []
     for nd in idx["elements"][elem]["nodes"]:
         a, b = (int(x) for x in nd["xi"].split("/")) if "/" in nd["xi"] else (int(nd["xi"]), 1)
-        for v in nd["vectors"]:
+        for v, _ in nd["fields"]:
             q += {"r": [geom[0] * a / b, 0, 0], "r_x": [1, 0, 0], "r_y": [0, 1, 0],
                   "r_z": [0, 0, 1]}.get(v, [0, 0, 0])
     return np.array(q, dtype=float)

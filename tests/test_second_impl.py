@@ -56,12 +56,21 @@ def test_mass_matrix_and_volume_integrals_match_quadrature():
     kinematics: q^T M q = rho V |v|^2 for a translation."""
     import ctypes
     k = Kernel("ancf3243", "svk")
-    geom = np.array([0.3, 0.04, 0.02])
+    geom = np.array([0.3, 0.04, 0.02, 0, 0, 0, 0])
     m = np.zeros(64)
     v = np.zeros(8)
     D = ctypes.POINTER(ctypes.c_double)
-    k.lib.ancf3243_mass(geom.ctypes.data_as(D), m.ctypes.data_as(D))
-    k.lib.ancf3243_volume(geom.ctypes.data_as(D), v.ctypes.data_as(D))
+
+    class Element(ctypes.Structure):      # the leading fields of bk_element (runtime/bk_kernel.h)
+        _fields_ = [("name", ctypes.c_char_p), ("title", ctypes.c_char_p), ("nnode", ctypes.c_int),
+                    ("ndof", ctypes.c_int), ("node_xi", D), ("nfield", ctypes.c_int),
+                    ("field_name", ctypes.c_void_p), ("field_dof", ctypes.c_void_p),
+                    ("field_dim", ctypes.c_void_p), ("reference", ctypes.c_void_p),
+                    ("nshape", ctypes.c_int), ("shape_dof", ctypes.c_void_p), ("shape", ctypes.c_void_p),
+                    ("mass", ctypes.CFUNCTYPE(None, D, D)), ("volume", ctypes.CFUNCTYPE(None, D, D))]
+    el = Element.in_dll(k.lib, "bk_element_ancf3243")
+    el.mass(geom.ctypes.data_as(D), m.ctypes.data_as(D))
+    el.volume(geom.ctypes.data_as(D), v.ctypes.data_as(D))
     m = m.reshape(8, 8)
     mref, vref = np.zeros((8, 8)), np.zeros(8)
     for xi, y, z, w in ref.gauss_points(geom, (4, 3, 3)):

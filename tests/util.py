@@ -113,12 +113,14 @@ class Kernel:
         a = np.ascontiguousarray(a, dtype=float)
         return a, a.ctypes.data_as(self.ct.POINTER(self.ct.c_double))
 
-    def tabulate(self, geom):
+    def tabulate(self, geom, q0=None):
         import numpy as np
         tab = np.zeros(self.ntab)
+        geom = list(geom) + [0.0] * (7 - len(geom))
         g, gp = self._arr(geom)
+        q0, q0p = self._arr(np.zeros(self.ndof) if q0 is None else q0)
         t, tp = self._arr(tab)
-        self._tab(gp, tp)
+        self._tab(gp, q0p, tp)
         return t
 
     def eval(self, q, tab, mat):

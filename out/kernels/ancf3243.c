@@ -9,11 +9,12 @@
 #endif
 
 static const double node_xi[2] = {0.0, 1.0};
-static const int shape_node[8] = {0, 0, 0, 0, 1, 1, 1, 1};
-static const char *const shape_vector[8] = {"r", "r_x", "r_y", "r_z", "r", "r_x", "r_y", "r_z"};
+static const int shape_dof[8] = {0, 3, 6, 9, 12, 15, 18, 21};
+static const char *const field_name[8] = {"r", "r_x", "r_y", "r_z", "r", "r_x", "r_y", "r_z"};
+static const int field_dof[8] = {0, 3, 6, 9, 12, 15, 18, 21};
+static const int field_dim[8] = {3, 3, 3, 3, 3, 3, 3, 3};
 
-void ancf3243_shape(const double *restrict geom, double xi, double y, double z,
-                    double *restrict N, double *restrict dN)
+static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
 {
     (void)geom; (void)xi; (void)y; (void)z;
     const double x0 = (xi*xi);
@@ -31,43 +32,9 @@ void ancf3243_shape(const double *restrict geom, double xi, double y, double z,
     N[5] = x3 - x4;
     N[6] = x5;
     N[7] = x6;
-    if (dN) {
-        const double x0 = (1.0/geom[0]);
-        const double x1 = 6.0*x0;
-        const double x2 = (xi*xi);
-        const double x3 = x1*x2 - x1*xi;
-        const double x4 = 3.0*x2;
-        const double x5 = x0*y;
-        const double x6 = 1.0 - xi;
-        const double x7 = x0*z;
-        dN[0] = x3;
-        dN[1] = 0;
-        dN[2] = 0;
-        dN[3] = x4 - 4.0*xi + 1.0;
-        dN[4] = 0;
-        dN[5] = 0;
-        dN[6] = -x5;
-        dN[7] = x6;
-        dN[8] = 0;
-        dN[9] = -x7;
-        dN[10] = 0;
-        dN[11] = x6;
-        dN[12] = -x3;
-        dN[13] = 0;
-        dN[14] = 0;
-        dN[15] = x4 - 2.0*xi;
-        dN[16] = 0;
-        dN[17] = 0;
-        dN[18] = x5;
-        dN[19] = xi;
-        dN[20] = 0;
-        dN[21] = x7;
-        dN[22] = 0;
-        dN[23] = xi;
-    }
 }
 
-void ancf3243_mass(const double *restrict geom, double *restrict m)
+static void mass(const double *restrict geom, double *restrict m)
 {
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
@@ -155,7 +122,7 @@ void ancf3243_mass(const double *restrict geom, double *restrict m)
     m[63] = x17;
 }
 
-void ancf3243_volume(const double *restrict geom, double *restrict v)
+static void volume(const double *restrict geom, double *restrict v)
 {
     const double x0 = geom[1]*geom[2];
     const double x1 = 0.5*x0*geom[0];
@@ -170,8 +137,505 @@ void ancf3243_volume(const double *restrict geom, double *restrict v)
     v[7] = 0;
 }
 
-void ancf3243_full_tabulate(const double *restrict geom, double *restrict tab)
+static void frame(const double *restrict geom, double xi, const double *restrict q, double *restrict pos, double *restrict d)
 {
+    (void)geom; (void)xi;
+    const double x0 = (xi*xi);
+    const double x1 = 3.0*x0;
+    const double x2 = (xi*xi*xi);
+    const double x3 = -x1 + 2.0*x2;
+    const double x4 = x3 + 1.0;
+    const double x5 = -x3;
+    const double x6 = x2*geom[0];
+    const double x7 = x0*geom[0];
+    const double x8 = x6 - x7;
+    const double x9 = xi*geom[0] + x6 - 2.0*x7;
+    const double x10 = 1.0 - xi;
+    const double x11 = (6.0/geom[0]);
+    const double x12 = x0*x11 - x11*xi;
+    const double x13 = -x12;
+    const double x14 = x1 - 2.0*xi;
+    const double x15 = x1 - 4.0*xi + 1.0;
+    pos[0] = q[0]*x4 + q[12]*x5 + q[15]*x8 + q[3]*x9;
+    pos[1] = q[13]*x5 + q[16]*x8 + q[1]*x4 + q[4]*x9;
+    pos[2] = q[14]*x5 + q[17]*x8 + q[2]*x4 + q[5]*x9;
+    d[0] = q[18]*xi + q[6]*x10;
+    d[1] = q[19]*xi + q[7]*x10;
+    d[2] = q[20]*xi + q[8]*x10;
+    d[3] = q[21]*xi + q[9]*x10;
+    d[4] = q[10]*x10 + q[22]*xi;
+    d[5] = q[11]*x10 + q[23]*xi;
+    d[6] = q[0]*x12 + q[12]*x13 + q[15]*x14 + q[3]*x15;
+    d[7] = q[13]*x13 + q[16]*x14 + q[1]*x12 + q[4]*x15;
+    d[8] = q[14]*x13 + q[17]*x14 + q[2]*x12 + q[5]*x15;
+}
+
+static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    (void)geom; (void)xi;
+    for (int i = 0; i < 24; ++i) Q[i] = 0.0;
+    for (int i = 0; i < 576; ++i) dQ[i] = 0.0;
+    const double x0 = 1.0 - xi;
+    const double ry0 = q[18]*xi + q[6]*x0;
+    const double x1 = (ry0*ry0);
+    const double ry1 = q[19]*xi + q[7]*x0;
+    const double x2 = (ry1*ry1);
+    const double ry2 = q[20]*xi + q[8]*x0;
+    const double x3 = (ry2*ry2);
+    const double x4 = x1 + x2 + x3;
+    const double x5 = (1.0/(sqrt(x4)));
+    const double rz0 = q[21]*xi + q[9]*x0;
+    const double rz1 = q[10]*x0 + q[22]*xi;
+    const double x6 = (rz0*rz0);
+    const double x7 = (rz1*rz1);
+    const double rz2 = q[11]*x0 + q[23]*xi;
+    const double x8 = (rz2*rz2);
+    const double x9 = x6 + x7 + x8;
+    const double x10 = (1.0/(sqrt(x9)));
+    const double x11 = x10*x5;
+    const double x12 = rz1*x11;
+    const double x15 = rz2*x11;
+    const double x16 = ry1*x15 - ry2*x12;
+    const double x13 = rz0*x11;
+    const double x14 = ry0*x12 - ry1*x13;
+    const double x17 = -ry0*x15 + ry2*rz0*x10*x5;
+    const double x18 = (x14*x14) + (x16*x16) + (x17*x17);
+    const double x19 = (1.0/(sqrt(x18)));
+    const double x20 = x16*x19;
+    const double x21 = x17*x19;
+    const double x22 = x14*x19;
+    const double x23 = M[0]*x20 + M[1]*x21 + M[2]*x22;
+    const double x24 = 0.5*x10*x23;
+    const double x25 = M[0]*rz0*x10 + M[1]*rz1*x10 + M[2]*rz2*x10;
+    const double x26 = rz0*x24 - x20*x25;
+    const double Qs0 = x26*x5;
+    const double x36 = (1.0/(sqrt(x4)*sqrt(x4)*sqrt(x4)));
+    const double x37 = ry0*x36;
+    const double x38 = ry1*x37;
+    const double x39 = x10*x38;
+    const double x40 = rz2*x39;
+    const double x41 = ry2*x37;
+    const double x42 = x10*x41;
+    const double x43 = rz1*x42;
+    const double x44 = x19*(-x40 + x43);
+    const double x45 = rz0*x42;
+    const double x48 = x1*x36;
+    const double x49 = rz1*x10*x48;
+    const double x50 = rz0*x39;
+    const double x53 = (1.0/(sqrt(x18)*sqrt(x18)*sqrt(x18)));
+    const double x54 = 2.0*x12;
+    const double x55 = 0.5*x14;
+    const double x56 = 2.0*x43;
+    const double x57 = 2.0*x40;
+    const double x58 = 0.5*x16;
+    const double x59 = 2.0*x15;
+    const double x60 = 0.5*x17;
+    const double x61 = x53*(-x55*(-2.0*x49 + 2.0*x50 + x54) - x58*(x56 - x57) - x60*(2.0*rz2*x1*x10*x36 - 2.0*x45 - x59));
+    const double x62 = x16*x61;
+    const double x46 = rz2*x1*x10*x36 - x15 - x45;
+    const double x47 = M[1]*x19;
+    const double x51 = x12 - x49 + x50;
+    const double x52 = M[2]*x19;
+    const double x63 = M[1]*x17;
+    const double x64 = M[2]*x14;
+    const double x65 = M[0]*x44 + M[0]*x62 + x46*x47 + x51*x52 + x61*x63 + x61*x64;
+    const double x66 = x26*x36;
+    const double dQs0_0 = -ry0*x66 + x5*(0.5*rz0*x10*x65 - x25*x44 - x25*x62);
+    const double x184 = (x0*x0);
+    const double x67 = x2*x36;
+    const double x68 = rz2*x10*x67;
+    const double x69 = ry1*x36;
+    const double x70 = ry2*x69;
+    const double x71 = x10*x70;
+    const double x72 = rz1*x71;
+    const double x73 = x19*(x15 - x68 + x72);
+    const double x77 = rz1*x39;
+    const double x79 = 2.0*x13;
+    const double x74 = rz0*x71;
+    const double x80 = -2.0*x74;
+    const double x81 = x53*(-x55*(2.0*rz0*x10*x2*x36 - 2.0*x77 - x79) - x58*(x59 - 2.0*x68 + 2.0*x72) - x60*(x57 + x80));
+    const double x82 = x16*x81;
+    const double x75 = -x74;
+    const double x76 = x40 + x75;
+    const double x78 = rz0*x10*x2*x36 - x13 - x77;
+    const double x83 = M[0]*x73 + M[0]*x82 + x47*x76 + x52*x78 + x63*x81 + x64*x81;
+    const double dQs0_1 = -ry1*x66 + x5*(0.5*rz0*x10*x83 - x25*x73 - x25*x82);
+    const double x84 = rz2*x71;
+    const double x85 = x19*(rz1*x10*x3*x36 - x12 - x84);
+    const double x86 = x3*x36;
+    const double x87 = rz0*x10*x86;
+    const double x88 = rz2*x42;
+    const double x91 = x53*(-x55*(-x56 - x80) - x58*(2.0*rz1*x10*x3*x36 - x54 - 2.0*x84) - x60*(x79 - 2.0*x87 + 2.0*x88));
+    const double x92 = x16*x91;
+    const double x89 = x13 - x87 + x88;
+    const double x90 = -x43 - x75;
+    const double x93 = M[0]*x85 + M[0]*x92 + x47*x89 + x52*x90 + x63*x91 + x64*x91;
+    const double dQs0_2 = -ry2*x66 + x5*(0.5*rz0*x10*x93 - x25*x85 - x25*x92);
+    const double x94 = -0.5*x10*x23;
+    const double x95 = (1.0/(sqrt(x9)*sqrt(x9)*sqrt(x9)));
+    const double x96 = x6*x95;
+    const double x97 = M[1]*x95;
+    const double x98 = rz0*rz1;
+    const double x99 = M[2]*x95;
+    const double x100 = rz2*x99;
+    const double x101 = M[0]*x10 - M[0]*x96 - rz0*x100 - x97*x98;
+    const double x102 = x5*x95;
+    const double x103 = rz0*rz2;
+    const double x104 = x102*x103;
+    const double x105 = ry1*x104;
+    const double x106 = x102*x98;
+    const double x107 = ry2*x106;
+    const double x108 = -x107;
+    const double x109 = x19*(-x105 - x108);
+    const double x110 = 0.5*x23;
+    const double x112 = ry2*x5*x96;
+    const double x113 = ry0*x104;
+    const double x116 = ry0*x106;
+    const double x115 = ry1*x11;
+    const double x118 = 2.0*x115;
+    const double x119 = -2.0*x107;
+    const double x120 = 2.0*x105;
+    const double x111 = ry2*x11;
+    const double x121 = 2.0*x111;
+    const double x122 = x53*(-x55*(2.0*ry1*x5*x6*x95 - 2.0*x116 - x118) - x58*(-x119 - x120) - x60*(-2.0*x112 + 2.0*x113 + x121));
+    const double x123 = x122*x16;
+    const double x114 = x111 - x112 + x113;
+    const double x117 = ry1*x5*x6*x95 - x115 - x116;
+    const double x124 = M[0]*x109 + M[0]*x123 + x114*x47 + x117*x52 + x122*x63 + x122*x64;
+    const double dQs0_3 = x5*(0.5*rz0*x10*x124 - x101*x20 - x109*x25 - x110*x96 - x123*x25 - x94);
+    const double x125 = M[0]*x95;
+    const double x126 = M[1]*x10 - rz1*x100 - x125*x98 - x7*x97;
+    const double x127 = rz1*rz2;
+    const double x128 = x102*x127;
+    const double x129 = ry1*x128;
+    const double x130 = x19*(ry2*x5*x7*x95 - x111 - x129);
+    const double x134 = ry0*x102*x7;
+    const double x135 = ry1*x106;
+    const double x133 = ry0*x11;
+    const double x137 = 2.0*x133;
+    const double x131 = ry0*x128;
+    const double x138 = 2.0*x131;
+    const double x139 = x53*(-x55*(-2.0*x134 + 2.0*x135 + x137) - x58*(2.0*ry2*x5*x7*x95 - x121 - 2.0*x129) - x60*(x119 + x138));
+    const double x140 = x139*x16;
+    const double x132 = x108 + x131;
+    const double x136 = x133 - x134 + x135;
+    const double x141 = M[0]*x130 + M[0]*x140 + x132*x47 + x136*x52 + x139*x63 + x139*x64;
+    const double x142 = x110*x95;
+    const double x143 = x142*x98;
+    const double dQs0_4 = x5*(0.5*rz0*x10*x141 - x126*x20 - x130*x25 - x140*x25 - x143);
+    const double x144 = M[2]*x10 - x103*x125 - x127*x97 - x8*x99;
+    const double x145 = ry1*x102*x8;
+    const double x146 = ry2*x128;
+    const double x147 = x19*(x115 - x145 + x146);
+    const double x148 = ry2*x104;
+    const double x151 = x53*(-x55*(x120 - x138) - x58*(x118 - 2.0*x145 + 2.0*x146) - x60*(2.0*ry0*x5*x8*x95 - x137 - 2.0*x148));
+    const double x152 = x151*x16;
+    const double x149 = ry0*x5*x8*x95 - x133 - x148;
+    const double x150 = x105 - x131;
+    const double x153 = M[0]*x147 + M[0]*x152 + x149*x47 + x150*x52 + x151*x63 + x151*x64;
+    const double x154 = x103*x142;
+    const double dQs0_5 = x5*(0.5*rz0*x10*x153 - x144*x20 - x147*x25 - x152*x25 - x154);
+    const double x185 = x0*xi;
+    const double x186 = dQs0_0*x185;
+    const double x187 = dQs0_1*x185;
+    const double x188 = dQs0_2*x185;
+    const double x189 = dQs0_3*x185;
+    const double x190 = dQs0_4*x185;
+    const double x191 = dQs0_5*x185;
+    const double x27 = rz1*x24 - x21*x25;
+    const double Qs1 = x27*x5;
+    const double x155 = x19*x25;
+    const double x156 = x17*x25;
+    const double x157 = x27*x36;
+    const double dQs1_0 = -ry0*x157 + x5*(0.5*rz1*x10*x65 - x155*x46 - x156*x61);
+    const double dQs1_1 = -ry1*x157 + x5*(0.5*rz1*x10*x83 - x155*x76 - x156*x81);
+    const double dQs1_2 = -ry2*x157 + x5*(0.5*rz1*x10*x93 - x155*x89 - x156*x91);
+    const double dQs1_3 = x5*(0.5*rz1*x10*x124 - x101*x21 - x114*x155 - x122*x156 - x143);
+    const double dQs1_4 = x5*(0.5*rz1*x10*x141 - x126*x21 - x132*x155 - x139*x156 - x142*x7 - x94);
+    const double x158 = x127*x142;
+    const double dQs1_5 = x5*(0.5*rz1*x10*x153 - x144*x21 - x149*x155 - x151*x156 - x158);
+    const double x192 = dQs1_0*x185;
+    const double x193 = dQs1_1*x185;
+    const double x194 = dQs1_2*x185;
+    const double x195 = dQs1_3*x185;
+    const double x196 = dQs1_4*x185;
+    const double x197 = dQs1_5*x185;
+    const double x28 = rz2*x24 - x22*x25;
+    const double Qs2 = x28*x5;
+    const double x159 = x14*x25;
+    const double x160 = x28*x36;
+    const double dQs2_0 = -ry0*x160 + x5*(0.5*rz2*x10*x65 - x155*x51 - x159*x61);
+    const double dQs2_1 = -ry1*x160 + x5*(0.5*rz2*x10*x83 - x155*x78 - x159*x81);
+    const double dQs2_2 = -ry2*x160 + x5*(0.5*rz2*x10*x93 - x155*x90 - x159*x91);
+    const double dQs2_3 = x5*(0.5*rz2*x10*x124 - x101*x22 - x117*x155 - x122*x159 - x154);
+    const double dQs2_4 = x5*(0.5*rz2*x10*x141 - x126*x22 - x136*x155 - x139*x159 - x158);
+    const double dQs2_5 = x5*(0.5*rz2*x10*x153 - x142*x8 - x144*x22 - x150*x155 - x151*x159 - x94);
+    const double x198 = dQs2_0*x185;
+    const double x199 = dQs2_1*x185;
+    const double x200 = dQs2_2*x185;
+    const double x201 = dQs2_3*x185;
+    const double x202 = dQs2_4*x185;
+    const double x203 = dQs2_5*x185;
+    const double x29 = M[0]*ry0*x5 + M[1]*ry1*x5 + M[2]*ry2*x5;
+    const double x30 = -x23;
+    const double x31 = 0.5*x5;
+    const double x32 = x30*x31;
+    const double x33 = ry0*x32 + x20*x29;
+    const double Qs3 = x10*x33;
+    const double x161 = M[2]*ry2;
+    const double x162 = -M[0]*x48 + M[0]*x5 - M[1]*x38 - x161*x37;
+    const double x163 = -x65;
+    const double x164 = ry0*x31;
+    const double x165 = 0.5*x30;
+    const double dQs3_0 = x10*(x162*x20 + x163*x164 - x165*x48 + x29*x44 + x29*x62 + x32);
+    const double x166 = -M[0]*x38 + M[1]*x5 - M[1]*x67 - x161*x69;
+    const double x167 = -x83;
+    const double x168 = -x165*x38;
+    const double dQs3_1 = x10*(x164*x167 + x166*x20 + x168 + x29*x73 + x29*x82);
+    const double x169 = -M[0]*x41 - M[1]*x70 + M[2]*x5 - M[2]*x86;
+    const double x170 = -x93;
+    const double x171 = -x165*x41;
+    const double dQs3_2 = x10*(x164*x170 + x169*x20 + x171 + x29*x85 + x29*x92);
+    const double x172 = -x124;
+    const double x173 = x33*x95;
+    const double dQs3_3 = -rz0*x173 + x10*(x109*x29 + x123*x29 + x164*x172);
+    const double x174 = -x141;
+    const double dQs3_4 = -rz1*x173 + x10*(x130*x29 + x140*x29 + x164*x174);
+    const double x175 = -x153;
+    const double dQs3_5 = -rz2*x173 + x10*(x147*x29 + x152*x29 + x164*x175);
+    const double x204 = dQs3_0*x185;
+    const double x205 = dQs3_1*x185;
+    const double x206 = dQs3_2*x185;
+    const double x207 = dQs3_3*x185;
+    const double x208 = dQs3_4*x185;
+    const double x209 = dQs3_5*x185;
+    const double x34 = ry1*x32 + x21*x29;
+    const double Qs4 = x10*x34;
+    const double x176 = x19*x29;
+    const double x177 = ry1*x31;
+    const double x178 = x17*x29;
+    const double dQs4_0 = x10*(x162*x21 + x163*x177 + x168 + x176*x46 + x178*x61);
+    const double dQs4_1 = x10*(-x165*x67 + x166*x21 + x167*x177 + x176*x76 + x178*x81 + x32);
+    const double x179 = -x165*x70;
+    const double dQs4_2 = x10*(x169*x21 + x170*x177 + x176*x89 + x178*x91 + x179);
+    const double x180 = x34*x95;
+    const double dQs4_3 = -rz0*x180 + x10*(x114*x176 + x122*x178 + x172*x177);
+    const double dQs4_4 = -rz1*x180 + x10*(x132*x176 + x139*x178 + x174*x177);
+    const double dQs4_5 = -rz2*x180 + x10*(x149*x176 + x151*x178 + x175*x177);
+    const double x210 = dQs4_0*x185;
+    const double x211 = dQs4_1*x185;
+    const double x212 = dQs4_2*x185;
+    const double x213 = dQs4_3*x185;
+    const double x214 = dQs4_4*x185;
+    const double x215 = dQs4_5*x185;
+    const double x35 = ry2*x32 + x22*x29;
+    const double Qs5 = x10*x35;
+    const double x181 = ry2*x31;
+    const double x182 = x14*x29;
+    const double dQs5_0 = x10*(x162*x22 + x163*x181 + x171 + x176*x51 + x182*x61);
+    const double dQs5_1 = x10*(x166*x22 + x167*x181 + x176*x78 + x179 + x182*x81);
+    const double dQs5_2 = x10*(-x165*x86 + x169*x22 + x170*x181 + x176*x90 + x182*x91 + x32);
+    const double x183 = x35*x95;
+    const double dQs5_3 = -rz0*x183 + x10*(x117*x176 + x122*x182 + x172*x181);
+    const double dQs5_4 = -rz1*x183 + x10*(x136*x176 + x139*x182 + x174*x181);
+    const double dQs5_5 = -rz2*x183 + x10*(x150*x176 + x151*x182 + x175*x181);
+    const double x216 = dQs5_0*x185;
+    const double x217 = dQs5_1*x185;
+    const double x218 = dQs5_2*x185;
+    const double x219 = dQs5_3*x185;
+    const double x220 = dQs5_4*x185;
+    const double x221 = dQs5_5*x185;
+    const double x222 = (xi*xi);
+    Q[6] = Qs0*x0;
+    dQ[150] = dQs0_0*x184;
+    dQ[151] = dQs0_1*x184;
+    dQ[152] = dQs0_2*x184;
+    dQ[153] = dQs0_3*x184;
+    dQ[154] = dQs0_4*x184;
+    dQ[155] = dQs0_5*x184;
+    dQ[162] = x186;
+    dQ[163] = x187;
+    dQ[164] = x188;
+    dQ[165] = x189;
+    dQ[166] = x190;
+    dQ[167] = x191;
+    Q[7] = Qs1*x0;
+    dQ[174] = dQs1_0*x184;
+    dQ[175] = dQs1_1*x184;
+    dQ[176] = dQs1_2*x184;
+    dQ[177] = dQs1_3*x184;
+    dQ[178] = dQs1_4*x184;
+    dQ[179] = dQs1_5*x184;
+    dQ[186] = x192;
+    dQ[187] = x193;
+    dQ[188] = x194;
+    dQ[189] = x195;
+    dQ[190] = x196;
+    dQ[191] = x197;
+    Q[8] = Qs2*x0;
+    dQ[198] = dQs2_0*x184;
+    dQ[199] = dQs2_1*x184;
+    dQ[200] = dQs2_2*x184;
+    dQ[201] = dQs2_3*x184;
+    dQ[202] = dQs2_4*x184;
+    dQ[203] = dQs2_5*x184;
+    dQ[210] = x198;
+    dQ[211] = x199;
+    dQ[212] = x200;
+    dQ[213] = x201;
+    dQ[214] = x202;
+    dQ[215] = x203;
+    Q[9] = Qs3*x0;
+    dQ[222] = dQs3_0*x184;
+    dQ[223] = dQs3_1*x184;
+    dQ[224] = dQs3_2*x184;
+    dQ[225] = dQs3_3*x184;
+    dQ[226] = dQs3_4*x184;
+    dQ[227] = dQs3_5*x184;
+    dQ[234] = x204;
+    dQ[235] = x205;
+    dQ[236] = x206;
+    dQ[237] = x207;
+    dQ[238] = x208;
+    dQ[239] = x209;
+    Q[10] = Qs4*x0;
+    dQ[246] = dQs4_0*x184;
+    dQ[247] = dQs4_1*x184;
+    dQ[248] = dQs4_2*x184;
+    dQ[249] = dQs4_3*x184;
+    dQ[250] = dQs4_4*x184;
+    dQ[251] = dQs4_5*x184;
+    dQ[258] = x210;
+    dQ[259] = x211;
+    dQ[260] = x212;
+    dQ[261] = x213;
+    dQ[262] = x214;
+    dQ[263] = x215;
+    Q[11] = Qs5*x0;
+    dQ[270] = dQs5_0*x184;
+    dQ[271] = dQs5_1*x184;
+    dQ[272] = dQs5_2*x184;
+    dQ[273] = dQs5_3*x184;
+    dQ[274] = dQs5_4*x184;
+    dQ[275] = dQs5_5*x184;
+    dQ[282] = x216;
+    dQ[283] = x217;
+    dQ[284] = x218;
+    dQ[285] = x219;
+    dQ[286] = x220;
+    dQ[287] = x221;
+    Q[18] = Qs0*xi;
+    dQ[438] = x186;
+    dQ[439] = x187;
+    dQ[440] = x188;
+    dQ[441] = x189;
+    dQ[442] = x190;
+    dQ[443] = x191;
+    dQ[450] = dQs0_0*x222;
+    dQ[451] = dQs0_1*x222;
+    dQ[452] = dQs0_2*x222;
+    dQ[453] = dQs0_3*x222;
+    dQ[454] = dQs0_4*x222;
+    dQ[455] = dQs0_5*x222;
+    Q[19] = Qs1*xi;
+    dQ[462] = x192;
+    dQ[463] = x193;
+    dQ[464] = x194;
+    dQ[465] = x195;
+    dQ[466] = x196;
+    dQ[467] = x197;
+    dQ[474] = dQs1_0*x222;
+    dQ[475] = dQs1_1*x222;
+    dQ[476] = dQs1_2*x222;
+    dQ[477] = dQs1_3*x222;
+    dQ[478] = dQs1_4*x222;
+    dQ[479] = dQs1_5*x222;
+    Q[20] = Qs2*xi;
+    dQ[486] = x198;
+    dQ[487] = x199;
+    dQ[488] = x200;
+    dQ[489] = x201;
+    dQ[490] = x202;
+    dQ[491] = x203;
+    dQ[498] = dQs2_0*x222;
+    dQ[499] = dQs2_1*x222;
+    dQ[500] = dQs2_2*x222;
+    dQ[501] = dQs2_3*x222;
+    dQ[502] = dQs2_4*x222;
+    dQ[503] = dQs2_5*x222;
+    Q[21] = Qs3*xi;
+    dQ[510] = x204;
+    dQ[511] = x205;
+    dQ[512] = x206;
+    dQ[513] = x207;
+    dQ[514] = x208;
+    dQ[515] = x209;
+    dQ[522] = dQs3_0*x222;
+    dQ[523] = dQs3_1*x222;
+    dQ[524] = dQs3_2*x222;
+    dQ[525] = dQs3_3*x222;
+    dQ[526] = dQs3_4*x222;
+    dQ[527] = dQs3_5*x222;
+    Q[22] = Qs4*xi;
+    dQ[534] = x210;
+    dQ[535] = x211;
+    dQ[536] = x212;
+    dQ[537] = x213;
+    dQ[538] = x214;
+    dQ[539] = x215;
+    dQ[546] = dQs4_0*x222;
+    dQ[547] = dQs4_1*x222;
+    dQ[548] = dQs4_2*x222;
+    dQ[549] = dQs4_3*x222;
+    dQ[550] = dQs4_4*x222;
+    dQ[551] = dQs4_5*x222;
+    Q[23] = Qs5*xi;
+    dQ[558] = x216;
+    dQ[559] = x217;
+    dQ[560] = x218;
+    dQ[561] = x219;
+    dQ[562] = x220;
+    dQ[563] = x221;
+    dQ[570] = dQs5_0*x222;
+    dQ[571] = dQs5_1*x222;
+    dQ[572] = dQs5_2*x222;
+    dQ[573] = dQs5_3*x222;
+    dQ[574] = dQs5_4*x222;
+    dQ[575] = dQs5_5*x222;
+}
+
+static void reference(const double *restrict geom, double *restrict q0)
+{
+    (void)geom;
+    q0[0] = 0;
+    q0[1] = 0;
+    q0[2] = 0;
+    q0[3] = 1.0;
+    q0[4] = 0;
+    q0[5] = 0;
+    q0[6] = 0;
+    q0[7] = 1.0;
+    q0[8] = 0;
+    q0[9] = 0;
+    q0[10] = 0;
+    q0[11] = 1.0;
+    q0[12] = geom[0];
+    q0[13] = 0;
+    q0[14] = 0;
+    q0[15] = 1.0;
+    q0[16] = 0;
+    q0[17] = 0;
+    q0[18] = 0;
+    q0[19] = 1.0;
+    q0[20] = 0;
+    q0[21] = 0;
+    q0[22] = 0;
+    q0[23] = 1.0;
+}
+
+void ancf3243_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
+{
+    (void)q0;
     const double x0 = geom[0]*geom[1]*geom[2];
     const double x1 = 0.06944444444444445*x0;
     const double x2 = (1.0/geom[0]);
@@ -282,8 +746,9 @@ void ancf3243_full_tabulate(const double *restrict geom, double *restrict tab)
     tab[95] = 0.8872983346207417;
 }
 
-void ancf3243_sri_tabulate(const double *restrict geom, double *restrict tab)
+void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
 {
+    (void)q0;
     const double x0 = geom[0]*geom[1]*geom[2];
     const double x1 = 0.06944444444444445*x0;
     const double x2 = (1.0/geom[0]);
@@ -419,8 +884,7 @@ void ancf3243_sri_tabulate(const double *restrict geom, double *restrict tab)
     tab[119] = 0.8872983346207417;
 }
 
-static BK_NOINLINE void ancf3243_contract_row0(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = A[0]*x0;
@@ -527,8 +991,7 @@ static BK_NOINLINE void ancf3243_contract_row0(const double *restrict A, const d
     K[71] += A[41]*t[1]*t[7] - x33;
 }
 
-static BK_NOINLINE void ancf3243_contract_row1(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[2]*t[2]);
     const double x1 = t[2]*t[3];
@@ -617,8 +1080,7 @@ static BK_NOINLINE void ancf3243_contract_row1(const double *restrict A, const d
     K[143] += A[41]*t[2]*t[7] - x24;
 }
 
-static BK_NOINLINE void ancf3243_contract_row2(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[3]*t[3]);
     const double x1 = A[0]*x0;
@@ -718,8 +1180,7 @@ static BK_NOINLINE void ancf3243_contract_row2(const double *restrict A, const d
     K[215] += A[41]*t[3]*t[7] + A[43]*t[4]*t[7] - x44;
 }
 
-static BK_NOINLINE void ancf3243_contract_row3(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = A[0]*x0;
@@ -801,8 +1262,7 @@ static BK_NOINLINE void ancf3243_contract_row3(const double *restrict A, const d
     K[287] += A[41]*t[5]*t[7] + A[44]*t[4]*t[7] - x34 - x35;
 }
 
-static BK_NOINLINE void ancf3243_contract_row4(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = t[1]*t[6];
@@ -849,8 +1309,7 @@ static BK_NOINLINE void ancf3243_contract_row4(const double *restrict A, const d
     K[359] += A[39]*x6 - A[41]*x5;
 }
 
-static BK_NOINLINE void ancf3243_contract_row5(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[6]*t[6]);
     const double x1 = t[3]*t[6];
@@ -888,8 +1347,7 @@ static BK_NOINLINE void ancf3243_contract_row5(const double *restrict A, const d
     K[431] += -A[39]*x4 + A[41]*t[6]*t[7];
 }
 
-static BK_NOINLINE void ancf3243_contract_row6(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[3]*t[3]);
     const double x1 = (t[7]*t[7]);
@@ -917,8 +1375,7 @@ static BK_NOINLINE void ancf3243_contract_row6(const double *restrict A, const d
     K[503] += A[39]*x4 - A[40]*x5 - A[41]*x2 + A[43]*x1;
 }
 
-static BK_NOINLINE void ancf3243_contract_row7(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3243_contract_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = (t[7]*t[7]);
@@ -945,7 +1402,7 @@ void ancf3243_tangent_contract(const double *restrict A, const double *restrict 
 }
 
 const bk_element bk_element_ancf3243 = {
-    "ancf3243", "ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF", 2, 8, 24,
-    node_xi, shape_node, shape_vector,
-    ancf3243_shape, ancf3243_mass, ancf3243_volume
+    "ancf3243", "ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF", 2, 24, node_xi,
+    8, field_name, field_dof, field_dim, reference,
+    8, shape_dof, shape, mass, volume, frame, moment
 };

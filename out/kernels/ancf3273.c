@@ -9,11 +9,12 @@
 #endif
 
 static const double node_xi[2] = {0.0, 1.0};
-static const int shape_node[14] = {0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1};
-static const char *const shape_vector[14] = {"r", "r_x", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_x", "r_y", "r_z", "r_yy", "r_yz", "r_zz"};
+static const int shape_dof[14] = {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39};
+static const char *const field_name[14] = {"r", "r_x", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_x", "r_y", "r_z", "r_yy", "r_yz", "r_zz"};
+static const int field_dof[14] = {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39};
+static const int field_dim[14] = {3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3};
 
-void ancf3273_shape(const double *restrict geom, double xi, double y, double z,
-                    double *restrict N, double *restrict dN)
+static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
 {
     (void)geom; (void)xi; (void)y; (void)z;
     const double x0 = (xi*xi);
@@ -42,69 +43,9 @@ void ancf3273_shape(const double *restrict geom, double xi, double y, double z,
     N[11] = x8;
     N[12] = x9;
     N[13] = x11;
-    if (dN) {
-        const double x0 = (1.0/geom[0]);
-        const double x1 = 6.0*x0;
-        const double x2 = (xi*xi);
-        const double x3 = x1*x2 - x1*xi;
-        const double x4 = 3.0*x2;
-        const double x5 = x0*y;
-        const double x6 = 1.0 - xi;
-        const double x7 = x0*z;
-        const double x8 = 0.5*x0;
-        const double x9 = x8*(y*y);
-        const double x10 = xi*y;
-        const double x11 = -x10 + y;
-        const double x12 = x5*z;
-        const double x13 = xi*z;
-        const double x14 = -x13 + z;
-        const double x15 = x8*(z*z);
-        dN[0] = x3;
-        dN[1] = 0;
-        dN[2] = 0;
-        dN[3] = x4 - 4.0*xi + 1.0;
-        dN[4] = 0;
-        dN[5] = 0;
-        dN[6] = -x5;
-        dN[7] = x6;
-        dN[8] = 0;
-        dN[9] = -x7;
-        dN[10] = 0;
-        dN[11] = x6;
-        dN[12] = -x9;
-        dN[13] = x11;
-        dN[14] = 0;
-        dN[15] = -x12;
-        dN[16] = x14;
-        dN[17] = x11;
-        dN[18] = -x15;
-        dN[19] = 0;
-        dN[20] = x14;
-        dN[21] = -x3;
-        dN[22] = 0;
-        dN[23] = 0;
-        dN[24] = x4 - 2.0*xi;
-        dN[25] = 0;
-        dN[26] = 0;
-        dN[27] = x5;
-        dN[28] = xi;
-        dN[29] = 0;
-        dN[30] = x7;
-        dN[31] = 0;
-        dN[32] = xi;
-        dN[33] = x9;
-        dN[34] = x10;
-        dN[35] = 0;
-        dN[36] = x12;
-        dN[37] = x13;
-        dN[38] = x10;
-        dN[39] = x15;
-        dN[40] = 0;
-        dN[41] = x13;
-    }
 }
 
-void ancf3273_mass(const double *restrict geom, double *restrict m)
+static void mass(const double *restrict geom, double *restrict m)
 {
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
@@ -356,7 +297,7 @@ void ancf3273_mass(const double *restrict geom, double *restrict m)
     m[195] = x46;
 }
 
-void ancf3273_volume(const double *restrict geom, double *restrict v)
+static void volume(const double *restrict geom, double *restrict v)
 {
     const double x0 = geom[1]*geom[2];
     const double x1 = 0.5*x0*geom[0];
@@ -380,8 +321,523 @@ void ancf3273_volume(const double *restrict geom, double *restrict v)
     v[13] = x5;
 }
 
-void ancf3273_full_tabulate(const double *restrict geom, double *restrict tab)
+static void frame(const double *restrict geom, double xi, const double *restrict q, double *restrict pos, double *restrict d)
 {
+    (void)geom; (void)xi;
+    const double x0 = (xi*xi);
+    const double x1 = 3.0*x0;
+    const double x2 = (xi*xi*xi);
+    const double x3 = -x1 + 2.0*x2;
+    const double x4 = x3 + 1.0;
+    const double x5 = -x3;
+    const double x6 = x2*geom[0];
+    const double x7 = x0*geom[0];
+    const double x8 = x6 - x7;
+    const double x9 = xi*geom[0] + x6 - 2.0*x7;
+    const double x10 = 1.0 - xi;
+    const double x11 = (6.0/geom[0]);
+    const double x12 = x0*x11 - x11*xi;
+    const double x13 = -x12;
+    const double x14 = x1 - 2.0*xi;
+    const double x15 = x1 - 4.0*xi + 1.0;
+    pos[0] = q[0]*x4 + q[21]*x5 + q[24]*x8 + q[3]*x9;
+    pos[1] = q[1]*x4 + q[22]*x5 + q[25]*x8 + q[4]*x9;
+    pos[2] = q[23]*x5 + q[26]*x8 + q[2]*x4 + q[5]*x9;
+    d[0] = q[27]*xi + q[6]*x10;
+    d[1] = q[28]*xi + q[7]*x10;
+    d[2] = q[29]*xi + q[8]*x10;
+    d[3] = q[30]*xi + q[9]*x10;
+    d[4] = q[10]*x10 + q[31]*xi;
+    d[5] = q[11]*x10 + q[32]*xi;
+    d[6] = q[0]*x12 + q[21]*x13 + q[24]*x14 + q[3]*x15;
+    d[7] = q[1]*x12 + q[22]*x13 + q[25]*x14 + q[4]*x15;
+    d[8] = q[23]*x13 + q[26]*x14 + q[2]*x12 + q[5]*x15;
+}
+
+static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    (void)geom; (void)xi;
+    for (int i = 0; i < 42; ++i) Q[i] = 0.0;
+    for (int i = 0; i < 1764; ++i) dQ[i] = 0.0;
+    const double x0 = 1.0 - xi;
+    const double ry0 = q[27]*xi + q[6]*x0;
+    const double x1 = (ry0*ry0);
+    const double ry1 = q[28]*xi + q[7]*x0;
+    const double x2 = (ry1*ry1);
+    const double ry2 = q[29]*xi + q[8]*x0;
+    const double x3 = (ry2*ry2);
+    const double x4 = x1 + x2 + x3;
+    const double x5 = (1.0/(sqrt(x4)));
+    const double rz0 = q[30]*xi + q[9]*x0;
+    const double rz1 = q[10]*x0 + q[31]*xi;
+    const double x6 = (rz0*rz0);
+    const double x7 = (rz1*rz1);
+    const double rz2 = q[11]*x0 + q[32]*xi;
+    const double x8 = (rz2*rz2);
+    const double x9 = x6 + x7 + x8;
+    const double x10 = (1.0/(sqrt(x9)));
+    const double x11 = x10*x5;
+    const double x12 = rz1*x11;
+    const double x15 = rz2*x11;
+    const double x16 = ry1*x15 - ry2*x12;
+    const double x13 = rz0*x11;
+    const double x14 = ry0*x12 - ry1*x13;
+    const double x17 = -ry0*x15 + ry2*rz0*x10*x5;
+    const double x18 = (x14*x14) + (x16*x16) + (x17*x17);
+    const double x19 = (1.0/(sqrt(x18)));
+    const double x20 = x16*x19;
+    const double x21 = x17*x19;
+    const double x22 = x14*x19;
+    const double x23 = M[0]*x20 + M[1]*x21 + M[2]*x22;
+    const double x24 = 0.5*x10*x23;
+    const double x25 = M[0]*rz0*x10 + M[1]*rz1*x10 + M[2]*rz2*x10;
+    const double x26 = rz0*x24 - x20*x25;
+    const double Qs0 = x26*x5;
+    const double x36 = (1.0/(sqrt(x4)*sqrt(x4)*sqrt(x4)));
+    const double x37 = ry0*x36;
+    const double x38 = ry1*x37;
+    const double x39 = x10*x38;
+    const double x40 = rz2*x39;
+    const double x41 = ry2*x37;
+    const double x42 = x10*x41;
+    const double x43 = rz1*x42;
+    const double x44 = x19*(-x40 + x43);
+    const double x45 = rz0*x42;
+    const double x48 = x1*x36;
+    const double x49 = rz1*x10*x48;
+    const double x50 = rz0*x39;
+    const double x53 = (1.0/(sqrt(x18)*sqrt(x18)*sqrt(x18)));
+    const double x54 = 2.0*x12;
+    const double x55 = 0.5*x14;
+    const double x56 = 2.0*x43;
+    const double x57 = 2.0*x40;
+    const double x58 = 0.5*x16;
+    const double x59 = 2.0*x15;
+    const double x60 = 0.5*x17;
+    const double x61 = x53*(-x55*(-2.0*x49 + 2.0*x50 + x54) - x58*(x56 - x57) - x60*(2.0*rz2*x1*x10*x36 - 2.0*x45 - x59));
+    const double x62 = x16*x61;
+    const double x46 = rz2*x1*x10*x36 - x15 - x45;
+    const double x47 = M[1]*x19;
+    const double x51 = x12 - x49 + x50;
+    const double x52 = M[2]*x19;
+    const double x63 = M[1]*x17;
+    const double x64 = M[2]*x14;
+    const double x65 = M[0]*x44 + M[0]*x62 + x46*x47 + x51*x52 + x61*x63 + x61*x64;
+    const double x66 = x26*x36;
+    const double dQs0_0 = -ry0*x66 + x5*(0.5*rz0*x10*x65 - x25*x44 - x25*x62);
+    const double x184 = (x0*x0);
+    const double x67 = x2*x36;
+    const double x68 = rz2*x10*x67;
+    const double x69 = ry1*x36;
+    const double x70 = ry2*x69;
+    const double x71 = x10*x70;
+    const double x72 = rz1*x71;
+    const double x73 = x19*(x15 - x68 + x72);
+    const double x77 = rz1*x39;
+    const double x79 = 2.0*x13;
+    const double x74 = rz0*x71;
+    const double x80 = -2.0*x74;
+    const double x81 = x53*(-x55*(2.0*rz0*x10*x2*x36 - 2.0*x77 - x79) - x58*(x59 - 2.0*x68 + 2.0*x72) - x60*(x57 + x80));
+    const double x82 = x16*x81;
+    const double x75 = -x74;
+    const double x76 = x40 + x75;
+    const double x78 = rz0*x10*x2*x36 - x13 - x77;
+    const double x83 = M[0]*x73 + M[0]*x82 + x47*x76 + x52*x78 + x63*x81 + x64*x81;
+    const double dQs0_1 = -ry1*x66 + x5*(0.5*rz0*x10*x83 - x25*x73 - x25*x82);
+    const double x84 = rz2*x71;
+    const double x85 = x19*(rz1*x10*x3*x36 - x12 - x84);
+    const double x86 = x3*x36;
+    const double x87 = rz0*x10*x86;
+    const double x88 = rz2*x42;
+    const double x91 = x53*(-x55*(-x56 - x80) - x58*(2.0*rz1*x10*x3*x36 - x54 - 2.0*x84) - x60*(x79 - 2.0*x87 + 2.0*x88));
+    const double x92 = x16*x91;
+    const double x89 = x13 - x87 + x88;
+    const double x90 = -x43 - x75;
+    const double x93 = M[0]*x85 + M[0]*x92 + x47*x89 + x52*x90 + x63*x91 + x64*x91;
+    const double dQs0_2 = -ry2*x66 + x5*(0.5*rz0*x10*x93 - x25*x85 - x25*x92);
+    const double x94 = -0.5*x10*x23;
+    const double x95 = (1.0/(sqrt(x9)*sqrt(x9)*sqrt(x9)));
+    const double x96 = x6*x95;
+    const double x97 = M[1]*x95;
+    const double x98 = rz0*rz1;
+    const double x99 = M[2]*x95;
+    const double x100 = rz2*x99;
+    const double x101 = M[0]*x10 - M[0]*x96 - rz0*x100 - x97*x98;
+    const double x102 = x5*x95;
+    const double x103 = rz0*rz2;
+    const double x104 = x102*x103;
+    const double x105 = ry1*x104;
+    const double x106 = x102*x98;
+    const double x107 = ry2*x106;
+    const double x108 = -x107;
+    const double x109 = x19*(-x105 - x108);
+    const double x110 = 0.5*x23;
+    const double x112 = ry2*x5*x96;
+    const double x113 = ry0*x104;
+    const double x116 = ry0*x106;
+    const double x115 = ry1*x11;
+    const double x118 = 2.0*x115;
+    const double x119 = -2.0*x107;
+    const double x120 = 2.0*x105;
+    const double x111 = ry2*x11;
+    const double x121 = 2.0*x111;
+    const double x122 = x53*(-x55*(2.0*ry1*x5*x6*x95 - 2.0*x116 - x118) - x58*(-x119 - x120) - x60*(-2.0*x112 + 2.0*x113 + x121));
+    const double x123 = x122*x16;
+    const double x114 = x111 - x112 + x113;
+    const double x117 = ry1*x5*x6*x95 - x115 - x116;
+    const double x124 = M[0]*x109 + M[0]*x123 + x114*x47 + x117*x52 + x122*x63 + x122*x64;
+    const double dQs0_3 = x5*(0.5*rz0*x10*x124 - x101*x20 - x109*x25 - x110*x96 - x123*x25 - x94);
+    const double x125 = M[0]*x95;
+    const double x126 = M[1]*x10 - rz1*x100 - x125*x98 - x7*x97;
+    const double x127 = rz1*rz2;
+    const double x128 = x102*x127;
+    const double x129 = ry1*x128;
+    const double x130 = x19*(ry2*x5*x7*x95 - x111 - x129);
+    const double x134 = ry0*x102*x7;
+    const double x135 = ry1*x106;
+    const double x133 = ry0*x11;
+    const double x137 = 2.0*x133;
+    const double x131 = ry0*x128;
+    const double x138 = 2.0*x131;
+    const double x139 = x53*(-x55*(-2.0*x134 + 2.0*x135 + x137) - x58*(2.0*ry2*x5*x7*x95 - x121 - 2.0*x129) - x60*(x119 + x138));
+    const double x140 = x139*x16;
+    const double x132 = x108 + x131;
+    const double x136 = x133 - x134 + x135;
+    const double x141 = M[0]*x130 + M[0]*x140 + x132*x47 + x136*x52 + x139*x63 + x139*x64;
+    const double x142 = x110*x95;
+    const double x143 = x142*x98;
+    const double dQs0_4 = x5*(0.5*rz0*x10*x141 - x126*x20 - x130*x25 - x140*x25 - x143);
+    const double x144 = M[2]*x10 - x103*x125 - x127*x97 - x8*x99;
+    const double x145 = ry1*x102*x8;
+    const double x146 = ry2*x128;
+    const double x147 = x19*(x115 - x145 + x146);
+    const double x148 = ry2*x104;
+    const double x151 = x53*(-x55*(x120 - x138) - x58*(x118 - 2.0*x145 + 2.0*x146) - x60*(2.0*ry0*x5*x8*x95 - x137 - 2.0*x148));
+    const double x152 = x151*x16;
+    const double x149 = ry0*x5*x8*x95 - x133 - x148;
+    const double x150 = x105 - x131;
+    const double x153 = M[0]*x147 + M[0]*x152 + x149*x47 + x150*x52 + x151*x63 + x151*x64;
+    const double x154 = x103*x142;
+    const double dQs0_5 = x5*(0.5*rz0*x10*x153 - x144*x20 - x147*x25 - x152*x25 - x154);
+    const double x185 = x0*xi;
+    const double x186 = dQs0_0*x185;
+    const double x187 = dQs0_1*x185;
+    const double x188 = dQs0_2*x185;
+    const double x189 = dQs0_3*x185;
+    const double x190 = dQs0_4*x185;
+    const double x191 = dQs0_5*x185;
+    const double x27 = rz1*x24 - x21*x25;
+    const double Qs1 = x27*x5;
+    const double x155 = x19*x25;
+    const double x156 = x17*x25;
+    const double x157 = x27*x36;
+    const double dQs1_0 = -ry0*x157 + x5*(0.5*rz1*x10*x65 - x155*x46 - x156*x61);
+    const double dQs1_1 = -ry1*x157 + x5*(0.5*rz1*x10*x83 - x155*x76 - x156*x81);
+    const double dQs1_2 = -ry2*x157 + x5*(0.5*rz1*x10*x93 - x155*x89 - x156*x91);
+    const double dQs1_3 = x5*(0.5*rz1*x10*x124 - x101*x21 - x114*x155 - x122*x156 - x143);
+    const double dQs1_4 = x5*(0.5*rz1*x10*x141 - x126*x21 - x132*x155 - x139*x156 - x142*x7 - x94);
+    const double x158 = x127*x142;
+    const double dQs1_5 = x5*(0.5*rz1*x10*x153 - x144*x21 - x149*x155 - x151*x156 - x158);
+    const double x192 = dQs1_0*x185;
+    const double x193 = dQs1_1*x185;
+    const double x194 = dQs1_2*x185;
+    const double x195 = dQs1_3*x185;
+    const double x196 = dQs1_4*x185;
+    const double x197 = dQs1_5*x185;
+    const double x28 = rz2*x24 - x22*x25;
+    const double Qs2 = x28*x5;
+    const double x159 = x14*x25;
+    const double x160 = x28*x36;
+    const double dQs2_0 = -ry0*x160 + x5*(0.5*rz2*x10*x65 - x155*x51 - x159*x61);
+    const double dQs2_1 = -ry1*x160 + x5*(0.5*rz2*x10*x83 - x155*x78 - x159*x81);
+    const double dQs2_2 = -ry2*x160 + x5*(0.5*rz2*x10*x93 - x155*x90 - x159*x91);
+    const double dQs2_3 = x5*(0.5*rz2*x10*x124 - x101*x22 - x117*x155 - x122*x159 - x154);
+    const double dQs2_4 = x5*(0.5*rz2*x10*x141 - x126*x22 - x136*x155 - x139*x159 - x158);
+    const double dQs2_5 = x5*(0.5*rz2*x10*x153 - x142*x8 - x144*x22 - x150*x155 - x151*x159 - x94);
+    const double x198 = dQs2_0*x185;
+    const double x199 = dQs2_1*x185;
+    const double x200 = dQs2_2*x185;
+    const double x201 = dQs2_3*x185;
+    const double x202 = dQs2_4*x185;
+    const double x203 = dQs2_5*x185;
+    const double x29 = M[0]*ry0*x5 + M[1]*ry1*x5 + M[2]*ry2*x5;
+    const double x30 = -x23;
+    const double x31 = 0.5*x5;
+    const double x32 = x30*x31;
+    const double x33 = ry0*x32 + x20*x29;
+    const double Qs3 = x10*x33;
+    const double x161 = M[2]*ry2;
+    const double x162 = -M[0]*x48 + M[0]*x5 - M[1]*x38 - x161*x37;
+    const double x163 = -x65;
+    const double x164 = ry0*x31;
+    const double x165 = 0.5*x30;
+    const double dQs3_0 = x10*(x162*x20 + x163*x164 - x165*x48 + x29*x44 + x29*x62 + x32);
+    const double x166 = -M[0]*x38 + M[1]*x5 - M[1]*x67 - x161*x69;
+    const double x167 = -x83;
+    const double x168 = -x165*x38;
+    const double dQs3_1 = x10*(x164*x167 + x166*x20 + x168 + x29*x73 + x29*x82);
+    const double x169 = -M[0]*x41 - M[1]*x70 + M[2]*x5 - M[2]*x86;
+    const double x170 = -x93;
+    const double x171 = -x165*x41;
+    const double dQs3_2 = x10*(x164*x170 + x169*x20 + x171 + x29*x85 + x29*x92);
+    const double x172 = -x124;
+    const double x173 = x33*x95;
+    const double dQs3_3 = -rz0*x173 + x10*(x109*x29 + x123*x29 + x164*x172);
+    const double x174 = -x141;
+    const double dQs3_4 = -rz1*x173 + x10*(x130*x29 + x140*x29 + x164*x174);
+    const double x175 = -x153;
+    const double dQs3_5 = -rz2*x173 + x10*(x147*x29 + x152*x29 + x164*x175);
+    const double x204 = dQs3_0*x185;
+    const double x205 = dQs3_1*x185;
+    const double x206 = dQs3_2*x185;
+    const double x207 = dQs3_3*x185;
+    const double x208 = dQs3_4*x185;
+    const double x209 = dQs3_5*x185;
+    const double x34 = ry1*x32 + x21*x29;
+    const double Qs4 = x10*x34;
+    const double x176 = x19*x29;
+    const double x177 = ry1*x31;
+    const double x178 = x17*x29;
+    const double dQs4_0 = x10*(x162*x21 + x163*x177 + x168 + x176*x46 + x178*x61);
+    const double dQs4_1 = x10*(-x165*x67 + x166*x21 + x167*x177 + x176*x76 + x178*x81 + x32);
+    const double x179 = -x165*x70;
+    const double dQs4_2 = x10*(x169*x21 + x170*x177 + x176*x89 + x178*x91 + x179);
+    const double x180 = x34*x95;
+    const double dQs4_3 = -rz0*x180 + x10*(x114*x176 + x122*x178 + x172*x177);
+    const double dQs4_4 = -rz1*x180 + x10*(x132*x176 + x139*x178 + x174*x177);
+    const double dQs4_5 = -rz2*x180 + x10*(x149*x176 + x151*x178 + x175*x177);
+    const double x210 = dQs4_0*x185;
+    const double x211 = dQs4_1*x185;
+    const double x212 = dQs4_2*x185;
+    const double x213 = dQs4_3*x185;
+    const double x214 = dQs4_4*x185;
+    const double x215 = dQs4_5*x185;
+    const double x35 = ry2*x32 + x22*x29;
+    const double Qs5 = x10*x35;
+    const double x181 = ry2*x31;
+    const double x182 = x14*x29;
+    const double dQs5_0 = x10*(x162*x22 + x163*x181 + x171 + x176*x51 + x182*x61);
+    const double dQs5_1 = x10*(x166*x22 + x167*x181 + x176*x78 + x179 + x182*x81);
+    const double dQs5_2 = x10*(-x165*x86 + x169*x22 + x170*x181 + x176*x90 + x182*x91 + x32);
+    const double x183 = x35*x95;
+    const double dQs5_3 = -rz0*x183 + x10*(x117*x176 + x122*x182 + x172*x181);
+    const double dQs5_4 = -rz1*x183 + x10*(x136*x176 + x139*x182 + x174*x181);
+    const double dQs5_5 = -rz2*x183 + x10*(x150*x176 + x151*x182 + x175*x181);
+    const double x216 = dQs5_0*x185;
+    const double x217 = dQs5_1*x185;
+    const double x218 = dQs5_2*x185;
+    const double x219 = dQs5_3*x185;
+    const double x220 = dQs5_4*x185;
+    const double x221 = dQs5_5*x185;
+    const double x222 = (xi*xi);
+    Q[6] = Qs0*x0;
+    dQ[258] = dQs0_0*x184;
+    dQ[259] = dQs0_1*x184;
+    dQ[260] = dQs0_2*x184;
+    dQ[261] = dQs0_3*x184;
+    dQ[262] = dQs0_4*x184;
+    dQ[263] = dQs0_5*x184;
+    dQ[279] = x186;
+    dQ[280] = x187;
+    dQ[281] = x188;
+    dQ[282] = x189;
+    dQ[283] = x190;
+    dQ[284] = x191;
+    Q[7] = Qs1*x0;
+    dQ[300] = dQs1_0*x184;
+    dQ[301] = dQs1_1*x184;
+    dQ[302] = dQs1_2*x184;
+    dQ[303] = dQs1_3*x184;
+    dQ[304] = dQs1_4*x184;
+    dQ[305] = dQs1_5*x184;
+    dQ[321] = x192;
+    dQ[322] = x193;
+    dQ[323] = x194;
+    dQ[324] = x195;
+    dQ[325] = x196;
+    dQ[326] = x197;
+    Q[8] = Qs2*x0;
+    dQ[342] = dQs2_0*x184;
+    dQ[343] = dQs2_1*x184;
+    dQ[344] = dQs2_2*x184;
+    dQ[345] = dQs2_3*x184;
+    dQ[346] = dQs2_4*x184;
+    dQ[347] = dQs2_5*x184;
+    dQ[363] = x198;
+    dQ[364] = x199;
+    dQ[365] = x200;
+    dQ[366] = x201;
+    dQ[367] = x202;
+    dQ[368] = x203;
+    Q[9] = Qs3*x0;
+    dQ[384] = dQs3_0*x184;
+    dQ[385] = dQs3_1*x184;
+    dQ[386] = dQs3_2*x184;
+    dQ[387] = dQs3_3*x184;
+    dQ[388] = dQs3_4*x184;
+    dQ[389] = dQs3_5*x184;
+    dQ[405] = x204;
+    dQ[406] = x205;
+    dQ[407] = x206;
+    dQ[408] = x207;
+    dQ[409] = x208;
+    dQ[410] = x209;
+    Q[10] = Qs4*x0;
+    dQ[426] = dQs4_0*x184;
+    dQ[427] = dQs4_1*x184;
+    dQ[428] = dQs4_2*x184;
+    dQ[429] = dQs4_3*x184;
+    dQ[430] = dQs4_4*x184;
+    dQ[431] = dQs4_5*x184;
+    dQ[447] = x210;
+    dQ[448] = x211;
+    dQ[449] = x212;
+    dQ[450] = x213;
+    dQ[451] = x214;
+    dQ[452] = x215;
+    Q[11] = Qs5*x0;
+    dQ[468] = dQs5_0*x184;
+    dQ[469] = dQs5_1*x184;
+    dQ[470] = dQs5_2*x184;
+    dQ[471] = dQs5_3*x184;
+    dQ[472] = dQs5_4*x184;
+    dQ[473] = dQs5_5*x184;
+    dQ[489] = x216;
+    dQ[490] = x217;
+    dQ[491] = x218;
+    dQ[492] = x219;
+    dQ[493] = x220;
+    dQ[494] = x221;
+    Q[27] = Qs0*xi;
+    dQ[1140] = x186;
+    dQ[1141] = x187;
+    dQ[1142] = x188;
+    dQ[1143] = x189;
+    dQ[1144] = x190;
+    dQ[1145] = x191;
+    dQ[1161] = dQs0_0*x222;
+    dQ[1162] = dQs0_1*x222;
+    dQ[1163] = dQs0_2*x222;
+    dQ[1164] = dQs0_3*x222;
+    dQ[1165] = dQs0_4*x222;
+    dQ[1166] = dQs0_5*x222;
+    Q[28] = Qs1*xi;
+    dQ[1182] = x192;
+    dQ[1183] = x193;
+    dQ[1184] = x194;
+    dQ[1185] = x195;
+    dQ[1186] = x196;
+    dQ[1187] = x197;
+    dQ[1203] = dQs1_0*x222;
+    dQ[1204] = dQs1_1*x222;
+    dQ[1205] = dQs1_2*x222;
+    dQ[1206] = dQs1_3*x222;
+    dQ[1207] = dQs1_4*x222;
+    dQ[1208] = dQs1_5*x222;
+    Q[29] = Qs2*xi;
+    dQ[1224] = x198;
+    dQ[1225] = x199;
+    dQ[1226] = x200;
+    dQ[1227] = x201;
+    dQ[1228] = x202;
+    dQ[1229] = x203;
+    dQ[1245] = dQs2_0*x222;
+    dQ[1246] = dQs2_1*x222;
+    dQ[1247] = dQs2_2*x222;
+    dQ[1248] = dQs2_3*x222;
+    dQ[1249] = dQs2_4*x222;
+    dQ[1250] = dQs2_5*x222;
+    Q[30] = Qs3*xi;
+    dQ[1266] = x204;
+    dQ[1267] = x205;
+    dQ[1268] = x206;
+    dQ[1269] = x207;
+    dQ[1270] = x208;
+    dQ[1271] = x209;
+    dQ[1287] = dQs3_0*x222;
+    dQ[1288] = dQs3_1*x222;
+    dQ[1289] = dQs3_2*x222;
+    dQ[1290] = dQs3_3*x222;
+    dQ[1291] = dQs3_4*x222;
+    dQ[1292] = dQs3_5*x222;
+    Q[31] = Qs4*xi;
+    dQ[1308] = x210;
+    dQ[1309] = x211;
+    dQ[1310] = x212;
+    dQ[1311] = x213;
+    dQ[1312] = x214;
+    dQ[1313] = x215;
+    dQ[1329] = dQs4_0*x222;
+    dQ[1330] = dQs4_1*x222;
+    dQ[1331] = dQs4_2*x222;
+    dQ[1332] = dQs4_3*x222;
+    dQ[1333] = dQs4_4*x222;
+    dQ[1334] = dQs4_5*x222;
+    Q[32] = Qs5*xi;
+    dQ[1350] = x216;
+    dQ[1351] = x217;
+    dQ[1352] = x218;
+    dQ[1353] = x219;
+    dQ[1354] = x220;
+    dQ[1355] = x221;
+    dQ[1371] = dQs5_0*x222;
+    dQ[1372] = dQs5_1*x222;
+    dQ[1373] = dQs5_2*x222;
+    dQ[1374] = dQs5_3*x222;
+    dQ[1375] = dQs5_4*x222;
+    dQ[1376] = dQs5_5*x222;
+}
+
+static void reference(const double *restrict geom, double *restrict q0)
+{
+    (void)geom;
+    q0[0] = 0;
+    q0[1] = 0;
+    q0[2] = 0;
+    q0[3] = 1.0;
+    q0[4] = 0;
+    q0[5] = 0;
+    q0[6] = 0;
+    q0[7] = 1.0;
+    q0[8] = 0;
+    q0[9] = 0;
+    q0[10] = 0;
+    q0[11] = 1.0;
+    q0[12] = 0;
+    q0[13] = 0;
+    q0[14] = 0;
+    q0[15] = 0;
+    q0[16] = 0;
+    q0[17] = 0;
+    q0[18] = 0;
+    q0[19] = 0;
+    q0[20] = 0;
+    q0[21] = geom[0];
+    q0[22] = 0;
+    q0[23] = 0;
+    q0[24] = 1.0;
+    q0[25] = 0;
+    q0[26] = 0;
+    q0[27] = 0;
+    q0[28] = 1.0;
+    q0[29] = 0;
+    q0[30] = 0;
+    q0[31] = 0;
+    q0[32] = 1.0;
+    q0[33] = 0;
+    q0[34] = 0;
+    q0[35] = 0;
+    q0[36] = 0;
+    q0[37] = 0;
+    q0[38] = 0;
+    q0[39] = 0;
+    q0[40] = 0;
+    q0[41] = 0;
+}
+
+void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
+{
+    (void)q0;
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
     const double x2 = 0.021433470507544586*x1;
@@ -821,8 +1277,9 @@ void ancf3273_full_tabulate(const double *restrict geom, double *restrict tab)
     tab[404] = x14;
 }
 
-void ancf3273_reduced_tabulate(const double *restrict geom, double *restrict tab)
+void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
 {
+    (void)q0;
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
     const double x2 = 0.06944444444444445*x1;
@@ -1039,8 +1496,7 @@ void ancf3273_reduced_tabulate(const double *restrict geom, double *restrict tab
     tab[179] = x14;
 }
 
-static BK_NOINLINE void ancf3273_contract_row0(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = A[0]*x0;
@@ -1229,8 +1685,7 @@ static BK_NOINLINE void ancf3273_contract_row0(const double *restrict A, const d
     K[125] += A[41]*t[14]*t[1] - x61;
 }
 
-static BK_NOINLINE void ancf3273_contract_row1(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[2]*t[2]);
     const double x1 = t[2]*t[3];
@@ -1401,8 +1856,7 @@ static BK_NOINLINE void ancf3273_contract_row1(const double *restrict A, const d
     K[251] += A[41]*t[14]*t[2] - x52;
 }
 
-static BK_NOINLINE void ancf3273_contract_row2(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[3]*t[3]);
     const double x1 = A[0]*x0;
@@ -1619,8 +2073,7 @@ static BK_NOINLINE void ancf3273_contract_row2(const double *restrict A, const d
     K[377] += A[41]*t[14]*t[3] + A[43]*t[14]*t[4] - x107;
 }
 
-static BK_NOINLINE void ancf3273_contract_row3(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = A[0]*x0;
@@ -1819,8 +2272,7 @@ static BK_NOINLINE void ancf3273_contract_row3(const double *restrict A, const d
     K[503] += A[41]*t[14]*t[5] + A[44]*t[14]*t[4] - x98;
 }
 
-static BK_NOINLINE void ancf3273_contract_row4(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[6]*t[6]);
     const double x1 = A[0]*x0;
@@ -1995,8 +2447,7 @@ static BK_NOINLINE void ancf3273_contract_row4(const double *restrict A, const d
     K[629] += A[41]*t[14]*t[6] + A[43]*t[14]*t[7] - x83;
 }
 
-static BK_NOINLINE void ancf3273_contract_row5(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[8]*t[8]);
     const double x1 = A[0]*x0;
@@ -2172,8 +2623,7 @@ static BK_NOINLINE void ancf3273_contract_row5(const double *restrict A, const d
     K[755] += A[41]*t[14]*t[8] + A[43]*t[14]*t[9] + A[44]*t[14]*t[7] - x93;
 }
 
-static BK_NOINLINE void ancf3273_contract_row6(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[10]*t[10]);
     const double x1 = A[0]*x0;
@@ -2301,8 +2751,7 @@ static BK_NOINLINE void ancf3273_contract_row6(const double *restrict A, const d
     K[881] += A[41]*t[10]*t[14] + A[44]*t[14]*t[9] - x53 - x54;
 }
 
-static BK_NOINLINE void ancf3273_contract_row7(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = t[11]*t[1];
@@ -2385,8 +2834,7 @@ static BK_NOINLINE void ancf3273_contract_row7(const double *restrict A, const d
     K[1007] += A[39]*x12 - A[41]*x9;
 }
 
-static BK_NOINLINE void ancf3273_contract_row8(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[11]*t[11]);
     const double x1 = t[11]*t[3];
@@ -2465,8 +2913,7 @@ static BK_NOINLINE void ancf3273_contract_row8(const double *restrict A, const d
     K[1133] += -A[39]*x15 + A[41]*t[11]*t[14];
 }
 
-static BK_NOINLINE void ancf3273_contract_row9(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row9(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[3]*t[3]);
     const double x1 = (t[12]*t[12]);
@@ -2540,8 +2987,7 @@ static BK_NOINLINE void ancf3273_contract_row9(const double *restrict A, const d
     K[1259] += A[39]*x20 - A[40]*x21 - A[41]*x17 + A[43]*x15;
 }
 
-static BK_NOINLINE void ancf3273_contract_row10(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row10(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = (t[12]*t[12]);
@@ -2601,8 +3047,7 @@ static BK_NOINLINE void ancf3273_contract_row10(const double *restrict A, const 
     K[1385] += A[39]*x16 - A[41]*x12 - A[41]*x17 + A[44]*x11;
 }
 
-static BK_NOINLINE void ancf3273_contract_row11(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row11(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[6]*t[6]);
     const double x1 = (t[13]*t[13]);
@@ -2646,8 +3091,7 @@ static BK_NOINLINE void ancf3273_contract_row11(const double *restrict A, const 
     K[1511] += A[39]*x10 - A[40]*x11 - A[41]*x7 + A[43]*x5;
 }
 
-static BK_NOINLINE void ancf3273_contract_row12(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row12(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[8]*t[8]);
     const double x1 = (t[13]*t[13]);
@@ -2681,8 +3125,7 @@ static BK_NOINLINE void ancf3273_contract_row12(const double *restrict A, const 
     K[1637] += A[39]*x9 - A[40]*x10 - A[41]*x11 - A[41]*x3 + A[43]*x2 + A[44]*x7;
 }
 
-static BK_NOINLINE void ancf3273_contract_row13(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3273_contract_row13(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[10]*t[10]);
     const double x1 = (t[14]*t[14]);
@@ -2715,7 +3158,7 @@ void ancf3273_tangent_contract(const double *restrict A, const double *restrict 
 }
 
 const bk_element bk_element_ancf3273 = {
-    "ancf3273", "ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF", 2, 14, 42,
-    node_xi, shape_node, shape_vector,
-    ancf3273_shape, ancf3273_mass, ancf3273_volume
+    "ancf3273", "ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF", 2, 42, node_xi,
+    14, field_name, field_dof, field_dim, reference,
+    14, shape_dof, shape, mass, volume, frame, moment
 };

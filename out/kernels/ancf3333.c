@@ -9,11 +9,12 @@
 #endif
 
 static const double node_xi[3] = {0.0, 0.5, 1.0};
-static const int shape_node[9] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
-static const char *const shape_vector[9] = {"r", "r_y", "r_z", "r", "r_y", "r_z", "r", "r_y", "r_z"};
+static const int shape_dof[9] = {0, 3, 6, 9, 12, 15, 18, 21, 24};
+static const char *const field_name[9] = {"r", "r_y", "r_z", "r", "r_y", "r_z", "r", "r_y", "r_z"};
+static const int field_dof[9] = {0, 3, 6, 9, 12, 15, 18, 21, 24};
+static const int field_dim[9] = {3, 3, 3, 3, 3, 3, 3, 3, 3};
 
-void ancf3333_shape(const double *restrict geom, double xi, double y, double z,
-                    double *restrict N, double *restrict dN)
+static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
 {
     (void)geom; (void)xi; (void)y; (void)z;
     const double x0 = 3.0*xi;
@@ -31,51 +32,9 @@ void ancf3333_shape(const double *restrict geom, double xi, double y, double z,
     N[6] = x2 - xi;
     N[7] = x3 - xi*y;
     N[8] = x4 - xi*z;
-    if (dN) {
-        const double x0 = (1.0/geom[0]);
-        const double x1 = 3.0*x0;
-        const double x2 = 4.0*x0*xi;
-        const double x3 = x2*y;
-        const double x4 = (xi*xi);
-        const double x5 = 2.0*x4;
-        const double x6 = x5 - 3.0*xi + 1.0;
-        const double x7 = x2*z;
-        const double x8 = 8.0*xi;
-        const double x9 = x0*y;
-        const double x10 = -4.0*x4 + 4.0*xi;
-        const double x11 = x0*z;
-        const double x12 = x5 - xi;
-        dN[0] = -x1 + x2;
-        dN[1] = 0;
-        dN[2] = 0;
-        dN[3] = -x1*y + x3;
-        dN[4] = x6;
-        dN[5] = 0;
-        dN[6] = -x1*z + x7;
-        dN[7] = 0;
-        dN[8] = x6;
-        dN[9] = -x0*x8 + 4.0*x0;
-        dN[10] = 0;
-        dN[11] = 0;
-        dN[12] = 4.0*x0*y - x8*x9;
-        dN[13] = x10;
-        dN[14] = 0;
-        dN[15] = 4.0*x0*z - x11*x8;
-        dN[16] = 0;
-        dN[17] = x10;
-        dN[18] = -x0 + x2;
-        dN[19] = 0;
-        dN[20] = 0;
-        dN[21] = x3 - x9;
-        dN[22] = x12;
-        dN[23] = 0;
-        dN[24] = -x11 + x7;
-        dN[25] = 0;
-        dN[26] = x12;
-    }
 }
 
-void ancf3333_mass(const double *restrict geom, double *restrict m)
+static void mass(const double *restrict geom, double *restrict m)
 {
     const double x0 = geom[0]*geom[2];
     const double x1 = x0*geom[1];
@@ -173,7 +132,7 @@ void ancf3333_mass(const double *restrict geom, double *restrict m)
     m[80] = x10;
 }
 
-void ancf3333_volume(const double *restrict geom, double *restrict v)
+static void volume(const double *restrict geom, double *restrict v)
 {
     const double x0 = geom[0]*geom[1]*geom[2];
     const double x1 = 0.16666666666666666*x0;
@@ -188,8 +147,767 @@ void ancf3333_volume(const double *restrict geom, double *restrict v)
     v[8] = 0;
 }
 
-void ancf3333_full_tabulate(const double *restrict geom, double *restrict tab)
+static void frame(const double *restrict geom, double xi, const double *restrict q, double *restrict pos, double *restrict d)
 {
+    (void)geom; (void)xi;
+    const double x0 = (xi*xi);
+    const double x1 = 2.0*x0;
+    const double x2 = x1 - 3.0*xi + 1.0;
+    const double x3 = x1 - xi;
+    const double x4 = -4.0*x0 + 4.0*xi;
+    const double x5 = (1.0/geom[0]);
+    const double x6 = 4.0*x5*xi;
+    const double x7 = -3.0*x5 + x6;
+    const double x8 = -x5 + x6;
+    const double x9 = -8.0*x5*xi + 4.0*x5;
+    pos[0] = q[0]*x2 + q[18]*x3 + q[9]*x4;
+    pos[1] = q[10]*x4 + q[19]*x3 + q[1]*x2;
+    pos[2] = q[11]*x4 + q[20]*x3 + q[2]*x2;
+    d[0] = q[12]*x4 + q[21]*x3 + q[3]*x2;
+    d[1] = q[13]*x4 + q[22]*x3 + q[4]*x2;
+    d[2] = q[14]*x4 + q[23]*x3 + q[5]*x2;
+    d[3] = q[15]*x4 + q[24]*x3 + q[6]*x2;
+    d[4] = q[16]*x4 + q[25]*x3 + q[7]*x2;
+    d[5] = q[17]*x4 + q[26]*x3 + q[8]*x2;
+    d[6] = q[0]*x7 + q[18]*x8 + q[9]*x9;
+    d[7] = q[10]*x9 + q[19]*x8 + q[1]*x7;
+    d[8] = q[11]*x9 + q[20]*x8 + q[2]*x7;
+}
+
+static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    (void)geom; (void)xi;
+    for (int i = 0; i < 27; ++i) Q[i] = 0.0;
+    for (int i = 0; i < 729; ++i) dQ[i] = 0.0;
+    const double x0 = (xi*xi);
+    const double x1 = -4.0*x0 + 4.0*xi;
+    const double x2 = 2.0*x0;
+    const double x3 = x2 - xi;
+    const double x4 = x2 - 3.0*xi + 1.0;
+    const double ry0 = q[12]*x1 + q[21]*x3 + q[3]*x4;
+    const double x5 = (ry0*ry0);
+    const double ry1 = q[13]*x1 + q[22]*x3 + q[4]*x4;
+    const double x6 = (ry1*ry1);
+    const double ry2 = q[14]*x1 + q[23]*x3 + q[5]*x4;
+    const double x7 = (ry2*ry2);
+    const double x8 = x5 + x6 + x7;
+    const double x9 = (1.0/(sqrt(x8)));
+    const double rz0 = q[15]*x1 + q[24]*x3 + q[6]*x4;
+    const double rz1 = q[16]*x1 + q[25]*x3 + q[7]*x4;
+    const double x10 = (rz0*rz0);
+    const double x11 = (rz1*rz1);
+    const double rz2 = q[17]*x1 + q[26]*x3 + q[8]*x4;
+    const double x12 = (rz2*rz2);
+    const double x13 = x10 + x11 + x12;
+    const double x14 = (1.0/(sqrt(x13)));
+    const double x15 = x14*x9;
+    const double x16 = rz1*x15;
+    const double x19 = rz2*x15;
+    const double x20 = ry1*x19 - ry2*x16;
+    const double x17 = rz0*x15;
+    const double x18 = ry0*x16 - ry1*x17;
+    const double x21 = -ry0*x19 + ry2*rz0*x14*x9;
+    const double x22 = (x18*x18) + (x20*x20) + (x21*x21);
+    const double x23 = (1.0/(sqrt(x22)));
+    const double x24 = x20*x23;
+    const double x25 = x21*x23;
+    const double x26 = x18*x23;
+    const double x27 = M[0]*x24 + M[1]*x25 + M[2]*x26;
+    const double x28 = 0.5*x14*x27;
+    const double x29 = M[0]*rz0*x14 + M[1]*rz1*x14 + M[2]*rz2*x14;
+    const double x30 = rz0*x28 - x24*x29;
+    const double Qs0 = x30*x9;
+    const double x40 = (1.0/(sqrt(x8)*sqrt(x8)*sqrt(x8)));
+    const double x41 = ry0*x40;
+    const double x42 = ry1*x41;
+    const double x43 = x14*x42;
+    const double x44 = rz2*x43;
+    const double x45 = ry2*x41;
+    const double x46 = x14*x45;
+    const double x47 = rz1*x46;
+    const double x48 = x23*(-x44 + x47);
+    const double x49 = rz0*x46;
+    const double x52 = x40*x5;
+    const double x53 = rz1*x14*x52;
+    const double x54 = rz0*x43;
+    const double x57 = (1.0/(sqrt(x22)*sqrt(x22)*sqrt(x22)));
+    const double x58 = 2.0*x16;
+    const double x59 = 0.5*x18;
+    const double x60 = 2.0*x47;
+    const double x61 = 2.0*x44;
+    const double x62 = 0.5*x20;
+    const double x63 = 2.0*x19;
+    const double x64 = 0.5*x21;
+    const double x65 = x57*(-x59*(-2.0*x53 + 2.0*x54 + x58) - x62*(x60 - x61) - x64*(2.0*rz2*x14*x40*x5 - 2.0*x49 - x63));
+    const double x66 = x20*x65;
+    const double x50 = rz2*x14*x40*x5 - x19 - x49;
+    const double x51 = M[1]*x23;
+    const double x55 = x16 - x53 + x54;
+    const double x56 = M[2]*x23;
+    const double x67 = M[1]*x21;
+    const double x68 = M[2]*x18;
+    const double x69 = M[0]*x48 + M[0]*x66 + x50*x51 + x55*x56 + x65*x67 + x65*x68;
+    const double x70 = x30*x40;
+    const double dQs0_0 = -ry0*x70 + x9*(0.5*rz0*x14*x69 - x29*x48 - x29*x66);
+    const double x188 = (x4*x4);
+    const double x71 = x40*x6;
+    const double x72 = rz2*x14*x71;
+    const double x73 = ry1*x40;
+    const double x74 = ry2*x73;
+    const double x75 = x14*x74;
+    const double x76 = rz1*x75;
+    const double x77 = x23*(x19 - x72 + x76);
+    const double x81 = rz1*x43;
+    const double x83 = 2.0*x17;
+    const double x78 = rz0*x75;
+    const double x84 = -2.0*x78;
+    const double x85 = x57*(-x59*(2.0*rz0*x14*x40*x6 - 2.0*x81 - x83) - x62*(x63 - 2.0*x72 + 2.0*x76) - x64*(x61 + x84));
+    const double x86 = x20*x85;
+    const double x79 = -x78;
+    const double x80 = x44 + x79;
+    const double x82 = rz0*x14*x40*x6 - x17 - x81;
+    const double x87 = M[0]*x77 + M[0]*x86 + x51*x80 + x56*x82 + x67*x85 + x68*x85;
+    const double dQs0_1 = -ry1*x70 + x9*(0.5*rz0*x14*x87 - x29*x77 - x29*x86);
+    const double x88 = rz2*x75;
+    const double x89 = x23*(rz1*x14*x40*x7 - x16 - x88);
+    const double x90 = x40*x7;
+    const double x91 = rz0*x14*x90;
+    const double x92 = rz2*x46;
+    const double x95 = x57*(-x59*(-x60 - x84) - x62*(2.0*rz1*x14*x40*x7 - x58 - 2.0*x88) - x64*(x83 - 2.0*x91 + 2.0*x92));
+    const double x96 = x20*x95;
+    const double x93 = x17 - x91 + x92;
+    const double x94 = -x47 - x79;
+    const double x97 = M[0]*x89 + M[0]*x96 + x51*x93 + x56*x94 + x67*x95 + x68*x95;
+    const double dQs0_2 = -ry2*x70 + x9*(0.5*rz0*x14*x97 - x29*x89 - x29*x96);
+    const double x98 = -0.5*x14*x27;
+    const double x99 = (1.0/(sqrt(x13)*sqrt(x13)*sqrt(x13)));
+    const double x100 = x10*x99;
+    const double x101 = M[1]*x99;
+    const double x102 = rz0*rz1;
+    const double x103 = M[2]*x99;
+    const double x104 = rz2*x103;
+    const double x105 = -M[0]*x100 + M[0]*x14 - rz0*x104 - x101*x102;
+    const double x106 = x9*x99;
+    const double x107 = rz0*rz2;
+    const double x108 = x106*x107;
+    const double x109 = ry1*x108;
+    const double x110 = x102*x106;
+    const double x111 = ry2*x110;
+    const double x112 = -x111;
+    const double x113 = x23*(-x109 - x112);
+    const double x114 = 0.5*x27;
+    const double x116 = ry2*x100*x9;
+    const double x117 = ry0*x108;
+    const double x120 = ry0*x110;
+    const double x119 = ry1*x15;
+    const double x122 = 2.0*x119;
+    const double x123 = -2.0*x111;
+    const double x124 = 2.0*x109;
+    const double x115 = ry2*x15;
+    const double x125 = 2.0*x115;
+    const double x126 = x57*(-x59*(2.0*ry1*x10*x9*x99 - 2.0*x120 - x122) - x62*(-x123 - x124) - x64*(-2.0*x116 + 2.0*x117 + x125));
+    const double x127 = x126*x20;
+    const double x118 = x115 - x116 + x117;
+    const double x121 = ry1*x10*x9*x99 - x119 - x120;
+    const double x128 = M[0]*x113 + M[0]*x127 + x118*x51 + x121*x56 + x126*x67 + x126*x68;
+    const double dQs0_3 = x9*(0.5*rz0*x128*x14 - x100*x114 - x105*x24 - x113*x29 - x127*x29 - x98);
+    const double x129 = M[0]*x99;
+    const double x130 = M[1]*x14 - rz1*x104 - x101*x11 - x102*x129;
+    const double x131 = rz1*rz2;
+    const double x132 = x106*x131;
+    const double x133 = ry1*x132;
+    const double x134 = x23*(ry2*x11*x9*x99 - x115 - x133);
+    const double x138 = ry0*x106*x11;
+    const double x139 = ry1*x110;
+    const double x137 = ry0*x15;
+    const double x141 = 2.0*x137;
+    const double x135 = ry0*x132;
+    const double x142 = 2.0*x135;
+    const double x143 = x57*(-x59*(-2.0*x138 + 2.0*x139 + x141) - x62*(2.0*ry2*x11*x9*x99 - x125 - 2.0*x133) - x64*(x123 + x142));
+    const double x144 = x143*x20;
+    const double x136 = x112 + x135;
+    const double x140 = x137 - x138 + x139;
+    const double x145 = M[0]*x134 + M[0]*x144 + x136*x51 + x140*x56 + x143*x67 + x143*x68;
+    const double x146 = x114*x99;
+    const double x147 = x102*x146;
+    const double dQs0_4 = x9*(0.5*rz0*x14*x145 - x130*x24 - x134*x29 - x144*x29 - x147);
+    const double x148 = M[2]*x14 - x101*x131 - x103*x12 - x107*x129;
+    const double x149 = ry1*x106*x12;
+    const double x150 = ry2*x132;
+    const double x151 = x23*(x119 - x149 + x150);
+    const double x152 = ry2*x108;
+    const double x155 = x57*(-x59*(x124 - x142) - x62*(x122 - 2.0*x149 + 2.0*x150) - x64*(2.0*ry0*x12*x9*x99 - x141 - 2.0*x152));
+    const double x156 = x155*x20;
+    const double x153 = ry0*x12*x9*x99 - x137 - x152;
+    const double x154 = x109 - x135;
+    const double x157 = M[0]*x151 + M[0]*x156 + x153*x51 + x154*x56 + x155*x67 + x155*x68;
+    const double x158 = x107*x146;
+    const double dQs0_5 = x9*(0.5*rz0*x14*x157 - x148*x24 - x151*x29 - x156*x29 - x158);
+    const double x189 = x1*x4;
+    const double x190 = dQs0_0*x189;
+    const double x191 = dQs0_1*x189;
+    const double x192 = dQs0_2*x189;
+    const double x193 = dQs0_3*x189;
+    const double x194 = dQs0_4*x189;
+    const double x195 = dQs0_5*x189;
+    const double x196 = x3*x4;
+    const double x197 = dQs0_0*x196;
+    const double x198 = dQs0_1*x196;
+    const double x199 = dQs0_2*x196;
+    const double x200 = dQs0_3*x196;
+    const double x201 = dQs0_4*x196;
+    const double x202 = dQs0_5*x196;
+    const double x31 = rz1*x28 - x25*x29;
+    const double Qs1 = x31*x9;
+    const double x159 = x23*x29;
+    const double x160 = x21*x29;
+    const double x161 = x31*x40;
+    const double dQs1_0 = -ry0*x161 + x9*(0.5*rz1*x14*x69 - x159*x50 - x160*x65);
+    const double dQs1_1 = -ry1*x161 + x9*(0.5*rz1*x14*x87 - x159*x80 - x160*x85);
+    const double dQs1_2 = -ry2*x161 + x9*(0.5*rz1*x14*x97 - x159*x93 - x160*x95);
+    const double dQs1_3 = x9*(0.5*rz1*x128*x14 - x105*x25 - x118*x159 - x126*x160 - x147);
+    const double dQs1_4 = x9*(0.5*rz1*x14*x145 - x11*x146 - x130*x25 - x136*x159 - x143*x160 - x98);
+    const double x162 = x131*x146;
+    const double dQs1_5 = x9*(0.5*rz1*x14*x157 - x148*x25 - x153*x159 - x155*x160 - x162);
+    const double x203 = dQs1_0*x189;
+    const double x204 = dQs1_1*x189;
+    const double x205 = dQs1_2*x189;
+    const double x206 = dQs1_3*x189;
+    const double x207 = dQs1_4*x189;
+    const double x208 = dQs1_5*x189;
+    const double x209 = dQs1_0*x196;
+    const double x210 = dQs1_1*x196;
+    const double x211 = dQs1_2*x196;
+    const double x212 = dQs1_3*x196;
+    const double x213 = dQs1_4*x196;
+    const double x214 = dQs1_5*x196;
+    const double x32 = rz2*x28 - x26*x29;
+    const double Qs2 = x32*x9;
+    const double x163 = x18*x29;
+    const double x164 = x32*x40;
+    const double dQs2_0 = -ry0*x164 + x9*(0.5*rz2*x14*x69 - x159*x55 - x163*x65);
+    const double dQs2_1 = -ry1*x164 + x9*(0.5*rz2*x14*x87 - x159*x82 - x163*x85);
+    const double dQs2_2 = -ry2*x164 + x9*(0.5*rz2*x14*x97 - x159*x94 - x163*x95);
+    const double dQs2_3 = x9*(0.5*rz2*x128*x14 - x105*x26 - x121*x159 - x126*x163 - x158);
+    const double dQs2_4 = x9*(0.5*rz2*x14*x145 - x130*x26 - x140*x159 - x143*x163 - x162);
+    const double dQs2_5 = x9*(0.5*rz2*x14*x157 - x12*x146 - x148*x26 - x154*x159 - x155*x163 - x98);
+    const double x215 = dQs2_0*x189;
+    const double x216 = dQs2_1*x189;
+    const double x217 = dQs2_2*x189;
+    const double x218 = dQs2_3*x189;
+    const double x219 = dQs2_4*x189;
+    const double x220 = dQs2_5*x189;
+    const double x221 = dQs2_0*x196;
+    const double x222 = dQs2_1*x196;
+    const double x223 = dQs2_2*x196;
+    const double x224 = dQs2_3*x196;
+    const double x225 = dQs2_4*x196;
+    const double x226 = dQs2_5*x196;
+    const double x33 = M[0]*ry0*x9 + M[1]*ry1*x9 + M[2]*ry2*x9;
+    const double x34 = -x27;
+    const double x35 = 0.5*x9;
+    const double x36 = x34*x35;
+    const double x37 = ry0*x36 + x24*x33;
+    const double Qs3 = x14*x37;
+    const double x165 = M[2]*ry2;
+    const double x166 = -M[0]*x52 + M[0]*x9 - M[1]*x42 - x165*x41;
+    const double x167 = -x69;
+    const double x168 = ry0*x35;
+    const double x169 = 0.5*x34;
+    const double dQs3_0 = x14*(x166*x24 + x167*x168 - x169*x52 + x33*x48 + x33*x66 + x36);
+    const double x170 = -M[0]*x42 - M[1]*x71 + M[1]*x9 - x165*x73;
+    const double x171 = -x87;
+    const double x172 = -x169*x42;
+    const double dQs3_1 = x14*(x168*x171 + x170*x24 + x172 + x33*x77 + x33*x86);
+    const double x173 = -M[0]*x45 - M[1]*x74 + M[2]*x9 - M[2]*x90;
+    const double x174 = -x97;
+    const double x175 = -x169*x45;
+    const double dQs3_2 = x14*(x168*x174 + x173*x24 + x175 + x33*x89 + x33*x96);
+    const double x176 = -x128;
+    const double x177 = x37*x99;
+    const double dQs3_3 = -rz0*x177 + x14*(x113*x33 + x127*x33 + x168*x176);
+    const double x178 = -x145;
+    const double dQs3_4 = -rz1*x177 + x14*(x134*x33 + x144*x33 + x168*x178);
+    const double x179 = -x157;
+    const double dQs3_5 = -rz2*x177 + x14*(x151*x33 + x156*x33 + x168*x179);
+    const double x227 = dQs3_0*x189;
+    const double x228 = dQs3_1*x189;
+    const double x229 = dQs3_2*x189;
+    const double x230 = dQs3_3*x189;
+    const double x231 = dQs3_4*x189;
+    const double x232 = dQs3_5*x189;
+    const double x233 = dQs3_0*x196;
+    const double x234 = dQs3_1*x196;
+    const double x235 = dQs3_2*x196;
+    const double x236 = dQs3_3*x196;
+    const double x237 = dQs3_4*x196;
+    const double x238 = dQs3_5*x196;
+    const double x38 = ry1*x36 + x25*x33;
+    const double Qs4 = x14*x38;
+    const double x180 = x23*x33;
+    const double x181 = ry1*x35;
+    const double x182 = x21*x33;
+    const double dQs4_0 = x14*(x166*x25 + x167*x181 + x172 + x180*x50 + x182*x65);
+    const double dQs4_1 = x14*(-x169*x71 + x170*x25 + x171*x181 + x180*x80 + x182*x85 + x36);
+    const double x183 = -x169*x74;
+    const double dQs4_2 = x14*(x173*x25 + x174*x181 + x180*x93 + x182*x95 + x183);
+    const double x184 = x38*x99;
+    const double dQs4_3 = -rz0*x184 + x14*(x118*x180 + x126*x182 + x176*x181);
+    const double dQs4_4 = -rz1*x184 + x14*(x136*x180 + x143*x182 + x178*x181);
+    const double dQs4_5 = -rz2*x184 + x14*(x153*x180 + x155*x182 + x179*x181);
+    const double x239 = dQs4_0*x189;
+    const double x240 = dQs4_1*x189;
+    const double x241 = dQs4_2*x189;
+    const double x242 = dQs4_3*x189;
+    const double x243 = dQs4_4*x189;
+    const double x244 = dQs4_5*x189;
+    const double x245 = dQs4_0*x196;
+    const double x246 = dQs4_1*x196;
+    const double x247 = dQs4_2*x196;
+    const double x248 = dQs4_3*x196;
+    const double x249 = dQs4_4*x196;
+    const double x250 = dQs4_5*x196;
+    const double x39 = ry2*x36 + x26*x33;
+    const double Qs5 = x14*x39;
+    const double x185 = ry2*x35;
+    const double x186 = x18*x33;
+    const double dQs5_0 = x14*(x166*x26 + x167*x185 + x175 + x180*x55 + x186*x65);
+    const double dQs5_1 = x14*(x170*x26 + x171*x185 + x180*x82 + x183 + x186*x85);
+    const double dQs5_2 = x14*(-x169*x90 + x173*x26 + x174*x185 + x180*x94 + x186*x95 + x36);
+    const double x187 = x39*x99;
+    const double dQs5_3 = -rz0*x187 + x14*(x121*x180 + x126*x186 + x176*x185);
+    const double dQs5_4 = -rz1*x187 + x14*(x140*x180 + x143*x186 + x178*x185);
+    const double dQs5_5 = -rz2*x187 + x14*(x154*x180 + x155*x186 + x179*x185);
+    const double x251 = dQs5_0*x189;
+    const double x252 = dQs5_1*x189;
+    const double x253 = dQs5_2*x189;
+    const double x254 = dQs5_3*x189;
+    const double x255 = dQs5_4*x189;
+    const double x256 = dQs5_5*x189;
+    const double x257 = dQs5_0*x196;
+    const double x258 = dQs5_1*x196;
+    const double x259 = dQs5_2*x196;
+    const double x260 = dQs5_3*x196;
+    const double x261 = dQs5_4*x196;
+    const double x262 = dQs5_5*x196;
+    const double x263 = (x1*x1);
+    const double x264 = x1*x3;
+    const double x265 = dQs0_0*x264;
+    const double x266 = dQs0_1*x264;
+    const double x267 = dQs0_2*x264;
+    const double x268 = dQs0_3*x264;
+    const double x269 = dQs0_4*x264;
+    const double x270 = dQs0_5*x264;
+    const double x271 = dQs1_0*x264;
+    const double x272 = dQs1_1*x264;
+    const double x273 = dQs1_2*x264;
+    const double x274 = dQs1_3*x264;
+    const double x275 = dQs1_4*x264;
+    const double x276 = dQs1_5*x264;
+    const double x277 = dQs2_0*x264;
+    const double x278 = dQs2_1*x264;
+    const double x279 = dQs2_2*x264;
+    const double x280 = dQs2_3*x264;
+    const double x281 = dQs2_4*x264;
+    const double x282 = dQs2_5*x264;
+    const double x283 = dQs3_0*x264;
+    const double x284 = dQs3_1*x264;
+    const double x285 = dQs3_2*x264;
+    const double x286 = dQs3_3*x264;
+    const double x287 = dQs3_4*x264;
+    const double x288 = dQs3_5*x264;
+    const double x289 = dQs4_0*x264;
+    const double x290 = dQs4_1*x264;
+    const double x291 = dQs4_2*x264;
+    const double x292 = dQs4_3*x264;
+    const double x293 = dQs4_4*x264;
+    const double x294 = dQs4_5*x264;
+    const double x295 = dQs5_0*x264;
+    const double x296 = dQs5_1*x264;
+    const double x297 = dQs5_2*x264;
+    const double x298 = dQs5_3*x264;
+    const double x299 = dQs5_4*x264;
+    const double x300 = dQs5_5*x264;
+    const double x301 = (x3*x3);
+    Q[3] = Qs0*x4;
+    dQ[84] = dQs0_0*x188;
+    dQ[85] = dQs0_1*x188;
+    dQ[86] = dQs0_2*x188;
+    dQ[87] = dQs0_3*x188;
+    dQ[88] = dQs0_4*x188;
+    dQ[89] = dQs0_5*x188;
+    dQ[93] = x190;
+    dQ[94] = x191;
+    dQ[95] = x192;
+    dQ[96] = x193;
+    dQ[97] = x194;
+    dQ[98] = x195;
+    dQ[102] = x197;
+    dQ[103] = x198;
+    dQ[104] = x199;
+    dQ[105] = x200;
+    dQ[106] = x201;
+    dQ[107] = x202;
+    Q[4] = Qs1*x4;
+    dQ[111] = dQs1_0*x188;
+    dQ[112] = dQs1_1*x188;
+    dQ[113] = dQs1_2*x188;
+    dQ[114] = dQs1_3*x188;
+    dQ[115] = dQs1_4*x188;
+    dQ[116] = dQs1_5*x188;
+    dQ[120] = x203;
+    dQ[121] = x204;
+    dQ[122] = x205;
+    dQ[123] = x206;
+    dQ[124] = x207;
+    dQ[125] = x208;
+    dQ[129] = x209;
+    dQ[130] = x210;
+    dQ[131] = x211;
+    dQ[132] = x212;
+    dQ[133] = x213;
+    dQ[134] = x214;
+    Q[5] = Qs2*x4;
+    dQ[138] = dQs2_0*x188;
+    dQ[139] = dQs2_1*x188;
+    dQ[140] = dQs2_2*x188;
+    dQ[141] = dQs2_3*x188;
+    dQ[142] = dQs2_4*x188;
+    dQ[143] = dQs2_5*x188;
+    dQ[147] = x215;
+    dQ[148] = x216;
+    dQ[149] = x217;
+    dQ[150] = x218;
+    dQ[151] = x219;
+    dQ[152] = x220;
+    dQ[156] = x221;
+    dQ[157] = x222;
+    dQ[158] = x223;
+    dQ[159] = x224;
+    dQ[160] = x225;
+    dQ[161] = x226;
+    Q[6] = Qs3*x4;
+    dQ[165] = dQs3_0*x188;
+    dQ[166] = dQs3_1*x188;
+    dQ[167] = dQs3_2*x188;
+    dQ[168] = dQs3_3*x188;
+    dQ[169] = dQs3_4*x188;
+    dQ[170] = dQs3_5*x188;
+    dQ[174] = x227;
+    dQ[175] = x228;
+    dQ[176] = x229;
+    dQ[177] = x230;
+    dQ[178] = x231;
+    dQ[179] = x232;
+    dQ[183] = x233;
+    dQ[184] = x234;
+    dQ[185] = x235;
+    dQ[186] = x236;
+    dQ[187] = x237;
+    dQ[188] = x238;
+    Q[7] = Qs4*x4;
+    dQ[192] = dQs4_0*x188;
+    dQ[193] = dQs4_1*x188;
+    dQ[194] = dQs4_2*x188;
+    dQ[195] = dQs4_3*x188;
+    dQ[196] = dQs4_4*x188;
+    dQ[197] = dQs4_5*x188;
+    dQ[201] = x239;
+    dQ[202] = x240;
+    dQ[203] = x241;
+    dQ[204] = x242;
+    dQ[205] = x243;
+    dQ[206] = x244;
+    dQ[210] = x245;
+    dQ[211] = x246;
+    dQ[212] = x247;
+    dQ[213] = x248;
+    dQ[214] = x249;
+    dQ[215] = x250;
+    Q[8] = Qs5*x4;
+    dQ[219] = dQs5_0*x188;
+    dQ[220] = dQs5_1*x188;
+    dQ[221] = dQs5_2*x188;
+    dQ[222] = dQs5_3*x188;
+    dQ[223] = dQs5_4*x188;
+    dQ[224] = dQs5_5*x188;
+    dQ[228] = x251;
+    dQ[229] = x252;
+    dQ[230] = x253;
+    dQ[231] = x254;
+    dQ[232] = x255;
+    dQ[233] = x256;
+    dQ[237] = x257;
+    dQ[238] = x258;
+    dQ[239] = x259;
+    dQ[240] = x260;
+    dQ[241] = x261;
+    dQ[242] = x262;
+    Q[12] = Qs0*x1;
+    dQ[327] = x190;
+    dQ[328] = x191;
+    dQ[329] = x192;
+    dQ[330] = x193;
+    dQ[331] = x194;
+    dQ[332] = x195;
+    dQ[336] = dQs0_0*x263;
+    dQ[337] = dQs0_1*x263;
+    dQ[338] = dQs0_2*x263;
+    dQ[339] = dQs0_3*x263;
+    dQ[340] = dQs0_4*x263;
+    dQ[341] = dQs0_5*x263;
+    dQ[345] = x265;
+    dQ[346] = x266;
+    dQ[347] = x267;
+    dQ[348] = x268;
+    dQ[349] = x269;
+    dQ[350] = x270;
+    Q[13] = Qs1*x1;
+    dQ[354] = x203;
+    dQ[355] = x204;
+    dQ[356] = x205;
+    dQ[357] = x206;
+    dQ[358] = x207;
+    dQ[359] = x208;
+    dQ[363] = dQs1_0*x263;
+    dQ[364] = dQs1_1*x263;
+    dQ[365] = dQs1_2*x263;
+    dQ[366] = dQs1_3*x263;
+    dQ[367] = dQs1_4*x263;
+    dQ[368] = dQs1_5*x263;
+    dQ[372] = x271;
+    dQ[373] = x272;
+    dQ[374] = x273;
+    dQ[375] = x274;
+    dQ[376] = x275;
+    dQ[377] = x276;
+    Q[14] = Qs2*x1;
+    dQ[381] = x215;
+    dQ[382] = x216;
+    dQ[383] = x217;
+    dQ[384] = x218;
+    dQ[385] = x219;
+    dQ[386] = x220;
+    dQ[390] = dQs2_0*x263;
+    dQ[391] = dQs2_1*x263;
+    dQ[392] = dQs2_2*x263;
+    dQ[393] = dQs2_3*x263;
+    dQ[394] = dQs2_4*x263;
+    dQ[395] = dQs2_5*x263;
+    dQ[399] = x277;
+    dQ[400] = x278;
+    dQ[401] = x279;
+    dQ[402] = x280;
+    dQ[403] = x281;
+    dQ[404] = x282;
+    Q[15] = Qs3*x1;
+    dQ[408] = x227;
+    dQ[409] = x228;
+    dQ[410] = x229;
+    dQ[411] = x230;
+    dQ[412] = x231;
+    dQ[413] = x232;
+    dQ[417] = dQs3_0*x263;
+    dQ[418] = dQs3_1*x263;
+    dQ[419] = dQs3_2*x263;
+    dQ[420] = dQs3_3*x263;
+    dQ[421] = dQs3_4*x263;
+    dQ[422] = dQs3_5*x263;
+    dQ[426] = x283;
+    dQ[427] = x284;
+    dQ[428] = x285;
+    dQ[429] = x286;
+    dQ[430] = x287;
+    dQ[431] = x288;
+    Q[16] = Qs4*x1;
+    dQ[435] = x239;
+    dQ[436] = x240;
+    dQ[437] = x241;
+    dQ[438] = x242;
+    dQ[439] = x243;
+    dQ[440] = x244;
+    dQ[444] = dQs4_0*x263;
+    dQ[445] = dQs4_1*x263;
+    dQ[446] = dQs4_2*x263;
+    dQ[447] = dQs4_3*x263;
+    dQ[448] = dQs4_4*x263;
+    dQ[449] = dQs4_5*x263;
+    dQ[453] = x289;
+    dQ[454] = x290;
+    dQ[455] = x291;
+    dQ[456] = x292;
+    dQ[457] = x293;
+    dQ[458] = x294;
+    Q[17] = Qs5*x1;
+    dQ[462] = x251;
+    dQ[463] = x252;
+    dQ[464] = x253;
+    dQ[465] = x254;
+    dQ[466] = x255;
+    dQ[467] = x256;
+    dQ[471] = dQs5_0*x263;
+    dQ[472] = dQs5_1*x263;
+    dQ[473] = dQs5_2*x263;
+    dQ[474] = dQs5_3*x263;
+    dQ[475] = dQs5_4*x263;
+    dQ[476] = dQs5_5*x263;
+    dQ[480] = x295;
+    dQ[481] = x296;
+    dQ[482] = x297;
+    dQ[483] = x298;
+    dQ[484] = x299;
+    dQ[485] = x300;
+    Q[21] = Qs0*x3;
+    dQ[570] = x197;
+    dQ[571] = x198;
+    dQ[572] = x199;
+    dQ[573] = x200;
+    dQ[574] = x201;
+    dQ[575] = x202;
+    dQ[579] = x265;
+    dQ[580] = x266;
+    dQ[581] = x267;
+    dQ[582] = x268;
+    dQ[583] = x269;
+    dQ[584] = x270;
+    dQ[588] = dQs0_0*x301;
+    dQ[589] = dQs0_1*x301;
+    dQ[590] = dQs0_2*x301;
+    dQ[591] = dQs0_3*x301;
+    dQ[592] = dQs0_4*x301;
+    dQ[593] = dQs0_5*x301;
+    Q[22] = Qs1*x3;
+    dQ[597] = x209;
+    dQ[598] = x210;
+    dQ[599] = x211;
+    dQ[600] = x212;
+    dQ[601] = x213;
+    dQ[602] = x214;
+    dQ[606] = x271;
+    dQ[607] = x272;
+    dQ[608] = x273;
+    dQ[609] = x274;
+    dQ[610] = x275;
+    dQ[611] = x276;
+    dQ[615] = dQs1_0*x301;
+    dQ[616] = dQs1_1*x301;
+    dQ[617] = dQs1_2*x301;
+    dQ[618] = dQs1_3*x301;
+    dQ[619] = dQs1_4*x301;
+    dQ[620] = dQs1_5*x301;
+    Q[23] = Qs2*x3;
+    dQ[624] = x221;
+    dQ[625] = x222;
+    dQ[626] = x223;
+    dQ[627] = x224;
+    dQ[628] = x225;
+    dQ[629] = x226;
+    dQ[633] = x277;
+    dQ[634] = x278;
+    dQ[635] = x279;
+    dQ[636] = x280;
+    dQ[637] = x281;
+    dQ[638] = x282;
+    dQ[642] = dQs2_0*x301;
+    dQ[643] = dQs2_1*x301;
+    dQ[644] = dQs2_2*x301;
+    dQ[645] = dQs2_3*x301;
+    dQ[646] = dQs2_4*x301;
+    dQ[647] = dQs2_5*x301;
+    Q[24] = Qs3*x3;
+    dQ[651] = x233;
+    dQ[652] = x234;
+    dQ[653] = x235;
+    dQ[654] = x236;
+    dQ[655] = x237;
+    dQ[656] = x238;
+    dQ[660] = x283;
+    dQ[661] = x284;
+    dQ[662] = x285;
+    dQ[663] = x286;
+    dQ[664] = x287;
+    dQ[665] = x288;
+    dQ[669] = dQs3_0*x301;
+    dQ[670] = dQs3_1*x301;
+    dQ[671] = dQs3_2*x301;
+    dQ[672] = dQs3_3*x301;
+    dQ[673] = dQs3_4*x301;
+    dQ[674] = dQs3_5*x301;
+    Q[25] = Qs4*x3;
+    dQ[678] = x245;
+    dQ[679] = x246;
+    dQ[680] = x247;
+    dQ[681] = x248;
+    dQ[682] = x249;
+    dQ[683] = x250;
+    dQ[687] = x289;
+    dQ[688] = x290;
+    dQ[689] = x291;
+    dQ[690] = x292;
+    dQ[691] = x293;
+    dQ[692] = x294;
+    dQ[696] = dQs4_0*x301;
+    dQ[697] = dQs4_1*x301;
+    dQ[698] = dQs4_2*x301;
+    dQ[699] = dQs4_3*x301;
+    dQ[700] = dQs4_4*x301;
+    dQ[701] = dQs4_5*x301;
+    Q[26] = Qs5*x3;
+    dQ[705] = x257;
+    dQ[706] = x258;
+    dQ[707] = x259;
+    dQ[708] = x260;
+    dQ[709] = x261;
+    dQ[710] = x262;
+    dQ[714] = x295;
+    dQ[715] = x296;
+    dQ[716] = x297;
+    dQ[717] = x298;
+    dQ[718] = x299;
+    dQ[719] = x300;
+    dQ[723] = dQs5_0*x301;
+    dQ[724] = dQs5_1*x301;
+    dQ[725] = dQs5_2*x301;
+    dQ[726] = dQs5_3*x301;
+    dQ[727] = dQs5_4*x301;
+    dQ[728] = dQs5_5*x301;
+}
+
+static void reference(const double *restrict geom, double *restrict q0)
+{
+    (void)geom;
+    q0[0] = 0;
+    q0[1] = 0;
+    q0[2] = 0;
+    q0[3] = 0;
+    q0[4] = 1.0;
+    q0[5] = 0;
+    q0[6] = 0;
+    q0[7] = 0;
+    q0[8] = 1.0;
+    q0[9] = 0.5*geom[0];
+    q0[10] = 0;
+    q0[11] = 0;
+    q0[12] = 0;
+    q0[13] = 1.0;
+    q0[14] = 0;
+    q0[15] = 0;
+    q0[16] = 0;
+    q0[17] = 1.0;
+    q0[18] = geom[0];
+    q0[19] = 0;
+    q0[20] = 0;
+    q0[21] = 0;
+    q0[22] = 1.0;
+    q0[23] = 0;
+    q0[24] = 0;
+    q0[25] = 0;
+    q0[26] = 1.0;
+}
+
+void ancf3333_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
+{
+    (void)q0;
     const double x0 = geom[0]*geom[1]*geom[2];
     const double x1 = 0.06944444444444445*x0;
     const double x2 = (1.0/geom[0]);
@@ -380,8 +1098,7 @@ void ancf3333_full_tabulate(const double *restrict geom, double *restrict tab)
     tab[155] = x7;
 }
 
-static BK_NOINLINE void ancf3333_contract_row0(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = t[1]*t[2];
@@ -499,8 +1216,7 @@ static BK_NOINLINE void ancf3333_contract_row0(const double *restrict A, const d
     K[80] += A[39]*x25 + A[41]*x22;
 }
 
-static BK_NOINLINE void ancf3333_contract_row1(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[2]*t[2]);
     const double x1 = (t[3]*t[3]);
@@ -616,8 +1332,7 @@ static BK_NOINLINE void ancf3333_contract_row1(const double *restrict A, const d
     K[161] += A[39]*x32 + A[40]*x33 + A[41]*x28 + A[43]*x29;
 }
 
-static BK_NOINLINE void ancf3333_contract_row2(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[4]*t[4]);
     const double x1 = (t[3]*t[3]);
@@ -719,8 +1434,7 @@ static BK_NOINLINE void ancf3333_contract_row2(const double *restrict A, const d
     K[242] += A[39]*x28 + A[41]*x24 + A[41]*x29 + A[44]*x23;
 }
 
-static BK_NOINLINE void ancf3333_contract_row3(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = t[5]*t[6];
@@ -798,8 +1512,7 @@ static BK_NOINLINE void ancf3333_contract_row3(const double *restrict A, const d
     K[323] += A[39]*x15 + A[41]*x12;
 }
 
-static BK_NOINLINE void ancf3333_contract_row4(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[6]*t[6]);
     const double x1 = (t[7]*t[7]);
@@ -871,8 +1584,7 @@ static BK_NOINLINE void ancf3333_contract_row4(const double *restrict A, const d
     K[404] += A[39]*x18 + A[40]*x19 + A[41]*x14 + A[43]*x15;
 }
 
-static BK_NOINLINE void ancf3333_contract_row5(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[8]*t[8]);
     const double x1 = (t[7]*t[7]);
@@ -930,8 +1642,7 @@ static BK_NOINLINE void ancf3333_contract_row5(const double *restrict A, const d
     K[485] += A[39]*x14 + A[41]*x10 + A[41]*x15 + A[44]*x9;
 }
 
-static BK_NOINLINE void ancf3333_contract_row6(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[9]*t[9]);
     const double x1 = t[10]*t[9];
@@ -969,8 +1680,7 @@ static BK_NOINLINE void ancf3333_contract_row6(const double *restrict A, const d
     K[566] += A[39]*x5 + A[41]*x2;
 }
 
-static BK_NOINLINE void ancf3333_contract_row7(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[10]*t[10]);
     const double x1 = (t[11]*t[11]);
@@ -998,8 +1708,7 @@ static BK_NOINLINE void ancf3333_contract_row7(const double *restrict A, const d
     K[647] += A[39]*x4 + A[40]*x5 + A[41]*x2 + A[43]*x1;
 }
 
-static BK_NOINLINE void ancf3333_contract_row8(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3333_contract_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[12]*t[12]);
     const double x1 = (t[11]*t[11]);
@@ -1027,7 +1736,7 @@ void ancf3333_tangent_contract(const double *restrict A, const double *restrict 
 }
 
 const bk_element bk_element_ancf3333 = {
-    "ancf3333", "ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF", 3, 9, 27,
-    node_xi, shape_node, shape_vector,
-    ancf3333_shape, ancf3333_mass, ancf3333_volume
+    "ancf3333", "ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF", 3, 27, node_xi,
+    9, field_name, field_dof, field_dim, reference,
+    9, shape_dof, shape, mass, volume, frame, moment
 };

@@ -9,11 +9,12 @@
 #endif
 
 static const double node_xi[3] = {0.0, 0.5, 1.0};
-static const int shape_node[18] = {0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2};
-static const char *const shape_vector[18] = {"r", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_y", "r_z", "r_yy", "r_yz", "r_zz"};
+static const int shape_dof[18] = {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39, 42, 45, 48, 51};
+static const char *const field_name[18] = {"r", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_y", "r_z", "r_yy", "r_yz", "r_zz", "r", "r_y", "r_z", "r_yy", "r_yz", "r_zz"};
+static const int field_dof[18] = {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39, 42, 45, 48, 51};
+static const int field_dim[18] = {3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3};
 
-void ancf3363_shape(const double *restrict geom, double xi, double y, double z,
-                    double *restrict N, double *restrict dN)
+static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
 {
     (void)geom; (void)xi; (void)y; (void)z;
     const double x0 = 3.0*xi;
@@ -49,101 +50,9 @@ void ancf3363_shape(const double *restrict geom, double xi, double y, double z,
     N[15] = -x6*xi + x7;
     N[16] = x10 - x9*xi;
     N[17] = -x12*xi + x13;
-    if (dN) {
-        const double x0 = (1.0/geom[0]);
-        const double x1 = 3.0*x0;
-        const double x2 = 4.0*x0;
-        const double x3 = x2*xi;
-        const double x4 = x1*y;
-        const double x5 = xi*y;
-        const double x6 = x2*x5;
-        const double x7 = 3.0*xi;
-        const double x8 = (xi*xi);
-        const double x9 = 2.0*x8;
-        const double x10 = -x7 + x9 + 1.0;
-        const double x11 = xi*z;
-        const double x12 = x11*x2;
-        const double x13 = (y*y);
-        const double x14 = 1.5*x0;
-        const double x15 = x0*xi;
-        const double x16 = 2.0*x15;
-        const double x17 = x13*x16;
-        const double x18 = x9*y;
-        const double x19 = x18 - x7*y + y;
-        const double x20 = x2*x5*z;
-        const double x21 = x9*z;
-        const double x22 = x21 - x7*z + z;
-        const double x23 = (z*z);
-        const double x24 = x16*x23;
-        const double x25 = x0*y;
-        const double x26 = 8.0*xi;
-        const double x27 = 4.0*x8;
-        const double x28 = -x27 + 4.0*xi;
-        const double x29 = x0*z;
-        const double x30 = -x27*y + 4.0*xi*y;
-        const double x31 = -x27*z + 4.0*xi*z;
-        const double x32 = x9 - xi;
-        const double x33 = 0.5*x0;
-        const double x34 = x18 - x5;
-        const double x35 = -x11 + x21;
-        dN[0] = -x1 + x3;
-        dN[1] = 0;
-        dN[2] = 0;
-        dN[3] = -x4 + x6;
-        dN[4] = x10;
-        dN[5] = 0;
-        dN[6] = -x1*z + x12;
-        dN[7] = 0;
-        dN[8] = x10;
-        dN[9] = -x13*x14 + x17;
-        dN[10] = x19;
-        dN[11] = 0;
-        dN[12] = x20 - x4*z;
-        dN[13] = x22;
-        dN[14] = x19;
-        dN[15] = -x14*x23 + x24;
-        dN[16] = 0;
-        dN[17] = x22;
-        dN[18] = 4.0*x0 - 8.0*x15;
-        dN[19] = 0;
-        dN[20] = 0;
-        dN[21] = 4.0*x0*y - x25*x26;
-        dN[22] = x28;
-        dN[23] = 0;
-        dN[24] = 4.0*x0*z - x26*x29;
-        dN[25] = 0;
-        dN[26] = x28;
-        dN[27] = 2.0*x0*x13 - x13*x3;
-        dN[28] = x30;
-        dN[29] = 0;
-        dN[30] = 4.0*x0*y*z - 8.0*x11*x25;
-        dN[31] = x31;
-        dN[32] = x30;
-        dN[33] = 2.0*x0*x23 - x23*x3;
-        dN[34] = 0;
-        dN[35] = x31;
-        dN[36] = -x0 + x3;
-        dN[37] = 0;
-        dN[38] = 0;
-        dN[39] = -x25 + x6;
-        dN[40] = x32;
-        dN[41] = 0;
-        dN[42] = x12 - x29;
-        dN[43] = 0;
-        dN[44] = x32;
-        dN[45] = -x13*x33 + x17;
-        dN[46] = x34;
-        dN[47] = 0;
-        dN[48] = x20 - x25*z;
-        dN[49] = x35;
-        dN[50] = x34;
-        dN[51] = -x23*x33 + x24;
-        dN[52] = 0;
-        dN[53] = x35;
-    }
 }
 
-void ancf3363_mass(const double *restrict geom, double *restrict m)
+static void mass(const double *restrict geom, double *restrict m)
 {
     const double x0 = geom[0]*geom[2];
     const double x1 = x0*geom[1];
@@ -507,7 +416,7 @@ void ancf3363_mass(const double *restrict geom, double *restrict m)
     m[323] = x31;
 }
 
-void ancf3363_volume(const double *restrict geom, double *restrict v)
+static void volume(const double *restrict geom, double *restrict v)
 {
     const double x0 = geom[0]*geom[2];
     const double x1 = x0*geom[1];
@@ -536,8 +445,794 @@ void ancf3363_volume(const double *restrict geom, double *restrict v)
     v[17] = x6;
 }
 
-void ancf3363_full_tabulate(const double *restrict geom, double *restrict tab)
+static void frame(const double *restrict geom, double xi, const double *restrict q, double *restrict pos, double *restrict d)
 {
+    (void)geom; (void)xi;
+    const double x0 = (xi*xi);
+    const double x1 = 2.0*x0;
+    const double x2 = x1 - 3.0*xi + 1.0;
+    const double x3 = -4.0*x0 + 4.0*xi;
+    const double x4 = x1 - xi;
+    const double x5 = (1.0/geom[0]);
+    const double x6 = 4.0*x5*xi;
+    const double x7 = -3.0*x5 + x6;
+    const double x8 = -8.0*x5*xi + 4.0*x5;
+    const double x9 = -x5 + x6;
+    pos[0] = q[0]*x2 + q[18]*x3 + q[36]*x4;
+    pos[1] = q[19]*x3 + q[1]*x2 + q[37]*x4;
+    pos[2] = q[20]*x3 + q[2]*x2 + q[38]*x4;
+    d[0] = q[21]*x3 + q[39]*x4 + q[3]*x2;
+    d[1] = q[22]*x3 + q[40]*x4 + q[4]*x2;
+    d[2] = q[23]*x3 + q[41]*x4 + q[5]*x2;
+    d[3] = q[24]*x3 + q[42]*x4 + q[6]*x2;
+    d[4] = q[25]*x3 + q[43]*x4 + q[7]*x2;
+    d[5] = q[26]*x3 + q[44]*x4 + q[8]*x2;
+    d[6] = q[0]*x7 + q[18]*x8 + q[36]*x9;
+    d[7] = q[19]*x8 + q[1]*x7 + q[37]*x9;
+    d[8] = q[20]*x8 + q[2]*x7 + q[38]*x9;
+}
+
+static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    (void)geom; (void)xi;
+    for (int i = 0; i < 54; ++i) Q[i] = 0.0;
+    for (int i = 0; i < 2916; ++i) dQ[i] = 0.0;
+    const double x0 = (xi*xi);
+    const double x1 = -4.0*x0 + 4.0*xi;
+    const double x2 = 2.0*x0;
+    const double x3 = x2 - xi;
+    const double x4 = x2 - 3.0*xi + 1.0;
+    const double ry0 = q[21]*x1 + q[39]*x3 + q[3]*x4;
+    const double x5 = (ry0*ry0);
+    const double ry1 = q[22]*x1 + q[40]*x3 + q[4]*x4;
+    const double x6 = (ry1*ry1);
+    const double ry2 = q[23]*x1 + q[41]*x3 + q[5]*x4;
+    const double x7 = (ry2*ry2);
+    const double x8 = x5 + x6 + x7;
+    const double x9 = (1.0/(sqrt(x8)));
+    const double rz0 = q[24]*x1 + q[42]*x3 + q[6]*x4;
+    const double rz1 = q[25]*x1 + q[43]*x3 + q[7]*x4;
+    const double x10 = (rz0*rz0);
+    const double x11 = (rz1*rz1);
+    const double rz2 = q[26]*x1 + q[44]*x3 + q[8]*x4;
+    const double x12 = (rz2*rz2);
+    const double x13 = x10 + x11 + x12;
+    const double x14 = (1.0/(sqrt(x13)));
+    const double x15 = x14*x9;
+    const double x16 = rz1*x15;
+    const double x19 = rz2*x15;
+    const double x20 = ry1*x19 - ry2*x16;
+    const double x17 = rz0*x15;
+    const double x18 = ry0*x16 - ry1*x17;
+    const double x21 = -ry0*x19 + ry2*rz0*x14*x9;
+    const double x22 = (x18*x18) + (x20*x20) + (x21*x21);
+    const double x23 = (1.0/(sqrt(x22)));
+    const double x24 = x20*x23;
+    const double x25 = x21*x23;
+    const double x26 = x18*x23;
+    const double x27 = M[0]*x24 + M[1]*x25 + M[2]*x26;
+    const double x28 = 0.5*x14*x27;
+    const double x29 = M[0]*rz0*x14 + M[1]*rz1*x14 + M[2]*rz2*x14;
+    const double x30 = rz0*x28 - x24*x29;
+    const double Qs0 = x30*x9;
+    const double x40 = (1.0/(sqrt(x8)*sqrt(x8)*sqrt(x8)));
+    const double x41 = ry0*x40;
+    const double x42 = ry1*x41;
+    const double x43 = x14*x42;
+    const double x44 = rz2*x43;
+    const double x45 = ry2*x41;
+    const double x46 = x14*x45;
+    const double x47 = rz1*x46;
+    const double x48 = x23*(-x44 + x47);
+    const double x49 = rz0*x46;
+    const double x52 = x40*x5;
+    const double x53 = rz1*x14*x52;
+    const double x54 = rz0*x43;
+    const double x57 = (1.0/(sqrt(x22)*sqrt(x22)*sqrt(x22)));
+    const double x58 = 2.0*x16;
+    const double x59 = 0.5*x18;
+    const double x60 = 2.0*x47;
+    const double x61 = 2.0*x44;
+    const double x62 = 0.5*x20;
+    const double x63 = 2.0*x19;
+    const double x64 = 0.5*x21;
+    const double x65 = x57*(-x59*(-2.0*x53 + 2.0*x54 + x58) - x62*(x60 - x61) - x64*(2.0*rz2*x14*x40*x5 - 2.0*x49 - x63));
+    const double x66 = x20*x65;
+    const double x50 = rz2*x14*x40*x5 - x19 - x49;
+    const double x51 = M[1]*x23;
+    const double x55 = x16 - x53 + x54;
+    const double x56 = M[2]*x23;
+    const double x67 = M[1]*x21;
+    const double x68 = M[2]*x18;
+    const double x69 = M[0]*x48 + M[0]*x66 + x50*x51 + x55*x56 + x65*x67 + x65*x68;
+    const double x70 = x30*x40;
+    const double dQs0_0 = -ry0*x70 + x9*(0.5*rz0*x14*x69 - x29*x48 - x29*x66);
+    const double x188 = (x4*x4);
+    const double x71 = x40*x6;
+    const double x72 = rz2*x14*x71;
+    const double x73 = ry1*x40;
+    const double x74 = ry2*x73;
+    const double x75 = x14*x74;
+    const double x76 = rz1*x75;
+    const double x77 = x23*(x19 - x72 + x76);
+    const double x81 = rz1*x43;
+    const double x83 = 2.0*x17;
+    const double x78 = rz0*x75;
+    const double x84 = -2.0*x78;
+    const double x85 = x57*(-x59*(2.0*rz0*x14*x40*x6 - 2.0*x81 - x83) - x62*(x63 - 2.0*x72 + 2.0*x76) - x64*(x61 + x84));
+    const double x86 = x20*x85;
+    const double x79 = -x78;
+    const double x80 = x44 + x79;
+    const double x82 = rz0*x14*x40*x6 - x17 - x81;
+    const double x87 = M[0]*x77 + M[0]*x86 + x51*x80 + x56*x82 + x67*x85 + x68*x85;
+    const double dQs0_1 = -ry1*x70 + x9*(0.5*rz0*x14*x87 - x29*x77 - x29*x86);
+    const double x88 = rz2*x75;
+    const double x89 = x23*(rz1*x14*x40*x7 - x16 - x88);
+    const double x90 = x40*x7;
+    const double x91 = rz0*x14*x90;
+    const double x92 = rz2*x46;
+    const double x95 = x57*(-x59*(-x60 - x84) - x62*(2.0*rz1*x14*x40*x7 - x58 - 2.0*x88) - x64*(x83 - 2.0*x91 + 2.0*x92));
+    const double x96 = x20*x95;
+    const double x93 = x17 - x91 + x92;
+    const double x94 = -x47 - x79;
+    const double x97 = M[0]*x89 + M[0]*x96 + x51*x93 + x56*x94 + x67*x95 + x68*x95;
+    const double dQs0_2 = -ry2*x70 + x9*(0.5*rz0*x14*x97 - x29*x89 - x29*x96);
+    const double x98 = -0.5*x14*x27;
+    const double x99 = (1.0/(sqrt(x13)*sqrt(x13)*sqrt(x13)));
+    const double x100 = x10*x99;
+    const double x101 = M[1]*x99;
+    const double x102 = rz0*rz1;
+    const double x103 = M[2]*x99;
+    const double x104 = rz2*x103;
+    const double x105 = -M[0]*x100 + M[0]*x14 - rz0*x104 - x101*x102;
+    const double x106 = x9*x99;
+    const double x107 = rz0*rz2;
+    const double x108 = x106*x107;
+    const double x109 = ry1*x108;
+    const double x110 = x102*x106;
+    const double x111 = ry2*x110;
+    const double x112 = -x111;
+    const double x113 = x23*(-x109 - x112);
+    const double x114 = 0.5*x27;
+    const double x116 = ry2*x100*x9;
+    const double x117 = ry0*x108;
+    const double x120 = ry0*x110;
+    const double x119 = ry1*x15;
+    const double x122 = 2.0*x119;
+    const double x123 = -2.0*x111;
+    const double x124 = 2.0*x109;
+    const double x115 = ry2*x15;
+    const double x125 = 2.0*x115;
+    const double x126 = x57*(-x59*(2.0*ry1*x10*x9*x99 - 2.0*x120 - x122) - x62*(-x123 - x124) - x64*(-2.0*x116 + 2.0*x117 + x125));
+    const double x127 = x126*x20;
+    const double x118 = x115 - x116 + x117;
+    const double x121 = ry1*x10*x9*x99 - x119 - x120;
+    const double x128 = M[0]*x113 + M[0]*x127 + x118*x51 + x121*x56 + x126*x67 + x126*x68;
+    const double dQs0_3 = x9*(0.5*rz0*x128*x14 - x100*x114 - x105*x24 - x113*x29 - x127*x29 - x98);
+    const double x129 = M[0]*x99;
+    const double x130 = M[1]*x14 - rz1*x104 - x101*x11 - x102*x129;
+    const double x131 = rz1*rz2;
+    const double x132 = x106*x131;
+    const double x133 = ry1*x132;
+    const double x134 = x23*(ry2*x11*x9*x99 - x115 - x133);
+    const double x138 = ry0*x106*x11;
+    const double x139 = ry1*x110;
+    const double x137 = ry0*x15;
+    const double x141 = 2.0*x137;
+    const double x135 = ry0*x132;
+    const double x142 = 2.0*x135;
+    const double x143 = x57*(-x59*(-2.0*x138 + 2.0*x139 + x141) - x62*(2.0*ry2*x11*x9*x99 - x125 - 2.0*x133) - x64*(x123 + x142));
+    const double x144 = x143*x20;
+    const double x136 = x112 + x135;
+    const double x140 = x137 - x138 + x139;
+    const double x145 = M[0]*x134 + M[0]*x144 + x136*x51 + x140*x56 + x143*x67 + x143*x68;
+    const double x146 = x114*x99;
+    const double x147 = x102*x146;
+    const double dQs0_4 = x9*(0.5*rz0*x14*x145 - x130*x24 - x134*x29 - x144*x29 - x147);
+    const double x148 = M[2]*x14 - x101*x131 - x103*x12 - x107*x129;
+    const double x149 = ry1*x106*x12;
+    const double x150 = ry2*x132;
+    const double x151 = x23*(x119 - x149 + x150);
+    const double x152 = ry2*x108;
+    const double x155 = x57*(-x59*(x124 - x142) - x62*(x122 - 2.0*x149 + 2.0*x150) - x64*(2.0*ry0*x12*x9*x99 - x141 - 2.0*x152));
+    const double x156 = x155*x20;
+    const double x153 = ry0*x12*x9*x99 - x137 - x152;
+    const double x154 = x109 - x135;
+    const double x157 = M[0]*x151 + M[0]*x156 + x153*x51 + x154*x56 + x155*x67 + x155*x68;
+    const double x158 = x107*x146;
+    const double dQs0_5 = x9*(0.5*rz0*x14*x157 - x148*x24 - x151*x29 - x156*x29 - x158);
+    const double x189 = x1*x4;
+    const double x190 = dQs0_0*x189;
+    const double x191 = dQs0_1*x189;
+    const double x192 = dQs0_2*x189;
+    const double x193 = dQs0_3*x189;
+    const double x194 = dQs0_4*x189;
+    const double x195 = dQs0_5*x189;
+    const double x196 = x3*x4;
+    const double x197 = dQs0_0*x196;
+    const double x198 = dQs0_1*x196;
+    const double x199 = dQs0_2*x196;
+    const double x200 = dQs0_3*x196;
+    const double x201 = dQs0_4*x196;
+    const double x202 = dQs0_5*x196;
+    const double x31 = rz1*x28 - x25*x29;
+    const double Qs1 = x31*x9;
+    const double x159 = x23*x29;
+    const double x160 = x21*x29;
+    const double x161 = x31*x40;
+    const double dQs1_0 = -ry0*x161 + x9*(0.5*rz1*x14*x69 - x159*x50 - x160*x65);
+    const double dQs1_1 = -ry1*x161 + x9*(0.5*rz1*x14*x87 - x159*x80 - x160*x85);
+    const double dQs1_2 = -ry2*x161 + x9*(0.5*rz1*x14*x97 - x159*x93 - x160*x95);
+    const double dQs1_3 = x9*(0.5*rz1*x128*x14 - x105*x25 - x118*x159 - x126*x160 - x147);
+    const double dQs1_4 = x9*(0.5*rz1*x14*x145 - x11*x146 - x130*x25 - x136*x159 - x143*x160 - x98);
+    const double x162 = x131*x146;
+    const double dQs1_5 = x9*(0.5*rz1*x14*x157 - x148*x25 - x153*x159 - x155*x160 - x162);
+    const double x203 = dQs1_0*x189;
+    const double x204 = dQs1_1*x189;
+    const double x205 = dQs1_2*x189;
+    const double x206 = dQs1_3*x189;
+    const double x207 = dQs1_4*x189;
+    const double x208 = dQs1_5*x189;
+    const double x209 = dQs1_0*x196;
+    const double x210 = dQs1_1*x196;
+    const double x211 = dQs1_2*x196;
+    const double x212 = dQs1_3*x196;
+    const double x213 = dQs1_4*x196;
+    const double x214 = dQs1_5*x196;
+    const double x32 = rz2*x28 - x26*x29;
+    const double Qs2 = x32*x9;
+    const double x163 = x18*x29;
+    const double x164 = x32*x40;
+    const double dQs2_0 = -ry0*x164 + x9*(0.5*rz2*x14*x69 - x159*x55 - x163*x65);
+    const double dQs2_1 = -ry1*x164 + x9*(0.5*rz2*x14*x87 - x159*x82 - x163*x85);
+    const double dQs2_2 = -ry2*x164 + x9*(0.5*rz2*x14*x97 - x159*x94 - x163*x95);
+    const double dQs2_3 = x9*(0.5*rz2*x128*x14 - x105*x26 - x121*x159 - x126*x163 - x158);
+    const double dQs2_4 = x9*(0.5*rz2*x14*x145 - x130*x26 - x140*x159 - x143*x163 - x162);
+    const double dQs2_5 = x9*(0.5*rz2*x14*x157 - x12*x146 - x148*x26 - x154*x159 - x155*x163 - x98);
+    const double x215 = dQs2_0*x189;
+    const double x216 = dQs2_1*x189;
+    const double x217 = dQs2_2*x189;
+    const double x218 = dQs2_3*x189;
+    const double x219 = dQs2_4*x189;
+    const double x220 = dQs2_5*x189;
+    const double x221 = dQs2_0*x196;
+    const double x222 = dQs2_1*x196;
+    const double x223 = dQs2_2*x196;
+    const double x224 = dQs2_3*x196;
+    const double x225 = dQs2_4*x196;
+    const double x226 = dQs2_5*x196;
+    const double x33 = M[0]*ry0*x9 + M[1]*ry1*x9 + M[2]*ry2*x9;
+    const double x34 = -x27;
+    const double x35 = 0.5*x9;
+    const double x36 = x34*x35;
+    const double x37 = ry0*x36 + x24*x33;
+    const double Qs3 = x14*x37;
+    const double x165 = M[2]*ry2;
+    const double x166 = -M[0]*x52 + M[0]*x9 - M[1]*x42 - x165*x41;
+    const double x167 = -x69;
+    const double x168 = ry0*x35;
+    const double x169 = 0.5*x34;
+    const double dQs3_0 = x14*(x166*x24 + x167*x168 - x169*x52 + x33*x48 + x33*x66 + x36);
+    const double x170 = -M[0]*x42 - M[1]*x71 + M[1]*x9 - x165*x73;
+    const double x171 = -x87;
+    const double x172 = -x169*x42;
+    const double dQs3_1 = x14*(x168*x171 + x170*x24 + x172 + x33*x77 + x33*x86);
+    const double x173 = -M[0]*x45 - M[1]*x74 + M[2]*x9 - M[2]*x90;
+    const double x174 = -x97;
+    const double x175 = -x169*x45;
+    const double dQs3_2 = x14*(x168*x174 + x173*x24 + x175 + x33*x89 + x33*x96);
+    const double x176 = -x128;
+    const double x177 = x37*x99;
+    const double dQs3_3 = -rz0*x177 + x14*(x113*x33 + x127*x33 + x168*x176);
+    const double x178 = -x145;
+    const double dQs3_4 = -rz1*x177 + x14*(x134*x33 + x144*x33 + x168*x178);
+    const double x179 = -x157;
+    const double dQs3_5 = -rz2*x177 + x14*(x151*x33 + x156*x33 + x168*x179);
+    const double x227 = dQs3_0*x189;
+    const double x228 = dQs3_1*x189;
+    const double x229 = dQs3_2*x189;
+    const double x230 = dQs3_3*x189;
+    const double x231 = dQs3_4*x189;
+    const double x232 = dQs3_5*x189;
+    const double x233 = dQs3_0*x196;
+    const double x234 = dQs3_1*x196;
+    const double x235 = dQs3_2*x196;
+    const double x236 = dQs3_3*x196;
+    const double x237 = dQs3_4*x196;
+    const double x238 = dQs3_5*x196;
+    const double x38 = ry1*x36 + x25*x33;
+    const double Qs4 = x14*x38;
+    const double x180 = x23*x33;
+    const double x181 = ry1*x35;
+    const double x182 = x21*x33;
+    const double dQs4_0 = x14*(x166*x25 + x167*x181 + x172 + x180*x50 + x182*x65);
+    const double dQs4_1 = x14*(-x169*x71 + x170*x25 + x171*x181 + x180*x80 + x182*x85 + x36);
+    const double x183 = -x169*x74;
+    const double dQs4_2 = x14*(x173*x25 + x174*x181 + x180*x93 + x182*x95 + x183);
+    const double x184 = x38*x99;
+    const double dQs4_3 = -rz0*x184 + x14*(x118*x180 + x126*x182 + x176*x181);
+    const double dQs4_4 = -rz1*x184 + x14*(x136*x180 + x143*x182 + x178*x181);
+    const double dQs4_5 = -rz2*x184 + x14*(x153*x180 + x155*x182 + x179*x181);
+    const double x239 = dQs4_0*x189;
+    const double x240 = dQs4_1*x189;
+    const double x241 = dQs4_2*x189;
+    const double x242 = dQs4_3*x189;
+    const double x243 = dQs4_4*x189;
+    const double x244 = dQs4_5*x189;
+    const double x245 = dQs4_0*x196;
+    const double x246 = dQs4_1*x196;
+    const double x247 = dQs4_2*x196;
+    const double x248 = dQs4_3*x196;
+    const double x249 = dQs4_4*x196;
+    const double x250 = dQs4_5*x196;
+    const double x39 = ry2*x36 + x26*x33;
+    const double Qs5 = x14*x39;
+    const double x185 = ry2*x35;
+    const double x186 = x18*x33;
+    const double dQs5_0 = x14*(x166*x26 + x167*x185 + x175 + x180*x55 + x186*x65);
+    const double dQs5_1 = x14*(x170*x26 + x171*x185 + x180*x82 + x183 + x186*x85);
+    const double dQs5_2 = x14*(-x169*x90 + x173*x26 + x174*x185 + x180*x94 + x186*x95 + x36);
+    const double x187 = x39*x99;
+    const double dQs5_3 = -rz0*x187 + x14*(x121*x180 + x126*x186 + x176*x185);
+    const double dQs5_4 = -rz1*x187 + x14*(x140*x180 + x143*x186 + x178*x185);
+    const double dQs5_5 = -rz2*x187 + x14*(x154*x180 + x155*x186 + x179*x185);
+    const double x251 = dQs5_0*x189;
+    const double x252 = dQs5_1*x189;
+    const double x253 = dQs5_2*x189;
+    const double x254 = dQs5_3*x189;
+    const double x255 = dQs5_4*x189;
+    const double x256 = dQs5_5*x189;
+    const double x257 = dQs5_0*x196;
+    const double x258 = dQs5_1*x196;
+    const double x259 = dQs5_2*x196;
+    const double x260 = dQs5_3*x196;
+    const double x261 = dQs5_4*x196;
+    const double x262 = dQs5_5*x196;
+    const double x263 = (x1*x1);
+    const double x264 = x1*x3;
+    const double x265 = dQs0_0*x264;
+    const double x266 = dQs0_1*x264;
+    const double x267 = dQs0_2*x264;
+    const double x268 = dQs0_3*x264;
+    const double x269 = dQs0_4*x264;
+    const double x270 = dQs0_5*x264;
+    const double x271 = dQs1_0*x264;
+    const double x272 = dQs1_1*x264;
+    const double x273 = dQs1_2*x264;
+    const double x274 = dQs1_3*x264;
+    const double x275 = dQs1_4*x264;
+    const double x276 = dQs1_5*x264;
+    const double x277 = dQs2_0*x264;
+    const double x278 = dQs2_1*x264;
+    const double x279 = dQs2_2*x264;
+    const double x280 = dQs2_3*x264;
+    const double x281 = dQs2_4*x264;
+    const double x282 = dQs2_5*x264;
+    const double x283 = dQs3_0*x264;
+    const double x284 = dQs3_1*x264;
+    const double x285 = dQs3_2*x264;
+    const double x286 = dQs3_3*x264;
+    const double x287 = dQs3_4*x264;
+    const double x288 = dQs3_5*x264;
+    const double x289 = dQs4_0*x264;
+    const double x290 = dQs4_1*x264;
+    const double x291 = dQs4_2*x264;
+    const double x292 = dQs4_3*x264;
+    const double x293 = dQs4_4*x264;
+    const double x294 = dQs4_5*x264;
+    const double x295 = dQs5_0*x264;
+    const double x296 = dQs5_1*x264;
+    const double x297 = dQs5_2*x264;
+    const double x298 = dQs5_3*x264;
+    const double x299 = dQs5_4*x264;
+    const double x300 = dQs5_5*x264;
+    const double x301 = (x3*x3);
+    Q[3] = Qs0*x4;
+    dQ[165] = dQs0_0*x188;
+    dQ[166] = dQs0_1*x188;
+    dQ[167] = dQs0_2*x188;
+    dQ[168] = dQs0_3*x188;
+    dQ[169] = dQs0_4*x188;
+    dQ[170] = dQs0_5*x188;
+    dQ[183] = x190;
+    dQ[184] = x191;
+    dQ[185] = x192;
+    dQ[186] = x193;
+    dQ[187] = x194;
+    dQ[188] = x195;
+    dQ[201] = x197;
+    dQ[202] = x198;
+    dQ[203] = x199;
+    dQ[204] = x200;
+    dQ[205] = x201;
+    dQ[206] = x202;
+    Q[4] = Qs1*x4;
+    dQ[219] = dQs1_0*x188;
+    dQ[220] = dQs1_1*x188;
+    dQ[221] = dQs1_2*x188;
+    dQ[222] = dQs1_3*x188;
+    dQ[223] = dQs1_4*x188;
+    dQ[224] = dQs1_5*x188;
+    dQ[237] = x203;
+    dQ[238] = x204;
+    dQ[239] = x205;
+    dQ[240] = x206;
+    dQ[241] = x207;
+    dQ[242] = x208;
+    dQ[255] = x209;
+    dQ[256] = x210;
+    dQ[257] = x211;
+    dQ[258] = x212;
+    dQ[259] = x213;
+    dQ[260] = x214;
+    Q[5] = Qs2*x4;
+    dQ[273] = dQs2_0*x188;
+    dQ[274] = dQs2_1*x188;
+    dQ[275] = dQs2_2*x188;
+    dQ[276] = dQs2_3*x188;
+    dQ[277] = dQs2_4*x188;
+    dQ[278] = dQs2_5*x188;
+    dQ[291] = x215;
+    dQ[292] = x216;
+    dQ[293] = x217;
+    dQ[294] = x218;
+    dQ[295] = x219;
+    dQ[296] = x220;
+    dQ[309] = x221;
+    dQ[310] = x222;
+    dQ[311] = x223;
+    dQ[312] = x224;
+    dQ[313] = x225;
+    dQ[314] = x226;
+    Q[6] = Qs3*x4;
+    dQ[327] = dQs3_0*x188;
+    dQ[328] = dQs3_1*x188;
+    dQ[329] = dQs3_2*x188;
+    dQ[330] = dQs3_3*x188;
+    dQ[331] = dQs3_4*x188;
+    dQ[332] = dQs3_5*x188;
+    dQ[345] = x227;
+    dQ[346] = x228;
+    dQ[347] = x229;
+    dQ[348] = x230;
+    dQ[349] = x231;
+    dQ[350] = x232;
+    dQ[363] = x233;
+    dQ[364] = x234;
+    dQ[365] = x235;
+    dQ[366] = x236;
+    dQ[367] = x237;
+    dQ[368] = x238;
+    Q[7] = Qs4*x4;
+    dQ[381] = dQs4_0*x188;
+    dQ[382] = dQs4_1*x188;
+    dQ[383] = dQs4_2*x188;
+    dQ[384] = dQs4_3*x188;
+    dQ[385] = dQs4_4*x188;
+    dQ[386] = dQs4_5*x188;
+    dQ[399] = x239;
+    dQ[400] = x240;
+    dQ[401] = x241;
+    dQ[402] = x242;
+    dQ[403] = x243;
+    dQ[404] = x244;
+    dQ[417] = x245;
+    dQ[418] = x246;
+    dQ[419] = x247;
+    dQ[420] = x248;
+    dQ[421] = x249;
+    dQ[422] = x250;
+    Q[8] = Qs5*x4;
+    dQ[435] = dQs5_0*x188;
+    dQ[436] = dQs5_1*x188;
+    dQ[437] = dQs5_2*x188;
+    dQ[438] = dQs5_3*x188;
+    dQ[439] = dQs5_4*x188;
+    dQ[440] = dQs5_5*x188;
+    dQ[453] = x251;
+    dQ[454] = x252;
+    dQ[455] = x253;
+    dQ[456] = x254;
+    dQ[457] = x255;
+    dQ[458] = x256;
+    dQ[471] = x257;
+    dQ[472] = x258;
+    dQ[473] = x259;
+    dQ[474] = x260;
+    dQ[475] = x261;
+    dQ[476] = x262;
+    Q[21] = Qs0*x1;
+    dQ[1137] = x190;
+    dQ[1138] = x191;
+    dQ[1139] = x192;
+    dQ[1140] = x193;
+    dQ[1141] = x194;
+    dQ[1142] = x195;
+    dQ[1155] = dQs0_0*x263;
+    dQ[1156] = dQs0_1*x263;
+    dQ[1157] = dQs0_2*x263;
+    dQ[1158] = dQs0_3*x263;
+    dQ[1159] = dQs0_4*x263;
+    dQ[1160] = dQs0_5*x263;
+    dQ[1173] = x265;
+    dQ[1174] = x266;
+    dQ[1175] = x267;
+    dQ[1176] = x268;
+    dQ[1177] = x269;
+    dQ[1178] = x270;
+    Q[22] = Qs1*x1;
+    dQ[1191] = x203;
+    dQ[1192] = x204;
+    dQ[1193] = x205;
+    dQ[1194] = x206;
+    dQ[1195] = x207;
+    dQ[1196] = x208;
+    dQ[1209] = dQs1_0*x263;
+    dQ[1210] = dQs1_1*x263;
+    dQ[1211] = dQs1_2*x263;
+    dQ[1212] = dQs1_3*x263;
+    dQ[1213] = dQs1_4*x263;
+    dQ[1214] = dQs1_5*x263;
+    dQ[1227] = x271;
+    dQ[1228] = x272;
+    dQ[1229] = x273;
+    dQ[1230] = x274;
+    dQ[1231] = x275;
+    dQ[1232] = x276;
+    Q[23] = Qs2*x1;
+    dQ[1245] = x215;
+    dQ[1246] = x216;
+    dQ[1247] = x217;
+    dQ[1248] = x218;
+    dQ[1249] = x219;
+    dQ[1250] = x220;
+    dQ[1263] = dQs2_0*x263;
+    dQ[1264] = dQs2_1*x263;
+    dQ[1265] = dQs2_2*x263;
+    dQ[1266] = dQs2_3*x263;
+    dQ[1267] = dQs2_4*x263;
+    dQ[1268] = dQs2_5*x263;
+    dQ[1281] = x277;
+    dQ[1282] = x278;
+    dQ[1283] = x279;
+    dQ[1284] = x280;
+    dQ[1285] = x281;
+    dQ[1286] = x282;
+    Q[24] = Qs3*x1;
+    dQ[1299] = x227;
+    dQ[1300] = x228;
+    dQ[1301] = x229;
+    dQ[1302] = x230;
+    dQ[1303] = x231;
+    dQ[1304] = x232;
+    dQ[1317] = dQs3_0*x263;
+    dQ[1318] = dQs3_1*x263;
+    dQ[1319] = dQs3_2*x263;
+    dQ[1320] = dQs3_3*x263;
+    dQ[1321] = dQs3_4*x263;
+    dQ[1322] = dQs3_5*x263;
+    dQ[1335] = x283;
+    dQ[1336] = x284;
+    dQ[1337] = x285;
+    dQ[1338] = x286;
+    dQ[1339] = x287;
+    dQ[1340] = x288;
+    Q[25] = Qs4*x1;
+    dQ[1353] = x239;
+    dQ[1354] = x240;
+    dQ[1355] = x241;
+    dQ[1356] = x242;
+    dQ[1357] = x243;
+    dQ[1358] = x244;
+    dQ[1371] = dQs4_0*x263;
+    dQ[1372] = dQs4_1*x263;
+    dQ[1373] = dQs4_2*x263;
+    dQ[1374] = dQs4_3*x263;
+    dQ[1375] = dQs4_4*x263;
+    dQ[1376] = dQs4_5*x263;
+    dQ[1389] = x289;
+    dQ[1390] = x290;
+    dQ[1391] = x291;
+    dQ[1392] = x292;
+    dQ[1393] = x293;
+    dQ[1394] = x294;
+    Q[26] = Qs5*x1;
+    dQ[1407] = x251;
+    dQ[1408] = x252;
+    dQ[1409] = x253;
+    dQ[1410] = x254;
+    dQ[1411] = x255;
+    dQ[1412] = x256;
+    dQ[1425] = dQs5_0*x263;
+    dQ[1426] = dQs5_1*x263;
+    dQ[1427] = dQs5_2*x263;
+    dQ[1428] = dQs5_3*x263;
+    dQ[1429] = dQs5_4*x263;
+    dQ[1430] = dQs5_5*x263;
+    dQ[1443] = x295;
+    dQ[1444] = x296;
+    dQ[1445] = x297;
+    dQ[1446] = x298;
+    dQ[1447] = x299;
+    dQ[1448] = x300;
+    Q[39] = Qs0*x3;
+    dQ[2109] = x197;
+    dQ[2110] = x198;
+    dQ[2111] = x199;
+    dQ[2112] = x200;
+    dQ[2113] = x201;
+    dQ[2114] = x202;
+    dQ[2127] = x265;
+    dQ[2128] = x266;
+    dQ[2129] = x267;
+    dQ[2130] = x268;
+    dQ[2131] = x269;
+    dQ[2132] = x270;
+    dQ[2145] = dQs0_0*x301;
+    dQ[2146] = dQs0_1*x301;
+    dQ[2147] = dQs0_2*x301;
+    dQ[2148] = dQs0_3*x301;
+    dQ[2149] = dQs0_4*x301;
+    dQ[2150] = dQs0_5*x301;
+    Q[40] = Qs1*x3;
+    dQ[2163] = x209;
+    dQ[2164] = x210;
+    dQ[2165] = x211;
+    dQ[2166] = x212;
+    dQ[2167] = x213;
+    dQ[2168] = x214;
+    dQ[2181] = x271;
+    dQ[2182] = x272;
+    dQ[2183] = x273;
+    dQ[2184] = x274;
+    dQ[2185] = x275;
+    dQ[2186] = x276;
+    dQ[2199] = dQs1_0*x301;
+    dQ[2200] = dQs1_1*x301;
+    dQ[2201] = dQs1_2*x301;
+    dQ[2202] = dQs1_3*x301;
+    dQ[2203] = dQs1_4*x301;
+    dQ[2204] = dQs1_5*x301;
+    Q[41] = Qs2*x3;
+    dQ[2217] = x221;
+    dQ[2218] = x222;
+    dQ[2219] = x223;
+    dQ[2220] = x224;
+    dQ[2221] = x225;
+    dQ[2222] = x226;
+    dQ[2235] = x277;
+    dQ[2236] = x278;
+    dQ[2237] = x279;
+    dQ[2238] = x280;
+    dQ[2239] = x281;
+    dQ[2240] = x282;
+    dQ[2253] = dQs2_0*x301;
+    dQ[2254] = dQs2_1*x301;
+    dQ[2255] = dQs2_2*x301;
+    dQ[2256] = dQs2_3*x301;
+    dQ[2257] = dQs2_4*x301;
+    dQ[2258] = dQs2_5*x301;
+    Q[42] = Qs3*x3;
+    dQ[2271] = x233;
+    dQ[2272] = x234;
+    dQ[2273] = x235;
+    dQ[2274] = x236;
+    dQ[2275] = x237;
+    dQ[2276] = x238;
+    dQ[2289] = x283;
+    dQ[2290] = x284;
+    dQ[2291] = x285;
+    dQ[2292] = x286;
+    dQ[2293] = x287;
+    dQ[2294] = x288;
+    dQ[2307] = dQs3_0*x301;
+    dQ[2308] = dQs3_1*x301;
+    dQ[2309] = dQs3_2*x301;
+    dQ[2310] = dQs3_3*x301;
+    dQ[2311] = dQs3_4*x301;
+    dQ[2312] = dQs3_5*x301;
+    Q[43] = Qs4*x3;
+    dQ[2325] = x245;
+    dQ[2326] = x246;
+    dQ[2327] = x247;
+    dQ[2328] = x248;
+    dQ[2329] = x249;
+    dQ[2330] = x250;
+    dQ[2343] = x289;
+    dQ[2344] = x290;
+    dQ[2345] = x291;
+    dQ[2346] = x292;
+    dQ[2347] = x293;
+    dQ[2348] = x294;
+    dQ[2361] = dQs4_0*x301;
+    dQ[2362] = dQs4_1*x301;
+    dQ[2363] = dQs4_2*x301;
+    dQ[2364] = dQs4_3*x301;
+    dQ[2365] = dQs4_4*x301;
+    dQ[2366] = dQs4_5*x301;
+    Q[44] = Qs5*x3;
+    dQ[2379] = x257;
+    dQ[2380] = x258;
+    dQ[2381] = x259;
+    dQ[2382] = x260;
+    dQ[2383] = x261;
+    dQ[2384] = x262;
+    dQ[2397] = x295;
+    dQ[2398] = x296;
+    dQ[2399] = x297;
+    dQ[2400] = x298;
+    dQ[2401] = x299;
+    dQ[2402] = x300;
+    dQ[2415] = dQs5_0*x301;
+    dQ[2416] = dQs5_1*x301;
+    dQ[2417] = dQs5_2*x301;
+    dQ[2418] = dQs5_3*x301;
+    dQ[2419] = dQs5_4*x301;
+    dQ[2420] = dQs5_5*x301;
+}
+
+static void reference(const double *restrict geom, double *restrict q0)
+{
+    (void)geom;
+    q0[0] = 0;
+    q0[1] = 0;
+    q0[2] = 0;
+    q0[3] = 0;
+    q0[4] = 1.0;
+    q0[5] = 0;
+    q0[6] = 0;
+    q0[7] = 0;
+    q0[8] = 1.0;
+    q0[9] = 0;
+    q0[10] = 0;
+    q0[11] = 0;
+    q0[12] = 0;
+    q0[13] = 0;
+    q0[14] = 0;
+    q0[15] = 0;
+    q0[16] = 0;
+    q0[17] = 0;
+    q0[18] = 0.5*geom[0];
+    q0[19] = 0;
+    q0[20] = 0;
+    q0[21] = 0;
+    q0[22] = 1.0;
+    q0[23] = 0;
+    q0[24] = 0;
+    q0[25] = 0;
+    q0[26] = 1.0;
+    q0[27] = 0;
+    q0[28] = 0;
+    q0[29] = 0;
+    q0[30] = 0;
+    q0[31] = 0;
+    q0[32] = 0;
+    q0[33] = 0;
+    q0[34] = 0;
+    q0[35] = 0;
+    q0[36] = geom[0];
+    q0[37] = 0;
+    q0[38] = 0;
+    q0[39] = 0;
+    q0[40] = 1.0;
+    q0[41] = 0;
+    q0[42] = 0;
+    q0[43] = 0;
+    q0[44] = 1.0;
+    q0[45] = 0;
+    q0[46] = 0;
+    q0[47] = 0;
+    q0[48] = 0;
+    q0[49] = 0;
+    q0[50] = 0;
+    q0[51] = 0;
+    q0[52] = 0;
+    q0[53] = 0;
+}
+
+void ancf3363_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
+{
+    (void)q0;
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
     const double x2 = 0.021433470507544586*x1;
@@ -1385,8 +2080,9 @@ void ancf3363_full_tabulate(const double *restrict geom, double *restrict tab)
     tab[755] = x21;
 }
 
-void ancf3363_reduced_tabulate(const double *restrict geom, double *restrict tab)
+void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
 {
+    (void)q0;
     const double x0 = geom[1]*geom[2];
     const double x1 = x0*geom[0];
     const double x2 = 0.06944444444444445*x1;
@@ -1812,8 +2508,7 @@ void ancf3363_reduced_tabulate(const double *restrict geom, double *restrict tab
     tab[335] = x21;
 }
 
-static BK_NOINLINE void ancf3363_contract_row0(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[1]*t[1]);
     const double x1 = t[1]*t[2];
@@ -2054,8 +2749,7 @@ static BK_NOINLINE void ancf3363_contract_row0(const double *restrict A, const d
     K[161] += A[39]*x58 + A[41]*x55;
 }
 
-static BK_NOINLINE void ancf3363_contract_row1(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[2]*t[2]);
     const double x1 = (t[3]*t[3]);
@@ -2309,8 +3003,7 @@ static BK_NOINLINE void ancf3363_contract_row1(const double *restrict A, const d
     K[323] += A[39]*x80 + A[40]*x81 + A[41]*x76 + A[43]*x77;
 }
 
-static BK_NOINLINE void ancf3363_contract_row2(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[4]*t[4]);
     const double x1 = (t[3]*t[3]);
@@ -2550,8 +3243,7 @@ static BK_NOINLINE void ancf3363_contract_row2(const double *restrict A, const d
     K[485] += A[39]*x76 + A[41]*x72 + A[41]*x77 + A[44]*x71;
 }
 
-static BK_NOINLINE void ancf3363_contract_row3(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[5]*t[5]);
     const double x1 = (t[6]*t[6]);
@@ -2775,8 +3467,7 @@ static BK_NOINLINE void ancf3363_contract_row3(const double *restrict A, const d
     K[647] += A[39]*x70 + A[40]*x71 + A[41]*x66 + A[43]*x67;
 }
 
-static BK_NOINLINE void ancf3363_contract_row4(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[7]*t[7]);
     const double x1 = (t[6]*t[6]);
@@ -3008,8 +3699,7 @@ static BK_NOINLINE void ancf3363_contract_row4(const double *restrict A, const d
     K[809] += A[39]*x87 + A[40]*x88 + A[41]*x82 + A[41]*x89 + A[43]*x84 + A[44]*x80;
 }
 
-static BK_NOINLINE void ancf3363_contract_row5(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[9]*t[9]);
     const double x1 = (t[8]*t[8]);
@@ -3203,8 +3893,7 @@ static BK_NOINLINE void ancf3363_contract_row5(const double *restrict A, const d
     K[971] += A[39]*x60 + A[41]*x56 + A[41]*x61 + A[44]*x55;
 }
 
-static BK_NOINLINE void ancf3363_contract_row6(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[10]*t[10]);
     const double x1 = t[10]*t[11];
@@ -3364,8 +4053,7 @@ static BK_NOINLINE void ancf3363_contract_row6(const double *restrict A, const d
     K[1133] += A[39]*x37 + A[41]*x34;
 }
 
-static BK_NOINLINE void ancf3363_contract_row7(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[11]*t[11]);
     const double x1 = (t[12]*t[12]);
@@ -3529,8 +4217,7 @@ static BK_NOINLINE void ancf3363_contract_row7(const double *restrict A, const d
     K[1295] += A[39]*x50 + A[40]*x51 + A[41]*x45 + A[43]*x47;
 }
 
-static BK_NOINLINE void ancf3363_contract_row8(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[13]*t[13]);
     const double x1 = (t[12]*t[12]);
@@ -3680,8 +4367,7 @@ static BK_NOINLINE void ancf3363_contract_row8(const double *restrict A, const d
     K[1457] += A[39]*x46 + A[41]*x42 + A[41]*x47 + A[44]*x41;
 }
 
-static BK_NOINLINE void ancf3363_contract_row9(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row9(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[14]*t[14]);
     const double x1 = (t[15]*t[15]);
@@ -3815,8 +4501,7 @@ static BK_NOINLINE void ancf3363_contract_row9(const double *restrict A, const d
     K[1619] += A[39]*x40 + A[40]*x41 + A[41]*x35 + A[43]*x37;
 }
 
-static BK_NOINLINE void ancf3363_contract_row10(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row10(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[16]*t[16]);
     const double x1 = (t[15]*t[15]);
@@ -3949,8 +4634,7 @@ static BK_NOINLINE void ancf3363_contract_row10(const double *restrict A, const 
     K[1781] += A[39]*x48 + A[40]*x49 + A[41]*x42 + A[41]*x50 + A[43]*x45 + A[44]*x41;
 }
 
-static BK_NOINLINE void ancf3363_contract_row11(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row11(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[18]*t[18]);
     const double x1 = (t[17]*t[17]);
@@ -4054,8 +4738,7 @@ static BK_NOINLINE void ancf3363_contract_row11(const double *restrict A, const 
     K[1943] += A[39]*x30 + A[41]*x26 + A[41]*x31 + A[44]*x25;
 }
 
-static BK_NOINLINE void ancf3363_contract_row12(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row12(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[19]*t[19]);
     const double x1 = t[19]*t[20];
@@ -4134,8 +4817,7 @@ static BK_NOINLINE void ancf3363_contract_row12(const double *restrict A, const 
     K[2105] += A[39]*x16 + A[41]*x13;
 }
 
-static BK_NOINLINE void ancf3363_contract_row13(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row13(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[20]*t[20]);
     const double x1 = (t[21]*t[21]);
@@ -4209,8 +4891,7 @@ static BK_NOINLINE void ancf3363_contract_row13(const double *restrict A, const 
     K[2267] += A[39]*x20 + A[40]*x21 + A[41]*x15 + A[43]*x17;
 }
 
-static BK_NOINLINE void ancf3363_contract_row14(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row14(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[22]*t[22]);
     const double x1 = (t[21]*t[21]);
@@ -4270,8 +4951,7 @@ static BK_NOINLINE void ancf3363_contract_row14(const double *restrict A, const 
     K[2429] += A[39]*x16 + A[41]*x12 + A[41]*x17 + A[44]*x11;
 }
 
-static BK_NOINLINE void ancf3363_contract_row15(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row15(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[23]*t[23]);
     const double x1 = (t[24]*t[24]);
@@ -4315,8 +4995,7 @@ static BK_NOINLINE void ancf3363_contract_row15(const double *restrict A, const 
     K[2591] += A[39]*x10 + A[40]*x11 + A[41]*x5 + A[43]*x7;
 }
 
-static BK_NOINLINE void ancf3363_contract_row16(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row16(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[25]*t[25]);
     const double x1 = (t[24]*t[24]);
@@ -4350,8 +5029,7 @@ static BK_NOINLINE void ancf3363_contract_row16(const double *restrict A, const 
     K[2753] += A[39]*x9 + A[40]*x10 + A[41]*x11 + A[41]*x5 + A[43]*x2 + A[44]*x3;
 }
 
-static BK_NOINLINE void ancf3363_contract_row17(const double *restrict A, const double *restrict t,
-                                          double *restrict K)
+static BK_NOINLINE void ancf3363_contract_row17(const double *restrict A, const double *restrict t, double *restrict K)
 {
     const double x0 = (t[27]*t[27]);
     const double x1 = (t[26]*t[26]);
@@ -4388,7 +5066,7 @@ void ancf3363_tangent_contract(const double *restrict A, const double *restrict 
 }
 
 const bk_element bk_element_ancf3363 = {
-    "ancf3363", "ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF", 3, 18, 54,
-    node_xi, shape_node, shape_vector,
-    ancf3363_shape, ancf3363_mass, ancf3363_volume
+    "ancf3363", "ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF", 3, 54, node_xi,
+    18, field_name, field_dof, field_dim, reference,
+    18, shape_dof, shape, mass, volume, frame, moment
 };
