@@ -58,6 +58,16 @@ class ContinuumElement:
     nodes: tuple
     rules: tuple = ()               # ((integration name, (RulePart, ...)), ...)
     default_rule: str = "full"
+    kind: str = "continuum"
+    material_kind: str = "continuum"
+    ninternal: int = 0
+
+    @property
+    def nnode(self):
+        return len(self.nodes)
+
+    def fields(self):
+        return [(v, 3 * a, 3) for a, (_, v) in enumerate(self.shape_labels())]
 
     def rule(self, name):
         for n, parts in self.rules:

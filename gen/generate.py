@@ -35,10 +35,31 @@ def plan(elements=None, materials=None):
     here = Path(__file__).resolve().parent
     units = [("header", "rod_math", [here / "rodmath.py", here / "program.py"])]
     for ename, (elem, epath) in elements.items():
-        units.append(("element", ename, [epath]))
+        fam = family_paths(elem)
+        units.append(("element", ename, [epath] + fam))
         for mname, (mat, mpath) in materials.items():
-            units.append(("pair", f"{ename}_{mname}", [epath, mpath]))
+            if compatible(elem, mat):
+                units.append(("pair", f"{ename}_{mname}", [epath, mpath] + fam))
     return units
+
+
+def compatible(elem, mat):
+    return getattr(mat, "KIND", "continuum") == elem.material_kind
+
+
+def family_paths(elem):
+    if elem.kind == "continuum":
+        return []
+    from gen.emit_rod import family_paths as fp
+    return fp(elem)
+
+
+def _emitter(elem):
+    if elem.kind == "continuum":
+        import gen.emit as m
+    else:
+        import gen.emit_rod as m
+    return m
 
 
 def produce(unit):
@@ -51,13 +72,13 @@ def produce(unit):
         h, c = rod_math_header(BANNER, input_hash(inputs)), None
     elif kind == "element":
         elem, epath = all_elements()[name]
-        h, c = element_source(elem, epath)[:2]
+        h, c = _emitter(elem).element_source(elem, epath)[:2]
     else:
         elements = all_elements()
-        ename = next(e for e in elements if name.startswith(e + "_"))
+        ename = max((e for e in elements if name.startswith(e + "_")), key=len)
         elem, epath = elements[ename]
         mat, mpath = all_materials()[name[len(ename) + 1:]]
-        h, c = pair_source(elem, epath, mat, mpath)[:2]
+        h, c = _emitter(elem).pair_source(elem, epath, mat, mpath)[:2]
     return h, c, time.time() - t0
 
 
@@ -67,28 +88,39 @@ def index_data(elements=None, materials=None):
     materials = materials or all_materials()
     out = {"elements": {}, "materials": {}, "pairs": []}
     for ename, (elem, _) in elements.items():
-        rules = {}
-        for r in elem.rule_names:
-            _, parts, ntab = rule_parts(elem, r)
-            rules[r] = {"ntab": ntab, "points": [len(p.rule) for p in parts]}
+        if elem.kind == "continuum":
+            rules = {}
+            for r in elem.rule_names:
+                _, parts, ntab = rule_parts(elem, r)
+                rules[r] = {"ntab": ntab, "points": [len(p.rule) for p in parts]}
+            nodes = [{"xi": str(n.xi), "fields": [[v, 3] for v in n.vectors]} for n in elem.nodes]
+            section, moments, curved = "rectangle", "anywhere", False
+        else:
+            rules = {"full": {}}
+            f = elem.fields()
+            per_node = (len(f) - elem.ninternal) // elem.nnode
+            xis = ("0", "1/2", "1") if elem.kind == "rod" else ("0", "1")
+            nodes = [{"xi": xis[n], "fields": [[name, dim] for name, _, dim in f[per_node * n: per_node * (n + 1)]]}
+                     for n in range(elem.nnode)]
+            section = "any"
+            moments = "nodes" if elem.kind == "rod" else "no_torsion"
+            curved = elem.kind == "rod"
         out["elements"][ename] = {
-            "kind": "continuum",
-            "title": elem.title,
-            "ndof": elem.ndof,
-            "nodes": [{"xi": str(n.xi), "fields": [[v, 3] for v in n.vectors]} for n in elem.nodes],
-            "internal": 0,
-            "section": "rectangle",
-            "moments": True,
-            "integrations": rules,
-            "default_integration": elem.default_rule,
+            "kind": elem.kind, "material_kind": elem.material_kind, "title": elem.title,
+            "ndof": elem.ndof, "nodes": nodes, "internal": elem.ninternal, "integrations": rules,
+            "default_integration": elem.default_rule, "section": section, "moments": moments,
+            "curved": curved,
         }
-        for mname in materials:
+        for mname, (mat, _) in materials.items():
+            if not compatible(elem, mat):
+                continue
             for r in elem.rule_names:
                 out["pairs"].append({"element": ename, "material": mname, "integration": r,
                                      "symbol": f"bk_pair_{ename}_{mname}_{r}",
                                      "files": [f"{ename}.c", f"{ename}_{mname}.c"]})
     for mname, (mat, _) in materials.items():
-        out["materials"][mname] = {"title": mat.TITLE, "params": list(mat.PARAMS)}
+        out["materials"][mname] = {"title": mat.TITLE, "params": list(mat.PARAMS),
+                                   "kind": getattr(mat, "KIND", "continuum")}
     return out
 
 
