@@ -9,7 +9,7 @@ from gen.emit import BANNER, CORE_FILES, _block, _fields_c, _function, _prologue
 from gen.loads import axis_moment, quaternion_moment
 from gen.program import Ops, Program, count_lowered, lower
 
-FAMILY_FILES = {"rod": ("rod.py", "chain.py"), "cable": ("cable.py",)}
+FAMILY_FILES = {"rod": ("rod.py", "chain.py", "emit_rod.py"), "cable": ("cable.py", "emit_rod.py")}
 GEN_DIR = Path(__file__).resolve().parent
 
 
@@ -120,7 +120,7 @@ def _cable_parts(elem):
         ref.output(f"q0[{i}]", v, op="=")
     tab = lower(cable.tabulate_program(), ())
     return (lower(shp, ()), mass_low, vol_low, lower(fr, ()), [lower(mo, ())], lower(ref, ()), tab,
-            [0, 6], cable.tab_layout())
+            [0, 3, 6, 9], cable.tab_layout())
 
 
 def element_source(elem, elem_path):

@@ -258,7 +258,8 @@ def read_toml(path):
 
 
 def material_params(ctx, mname, mt, index):
-    """Kernel parameter values of a [material.NAME] table."""
+    """(law, rho, params) of a [material.NAME] table; params is a function of the
+    section for resultant laws given by E and nu."""
     from gen.materials import all_materials
     where = f"material.{mname}"
     laws = sorted(index["materials"])
@@ -275,14 +276,24 @@ def material_params(ctx, mname, mt, index):
             test, expect = KEY_RANGES[k]
             if not test(float(mt[k])):
                 ctx.fail(f"{where}.{k}", f"expected {expect}, found {mt[k]!r}")
-    options = [" + ".join(keys) for keys, _ in mod.INPUTS]
-    for keys, fn in mod.INPUTS:
+    kind = getattr(mod, "KIND", "continuum")
+    inputs = list(mod.INPUTS)
+    if kind == "resultant":
+        # E, nu with the beam's section: stiffnesses from gen/materials/resultant.py
+        inputs.append((("E", "nu"), None))
+    options = [" + ".join(keys) for keys, _ in inputs]
+    for keys, fn in inputs:
         if sorted(keys) == given:
+            if fn is None:
+                E, nu = float(mt["E"]), float(mt["nu"])
+                return law, rho, (lambda sec, E=E, nu=nu: [float(x) for x in mod.section_stiffness(E, nu, *sec)])
             vals = fn(*[float(mt[k]) for k in keys])
             if not all(math.isfinite(v) for v in vals):
                 ctx.fail(where, f"parameters {', '.join(keys)} give non-finite {law} constants")
-            return law, rho, [float(v) for v in vals]
-    known = {k for keys, _ in mod.INPUTS for k in keys}
+            if kind == "resultant" and not all(v > 0 for v in vals):
+                ctx.fail(where, f"stiffnesses {', '.join(keys)} must be positive")
+            return law, rho, (lambda sec, vals=vals: [float(v) for v in vals])
+    known = {k for keys, _ in inputs for k in keys}
     for k in given:
         if k not in known:
             ctx.fail(f"{where}.{k}", f"unknown key for law {law!r}; expected law, rho and one of: {'; '.join(options)}")
@@ -310,6 +321,13 @@ def parse_point(ctx, spec, key, beams):
     if not math.isfinite(s) or s < 0 or s > beam["length"] * (1 + 1e-12):
         ctx.fail(key, f"arc length {where} outside beam {bname!r} (0 to {beam['length']:.6g} m)")
     return beam, min(s, beam["length"])
+
+
+def locate_node(beam, pos):
+    """(element, xi) of the node at pos (in element lengths from the beam start)."""
+    n = beam["nelem"]
+    k = min(int(pos + 1e-9), n - 1)
+    return beam["first_elem"] + k, min(max(pos - k, 0.0), 1.0)
 
 
 def locate(beam, s):
@@ -383,7 +401,7 @@ def build(path, sets=(), name=None):
         if bname is not None:
             where = f"beam.{bname}"
         check_keys(ctx, bt, {"name", "element", "material", "section", "start", "end", "up",
-                             "elements", "integration"}, where)
+                             "elements", "integration", "arc_center", "arc_axis", "arc_angle"}, where)
         bname = get_name(ctx, bt, "name", where)
         if bname in beams:
             ctx.fail(f"{where}.name", f"duplicate beam name {bname!r}")
@@ -398,34 +416,43 @@ def build(path, sets=(), name=None):
         integ = get_str(ctx, bt, "integration", where, default=einfo["default_integration"],
                         choices=sorted(einfo["integrations"]))
         law = materials[mname][0]
+        mkind = index["materials"][law]["kind"]
+        if mkind != einfo["material_kind"]:
+            need = ("law = \"resultant\" (E, nu or the six stiffnesses)" if einfo["material_kind"] == "resultant"
+                    else "a continuum law (" + ", ".join(k for k, v in sorted(index["materials"].items())
+                                                         if v["kind"] == "continuum") + ")")
+            ctx.fail(f"{where}.material", f"element {ename} needs {need}; material {mname!r} has law {law!r}")
         pair = f"{ename}_{law}_{integ}"
         if not any(p["element"] == ename and p["material"] == law and p["integration"] == integ
                    for p in index["pairs"]):
             ctx.fail(f"{where}.element", f"no generated kernel for element {ename!r} x law {law!r} "
                      f"x integration {integ!r}")
         sec = sections[secname]
-        if einfo["kind"] == "continuum" and sec[0] != "rectangle":
+        if einfo["section"] == "rectangle" and sec[0] != "rectangle":
             ctx.fail(f"{where}.section", f"element {ename} needs a rectangle section, found {sec[0]}")
+        params = materials[mname][2](sec)
+        if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
+            ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
+                     f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
         start = get_vec3(ctx, bt, "start", where)
-        end = get_vec3(ctx, bt, "end", where)
-        up = get_vec3(ctx, bt, "up", where, default=[0.0, 0.0, 1.0], nonzero=True)
         nel = get_int(ctx, bt, "elements", where, lo=1, hi=1000000)
-        axis = _sub(end, start)
-        length = _norm(axis)
-        if not length > 0:
-            ctx.fail(f"{where}.end", "expected an end point different from start (beam length must be positive)")
-        t = _scale(axis, 1 / length)
-        upn = _scale(up, 1 / _norm(up))
-        d2 = _sub(upn, _scale(t, _dot(upn, t)))
-        if _norm(d2) < 1e-6:
-            ctx.fail(f"{where}.up", "expected a direction not parallel to the beam axis")
-        d2 = _scale(d2, 1 / _norm(d2))
-        d1 = _cross(d2, t)
+        arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
+        if arc_keys:
+            if "end" in bt:
+                ctx.fail(f"{where}.end", "give either end (straight beam) or arc_center, arc_axis, arc_angle")
+            if not einfo["curved"]:
+                ctx.fail(f"{where}.{arc_keys[0]}", f"element {ename} supports straight beams only; curved "
+                         f"beams need gef, euler_bernoulli or kirchhoff")
+            geo = arc_geometry(ctx, bt, where, start)
+        else:
+            end = get_vec3(ctx, bt, "end", where)
+            geo = line_geometry(ctx, bt, where, start, end)
+        length = geo.length
 
         if pair not in pairs:
             pairs.append(pair)
         pidx = pairs.index(pair)
-        mkey = (tuple(materials[mname][2]), materials[mname][1])
+        mkey = (tuple(params), materials[mname][1])
         if mkey not in mats_used:
             mats_used.append(mkey)
         midx = mats_used.index(mkey)
@@ -444,8 +471,7 @@ def build(path, sets=(), name=None):
                 if xi == 0.0 and prev_end is not None:
                     gid = prev_end
                 else:
-                    s = (k + xi) * l
-                    X = [start[i] + s * t[i] for i in range(3)]
+                    X, t, d1, d2 = geo.at((k + xi) * l)
                     gid = len(nodes)
                     nodes.append((X, t, d1, d2, fields))
                     dof_of_node.append(ndof)
@@ -465,14 +491,14 @@ def build(path, sets=(), name=None):
             q0.extend([0.0] * nint)
             ndof += nint
             prev_end = end_node
-            gkey = (pidx, l, sec, "straight")
+            gkey = (pidx, l, sec, geo.shape_key)     # congruent elements share a table
             if gkey not in geom_index:
                 geom_index[gkey] = len(geoms)
                 geoms.append((pidx, len(elements), section_geometry(sec, l)))
             elements.append((pidx, geom_index[gkey], midx, edofs))
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
-                        "first_elem": first_elem, "t": t, "d1": d1, "d2": d2, "start": start,
-                        "elem_len": l, "node_at": node_ids_of_beam, "kind": einfo["kind"]}
+                        "first_elem": first_elem, "geo": geo, "elem_len": l, "node_at": node_ids_of_beam,
+                        "kind": einfo["kind"], "moments": einfo["moments"]}
 
     # Constraints
     fixed = set()
@@ -495,7 +521,7 @@ def build(path, sets=(), name=None):
         if mode == "rigid":
             fixed.update(range(base, base + nfd))
         else:
-            t, d1, d2 = beam["t"], beam["d1"], beam["d2"]
+            _, t, d1, d2 = beam["geo"].at(s)
             normals = {"r_x": (d1, d2), "r_y": (t, d2), "r_z": (t, d1)}
             vb = base
             for vec, dim in fields:
@@ -541,6 +567,19 @@ def build(path, sets=(), name=None):
                 dist = get_str(ctx, lt, "distribution", where, default="point", choices=("point", "section"))
                 forces.append((e, xi, 0.0, 0.0, 1 if dist == "section" else 0, val))
             else:
+                if beam["moments"] == "nodes":
+                    pos = s / beam["elem_len"]
+                    nodes_here = [x for x in beam["node_at"] if abs(x - pos) < 1e-9]
+                    if not nodes_here:
+                        ctx.fail(f"{where}.at", f"element {beam['element']} takes moments at nodes only "
+                                 f"(every {beam['elem_len'] / 2:.6g} m along {beam['name']!r}), found {s:.6g}")
+                    e, xi = locate_node(beam, nodes_here[0])
+                elif beam["moments"] == "no_torsion":
+                    _, t, _, _ = beam["geo"].at(s)
+                    mt = abs(_dot(val, t))
+                    if mt > 1e-9 * max(_norm(val), 1e-300):
+                        ctx.fail(f"{where}.value", f"element {beam['element']} cannot carry a torque about its "
+                                 f"axis (moment component {mt:.6g} N m along the beam at {lt['at']!r})")
                 moments.append((e, xi, val))
         else:
             check_keys(ctx, lt, {"type", "value"}, where)
@@ -588,6 +627,81 @@ def build(path, sets=(), name=None):
         "gravity": gravity,
         "sensors": sensors, "static": stat, "beams": beams,
     }
+
+
+class LineGeometry:
+    """Straight beam: point and section frame (t, d1, d2) at arc length s."""
+
+    def __init__(self, start, t, d1, d2, length):
+        self.start, self.t, self.d1, self.d2, self.length = start, t, d1, d2, length
+        self.shape_key = ("straight",)
+
+    def at(self, s):
+        return [self.start[i] + s * self.t[i] for i in range(3)], self.t, self.d1, self.d2
+
+
+class ArcGeometry:
+    """Circular arc about `axis` through `center`, from `start`, right-handed."""
+
+    def __init__(self, center, axis, start, d1, d2, radius, angle):
+        self.center, self.axis, self.start0 = center, axis, start
+        self.d10, self.d20, self.radius = d1, d2, radius
+        self.length = radius * angle
+        self.shape_key = ("arc", round(radius, 12))
+
+    def at(self, s):
+        phi = s / self.radius
+        rot = lambda v: _rotate(v, self.axis, phi)
+        X = [self.center[i] + x for i, x in enumerate(rot(_sub(self.start0, self.center)))]
+        d1, d2 = rot(self.d10), rot(self.d20)
+        return X, _cross(d1, d2), d1, d2
+
+
+def _rotate(v, k, phi):
+    """Rodrigues rotation of v about the unit axis k by phi."""
+    c, s_ = math.cos(phi), math.sin(phi)
+    kv = _cross(k, v)
+    kd = _dot(k, v)
+    return [v[i] * c + kv[i] * s_ + k[i] * kd * (1 - c) for i in range(3)]
+
+
+def line_geometry(ctx, bt, where, start, end):
+    axis = _sub(end, start)
+    length = _norm(axis)
+    if not length > 0:
+        ctx.fail(f"{where}.end", "expected an end point different from start (beam length must be positive)")
+    t = _scale(axis, 1 / length)
+    d1, d2 = section_axes(ctx, bt, where, t, [0.0, 0.0, 1.0])
+    return LineGeometry(start, t, d1, d2, length)
+
+
+def section_axes(ctx, bt, where, t, default_up):
+    up = get_vec3(ctx, bt, "up", where, default=default_up, nonzero=True)
+    upn = _scale(up, 1 / _norm(up))
+    d2 = _sub(upn, _scale(t, _dot(upn, t)))
+    if _norm(d2) < 1e-6:
+        ctx.fail(f"{where}.up", "expected a direction not parallel to the beam axis")
+    d2 = _scale(d2, 1 / _norm(d2))
+    return _cross(d2, t), d2
+
+
+def arc_geometry(ctx, bt, where, start):
+    for k in ("arc_center", "arc_axis", "arc_angle"):
+        if k not in bt:
+            ctx.fail(f"{where}.{k}", "missing; a curved beam needs arc_center, arc_axis and arc_angle")
+    center = get_vec3(ctx, bt, "arc_center", where)
+    axis = get_vec3(ctx, bt, "arc_axis", where, nonzero=True)
+    axis = _scale(axis, 1 / _norm(axis))
+    angle = get_number(ctx, bt, "arc_angle", where)
+    if not 0 < angle <= 360:
+        ctx.fail(f"{where}.arc_angle", f"expected an angle in (0, 360] degrees, found {angle!r}")
+    rvec = _sub(start, center)
+    radius = _norm(rvec)
+    if radius == 0 or abs(_dot(rvec, axis)) > 1e-9 * radius:
+        ctx.fail(f"{where}.arc_center", "expected the start point off the centre, in the plane normal to arc_axis")
+    t = _cross(axis, _scale(rvec, 1 / radius))
+    d1, d2 = section_axes(ctx, bt, where, t, axis)
+    return ArcGeometry(center, axis, start, d1, d2, radius, math.radians(angle))
 
 
 def eval_fraction(s):

@@ -4,7 +4,7 @@
 #include "rod_math.h"
 
 static const double node_xi[2] = {0.0, 1.0};
-static const int shape_dof[2] = {0, 6};
+static const int shape_dof[4] = {0, 3, 6, 9};
 static const char *const field_name[4] = {"r", "r_x", "r", "r_x"};
 static const int field_dof[4] = {0, 3, 6, 9};
 static const int field_dim[4] = {3, 3, 3, 3};
@@ -444,5 +444,5 @@ void ancf_cable_full_tabulate(const double *restrict geom, const double *restric
 const bk_element bk_element_ancf_cable = {
     "ancf_cable", "ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF", 2, 12, node_xi,
     4, field_name, field_dof, field_dim, reference,
-    2, shape_dof, shape, mass, volume, frame, moment
+    4, shape_dof, shape, mass, volume, frame, moment
 };
