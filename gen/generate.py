@@ -96,7 +96,8 @@ def index_data(elements=None, materials=None):
             nodes = [{"xi": str(n.xi), "fields": [[v, 3] for v in n.vectors]} for n in elem.nodes]
             section, moments, curved = "rectangle", "anywhere", False
         else:
-            rules = {"full": {}}
+            from gen import cable, rod
+            rules = {"full": {"ntab": (rod if elem.kind == "rod" else cable).tab_layout()}}
             f = elem.fields()
             per_node = (len(f) - elem.ninternal) // elem.nnode
             xis = ("0", "1/2", "1") if elem.kind == "rod" else ("0", "1")

@@ -18,7 +18,7 @@ ANALYSES = ("static",)
 PLANNED_ANALYSES = ("dynamic", "modal")
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
-                   "rtol": 1e-8, "utol": 1e-10}
+                   "rtol": 1e-8, "utol": 1e-10, "cycles": 0}
 
 # Ranges of material keys, whatever the law: (test, expectation text).
 KEY_RANGES = {
@@ -595,6 +595,7 @@ def build(path, sets=(), name=None):
         "load_steps": get_int(ctx, st, "load_steps", "static", default=STATIC_DEFAULTS["load_steps"], lo=1, hi=10**7),
         "max_iterations": get_int(ctx, st, "max_iterations", "static", default=STATIC_DEFAULTS["max_iterations"], lo=1, hi=10000),
         "max_cutbacks": get_int(ctx, st, "max_cutbacks", "static", default=STATIC_DEFAULTS["max_cutbacks"], lo=0, hi=60),
+        "cycles": get_int(ctx, st, "cycles", "static", default=0, lo=0, hi=1000),
         "rtol": get_number(ctx, st, "rtol", "static", default=STATIC_DEFAULTS["rtol"], positive=True),
         "utol": get_number(ctx, st, "utol", "static", default=STATIC_DEFAULTS["utol"], positive=True),
     }
@@ -767,7 +768,8 @@ def write_model(model, path):
     out = ["beamkit-model 1", f"name {model['name']}", f"analysis {model['analysis']}",
            f"length_scale {_f(model['length_scale'])}"]
     s = model["static"]
-    out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {_f(s['rtol'])} {_f(s['utol'])}")
+    out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
+               f"{_f(s['rtol'])} {_f(s['utol'])}")
     out.append(f"ndof {model['ndof']}")
     out.append("q0")
     q0 = model["q0"]

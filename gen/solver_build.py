@@ -29,7 +29,7 @@ VARIANTS = {
 # Generated kernels are long straight-line functions: debug info for them only
 # costs compile time, so the sanitizer build compiles them without -g.
 KERNEL_FLAGS = {
-    "release": ["-O2", "-march=native"],
+    "release": ["-O2", "-march=native", "-fPIC"],
     "sanitize": ["-O1", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all"],
 }

@@ -143,6 +143,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.load_steps = inum(r, "static.load_steps", 1, MAXN);
     m->stat.max_iter = inum(r, "static.max_iterations", 1, 10000);
     m->stat.max_cutbacks = inum(r, "static.max_cutbacks", 0, 60);
+    m->stat.cycles = inum(r, "static.cycles", 0, 1000);
     m->stat.rtol = num(r, "static.rtol");
     m->stat.utol = num(r, "static.utol");
 

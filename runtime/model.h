@@ -56,6 +56,7 @@ typedef struct bk_static_opts {
     int load_steps;
     int max_iter;
     int max_cutbacks;
+    int cycles;        /* load-unload cycles after the first loading */
     double rtol;       /* residual tolerance relative to the load        */
     double utol;       /* increment tolerance relative to the displacement */
 } bk_static_opts;

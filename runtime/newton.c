@@ -149,45 +149,51 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     }
 
     bk_output_step(out, 0, 0.0, q);
+    /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
+     * show path independence); each leg in load_steps increments. */
     double lam = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
-    int cuts_in_row = 0;
-    while (lam < 1.0) {
-        double target = lam + dlam;
-        if (target > 1.0 - 1e-12)
-            target = 1.0;
-        memcpy(w.qsave, q, (size_t)nd * sizeof *q);
-        memcpy(w.nusave, w.nu, (size_t)nc * sizeof *w.nu);
-        int iters = 0;
-        double rnorm = 0.0, dnorm = 0.0;
-        int st = newton(s, &ls, &w, q, target, &iters, &rnorm, &dnorm, o, m->length_scale);
-        info->newton_iterations += iters;
-        if (st == NEWTON_OK) {
-            lam = target;
-            info->steps++;
-            info->load_factor = lam;
-            bk_output_step(out, info->steps, lam, q);
-            cuts_in_row = 0;
-            if (iters <= 6 && dlam < dlam0)
-                dlam = fmin(2.0 * dlam, dlam0);
+    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles;
+    for (int leg = 0; leg < nleg; ++leg) {
+        double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
+        dlam = dlam0;
+        while (dir * (goal - lam) > 0.0) {
+            double target = lam + dir * dlam;
+            if (dir * (goal - target) < 1e-12)
+                target = goal;
+            memcpy(w.qsave, q, (size_t)nd * sizeof *q);
+            memcpy(w.nusave, w.nu, (size_t)nc * sizeof *w.nu);
+            int iters = 0;
+            double rnorm = 0.0, dnorm = 0.0;
+            int st = newton(s, &ls, &w, q, target, &iters, &rnorm, &dnorm, o, m->length_scale);
+            info->newton_iterations += iters;
+            if (st == NEWTON_OK) {
+                lam = target;
+                info->steps++;
+                info->load_factor = lam;
+                bk_output_step(out, info->steps, lam, q);
+                cuts_in_row = 0;
+                if (iters <= 6 && dlam < dlam0)
+                    dlam = fmin(2.0 * dlam, dlam0);
+                if (log)
+                    fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
+                            info->steps, lam, iters, rnorm);
+                continue;
+            }
+            memcpy(q, w.qsave, (size_t)nd * sizeof *q);
+            memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
+            if (cuts_in_row >= o->max_cutbacks) {
+                snprintf(info->message, sizeof info->message,
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
+                         "residual %.3e, last increment %.3e after %d iterations, %d cut-backs",
+                         info->steps + 1, target, lam, why(st), rnorm, dnorm, iters, cuts_in_row);
+                goto done;
+            }
+            cuts_in_row++;
+            info->cutbacks++;
+            dlam *= 0.5;
             if (log)
-                fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
-                        info->steps, lam, iters, rnorm);
-            continue;
+                fprintf(log, "  cut-back at load factor %.6g (%s): new increment %.3g\n", target, why(st), dlam);
         }
-        memcpy(q, w.qsave, (size_t)nd * sizeof *q);
-        memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
-        if (cuts_in_row >= o->max_cutbacks) {
-            snprintf(info->message, sizeof info->message,
-                     "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
-                     "residual %.3e, last increment %.3e after %d iterations, %d cut-backs",
-                     info->steps + 1, target, lam, why(st), rnorm, dnorm, iters, cuts_in_row);
-            goto done;
-        }
-        cuts_in_row++;
-        info->cutbacks++;
-        dlam *= 0.5;
-        if (log)
-            fprintf(log, "  cut-back at load factor %.6g (%s): new increment %.3g\n", target, why(st), dlam);
     }
     rc = 0;
 done:

@@ -76,16 +76,18 @@ def build_program(src, name, variant="sanitize", pairs=None):
 
 
 def build_shared_kernels():
-    """All generated kernels as one shared library (for ctypes), rebuilt when stale."""
-    from gen.solver_build import CC, INCLUDES, KERNELS, WARN
-    srcs = sorted(KERNELS.glob("*.c"))
+    """Every generated kernel (release objects, position independent) as one shared
+    library for ctypes, relinked when an object is newer."""
+    from gen.solver_build import CC, kernel_objects
+    pairs, index = all_pair_symbols()
+    objs = kernel_objects(pairs, index, "release")
     lib = ensure_dir(BUILD) / "libkernels.so"
-    if lib.exists() and lib.stat().st_mtime >= max(p.stat().st_mtime for p in srcs + sorted(KERNELS.glob("*.h"))):
+    if lib.exists() and lib.stat().st_mtime >= max(o.stat().st_mtime for o in objs):
         return lib
-    cmd = [CC] + WARN + ["-O2", "-fPIC", "-shared"] + INCLUDES + [str(s) for s in srcs] + ["-o", str(lib), "-lm"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
+    r = subprocess.run([CC, "-shared", "-o", str(lib)] + [str(o) for o in objs] + ["-lm"],
+                       capture_output=True, text=True)
     if r.returncode != 0:
-        raise AssertionError(f"building {lib} failed:\n{r.stderr[-3000:]}")
+        raise AssertionError(f"linking {lib} failed:\n{r.stderr[-3000:]}")
     return lib
 
 
