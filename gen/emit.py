@@ -224,7 +224,7 @@ extern const bk_element bk_element_{name};
     c += [f"const bk_element bk_element_{name} = {{",
           f'    "{name}", "{elem.title}", {len(elem.nodes)}, {ndof}, node_xi,',
           f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment",
+          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, 0",
           "};", ""]
     return htxt, "\n".join(c)
 
@@ -315,7 +315,8 @@ def pair_source(elem, elem_path, mat, mat_path):
         c += [f"const bk_pair bk_pair_{name}_{rname} = {{",
               f'    &bk_element_{elem.name}, "{mat.NAME}", "{rname}", {len(mat.PARAMS)}, param_names,',
               f"    {ntab}, {nqp}, {counts['force'][1].total()}L, {counts['tangent'][1].total()}L,",
-              f"    {elem.name}_{rname}_tabulate, {fns['energy']}, {fns['force']}, {fns['tangent']}",
+              f"    {elem.name}_{rname}_tabulate, {fns['energy']}, {fns['force']}, {fns['tangent']},",
+              "    0, 0",
               "};", ""]
         parts_txt = " + ".join(f"{len(p.rule)} pts ({p.energy}, {'x'.join(map(str, rp.points))})"
                                for p, rp in zip(parts, elem.rule(rname)))

@@ -179,7 +179,7 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
     c += [f"const bk_element bk_element_{name} = {{",
           f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
           f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment",
+          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, 0",
           "};", ""]
     return htxt, "\n".join(c)
 
@@ -219,7 +219,8 @@ def pair_source(elem, elem_path, mat, mat_path):
     c += [f"const bk_pair bk_pair_{name}_full = {{",
           f'    &bk_element_{elem.name}, "{mat.NAME}", "full", {len(mat.PARAMS)}, param_names,',
           f"    {ntab}, {nqp}, {ops['force'].total()}L, {ops['tangent'].total()}L,",
-          f"    {elem.name}_full_tabulate, {name}_full_energy, {name}_full_force, {name}_full_force_tangent",
+          f"    {elem.name}_full_tabulate, {name}_full_energy, {name}_full_force, {name}_full_force_tangent,",
+          "    0, 0",
           "};", ""]
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "

@@ -14,8 +14,8 @@ ROOT = Path(__file__).resolve().parent.parent
 KERNEL_INDEX = ROOT / "out" / "kernels" / "index.json"
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,62}$")
 
-ANALYSES = ("static",)
-PLANNED_ANALYSES = ("dynamic", "modal")
+ANALYSES = ("static", "dynamic", "modal")
+PLANNED_ANALYSES = ()
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0}
@@ -29,7 +29,11 @@ KEY_RANGES = {
     "kappa": (lambda v: v > 0, "a positive number (Pa)"),
     "lambda_m": (lambda v: v > 1, "a number > 1"),
     "rho": (lambda v: v > 0, "a positive number (kg/m^3)"),
+    "kelvin_voigt": (lambda v: v >= 0, "a retardation time >= 0 (s)"),
 }
+DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
+                    "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
+                    "rtol": 1e-8, "utol": 1e-12}
 
 
 class SceneError(Exception):
@@ -173,6 +177,10 @@ def _norm(a):
     return math.sqrt(_dot(a, a))
 
 
+def _skew(v):
+    return [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]]
+
+
 def _scale(a, s):
     return [x * s for x in a]
 
@@ -266,12 +274,12 @@ def material_params(ctx, mname, mt, index):
     law = get_str(ctx, mt, "law", where, choices=laws)
     mod = all_materials()[law][0]
     rho = get_number(ctx, mt, "rho", where)
-    given = sorted(k for k in mt if k not in ("law", "rho"))
+    given = sorted(k for k in mt if k not in ("law", "rho", "kelvin_voigt"))
     for k in given:
         v = mt[k]
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(float(v)):
             ctx.fail(f"{where}.{k}", f"expected a finite number, found {_typename(v)}")
-    for k in ["rho"] + given:
+    for k in ["rho"] + given + (["kelvin_voigt"] if "kelvin_voigt" in mt else []):
         if k in KEY_RANGES:
             test, expect = KEY_RANGES[k]
             if not test(float(mt[k])):
@@ -287,6 +295,9 @@ def material_params(ctx, mname, mt, index):
             if fn is None:
                 E, nu = float(mt["E"]), float(mt["nu"])
                 return law, rho, (lambda sec, E=E, nu=nu: [float(x) for x in mod.section_stiffness(E, nu, *sec)])
+            if "kelvin_voigt" in mt and not hasattr(mod, "small_strain") and kind != "resultant":
+                ctx.fail(f"{where}.kelvin_voigt", f"law {law!r} states no small-strain E, nu (small_strain()), "
+                         "which Kelvin-Voigt damping needs")
             vals = fn(*[float(mt[k]) for k in keys])
             if not all(math.isfinite(v) for v in vals):
                 ctx.fail(where, f"parameters {', '.join(keys)} give non-finite {law} constants")
@@ -452,7 +463,16 @@ def build(path, sets=(), name=None):
         if pair not in pairs:
             pairs.append(pair)
         pidx = pairs.index(pair)
-        mkey = (tuple(params), materials[mname][1])
+        visc = []
+        tau = float(mats_doc[mname].get("kelvin_voigt", 0.0))
+        if tau > 0:
+            if mkind == "resultant":
+                visc = [tau * v for v in params]
+            else:
+                from gen.materials import all_materials
+                E_, nu_ = (float(x) for x in all_materials()[law][0].small_strain(*params))
+                visc = [tau * E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)), tau * E_ / (2 * (1 + nu_))]
+        mkey = (tuple(params), materials[mname][1], tuple(visc))
         if mkey not in mats_used:
             mats_used.append(mkey)
         midx = mats_used.index(mkey)
@@ -503,50 +523,129 @@ def build(path, sets=(), name=None):
     # Constraints
     fixed = set()
     lincons = []
-    for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
-        where = f"constraint[{ci}]"
-        ctype = get_str(ctx, ct, "type", where, choices=("clamp",))
-        check_keys(ctx, ct, {"type", "a", "cross_section"}, where)
-        beam, s = parse_point(ctx, ct.get("a"), f"{where}.a", beams) if "a" in ct else \
-            ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
-        mode = get_str(ctx, ct, "cross_section", where, default="rigid", choices=("rigid", "free"))
-        pos = s / beam["elem_len"]
+
+    def row(terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0):
+        """terms: [(dof, c0, cc, cs)].  A static single-DOF row is a fixed DOF."""
+        terms = [t_ for t_ in terms if any(abs(c) > 1e-15 for c in t_[1:])]
+        if not terms:
+            return
+        if len(terms) == 1 and terms[0][2] == 0 and terms[0][3] == 0 and rc == 0 and rs == 0 \
+                and abs(r0 - terms[0][1] * q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
+            fixed.add(terms[0][0])
+            return
+        lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq)))
+
+    def node_of(ctx_key, spec, what):
+        beam, s_ = parse_point(ctx, spec, ctx_key, beams)
+        pos = s_ / beam["elem_len"]
         gid = beam["node_at"].get(round(pos * 1e9) / 1e9)
         if gid is None:
-            ctx.fail(f"{where}.a", f"a clamp must be at a node of beam {beam['name']!r} "
-                     f"(every {beam['elem_len']:.6g} m), found arc length {s:.6g}")
-        base = dof_of_node[gid]
-        fields = nodes[gid][4]
-        nfd = sum(d for _, d in fields)
-        if mode == "rigid":
-            fixed.update(range(base, base + nfd))
-        else:
+            ctx.fail(ctx_key, f"a {what} must be at a node of beam {beam['name']!r} "
+                     f"(every {beam['elem_len'] / (len(index['elements'][beam['element']]['nodes']) - 1):.6g} m), "
+                     f"found arc length {s_:.6g}")
+        return beam, s_, gid
+
+    def field_dofs(gid):
+        out, base = {}, dof_of_node[gid]
+        for f, dim in nodes[gid][4]:
+            out[f] = list(range(base, base + dim))
+            base += dim
+        return out
+
+    ctypes_ = ("clamp", "spherical", "revolute", "prescribed_rotation")
+    for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
+        where = f"constraint[{ci}]"
+        ctype = get_str(ctx, ct, "type", where, choices=ctypes_)
+        allowed = {"clamp": {"type", "a", "cross_section"}, "spherical": {"type", "a", "b"},
+                   "revolute": {"type", "a", "axis"},
+                   "prescribed_rotation": {"type", "a", "axis", "rate", "amplitude", "frequency"}}[ctype]
+        check_keys(ctx, ct, allowed, where)
+        if "a" not in ct:
+            ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
+        beam, s, gid = node_of(f"{where}.a", ct["a"], ctype)
+        fd = field_dofs(gid)
+        X = nodes[gid][0]
+        if ctype == "clamp":
+            mode = get_str(ctx, ct, "cross_section", where, default="rigid", choices=("rigid", "free"))
+            if mode == "rigid":
+                for dl in fd.values():
+                    fixed.update(dl)
+                continue
             _, t, d1, d2 = beam["geo"].at(s)
             normals = {"r_x": (d1, d2), "r_y": (t, d2), "r_z": (t, d1)}
-            vb = base
-            for vec, dim in fields:
-                if dim != 3 or not vec.startswith("r"):
-                    fixed.update(range(vb, vb + dim))    # rotations: held
-                    vb += dim
-                    continue
-                if vec == "r":
-                    fixed.update(range(vb, vb + 3))
-                elif vec in normals:
-                    for nrm in normals[vec]:
-                        terms = [(vb + i, nrm[i]) for i in range(3) if abs(nrm[i]) > 1e-15]
-                        if len(terms) == 1:
-                            fixed.add(terms[0][0])
-                        else:
-                            lincons.append((terms, 0.0))
-                else:
-                    # higher derivatives (r_yy, r_yz, r_zz, ...): no axial warping
-                    # of the root section, free deformation in its plane
-                    terms = [(vb + i, t[i]) for i in range(3) if abs(t[i]) > 1e-15]
-                    if len(terms) == 1:
-                        fixed.add(terms[0][0])
+            for f, dl in fd.items():
+                if f == "r" or len(dl) != 3:
+                    fixed.update(dl)                                  # position, rotations: held
+                elif f in normals:
+                    for nrm in normals[f]:
+                        row([(dl[i], nrm[i], 0.0, 0.0) for i in range(3)])
+                else:                   # r_yy, r_yz, r_zz: the section stays plane, free in its plane
+                    row([(dl[i], t[i], 0.0, 0.0) for i in range(3)])
+        elif ctype == "spherical":
+            if "b" not in ct:
+                fixed.update(fd["r"])                                 # to ground
+                continue
+            beam_b, s_b, gid_b = node_of(f"{where}.b", ct["b"], "spherical joint")
+            if _norm(_sub(X, nodes[gid_b][0])) > 1e-9 * max(1.0, _norm(X)):
+                ctx.fail(f"{where}.b", f"the points a and b must coincide in the reference configuration "
+                         f"({ct['a']} at {X}, {ct['b']} at {nodes[gid_b][0]})")
+            if gid_b == gid:
+                ctx.fail(f"{where}.b", "a and b are the same node")
+            fb = field_dofs(gid_b)
+            for i in range(3):
+                row([(fd["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
+        else:
+            axis = get_vec3(ctx, ct, "axis", where, nonzero=True)
+            axis = _scale(axis, 1 / _norm(axis))
+            n1 = _cross(axis, [1.0, 0.0, 0.0])
+            if _norm(n1) < 0.5:
+                n1 = _cross(axis, [0.0, 1.0, 0.0])
+            n1 = _scale(n1, 1 / _norm(n1))
+            n2 = _cross(axis, n1)
+            _, t, d1, d2 = beam["geo"].at(s)
+            fixed.update(fd["r"])                                     # the axis passes through the point
+            if ctype == "revolute":
+                if "p" in fd:                   # quaternion: vec(p conj(p0)) parallel to the axis
+                    p0 = [q0[d] for d in fd["p"]]
+                    s0, v0 = p0[0], p0[1:]
+                    A = [[-v0[i]] + [(s0 if i == j else 0.0) + _skew(v0)[i][j] for j in range(3)] for i in range(3)]
+                    for nrm in (n1, n2):
+                        row([(fd["p"][k], sum(nrm[i] * A[i][k] for i in range(3)), 0.0, 0.0) for k in range(4)])
+                else:                           # ANCF: the material fibre along the axis stays along it
+                    comps = {"r_x": _dot(axis, t), "r_y": _dot(axis, d1), "r_z": _dot(axis, d2)}
+                    for f, c in comps.items():
+                        if abs(c) > 1e-12 and f not in fd:
+                            ctx.fail(f"{where}.axis", f"element {beam['element']} has no nodal {f} at this "
+                                     "point; a revolute axis there must lie in the cross-section plane")
+                    for nrm in (n1, n2):
+                        terms = []
+                        for f, c in comps.items():
+                            if abs(c) > 1e-12:
+                                terms += [(fd[f][i], c * nrm[i], 0.0, 0.0) for i in range(3)]
+                        row(terms)
+            else:
+                rate = get_number(ctx, ct, "rate", where, default=0.0)
+                amp = get_number(ctx, ct, "amplitude", where, default=0.0)
+                freq = get_number(ctx, ct, "frequency", where, default=0.0, nonneg=True)
+                for f, dl in fd.items():
+                    if f == "r":
+                        continue
+                    if f == "p":                # p(t) = (cos th/2, sin th/2 axis) p0
+                        s0, v0 = q0[dl[0]], [q0[d] for d in dl[1:]]
+                        av = _dot(axis, v0)
+                        cr = _cross(axis, v0)
+                        row([(dl[0], 1.0, 0.0, 0.0)], 0.0, s0, -av, 0.5, rate, amp, freq)
+                        for i in range(3):
+                            row([(dl[1 + i], 1.0, 0.0, 0.0)], 0.0, v0[i], s0 * axis[i] + cr[i], 0.5, rate, amp, freq)
+                    elif len(dl) == 3:          # nodal vectors rotate rigidly
+                        v0 = [q0[d] for d in dl]
+                        par = _dot(axis, v0)
+                        cr = _cross(axis, v0)
+                        for i in range(3):
+                            row([(dl[i], 1.0, 0.0, 0.0)], par * axis[i], v0[i] - par * axis[i], cr[i],
+                                1.0, rate, amp, freq)
                     else:
-                        lincons.append((terms, 0.0))
-                vb += 3
+                        fixed.update(dl)
 
     # Loads
     forces = []
@@ -599,8 +698,69 @@ def build(path, sets=(), name=None):
         "rtol": get_number(ctx, st, "rtol", "static", default=STATIC_DEFAULTS["rtol"], positive=True),
         "utol": get_number(ctx, st, "utol", "static", default=STATIC_DEFAULTS["utol"], positive=True),
     }
-    if "dynamic" in doc:
-        get_table(ctx, doc, "dynamic")
+    dt = get_table(ctx, doc, "dynamic")
+    check_keys(ctx, dt, {"t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks",
+                         "output_every", "rayleigh_alpha", "rayleigh_beta", "rtol", "utol"}, "dynamic")
+    dyn = {k: v for k, v in DYNAMIC_DEFAULTS.items()}
+    if analysis == "dynamic":
+        dyn["t_end"] = get_number(ctx, dt, "t_end", "dynamic", positive=True)
+        dyn["dt"] = get_number(ctx, dt, "dt", "dynamic", positive=True)
+        if dyn["dt"] > dyn["t_end"]:
+            ctx.fail("dynamic.dt", f"expected a step no longer than t_end = {dyn['t_end']!r}, found {dyn['dt']!r}")
+    else:
+        dyn["t_end"], dyn["dt"] = 1.0, 1.0
+    dyn["dt_min"] = get_number(ctx, dt, "dt_min", "dynamic", default=dyn["dt"] * 1e-6, positive=True)
+    dyn["rho_inf"] = get_number(ctx, dt, "rho_inf", "dynamic", default=DYNAMIC_DEFAULTS["rho_inf"])
+    if not 0.0 <= dyn["rho_inf"] <= 1.0:
+        ctx.fail("dynamic.rho_inf", f"expected a spectral radius in [0, 1], found {dyn['rho_inf']!r}")
+    for k in ("tol", "rayleigh_alpha", "rayleigh_beta"):
+        dyn[k] = get_number(ctx, dt, k, "dynamic", default=DYNAMIC_DEFAULTS[k], nonneg=True)
+    for k in ("rtol", "utol"):
+        dyn[k] = get_number(ctx, dt, k, "dynamic", default=DYNAMIC_DEFAULTS[k], positive=True)
+    dyn["max_iterations"] = get_int(ctx, dt, "max_iterations", "dynamic", default=25, lo=1, hi=10000)
+    dyn["max_cutbacks"] = get_int(ctx, dt, "max_cutbacks", "dynamic", default=12, lo=0, hi=60)
+    dyn["output_every"] = get_int(ctx, dt, "output_every", "dynamic", default=1, lo=1, hi=10**9)
+    if analysis == "dynamic" and dyn["t_end"] / dyn["dt"] > 1e8:
+        ctx.fail("dynamic.dt", f"t_end / dt = {dyn['t_end'] / dyn['dt']:.3g} steps: expected at most 1e8")
+
+    mt = get_table(ctx, doc, "modal")
+    check_keys(ctx, mt, {"modes", "about"}, "modal")
+    modal = {"modes": get_int(ctx, mt, "modes", "modal", default=10, lo=1, hi=100000),
+             "about": 1 if get_str(ctx, mt, "about", "modal", default="reference",
+                                   choices=("reference", "static")) == "static" else 0}
+
+    # Initial velocities: rigid translation + rotation, per beam or for all.
+    qd0 = [0.0] * ndof
+    for ii, iv in enumerate(get_array_of_tables(ctx, doc, "initial_velocity")):
+        where = f"initial_velocity[{ii}]"
+        check_keys(ctx, iv, {"beam", "velocity", "angular_velocity", "center"}, where)
+        v = get_vec3(ctx, iv, "velocity", where, default=[0.0, 0.0, 0.0])
+        w = get_vec3(ctx, iv, "angular_velocity", where, default=[0.0, 0.0, 0.0])
+        c = get_vec3(ctx, iv, "center", where, default=[0.0, 0.0, 0.0])
+        if "beam" in iv:
+            bn = get_str(ctx, iv, "beam", where)
+            if bn not in beams:
+                ctx.fail(f"{where}.beam", f"no beam named {bn!r} (beams: {', '.join(beams)})")
+            gids = sorted(set(beams[bn]["node_at"].values()))
+        else:
+            gids = range(len(nodes))
+        for gid in gids:
+            X = nodes[gid][0]
+            base = dof_of_node[gid]
+            for f, dim in nodes[gid][4]:
+                vals = [q0[base + i] for i in range(dim)]
+                if f == "r":
+                    out = [v[i] + x for i, x in enumerate(_cross(w, _sub(X, c)))]
+                elif f == "p":                     # p' = (0, w) p / 2
+                    s0, v0 = vals[0], vals[1:]
+                    out = [-0.5 * _dot(w, v0)] + [0.5 * (s0 * w[i] + _cross(w, v0)[i]) for i in range(3)]
+                elif dim == 3:
+                    out = _cross(w, vals)
+                else:
+                    out = [0.0] * dim
+                for i in range(dim):
+                    qd0[base + i] = out[i]
+                base += dim
 
     sensors = []
     seen = set()
@@ -626,7 +786,7 @@ def build(path, sets=(), name=None):
         "pairs": pairs, "mats": mats_used, "geoms": geoms, "elements": elements,
         "fixed": sorted(fixed), "lincons": lincons, "forces": forces, "moments": moments,
         "gravity": gravity,
-        "sensors": sensors, "static": stat, "beams": beams,
+        "sensors": sensors, "static": stat, "beams": beams, "dynamic": dyn, "modal": modal, "qd0": qd0,
     }
 
 
@@ -770,16 +930,26 @@ def write_model(model, path):
     s = model["static"]
     out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
                f"{_f(s['rtol'])} {_f(s['utol'])}")
+    d = model["dynamic"]
+    out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "
+               f"{d['max_iterations']} {d['max_cutbacks']} {d['output_every']} {_f(d['rayleigh_alpha'])} "
+               f"{_f(d['rayleigh_beta'])} {_f(d['rtol'])} {_f(d['utol'])}")
+    out.append(f"modal {model['modal']['modes']} {model['modal']['about']}")
     out.append(f"ndof {model['ndof']}")
     out.append("q0")
     q0 = model["q0"]
     for i in range(0, len(q0), 6):
         out.append(" ".join(_f(v) for v in q0[i:i + 6]))
+    out.append("qd0")
+    qd = model["qd0"]
+    for i in range(0, len(qd), 6):
+        out.append(" ".join(_f(v) for v in qd[i:i + 6]))
     out.append(f"pairs {len(model['pairs'])}")
     out += [f"pair {p}" for p in model["pairs"]]
     out.append(f"mats {len(model['mats'])}")
-    for params, rho in model["mats"]:
-        out.append(f"mat {_f(rho)} {len(params)} " + " ".join(_f(v) for v in params))
+    for params, rho, visc in model["mats"]:
+        out.append(f"mat {_f(rho)} {len(params)} " + " ".join(_f(v) for v in params)
+                   + f" {len(visc)} " + " ".join(_f(v) for v in visc))
     out.append(f"geoms {len(model['geoms'])}")
     for p, e, g in model["geoms"]:
         out.append(f"geom {p} {e} " + " ".join(_f(x) for x in g))
@@ -790,8 +960,9 @@ def write_model(model, path):
     for i in range(0, len(model["fixed"]), 24):
         out.append(" ".join(map(str, model["fixed"][i:i + 24])))
     out.append(f"lincons {len(model['lincons'])}")
-    for terms, rhs in model["lincons"]:
-        out.append(f"lincon {len(terms)} " + " ".join(f"{d} {_f(c)}" for d, c in terms) + f" {_f(rhs)}")
+    for terms, rhs, tf in model["lincons"]:
+        out.append(f"lincon {len(terms)} " + " ".join(f"{d} {_f(a)} {_f(b)} {_f(c)}" for d, a, b, c in terms)
+                   + " " + " ".join(_f(x) for x in rhs) + " " + " ".join(_f(x) for x in tf))
     out.append(f"forces {len(model['forces'])}")
     for e, xi, y, z, dist, v in model["forces"]:
         out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v))

@@ -19,8 +19,8 @@ BUILD = ROOT / "out" / "build"
 CC = os.environ.get("CC", "cc")
 JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
-RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "output.c", "main.c")
-LIBS = ["-lklu", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lm"]
+RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "dynamics.c", "modal.c", "output.c", "main.c")
+LIBS = ["-lklu", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
 VARIANTS = {
     "release": ["-O2", "-march=native"],
     "sanitize": ["-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",

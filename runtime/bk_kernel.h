@@ -66,6 +66,14 @@ typedef struct bk_element {
      * carries no moments. */
     void (*moment)(const double *restrict geom, double xi, const double *restrict q,
                    const double *restrict M, double *restrict Q, double *restrict dQ);
+    /* Inertia not captured by the constant mass of the position interpolation
+     * (rotary inertia of beams with nodal rotations), per unit density: force
+     * f(q, qd, qdd) = d/dt dT/dqd - dT/dq, its derivatives Mq = df/dqdd,
+     * Cq = df/dqd, Kq = df/dq (row-major ndof x ndof) and the kinetic energy T.
+     * NULL: none. */
+    void (*rotary)(const double *restrict geom, const double *restrict q, const double *restrict qd,
+                   const double *restrict qdd, double *restrict f, double *restrict Mq,
+                   double *restrict Cq, double *restrict Kq, double *restrict T);
 } bk_element;
 
 typedef struct bk_pair {
@@ -87,6 +95,14 @@ typedef struct bk_pair {
     void (*force_tangent)(const double *restrict q, const double *restrict tab,
                           const double *restrict mat, double *restrict f,
                           double *restrict K);
+    /* Kelvin-Voigt damping: viscous force f(q, qd) with parameters visc[nvisc]
+     * (the viscous stiffnesses: retardation time x elastic constants), its
+     * derivatives C = df/dqd and K ~ df/dq (the part from the viscous stress,
+     * without the variation of the strain rate with q).  NULL: not offered. */
+    int nvisc;
+    void (*viscous)(const double *restrict q, const double *restrict qd, const double *restrict tab,
+                    const double *restrict visc, double *restrict f, double *restrict C,
+                    double *restrict K);
 } bk_pair;
 
 #endif

@@ -8,6 +8,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "dynamics.h"
+#include "modal.h"
 #include "model.h"
 #include "newton.h"
 #include "output.h"
@@ -70,7 +72,13 @@ int main(int argc, char **argv)
         return 1;
     }
     bk_run_info info = {0};
-    int rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
+    int rc;
+    if (m->analysis == BK_DYNAMIC)
+        rc = bk_solve_dynamic(s, q, &out, &info, verbose ? stderr : NULL);
+    else if (m->analysis == BK_MODAL)
+        rc = bk_solve_modal(s, q, &out, &info, verbose ? stderr : NULL);
+    else
+        rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
     info.strain_energy = bk_strain_energy(s, q);
     info.wall_s = now() - t0;
     bk_output_close(&out);

@@ -135,8 +135,12 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     t = next(r, "analysis type");
     if (t && strcmp(t, "static") == 0)
         m->analysis = BK_STATIC;
+    else if (t && strcmp(t, "dynamic") == 0)
+        m->analysis = BK_DYNAMIC;
+    else if (t && strcmp(t, "modal") == 0)
+        m->analysis = BK_MODAL;
     else if (t)
-        fail(r, "analysis '%s' is not supported by this solver (expected static)", t);
+        fail(r, "analysis '%s' is not supported by this solver (expected static, dynamic, modal)", t);
     expect(r, "length_scale");
     m->length_scale = num(r, "length_scale");
     expect(r, "static");
@@ -146,6 +150,22 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.cycles = inum(r, "static.cycles", 0, 1000);
     m->stat.rtol = num(r, "static.rtol");
     m->stat.utol = num(r, "static.utol");
+    expect(r, "dynamic");
+    m->dyn.t_end = num(r, "dynamic.t_end");
+    m->dyn.dt = num(r, "dynamic.dt");
+    m->dyn.dt_min = num(r, "dynamic.dt_min");
+    m->dyn.rho_inf = num(r, "dynamic.rho_inf");
+    m->dyn.tol = num(r, "dynamic.tol");
+    m->dyn.max_iter = inum(r, "dynamic.max_iterations", 1, 10000);
+    m->dyn.max_cutbacks = inum(r, "dynamic.max_cutbacks", 0, 60);
+    m->dyn.output_every = inum(r, "dynamic.output_every", 1, MAXN);
+    m->dyn.rayleigh_alpha = num(r, "dynamic.rayleigh_alpha");
+    m->dyn.rayleigh_beta = num(r, "dynamic.rayleigh_beta");
+    m->dyn.rtol = num(r, "dynamic.rtol");
+    m->dyn.utol = num(r, "dynamic.utol");
+    expect(r, "modal");
+    m->modal.nmodes = inum(r, "modal.modes", 1, 100000);
+    m->modal.about_static = inum(r, "modal.about", 0, 1);
 
     expect(r, "ndof");
     m->ndof = inum(r, "ndof", 1, MAXN);
@@ -153,6 +173,10 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->q0 = xcalloc(r, (size_t)m->ndof, sizeof *m->q0);
     for (int i = 0; i < m->ndof && !r->failed; ++i)
         m->q0[i] = num(r, "q0 entry");
+    expect(r, "qd0");
+    m->qd0 = xcalloc(r, (size_t)m->ndof, sizeof *m->qd0);
+    for (int i = 0; i < m->ndof && !r->failed; ++i)
+        m->qd0[i] = num(r, "qd0 entry");
 
     expect(r, "pairs");
     m->npair = inum(r, "pairs", 1, 1000);
@@ -178,6 +202,9 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         m->mats[i].nparam = inum(r, "parameter count", 0, 8);
         for (int k = 0; k < m->mats[i].nparam; ++k)
             m->mats[i].params[k] = num(r, "material parameter");
+        m->mats[i].nvisc = inum(r, "viscous parameter count", 0, 8);
+        for (int k = 0; k < m->mats[i].nvisc; ++k)
+            m->mats[i].visc[k] = num(r, "viscous parameter");
     }
 
     expect(r, "geoms");
@@ -249,12 +276,22 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         expect(r, "lincon");
         c->nterm = inum(r, "constraint terms", 1, 10000);
         c->dof = xcalloc(r, (size_t)c->nterm, sizeof *c->dof);
-        c->coef = xcalloc(r, (size_t)c->nterm, sizeof *c->coef);
+        c->c0 = xcalloc(r, (size_t)c->nterm, sizeof *c->c0);
+        c->cc = xcalloc(r, (size_t)c->nterm, sizeof *c->cc);
+        c->cs = xcalloc(r, (size_t)c->nterm, sizeof *c->cs);
         for (int k = 0; k < c->nterm && !r->failed; ++k) {
             c->dof[k] = inum(r, "constraint DOF", 0, m->ndof - 1);
-            c->coef[k] = num(r, "constraint coefficient");
+            c->c0[k] = num(r, "constraint coefficient");
+            c->cc[k] = num(r, "constraint coefficient");
+            c->cs[k] = num(r, "constraint coefficient");
         }
-        c->rhs = num(r, "constraint right-hand side");
+        c->r0 = num(r, "constraint right-hand side");
+        c->rc = num(r, "constraint right-hand side");
+        c->rs = num(r, "constraint right-hand side");
+        c->kappa = num(r, "constraint angle factor");
+        c->rate = num(r, "constraint angle rate");
+        c->amp = num(r, "constraint angle amplitude");
+        c->freq = num(r, "constraint angle frequency");
     }
 
     expect(r, "forces");
@@ -318,6 +355,7 @@ void bk_model_free(bk_model *m)
     if (!m)
         return;
     free(m->q0);
+    free(m->qd0);
     free(m->pairs);
     free(m->geoms);
     free(m->geom_pair);
@@ -335,7 +373,9 @@ void bk_model_free(bk_model *m)
     if (m->lincons)
         for (int i = 0; i < m->nlincon; ++i) {
             free(m->lincons[i].dof);
-            free(m->lincons[i].coef);
+            free(m->lincons[i].c0);
+            free(m->lincons[i].cc);
+            free(m->lincons[i].cs);
         }
     free(m->lincons);
     free(m->forces);

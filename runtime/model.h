@@ -11,7 +11,7 @@
 
 #include "bk_kernel.h"
 
-enum bk_analysis { BK_STATIC = 0 };
+enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2 };
 
 typedef struct bk_elem {
     int pair;          /* index into model->pairs                          */
@@ -24,6 +24,8 @@ typedef struct bk_mat {
     int nparam;
     double params[8];
     double rho;        /* kg/m^3 */
+    int nvisc;         /* Kelvin-Voigt parameters (0: no material damping) */
+    double visc[8];
 } bk_mat;
 
 typedef struct bk_force_load {   /* force at a material point of an element */
@@ -45,11 +47,18 @@ typedef struct bk_sensor {
     double xi;         /* along the element axis, on the centreline */
 } bk_sensor;
 
-typedef struct bk_lincon {       /* sum_k coef[k] q[dof[k]] = rhs */
+/* A constraint linear in q, possibly rheonomic:
+ *   sum_k (c0[k] + cc[k] cos phi(t) + cs[k] sin phi(t)) q[dof[k]]
+ *       = r0 + rc cos phi(t) + rs sin phi(t),
+ *   phi(t) = kappa (rate t + amp sin(2 pi freq t)).
+ * Clamps, spherical joints, revolute joints and prescribed rotations of ANCF
+ * slopes and of quaternions are all of this form. */
+typedef struct bk_lincon {
     int nterm;
     int *dof;
-    double *coef;
-    double rhs;
+    double *c0, *cc, *cs;
+    double r0, rc, rs;
+    double kappa, rate, amp, freq;
 } bk_lincon;
 
 typedef struct bk_static_opts {
@@ -60,6 +69,19 @@ typedef struct bk_static_opts {
     double rtol;       /* residual tolerance relative to the load        */
     double utol;       /* increment tolerance relative to the displacement */
 } bk_static_opts;
+
+typedef struct bk_dynamic_opts {
+    double t_end, dt, dt_min, rho_inf;
+    double tol;            /* > 0: error-controlled step size with this local error */
+    int max_iter, max_cutbacks, output_every;
+    double rayleigh_alpha, rayleigh_beta;
+    double rtol, utol;
+} bk_dynamic_opts;
+
+typedef struct bk_modal_opts {
+    int nmodes;
+    int about_static;      /* 1: linearize about the static equilibrium under the loads */
+} bk_modal_opts;
 
 typedef struct bk_model {
     char name[128];
@@ -91,6 +113,9 @@ typedef struct bk_model {
     int nsensor;
     bk_sensor *sensors;
     bk_static_opts stat;
+    bk_dynamic_opts dyn;
+    bk_modal_opts modal;
+    double *qd0;                 /* [ndof] initial velocities (dynamic) */
 } bk_model;
 
 /* Reads a model file.  `avail` lists the kernel descriptors linked into this

@@ -48,7 +48,7 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         for (int i = 0; i < m->ndof; ++i)
             if (s->eq[i] >= 0)
                 w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
-        bk_assemble_constraints(s, q, w->nu, w->r, w->Ax);
+        bk_assemble_constraints(s, q, w->nu, lam, w->r, w->Ax);
         double rnorm = norm2(w->r, s->neq);
         double ref = fmax(fabs(lam) * norm2(w->fext, m->ndof), norm2(w->fint, m->ndof));
         double uscale = 0.0, qmax = 0.0, kmax = 0.0;

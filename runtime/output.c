@@ -21,6 +21,16 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
     }
     fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
     fflush(o->sensors);
+    if (m->analysis == BK_DYNAMIC) {
+        snprintf(path, sizeof path, "%s/energy.csv", dir);
+        o->energy = fopen(path, "w");
+        if (!o->energy) {
+            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+            return -1;
+        }
+        fprintf(o->energy, "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual\n");
+        fflush(o->energy);
+    }
     return 0;
 }
 
@@ -49,6 +59,37 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
                 g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
     fflush(o->sensors);
+}
+
+int bk_output_modes_begin(bk_output *o)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/modes.csv", o->dir);
+    o->modes = fopen(path, "w");
+    if (!o->modes)
+        return -1;
+    fprintf(o->modes, "mode,frequency_hz,omega\n");
+    return 0;
+}
+
+void bk_output_mode(bk_output *o, int mode, double f_hz, double omega)
+{
+    if (o->nfreq < (int)(sizeof o->freqs / sizeof *o->freqs))
+        o->freqs[o->nfreq++] = f_hz;
+    if (!o->modes)
+        return;
+    fprintf(o->modes, "%d,%.17g,%.17g\n", mode, f_hz, omega);
+    fflush(o->modes);
+}
+
+void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
+                      double cres)
+{
+    if (!o->energy)
+        return;
+    fprintf(o->energy, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3e\n", step, t, T, U, Vg, Vf,
+            T + U + Vg + Vf, cres);
+    fflush(o->energy);
 }
 
 static void json_string(FILE *fp, const char *s)
@@ -91,7 +132,8 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     const bk_model *m = o->m;
     fprintf(fp, "{\n  \"scene\": ");
     json_string(fp, m->name);
-    fprintf(fp, ",\n  \"analysis\": \"static\",\n");
+    static const char *const kind[] = {"static", "dynamic", "modal"};
+    fprintf(fp, ",\n  \"analysis\": \"%s\",\n", kind[m->analysis]);
     fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
     fprintf(fp, "  \"steps\": %d,\n", info->steps);
@@ -99,9 +141,16 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"cutbacks\": %d,\n", info->cutbacks);
     fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
     fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
-    fprintf(fp, "  \"load_factor\": %.17g,\n", info->load_factor);
+    fprintf(fp, "  \"%s\": %.17g,\n", m->analysis == BK_DYNAMIC ? "time" : "load_factor", info->load_factor);
+    fprintf(fp, "  \"max_constraint_residual\": %.3e,\n", info->max_constraint_residual);
     fprintf(fp, "  \"strain_energy\": %.17g,\n", info->strain_energy);
     fprintf(fp, "  \"dofs\": %d,\n  \"elements\": %d,\n", m->ndof, m->nelem);
+    if (m->analysis == BK_MODAL) {
+        fprintf(fp, "  \"frequencies_hz\": [");
+        for (int k = 0; k < o->nfreq; ++k)
+            fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);
+        fprintf(fp, "],\n");
+    }
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
         json_string(fp, info->message);
@@ -138,5 +187,9 @@ void bk_output_close(bk_output *o)
 {
     if (o->sensors)
         fclose(o->sensors);
-    o->sensors = NULL;
+    if (o->energy)
+        fclose(o->energy);
+    if (o->modes)
+        fclose(o->modes);
+    o->sensors = o->energy = o->modes = NULL;
 }

@@ -12,6 +12,10 @@ typedef struct bk_output {
     const bk_model *m;
     char dir[1024];
     FILE *sensors;           /* owned */
+    FILE *energy;            /* owned; dynamic analyses only */
+    FILE *modes;             /* owned; modal analyses only */
+    int nfreq;
+    double freqs[64];        /* first frequencies (Hz), for the summary */
 } bk_output;
 
 typedef struct bk_run_info {
@@ -24,12 +28,20 @@ typedef struct bk_run_info {
     int analyses;
     double load_factor;
     double strain_energy;
+    double max_constraint_residual;
     char message[1024];      /* empty when converged */
 } bk_run_info;
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err);
 /* One row per sensor for the configuration q at output step `step`, time t. */
 void bk_output_step(bk_output *o, int step, double t, const double *q);
+/* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,
+ * potential of the other constant loads, their total, constraint residual. */
+void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
+                      double cres);
+/* modes.csv: one row per mode (mode, frequency in Hz, angular frequency). */
+int bk_output_modes_begin(bk_output *o);
+void bk_output_mode(bk_output *o, int mode, double f_hz, double omega);
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
 void bk_output_close(bk_output *o);
 

@@ -2,6 +2,10 @@
 #include "system.h"
 
 #include <math.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -291,6 +295,22 @@ void bk_external_load(const bk_system *s, double *fext)
                 fext[el->dofs[et->shape_dof[a] + k]] += N[a] * f->value[k];
     }
     if (m->has_gravity) {
+        double *g = calloc((size_t)m->ndof, sizeof *g);
+        if (g) {
+            bk_gravity_load(s, g);
+            for (int i = 0; i < m->ndof; ++i)
+                fext[i] += g[i];
+            free(g);
+        }
+    }
+}
+
+void bk_gravity_load(const bk_system *s, double *fg)
+{
+    const bk_model *m = s->m;
+    double N[BK_MAXSHAPE];
+    memset(fg, 0, (size_t)m->ndof * sizeof *fg);
+    if (m->has_gravity) {
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
             const bk_element *et = m->pairs[el->pair]->element;
@@ -298,7 +318,7 @@ void bk_external_load(const bk_system *s, double *fext)
             et->volume(m->geoms[el->geom], N);
             for (int a = 0; a < et->nshape; ++a)
                 for (int k = 0; k < 3; ++k)
-                    fext[el->dofs[et->shape_dof[a] + k]] += rho * N[a] * m->gravity[k];
+                    fg[el->dofs[et->shape_dof[a] + k]] += rho * N[a] * m->gravity[k];
         }
     }
 }
@@ -326,26 +346,69 @@ void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fin
     }
 }
 
-void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,
+/* Time factors of a rheonomic constraint: (C, S) = d^k/dt^k of (cos phi, sin phi). */
+static void angle_factors(const bk_lincon *c, double t, int k, double *C, double *S)
+{
+    double w = 2.0 * M_PI * c->freq;
+    double phi = c->kappa * (c->rate * t + c->amp * sin(w * t));
+    double d1 = c->kappa * (c->rate + c->amp * w * cos(w * t));
+    double d2 = -c->kappa * c->amp * w * w * sin(w * t);
+    double cp = cos(phi), sp = sin(phi);
+    if (k == 0) {
+        *C = cp;
+        *S = sp;
+    } else if (k == 1) {
+        *C = -sp * d1;
+        *S = cp * d1;
+    } else {
+        *C = -cp * d1 * d1 - sp * d2;
+        *S = -sp * d1 * d1 + cp * d2;
+    }
+}
+
+double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs)
+{
+    double C, S, sum = 0.0;
+    angle_factors(c, t, k, &C, &S);
+    if (with_rhs)
+        sum = -(k == 0 ? c->r0 : 0.0) - c->rc * C - c->rs * S;
+    for (int j = 0; j < c->nterm; ++j)
+        sum += ((k == 0 ? c->c0[j] : 0.0) + c->cc[j] * C + c->cs[j] * S) * x[c->dof[j]];
+    return sum;
+}
+
+void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,
                              double *r, double *Ax)
 {
     const bk_model *m = s->m;
     for (int c = 0; c < s->ncon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         const int *sl = s->cslot + s->cslot_off[c];
-        double g = -lc->rhs;
+        double C, S;
+        angle_factors(lc, t, 0, &C, &S);
+        double g = -(lc->r0 + lc->rc * C + lc->rs * S);
         for (int k = 0; k < lc->nterm; ++k) {
-            g += lc->coef[k] * q[lc->dof[k]];
+            double coef = lc->c0[k] + lc->cc[k] * C + lc->cs[k] * S;
+            g += coef * q[lc->dof[k]];
             int qe = s->eq[lc->dof[k]];
-            if (qe >= 0)
-                r[qe] += s->cscale * lc->coef[k] * nu[c];
+            if (qe >= 0 && r)
+                r[qe] += s->cscale * coef * nu[c];
             if (Ax && sl[2 * k] >= 0) {
-                Ax[sl[2 * k]] += s->cscale * lc->coef[k];
-                Ax[sl[2 * k + 1]] += s->cscale * lc->coef[k];
+                Ax[sl[2 * k]] += s->cscale * coef;
+                Ax[sl[2 * k + 1]] += s->cscale * coef;
             }
         }
-        r[s->nfree + c] = s->cscale * g;
+        if (r)
+            r[s->nfree + c] = s->cscale * g;
     }
+}
+
+double bk_constraint_residual(const bk_system *s, const double *q, double t)
+{
+    double worst = 0.0;
+    for (int c = 0; c < s->ncon; ++c)
+        worst = fmax(worst, fabs(bk_constraint_row(&s->m->lincons[c], q, t, 0, 1)));
+    return worst;
 }
 
 void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d)

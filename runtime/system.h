@@ -43,18 +43,30 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
 /* Strain energy of the configuration q (J). */
 double bk_strain_energy(const bk_system *s, const double *q);
 
-/* Generalized external load of unit load factor into fext[ndof] (zeroed here). */
+/* Generalized external load of unit load factor into fext[ndof] (zeroed here):
+ * point forces and gravity. */
 void bk_external_load(const bk_system *s, double *fext);
+
+/* The gravity part alone, into fg[ndof] (zeroed here). */
+void bk_gravity_load(const bk_system *s, double *fg);
 
 /* Configuration-dependent loads (moments on sections) at load factor lam:
  * subtracts lam Q(q) from fint[ndof] and, when Ax is not NULL, adds
  * -lam dQ/dq to the tangent. */
 void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax);
 
-/* Constraint part of the Newton system: adds s G^T nu to r[0..nfree), writes
- * s (G q - rhs) into r[nfree..neq), and, when Ax is not NULL, s G and s G^T. */
-void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu,
+/* Constraint part of the Newton system at time t: adds s G^T nu to
+ * r[0..nfree), writes s (G q - g) into r[nfree..neq) (r may be NULL), and, when
+ * Ax is not NULL, s G and s G^T. */
+void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,
                              double *r, double *Ax);
+
+/* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
+ * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */
+double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs);
+
+/* Largest |G(t) q - g(t)| over the constraint rows. */
+double bk_constraint_residual(const bk_system *s, const double *q, double t);
 
 /* Centreline point xi of element e: position and (if d != NULL) the section
  * frame d1, d2, d3 (NaN where the element defines none). */

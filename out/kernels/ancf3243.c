@@ -1404,5 +1404,5 @@ void ancf3243_tangent_contract(const double *restrict A, const double *restrict 
 const bk_element bk_element_ancf3243 = {
     "ancf3243", "ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF", 2, 24, node_xi,
     8, field_name, field_dof, field_dim, reference,
-    8, shape_dof, shape, mass, volume, frame, moment
+    8, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -369,7 +369,8 @@ void ancf3243_arruda_boyce_full_force_tangent(const double *restrict q, const do
 const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
     &bk_element_ancf3243, "arruda_boyce", "full", 3, param_names,
     96, 12, 3884L, 25808L,
-    ancf3243_full_tabulate, ancf3243_arruda_boyce_full_energy, ancf3243_arruda_boyce_full_force, ancf3243_arruda_boyce_full_force_tangent
+    ancf3243_full_tabulate, ancf3243_arruda_boyce_full_energy, ancf3243_arruda_boyce_full_force, ancf3243_arruda_boyce_full_force_tangent,
+    0, 0
 };
 
 double ancf3243_arruda_boyce_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -955,5 +956,6 @@ void ancf3243_arruda_boyce_sri_force_tangent(const double *restrict q, const dou
 const bk_pair bk_pair_ancf3243_arruda_boyce_sri = {
     &bk_element_ancf3243, "arruda_boyce", "sri", 3, param_names,
     120, 15, 4310L, 30545L,
-    ancf3243_sri_tabulate, ancf3243_arruda_boyce_sri_energy, ancf3243_arruda_boyce_sri_force, ancf3243_arruda_boyce_sri_force_tangent
+    ancf3243_sri_tabulate, ancf3243_arruda_boyce_sri_energy, ancf3243_arruda_boyce_sri_force, ancf3243_arruda_boyce_sri_force_tangent,
+    0, 0
 };

@@ -422,7 +422,8 @@ void ancf3243_mooney_rivlin_full_force_tangent(const double *restrict q, const d
 const bk_pair bk_pair_ancf3243_mooney_rivlin_full = {
     &bk_element_ancf3243, "mooney_rivlin", "full", 3, param_names,
     96, 12, 4320L, 40356L,
-    ancf3243_full_tabulate, ancf3243_mooney_rivlin_full_energy, ancf3243_mooney_rivlin_full_force, ancf3243_mooney_rivlin_full_force_tangent
+    ancf3243_full_tabulate, ancf3243_mooney_rivlin_full_energy, ancf3243_mooney_rivlin_full_force, ancf3243_mooney_rivlin_full_force_tangent,
+    0, 0
 };
 
 double ancf3243_mooney_rivlin_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -1061,5 +1062,6 @@ void ancf3243_mooney_rivlin_sri_force_tangent(const double *restrict q, const do
 const bk_pair bk_pair_ancf3243_mooney_rivlin_sri = {
     &bk_element_ancf3243, "mooney_rivlin", "sri", 3, param_names,
     120, 15, 4758L, 44997L,
-    ancf3243_sri_tabulate, ancf3243_mooney_rivlin_sri_energy, ancf3243_mooney_rivlin_sri_force, ancf3243_mooney_rivlin_sri_force_tangent
+    ancf3243_sri_tabulate, ancf3243_mooney_rivlin_sri_energy, ancf3243_mooney_rivlin_sri_force, ancf3243_mooney_rivlin_sri_force_tangent,
+    0, 0
 };

@@ -3160,5 +3160,5 @@ void ancf3273_tangent_contract(const double *restrict A, const double *restrict 
 const bk_element bk_element_ancf3273 = {
     "ancf3273", "ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF", 2, 42, node_xi,
     14, field_name, field_dof, field_dim, reference,
-    14, shape_dof, shape, mass, volume, frame, moment
+    14, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -476,7 +476,8 @@ void ancf3273_mooney_rivlin_full_force_tangent(const double *restrict q, const d
 const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
     &bk_element_ancf3273, "mooney_rivlin", "full", 3, param_names,
     405, 27, 13770L, 224316L,
-    ancf3273_full_tabulate, ancf3273_mooney_rivlin_full_energy, ancf3273_mooney_rivlin_full_force, ancf3273_mooney_rivlin_full_force_tangent
+    ancf3273_full_tabulate, ancf3273_mooney_rivlin_full_energy, ancf3273_mooney_rivlin_full_force, ancf3273_mooney_rivlin_full_force_tangent,
+    0, 0
 };
 
 double ancf3273_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -950,5 +951,6 @@ void ancf3273_mooney_rivlin_reduced_force_tangent(const double *restrict q, cons
 const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
     &bk_element_ancf3273, "mooney_rivlin", "reduced", 3, param_names,
     180, 12, 6120L, 99696L,
-    ancf3273_reduced_tabulate, ancf3273_mooney_rivlin_reduced_energy, ancf3273_mooney_rivlin_reduced_force, ancf3273_mooney_rivlin_reduced_force_tangent
+    ancf3273_reduced_tabulate, ancf3273_mooney_rivlin_reduced_energy, ancf3273_mooney_rivlin_reduced_force, ancf3273_mooney_rivlin_reduced_force_tangent,
+    0, 0
 };

@@ -319,7 +319,8 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
 const bk_pair bk_pair_ancf3273_neo_hookean_full = {
     &bk_element_ancf3273, "neo_hookean", "full", 2, param_names,
     405, 27, 9153L, 178011L,
-    ancf3273_full_tabulate, ancf3273_neo_hookean_full_energy, ancf3273_neo_hookean_full_force, ancf3273_neo_hookean_full_force_tangent
+    ancf3273_full_tabulate, ancf3273_neo_hookean_full_energy, ancf3273_neo_hookean_full_force, ancf3273_neo_hookean_full_force_tangent,
+    0, 0
 };
 
 double ancf3273_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -636,5 +637,6 @@ void ancf3273_neo_hookean_reduced_force_tangent(const double *restrict q, const 
 const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
     &bk_element_ancf3273, "neo_hookean", "reduced", 2, param_names,
     180, 12, 4068L, 79116L,
-    ancf3273_reduced_tabulate, ancf3273_neo_hookean_reduced_energy, ancf3273_neo_hookean_reduced_force, ancf3273_neo_hookean_reduced_force_tangent
+    ancf3273_reduced_tabulate, ancf3273_neo_hookean_reduced_energy, ancf3273_neo_hookean_reduced_force, ancf3273_neo_hookean_reduced_force_tangent,
+    0, 0
 };

@@ -1738,5 +1738,5 @@ void ancf3333_tangent_contract(const double *restrict A, const double *restrict 
 const bk_element bk_element_ancf3333 = {
     "ancf3333", "ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF", 3, 27, node_xi,
     9, field_name, field_dof, field_dim, reference,
-    9, shape_dof, shape, mass, volume, frame, moment
+    9, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -323,5 +323,6 @@ void ancf3333_svk_full_force_tangent(const double *restrict q, const double *res
 const bk_pair bk_pair_ancf3333_svk_full = {
     &bk_element_ancf3333, "svk", "full", 2, param_names,
     156, 12, 3852L, 31548L,
-    ancf3333_full_tabulate, ancf3333_svk_full_energy, ancf3333_svk_full_force, ancf3333_svk_full_force_tangent
+    ancf3333_full_tabulate, ancf3333_svk_full_energy, ancf3333_svk_full_force, ancf3333_svk_full_force_tangent,
+    0, 0
 };

@@ -5068,5 +5068,5 @@ void ancf3363_tangent_contract(const double *restrict A, const double *restrict 
 const bk_element bk_element_ancf3363 = {
     "ancf3363", "ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF", 3, 54, node_xi,
     18, field_name, field_dof, field_dim, reference,
-    18, shape_dof, shape, mass, volume, frame, moment
+    18, shape_dof, shape, mass, volume, frame, moment, 0
 };

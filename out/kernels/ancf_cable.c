@@ -444,5 +444,5 @@ void ancf_cable_full_tabulate(const double *restrict geom, const double *restric
 const bk_element bk_element_ancf_cable = {
     "ancf_cable", "ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF", 2, 12, node_xi,
     4, field_name, field_dof, field_dim, reference,
-    4, shape_dof, shape, mass, volume, frame, moment
+    4, shape_dof, shape, mass, volume, frame, moment, 0
 };

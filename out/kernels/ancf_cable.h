@@ -2,7 +2,7 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:24d819ca9add2044f1aab92dbaa97346861c03b29c0317e13fffa1af711d9e29
+ * input hash: sha256:03ebc4d7cf3c70682510a56747a9673350a055bc0e79f049401b191adcd06a43
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
  * cubic Hermite interpolation of seed 001 Eqs. (4)-(6).

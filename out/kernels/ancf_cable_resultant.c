@@ -800,5 +800,6 @@ void ancf_cable_resultant_full_force_tangent(const double *restrict q, const dou
 const bk_pair bk_pair_ancf_cable_resultant_full = {
     &bk_element_ancf_cable, "resultant", "full", 6, param_names,
     36, 4, 662L, 3787L,
-    ancf_cable_full_tabulate, ancf_cable_resultant_full_energy, ancf_cable_resultant_full_force, ancf_cable_resultant_full_force_tangent
+    ancf_cable_full_tabulate, ancf_cable_resultant_full_energy, ancf_cable_resultant_full_force, ancf_cable_resultant_full_force_tangent,
+    0, 0
 };

@@ -475,5 +475,5 @@ void euler_bernoulli_full_tabulate(const double *restrict geom, const double *re
 const bk_element bk_element_euler_bernoulli = {
     "euler_bernoulli", "nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers", 3, 25, node_xi,
     10, field_name, field_dof, field_dim, reference,
-    3, shape_dof, shape, mass, volume, frame, moment
+    3, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -6379,5 +6379,6 @@ void euler_bernoulli_resultant_full_force_tangent(const double *restrict q, cons
 const bk_pair bk_pair_euler_bernoulli_resultant_full = {
     &bk_element_euler_bernoulli, "resultant", "full", 6, param_names,
     13, 2, 2225L, 27419L,
-    euler_bernoulli_full_tabulate, euler_bernoulli_resultant_full_energy, euler_bernoulli_resultant_full_force, euler_bernoulli_resultant_full_force_tangent
+    euler_bernoulli_full_tabulate, euler_bernoulli_resultant_full_energy, euler_bernoulli_resultant_full_force, euler_bernoulli_resultant_full_force_tangent,
+    0, 0
 };

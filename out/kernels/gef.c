@@ -471,5 +471,5 @@ void gef_full_tabulate(const double *restrict geom, const double *restrict q0, d
 const bk_element bk_element_gef = {
     "gef", "geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF", 3, 21, node_xi,
     6, field_name, field_dof, field_dim, reference,
-    3, shape_dof, shape, mass, volume, frame, moment
+    3, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -6050,5 +6050,6 @@ void gef_resultant_full_force_tangent(const double *restrict q, const double *re
 const bk_pair bk_pair_gef_resultant_full = {
     &bk_element_gef, "resultant", "full", 6, param_names,
     13, 2, 2223L, 26699L,
-    gef_full_tabulate, gef_resultant_full_energy, gef_resultant_full_force, gef_resultant_full_force_tangent
+    gef_full_tabulate, gef_resultant_full_energy, gef_resultant_full_force, gef_resultant_full_force_tangent,
+    0, 0
 };

@@ -477,5 +477,5 @@ void kirchhoff_full_tabulate(const double *restrict geom, const double *restrict
 const bk_element bk_element_kirchhoff = {
     "kirchhoff", "nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers", 3, 27, node_xi,
     12, field_name, field_dof, field_dim, reference,
-    3, shape_dof, shape, mass, volume, frame, moment
+    3, shape_dof, shape, mass, volume, frame, moment, 0
 };

@@ -5935,5 +5935,6 @@ void kirchhoff_resultant_full_force_tangent(const double *restrict q, const doub
 const bk_pair bk_pair_kirchhoff_resultant_full = {
     &bk_element_kirchhoff, "resultant", "full", 6, param_names,
     13, 2, 2227L, 24582L,
-    kirchhoff_full_tabulate, kirchhoff_resultant_full_energy, kirchhoff_resultant_full_force, kirchhoff_resultant_full_force_tangent
+    kirchhoff_full_tabulate, kirchhoff_resultant_full_energy, kirchhoff_resultant_full_force, kirchhoff_resultant_full_force_tangent,
+    0, 0
 };

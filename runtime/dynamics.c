@@ -1,0 +1,470 @@
+/* dynamics.c -- generalized-alpha for constrained (index-3) systems.
+ *
+ *   M q'' + f_int(q) + f_d(q, q') + f_rot(q, q', q'') + s G^T nu = f_ext(q, t),
+ *   G(t) q = g(t)
+ *
+ * after Arnold and Bruls (2007): the equations hold exactly at t_{n+1}; the
+ * algorithmic acceleration a obeys
+ *   (1 - am) a_{n+1} + am a_n = (1 - af) q''_{n+1} + af q''_n,
+ *   q_{n+1}  = q_n + h q'_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1},
+ *   q'_{n+1} = q'_n + h (1 - gamma) a_n + h gamma a_{n+1},
+ * with am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), gamma = 1/2 + af - am,
+ * beta = (gamma + 1/2)^2 / 4 from the spectral radius at infinity rho
+ * (Chung-Hulbert).  Newton corrects q by dq and q' by gamma' dq, q'' by beta' dq,
+ * beta' = (1 - am)/(beta h^2 (1 - af)), gamma' = gamma/(beta h).  The constraint
+ * rows and the multipliers are scaled by s = beta' m (m: mean mass diagonal),
+ * so the iteration matrix stays balanced as h -> 0.
+ *
+ * A step whose Newton iteration fails is retried with half the step; with
+ * dynamic.tol > 0 the step follows the local error estimate
+ *   e = h^2 |beta - 1/6| max|a_{n+1} - a_n| / L
+ * (L the model's length scale), accepted when e <= tol.
+ */
+#include "dynamics.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "linsolve.h"
+
+#define BK_MAXDOF 1024
+
+typedef struct dyn_work {
+    int nd, ne, nc;
+    double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
+    double *q_s, *qd_s, *qdd_s, *a_s, *nu_s;   /* saved for cut-backs                 */
+    double *fint, *fext, *fgrav, *r, *dx, *Ax, *Mx, *tmp;
+    double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
+} dyn_work;
+
+static double *dalloc(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(double));
+}
+
+static void work_free(dyn_work *w)
+{
+    double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
+                    &w->fint, &w->fext, &w->fgrav, &w->r, &w->dx, &w->Ax, &w->Mx, &w->tmp, &w->qe,
+                    &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
+    for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
+        free(*p[i]);
+        *p[i] = NULL;
+    }
+}
+
+static int work_alloc(dyn_work *w, const bk_system *s)
+{
+    const bk_model *m = s->m;
+    size_t nd = (size_t)m->ndof, ne = (size_t)s->neq, nc = (size_t)s->ncon, nnz = (size_t)s->nnz;
+    size_t md = (size_t)s->maxdof;
+    w->nd = m->ndof;
+    w->ne = s->neq;
+    w->nc = s->ncon;
+    w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
+    w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
+    w->nu_s = dalloc(nc);
+    w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd), w->r = dalloc(ne);
+    w->dx = dalloc(ne), w->Ax = dalloc(nnz), w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
+    w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
+    w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
+    double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->fint,
+                     w->fext, w->fgrav, w->r, w->dx, w->Ax, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
+                     w->fe, w->K1, w->K2, w->K3};
+    for (size_t i = 0; i < sizeof all / sizeof *all; ++i)
+        if (!all[i])
+            return -1;
+    return 0;
+}
+
+/* Constant mass matrix (translational inertia) on the free DOFs, in the pattern
+ * of the Newton matrix. */
+static void assemble_mass(const bk_system *s, double *Mx, double *me)
+{
+    const bk_model *m = s->m;
+    memset(Mx, 0, (size_t)s->nnz * sizeof *Mx);
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_element *et = m->pairs[el->pair]->element;
+        int ns = et->nshape, nd = et->ndof;
+        double rho = m->mats[el->mat].rho;
+        et->mass(m->geoms[el->geom], me);
+        const int *sl = s->eslot + s->eslot_off[e];
+        for (int a = 0; a < ns; ++a)
+            for (int b = 0; b < ns; ++b)
+                for (int i = 0; i < 3; ++i) {
+                    int slot = sl[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i];
+                    if (slot >= 0)
+                        Mx[slot] += rho * me[a * ns + b];
+                }
+    }
+}
+
+/* y = A x over the free DOFs (A in the Newton pattern, its free block only);
+ * x, y indexed by DOF, fdof maps equations to DOFs. */
+static void free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
+                        double *y)
+{
+    memset(y, 0, (size_t)s->m->ndof * sizeof *y);
+    for (int j = 0; j < s->nfree; ++j) {
+        double xj = x[fdof[j]];
+        if (xj == 0.0)
+            continue;
+        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k)
+            if (s->Ai[k] < s->nfree)
+                y[fdof[s->Ai[k]]] += Ax[k] * xj;
+    }
+}
+
+static double dot_free(const bk_system *s, const int *fdof, const double *a, const double *b)
+{
+    double d = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        d += a[fdof[j]] * b[fdof[j]];
+    return d;
+}
+
+/* Equation -> DOF map for free DOFs (built once). */
+static int *free_dofs(const bk_system *s)
+{
+    int *d = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *d);
+    if (!d)
+        return NULL;
+    for (int i = 0; i < s->m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            d[s->eq[i]] = i;
+    return d;
+}
+
+static void scatter_element(const bk_system *s, int e, const double *Ke, double c, double *Ax)
+{
+    int nd = s->m->pairs[s->m->elems[e].pair]->element->ndof;
+    const int *sl = s->eslot + s->eslot_off[e];
+    for (int k = 0; k < nd * nd; ++k)
+        if (sl[k] >= 0 && Ke[k] != 0.0)
+            Ax[sl[k]] += c * Ke[k];
+}
+
+/* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
+ * rotary inertia.  Adds to fint and, with Ax, their contributions
+ * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy. */
+static double element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
+                               double kp, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    double Trot = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        const bk_element *et = p->element;
+        const bk_mat *mat = &m->mats[el->mat];
+        int visc = mat->nvisc > 0 && p->viscous != NULL;
+        if (!visc && !et->rotary)
+            continue;
+        int nd = et->ndof;
+        for (int k = 0; k < nd; ++k) {
+            w->qe[k] = q[el->dofs[k]];
+            w->qde[k] = w->qd[el->dofs[k]];
+            w->qdde[k] = w->qdd[el->dofs[k]];
+        }
+        if (visc) {
+            p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
+            for (int k = 0; k < nd; ++k)
+                fint[el->dofs[k]] += w->fe[k];
+            if (Ax) {
+                scatter_element(s, e, w->K1, gp, Ax);
+                scatter_element(s, e, w->K2, kp, Ax);
+            }
+        }
+        if (et->rotary) {
+            double T = 0.0;
+            et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
+            Trot += mat->rho * T;
+            for (int k = 0; k < nd; ++k)
+                fint[el->dofs[k]] += mat->rho * w->fe[k];
+            if (Ax) {
+                scatter_element(s, e, w->K1, mat->rho * bp, Ax);
+                scatter_element(s, e, w->K2, mat->rho * gp, Ax);
+                scatter_element(s, e, w->K3, mat->rho * kp, Ax);
+            }
+        }
+    }
+    return Trot;
+}
+
+enum { DYN_OK = 0, DYN_MAXIT, DYN_NONFINITE, DYN_SINGULAR, DYN_LINERR };
+
+static const char *dyn_why(int c)
+{
+    switch (c) {
+    case DYN_MAXIT: return "Newton did not converge within the iteration limit";
+    case DYN_NONFINITE: return "non-finite force or increment";
+    case DYN_SINGULAR: return "singular iteration matrix: is every rigid motion constrained or given mass?";
+    case DYN_LINERR: return "linear solver error";
+    default: return "converged";
+    }
+}
+
+static double norm2(const double *v, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; ++i)
+        s += v[i] * v[i];
+    return sqrt(s);
+}
+
+int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    const bk_model *m = s->m;
+    const bk_dynamic_opts *o = &m->dyn;
+    dyn_work w = {0};
+    bk_linsolver ls = {0};
+    int rc = 1, *fdof = NULL;
+    int nd = m->ndof;
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s))) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    if (s->neq == 0) {
+        snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to integrate");
+        goto done;
+    }
+    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
+        snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
+        goto done;
+    }
+    const double rho = o->rho_inf;
+    const double am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
+    const double gam = 0.5 + af - am, bet = 0.25 * (gam + 0.5) * (gam + 0.5);
+    const double ra = o->rayleigh_alpha, rb = o->rayleigh_beta;
+
+    memcpy(q, m->q0, (size_t)nd * sizeof *q);
+    memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
+    bk_external_load(s, w.fext);
+    bk_gravity_load(s, w.fgrav);
+    assemble_mass(s, w.Mx, w.K1);
+    double mbar = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        if (s->diag[j] >= 0)
+            mbar += fabs(w.Mx[s->diag[j]]);
+    mbar = s->nfree ? mbar / s->nfree : 1.0;
+    if (!(mbar > 0.0))
+        mbar = 1.0;
+
+    /* Consistent initial accelerations: [M s G^T; s G 0] [q''; nu] = [f_ext - f(q, q'); -s (d^2/dt^2 of
+     * the explicit time dependence)]; the mass is regularized by 1e-10 mbar where it vanishes
+     * (gauge directions of quaternions). */
+    double t = 0.0, h = o->dt;
+    {
+        s->cscale = mbar;
+        bk_assemble_internal(s, q, w.fint, w.Ax);
+        memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
+        bk_assemble_follower(s, q, 1.0, w.fint, NULL);
+        element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
+        for (int k = 0; k < (int)s->nnz; ++k)
+            w.Ax[k] += w.Mx[k];
+        for (int j = 0; j < s->nfree; ++j)
+            if (s->diag[j] >= 0)
+                w.Ax[s->diag[j]] += 1e-10 * mbar;
+        free_matvec(s, fdof, w.Mx, w.qd, w.tmp);               /* Rayleigh on the initial velocity */
+        for (int i = 0; i < nd; ++i)
+            if (s->eq[i] >= 0)
+                w.r[s->eq[i]] = w.fext[i] - w.fint[i] - ra * w.tmp[i];
+        bk_assemble_constraints(s, q, w.nu, t, NULL, w.Ax);
+        for (int c = 0; c < s->ncon; ++c) {      /* G q'' = -(2 G' q' + G'' q - g'') */
+            const bk_lincon *lc = &m->lincons[c];
+            w.r[s->nfree + c] = -s->cscale * (2.0 * bk_constraint_row(lc, w.qd, t, 1, 0)
+                                            + bk_constraint_row(lc, q, t, 2, 1));
+        }
+        if (bk_lin_factor(&ls, w.Ax) != BK_LIN_OK || bk_lin_solve(&ls, w.r) != BK_LIN_OK) {
+            snprintf(info->message, sizeof info->message,
+                     "initial accelerations: singular mass/constraint system (is every DOF given mass or held?)");
+            goto done;
+        }
+        for (int i = 0; i < nd; ++i)
+            w.qdd[i] = s->eq[i] >= 0 ? w.r[s->eq[i]] : 0.0;
+        memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
+    }
+    double U0 = bk_strain_energy(s, q);
+    bk_output_step(out, 0, 0.0, q);
+    {
+        free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
+        double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+        bk_output_energy(out, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
+        info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
+    }
+
+    int step = 0, cuts = 0;
+    while (t < o->t_end * (1.0 - 1e-12)) {
+        if (t + h > o->t_end)
+            h = o->t_end - t;
+        double tn = t + h;
+        const double bp = (1.0 - am) / (bet * h * h * (1.0 - af)), gp = gam / (bet * h);
+        s->cscale = bp * mbar;
+        memcpy(w.q_s, q, (size_t)nd * sizeof *q);
+        memcpy(w.qd_s, w.qd, (size_t)nd * sizeof *q);
+        memcpy(w.qdd_s, w.qdd, (size_t)nd * sizeof *q);
+        memcpy(w.a_s, w.a, (size_t)nd * sizeof *q);
+        memcpy(w.nu_s, w.nu, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+        /* predictor with q''_{n+1} = 0 */
+        for (int i = 0; i < nd; ++i) {
+            if (s->eq[i] < 0)
+                continue;
+            double an = (af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+            q[i] = w.q_s[i] + h * w.qd_s[i] + h * h * ((0.5 - bet) * w.a_s[i] + bet * an);
+            w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
+            w.qdd[i] = 0.0;
+        }
+        int st = DYN_MAXIT, it;
+        double rnorm = 0.0, dnorm = INFINITY;
+        for (it = 0; it <= o->max_iter; ++it) {
+            if (bk_assemble_internal(s, q, w.fint, w.Ax) != 0) {
+                st = DYN_NONFINITE;
+                break;
+            }
+            if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
+                free_matvec(s, fdof, w.Ax, w.qd, w.tmp);
+                for (int i = 0; i < nd; ++i)
+                    w.fint[i] += rb * w.tmp[i];
+                for (long k = 0; k < s->nnz; ++k)
+                    w.Ax[k] *= 1.0 + gp * rb;
+            }
+            bk_assemble_follower(s, q, 1.0, w.fint, w.Ax);
+            element_dynamics(s, &w, q, gp, bp, 1.0, w.fint, w.Ax);
+            free_matvec(s, fdof, w.Mx, w.qdd, w.tmp);
+            for (int i = 0; i < nd; ++i)
+                w.fint[i] += w.tmp[i];
+            if (ra != 0.0) {
+                free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
+                for (int i = 0; i < nd; ++i)
+                    w.fint[i] += ra * w.tmp[i];
+            }
+            for (long k = 0; k < s->nnz; ++k)
+                w.Ax[k] += (bp + gp * ra) * w.Mx[k];
+            for (int i = 0; i < nd; ++i)
+                if (s->eq[i] >= 0)
+                    w.r[s->eq[i]] = w.fint[i] - w.fext[i];
+            bk_assemble_constraints(s, q, w.nu, tn, w.r, w.Ax);
+            rnorm = norm2(w.r, s->nfree);
+            if (!isfinite(rnorm)) {
+                st = DYN_NONFINITE;
+                break;
+            }
+            double ref = fmax(norm2(w.fext, nd), norm2(w.fint, nd));
+            double qmax = 0.0, kmax = 0.0;
+            for (int i = 0; i < nd; ++i)
+                qmax = fmax(qmax, fabs(q[i]));
+            for (int j = 0; j < s->nfree; ++j)
+                if (s->diag[j] >= 0)
+                    kmax = fmax(kmax, fabs(w.Ax[s->diag[j]]));
+            double rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
+            double dfloor = 64.0 * DBL_EPSILON * qmax;
+            double cres = norm2(w.r + s->nfree, s->ncon) / s->cscale;
+            if (it > 0 && rnorm <= fmax(o->rtol * ref, rfloor) && dnorm <= fmax(o->utol * m->length_scale, dfloor)
+                && cres <= 1e-12 * fmax(m->length_scale, 1.0)) {
+                st = DYN_OK;
+                break;
+            }
+            if (it == o->max_iter)
+                break;
+            int fs = bk_lin_factor(&ls, w.Ax);
+            if (fs != BK_LIN_OK) {
+                st = fs == BK_LIN_SINGULAR ? DYN_SINGULAR : DYN_LINERR;
+                break;
+            }
+            for (int i = 0; i < s->neq; ++i)
+                w.dx[i] = -w.r[i];
+            if (bk_lin_solve(&ls, w.dx) != BK_LIN_OK) {
+                st = DYN_LINERR;
+                break;
+            }
+            dnorm = 0.0;
+            for (int j = 0; j < s->nfree; ++j) {
+                int i = fdof[j];
+                double d = w.dx[j];
+                if (!isfinite(d)) {
+                    st = DYN_NONFINITE;
+                    break;
+                }
+                q[i] += d;
+                w.qd[i] += gp * d;
+                w.qdd[i] += bp * d;
+                dnorm = fmax(dnorm, fabs(d));
+            }
+            if (st == DYN_NONFINITE)
+                break;
+            for (int c = 0; c < s->ncon; ++c)
+                w.nu[c] += w.dx[s->nfree + c];
+        }
+        info->newton_iterations += it;
+        double err = 0.0;
+        if (st == DYN_OK) {
+            for (int i = 0; i < nd; ++i) {
+                double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+                err = fmax(err, fabs(an - w.a_s[i]));
+                w.a[i] = an;
+            }
+            err *= h * h * fabs(bet - 1.0 / 6.0) / m->length_scale;
+        }
+        int reject = st != DYN_OK || (o->tol > 0.0 && err > o->tol && h > o->dt_min * 1.0000001);
+        if (reject) {
+            memcpy(q, w.q_s, (size_t)nd * sizeof *q);
+            memcpy(w.qd, w.qd_s, (size_t)nd * sizeof *q);
+            memcpy(w.qdd, w.qdd_s, (size_t)nd * sizeof *q);
+            memcpy(w.a, w.a_s, (size_t)nd * sizeof *q);
+            memcpy(w.nu, w.nu_s, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+            double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
+            if (st != DYN_OK)
+                info->cutbacks++, cuts++;
+            if (hn < o->dt_min || cuts > o->max_cutbacks) {
+                snprintf(info->message, sizeof info->message,
+                         "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e, "
+                         "last increment %.3e after %d iterations, %d cut-backs",
+                         step + 1, tn, h, st != DYN_OK ? dyn_why(st) : "local error above tol at the smallest step",
+                         rnorm, dnorm, it, cuts);
+                goto done;
+            }
+            if (log)
+                fprintf(log, "  t = %.6g: step %.3g rejected (%s), retry with %.3g\n", t, h,
+                        st != DYN_OK ? dyn_why(st) : "local error", hn);
+            h = hn;
+            continue;
+        }
+        cuts = 0;
+        t = tn;
+        step++;
+        info->steps = step;
+        info->load_factor = t;
+        double cr = bk_constraint_residual(s, q, t);
+        info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
+        if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
+            bk_output_step(out, step, t, q);
+            free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
+            double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double U = bk_strain_energy(s, q) - U0;
+            double Vg = 0.0, Vf = 0.0;
+            for (int i = 0; i < nd; ++i) {
+                Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
+                Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
+            }
+            bk_output_energy(out, step, t, T, U, Vg, Vf, cr);
+        }
+        if (log)
+            fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
+        if (o->tol > 0.0 && err > 0.0)
+            h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
+        else if (h < o->dt)
+            h = fmin(2.0 * h, o->dt);
+    }
+    rc = 0;
+done:
+    info->converged = rc == 0;
+    info->factorizations = ls.nfactor;
+    info->analyses = ls.nanalyze;
+    bk_lin_free(&ls);
+    free(fdof);
+    work_free(&w);
+    return rc;
+}
