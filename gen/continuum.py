@@ -249,3 +249,46 @@ def contraction_programs(elem):
 def lowered_body(elem, mat, part, want):
     prog, params = body_program(elem, mat, part, want)
     return lower(prog, hoistable=params.values())
+
+
+def viscous_body_program(elem):
+    """Kelvin-Voigt damping at one quadrature point: viscous second Piola-Kirchhoff
+    stress S_v = lam_v tr(dE/dt) I + 2 mu_v dE/dt (visc = {lam_v, mu_v}: the
+    retardation time times the small-strain Lame constants), dE/dt = sym(F^T dF/dt).
+    Outputs f += w F S_v g_a, A[45] = w dP_v/d(dF/dt) (for C = df/dqd) and
+    G[45] = w delta_ik S_v,JL (the stress part of df/dq; the variation of dE/dt
+    with F is left out of this approximate derivative)."""
+    slots = gradient_slots(elem)
+    ndof, nsh = elem.ndof, elem.nshape
+    prog = Program()
+    q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
+    qd = [sp.Symbol(f"qd[{i}]", real=True) for i in range(ndof)]
+    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    lam, mu = sp.Symbol("visc[0]", real=True), sp.Symbol("visc[1]", real=True)
+    w = t[0]
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
+
+    F = sp.zeros(3, 3)
+    Fd = sp.zeros(3, 3)
+    for i in range(3):
+        for J in range(3):
+            F[i, J] = prog.define(f"F{i}{J}", sp.collect(sp.expand(sum(q[3 * a + i] * g(a, J) for a in range(nsh))), t[1:]))
+            Fd[i, J] = prog.define(f"Fd{i}{J}", sp.collect(sp.expand(sum(qd[3 * a + i] * g(a, J) for a in range(nsh))), t[1:]))
+    Ed = (F.T * Fd + Fd.T * F) / 2
+    Ed = sp.Matrix(3, 3, lambda I, J: prog.define(f"Ed{min(I, J)}{max(I, J)}", Ed[min(I, J), max(I, J)]))
+    tr = Ed[0, 0] + Ed[1, 1] + Ed[2, 2]
+    S = sp.Matrix(3, 3, lambda I, J: prog.define(f"Sv{min(I, J)}{max(I, J)}",
+                                                 w * (lam * tr * (1 if I == J else 0) + 2 * mu * Ed[min(I, J), max(I, J)])))
+    P = F * S
+    for a in range(nsh):
+        for i in range(3):
+            prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
+    b = F * F.T
+    for x, (i, J, k, L) in enumerate(A_INDEX):
+        d = lambda u, v: 1 if u == v else 0
+        prog.output(f"A[{x}]", w * (lam * F[i, J] * F[k, L] + mu * (F[i, L] * F[k, J] + b[i, k] * d(J, L))), op="=")
+        prog.output(f"G[{x}]", d(i, k) * S[J, L], op="=")
+    return prog

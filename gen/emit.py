@@ -13,7 +13,8 @@ import sympy as sp
 
 from functools import lru_cache
 
-from gen.continuum import A_INDEX, contraction_programs, lowered_body, rule_parts, tabulate_program
+from gen.continuum import (A_INDEX, contraction_programs, lowered_body, rule_parts, tabulate_program,
+                           viscous_body_program)
 from gen.element import B, H, L, XI, Y, Z, shape_functions, shape_gradients
 from gen.program import Program, count_lowered, lower, print_c, Ops
 
@@ -181,6 +182,9 @@ extern const bk_element bk_element_{name};
         htxt += (f"/* integration \"{rname}\": {', '.join(f'{len(p.rule)} points ({p.energy})' for p in parts)};"
                  f" tab[{ntab}] */\n")
         htxt += f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);\n"
+        htxt += (f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
+                 "const double *restrict tab, const double *restrict visc, double *restrict f, "
+                 "double *restrict C, double *restrict K);\n")
     htxt += (f"/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;\n"
              f" * A[{len(A_INDEX)}] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.\n"
              f" * {contraction_ops(elem)} operations. */\n"
@@ -210,6 +214,26 @@ extern const bk_element bk_element_{name};
         tprog, ntab = tabulate_program(elem, rname)
         c += _function(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
                        "double *restrict tab)", lower(tprog, ()), ["(void)q0;"])
+    # Kelvin-Voigt damping per integration (at the points of its first rule part).
+    vlow = lower(viscous_body_program(elem), ())
+    for rname in elem.rule_names:
+        _, parts, _ = rule_parts(elem, rname)
+        part = parts[0]
+        c += [f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
+              "const double *restrict tab, const double *restrict visc, double *restrict f, "
+              "double *restrict C, double *restrict K)", "{",
+              f"    for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;",
+              f"    for (int i = 0; i < {ndof * ndof}; ++i) C[i] = K[i] = 0.0;",
+              f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+              f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
+              f"        double A[{len(A_INDEX)}], G[{len(A_INDEX)}];"]
+        c += _prologue(vlow, "        ") + _block(vlow, "        ")
+        c += [f"        {name}_tangent_contract(A, t, C);", f"        {name}_tangent_contract(G, t, K);", "    }",
+              f"    for (int r = 1; r < {ndof}; ++r)",
+              f"        for (int c = 0; c < r; ++c) {{",
+              f"            C[r * {ndof} + c] = C[c * {ndof} + r];",
+              f"            K[r * {ndof} + c] = K[c * {ndof} + r];",
+              "        }", "}", ""]
     # The tangent contraction, one function per row node (keeps compile time linear).
     lows = contraction_lowered(elem)
     for a, low in enumerate(lows):
@@ -316,7 +340,7 @@ def pair_source(elem, elem_path, mat, mat_path):
               f'    &bk_element_{elem.name}, "{mat.NAME}", "{rname}", {len(mat.PARAMS)}, param_names,',
               f"    {ntab}, {nqp}, {counts['force'][1].total()}L, {counts['tangent'][1].total()}L,",
               f"    {elem.name}_{rname}_tabulate, {fns['energy']}, {fns['force']}, {fns['tangent']},",
-              "    0, 0",
+              f"    2, {elem.name}_{rname}_viscous",
               "};", ""]
         parts_txt = " + ".join(f"{len(p.rule)} pts ({p.energy}, {'x'.join(map(str, rp.points))})"
                                for p, rp in zip(parts, elem.rule(rname)))

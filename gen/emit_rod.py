@@ -80,7 +80,40 @@ def _rod_parts(elem):
         ref.output(f"q0[{3 * rod.NODE_DOF + i}]", 0, op="=")
     tab = lower(rod.tabulate_program(elem), ())
     return (lower(shp, ()), mass_low, vol_low, lower(fr, ()), mom, lower(ref, ()), tab,
-            [rod.NODE_DOF * n for n in range(3)], rod.tab_layout())
+            [rod.NODE_DOF * n for n in range(3)], rod.tab_layout(), lower(_rotary_program(elem), ()))
+
+
+def _rotary_program(elem):
+    """Rotary inertia lumped at the nodes (weights l/6, 2l/3, l/6), per unit density:
+    T = sum_n 1/2 W_n^T J_n W_n with the body angular velocity W = 2 Im(conj(p) p')/|p|^2
+    and J_n = w_n diag(Ip, I1, I2); f = d/dt dT/dp' - dT/dp and its derivatives."""
+    g = _geom()
+    l, I1, I2, Ip = g[0], g[4], g[5], g[6]
+    nd = elem.ndof
+    prog = Program()
+    T = 0
+    for n, wn in enumerate((sp.Rational(1, 6), sp.Rational(2, 3), sp.Rational(1, 6))):
+        base = rod.NODE_DOF * n + 3
+        p = [sp.Symbol(f"q[{base + k}]", real=True) for k in range(4)]
+        pd = [sp.Symbol(f"qd[{base + k}]", real=True) for k in range(4)]
+        pdd = [sp.Symbol(f"qdd[{base + k}]", real=True) for k in range(4)]
+        n2 = sum(x * x for x in p)
+        W = 2 * rod.qmul(rod.qconj((p[0], sp.Matrix(p[1:]))), (pd[0], sp.Matrix(pd[1:])))[1] / n2
+        J = [Ip, I1, I2]
+        Tn = wn * l * sum(J[k] * W[k]**2 for k in range(3)) / 2
+        T += Tn
+        dTdpd = [sp.diff(Tn, x) for x in pd]
+        f = [sum(sp.diff(dTdpd[i], p[j]) * pd[j] + sp.diff(dTdpd[i], pd[j]) * pdd[j] for j in range(4))
+             - sp.diff(Tn, p[i]) for i in range(4)]
+        for i in range(4):
+            prog.output(f"f[{base + i}]", f[i], op="=")
+            for j in range(4):
+                for arr, var in (("Mq", pdd), ("Cq", pd), ("Kq", p)):
+                    d = sp.diff(f[i], var[j])
+                    if d != 0:
+                        prog.output(f"{arr}[{(base + i) * nd + base + j}]", d, op="=")
+    prog.output("T[0]", T, op="=")
+    return prog
 
 
 def _cable_parts(elem):
@@ -127,8 +160,8 @@ def element_source(elem, elem_path):
     name = elem.name
     nd = elem.ndof
     h = input_hash([elem_path] + family_paths(elem) + core_paths())
-    parts = _rod_parts(elem) if elem.kind == "rod" else _cable_parts(elem)
-    shp, mass_low, vol_low, fr, mom, ref, tab, shape_dof, ntab = parts
+    parts = _rod_parts(elem) if elem.kind == "rod" else _cable_parts(elem) + (None,)
+    shp, mass_low, vol_low, fr, mom, ref, tab, shape_dof, ntab, rot = parts
     nsh = len(shape_dof)
     mod = rod if elem.kind == "rod" else cable
     doc = (mod.__doc__ or "").strip().splitlines()
@@ -174,12 +207,18 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
             c += [f"    {cond}"] + _prologue(low, "        ") + _block(low, "        ")
         c += ["    }", "}", ""]
     c += _function("static void reference(const double *restrict geom, double *restrict q0)", ref, ["(void)geom;"])
+    if rot is not None:
+        c += _function("static void rotary(const double *restrict geom, const double *restrict q, "
+                       "const double *restrict qd, const double *restrict qdd, double *restrict f, "
+                       "double *restrict Mq, double *restrict Cq, double *restrict Kq, double *restrict T)", rot,
+                       [f"for (int i = 0; i < {nd}; ++i) f[i] = 0.0;",
+                        f"for (int i = 0; i < {nd * nd}; ++i) Mq[i] = Cq[i] = Kq[i] = 0.0;"])
     c += _function(f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
                    "double *restrict tab)", tab, ["(void)q0;"] if elem.kind == "cable" else [])
     c += [f"const bk_element bk_element_{name} = {{",
           f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
           f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, 0",
+          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, {'rotary' if rot is not None else '0'}",
           "};", ""]
     return htxt, "\n".join(c)
 

@@ -465,6 +465,9 @@ def build(path, sets=(), name=None):
         pidx = pairs.index(pair)
         visc = []
         tau = float(mats_doc[mname].get("kelvin_voigt", 0.0))
+        if tau > 0 and einfo["kind"] != "continuum":
+            ctx.fail(f"material.{mname}.kelvin_voigt", f"Kelvin-Voigt damping is offered by the ANCF continuum "
+                     f"elements; for element {ename} use [dynamic] rayleigh_alpha / rayleigh_beta")
         if tau > 0:
             if mkind == "resultant":
                 visc = [tau * v for v in params]

@@ -202,7 +202,7 @@ int main(int argc, char **argv)
             /* inextensible elements store no energy in a stretch: use force x length */
             double Uscale = fmax(Ueps / (eps * eps), fscale * geom[0]);
 
-            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0;
+            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_visc = 0;
 
             for (int st = 0; st < NSTATE; ++st) {
                 random_rotation(&r, R, qr);
@@ -253,11 +253,30 @@ int main(int argc, char **argv)
                 }
                 for (int k = 0; k < n * n; ++k)
                     e_tan = fmax(e_tan, fabs(K[k] - Kd[k]) / Kmax);
+                /* Kelvin-Voigt: C = d f_v / d qd by central differences (f_v is linear in qd) */
+                if (p->viscous) {
+                    double visc[2] = {0.3 * mat[0] + 1.0, 0.2 * mat[0] + 1.0};
+                    double *qd = fp, *Cv = Kd, *Kv = K;
+                    for (int i = 0; i < n; ++i)
+                        qd[i] = sc[i] * urand(&r);
+                    p->viscous(q, qd, tab, visc, f, Cv, Kv);
+                    double Cmax = maxabs(Cv, n * n);
+                    for (int j = 0; j < n; ++j) {
+                        double hq = 1e-3 * sc[j], v0 = qd[j];
+                        qd[j] = v0 + hq;
+                        p->viscous(q, qd, tab, visc, fm, Kv, Kv);
+                        qd[j] = v0 - hq;
+                        p->viscous(q, qd, tab, visc, fp2, Kv, Kv);
+                        qd[j] = v0;
+                        for (int i = 0; i < n; ++i)
+                            e_visc = fmax(e_visc, fabs(Cv[i * n + j] - (fm[i] - fp2[i]) / (2 * hq)) / Cmax);
+                    }
+                }
             }
             printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
-                   "rigid_energy=%.3e rigid_force=%.3e fscale=%.3e\n",
+                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fscale=%.3e\n",
                    e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,
-                   e_rigU, e_rigf, fscale);
+                   e_rigU, e_rigf, e_visc, fscale);
             if (!isfinite(e_force) || !isfinite(e_tan))
                 bad = 1;
             free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);

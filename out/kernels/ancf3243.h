@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:e595ab70e93cab3f83201d2309c2fe1ed2ad845d5f3288ae650d8a6518f76eab
+ * input hash: sha256:de75a200c7edccb2f50615821ed3b3aa05df8325eb9e484d3fa04ff35e2e6ec8
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -26,8 +26,10 @@
 extern const bk_element bk_element_ancf3243;
 /* integration "full": 12 points (all); tab[96] */
 void ancf3243_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "sri": 12 points (full_order), 3 points (centreline); tab[120] */
 void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 1347 (653 add, 694 mul, 0 div, 0 call) operations. */

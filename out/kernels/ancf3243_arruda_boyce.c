@@ -370,7 +370,7 @@ const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
     &bk_element_ancf3243, "arruda_boyce", "full", 3, param_names,
     96, 12, 3884L, 25808L,
     ancf3243_full_tabulate, ancf3243_arruda_boyce_full_energy, ancf3243_arruda_boyce_full_force, ancf3243_arruda_boyce_full_force_tangent,
-    0, 0
+    2, ancf3243_full_viscous
 };
 
 double ancf3243_arruda_boyce_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -957,5 +957,5 @@ const bk_pair bk_pair_ancf3243_arruda_boyce_sri = {
     &bk_element_ancf3243, "arruda_boyce", "sri", 3, param_names,
     120, 15, 4310L, 30545L,
     ancf3243_sri_tabulate, ancf3243_arruda_boyce_sri_energy, ancf3243_arruda_boyce_sri_force, ancf3243_arruda_boyce_sri_force_tangent,
-    0, 0
+    2, ancf3243_sri_viscous
 };

@@ -423,7 +423,7 @@ const bk_pair bk_pair_ancf3243_mooney_rivlin_full = {
     &bk_element_ancf3243, "mooney_rivlin", "full", 3, param_names,
     96, 12, 4320L, 40356L,
     ancf3243_full_tabulate, ancf3243_mooney_rivlin_full_energy, ancf3243_mooney_rivlin_full_force, ancf3243_mooney_rivlin_full_force_tangent,
-    0, 0
+    2, ancf3243_full_viscous
 };
 
 double ancf3243_mooney_rivlin_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -1063,5 +1063,5 @@ const bk_pair bk_pair_ancf3243_mooney_rivlin_sri = {
     &bk_element_ancf3243, "mooney_rivlin", "sri", 3, param_names,
     120, 15, 4758L, 44997L,
     ancf3243_sri_tabulate, ancf3243_mooney_rivlin_sri_energy, ancf3243_mooney_rivlin_sri_force, ancf3243_mooney_rivlin_sri_force_tangent,
-    0, 0
+    2, ancf3243_sri_viscous
 };

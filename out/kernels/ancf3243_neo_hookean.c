@@ -266,7 +266,7 @@ const bk_pair bk_pair_ancf3243_neo_hookean_full = {
     &bk_element_ancf3243, "neo_hookean", "full", 2, param_names,
     96, 12, 2268L, 19776L,
     ancf3243_full_tabulate, ancf3243_neo_hookean_full_energy, ancf3243_neo_hookean_full_force, ancf3243_neo_hookean_full_force_tangent,
-    0, 0
+    2, ancf3243_full_viscous
 };
 
 double ancf3243_neo_hookean_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -865,5 +865,5 @@ const bk_pair bk_pair_ancf3243_neo_hookean_sri = {
     &bk_element_ancf3243, "neo_hookean", "sri", 2, param_names,
     120, 15, 3205L, 27907L,
     ancf3243_sri_tabulate, ancf3243_neo_hookean_sri_energy, ancf3243_neo_hookean_sri_force, ancf3243_neo_hookean_sri_force_tangent,
-    0, 0
+    2, ancf3243_sri_viscous
 };

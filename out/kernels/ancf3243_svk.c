@@ -336,7 +336,7 @@ const bk_pair bk_pair_ancf3243_svk_full = {
     &bk_element_ancf3243, "svk", "full", 2, param_names,
     96, 12, 3240L, 22764L,
     ancf3243_full_tabulate, ancf3243_svk_full_energy, ancf3243_svk_full_force, ancf3243_svk_full_force_tangent,
-    0, 0
+    2, ancf3243_full_viscous
 };
 
 double ancf3243_svk_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -932,5 +932,5 @@ const bk_pair bk_pair_ancf3243_svk_sri = {
     &bk_element_ancf3243, "svk", "sri", 2, param_names,
     120, 15, 2985L, 25499L,
     ancf3243_sri_tabulate, ancf3243_svk_sri_energy, ancf3243_svk_sri_force, ancf3243_svk_sri_force_tangent,
-    0, 0
+    2, ancf3243_sri_viscous
 };

@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:9b3a6babf7739efda68284ccc1d7f32e10c611428e934df9ba1c6104b5fc7676
+ * input hash: sha256:15c03b63f30906508c02e65d7c55b5ab7c84b00da8a362d48fa759a3e4cbd303
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -32,8 +32,10 @@
 extern const bk_element bk_element_ancf3273;
 /* integration "full": 27 points (all); tab[405] */
 void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "reduced": 12 points (all); tab[180] */
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */

@@ -424,7 +424,7 @@ const bk_pair bk_pair_ancf3273_arruda_boyce_full = {
     &bk_element_ancf3273, "arruda_boyce", "full", 3, param_names,
     405, 27, 12764L, 191558L,
     ancf3273_full_tabulate, ancf3273_arruda_boyce_full_energy, ancf3273_arruda_boyce_full_force, ancf3273_arruda_boyce_full_force_tangent,
-    0, 0
+    2, ancf3273_full_viscous
 };
 
 double ancf3273_arruda_boyce_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -846,5 +846,5 @@ const bk_pair bk_pair_ancf3273_arruda_boyce_reduced = {
     &bk_element_ancf3273, "arruda_boyce", "reduced", 3, param_names,
     180, 12, 5684L, 85148L,
     ancf3273_reduced_tabulate, ancf3273_arruda_boyce_reduced_energy, ancf3273_arruda_boyce_reduced_force, ancf3273_arruda_boyce_reduced_force_tangent,
-    0, 0
+    2, ancf3273_reduced_viscous
 };

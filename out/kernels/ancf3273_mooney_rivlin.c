@@ -477,7 +477,7 @@ const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
     &bk_element_ancf3273, "mooney_rivlin", "full", 3, param_names,
     405, 27, 13770L, 224316L,
     ancf3273_full_tabulate, ancf3273_mooney_rivlin_full_energy, ancf3273_mooney_rivlin_full_force, ancf3273_mooney_rivlin_full_force_tangent,
-    0, 0
+    2, ancf3273_full_viscous
 };
 
 double ancf3273_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -952,5 +952,5 @@ const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
     &bk_element_ancf3273, "mooney_rivlin", "reduced", 3, param_names,
     180, 12, 6120L, 99696L,
     ancf3273_reduced_tabulate, ancf3273_mooney_rivlin_reduced_energy, ancf3273_mooney_rivlin_reduced_force, ancf3273_mooney_rivlin_reduced_force_tangent,
-    0, 0
+    2, ancf3273_reduced_viscous
 };

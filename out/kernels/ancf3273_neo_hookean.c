@@ -320,7 +320,7 @@ const bk_pair bk_pair_ancf3273_neo_hookean_full = {
     &bk_element_ancf3273, "neo_hookean", "full", 2, param_names,
     405, 27, 9153L, 178011L,
     ancf3273_full_tabulate, ancf3273_neo_hookean_full_energy, ancf3273_neo_hookean_full_force, ancf3273_neo_hookean_full_force_tangent,
-    0, 0
+    2, ancf3273_full_viscous
 };
 
 double ancf3273_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -638,5 +638,5 @@ const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
     &bk_element_ancf3273, "neo_hookean", "reduced", 2, param_names,
     180, 12, 4068L, 79116L,
     ancf3273_reduced_tabulate, ancf3273_neo_hookean_reduced_energy, ancf3273_neo_hookean_reduced_force, ancf3273_neo_hookean_reduced_force_tangent,
-    0, 0
+    2, ancf3273_reduced_viscous
 };

@@ -390,7 +390,7 @@ const bk_pair bk_pair_ancf3273_svk_full = {
     &bk_element_ancf3273, "svk", "full", 2, param_names,
     405, 27, 11340L, 184734L,
     ancf3273_full_tabulate, ancf3273_svk_full_energy, ancf3273_svk_full_force, ancf3273_svk_full_force_tangent,
-    0, 0
+    2, ancf3273_full_viscous
 };
 
 double ancf3273_svk_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -778,5 +778,5 @@ const bk_pair bk_pair_ancf3273_svk_reduced = {
     &bk_element_ancf3273, "svk", "reduced", 2, param_names,
     180, 12, 5040L, 82104L,
     ancf3273_reduced_tabulate, ancf3273_svk_reduced_energy, ancf3273_svk_reduced_force, ancf3273_svk_reduced_force_tangent,
-    0, 0
+    2, ancf3273_reduced_viscous
 };

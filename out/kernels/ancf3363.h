@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:7d0b084048ac4d7be098e51ee63552a17398dc7770ee714d5bd02aefe22005ab
+ * input hash: sha256:b7ce2b18dc36c993662598e3265e1479fce5d4045713c217b3d7222577546e06
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -36,8 +36,10 @@
 extern const bk_element bk_element_ancf3363;
 /* integration "full": 27 points (all); tab[756] */
 void ancf3363_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "reduced": 12 points (all); tab[336] */
 void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+void ancf3363_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 11400 (5670 add, 5730 mul, 0 div, 0 call) operations. */
