@@ -33,7 +33,7 @@ KEY_RANGES = {
 }
 DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
                     "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
-                    "rtol": 1e-8, "utol": 1e-12}
+                    "rtol": 1e-8, "utol": 1e-8}
 
 
 class SceneError(Exception):
@@ -359,7 +359,7 @@ def build(path, sets=(), name=None):
         apply_overrides(doc, sets, path)
     index = load_index()
     check_keys(ctx, doc, {"scene", "material", "section", "beam", "constraint", "load", "static",
-                          "dynamic", "sensor"}, "(top level)")
+                          "dynamic", "modal", "initial_velocity", "sensor"}, "(top level)")
     scene = get_table(ctx, doc, "scene")
     check_keys(ctx, scene, {"analysis", "description", "name"}, "scene")
     analysis = get_str(ctx, scene, "analysis", "scene", default="static",
