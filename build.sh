@@ -31,9 +31,9 @@ Commands:
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   scenes                 list the scenes in models/
-  report [--quick]       the seed cantilever tables, ours beside the paper's, and the
-                         nearly incompressible cantilever: out/report/seed_tables.md,
-                         out/report/incompressible.md
+  report [--quick]       the seed cantilever tables beside the paper's, the nearly
+                         incompressible cantilever and the pendulums / falling
+                         silicone: out/report/{seed_tables,incompressible,pendulum}.md
   deps                   only install missing Debian packages
   bench                  the speed-against-error report (not implemented yet)
   --help                 this text
@@ -100,7 +100,8 @@ case "$cmd" in
     report)
         shift
         "$PY" -m report.seed_tables "$@"
-        exec "$PY" -m report.incompressible "$@"
+        "$PY" -m report.incompressible "$@"
+        exec "$PY" -m report.dynamics "$@"
         ;;
     bench)
         echo "error: ./build.sh bench is not implemented yet (issue: speed against error)" >&2
