@@ -179,8 +179,8 @@ int main(int argc, char **argv)
             double *K = malloc((size_t)n * n * sizeof(double)), *Kd = malloc((size_t)n * n * sizeof(double));
             double *fp = malloc(n * sizeof(double)), *fm = malloc(n * sizeof(double));
             double *fp2 = malloc(n * sizeof(double)), *fm2 = malloc(n * sizeof(double));
-            double *sc = malloc(n * sizeof(double));
-            if (!tab || !q0 || !q || !f || !f2 || !K || !Kd || !fp || !fm || !fp2 || !fm2 || !sc)
+            double *sc = malloc(n * sizeof(double)), *Kd2 = malloc((size_t)n * n * sizeof(double));
+            if (!tab || !q0 || !q || !f || !f2 || !K || !Kd || !fp || !fm || !fp2 || !fm2 || !sc || !Kd2)
                 return 3;
             double Rid[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, qid[4] = {1, 0, 0, 0}, zero[3] = {0, 0, 0};
             rigid(e, geom, Rid, qid, zero, q0);
@@ -256,7 +256,7 @@ int main(int argc, char **argv)
                 /* Kelvin-Voigt: C = d f_v / d qd by central differences (f_v is linear in qd) */
                 if (p->viscous) {
                     double visc[2] = {0.3 * mat[0] + 1.0, 0.2 * mat[0] + 1.0};
-                    double *qd = fp, *Cv = Kd, *Kv = K;
+                    double *qd = fp, *Cv = Kd, *Kv = K, *Cx = Kd2;
                     for (int i = 0; i < n; ++i)
                         qd[i] = sc[i] * urand(&r);
                     p->viscous(q, qd, tab, visc, f, Cv, Kv);
@@ -264,9 +264,9 @@ int main(int argc, char **argv)
                     for (int j = 0; j < n; ++j) {
                         double hq = 1e-3 * sc[j], v0 = qd[j];
                         qd[j] = v0 + hq;
-                        p->viscous(q, qd, tab, visc, fm, Kv, Kv);
+                        p->viscous(q, qd, tab, visc, fm, Cx, Kv);
                         qd[j] = v0 - hq;
-                        p->viscous(q, qd, tab, visc, fp2, Kv, Kv);
+                        p->viscous(q, qd, tab, visc, fp2, Cx, Kv);
                         qd[j] = v0;
                         for (int i = 0; i < n; ++i)
                             e_visc = fmax(e_visc, fabs(Cv[i * n + j] - (fm[i] - fp2[i]) / (2 * hq)) / Cmax);
@@ -280,7 +280,7 @@ int main(int argc, char **argv)
             if (!isfinite(e_force) || !isfinite(e_tan))
                 bad = 1;
             free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);
-            free(fp); free(fm); free(fp2); free(fm2); free(sc);
+            free(fp); free(fm); free(fp2); free(fm2); free(sc); free(Kd2);
         }
     }
     return bad;
