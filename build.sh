@@ -30,6 +30,8 @@ Commands:
       --sanitize           build and run with AddressSanitizer + UBSan
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
+  plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic) and
+                         beam.png (the last ParaView frame drawn in 3-D)
   scenes                 list the scenes in models/
   report [--quick]       the seed cantilever tables beside the paper's, the nearly
                          incompressible cantilever and the pendulums / falling
@@ -96,6 +98,10 @@ case "$cmd" in
         ;;
     scenes)
         exec "$PY" -m gen.cli scenes
+        ;;
+    plot)
+        shift
+        exec "$PY" -m report.plot "$@"
         ;;
     report)
         shift

@@ -11,7 +11,7 @@ from gen.scene import ROOT, SceneError, build, load_index, write_model
 MODELS = ROOT / "models"
 RUNS = ROOT / "out" / "runs"
 MARKER = ".beamkit-run"
-RESULT_FILES = ("summary.json", "sensors.csv", "model.dat", "solver.log")
+RESULT_FILES = ("summary.json", "sensors.csv", "energy.csv", "modes.csv", "model.dat", "results.pvd")
 
 
 def scene_path(spec):
@@ -73,6 +73,8 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
     cmd = [str(solver), str(out / "model.dat"), str(out)]
     if verbose:
         cmd.append("--verbose")
+    elif quiet:
+        cmd.append("--quiet")
     return subprocess.run(cmd).returncode, out
 
 

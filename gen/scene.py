@@ -359,7 +359,7 @@ def build(path, sets=(), name=None):
         apply_overrides(doc, sets, path)
     index = load_index()
     check_keys(ctx, doc, {"scene", "material", "section", "beam", "constraint", "load", "static",
-                          "dynamic", "modal", "initial_velocity", "sensor"}, "(top level)")
+                          "dynamic", "modal", "initial_velocity", "sensor", "output"}, "(top level)")
     scene = get_table(ctx, doc, "scene")
     check_keys(ctx, scene, {"analysis", "description", "name"}, "scene")
     analysis = get_str(ctx, scene, "analysis", "scene", default="static",
@@ -726,6 +726,15 @@ def build(path, sets=(), name=None):
     if analysis == "dynamic" and dyn["t_end"] / dyn["dt"] > 1e8:
         ctx.fail("dynamic.dt", f"t_end / dt = {dyn['t_end'] / dyn['dt']:.3g} steps: expected at most 1e8")
 
+    ot = get_table(ctx, doc, "output")
+    check_keys(ctx, ot, {"vtk_every"}, "output")
+    if analysis == "dynamic":
+        n_out = dyn["t_end"] / (dyn["dt"] * dyn["output_every"])
+        default_vtk = max(1, math.ceil(n_out / 100))
+    else:
+        default_vtk = 1
+    vtk_every = get_int(ctx, ot, "vtk_every", "output", default=default_vtk, lo=0, hi=10**9)
+
     mt = get_table(ctx, doc, "modal")
     check_keys(ctx, mt, {"modes", "about"}, "modal")
     modal = {"modes": get_int(ctx, mt, "modes", "modal", default=10, lo=1, hi=100000),
@@ -790,6 +799,7 @@ def build(path, sets=(), name=None):
         "fixed": sorted(fixed), "lincons": lincons, "forces": forces, "moments": moments,
         "gravity": gravity,
         "sensors": sensors, "static": stat, "beams": beams, "dynamic": dyn, "modal": modal, "qd0": qd0,
+        "vtk_every": vtk_every,
     }
 
 
@@ -937,6 +947,7 @@ def write_model(model, path):
     out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "
                f"{d['max_iterations']} {d['max_cutbacks']} {d['output_every']} {_f(d['rayleigh_alpha'])} "
                f"{_f(d['rayleigh_beta'])} {_f(d['rtol'])} {_f(d['utol'])}")
+    out.append(f"output {model['vtk_every']}")
     out.append(f"modal {model['modal']['modes']} {model['modal']['about']}")
     out.append(f"ndof {model['ndof']}")
     out.append("q0")

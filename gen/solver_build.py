@@ -19,7 +19,7 @@ BUILD = ROOT / "out" / "build"
 CC = os.environ.get("CC", "cc")
 JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
-RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "dynamics.c", "modal.c", "output.c", "main.c")
+RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "main.c")
 LIBS = ["-lklu", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
 VARIANTS = {
     "release": ["-O2", "-march=native"],

@@ -29,12 +29,12 @@ static double now(void)
 int main(int argc, char **argv)
 {
     const char *model_path = NULL, *out_dir = NULL;
-    int verbose = 0;
+    int verbose = 0, quiet = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--verbose") == 0)
             verbose = 1;
         else if (strcmp(argv[i], "--quiet") == 0)
-            verbose = 0;
+            quiet = 1;
         else if (!model_path)
             model_path = argv[i];
         else if (!out_dir)
@@ -45,7 +45,7 @@ int main(int argc, char **argv)
         }
     }
     if (!model_path || !out_dir) {
-        fprintf(stderr, "usage: %s MODEL_FILE OUT_DIR [--verbose]\n", argv[0]);
+        fprintf(stderr, "usage: %s MODEL_FILE OUT_DIR [--verbose | --quiet]\n", argv[0]);
         return 1;
     }
     double t0 = now();
@@ -58,7 +58,7 @@ int main(int argc, char **argv)
         return 1;
     }
     bk_output out;
-    if (bk_output_open(&out, m, out_dir, stderr) != 0) {
+    if (bk_output_open(&out, m, out_dir, !quiet && !verbose, stderr) != 0) {
         bk_system_free(s);
         bk_model_free(m);
         return 1;
@@ -79,6 +79,7 @@ int main(int argc, char **argv)
         rc = bk_solve_modal(s, q, &out, &info, verbose ? stderr : NULL);
     else
         rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
+    bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
     info.wall_s = now() - t0;
     bk_output_close(&out);

@@ -163,6 +163,8 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->dyn.rayleigh_beta = num(r, "dynamic.rayleigh_beta");
     m->dyn.rtol = num(r, "dynamic.rtol");
     m->dyn.utol = num(r, "dynamic.utol");
+    expect(r, "output");
+    m->vtk_every = inum(r, "output.vtk_every", 0, MAXN);
     expect(r, "modal");
     m->modal.nmodes = inum(r, "modal.modes", 1, 100000);
     m->modal.about_static = inum(r, "modal.about", 0, 1);

@@ -116,6 +116,7 @@ typedef struct bk_model {
     bk_dynamic_opts dyn;
     bk_modal_opts modal;
     double *qd0;                 /* [ndof] initial velocities (dynamic) */
+    int vtk_every;               /* a ParaView frame every n-th output step; 0: none */
 } bk_model;
 
 /* Reads a model file.  `avail` lists the kernel descriptors linked into this

@@ -177,6 +177,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 if (log)
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, iters, rnorm);
+                bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
+                                   iters, rnorm);
                 continue;
             }
             memcpy(q, w.qsave, (size_t)nd * sizeof *q);

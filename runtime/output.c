@@ -4,12 +4,30 @@
 #include <errno.h>
 #include <math.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "system.h"
 
-int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
+static double wall(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
 {
     memset(o, 0, sizeof *o);
+    o->progress = progress && isatty(2);
+    o->t_start = o->t_last = wall();
+    int frames = m->analysis == BK_DYNAMIC
+                     ? (int)(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / (m->vtk_every > 0 ? m->vtk_every : 1)) + 4
+                     : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+    if (bk_vtk_open(&o->vtk, m, dir, m->vtk_every, frames) != 0) {
+        fprintf(err, "error: out of memory for the ParaView frames\n");
+        return -1;
+    }
     o->m = m;
     snprintf(o->dir, sizeof o->dir, "%s", dir);
     char path[1200];
@@ -44,8 +62,32 @@ static void sensor_state(const bk_model *m, const bk_sensor *s, const double *q,
         disp[i] = pos[i] - p0[i];
 }
 
+void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual)
+{
+    if (!o->progress)
+        return;
+    double now = wall();
+    if (now - o->t_start < 1.0 || now - o->t_last < 0.25)
+        return;
+    o->t_last = now;
+    double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
+    fprintf(stderr, "\r%s: step %d, %s %.6g, %d Newton it., residual %.2e, %3.0f %%, %.0f s left   ",
+            o->m->name, step, o->m->analysis == BK_DYNAMIC ? "t" : "load", t, iters, residual,
+            100.0 * frac, eta);
+    fflush(stderr);
+}
+
+void bk_output_final(bk_output *o, int step, double t, const double *q)
+{
+    if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
+        bk_vtk_frame(&o->vtk, NULL, -step, t, q);
+    if (o->progress && wall() - o->t_start >= 1.0)
+        fprintf(stderr, "\n");
+}
+
 void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
+    bk_vtk_frame(&o->vtk, NULL, step, t, q);
     if (!o->sensors)
         return;
     for (int k = 0; k < o->m->nsensor; ++k) {
@@ -192,4 +234,5 @@ void bk_output_close(bk_output *o)
     if (o->modes)
         fclose(o->modes);
     o->sensors = o->energy = o->modes = NULL;
+    bk_vtk_close(&o->vtk);
 }

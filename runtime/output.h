@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "model.h"
+#include "vtk.h"
 
 typedef struct bk_output {
     const bk_model *m;
@@ -16,6 +17,9 @@ typedef struct bk_output {
     FILE *modes;             /* owned; modal analyses only */
     int nfreq;
     double freqs[64];        /* first frequencies (Hz), for the summary */
+    bk_vtk vtk;              /* ParaView frames */
+    int progress;            /* 1: an updating progress line on stderr */
+    double t_start, t_last;  /* wall clock of the start and of the last progress line */
 } bk_output;
 
 typedef struct bk_run_info {
@@ -32,7 +36,13 @@ typedef struct bk_run_info {
     char message[1024];      /* empty when converged */
 } bk_run_info;
 
-int bk_output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err);
+/* progress: show an updating line on stderr (only if it is a terminal). */
+int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
+/* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
+ * only after the first second, only on a terminal. */
+void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual);
+/* Writes the ParaView frame of the last state if the stride skipped it. */
+void bk_output_final(bk_output *o, int step, double t, const double *q);
 /* One row per sensor for the configuration q at output step `step`, time t. */
 void bk_output_step(bk_output *o, int step, double t, const double *q);
 /* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,

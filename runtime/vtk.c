@@ -1,0 +1,261 @@
+/* vtk.c -- ParaView output: one XML UnstructuredGrid (.vtu) per written step and
+ * a .pvd collection listing them with their times (rewritten after every frame,
+ * so an interrupted run leaves a readable collection).
+ *
+ * Every element contributes, at NX stations along its axis, a ring of points
+ * around its cross-section (8 for a rectangle, 12 for a circle) joined by
+ * quads, and a polyline along the centreline.  Continuum (ANCF) elements place
+ * the ring with their own interpolation, so the section shows its actual
+ * deformation; beams with a section frame place it with d1, d2; the cable,
+ * which has none, sweeps a section normal to its axis.  Point data:
+ * displacement (m); cell data: strain energy density of the element (J/m^3).
+ */
+#include "vtk.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "system.h"
+
+#define NX 4
+#define BK_MAXSHAPE 128
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static int ring_points(const bk_model *m, int e)
+{
+    const double *g = m->geoms[m->elems[e].geom];
+    return fabs(g[3] - g[1] * g[2]) < 1e-12 * g[3] ? 8 : 12;  /* rectangle: A = b h */
+}
+
+/* Section point k of n in section coordinates (y along d1, z along d2). */
+static void ring_yz(const double *g, int n, int k, double *y, double *z)
+{
+    if (n == 8) {
+        static const double uy[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, uz[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
+        *y = 0.5 * g[1] * uy[k];
+        *z = 0.5 * g[2] * uz[k];
+    } else {
+        double a = 2.0 * M_PI * k / n;
+        *y = 0.5 * g[1] * cos(a);
+        *z = 0.5 * g[1] * sin(a);
+    }
+}
+
+static void unit(double *v)
+{
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (n > 0)
+        for (int i = 0; i < 3; ++i)
+            v[i] /= n;
+}
+
+static int has_field(const bk_element *et, const char *name)
+{
+    for (int f = 0; f < et->nfield; ++f)
+        if (strcmp(et->field_name[f], name) == 0)
+            return 1;
+    return 0;
+}
+
+/* Position of section point (y, z) at station xi of element e for coordinates q. */
+static void section_point(const bk_model *m, const double *q, int e, double xi, double y, double z, double *x)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_element *et = m->pairs[el->pair]->element;
+    const double *g = m->geoms[el->geom];
+    double d[9], N[BK_MAXSHAPE];
+    if (has_field(et, "r_y")) {                     /* continuum: the element's own field */
+        et->shape(g, xi, y, z, N);
+        for (int i = 0; i < 3; ++i)
+            x[i] = 0.0;
+        for (int a = 0; a < et->nshape; ++a)
+            for (int i = 0; i < 3; ++i)
+                x[i] += N[a] * q[el->dofs[et->shape_dof[a] + i]];
+        return;
+    }
+    bk_eval_point(m, q, e, xi, x, d);
+    if (isfinite(d[0]) && isfinite(d[3])) {        /* beams with a section frame */
+        for (int i = 0; i < 3; ++i)
+            x[i] += y * d[i] + z * d[3 + i];
+        return;
+    }
+    /* no section frame (cable): a section normal to the axis, oriented by the global
+     * axis least aligned with it */
+    double t[3] = {d[6], d[7], d[8]}, a[3] = {0, 0, 0}, u[3], w[3];
+    unit(t);
+    int k = fabs(t[0]) < fabs(t[1]) ? (fabs(t[0]) < fabs(t[2]) ? 0 : 2) : (fabs(t[1]) < fabs(t[2]) ? 1 : 2);
+    a[k] = 1.0;
+    u[0] = a[1] * t[2] - a[2] * t[1], u[1] = a[2] * t[0] - a[0] * t[2], u[2] = a[0] * t[1] - a[1] * t[0];
+    unit(u);
+    w[0] = t[1] * u[2] - t[2] * u[1], w[1] = t[2] * u[0] - t[0] * u[2], w[2] = t[0] * u[1] - t[1] * u[0];
+    for (int i = 0; i < 3; ++i)
+        x[i] += y * u[i] + z * w[i];
+}
+
+int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity)
+{
+    memset(v, 0, sizeof *v);
+    v->m = m;
+    v->every = every;
+    snprintf(v->dir, sizeof v->dir, "%s", dir);
+    if (every <= 0)
+        return 0;
+    v->cap = capacity > 16 ? capacity : 16;
+    v->times = malloc((size_t)v->cap * sizeof *v->times);
+    v->frames = malloc((size_t)v->cap * sizeof *v->frames);
+    return v->times && v->frames ? 0 : -1;
+}
+
+void bk_vtk_close(bk_vtk *v)
+{
+    free(v->times);
+    free(v->frames);
+    v->times = NULL;
+    v->frames = NULL;
+}
+
+static int write_pvd(const bk_vtk *v)
+{
+    char path[1200], tmp[1210];
+    snprintf(path, sizeof path, "%s/results.pvd", v->dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *fp = fopen(tmp, "w");
+    if (!fp)
+        return -1;
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
+    for (int k = 0; k < v->nframe; ++k)
+        fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"step_%06d.vtu\"/>\n", v->times[k], v->frames[k]);
+    fprintf(fp, "  </Collection>\n</VTKFile>\n");
+    if (fclose(fp) != 0)
+        return -1;
+    return rename(tmp, path);
+}
+
+int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
+{
+    const bk_model *m = v->m;
+    if (v->every <= 0)
+        return 0;
+    if (v->calls++ % v->every != 0 && step >= 0)
+        return 0;
+    if (v->nframe == v->cap) {                       /* grow (rare: capacity is estimated) */
+        int cap = 2 * v->cap;
+        double *nt = realloc(v->times, (size_t)cap * sizeof *nt);
+        if (!nt)
+            return -1;
+        v->times = nt;
+        int *nf = realloc(v->frames, (size_t)cap * sizeof *nf);
+        if (!nf)
+            return -1;
+        v->frames = nf;
+        v->cap = cap;
+    }
+    int frame = step < 0 ? -step : step;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
+    FILE *fp = fopen(path, "w");
+    if (!fp)
+        return -1;
+    long npts = 0, ncell = 0, nconn = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        npts += (long)NX * r + NX;
+        ncell += (long)(NX - 1) * r + 1;
+        nconn += 4L * (NX - 1) * r + NX;
+    }
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                "  <UnstructuredGrid>\n    <FieldData>\n"
+                "      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n"
+                "    </FieldData>\n    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n", t, npts, ncell);
+    /* points, then displacements: same traversal twice */
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 0)
+            fprintf(fp, "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+        else
+            fprintf(fp, "      <PointData Vectors=\"displacement\">\n        <DataArray type=\"Float64\" "
+                        "Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+        for (int e = 0; e < m->nelem; ++e) {
+            const double *g = m->geoms[m->elems[e].geom];
+            int r = ring_points(m, e);
+            for (int k = 0; k < NX; ++k) {
+                double xi = (double)k / (NX - 1);
+                for (int j = 0; j <= r; ++j) {
+                    double y = 0.0, z = 0.0, x[3], x0[3];
+                    if (j < r)
+                        ring_yz(g, r, j, &y, &z);
+                    section_point(m, q, e, xi, y, z, x);
+                    if (pass == 0) {
+                        fprintf(fp, "          %.9g %.9g %.9g\n", x[0], x[1], x[2]);
+                    } else {
+                        section_point(m, m->q0, e, xi, y, z, x0);
+                        fprintf(fp, "          %.9g %.9g %.9g\n", x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]);
+                    }
+                }
+            }
+        }
+        fprintf(fp, pass == 0 ? "        </DataArray>\n      </Points>\n"
+                              : "        </DataArray>\n      </PointData>\n");
+    }
+    /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
+     * j = r is the centreline point */
+    fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
+                "Name=\"strain_energy_density\" format=\"ascii\">\n");
+    double qe[1024];
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        for (int k = 0; k < p->element->ndof; ++k)
+            qe[k] = q[el->dofs[k]];
+        const double *g = m->geoms[el->geom];
+        double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[0] * g[3]);
+        int r = ring_points(m, e);
+        for (int c = 0; c < (NX - 1) * r + 1; ++c)
+            fprintf(fp, "          %.9g\n", dens);
+    }
+    fprintf(fp, "        </DataArray>\n      </CellData>\n      <Cells>\n"
+                "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    long base = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e), w = r + 1;
+        for (int k = 0; k + 1 < NX; ++k)
+            for (int j = 0; j < r; ++j) {
+                int j2 = (j + 1) % r;
+                fprintf(fp, "          %ld %ld %ld %ld\n", base + k * w + j, base + k * w + j2,
+                        base + (k + 1) * w + j2, base + (k + 1) * w + j);
+            }
+        fprintf(fp, "         ");
+        for (int k = 0; k < NX; ++k)
+            fprintf(fp, " %ld", base + k * w + r);
+        fprintf(fp, "\n");
+        base += (long)NX * w;
+    }
+    fprintf(fp, "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    long off = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        for (int c = 0; c < (NX - 1) * r; ++c)
+            fprintf(fp, "          %ld\n", off += 4);
+        fprintf(fp, "          %ld\n", off += NX);
+    }
+    fprintf(fp, "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        for (int c = 0; c < (NX - 1) * r; ++c)
+            fprintf(fp, "          9\n");                 /* VTK_QUAD */
+        fprintf(fp, "          4\n");                     /* VTK_POLY_LINE */
+    }
+    fprintf(fp, "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    (void)nconn;
+    (void)s;
+    if (fclose(fp) != 0)
+        return -1;
+    v->times[v->nframe] = t;
+    v->frames[v->nframe] = frame;
+    v->nframe++;
+    return write_pvd(v);
+}
