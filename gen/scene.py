@@ -27,7 +27,7 @@ KEY_RANGES = {
     "mu": (lambda v: v > 0, "a positive number (Pa)"),
     "lambda": (lambda v: v > -1e300, "a number (Pa)"),
     "kappa": (lambda v: v > 0, "a positive number (Pa)"),
-    "lambda_m": (lambda v: v > 1, "a number > 1"),
+    "lambda_m": (lambda v: 1 < v <= 1e6, "a number in (1, 1e6]"),
     "rho": (lambda v: v > 0, "a positive number (kg/m^3)"),
     "kelvin_voigt": (lambda v: v >= 0, "a retardation time >= 0 (s)"),
 }
@@ -66,7 +66,7 @@ def _typename(v):
     return type(v).__name__
 
 
-def get_number(ctx, tbl, key, where, default=None, positive=False, nonneg=False):
+def get_number(ctx, tbl, key, where, default=None, positive=False, nonneg=False, hi=None):
     if key not in tbl:
         if default is None:
             ctx.fail(f"{where}.{key}", "missing; expected a number")
@@ -81,6 +81,8 @@ def get_number(ctx, tbl, key, where, default=None, positive=False, nonneg=False)
         ctx.fail(f"{where}.{key}", f"expected a positive number, found {v!r}")
     if nonneg and v < 0:
         ctx.fail(f"{where}.{key}", f"expected a number >= 0, found {v!r}")
+    if hi is not None and v > hi:
+        ctx.fail(f"{where}.{key}", f"expected a number <= {hi:g}, found {v!r}")
     return v
 
 
@@ -119,7 +121,7 @@ def get_name(ctx, tbl, key, where):
     return v
 
 
-def get_vec3(ctx, tbl, key, where, default=None, nonzero=False):
+def get_vec3(ctx, tbl, key, where, default=None, nonzero=False, bound=None):
     if key not in tbl:
         if default is None:
             ctx.fail(f"{where}.{key}", "missing; expected an array of 3 numbers")
@@ -131,6 +133,8 @@ def get_vec3(ctx, tbl, key, where, default=None, nonzero=False):
     v = [float(x) for x in v]
     if not all(math.isfinite(x) for x in v):
         ctx.fail(f"{where}.{key}", f"expected finite numbers, found {v!r}")
+    if bound is not None and any(abs(x) > bound for x in v):
+        ctx.fail(f"{where}.{key}", f"expected coordinates within +-{bound:g}, found {v!r}")
     if nonzero and math.sqrt(sum(x * x for x in v)) == 0.0:
         ctx.fail(f"{where}.{key}", "expected a nonzero vector")
     return v
@@ -388,11 +392,11 @@ def build(path, sets=(), name=None):
         shape = get_str(ctx, st, "shape", where, choices=("rectangle", "circle"))
         if shape == "rectangle":
             check_keys(ctx, st, {"shape", "b", "h"}, where)
-            sections[sn] = ("rectangle", get_number(ctx, st, "b", where, positive=True),
-                            get_number(ctx, st, "h", where, positive=True))
+            sections[sn] = ("rectangle", get_number(ctx, st, "b", where, positive=True, hi=1e6),
+                            get_number(ctx, st, "h", where, positive=True, hi=1e6))
         else:
             check_keys(ctx, st, {"shape", "radius"}, where)
-            r = get_number(ctx, st, "radius", where, positive=True)
+            r = get_number(ctx, st, "radius", where, positive=True, hi=1e6)
             sections[sn] = ("circle", 2 * r, 2 * r)
 
     beams_doc = get_array_of_tables(ctx, doc, "beam")
@@ -445,7 +449,7 @@ def build(path, sets=(), name=None):
         if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
             ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
                      f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
-        start = get_vec3(ctx, bt, "start", where)
+        start = get_vec3(ctx, bt, "start", where, bound=1e9)
         nel = get_int(ctx, bt, "elements", where, lo=1, hi=1000000)
         arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
         if arc_keys:
@@ -456,7 +460,7 @@ def build(path, sets=(), name=None):
                          f"beams need gef, euler_bernoulli or kirchhoff")
             geo = arc_geometry(ctx, bt, where, start)
         else:
-            end = get_vec3(ctx, bt, "end", where)
+            end = get_vec3(ctx, bt, "end", where, bound=1e9)
             geo = line_geometry(ctx, bt, where, start, end)
         length = geo.length
 
@@ -850,7 +854,7 @@ def line_geometry(ctx, bt, where, start, end):
 
 
 def section_axes(ctx, bt, where, t, default_up):
-    up = get_vec3(ctx, bt, "up", where, default=default_up, nonzero=True)
+    up = get_vec3(ctx, bt, "up", where, default=default_up, nonzero=True, bound=1e300)
     upn = _scale(up, 1 / _norm(up))
     d2 = _sub(upn, _scale(t, _dot(upn, t)))
     if _norm(d2) < 1e-6:
@@ -863,8 +867,8 @@ def arc_geometry(ctx, bt, where, start):
     for k in ("arc_center", "arc_axis", "arc_angle"):
         if k not in bt:
             ctx.fail(f"{where}.{k}", "missing; a curved beam needs arc_center, arc_axis and arc_angle")
-    center = get_vec3(ctx, bt, "arc_center", where)
-    axis = get_vec3(ctx, bt, "arc_axis", where, nonzero=True)
+    center = get_vec3(ctx, bt, "arc_center", where, bound=1e9)
+    axis = get_vec3(ctx, bt, "arc_axis", where, nonzero=True, bound=1e300)
     axis = _scale(axis, 1 / _norm(axis))
     angle = get_number(ctx, bt, "arc_angle", where)
     if not 0 < angle <= 360:
