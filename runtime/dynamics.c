@@ -203,7 +203,7 @@ static const char *dyn_why(int c)
 {
     switch (c) {
     case DYN_MAXIT: return "Newton did not converge within the iteration limit";
-    case DYN_NONFINITE: return "non-finite force or increment";
+    case DYN_NONFINITE: return "non-finite force or increment (an element inverted, J <= 0, or a value overflowed)";
     case DYN_SINGULAR: return "singular iteration matrix: is every rigid motion constrained or given mass?";
     case DYN_LINERR: return "linear solver error";
     default: return "converged";

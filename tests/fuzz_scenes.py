@@ -155,8 +155,9 @@ def run_one(path, index, timeout=120):
         model = build(path)
     except SceneError as e:
         msg = str(e)
-        if "\n" in msg.strip() or not msg.startswith(f"error: {path}: "):
-            return "crashed", f"rejection not one line naming the file: {msg!r}"
+        rest = msg[len(f"error: {path}: "):]
+        if "\n" in msg.strip() or not msg.startswith(f"error: {path}: ") or ": " not in rest:
+            return "crashed", f"rejection not one line naming the file and a key: {msg!r}"
         return "rejected", msg
     except RecursionError as e:
         return "crashed", f"RecursionError: {e}"

@@ -1,0 +1,169 @@
+"""Result files: ParaView frames against the sensors, determinism, output
+directories and names, failure reports of dynamic runs, progress line, help,
+plots."""
+import csv
+import json
+import os
+import pty
+import subprocess
+import tempfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from util import BUILD, ENV, ROOT, ensure_dir, load_run, run_cli
+
+
+def fresh():
+    return Path(tempfile.mkdtemp(prefix="bk-out-", dir=ensure_dir(BUILD / "runs")))
+
+
+def vtu_centreline(path):
+    root = ET.parse(path).getroot()
+    piece = root.find("UnstructuredGrid/Piece")
+    pts = np.array(piece.find("Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
+    disp = np.array(piece.find("PointData/DataArray[@Name='displacement']").text.split(), dtype=float).reshape(-1, 3)
+    cells = piece.find("Cells")
+    conn = np.array(cells.find("DataArray[@Name='connectivity']").text.split(), dtype=int)
+    offs = np.array(cells.find("DataArray[@Name='offsets']").text.split(), dtype=int)
+    types = np.array(cells.find("DataArray[@Name='types']").text.split(), dtype=int)
+    lines, start = [], 0
+    for o, t in zip(offs, types):
+        if t == 4:
+            lines.append(conn[start:o])
+        start = o
+    return pts, disp, lines
+
+
+def test_paraview_frames_match_the_sensors():
+    """Every frame of results.pvd: the end of the last centreline polyline is the tip sensor
+    (position and displacement, 1e-8 m), for a static ANCF run and a dynamic gef run; the
+    collection's times are the sensors' times."""
+    for scene, sets in (("cantilever_bend3d_50N", []), ("pendulum_soft_gef", ["dynamic.t_end=0.2"])):
+        out = fresh()
+        r = run_cli(["run", scene, "--quiet", "--out", str(out)] + sum((["--set", x] for x in sets), []))
+        assert r.returncode == 0, r.stderr
+        sensor = "tip" if "cantilever" in scene else "B"
+        with open(out / "sensors.csv", newline="") as fh:
+            rows = {float(x["time"]): x for x in csv.DictReader(fh) if x["sensor"] == sensor}
+        frames = ET.parse(out / "results.pvd").getroot().findall("Collection/DataSet")
+        assert len(frames) >= 5
+        for f in frames:
+            t = float(f.get("timestep"))
+            pts, disp, lines = vtu_centreline(out / f.get("file"))
+            row = min(rows.items(), key=lambda kv: abs(kv[0] - t))[1]
+            assert abs(float(row["time"]) - t) < 1e-12
+            tip = pts[lines[-1][-1]]
+            assert np.allclose(tip, [float(row[k]) for k in ("x", "y", "z")], atol=1e-8), (t, tip, row)
+            assert np.allclose(disp[lines[-1][-1]], [float(row[k]) for k in ("ux", "uy", "uz")], atol=1e-8)
+
+
+def test_same_scene_twice_gives_identical_results():
+    """Two runs of a static and a dynamic scene: every result file byte-identical,
+    summary.json identical but for its wall_s (the measured time)."""
+    for scene, sets in (("cantilever_bend_100N", []), ("pendulum_soft_ancf", ["--set", "dynamic.t_end=0.2"])):
+        a, b = fresh(), fresh()
+        for d in (a, b):
+            assert run_cli(["run", scene, "--quiet", "--out", str(d)] + sets).returncode == 0
+        names = sorted(p.name for p in a.iterdir())
+        assert names == sorted(p.name for p in b.iterdir())
+        for n in names:
+            if n == "summary.json":
+                sa, sb = json.loads((a / n).read_text()), json.loads((b / n).read_text())
+                sa.pop("wall_s"), sb.pop("wall_s")
+                assert sa == sb
+            else:
+                assert (a / n).read_bytes() == (b / n).read_bytes(), n
+
+
+def test_names_cannot_escape_and_out_dirs_are_not_mixed():
+    d = fresh()
+    base = (ROOT / "models" / "cantilever_bend_10N.toml").read_text()
+    for text, key in ((base.replace('[scene]', '[scene]\nname = "../../evil"'), "scene.name"),
+                      (base.replace('name = "arm"', 'name = "a/b"'), "beam[0].name"),
+                      (base.replace('name = "tip"', 'name = "$(touch x)"'), "sensor[0].name")):
+        p = d / "s.toml"
+        p.write_text(text)
+        r = run_cli(["run", str(p), "--out", str(d / "o")])
+        assert r.returncode == 1 and key in r.stderr and "expected a name" in r.stderr, r.stderr
+    foreign = fresh()
+    (foreign / "precious.txt").write_text("keep me")
+    r = run_cli(["run", "cantilever_bend_10N", "--out", str(foreign)])
+    assert r.returncode == 1 and "not empty" in r.stderr
+    assert (foreign / "precious.txt").read_text() == "keep me"
+    own = fresh()
+    assert run_cli(["run", "cantilever_bend_100N", "--quiet", "--out", str(own)]).returncode == 0
+    n_before = len(list(own.glob("step_*.vtu")))
+    assert run_cli(["run", "cantilever_bend_10N", "--quiet", "--out", str(own)]).returncode == 0
+    n_after = len(list(own.glob("step_*.vtu")))
+    assert n_before == 11 and n_after == 3, (n_before, n_after)     # old frames removed
+
+
+def test_dynamic_failure_keeps_steps_and_says_where():
+    """A Neo-Hookean bar crushed by an axial force far beyond what it can carry, in dynamics: the
+    run stops with time, step size, residual and cause on one line, exit 2, every accepted
+    step kept."""
+    d = fresh()
+    text = (ROOT / "models" / "cantilever_axial_m1kN.toml").read_text()
+    text = text.replace('analysis = "static"', 'analysis = "dynamic"').replace('law = "svk"', 'law = "neo_hookean"').replace(
+        "value = [-1000.0, 0.0, 0.0]", "value = [-5.0e6, 0.0, 0.0]")
+    text += "\n[dynamic]\nt_end = 0.01\ndt = 1e-4\n"
+    p = d / "collapse.toml"
+    p.write_text(text)
+    r = run_cli(["run", str(p), "--out", str(d / "o")])
+    assert r.returncode == 2, r.stderr
+    err = [l for l in r.stderr.splitlines() if l.startswith("error")]
+    assert len(err) == 1 and "dynamic solve failed at step" in err[0] and "time" in err[0] and "residual" in err[0], r.stderr
+    s, rows = load_run(d / "o")
+    assert not s["converged"] and s["steps"] >= 1
+    assert len({x["step"] for x in rows}) == s["steps"] + 1
+
+
+def test_progress_line_on_a_terminal_only():
+    """A run over one second shows an updating progress line when stderr is a terminal, none
+    otherwise, and none with --quiet."""
+    out = fresh()
+    assert run_cli(["run", "pendulum_soft_ancf", "--quiet", "--out", str(out), "--set", "dynamic.dt=2e-4"]).returncode == 0
+    solver = ROOT / "out" / "bin" / "pendulum_soft_ancf"
+    args = [str(solver), str(out / "model.dat"), str(out)]
+    master, slave = pty.openpty()
+    p = subprocess.run(args, stderr=slave, stdout=subprocess.DEVNULL, timeout=600)
+    os.close(slave)
+    text = b""
+    while True:
+        try:
+            chunk = os.read(master, 65536)
+        except OSError:
+            break
+        if not chunk:
+            break
+        text += chunk
+    os.close(master)
+    assert p.returncode == 0
+    assert b"\r" in text and b"s left" in text and b"Newton it." in text, text[-500:]
+    q = subprocess.run(args + ["--quiet"], capture_output=True, timeout=600)
+    assert q.returncode == 0 and b"left" not in q.stderr
+    q = subprocess.run(args, capture_output=True, timeout=600)          # not a terminal
+    assert q.returncode == 0 and b"left" not in q.stderr
+
+
+def test_help_lists_commands_and_options():
+    r = subprocess.run([str(ROOT / "build.sh"), "--help"], capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0
+    for word in ("test", "run SCENE", "--set", "--out", "gen", "--check", "bench", "plot", "report", "scenes"):
+        assert word in r.stdout, word
+    r = subprocess.run([str(ROOT / "build.sh"), "run", "--help"], capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0
+    for word in ("--set", "--out", "--quiet", "--verbose", "--sanitize"):
+        assert word in r.stdout, word
+
+
+def test_plot_writes_pngs():
+    out = fresh()
+    assert run_cli(["run", "pendulum_soft_gef", "--quiet", "--out", str(out), "--set", "dynamic.t_end=0.3"]).returncode == 0
+    r = run_cli(["plot", str(out)])
+    assert r.returncode == 0, r.stderr
+    for n in ("sensors.png", "energy.png", "beam.png"):
+        data = (out / n).read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10000, n
