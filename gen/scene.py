@@ -262,7 +262,7 @@ def read_toml(path):
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as e:
-        raise SceneError(f"error: {path}: not UTF-8 text (byte {e.start}); expected a TOML scene file")
+        raise SceneError(f"error: {path}: encoding: not UTF-8 text (byte {e.start}); expected a TOML scene file")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
