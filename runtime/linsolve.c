@@ -1,7 +1,19 @@
-/* linsolve.c -- KLU wrapper: analyse once, factor per Newton iteration. */
+/* linsolve.c -- KLU wrapper: analyse once, factor once, then refactor.
+ *
+ * The first numeric factorization (klu_factor) chooses the pivots and
+ * allocates the LU factors.  Later factorizations on the same pattern reuse
+ * both through klu_refactor, which allocates nothing; only when the old
+ * pivot sequence has become poor for the new values (refactor fails, or the
+ * reciprocal pivot growth / condition estimate collapses) is a fresh
+ * klu_factor done.
+ */
 #include "linsolve.h"
 
 #include <string.h>
+
+/* A refactorization is kept when its condition estimate is no worse than this
+ * fraction of the one of the last full factorization. */
+#define BK_REFACTOR_RCOND_DROP 1e-3
 
 int bk_lin_init(bk_linsolver *s, int n, const int *Ap, const int *Ai)
 {
@@ -17,20 +29,37 @@ int bk_lin_init(bk_linsolver *s, int n, const int *Ap, const int *Ai)
     return BK_LIN_OK;
 }
 
-int bk_lin_factor(bk_linsolver *s, double *Ax)
+static int full_factor(bk_linsolver *s, double *Ax)
 {
     if (s->num)
         klu_free_numeric(&s->num, &s->common);
     s->num = klu_factor((int *)s->Ap, (int *)s->Ai, Ax, s->sym, &s->common);
     s->nfactor++;
+    s->nfull++;
     if (!s->num)
         return s->common.status == KLU_SINGULAR ? BK_LIN_SINGULAR : BK_LIN_ERROR;
     if (!klu_rcond(s->sym, s->num, &s->common))
         return BK_LIN_ERROR;
     s->rcond = s->common.rcond;
+    s->rcond_factor = s->rcond;
     if (!(s->rcond > 1e-300))
         return BK_LIN_SINGULAR;
     return BK_LIN_OK;
+}
+
+int bk_lin_factor(bk_linsolver *s, double *Ax)
+{
+    if (s->num) {
+        /* Reuse the pivot order and the factor storage: no allocation. */
+        if (klu_refactor((int *)s->Ap, (int *)s->Ai, Ax, s->sym, s->num, &s->common) &&
+            klu_rcond(s->sym, s->num, &s->common) && s->common.rcond > 1e-300 &&
+            s->common.rcond >= BK_REFACTOR_RCOND_DROP * s->rcond_factor) {
+            s->rcond = s->common.rcond;
+            s->nfactor++;
+            return BK_LIN_OK;
+        }
+    }
+    return full_factor(s, Ax);
 }
 
 int bk_lin_solve(bk_linsolver *s, double *b)

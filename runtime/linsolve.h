@@ -2,8 +2,12 @@
  *
  * The symbolic analysis (fill-reducing ordering, block triangular form) is
  * computed once for a pattern by bk_lin_init() and reused by every numeric
- * factorization.  The solver owns its KLU objects; the pattern arrays stay
- * owned by the caller and must outlive the solver.
+ * factorization.  The first numeric factorization chooses the pivots and
+ * allocates the factors; later ones refactor in place with those pivots
+ * (klu_refactor, no allocation) and fall back to a full factorization only
+ * when the refactored matrix looks much worse conditioned.  The solver owns
+ * its KLU objects; the pattern arrays stay owned by the caller and must
+ * outlive the solver.
  */
 #ifndef BK_LINSOLVE_H
 #define BK_LINSOLVE_H
@@ -16,8 +20,10 @@ typedef struct bk_linsolver {
     klu_common common;
     klu_symbolic *sym;
     klu_numeric *num;
-    int nanalyze, nfactor;   /* counters, for the summary */
+    int nanalyze, nfactor;   /* counters, for the summary: analyses, numeric factorizations */
+    int nfull;               /* of the nfactor: full factorizations (new pivots, allocating) */
     double rcond;            /* crude reciprocal condition estimate of the last factorization */
+    double rcond_factor;     /* the same, of the last full factorization */
 } bk_linsolver;
 
 enum { BK_LIN_OK = 0, BK_LIN_SINGULAR = 1, BK_LIN_ERROR = 2 };

@@ -9,8 +9,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef _OPENMP
+#include <omp.h>
+#define BK_OMP(...) _Pragma(#__VA_ARGS__)
+#else
+#define BK_OMP(...)
+#endif
+
 #define BK_MAXSHAPE 128
 #define BK_MAXDOF 1024
+/* Elements evaluated per parallel block (fixed: the assembly order must not
+ * depend on the thread count). */
+#define BK_EVAL_BLOCK 64
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -191,6 +201,20 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->Ke = malloc((size_t)(s->maxdof ? s->maxdof : 1) * (size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->Ke);
     if (!s->fe || !s->Ke)
         goto oom;
+    {
+        size_t md = (size_t)(s->maxdof ? s->maxdof : 1);
+        s->bq = malloc(BK_EVAL_BLOCK * md * sizeof *s->bq);
+        s->bf = malloc(BK_EVAL_BLOCK * md * sizeof *s->bf);
+        s->bK = malloc(BK_EVAL_BLOCK * md * md * sizeof *s->bK);
+        if (!s->bq || !s->bf || !s->bK)
+            goto oom;
+    }
+    s->nthreads = 1;
+#ifdef _OPENMP
+    s->nthreads = omp_get_max_threads();
+    if (s->nthreads < 1)
+        s->nthreads = 1;
+#endif
     return s;
 oom:
     fprintf(err, "error: out of memory while building the system of '%s'\n", m->name);
@@ -212,39 +236,72 @@ void bk_system_free(bk_system *s)
     free(s->diag);
     free(s->fe);
     free(s->Ke);
+    free(s->bq);
+    free(s->bf);
+    free(s->bK);
     free(s);
+}
+
+/* Element evaluation in blocks of BK_EVAL_BLOCK elements: the kernels of a
+ * block run in parallel (OpenMP) into per-element buffers, then the block is
+ * scattered serially in element order.  Every sum into fint and Ax is thus
+ * done in the same order whatever the number of threads, so the results are
+ * bit-identical for any OMP_NUM_THREADS; the buffers are allocated once, in
+ * bk_system_create. */
+static void eval_element(const bk_model *m, int e, const double *q, double *restrict qe,
+                         double *restrict fe, double *restrict Ke)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_pair *p = m->pairs[el->pair];
+    int nd = p->element->ndof;
+    for (int k = 0; k < nd; ++k)
+        qe[k] = q[el->dofs[k]];
+    const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
+    if (Ke)
+        p->force_tangent(qe, tab, mat, fe, Ke);
+    else
+        p->force(qe, tab, mat, fe);
+}
+
+static int scatter_element(const bk_system *s, int e, const double *fe, const double *Ke,
+                           double *fint, double *Ax)
+{
+    const bk_elem *el = &s->m->elems[e];
+    int nd = s->m->pairs[el->pair]->element->ndof, bad = 0;
+    for (int k = 0; k < nd; ++k) {
+        if (!isfinite(fe[k]))
+            bad = 1;
+        fint[el->dofs[k]] += fe[k];
+    }
+    if (Ax) {
+        const int *sl = s->eslot + s->eslot_off[e];
+        for (int k = 0; k < nd * nd; ++k)
+            if (sl[k] >= 0)
+                Ax[sl[k]] += Ke[k];
+    }
+    return bad;
 }
 
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    double qe[BK_MAXDOF];
+    const int nelem = m->nelem;
+    const size_t md = (size_t)(s->maxdof ? s->maxdof : 1);
     memset(fint, 0, (size_t)m->ndof * sizeof *fint);
     if (Ax)
         memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
     int bad = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_pair *p = m->pairs[el->pair];
-        int nd = p->element->ndof;
-        for (int k = 0; k < nd; ++k)
-            qe[k] = q[el->dofs[k]];
-        const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
-        if (Ax)
-            p->force_tangent(qe, tab, mat, s->fe, s->Ke);
-        else
-            p->force(qe, tab, mat, s->fe);
-        for (int k = 0; k < nd; ++k) {
-            if (!isfinite(s->fe[k]))
-                bad = 1;
-            fint[el->dofs[k]] += s->fe[k];
-        }
-        if (Ax) {
-            const int *sl = s->eslot + s->eslot_off[e];
-            for (int k = 0; k < nd * nd; ++k)
-                if (sl[k] >= 0)
-                    Ax[sl[k]] += s->Ke[k];
-        }
+    BK_OMP(omp parallel if (s->nthreads > 1 && nelem > 1) num_threads(s->nthreads))
+    for (int b0 = 0; b0 < nelem; b0 += BK_EVAL_BLOCK) {
+        int nb = nelem - b0 < BK_EVAL_BLOCK ? nelem - b0 : BK_EVAL_BLOCK;
+        BK_OMP(omp for schedule(static))
+        for (int i = 0; i < nb; ++i)
+            eval_element(m, b0 + i, q, s->bq + (size_t)i * md, s->bf + (size_t)i * md,
+                         Ax ? s->bK + (size_t)i * md * md : NULL);
+        BK_OMP(omp single)
+        for (int i = 0; i < nb; ++i)
+            bad |= scatter_element(s, b0 + i, s->bf + (size_t)i * md,
+                                   Ax ? s->bK + (size_t)i * md * md : NULL, fint, Ax);
     }
     return bad ? -1 : 0;
 }

@@ -7,7 +7,10 @@
  *     [ s G  0     ]
  * with s = cscale, a stiffness-sized factor that keeps the constraint rows on
  * the scale of the stiffness rows.  The pattern and each element's scatter map
- * into it are computed once; assembly does no allocation.
+ * into it are computed once; assembly does no allocation.  Element kernels
+ * run in parallel (OpenMP, when compiled with it) in fixed-size blocks, each
+ * block scattered serially in element order: results are bit-identical for
+ * any thread count.
  */
 #ifndef BK_SYSTEM_H
 #define BK_SYSTEM_H
@@ -30,6 +33,8 @@ typedef struct bk_system {
     double cscale;
     int maxdof;              /* largest element DOF count                     */
     double *fe, *Ke;         /* element work buffers (owned)                  */
+    double *bq, *bf, *bK;    /* per-element buffers of one evaluation block   */
+    int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
 } bk_system;
 
 bk_system *bk_system_create(const bk_model *m, FILE *err);
