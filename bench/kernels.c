@@ -1,0 +1,191 @@
+/* kernels.c -- kernel benchmark driver (./build.sh bench, report/bench_kernels.py).
+ *
+ * usage: bench_kernels SPEC
+ * SPEC (written by report/bench_kernels.py), whitespace separated:
+ *   geom l b h A I1 I2 Ip
+ *   timing REPEATS TARGET_SECONDS
+ *   then per pair:  pair NAME NMAT m_1 .. m_NMAT LAW NPTS NSHAPE  [NPTS x (1 + 3 NSHAPE) numbers]
+ *   (LAW "-" and NPTS 0: no plain loop for this pair)
+ * Prints CSV: per pair the median time of one internal-force call and of one
+ * force + tangent call of the generated kernel and of the plain quadrature
+ * loop (bench/plain.c), and the largest difference between the two.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bk_kernel.h"
+#include "plain.h"
+
+extern const bk_pair *const bk_linked_pairs[];
+extern const int bk_nlinked_pairs;
+
+typedef struct job {
+    const bk_pair *p;
+    const plain_rule *rule;
+    int law;
+    const double *q, *tab, *mat;
+    double *f, *K;
+    int tangent, plain;
+} job;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void call(const job *j)
+{
+    if (j->plain)
+        plain_force_tangent(j->rule, j->law, j->mat, j->q, j->f, j->tangent ? j->K : NULL);
+    else if (j->tangent)
+        j->p->force_tangent(j->q, j->tab, j->mat, j->f, j->K);
+    else
+        j->p->force(j->q, j->tab, j->mat, j->f);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median over repeats of the time of one call, each repeat long enough to be
+ * timed reliably. */
+static double time_call(const job *j, int repeats, double target)
+{
+    long n = 1;
+    for (;;) {
+        double t0 = now();
+        for (long i = 0; i < n; ++i)
+            call(j);
+        double t = now() - t0;
+        if (t >= target || n > (1L << 30))
+            break;
+        n = t > 0 ? (long)(n * fmin(100.0, 1.3 * target / t)) + 1 : n * 10;
+    }
+    double *ts = malloc((size_t)repeats * sizeof *ts);
+    if (!ts)
+        return NAN;
+    for (int r = 0; r < repeats; ++r) {
+        double t0 = now();
+        for (long i = 0; i < n; ++i)
+            call(j);
+        ts[r] = (now() - t0) / n;
+    }
+    qsort(ts, (size_t)repeats, sizeof *ts, cmp_double);
+    double med = repeats % 2 ? ts[repeats / 2] : 0.5 * (ts[repeats / 2 - 1] + ts[repeats / 2]);
+    free(ts);
+    return med;
+}
+
+static const bk_pair *find_pair(const char *name)
+{
+    char buf[256];
+    for (int i = 0; i < bk_nlinked_pairs; ++i) {
+        const bk_pair *p = bk_linked_pairs[i];
+        snprintf(buf, sizeof buf, "%s_%s_%s", p->element->name, p->material, p->integration);
+        if (strcmp(buf, name) == 0)
+            return p;
+    }
+    return NULL;
+}
+
+static double maxabs(const double *a, size_t n)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < n; ++i)
+        m = fmax(m, fabs(a[i]));
+    return m;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s SPEC\n", argv[0]);
+        return 1;
+    }
+    FILE *in = fopen(argv[1], "r");
+    if (!in) {
+        perror(argv[1]);
+        return 1;
+    }
+    double geom[BK_NGEOM], target;
+    int repeats;
+    char word[256];
+    if (fscanf(in, "%255s", word) != 1 || strcmp(word, "geom") != 0)
+        return 1;
+    for (int i = 0; i < BK_NGEOM; ++i)
+        if (fscanf(in, "%lf", &geom[i]) != 1)
+            return 1;
+    if (fscanf(in, "%255s %d %lf", word, &repeats, &target) != 3 || repeats < 1)
+        return 1;
+    printf("pair,ndof,nqp,ops_force,ops_force_tangent,t_force_s,t_force_tangent_s,"
+           "t_plain_force_s,t_plain_force_tangent_s,plain_rel_diff_f,plain_rel_diff_K\n");
+    char name[256], law[64];
+    while (fscanf(in, "%255s", word) == 1) {
+        int nmat, npts, nshape;
+        double mat[16];
+        if (strcmp(word, "pair") != 0 || fscanf(in, "%255s %d", name, &nmat) != 2 || nmat > 16)
+            return 1;
+        for (int i = 0; i < nmat; ++i)
+            if (fscanf(in, "%lf", &mat[i]) != 1)
+                return 1;
+        if (fscanf(in, "%63s %d %d", law, &npts, &nshape) != 3)
+            return 1;
+        size_t npt_vals = (size_t)npts * (1 + 3 * (size_t)nshape);
+        double *pts = malloc((npt_vals ? npt_vals : 1) * sizeof *pts);
+        if (!pts)
+            return 1;
+        for (size_t i = 0; i < npt_vals; ++i)
+            if (fscanf(in, "%lf", &pts[i]) != 1)
+                return 1;
+        const bk_pair *p = find_pair(name);
+        if (!p) {
+            fprintf(stderr, "bench_kernels: pair %s is not linked\n", name);
+            return 1;
+        }
+        int nd = p->element->ndof;
+        double *q = calloc((size_t)nd, sizeof *q), *tab = calloc((size_t)p->ntab + 1, sizeof *tab);
+        double *f = calloc((size_t)nd, sizeof *f), *K = calloc((size_t)nd * nd, sizeof *K);
+        double *f2 = calloc((size_t)nd, sizeof *f2), *K2 = calloc((size_t)nd * nd, sizeof *K2);
+        if (!q || !tab || !f || !K || !f2 || !K2)
+            return 1;
+        p->element->reference(geom, q);
+        p->tabulate(geom, q, tab);
+        /* a deformed state: 1 % of the element length on positions, 1 % on slopes */
+        for (int k = 0; k < nd; ++k)
+            q[k] += 0.01 * sin(1.7 * k + 0.3) * (k % 3 == 0 ? 1.0 : 0.7) * (fabs(q[k]) > 0.05 ? 1.0 : geom[0] / 0.1);
+        job j = {p, NULL, -1, q, tab, mat, f, K, 0, 0};
+        double tf = time_call(&j, repeats, target);
+        j.tangent = 1;
+        double tft = time_call(&j, repeats, target);
+        double tpf = NAN, tpft = NAN, df = NAN, dK = NAN;
+        plain_rule rule = {npts, nshape, pts};
+        int lw = plain_law(law);
+        if (npts > 0 && lw >= 0 && 3 * nshape == nd) {
+            job pj = {p, &rule, lw, q, tab, mat, f2, K2, 0, 1};
+            tpf = time_call(&pj, repeats, target);
+            pj.tangent = 1;
+            tpft = time_call(&pj, repeats, target);
+            p->force_tangent(q, tab, mat, f, K);
+            plain_force_tangent(&rule, lw, mat, q, f2, K2);
+            for (int k = 0; k < nd; ++k)
+                f2[k] -= f[k];
+            for (int k = 0; k < nd * nd; ++k)
+                K2[k] -= K[k];
+            df = maxabs(f2, (size_t)nd) / maxabs(f, (size_t)nd);
+            dK = maxabs(K2, (size_t)nd * nd) / maxabs(K, (size_t)nd * nd);
+        }
+        printf("%s,%d,%d,%ld,%ld,%.6e,%.6e,%.6e,%.6e,%.3e,%.3e\n", name, nd, p->nqp, p->ops_force,
+               p->ops_force_tangent, tf, tft, tpf, tpft, df, dK);
+        fflush(stdout);
+        free(q), free(tab), free(f), free(K), free(f2), free(K2), free(pts);
+    }
+    fclose(in);
+    return 0;
+}
