@@ -18,7 +18,8 @@ ANALYSES = ("static", "dynamic", "modal")
 PLANNED_ANALYSES = ()
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
-                   "rtol": 1e-8, "utol": 1e-10, "cycles": 0}
+                   "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "line_search": True,
+                   "predictor": "secant", "stability": True}
 
 # Ranges of material keys, whatever the law: (test, expectation text).
 KEY_RANGES = {
@@ -110,6 +111,15 @@ def get_str(ctx, tbl, key, where, default=None, choices=None):
         ctx.fail(f"{where}.{key}", f"expected a string, found {_typename(v)}")
     if choices is not None and v not in choices:
         ctx.fail(f"{where}.{key}", f"expected one of {', '.join(choices)}, found {v!r}")
+    return v
+
+
+def get_bool(ctx, tbl, key, where, default):
+    if key not in tbl:
+        return default
+    v = tbl[key]
+    if not isinstance(v, bool):
+        ctx.fail(f"{where}.{key}", f"expected true or false, found {_typename(v)}")
     return v
 
 
@@ -206,7 +216,7 @@ def apply_overrides(doc, sets, path):
         node = doc
         for depth, p in enumerate(parts[:-1]):
             if isinstance(node, dict):
-                if p not in node and p in ("static", "dynamic") and depth == 0:
+                if p not in node and p in ("static", "dynamic", "modal", "output") and depth == 0:
                     node[p] = {}
                 if p not in node:
                     raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")
@@ -232,6 +242,11 @@ def apply_overrides(doc, sets, path):
         if not isinstance(node, dict):
             raise SceneError(f"error: {path}: --set {key}: '{'.'.join(parts[:-1])}' is not a table")
         old = node.get(parts[-1])
+        if val in ("true", "false") and (old is None or isinstance(old, bool)):
+            node[parts[-1]] = val == "true"
+            continue
+        if isinstance(old, bool):
+            raise SceneError(f"error: --set {key}: expected true or false, found {val!r}")
         if isinstance(old, str):
             node[parts[-1]] = val          # a string key (element, law, ...) takes the text
             continue
@@ -704,6 +719,10 @@ def build(path, sets=(), name=None):
         "cycles": get_int(ctx, st, "cycles", "static", default=0, lo=0, hi=1000),
         "rtol": get_number(ctx, st, "rtol", "static", default=STATIC_DEFAULTS["rtol"], positive=True),
         "utol": get_number(ctx, st, "utol", "static", default=STATIC_DEFAULTS["utol"], positive=True),
+        "line_search": get_bool(ctx, st, "line_search", "static", STATIC_DEFAULTS["line_search"]),
+        "predictor": get_str(ctx, st, "predictor", "static", default=STATIC_DEFAULTS["predictor"],
+                             choices=("none", "secant")),
+        "stability": get_bool(ctx, st, "stability", "static", STATIC_DEFAULTS["stability"]),
     }
     dt = get_table(ctx, doc, "dynamic")
     check_keys(ctx, dt, {"t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks",
@@ -946,7 +965,8 @@ def write_model(model, path):
            f"length_scale {_f(model['length_scale'])}"]
     s = model["static"]
     out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
-               f"{_f(s['rtol'])} {_f(s['utol'])}")
+               f"{_f(s['rtol'])} {_f(s['utol'])} {int(s['line_search'])} {int(s['predictor'] == 'secant')} "
+               f"{int(s['stability'])}")
     d = model["dynamic"]
     out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "
                f"{d['max_iterations']} {d['max_cutbacks']} {d['output_every']} {_f(d['rayleigh_alpha'])} "

@@ -7,10 +7,67 @@
 #include <string.h>
 
 #include "linsolve.h"
+#include "stability.h"
 
 typedef struct work {
     double *fint, *fext, *r, *dx, *Ax, *qsave, *nu, *nusave;
+    double *qprev, *nuprev;          /* the equilibrium before the last one (predictor) */
+    double *qtry, *nutry;            /* line-search trial state */
+    int *quat;                       /* first global DOF of each free nodal quaternion */
+    int nquat;
 } work;
+
+/* Nodal quaternions whose four components are all free.  Elements with
+ * quaternion nodes ("p" fields) use the rotation of p/|p|; the gauge penalty
+ * makes |p| = 1 at equilibrium. */
+static int find_quaternions(const bk_system *s, work *w)
+{
+    const bk_model *m = s->m;
+    char *seen = calloc((size_t)m->ndof, 1);
+    w->quat = malloc((size_t)(m->ndof / 4 + 1) * sizeof *w->quat);
+    if (!seen || !w->quat) {
+        free(seen);
+        return -1;
+    }
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_element *et = m->pairs[el->pair]->element;
+        for (int f = 0; f < et->nfield; ++f) {
+            if (strcmp(et->field_name[f], "p") != 0 || et->field_dim[f] != 4)
+                continue;
+            const int *d = el->dofs + et->field_dof[f];
+            int ok = !seen[d[0]];
+            for (int k = 0; k < 4; ++k)
+                ok = ok && s->eq[d[k]] >= 0 && d[k] == d[0] + k;
+            seen[d[0]] = 1;
+            if (ok)
+                w->quat[w->nquat++] = d[0];
+        }
+    }
+    free(seen);
+    return 0;
+}
+
+/* Scales every free quaternion to unit length: the rotations, hence the
+ * strains and the energy apart from the gauge penalty, are unchanged, and the
+ * penalty's stiff radial direction no longer disturbs the iteration. */
+static void normalize_quaternions(const work *w, double *q)
+{
+    for (int k = 0; k < w->nquat; ++k) {
+        double *p = q + w->quat[k];
+        double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+        if (n > 0.0 && isfinite(n))
+            for (int i = 0; i < 4; ++i)
+                p[i] /= n;
+    }
+}
+
+/* One Newton solve: its outcome and counters. */
+typedef struct attempt {
+    int id;                          /* attempt number over the run (newton.csv)  */
+    int iters;
+    double rnorm, dnorm, ref;
+} attempt;
 
 static double norm2(const double *v, int n)
 {
@@ -34,21 +91,51 @@ static const char *why(int code)
     }
 }
 
-/* Newton iteration at load factor lam.  Returns a NEWTON_* code; iterations,
- * final residual and increment norms are reported through the pointers. */
-static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, int *iters,
-                  double *rnorm_out, double *dnorm_out, const bk_static_opts *o, double lscale)
+/* Residual r(q, nu) at load factor lam into w->r, and the Newton matrix into
+ * w->Ax when with_tangent.  Returns -1 on a non-finite internal force. */
+static int residual(bk_system *s, work *w, const double *q, const double *nu, double lam, int with_tangent)
 {
     const bk_model *m = s->m;
-    double dnorm = INFINITY, r0 = -1.0;
+    double *Ax = with_tangent ? w->Ax : NULL;
+    if (bk_assemble_internal(s, q, w->fint, Ax) != 0)
+        return -1;
+    bk_assemble_follower(s, q, lam, w->fint, Ax);
+    for (int i = 0; i < m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
+    bk_assemble_constraints(s, q, nu, lam, w->r, Ax);
+    return 0;
+}
+
+/* x = x0 + alpha dx on the free DOFs and multipliers, quaternions rescaled. */
+static void step_to(const bk_system *s, const work *w, const double *q0, const double *nu0, const double *dx,
+                    double alpha, double *q, double *nu)
+{
+    const bk_model *m = s->m;
+    for (int i = 0; i < m->ndof; ++i)
+        q[i] = s->eq[i] >= 0 ? q0[i] + alpha * dx[s->eq[i]] : q0[i];
+    for (int c = 0; c < s->ncon; ++c)
+        nu[c] = nu0[c] + alpha * dx[s->nfree + c];
+    normalize_quaternions(w, q);
+}
+
+/* Newton iteration at load factor lam, from the state in q, w->nu, with an
+ * optional line search (below; at most LS_MAX trial points; when it finds no
+ * acceptable point the full step is taken, i.e. plain Newton).  Returns a
+ * NEWTON_* code; every iteration is recorded in newton.csv. */
+#define LS_MAX 8
+#define ROT_STEP 0.15
+static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, attempt *a,
+                  const bk_static_opts *o, int use_ls, double lscale, bk_output *out, int step)
+{
+    const bk_model *m = s->m;
+    double dnorm = INFINITY, r0 = -1.0, alpha = 1.0;
+    int have = 0;                     /* w->r and w->Ax hold the current state */
+    a->iters = 0;
     for (int it = 0;; ++it) {
-        if (bk_assemble_internal(s, q, w->fint, w->Ax) != 0)
+        if (!have && residual(s, w, q, w->nu, lam, 1) != 0)
             return NEWTON_NONFINITE;
-        bk_assemble_follower(s, q, lam, w->fint, w->Ax);
-        for (int i = 0; i < m->ndof; ++i)
-            if (s->eq[i] >= 0)
-                w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
-        bk_assemble_constraints(s, q, w->nu, lam, w->r, w->Ax);
+        have = 0;
         double rnorm = norm2(w->r, s->neq);
         double ref = fmax(fabs(lam) * norm2(w->fext, m->ndof), norm2(w->fint, m->ndof));
         double uscale = 0.0, qmax = 0.0, kmax = 0.0;
@@ -64,9 +151,11 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
          * q, and increments of a few ulps of q. */
         double rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
         double dfloor = 64.0 * DBL_EPSILON * qmax;
-        *rnorm_out = rnorm;
-        *dnorm_out = dnorm;
-        *iters = it;
+        a->rnorm = rnorm;
+        a->dnorm = dnorm;
+        a->ref = ref;
+        a->iters = it;
+        bk_output_iteration(out, a->id, step, lam, it, rnorm, ref, it ? dnorm : NAN, it ? alpha : NAN, ls->rcond);
         if (!isfinite(rnorm))
             return NEWTON_NONFINITE;
         if (rnorm == 0.0)
@@ -89,17 +178,105 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         if (bk_lin_solve(ls, w->dx) != BK_LIN_OK)
             return NEWTON_LINERR;
         dnorm = 0.0;
-        for (int i = 0; i < m->ndof; ++i)
-            if (s->eq[i] >= 0) {
-                double d = w->dx[s->eq[i]];
-                if (!isfinite(d))
-                    return NEWTON_NONFINITE;
-                q[i] += d;
-                dnorm = fmax(dnorm, fabs(d));
+        for (int i = 0; i < s->neq; ++i) {
+            if (!isfinite(w->dx[i]))
+                return NEWTON_NONFINITE;
+            if (i < s->nfree)
+                dnorm = fmax(dnorm, fabs(w->dx[i]));
+        }
+        alpha = 1.0;
+        /* Rotation trust region: quaternion increments are rotations only to
+         * first order; a step that changes a unit quaternion's components by
+         * more than ROT_STEP (a rotation of about 17 degrees) is shortened to
+         * that.  With it the geometrically exact beams take the load steps the
+         * ANCF elements take (two turns of roll-up in 4 steps instead of 24). */
+        double dpmax = 0.0;
+        for (int k = 0; k < w->nquat; ++k)
+            for (int i = 0; i < 4; ++i)
+                dpmax = fmax(dpmax, fabs(w->dx[s->eq[w->quat[k] + i]]));
+        if (dpmax > ROT_STEP)
+            alpha = ROT_STEP / dpmax;
+        /* Near convergence (residual at the tolerance scale) the full step is
+         * always right and a line search would only fight round-off. */
+        if (!use_ls || rnorm <= 1e3 * fmax(o->rtol * ref, rfloor)) {
+            dnorm *= alpha;
+            step_to(s, w, q, w->nu, w->dx, alpha, q, w->nu);
+            continue;
+        }
+        /* Line search on the directional derivative of the energy along dx,
+         * s(alpha) = dx . r(x + alpha dx) (for a conservative system the
+         * slope of the energy; s(0) = -dx . A dx).  The full step is kept when
+         * it reduces |s| enough or reduces the residual norm; otherwise the
+         * zero of s between 0 and 1 is bracketed by regula falsi. */
+        double s0 = 0.0;
+        for (int i = 0; i < s->neq; ++i)
+            s0 += w->dx[i] * w->r[i];
+        double aa = 0.0, sa = s0, ab = 1.0, sb = NAN;
+        int accepted = 0;
+        for (int k = 0; k <= LS_MAX; ++k) {
+            step_to(s, w, q, w->nu, w->dx, alpha, w->qtry, w->nutry);
+            double sv = NAN, rn = INFINITY;
+            if (residual(s, w, w->qtry, w->nutry, lam, alpha == 1.0) == 0) {
+                rn = norm2(w->r, s->neq);
+                sv = 0.0;
+                for (int i = 0; i < s->neq; ++i)
+                    sv += w->dx[i] * w->r[i];
             }
-        for (int c = 0; c < s->ncon; ++c)
-            w->nu[c] += w->dx[s->nfree + c];
+            if (!isfinite(rn) || !isfinite(sv)) { /* too far: halve */
+                ab = alpha;
+                alpha *= 0.5;
+                continue;
+            }
+            if (fabs(sv) <= 0.5 * fabs(s0) || (k == 0 && rn <= rnorm) || sv * s0 > 0.0) {
+                accepted = 1; /* |s| small, residual decreased, or the energy still falls at alpha */
+                have = alpha == 1.0;
+                break;
+            }
+            ab = alpha;
+            sb = sv;
+            double an = aa - sa * (ab - aa) / (sb - sa); /* regula falsi on [aa, ab] */
+            alpha = fmin(fmax(an, aa + 0.05 * (ab - aa)), aa + 0.95 * (ab - aa));
+            if (alpha < 1e-3)
+                break;
+        }
+        if (!accepted)
+            alpha = 1.0;
+        (void)sb;
+        dnorm *= alpha;
+        step_to(s, w, q, w->nu, w->dx, alpha, q, w->nu);
     }
+}
+
+/* Stability at the equilibrium q at load factor lam: the number of negative
+ * eigenvalues of the constrained tangent; when it changed since the previous
+ * equilibrium, the event with the interpolated critical load factor. */
+static void check_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
+                            bk_output *out, bk_run_info *info, FILE *log, double *prev_lam)
+{
+    if (residual(s, w, q, w->nu, lam, 1) != 0)
+        return;
+    bk_stability_result res;
+    int before = info->negative_eigenvalues;
+    bk_stability_check(st, w->Ax, &res);
+    info->negative_eigenvalues = res.ok ? res.negative : before;
+    info->eig_min = res.eig_min;
+    info->eig_max = res.eig_max;
+    if (res.ok && res.negative != before && info->steps >= 1 && info->nstability < BK_MAX_EVENTS) {
+        double t = bk_stability_crossing(st, before);
+        bk_stability_event *ev = &info->stability[info->nstability++];
+        ev->step = info->steps;
+        ev->lam_before = *prev_lam;
+        ev->lam_after = lam;
+        ev->neg_before = before;
+        ev->neg_after = res.negative;
+        ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
+        if (log)
+            fprintf(log, "  stability: negative eigenvalues of the tangent %d -> %d between load factors "
+                         "%.6g and %.6g (first change at load factor %.6g)\n",
+                    before, res.negative, *prev_lam, lam, ev->lam_critical);
+    }
+    *prev_lam = lam;
+    bk_output_stability(out, info->steps, lam, res.ok ? res.negative : -1, res.eig_min, res.eig_max);
 }
 
 int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
@@ -111,14 +288,20 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     w.fint = calloc((size_t)nd, sizeof(double));
     w.fext = calloc((size_t)nd, sizeof(double));
     w.qsave = calloc((size_t)nd, sizeof(double));
+    w.qprev = calloc((size_t)nd, sizeof(double));
+    w.qtry = calloc((size_t)nd, sizeof(double));
     w.r = calloc((size_t)ne, sizeof(double));
     w.dx = calloc((size_t)ne, sizeof(double));
     w.nu = calloc((size_t)nc, sizeof(double));
     w.nusave = calloc((size_t)nc, sizeof(double));
+    w.nuprev = calloc((size_t)nc, sizeof(double));
+    w.nutry = calloc((size_t)nc, sizeof(double));
     w.Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof(double));
     bk_linsolver ls = {0};
-    int rc = 1;
-    if (!w.fint || !w.fext || !w.qsave || !w.r || !w.dx || !w.nu || !w.nusave || !w.Ax) {
+    bk_stability stab = {0};
+    int rc = 1, have_stab = 0;
+    if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.qtry || !w.r || !w.dx || !w.nu || !w.nusave ||
+        !w.nuprev || !w.nutry || !w.Ax) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -129,6 +312,17 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
         snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
         goto done;
+    }
+    if (find_quaternions(s, &w) != 0) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    if (o->stability) {
+        if (bk_stability_init(&stab, s) != 0) {
+            snprintf(info->message, sizeof info->message, "out of memory (stability analysis)");
+            goto done;
+        }
+        have_stab = 1;
     }
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     bk_external_load(s, w.fext);
@@ -149,36 +343,69 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     }
 
     bk_output_step(out, 0, 0.0, q);
+    double prev_lam = 0.0;
+    if (have_stab)
+        check_stability(&stab, s, &w, q, 0.0, out, info, log, &prev_lam);
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
-    double lam = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
-    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles;
+    double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
+    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0;
+    attempt a = {0};
     for (int leg = 0; leg < nleg; ++leg) {
         double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
         dlam = dlam0;
+        have_prev = 0;
         while (dir * (goal - lam) > 0.0) {
             double target = lam + dir * dlam;
             if (dir * (goal - target) < 1e-12)
                 target = goal;
             memcpy(w.qsave, q, (size_t)nd * sizeof *q);
             memcpy(w.nusave, w.nu, (size_t)nc * sizeof *w.nu);
-            int iters = 0;
-            double rnorm = 0.0, dnorm = 0.0;
-            int st = newton(s, &ls, &w, q, target, &iters, &rnorm, &dnorm, o, m->length_scale);
-            info->newton_iterations += iters;
+            /* Secant predictor: extrapolate the last two equilibria of this
+             * leg to the target load. */
+            if (o->predictor && have_prev && lam != lam_prev) {
+                double c = (target - lam) / (lam - lam_prev);
+                for (int i = 0; i < nd; ++i)
+                    q[i] += c * (q[i] - w.qprev[i]);
+                for (int k = 0; k < s->ncon; ++k)
+                    w.nu[k] += c * (w.nu[k] - w.nuprev[k]);
+                normalize_quaternions(&w, q);
+            }
+            /* Attempts, each from the last equilibrium except the first:
+             * Newton from the predicted state, plain Newton, Newton with the
+             * line search; then the increment is cut back. */
+            int st = NEWTON_MAXIT;
+            for (int k = 0; k < 3 && st != NEWTON_OK; ++k) {
+                int predicted = k == 0 && o->predictor && have_prev;
+                if ((k == 0 && !predicted) || (k == 2 && !o->line_search))
+                    continue;
+                if (k > 0) {
+                    memcpy(q, w.qsave, (size_t)nd * sizeof *q);
+                    memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
+                }
+                a.id++;
+                st = newton(s, &ls, &w, q, target, &a, o, k == 2, m->length_scale, out, info->steps + 1);
+                info->newton_iterations += a.iters;
+            }
             if (st == NEWTON_OK) {
+                memcpy(w.qprev, w.qsave, (size_t)nd * sizeof *q);
+                memcpy(w.nuprev, w.nusave, (size_t)nc * sizeof *w.nu);
+                lam_prev = lam;
+                have_prev = 1;
                 lam = target;
                 info->steps++;
                 info->load_factor = lam;
                 bk_output_step(out, info->steps, lam, q);
                 cuts_in_row = 0;
-                if (iters <= 6 && dlam < dlam0)
+                if (a.iters <= 6 && dlam < dlam0)
                     dlam = fmin(2.0 * dlam, dlam0);
                 if (log)
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
-                            info->steps, lam, iters, rnorm);
+                            info->steps, lam, a.iters, a.rnorm);
+                if (have_stab)
+                    check_stability(&stab, s, &w, q, lam, out, info, log, &prev_lam);
                 bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
-                                   iters, rnorm);
+                                   a.iters, a.rnorm);
                 continue;
             }
             memcpy(q, w.qsave, (size_t)nd * sizeof *q);
@@ -186,8 +413,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             if (cuts_in_row >= o->max_cutbacks) {
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
-                         "residual %.3e, last increment %.3e after %d iterations, %d cut-backs",
-                         info->steps + 1, target, lam, why(st), rnorm, dnorm, iters, cuts_in_row);
+                         "residual %.3e, last increment %.3e after %d iterations, %d cut-backs%s",
+                         info->steps + 1, target, lam, why(st), a.rnorm, a.dnorm, a.iters, cuts_in_row,
+                         info->negative_eigenvalues > 0
+                             ? "; the last equilibrium was unstable (negative tangent eigenvalues): "
+                               "a bifurcation or limit point was passed"
+                             : "");
                 goto done;
             }
             cuts_in_row++;
@@ -202,14 +433,22 @@ done:
     info->converged = rc == 0;
     info->factorizations = ls.nfactor;
     info->analyses = ls.nanalyze;
+    info->stability_checked = have_stab;
     bk_lin_free(&ls);
+    if (have_stab)
+        bk_stability_free(&stab);
     free(w.fint);
     free(w.fext);
     free(w.qsave);
+    free(w.qprev);
+    free(w.qtry);
     free(w.r);
     free(w.dx);
     free(w.nu);
     free(w.nusave);
+    free(w.nuprev);
+    free(w.nutry);
     free(w.Ax);
+    free(w.quat);
     return rc;
 }

@@ -49,6 +49,25 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
         fprintf(o->energy, "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual\n");
         fflush(o->energy);
     }
+    if (m->analysis == BK_STATIC) {
+        snprintf(path, sizeof path, "%s/newton.csv", dir);
+        o->newton = fopen(path, "w");
+        if (!o->newton) {
+            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+            return -1;
+        }
+        fprintf(o->newton, "attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond\n");
+        if (m->stat.stability) {
+            snprintf(path, sizeof path, "%s/stability.csv", dir);
+            o->stability = fopen(path, "w");
+            if (!o->stability) {
+                fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+                return -1;
+            }
+            fprintf(o->stability, "step,load_factor,negative_eigenvalues,eig_min,eig_max\n");
+            fflush(o->stability);
+        }
+    }
     return 0;
 }
 
@@ -124,6 +143,23 @@ void bk_output_mode(bk_output *o, int mode, double f_hz, double omega)
     fflush(o->modes);
 }
 
+void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
+                         double ref, double increment, double alpha, double rcond)
+{
+    if (!o->newton)
+        return;
+    fprintf(o->newton, "%d,%d,%.17g,%d,%.6e,%.6e,%.6e,%.6g,%.3e\n", attempt, step, lam, iter, residual, ref,
+            increment, alpha, rcond);
+}
+
+void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max)
+{
+    if (!o->stability)
+        return;
+    fprintf(o->stability, "%d,%.17g,%d,%.9e,%.6e\n", step, lam, negative, eig_min, eig_max);
+    fflush(o->stability);
+}
+
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
                       double cres)
 {
@@ -147,6 +183,14 @@ static void json_string(FILE *fp, const char *s)
             fputc(c, fp);
     }
     fputc('"', fp);
+}
+
+static void json_num(FILE *fp, double v)
+{
+    if (isfinite(v))
+        fprintf(fp, "%.17g", v);
+    else
+        fprintf(fp, "null");
 }
 
 static void json_vec(FILE *fp, const double *v)
@@ -193,6 +237,22 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
             fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);
         fprintf(fp, "],\n");
     }
+    if (info->stability_checked) {
+        fprintf(fp, "  \"stability\": {\"negative_eigenvalues\": %d, \"eig_min\": ", info->negative_eigenvalues);
+        json_num(fp, info->eig_min);
+        fprintf(fp, ", \"eig_max\": ");
+        json_num(fp, info->eig_max);
+        fprintf(fp, ", \"events\": [");
+        for (int k = 0; k < info->nstability; ++k) {
+            const bk_stability_event *ev = &info->stability[k];
+            fprintf(fp, "%s\n    {\"step\": %d, \"load_factor_before\": %.17g, \"load_factor_after\": %.17g, "
+                        "\"negative_before\": %d, \"negative_after\": %d, \"critical_load_factor\": ",
+                    k ? "," : "", ev->step, ev->lam_before, ev->lam_after, ev->neg_before, ev->neg_after);
+            json_num(fp, ev->lam_critical);
+            fprintf(fp, "}");
+        }
+        fprintf(fp, "%s]},\n", info->nstability ? "\n  " : "");
+    }
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
         json_string(fp, info->message);
@@ -233,6 +293,10 @@ void bk_output_close(bk_output *o)
         fclose(o->energy);
     if (o->modes)
         fclose(o->modes);
-    o->sensors = o->energy = o->modes = NULL;
+    if (o->newton)
+        fclose(o->newton);
+    if (o->stability)
+        fclose(o->stability);
+    o->sensors = o->energy = o->modes = o->newton = o->stability = NULL;
     bk_vtk_close(&o->vtk);
 }

@@ -15,12 +15,25 @@ typedef struct bk_output {
     FILE *sensors;           /* owned */
     FILE *energy;            /* owned; dynamic analyses only */
     FILE *modes;             /* owned; modal analyses only */
+    FILE *newton;            /* owned; static analyses: one row per Newton iteration */
+    FILE *stability;         /* owned; static analyses with stability checks */
     int nfreq;
     double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */
     int progress;            /* 1: an updating progress line on stderr */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
 } bk_output;
+
+/* A change of the number of negative eigenvalues of the tangent between two
+ * consecutive static equilibria: a bifurcation or limit point was passed. */
+typedef struct bk_stability_event {
+    int step;                /* the first equilibrium with the new count          */
+    double lam_before, lam_after;
+    int neg_before, neg_after;
+    double lam_critical;     /* interpolated critical load factor (NaN: unknown)   */
+} bk_stability_event;
+
+#define BK_MAX_EVENTS 32
 
 typedef struct bk_run_info {
     int converged;
@@ -34,6 +47,12 @@ typedef struct bk_run_info {
     double strain_energy;
     double max_constraint_residual;
     char message[1024];      /* empty when converged */
+    /* statics with [static] stability */
+    int stability_checked;
+    int negative_eigenvalues;  /* at the last equilibrium                         */
+    double eig_min, eig_max;   /* smallest-magnitude and largest eigenvalue there  */
+    int nstability;
+    bk_stability_event stability[BK_MAX_EVENTS];
 } bk_run_info;
 
 /* progress: show an updating line on stderr (only if it is a terminal). */
@@ -49,6 +68,16 @@ void bk_output_step(bk_output *o, int step, double t, const double *q);
  * potential of the other constant loads, their total, constraint residual. */
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
                       double cres);
+/* newton.csv (statics): one row per Newton iteration of attempt `attempt`
+ * towards equilibrium `step` at load factor lam: residual norm, the reference
+ * force it is measured against, the increment (max norm, after the line
+ * search), the line-search step length and KLU's reciprocal pivot ratio. */
+void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
+                         double ref, double increment, double alpha, double rcond);
+/* stability.csv (statics): per equilibrium, the number of negative
+ * eigenvalues of the constrained tangent (-1: factorization broke down) and
+ * its smallest-magnitude and largest eigenvalue. */
+void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max);
 /* modes.csv: one row per mode (mode, frequency in Hz, angular frequency). */
 int bk_output_modes_begin(bk_output *o);
 void bk_output_mode(bk_output *o, int mode, double f_hz, double omega);

@@ -11,6 +11,9 @@
  *   fd_tangent  max_ij |K_ij - df_i/dq_j (4th-order central)| / max|K|
  *   sym         max |K - K^T| / max|K|
  *   consist     max |f(force) - f(force_tangent)| / max|f|
+ *   fd_moment   for elements that carry moments: max_ij |dQ_ij - dQ_i/dq_j
+ *               (4th-order central)| / max|dQ| for a random moment on the
+ *               section at each node (the Jacobian used by Newton)
  * and at NSTATE random rigid motions of the reference element:
  *   rigid_energy  |U| / (energy of a unit strain)
  *   rigid_force   max|f| / (force of a unit strain)
@@ -202,7 +205,7 @@ int main(int argc, char **argv)
             /* inextensible elements store no energy in a stretch: use force x length */
             double Uscale = fmax(Ueps / (eps * eps), fscale * geom[0]);
 
-            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_visc = 0;
+            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_visc = 0, e_mom = 0;
 
             for (int st = 0; st < NSTATE; ++st) {
                 random_rotation(&r, R, qr);
@@ -253,6 +256,32 @@ int main(int argc, char **argv)
                 }
                 for (int k = 0; k < n * n; ++k)
                     e_tan = fmax(e_tan, fabs(K[k] - Kd[k]) / Kmax);
+                /* moment loads: Q(q) and its Jacobian at every node */
+                if (e->moment) {
+                    double M[3] = {urand(&r), urand(&r), urand(&r)};
+                    double *Q = f2, *dQ = Kd2, *Qp = fp, *Qm = fm, *Qp2 = fp2, *Qm2 = fm2;
+                    for (int a = 0; a < e->nnode; ++a) {
+                        double xi = e->node_xi[a];
+                        e->moment(geom, xi, q, M, Q, dQ);
+                        double dmax = fmax(maxabs(dQ, n * n), 1e-300);
+                        for (int j = 0; j < n; ++j) {
+                            double h = 1e-3 * sc[j], qj = q[j];
+                            q[j] = qj + h;
+                            e->moment(geom, xi, q, M, Qp, Kd);
+                            q[j] = qj - h;
+                            e->moment(geom, xi, q, M, Qm, Kd);
+                            q[j] = qj + 2 * h;
+                            e->moment(geom, xi, q, M, Qp2, Kd);
+                            q[j] = qj - 2 * h;
+                            e->moment(geom, xi, q, M, Qm2, Kd);
+                            q[j] = qj;
+                            for (int i = 0; i < n; ++i) {
+                                double d = (-Qp2[i] + 8 * Qp[i] - 8 * Qm[i] + Qm2[i]) / (12 * h);
+                                e_mom = fmax(e_mom, fabs(dQ[i * n + j] - d) / dmax);
+                            }
+                        }
+                    }
+                }
                 /* Kelvin-Voigt: C = d f_v / d qd by central differences (f_v is linear in qd) */
                 if (p->viscous) {
                     double visc[2] = {0.3 * mat[0] + 1.0, 0.2 * mat[0] + 1.0};
@@ -274,9 +303,9 @@ int main(int argc, char **argv)
                 }
             }
             printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
-                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fscale=%.3e\n",
+                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_moment=%.3e fscale=%.3e\n",
                    e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,
-                   e_rigU, e_rigf, e_visc, fscale);
+                   e_rigU, e_rigf, e_visc, e_mom, fscale);
             if (!isfinite(e_force) || !isfinite(e_tan))
                 bad = 1;
             free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);

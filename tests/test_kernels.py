@@ -35,7 +35,7 @@ def check(exe, nstate):
     for d in rows:
         assert int(d["states"]) >= nstate
         checks = {"fd_force": 1e-6, "fd_tangent": 1e-6, "sym": 1e-14, "consist": 1e-12,
-                  "rigid_energy": 1e-10, "rigid_force": 1e-10, "fd_viscous": 1e-8}
+                  "rigid_energy": 1e-10, "rigid_force": 1e-10, "fd_viscous": 1e-8, "fd_moment": 1e-8}
         for k, tol in checks.items():
             v = float(d[k])
             if not v <= tol:

@@ -1,0 +1,317 @@
+/* stability.c -- inertia and extreme eigenvalues of the constrained tangent
+ * (method in stability.h). */
+#include "stability.h"
+
+#include <amd.h>
+#include <ldl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define INV_ITERS 30
+#define POW_ITERS 40
+
+static long slot(const bk_system *s, int row, int col)
+{
+    for (int k = s->Ap[col]; k < s->Ap[col + 1]; ++k)
+        if (s->Ai[k] == row)
+            return k;
+    return -1;
+}
+
+int bk_stability_init(bk_stability *st, const bk_system *s)
+{
+    memset(st, 0, sizeof *st);
+    st->s = s;
+    int n = st->n = s->neq;
+    const bk_model *m = s->m;
+    size_t N = (size_t)(n > 0 ? n : 1);
+    st->ismult = calloc(N, 1);
+    st->Bp = malloc((N + 1) * sizeof *st->Bp);
+    long cap = s->nnz + n;
+    st->Bi = malloc((size_t)cap * sizeof *st->Bi);
+    st->src = malloc((size_t)cap * sizeof *st->src);
+    st->srct = malloc((size_t)cap * sizeof *st->srct);
+    st->Bx = malloc((size_t)cap * sizeof *st->Bx);
+    st->Bprev = malloc((size_t)cap * sizeof *st->Bprev);
+    st->Bnow = malloc((size_t)cap * sizeof *st->Bnow);
+    st->Lp = malloc((N + 1) * sizeof *st->Lp);
+    st->Parent = malloc(N * sizeof(int));
+    st->Lnz = malloc(N * sizeof(int));
+    st->Flag = malloc(N * sizeof(int));
+    st->Pattern = malloc(N * sizeof(int));
+    st->P = malloc(N * sizeof(int));
+    st->Pinv = malloc(N * sizeof(int));
+    st->D = malloc(N * sizeof(double));
+    st->Y = malloc(N * sizeof(double));
+    st->x = malloc(N * sizeof(double));
+    st->y = malloc(N * sizeof(double));
+    st->z = malloc(N * sizeof(double));
+    if (!st->ismult || !st->Bp || !st->Bi || !st->src || !st->srct || !st->Bx || !st->Bprev || !st->Bnow || !st->Lp || !st->Parent ||
+        !st->Lnz || !st->Flag || !st->Pattern || !st->P || !st->Pinv || !st->D || !st->Y || !st->x ||
+        !st->y || !st->z)
+        return -1;
+
+    /* Multiplier unknowns: the constraint rows and the element-internal
+     * multipliers. */
+    for (int i = s->nfree; i < n; ++i)
+        st->ismult[i] = 1;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_element *et = m->pairs[el->pair]->element;
+        for (int f = 0; f < et->nfield; ++f)
+            if (strcmp(et->field_name[f], "lambda") == 0)
+                for (int k = 0; k < et->field_dim[f]; ++k) {
+                    int qe = s->eq[el->dofs[et->field_dof[f] + k]];
+                    if (qe >= 0)
+                        st->ismult[qe] = 1;
+                }
+    }
+    for (int i = 0; i < n; ++i)
+        st->nmult += st->ismult[i];
+
+    /* Pattern of the Newton matrix with every diagonal present, and for each
+     * entry the positions of (i,j) and (j,i) in the system's values. */
+    long nz = 0;
+    for (int j = 0; j < n; ++j) {
+        st->Bp[j] = (int)nz;
+        int have_diag = 0;
+        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k) {
+            int i = s->Ai[k];
+            if (!have_diag && i > j) {
+                st->Bi[nz] = j;
+                st->src[nz] = st->srct[nz] = -1;
+                nz++;
+                have_diag = 1;
+            }
+            have_diag |= i == j;
+            st->Bi[nz] = i;
+            st->src[nz] = k;
+            st->srct[nz] = slot(s, j, i);
+            nz++;
+        }
+        if (!have_diag) {
+            st->Bi[nz] = j;
+            st->src[nz] = st->srct[nz] = -1;
+            nz++;
+        }
+    }
+    st->Bp[n] = (int)nz;
+
+    /* Ordering: AMD on the whole pattern, then the multipliers first (each
+     * keeps its AMD rank). */
+    int *perm = st->Pattern; /* scratch */
+    double control[AMD_CONTROL], info[AMD_INFO];
+    amd_defaults(control);
+    if (amd_order(n, st->Bp, st->Bi, perm, control, info) < AMD_OK)
+        for (int i = 0; i < n; ++i)
+            perm[i] = i;
+    int k = 0;
+    for (int i = 0; i < n; ++i)
+        if (st->ismult[perm[i]])
+            st->P[k++] = perm[i];
+    for (int i = 0; i < n; ++i)
+        if (!st->ismult[perm[i]])
+            st->P[k++] = perm[i];
+    ldl_symbolic(n, st->Bp, st->Bi, st->Lp, st->Parent, st->Lnz, st->Flag, st->P, st->Pinv);
+    long lnz = st->Lp[n];
+    st->Li = malloc((size_t)(lnz > 0 ? lnz : 1) * sizeof(int));
+    st->Lx = malloc((size_t)(lnz > 0 ? lnz : 1) * sizeof(double));
+    return st->Li && st->Lx ? 0 : -1;
+}
+
+/* Symmetric part of the Newton matrix, multiplier diagonals regularized. */
+static void fill(bk_stability *st, const double *Ax)
+{
+    int n = st->n;
+    double kmax = 0.0;
+    for (int j = 0; j < n; ++j) {
+        for (int k = st->Bp[j]; k < st->Bp[j + 1]; ++k) {
+            double a = st->src[k] >= 0 ? Ax[st->src[k]] : 0.0;
+            double b = st->srct[k] >= 0 ? Ax[st->srct[k]] : 0.0;
+            st->Bx[k] = 0.5 * (a + b);
+            if (st->Bi[k] == j && !st->ismult[j])
+                kmax = fmax(kmax, fabs(st->Bx[k]));
+        }
+    }
+    if (!(kmax > 0.0))
+        kmax = 1.0;
+    for (int j = 0; j < n; ++j) {
+        if (!st->ismult[j])
+            continue;
+        double b2 = 0.0;
+        long dk = -1;
+        for (int k = st->Bp[j]; k < st->Bp[j + 1]; ++k) {
+            if (st->Bi[k] == j)
+                dk = k;
+            else
+                b2 += st->Bx[k] * st->Bx[k];
+        }
+        double delta = 1e-8 * (b2 > 0.0 ? b2 / kmax : kmax);
+        st->Bx[dk] = -delta;
+    }
+}
+
+static void matvec(const bk_stability *st, const double *x, double *y)
+{
+    memset(y, 0, (size_t)st->n * sizeof *y);
+    for (int j = 0; j < st->n; ++j)
+        for (int k = st->Bp[j]; k < st->Bp[j + 1]; ++k)
+            y[st->Bi[k]] += st->Bx[k] * x[j];
+}
+
+static double dot(const double *a, const double *b, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; ++i)
+        s += a[i] * b[i];
+    return s;
+}
+
+static void normalize(double *x, int n)
+{
+    double s = sqrt(dot(x, x, n));
+    for (int i = 0; i < n; ++i)
+        x[i] /= s > 0.0 ? s : 1.0;
+}
+
+static void start_vector(double *x, int n)
+{
+    unsigned long long r = 88172645463325252ULL;
+    for (int i = 0; i < n; ++i) {
+        r ^= r << 13;
+        r ^= r >> 7;
+        r ^= r << 17;
+        x[i] = (double)(r >> 11) / 9007199254740992.0 - 0.5;
+    }
+    normalize(x, n);
+}
+
+/* Negative pivots minus multipliers of the matrix in Bx; -1 on a zero pivot. */
+static int inertia(bk_stability *st)
+{
+    int n = st->n;
+    int d = ldl_numeric(n, st->Bp, st->Bi, st->Bx, st->Lp, st->Parent, st->Lnz, st->Li, st->Lx, st->D,
+                        st->Y, st->Pattern, st->Flag, st->P, st->Pinv);
+    if (d != n)
+        return -1;
+    int neg = 0;
+    for (int i = 0; i < n; ++i)
+        neg += st->D[i] < 0.0;
+    neg -= st->nmult;
+    return neg < 0 ? 0 : neg;
+}
+
+double bk_stability_crossing(bk_stability *st, int count_before)
+{
+    if (!st->have_prev || st->n == 0)
+        return NAN;
+    long nz = st->Bp[st->n];
+    double lo = 0.0, hi = 1.0, *now = st->Bnow;
+    memcpy(now, st->Bx, (size_t)nz * sizeof *now);
+    for (int it = 0; it < 30; ++it) {
+        double t = 0.5 * (lo + hi);
+        for (long k = 0; k < nz; ++k)
+            st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * now[k];
+        int c = inertia(st);
+        if (c == count_before)
+            lo = t;
+        else
+            hi = t;
+    }
+    memcpy(st->Bx, now, (size_t)nz * sizeof *now);
+    return 0.5 * (lo + hi);
+}
+
+void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res)
+{
+    int n = st->n;
+    memset(res, 0, sizeof *res);
+    res->eig_min = res->eig_max = NAN;
+    if (n == 0)
+        return;
+    if (st->have_prev)
+        memcpy(st->Bprev, st->Bx, (size_t)st->Bp[n] * sizeof *st->Bx);
+    fill(st, Ax);
+    st->have_prev = 1;
+    int c = inertia(st);
+    if (c < 0) {
+        /* An exactly zero pivot: singular on the constraint tangent space. */
+        res->ok = 0;
+        res->eig_min = 0.0;
+        st->have_vec = 0;
+        return;
+    }
+    res->ok = 1;
+    res->negative = c;
+
+    /* Inverse iteration for the smallest-magnitude eigenvalue, warm-started
+     * from the previous eigenvector. */
+    if (!st->have_vec)
+        start_vector(st->x, n);
+    double lam = NAN;
+    for (int it = 0; it < INV_ITERS; ++it) {
+        ldl_perm(n, st->z, st->x, st->P);
+        ldl_lsolve(n, st->z, st->Lp, st->Li, st->Lx);
+        ldl_dsolve(n, st->z, st->D);
+        ldl_ltsolve(n, st->z, st->Lp, st->Li, st->Lx);
+        ldl_permt(n, st->y, st->z, st->P);
+        /* y = A^-1 x; Rayleigh quotient of the normalized y */
+        normalize(st->y, n);
+        matvec(st, st->y, st->z);
+        double l = dot(st->y, st->z, n);
+        /* residual |A y - l y| */
+        double r2 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            double t = st->z[i] - l * st->y[i];
+            r2 += t * t;
+        }
+        memcpy(st->x, st->y, (size_t)n * sizeof *st->x);
+        int done = it > 0 && fabs(l - lam) <= 1e-10 * fabs(l) && sqrt(r2) <= 1e-6 * fabs(l);
+        lam = l;
+        if (done)
+            break;
+    }
+    res->eig_min = lam;
+    st->have_vec = isfinite(lam);
+
+    /* Power iteration for the largest magnitude (an estimate: a few digits). */
+    start_vector(st->y, n);
+    double big = 0.0;
+    for (int it = 0; it < POW_ITERS; ++it) {
+        matvec(st, st->y, st->z);
+        big = sqrt(dot(st->z, st->z, n));
+        if (!(big > 0.0))
+            break;
+        for (int i = 0; i < n; ++i)
+            st->y[i] = st->z[i] / big;
+    }
+    res->eig_max = big;
+}
+
+void bk_stability_free(bk_stability *st)
+{
+    free(st->ismult);
+    free(st->Bp);
+    free(st->Bi);
+    free(st->src);
+    free(st->srct);
+    free(st->Bx);
+    free(st->Bprev);
+    free(st->Bnow);
+    free(st->Lp);
+    free(st->Parent);
+    free(st->Lnz);
+    free(st->Flag);
+    free(st->Pattern);
+    free(st->P);
+    free(st->Pinv);
+    free(st->D);
+    free(st->Y);
+    free(st->x);
+    free(st->y);
+    free(st->z);
+    free(st->Li);
+    free(st->Lx);
+    memset(st, 0, sizeof *st);
+}

@@ -1,0 +1,69 @@
+/* stability.h -- stability of a static equilibrium: the inertia of the tangent
+ * restricted to the constraints, its smallest-magnitude eigenvalue and an
+ * estimate of its largest (for the condition number).
+ *
+ * Method.  The Newton matrix is the saddle-point (KKT) matrix
+ *     A = [ K  B^T ]     B: the scaled constraint rows, and the rows of the
+ *         [ B  0   ]     element-internal multipliers ("lambda" fields of the
+ *                        Euler-Bernoulli and Kirchhoff beams)
+ * with m multiplier unknowns.  Its symmetric part, regularized with -delta_i on
+ * the multiplier diagonals (delta_i = 1e-8 |b_i|^2 / kmax), is factored as
+ * L D L^T (SuiteSparse LDL) with the multipliers eliminated first and AMD
+ * ordering for the rest.  Eliminating the multipliers first leaves K + B^T
+ * delta^-1 B, so by Sylvester's law of inertia
+ *     negative pivots of D = m + negative eigenvalues of (K + B^T delta^-1 B),
+ * and for small delta the latter are the negative eigenvalues of K on the
+ * tangent space of the constraints (the directions B moves are penalized by
+ * about 1e8 kmax).  A change of that count between two equilibria is a
+ * bifurcation or a limit point between them.  The smallest-magnitude
+ * eigenvalue comes from inverse iteration with the factor, the largest from
+ * power iteration with the matrix (both in the Euclidean metric of the
+ * unknowns).
+ *
+ * The critical load between two equilibria with different counts is found by
+ * bisection on the inertia of the linearly interpolated matrix.
+ *
+ * Ownership: the checker owns every array it allocates (bk_stability_free);
+ * it keeps a pointer to the system, which must outlive it.  No allocation
+ * after bk_stability_init.
+ */
+#ifndef BK_STABILITY_H
+#define BK_STABILITY_H
+
+#include "system.h"
+
+typedef struct bk_stability {
+    const bk_system *s;
+    int n, nmult;
+    char *ismult;                   /* [n] 1 for multiplier unknowns           */
+    int *Bp, *Bi;                   /* symmetric pattern with every diagonal   */
+    long *src, *srct;               /* [nnz] index into the system's Ax of (i,j) and (j,i), -1: none */
+    double *Bx, *Bprev, *Bnow;      /* values now, at the previous check, copy */
+    int have_prev;
+    int *Lp, *Parent, *Lnz, *Flag, *Pattern, *P, *Pinv, *Li;
+    double *Lx, *D, *Y;
+    double *x, *y, *z;              /* iteration vectors                        */
+    int have_vec;                   /* x holds the last eigenvector             */
+} bk_stability;
+
+typedef struct bk_stability_result {
+    int negative;                   /* negative eigenvalues on the constraint tangent space */
+    double eig_min;                 /* smallest-magnitude eigenvalue (Rayleigh quotient)    */
+    double eig_max;                 /* largest-magnitude eigenvalue estimate                */
+    int ok;                         /* 0: the factorization broke down (zero pivot)         */
+} bk_stability_result;
+
+/* Returns 0, or -1 when out of memory. */
+int bk_stability_init(bk_stability *st, const bk_system *s);
+/* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
+void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
+/* After a check whose count differs from the previous one: the fraction
+ * t in (0, 1) between the previous and the current state at which the matrix
+ * interpolated linearly between the two, (1 - t) A_prev + t A, first has a
+ * negative-eigenvalue count different from the previous one (bisection on
+ * the inertia, 30 factorizations; exact for a tangent linear in the load, as
+ * on a straight pre-buckling path).  NaN when unavailable. */
+double bk_stability_crossing(bk_stability *st, int count_before);
+void bk_stability_free(bk_stability *st);
+
+#endif
