@@ -19,7 +19,7 @@ PLANNED_ANALYSES = ()
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "line_search": True,
-                   "predictor": "secant", "stability": True}
+                   "predictor": "secant", "stability": True, "stable_path": False}
 
 # Ranges of material keys, whatever the law: (test, expectation text).
 KEY_RANGES = {
@@ -723,6 +723,7 @@ def build(path, sets=(), name=None):
         "predictor": get_str(ctx, st, "predictor", "static", default=STATIC_DEFAULTS["predictor"],
                              choices=("none", "secant")),
         "stability": get_bool(ctx, st, "stability", "static", STATIC_DEFAULTS["stability"]),
+        "stable_path": get_bool(ctx, st, "stable_path", "static", STATIC_DEFAULTS["stable_path"]),
     }
     dt = get_table(ctx, doc, "dynamic")
     check_keys(ctx, dt, {"t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks",
@@ -966,7 +967,7 @@ def write_model(model, path):
     s = model["static"]
     out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
                f"{_f(s['rtol'])} {_f(s['utol'])} {int(s['line_search'])} {int(s['predictor'] == 'secant')} "
-               f"{int(s['stability'])}")
+               f"{int(s['stability'] or s['stable_path'])} {int(s['stable_path'])}")
     d = model["dynamic"]
     out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "
                f"{d['max_iterations']} {d['max_cutbacks']} {d['output_every']} {_f(d['rayleigh_alpha'])} "

@@ -153,6 +153,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.line_search = inum(r, "static.line_search", 0, 1);
     m->stat.predictor = inum(r, "static.predictor", 0, 1);
     m->stat.stability = inum(r, "static.stability", 0, 1);
+    m->stat.stable_path = inum(r, "static.stable_path", 0, 1);
     expect(r, "dynamic");
     m->dyn.t_end = num(r, "dynamic.t_end");
     m->dyn.dt = num(r, "dynamic.dt");

@@ -71,6 +71,7 @@ typedef struct bk_static_opts {
     int line_search;   /* 1: backtracking line search on the residual norm */
     int predictor;     /* 1: secant predictor from the last two equilibria */
     int stability;     /* 1: inertia of the tangent at every equilibrium   */
+    int stable_path;   /* 1: cut back increments that lose stability       */
 } bk_static_opts;
 
 typedef struct bk_dynamic_opts {

@@ -77,7 +77,7 @@ static double norm2(const double *v, int n)
     return sqrt(s);
 }
 
-enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR };
+enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE };
 
 static const char *why(int code)
 {
@@ -87,6 +87,7 @@ static const char *why(int code)
     case NEWTON_SINGULAR: return "singular tangent: is the beam constrained against rigid motion?";
     case NEWTON_DIVERGED: return "residual grew without bound";
     case NEWTON_LINERR: return "linear solver error";
+    case NEWTON_UNSTABLE: return "the equilibrium reached is unstable (more negative tangent eigenvalues)";
     default: return "converged";
     }
 }
@@ -247,36 +248,46 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
     }
 }
 
-/* Stability at the equilibrium q at load factor lam: the number of negative
- * eigenvalues of the constrained tangent; when it changed since the previous
- * equilibrium, the event with the interpolated critical load factor. */
-static void check_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
-                            bk_output *out, bk_run_info *info, FILE *log, double *prev_lam)
+/* Stability of the equilibrium q at load factor lam (not yet accepted):
+ * the number of negative eigenvalues of the constrained tangent. */
+static int probe_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
+                           bk_stability_result *res)
 {
-    if (residual(s, w, q, w->nu, lam, 1) != 0)
-        return;
-    bk_stability_result res;
+    if (residual(s, w, q, w->nu, lam, 1) != 0) {
+        memset(res, 0, sizeof *res);
+        return -1;
+    }
+    bk_stability_check(st, w->Ax, res);
+    return res->ok ? res->negative : -1;
+}
+
+/* Accepts the probed equilibrium: when the count changed since the previous
+ * one, records the event with the interpolated critical load factor. */
+static void accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
+                             bk_run_info *info, FILE *log, double *prev_lam)
+{
     int before = info->negative_eigenvalues;
-    bk_stability_check(st, w->Ax, &res);
-    info->negative_eigenvalues = res.ok ? res.negative : before;
-    info->eig_min = res.eig_min;
-    info->eig_max = res.eig_max;
-    if (res.ok && res.negative != before && info->steps >= 1 && info->nstability < BK_MAX_EVENTS) {
+    info->negative_eigenvalues = res->ok ? res->negative : before;
+    info->eig_min = res->eig_min;
+    info->eig_max = res->eig_max;
+    if (res->ok && res->negative != before && info->steps >= 1 && info->nstability < BK_MAX_EVENTS) {
         double t = bk_stability_crossing(st, before);
         bk_stability_event *ev = &info->stability[info->nstability++];
         ev->step = info->steps;
         ev->lam_before = *prev_lam;
         ev->lam_after = lam;
         ev->neg_before = before;
-        ev->neg_after = res.negative;
+        ev->neg_after = res->negative;
         ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
         if (log)
             fprintf(log, "  stability: negative eigenvalues of the tangent %d -> %d between load factors "
                          "%.6g and %.6g (first change at load factor %.6g)\n",
-                    before, res.negative, *prev_lam, lam, ev->lam_critical);
+                    before, res->negative, *prev_lam, lam, ev->lam_critical);
     }
+    if (res->ok)
+        bk_stability_accept(st);
     *prev_lam = lam;
-    bk_output_stability(out, info->steps, lam, res.ok ? res.negative : -1, res.eig_min, res.eig_max);
+    bk_output_stability(out, info->steps, lam, res->ok ? res->negative : -1, res->eig_min, res->eig_max);
 }
 
 int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
@@ -344,8 +355,11 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
 
     bk_output_step(out, 0, 0.0, q);
     double prev_lam = 0.0;
-    if (have_stab)
-        check_stability(&stab, s, &w, q, 0.0, out, info, log, &prev_lam);
+    bk_stability_result sres;
+    if (have_stab) {
+        probe_stability(&stab, s, &w, q, 0.0, &sres);
+        accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
+    }
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
     double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
@@ -387,6 +401,17 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 st = newton(s, &ls, &w, q, target, &a, o, k == 2, m->length_scale, out, info->steps + 1);
                 info->newton_iterations += a.iters;
             }
+            /* On a stable path (static.stable_path), an increment that ends
+             * at an equilibrium with more negative eigenvalues than the last
+             * one is cut back while cut-backs remain: with an imperfection
+             * the stable branch is reached with smaller increments; without,
+             * the bifurcation is bracketed as closely as the cut-backs allow
+             * and then passed (and reported). */
+            if (st == NEWTON_OK && have_stab) {
+                int c = probe_stability(&stab, s, &w, q, target, &sres);
+                if (o->stable_path && c > info->negative_eigenvalues && cuts_in_row < o->max_cutbacks)
+                    st = NEWTON_UNSTABLE;
+            }
             if (st == NEWTON_OK) {
                 memcpy(w.qprev, w.qsave, (size_t)nd * sizeof *q);
                 memcpy(w.nuprev, w.nusave, (size_t)nc * sizeof *w.nu);
@@ -403,7 +428,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, a.iters, a.rnorm);
                 if (have_stab)
-                    check_stability(&stab, s, &w, q, lam, out, info, log, &prev_lam);
+                    accept_stability(&stab, &sres, lam, out, info, log, &prev_lam);
                 bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
                                    a.iters, a.rnorm);
                 continue;

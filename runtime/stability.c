@@ -230,10 +230,7 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
     res->eig_min = res->eig_max = NAN;
     if (n == 0)
         return;
-    if (st->have_prev)
-        memcpy(st->Bprev, st->Bx, (size_t)st->Bp[n] * sizeof *st->Bx);
     fill(st, Ax);
-    st->have_prev = 1;
     int c = inertia(st);
     if (c < 0) {
         /* An exactly zero pivot: singular on the constraint tangent space. */
@@ -287,6 +284,12 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
             st->y[i] = st->z[i] / big;
     }
     res->eig_max = big;
+}
+
+void bk_stability_accept(bk_stability *st)
+{
+    memcpy(st->Bprev, st->Bx, (size_t)st->Bp[st->n] * sizeof *st->Bx);
+    st->have_prev = 1;
 }
 
 void bk_stability_free(bk_stability *st)

@@ -57,8 +57,11 @@ typedef struct bk_stability_result {
 int bk_stability_init(bk_stability *st, const bk_system *s);
 /* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
+/* Makes the last checked matrix the reference of the next crossing search
+ * (call when its state is accepted as an equilibrium of the path). */
+void bk_stability_accept(bk_stability *st);
 /* After a check whose count differs from the previous one: the fraction
- * t in (0, 1) between the previous and the current state at which the matrix
+ * t in (0, 1) between the last accepted and the current state at which the matrix
  * interpolated linearly between the two, (1 - t) A_prev + t A, first has a
  * negative-eigenvalue count different from the previous one (bisection on
  * the inertia, 30 factorizations; exact for a tangent linear in the load, as
