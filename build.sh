@@ -37,7 +37,10 @@ Commands:
                          incompressible cantilever and the pendulums / falling
                          silicone: out/report/{seed_tables,incompressible,pendulum}.md
   deps                   only install missing Debian packages
-  bench                  the speed-against-error report (not implemented yet)
+  bench [--quick]        the speed-against-error report: work-precision diagrams,
+                         kernel timings, scaling, toolchain times, in
+                         out/report/bench.md (+ bench_*.csv, bench_*.png);
+                         about 10 minutes on 2 cores, --quick about 1 minute
   --help                 this text
 
 Results of a run: out/runs/SCENE/summary.json and sensors.csv (see README.md).
@@ -110,8 +113,10 @@ case "$cmd" in
         exec "$PY" -m report.dynamics "$@"
         ;;
     bench)
-        echo "error: ./build.sh bench is not implemented yet (issue: speed against error)" >&2
-        exit 1
+        shift
+        install_deps
+        "$PY" -m gen.cli gen
+        exec "$PY" -m report.bench "$@"
         ;;
     *)
         echo "error: unknown command '$cmd' (./build.sh --help lists the commands)" >&2

@@ -3,7 +3,7 @@
  * usage: bench_kernels SPEC
  * SPEC (written by report/bench_kernels.py), whitespace separated:
  *   geom l b h A I1 I2 Ip
- *   timing REPEATS TARGET_SECONDS
+ *   timing REPEATS TARGET_SECONDS     (TARGET_SECONDS <= 0: no timing, comparison only)
  *   then per pair:  pair NAME NMAT m_1 .. m_NMAT LAW NPTS NSHAPE  [NPTS x (1 + 3 NSHAPE) numbers]
  *   (LAW "-" and NPTS 0: no plain loop for this pair)
  * Prints CSV: per pair the median time of one internal-force call and of one
@@ -160,18 +160,20 @@ int main(int argc, char **argv)
         /* a deformed state: 1 % of the element length on positions, 1 % on slopes */
         for (int k = 0; k < nd; ++k)
             q[k] += 0.01 * sin(1.7 * k + 0.3) * (k % 3 == 0 ? 1.0 : 0.7) * (fabs(q[k]) > 0.05 ? 1.0 : geom[0] / 0.1);
+        /* TARGET_SECONDS <= 0: no timing, only the comparison (tests) */
+        int timed = target > 0.0;
         job j = {p, NULL, -1, q, tab, mat, f, K, 0, 0};
-        double tf = time_call(&j, repeats, target);
+        double tf = timed ? time_call(&j, repeats, target) : NAN;
         j.tangent = 1;
-        double tft = time_call(&j, repeats, target);
+        double tft = timed ? time_call(&j, repeats, target) : NAN;
         double tpf = NAN, tpft = NAN, df = NAN, dK = NAN;
         plain_rule rule = {npts, nshape, pts};
         int lw = plain_law(law);
         if (npts > 0 && lw >= 0 && 3 * nshape == nd) {
             job pj = {p, &rule, lw, q, tab, mat, f2, K2, 0, 1};
-            tpf = time_call(&pj, repeats, target);
+            tpf = timed ? time_call(&pj, repeats, target) : NAN;
             pj.tangent = 1;
-            tpft = time_call(&pj, repeats, target);
+            tpft = timed ? time_call(&pj, repeats, target) : NAN;
             p->force_tangent(q, tab, mat, f, K);
             plain_force_tangent(&rule, lw, mat, q, f2, K2);
             for (int k = 0; k < nd; ++k)

@@ -21,6 +21,10 @@
 /* Elements evaluated per parallel block (fixed: the assembly order must not
  * depend on the thread count). */
 #define BK_EVAL_BLOCK 64
+/* Smaller models are evaluated by one thread: for them the fork/join and the
+ * barriers cost more than they save (and much more on a loaded machine, where
+ * a descheduled thread holds up the barrier). */
+#define BK_PAR_MIN_ELEMS 32
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -291,7 +295,7 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
     if (Ax)
         memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
     int bad = 0;
-    BK_OMP(omp parallel if (s->nthreads > 1 && nelem > 1) num_threads(s->nthreads))
+    BK_OMP(omp parallel if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) num_threads(s->nthreads))
     for (int b0 = 0; b0 < nelem; b0 += BK_EVAL_BLOCK) {
         int nb = nelem - b0 < BK_EVAL_BLOCK ? nelem - b0 : BK_EVAL_BLOCK;
         BK_OMP(omp for schedule(static))

@@ -1,0 +1,125 @@
+/* newton_iter.c -- cost of one Newton iteration of a model (./build.sh bench,
+ * scaling section).
+ *
+ * usage: bench_newton MODEL_FILE ITERATIONS
+ * Reads the model as the solver does, builds the system and the KLU analysis,
+ * then times ITERATIONS Newton iterations at a perturbed configuration:
+ * internal forces and tangent (bk_assemble_internal), constraint rows, the
+ * numeric factorization and the solve.  Prints key=value lines: the medians
+ * of each part, the setup time, the peak resident memory (VmHWM) and the
+ * counts of KLU analyses, numeric factorizations and full (pivoting,
+ * allocating) factorizations.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+
+#include "linsolve.h"
+#include "model.h"
+#include "system.h"
+
+extern const bk_pair *const bk_linked_pairs[];
+extern const int bk_nlinked_pairs;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: %s MODEL_FILE ITERATIONS\n", argv[0]);
+        return 1;
+    }
+    int nit = atoi(argv[2]);
+    if (nit < 1)
+        nit = 1;
+    double t0 = now();
+    bk_model *m = bk_model_read(argv[1], bk_linked_pairs, bk_nlinked_pairs, stderr);
+    if (!m)
+        return 1;
+    bk_system *s = bk_system_create(m, stderr);
+    if (!s)
+        return 1;
+    bk_linsolver ls;
+    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
+        fprintf(stderr, "bench_newton: KLU analysis failed\n");
+        return 1;
+    }
+    double t_setup = now() - t0;
+    int nd = m->ndof, ne = s->neq;
+    double *q = malloc((size_t)nd * sizeof *q), *fint = malloc((size_t)nd * sizeof *fint);
+    double *r = calloc((size_t)ne, sizeof *r), *nu = calloc((size_t)(s->ncon + 1), sizeof *nu);
+    double *Ax = malloc((size_t)(s->nnz ? s->nnz : 1) * sizeof *Ax);
+    double *ta = malloc((size_t)nit * sizeof *ta), *tf = malloc((size_t)nit * sizeof *tf);
+    double *ts = malloc((size_t)nit * sizeof *ts), *tt = malloc((size_t)nit * sizeof *tt);
+    if (!q || !fint || !r || !nu || !Ax || !ta || !tf || !ts || !tt)
+        return 1;
+    /* a smooth deformed state: small transverse sag growing along the model */
+    for (int i = 0; i < nd; ++i)
+        q[i] = m->q0[i] + (s->eq[i] >= 0 ? 1e-4 * sin(0.37 * i) : 0.0);
+    for (int it = 0; it < nit; ++it) {
+        double a = now();
+        int bad = bk_assemble_internal(s, q, fint, Ax);
+        for (int i = 0; i < nd; ++i)
+            if (s->eq[i] >= 0)
+                r[s->eq[i]] = fint[i];
+        bk_assemble_constraints(s, q, nu, 0.0, r, Ax);
+        double b = now();
+        int st = bk_lin_factor(&ls, Ax);
+        double c = now();
+        if (bad || st != BK_LIN_OK) {
+            fprintf(stderr, "bench_newton: assembly (%d) or factorization (%d) failed\n", bad, st);
+            return 2;
+        }
+        for (int i = 0; i < ne; ++i)
+            r[i] = -r[i];
+        bk_lin_solve(&ls, r);
+        double d = now();
+        ta[it] = b - a, tf[it] = c - b, ts[it] = d - c, tt[it] = d - a;
+    }
+    /* Peak resident memory of this process image: VmHWM (getrusage's maxrss
+     * would include the parent's peak before exec). */
+    long hwm = -1;
+    FILE *st = fopen("/proc/self/status", "r");
+    if (st) {
+        char line[256];
+        while (fgets(line, sizeof line, st))
+            if (sscanf(line, "VmHWM: %ld", &hwm) == 1)
+                break;
+        fclose(st);
+    }
+    if (hwm < 0) {
+        struct rusage ru;
+        getrusage(RUSAGE_SELF, &ru);
+        hwm = ru.ru_maxrss;
+    }
+    printf("elements=%d\ndofs=%d\nequations=%d\nnnz=%ld\nthreads=%d\n", m->nelem, nd, ne, s->nnz, s->nthreads);
+    printf("setup_s=%.6e\niteration_s=%.6e\nassembly_s=%.6e\nfactor_s=%.6e\nsolve_s=%.6e\n", t_setup,
+           median(tt, nit), median(ta, nit), median(tf, nit), median(ts, nit));
+    printf("analyses=%d\nfactorizations=%d\nfull_factorizations=%d\nmaxrss_kb=%ld\n", ls.nanalyze, ls.nfactor,
+           ls.nfull, hwm);
+    bk_lin_free(&ls);
+    free(q), free(fint), free(r), free(nu), free(Ax), free(ta), free(tf), free(ts), free(tt);
+    bk_system_free(s);
+    bk_model_free(m);
+    return 0;
+}
