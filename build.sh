@@ -36,6 +36,10 @@ Commands:
   report [--quick]       the seed cantilever tables beside the paper's, the nearly
                          incompressible cantilever and the pendulums / falling
                          silicone: out/report/{seed_tables,incompressible,pendulum}.md
+  hard [--quick]         numerical stability on hard cases (buckling, two-turn
+                         roll-up, torsion, stiff pendulums, incompressibility,
+                         slenderness, long runs) per element: out/report/hard.md
+                         (+ hard_*.csv, hard_rollup_newton.png)
   deps                   only install missing Debian packages
   bench [--quick]        the speed-against-error report: work-precision diagrams,
                          kernel timings, scaling, toolchain times, in
@@ -105,6 +109,10 @@ case "$cmd" in
     plot)
         shift
         exec "$PY" -m report.plot "$@"
+        ;;
+    hard)
+        shift
+        exec "$PY" -m report.hard "$@"
         ;;
     report)
         shift

@@ -18,8 +18,7 @@ ANALYSES = ("static", "dynamic", "modal")
 PLANNED_ANALYSES = ()
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
-                   "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "line_search": True,
-                   "predictor": "secant", "stability": True, "stable_path": False}
+                   "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "predictor": "secant", "stability": True, "stable_path": False}
 
 # Ranges of material keys, whatever the law: (test, expectation text).
 KEY_RANGES = {
@@ -719,7 +718,6 @@ def build(path, sets=(), name=None):
         "cycles": get_int(ctx, st, "cycles", "static", default=0, lo=0, hi=1000),
         "rtol": get_number(ctx, st, "rtol", "static", default=STATIC_DEFAULTS["rtol"], positive=True),
         "utol": get_number(ctx, st, "utol", "static", default=STATIC_DEFAULTS["utol"], positive=True),
-        "line_search": get_bool(ctx, st, "line_search", "static", STATIC_DEFAULTS["line_search"]),
         "predictor": get_str(ctx, st, "predictor", "static", default=STATIC_DEFAULTS["predictor"],
                              choices=("none", "secant")),
         "stability": get_bool(ctx, st, "stability", "static", STATIC_DEFAULTS["stability"]),
@@ -966,7 +964,7 @@ def write_model(model, path):
            f"length_scale {_f(model['length_scale'])}"]
     s = model["static"]
     out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
-               f"{_f(s['rtol'])} {_f(s['utol'])} {int(s['line_search'])} {int(s['predictor'] == 'secant')} "
+               f"{_f(s['rtol'])} {_f(s['utol'])} {int(s['predictor'] == 'secant')} "
                f"{int(s['stability'] or s['stable_path'])} {int(s['stable_path'])}")
     d = model["dynamic"]
     out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "

@@ -150,7 +150,6 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.cycles = inum(r, "static.cycles", 0, 1000);
     m->stat.rtol = num(r, "static.rtol");
     m->stat.utol = num(r, "static.utol");
-    m->stat.line_search = inum(r, "static.line_search", 0, 1);
     m->stat.predictor = inum(r, "static.predictor", 0, 1);
     m->stat.stability = inum(r, "static.stability", 0, 1);
     m->stat.stable_path = inum(r, "static.stable_path", 0, 1);

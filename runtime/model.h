@@ -68,7 +68,6 @@ typedef struct bk_static_opts {
     int cycles;        /* load-unload cycles after the first loading */
     double rtol;       /* residual tolerance relative to the load        */
     double utol;       /* increment tolerance relative to the displacement */
-    int line_search;   /* 1: backtracking line search on the residual norm */
     int predictor;     /* 1: secant predictor from the last two equilibria */
     int stability;     /* 1: inertia of the tangent at every equilibrium   */
     int stable_path;   /* 1: cut back increments that lose stability       */
