@@ -18,9 +18,13 @@
 
 #define BK_MAXSHAPE 128
 #define BK_MAXDOF 1024
-/* Elements evaluated per parallel block (fixed: the assembly order must not
- * depend on the thread count). */
-#define BK_EVAL_BLOCK 64
+/* Elements evaluated per parallel block: as many as fit in about 8 MB of
+ * element tangents, at least 64 (it depends on the model only, never on the
+ * thread count: the assembly order must not).  Few blocks mean few barriers,
+ * which matters on a loaded machine where a descheduled thread holds up a
+ * barrier for a whole time slice. */
+#define BK_EVAL_BLOCK_MIN 64
+#define BK_EVAL_BLOCK_BYTES (8L << 20)
 /* Smaller models are evaluated by one thread: for them the fork/join and the
  * barriers cost more than they save (and much more on a loaded machine, where
  * a descheduled thread holds up the barrier). */
@@ -207,9 +211,15 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         goto oom;
     {
         size_t md = (size_t)(s->maxdof ? s->maxdof : 1);
-        s->bq = malloc(BK_EVAL_BLOCK * md * sizeof *s->bq);
-        s->bf = malloc(BK_EVAL_BLOCK * md * sizeof *s->bf);
-        s->bK = malloc(BK_EVAL_BLOCK * md * md * sizeof *s->bK);
+        long blk = BK_EVAL_BLOCK_BYTES / (long)(md * md * sizeof(double));
+        if (blk < BK_EVAL_BLOCK_MIN)
+            blk = BK_EVAL_BLOCK_MIN;
+        if (blk > m->nelem)
+            blk = m->nelem > 0 ? m->nelem : 1;
+        s->eval_block = (int)blk;
+        s->bq = malloc((size_t)blk * md * sizeof *s->bq);
+        s->bf = malloc((size_t)blk * md * sizeof *s->bf);
+        s->bK = malloc((size_t)blk * md * md * sizeof *s->bK);
         if (!s->bq || !s->bf || !s->bK)
             goto oom;
     }
@@ -246,7 +256,7 @@ void bk_system_free(bk_system *s)
     free(s);
 }
 
-/* Element evaluation in blocks of BK_EVAL_BLOCK elements: the kernels of a
+/* Element evaluation in blocks of s->eval_block elements: the kernels of a
  * block run in parallel (OpenMP) into per-element buffers, then the block is
  * scattered serially in element order.  Every sum into fint and Ax is thus
  * done in the same order whatever the number of threads, so the results are
@@ -296,9 +306,10 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
         memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
     int bad = 0;
     BK_OMP(omp parallel if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) num_threads(s->nthreads))
-    for (int b0 = 0; b0 < nelem; b0 += BK_EVAL_BLOCK) {
-        int nb = nelem - b0 < BK_EVAL_BLOCK ? nelem - b0 : BK_EVAL_BLOCK;
-        BK_OMP(omp for schedule(static))
+    for (int b0 = 0; b0 < nelem; b0 += s->eval_block) {
+        int nb = nelem - b0 < s->eval_block ? nelem - b0 : s->eval_block;
+        /* dynamic: a thread that is descheduled holds back only its chunk */
+        BK_OMP(omp for schedule(dynamic, 8))
         for (int i = 0; i < nb; ++i)
             eval_element(m, b0 + i, q, s->bq + (size_t)i * md, s->bf + (size_t)i * md,
                          Ax ? s->bK + (size_t)i * md * md : NULL);

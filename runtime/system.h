@@ -34,6 +34,7 @@ typedef struct bk_system {
     int maxdof;              /* largest element DOF count                     */
     double *fe, *Ke;         /* element work buffers (owned)                  */
     double *bq, *bf, *bK;    /* per-element buffers of one evaluation block   */
+    int eval_block;          /* elements per evaluation block (from the model only) */
     int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
 } bk_system;
 
