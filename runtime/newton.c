@@ -318,7 +318,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
     double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
-    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0;
+    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0;
     attempt a = {0};
     for (int leg = 0; leg < nleg; ++leg) {
         double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
@@ -363,7 +363,10 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
              * and then passed (and reported). */
             if (st == NEWTON_OK && have_stab) {
                 int c = probe_stability(&stab, s, &w, q, target, &sres);
-                if (o->stable_path && c > info->negative_eigenvalues && cuts_in_row < o->max_cutbacks)
+                /* not for an eigenvalue at round-off level (the count is
+                 * uncertain there) nor below a millionth of the increment */
+                if (o->stable_path && c > max_negative && cuts_in_row < o->max_cutbacks &&
+                    dlam > 1e-6 * dlam0)
                     st = NEWTON_UNSTABLE;
             }
             if (st == NEWTON_OK) {
@@ -381,8 +384,14 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 if (log)
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, a.iters, a.rnorm);
-                if (have_stab)
+                if (have_stab) {
                     accept_stability(&stab, &sres, lam, out, info, log, &prev_lam);
+                    /* the count may flicker at a nearly singular state: only
+                     * a count above every one accepted so far is a new loss
+                     * of stability */
+                    if (info->negative_eigenvalues > max_negative)
+                        max_negative = info->negative_eigenvalues;
+                }
                 bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
                                    a.iters, a.rnorm);
                 continue;
@@ -403,6 +412,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             cuts_in_row++;
             info->cutbacks++;
             dlam *= 0.5;
+            if (dlam <= 1e-14 * fmax(fabs(lam), 1.0)) {
+                snprintf(info->message, sizeof info->message,
+                         "static solve stalled at load factor %.6g: the load increment fell below round-off (%s)",
+                         lam, why(st));
+                goto done;
+            }
             if (log)
                 fprintf(log, "  cut-back at load factor %.6g (%s): new increment %.3g\n", target, why(st), dlam);
         }
