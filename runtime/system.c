@@ -305,18 +305,27 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
     if (Ax)
         memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
     int bad = 0;
-    BK_OMP(omp parallel if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) num_threads(s->nthreads))
-    for (int b0 = 0; b0 < nelem; b0 += s->eval_block) {
-        int nb = nelem - b0 < s->eval_block ? nelem - b0 : s->eval_block;
-        /* dynamic: a thread that is descheduled holds back only its chunk */
-        BK_OMP(omp for schedule(dynamic, 8))
-        for (int i = 0; i < nb; ++i)
-            eval_element(m, b0 + i, q, s->bq + (size_t)i * md, s->bf + (size_t)i * md,
-                         Ax ? s->bK + (size_t)i * md * md : NULL);
-        BK_OMP(omp single)
-        for (int i = 0; i < nb; ++i)
-            bad |= scatter_element(s, b0 + i, s->bf + (size_t)i * md,
-                                   Ax ? s->bK + (size_t)i * md * md : NULL, fint, Ax);
+    if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) {
+        BK_OMP(omp parallel num_threads(s->nthreads))
+        for (int b0 = 0; b0 < nelem; b0 += s->eval_block) {
+            int nb = nelem - b0 < s->eval_block ? nelem - b0 : s->eval_block;
+            /* dynamic: a thread that is descheduled holds back only its chunk */
+            BK_OMP(omp for schedule(dynamic, 8))
+            for (int i = 0; i < nb; ++i)
+                eval_element(m, b0 + i, q, s->bq + (size_t)i * md, s->bf + (size_t)i * md,
+                             Ax ? s->bK + (size_t)i * md * md : NULL);
+            BK_OMP(omp single)
+            for (int i = 0; i < nb; ++i)
+                bad |= scatter_element(s, b0 + i, s->bf + (size_t)i * md,
+                                       Ax ? s->bK + (size_t)i * md * md : NULL, fint, Ax);
+        }
+    } else {
+        /* Serial: no OpenMP region at all (libgomp allocates a team even for
+         * a region whose if clause is false).  Same order of sums. */
+        for (int e = 0; e < nelem; ++e) {
+            eval_element(m, e, q, s->bq, s->bf, Ax ? s->bK : NULL);
+            bad |= scatter_element(s, e, s->bf, Ax ? s->bK : NULL, fint, Ax);
+        }
     }
     return bad ? -1 : 0;
 }
