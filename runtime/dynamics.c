@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "linsolve.h"
+#include "quaternion.h"
 
 #define BK_MAXDOF 1024
 
@@ -226,7 +227,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     bk_linsolver ls = {0};
     int rc = 1, *fdof = NULL;
     int nd = m->ndof;
-    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s))) {
+    int nquat = 0;
+    int *quat = bk_quat_list(s, &nquat);
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -441,6 +444,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             continue;
         }
         cuts = 0;
+        /* Quaternions back to unit length, their rates without the gauge
+         * component: the rotations and angular velocities are unchanged,
+         * and the massless gauge direction cannot drift over long runs. */
+        {
+            double *rates[3] = {w.qd, w.qdd, w.a};
+            bk_quat_normalize(quat, nquat, q, rates, 3);
+        }
         t = tn;
         step++;
         info->steps = step;
@@ -474,6 +484,7 @@ done:
     info->analyses = ls.nanalyze;
     bk_lin_free(&ls);
     free(fdof);
+    free(quat);
     work_free(&w);
     return rc;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "linsolve.h"
+#include "quaternion.h"
 #include "stability.h"
 
 typedef struct work {
@@ -15,51 +16,6 @@ typedef struct work {
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
 } work;
-
-/* Nodal quaternions whose four components are all free.  Elements with
- * quaternion nodes ("p" fields) use the rotation of p/|p|; the gauge penalty
- * makes |p| = 1 at equilibrium. */
-static int find_quaternions(const bk_system *s, work *w)
-{
-    const bk_model *m = s->m;
-    char *seen = calloc((size_t)m->ndof, 1);
-    w->quat = malloc((size_t)(m->ndof / 4 + 1) * sizeof *w->quat);
-    if (!seen || !w->quat) {
-        free(seen);
-        return -1;
-    }
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_element *et = m->pairs[el->pair]->element;
-        for (int f = 0; f < et->nfield; ++f) {
-            if (strcmp(et->field_name[f], "p") != 0 || et->field_dim[f] != 4)
-                continue;
-            const int *d = el->dofs + et->field_dof[f];
-            int ok = !seen[d[0]];
-            for (int k = 0; k < 4; ++k)
-                ok = ok && s->eq[d[k]] >= 0 && d[k] == d[0] + k;
-            seen[d[0]] = 1;
-            if (ok)
-                w->quat[w->nquat++] = d[0];
-        }
-    }
-    free(seen);
-    return 0;
-}
-
-/* Scales every free quaternion to unit length: the rotations, hence the
- * strains and the energy apart from the gauge penalty, are unchanged, and the
- * penalty's stiff radial direction no longer disturbs the iteration. */
-static void normalize_quaternions(const work *w, double *q)
-{
-    for (int k = 0; k < w->nquat; ++k) {
-        double *p = q + w->quat[k];
-        double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
-        if (n > 0.0 && isfinite(n))
-            for (int i = 0; i < 4; ++i)
-                p[i] /= n;
-    }
-}
 
 /* One Newton solve: its outcome and counters. */
 typedef struct attempt {
@@ -116,7 +72,7 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
         q[i] = s->eq[i] >= 0 ? q0[i] + alpha * dx[s->eq[i]] : q0[i];
     for (int c = 0; c < s->ncon; ++c)
         nu[c] = nu0[c] + alpha * dx[s->nfree + c];
-    normalize_quaternions(w, q);
+    bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
 }
 
 /* Newton iteration at load factor lam, from the state in q, w->nu.  Returns
@@ -290,7 +246,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
         goto done;
     }
-    if (find_quaternions(s, &w) != 0) {
+    w.quat = bk_quat_list(s, &w.nquat);
+    if (w.nquat < 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -349,7 +306,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     q[i] += c * (q[i] - w.qprev[i]);
                 for (int k = 0; k < s->ncon; ++k)
                     w.nu[k] += c * (w.nu[k] - w.nuprev[k]);
-                normalize_quaternions(&w, q);
+                bk_quat_normalize(w.quat, w.nquat, q, NULL, 0);
             }
             /* Attempts: Newton from the predicted state, then from the last
              * equilibrium; then the increment is cut back. */
