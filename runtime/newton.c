@@ -382,8 +382,10 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             dlam *= 0.5;
             if (dlam <= 1e-14 * fmax(fabs(lam), 1.0)) {
                 snprintf(info->message, sizeof info->message,
-                         "static solve stalled at load factor %.6g: the load increment fell below round-off (%s)",
-                         lam, why(st));
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): the load "
+                         "increment fell below round-off after repeated cut-backs (last: %s); residual %.3e, "
+                         "last increment %.3e after %d iterations",
+                         info->steps + 1, target, lam, why(st), a.rnorm, a.dnorm, a.iters);
                 goto done;
             }
             if (log)
