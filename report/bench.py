@@ -705,8 +705,9 @@ def main(argv):
           f"{c['runtime_s']:.1f} s, then the kernels it uses and the link {c['kernels_and_link_s']:.1f} s.  "
           f"Solver size {c['size'] / 1024:.0f} KiB"
           + (f" ({c['stripped_size'] / 1024:.0f} KiB stripped)" if c["stripped_size"] else "") +
-          f".  Pairs linked (symbols `bk_pair_*` in the binary): {', '.join(c['linked_pairs'])} — only the "
-          f"pair the scene uses ({', '.join(c['pairs'])}).", ""]
+          f".  Pair descriptors linked (symbols `bk_pair_*` in the binary): {', '.join(c['linked_pairs'])}: only "
+          f"the element x material files of the pair the scene uses ({', '.join(c['pairs'])}; its integration "
+          f"variants share one file).", ""]
     L += [f"Report written in {time.time() - t_all:.0f} s.", ""]
     (OUT / "bench.md").write_text("\n".join(L))
     log(f" wrote {OUT / 'bench.md'}")
