@@ -26,6 +26,9 @@ from pathlib import Path
 from gen.cli import execute
 from gen.scene import ROOT
 
+sys.path.insert(0, str(ROOT / "tests"))
+from rigid_pendulum import rigid_pendulum  # noqa: E402
+
 OUT = ROOT / "out" / "report"
 RUNS = OUT / "runs" / "hard"
 EI, L, PCR = 60.0, 1.0, math.pi ** 2 * 60.0 / 4.0
@@ -237,26 +240,6 @@ def case_torsion(quick):
 
 
 # --------------------------------------------------------------------- case 4
-def rigid_pendulum(t_end, n=20000, g=9.81):
-    h = t_end / n
-    th, w = 0.0, 0.0
-    ts, xs, zs = [0.0], [L], [0.0]
-
-    def f(th, w):
-        return w, 1.5 * g / L * math.cos(th)
-    for i in range(n):
-        a = f(th, w)
-        b = f(th + h / 2 * a[0], w + h / 2 * a[1])
-        c = f(th + h / 2 * b[0], w + h / 2 * b[1])
-        d = f(th + h * c[0], w + h * c[1])
-        th += h / 6 * (a[0] + 2 * b[0] + 2 * c[0] + d[0])
-        w += h / 6 * (a[1] + 2 * b[1] + 2 * c[1] + d[1])
-        ts.append((i + 1) * h)
-        xs.append(L * math.cos(th))
-        zs.append(-L * math.sin(th))
-    return ts, xs, zs
-
-
 def tip_path(out, sensor="B"):
     with open(Path(out) / "sensors.csv", newline="") as fh:
         r = [x for x in csv.DictReader(fh) if x["sensor"] == sensor]
@@ -285,7 +268,7 @@ def case_pendulum(quick, t_end=1.0):
              "| scene | dt (s) | converged | steps | iterations / step | max tip error (m) | error / L | wall (s) |",
              "|---|---|---|---|---|---|---|---|"]
     rows = []
-    ref_rigid = rigid_pendulum(t_end)
+    ref_rigid = rigid_pendulum(t_end, n=20000)
     cases = [("pendulum_stiff_ancf", 1e-2), ("pendulum_stiff_ancf", 1e-3), ("pendulum_stiff_gef", 1e-2),
              ("pendulum_stiff_gef", 1e-3), ("pendulum_soft_ancf", 1e-2), ("pendulum_soft_gef", 1e-2)]
     if quick:

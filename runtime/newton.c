@@ -173,11 +173,13 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
 }
 
 /* Stability of the equilibrium q at load factor lam (not yet accepted):
- * the number of negative eigenvalues of the constrained tangent. */
+ * the number of negative eigenvalues of the constrained tangent.  assembled:
+ * w->Ax already holds the Newton matrix at q (a converged Newton solve ends
+ * on the assembly of its last iterate), else it is assembled here. */
 static int probe_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
-                           bk_stability_result *res)
+                           int assembled, bk_stability_result *res)
 {
-    if (residual(s, w, q, w->nu, lam, 1) != 0) {
+    if (!assembled && residual(s, w, q, w->nu, lam, 1) != 0) {
         memset(res, 0, sizeof *res);
         return -1;
     }
@@ -280,7 +282,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     double prev_lam = 0.0;
     bk_stability_result sres;
     if (have_stab) {
-        probe_stability(&stab, s, &w, q, 0.0, &sres);
+        probe_stability(&stab, s, &w, q, 0.0, 0, &sres);
         accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
     }
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
@@ -330,7 +332,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
              * the bifurcation is bracketed as closely as the cut-backs allow
              * and then passed (and reported). */
             if (st == NEWTON_OK && have_stab) {
-                int c = probe_stability(&stab, s, &w, q, target, &sres);
+                int c = probe_stability(&stab, s, &w, q, target, 1, &sres);
                 /* not for an eigenvalue at round-off level (the count is
                  * uncertain there) nor below a millionth of the increment */
                 if (o->stable_path && c > max_negative && cuts_in_row < o->max_cutbacks &&

@@ -8,30 +8,15 @@ import tempfile
 import numpy as np
 
 from pencil import matrix_pencil
+from rigid_pendulum import rigid_pendulum as rigid_pendulum_lists
 from util import BUILD, ensure_dir, load_run, run_scene
 
 G, L = 9.81, 1.0
 
 
 def rigid_pendulum(t_end, n=40000, g=G):
-    """Uniform rigid rod pinned at one end, released from the horizontal:
-    theta'' = 3 g / (2 L) cos(theta) (theta below the horizontal), RK4.
-    Returns (times, tip x, tip z)."""
-    h = t_end / n
-    th, w = 0.0, 0.0
-    ts, xs, zs = [0.0], [L], [0.0]
-    f = lambda th, w: (w, 1.5 * g / L * math.cos(th))
-    for i in range(n):
-        a = f(th, w)
-        b = f(th + h / 2 * a[0], w + h / 2 * a[1])
-        c = f(th + h / 2 * b[0], w + h / 2 * b[1])
-        d = f(th + h * c[0], w + h * c[1])
-        th += h / 6 * (a[0] + 2 * b[0] + 2 * c[0] + d[0])
-        w += h / 6 * (a[1] + 2 * b[1] + 2 * c[1] + d[1])
-        ts.append((i + 1) * h)
-        xs.append(L * math.cos(th))
-        zs.append(-L * math.sin(th))
-    return np.array(ts), np.array(xs), np.array(zs)
+    """The rigid rod pendulum (tests/rigid_pendulum.py) as arrays (times, tip x, tip z)."""
+    return tuple(np.array(v) for v in rigid_pendulum_lists(t_end, n=n, g=g, L=L))
 
 
 def agm_K(k):

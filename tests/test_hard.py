@@ -12,8 +12,8 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from report.hard import (M_TWO_TURNS, PCR, elastica_compressed, pendulum_error,  # noqa: E402
-                         rigid_pendulum, tip_path)
+from report.hard import M_TWO_TURNS, PCR, elastica_compressed, pendulum_error, tip_path  # noqa: E402
+from rigid_pendulum import rigid_pendulum  # noqa: E402
 
 L = 1.0
 
