@@ -3,6 +3,9 @@
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# Paths on the command line (scene files, --out, plot RUN_DIR) are the caller's:
+# gen/cli.py resolves them against this directory.
+export BK_CALLER_CWD="${BK_CALLER_CWD:-$PWD}"
 cd "$ROOT"
 PY=/usr/bin/python3
 export PYTHONPATH="$ROOT${PYTHONPATH:+:$PYTHONPATH}"
@@ -10,8 +13,9 @@ export PYTHONDONTWRITEBYTECODE=1
 DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).
-PACKAGES=(gcc libc6-dev python3 python3-sympy python3-numpy python3-matplotlib
-          libsuitesparse-dev libgsl-dev valgrind)
+PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-matplotlib
+          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind)
+EX_USAGE=64
 
 usage() {
     cat <<'EOF'
@@ -20,7 +24,11 @@ usage: ./build.sh [COMMAND] [ARGS...]
 Commands:
   (none)                 install missing Debian packages, regenerate the kernels,
                          build and run the default scene and print its summary
-  test                   run every test; the last line is "N passed, N failed"
+  test [PYTEST ARGS]     run every test with pytest on both cores; the last line is
+                         pytest's summary ("N passed, N failed in ...").  Options go
+                         to pytest: -k EXPR (tests whose name matches, e.g.
+                         -k "cantilever and not full"), -m "not slow" (skip the slow
+                         tests), -x (stop at the first failure), -n 1 (one worker)
   run SCENE [options]    build the per-scene solver if stale and run it; SCENE is a
                          name in models/ or a path to a .toml file
       --set KEY=VALUE      override a numeric scene value (repeatable), e.g.
@@ -28,6 +36,8 @@ Commands:
       --out DIR            results directory (default out/runs/SCENE)
       --verbose            log every load step;  --quiet  print only errors
       --sanitize           build and run with AddressSanitizer + UBSan
+      --memcheck           build for valgrind (-march=x86-64-v3) and run under
+                           valgrind memcheck
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic) and
@@ -48,6 +58,17 @@ Commands:
   --help                 this text
 
 Results of a run: out/runs/SCENE/summary.json and sensors.csv (see README.md).
+Relative paths (SCENE files, --out DIR, RUN_DIR) are taken from the directory
+you call build.sh from.
+
+Exit status:
+  0    success
+  1    bad input (scene file, key, value; output directory): one "error:" line
+  2    the solve did not converge (results of the converged steps are kept)
+  64   usage error (unknown command or option, missing argument)
+  99   run --memcheck: valgrind found an error or a leak
+  130  interrupted by Ctrl-C (SIGINT), 143 by SIGTERM: results so far are kept,
+       summary.json has "interrupted": true
 EOF
 }
 
@@ -89,13 +110,27 @@ case "$cmd" in
     test)
         shift
         install_deps
-        exec "$PY" "$ROOT/tests/run.py" "$@"
+        # pytest (Debian's python3-pytest) with python3-pytest-xdist on both
+        # cores; tests/pytest.ini holds the options and markers.
+        workers=(-n "${BK_TEST_WORKERS:-2}")
+        for a in "$@"; do
+            case "$a" in -n|-n*|--numprocesses*) workers=() ;; esac
+        done
+        set +e
+        "$PY" -m pytest -c "$ROOT/tests/pytest.ini" --rootdir "$ROOT/tests" "${workers[@]}" "$@" "$ROOT/tests"
+        rc=$?
+        set -e
+        if [ "$rc" -eq 5 ]; then
+            echo "error: no test was collected or selected (check -k / -m)" >&2
+            exit 1
+        fi
+        exit "$rc"
         ;;
     run)
         shift
         if [ $# -eq 0 ]; then
             echo "error: run needs a SCENE (./build.sh scenes lists them)" >&2
-            exit 1
+            exit $EX_USAGE
         fi
         exec "$PY" -m gen.cli run "$@"
         ;;
@@ -128,6 +163,6 @@ case "$cmd" in
         ;;
     *)
         echo "error: unknown command '$cmd' (./build.sh --help lists the commands)" >&2
-        exit 1
+        exit $EX_USAGE
         ;;
 esac

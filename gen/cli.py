@@ -1,11 +1,24 @@
-"""Command-line front end behind build.sh: run, gen, scenes."""
+"""Command-line front end behind build.sh: run, gen, scenes.
+
+Exit status (also in ./build.sh --help and the README):
+  0   success (the solve converged)
+  1   bad input: scene file, key or value, output directory (one `error:` line)
+  2   the solve did not converge (results of every converged step are kept)
+  64  usage error: unknown command or option, missing argument
+  99  `run --memcheck`: valgrind reported an error or a leak
+  130 interrupted by SIGINT (Ctrl-C), 143 by SIGTERM: results so far are kept and
+      summary.json says "interrupted": true
+"""
 import argparse
 import json
+import os
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
 
+from gen.paths import user_path
 from gen.scene import ROOT, SceneError, build, load_index, write_model
 
 MODELS = ROOT / "models"
@@ -14,11 +27,30 @@ MARKER = ".beamkit-run"
 RESULT_FILES = ("summary.json", "sensors.csv", "energy.csv", "modes.csv", "model.dat", "results.pvd")
 
 
+EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED, EXIT_USAGE, EXIT_MEMCHECK = 0, 1, 2, 64, 99
+EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
+
+
+class UsageError(Exception):
+    pass
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with usage errors on exit status 64 (sysexits EX_USAGE), not 2,
+    which is the status of a solve that did not converge."""
+
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        print(f"error: {self.prog}: {message}", file=sys.stderr)
+        sys.exit(EXIT_USAGE)
+
+
 def scene_path(spec):
-    p = Path(spec)
+    spec = str(spec)
     if spec.endswith(".toml") or "/" in spec:
+        p = user_path(spec)
         if not p.is_file():
-            raise SceneError(f"error: {spec}: no such scene file")
+            raise SceneError(f"error: {spec}: no such scene file (looked for {p})")
         return p
     cand = MODELS / f"{spec}.toml"
     if not cand.is_file():
@@ -57,29 +89,128 @@ def solver_for(model, index, variant="release", log=None):
     return build_solver(model["pairs"], ROOT / "out" / "bin" / f"{name}{suffix}", index, variant, log)
 
 
-def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=True):
-    """Validate, mesh, build and run one scene.  Returns (exit status, out dir).
-    Raises SceneError for bad input."""
-    path = scene_path(str(scene))
-    model = build(path, sets)
-    index = load_index()
-    out = prepare_out_dir(out or RUNS / model["name"], RUNS)
-    write_model(model, out / "model.dat")
-    log = None if quiet else (lambda s: print(s, file=sys.stderr))
+VALGRIND_SUPPRESSIONS = ROOT / "runtime" / "valgrind.supp"
+
+
+def memcheck_command(solver_cmd):
+    """valgrind memcheck around a solver command: every error and every leak kind
+    fails the run with status 99 (libgomp's own start-up allocation, reachable
+    until exit, is suppressed by runtime/valgrind.supp).  The solver must be the
+    `memcheck` build (gen/solver_build.py): valgrind cannot decode AVX-512."""
+    return ["valgrind", "--tool=memcheck", f"--error-exitcode={EXIT_MEMCHECK}", "--leak-check=full",
+            "--errors-for-leak-kinds=all", "--show-leak-kinds=all",
+            f"--suppressions={VALGRIND_SUPPRESSIONS}"] + list(solver_cmd)
+
+
+def write_interrupted_summary(out, name, analysis, signo):
+    """summary.json of a run interrupted before the solver wrote one (during
+    meshing or the build): no step was taken."""
+    path = Path(out) / "summary.json"
+    if path.exists():
+        return
+    sig = signal.Signals(signo).name
+    path.write_text(json.dumps({
+        "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
+        "steps": 0, "newton_iterations": 0, "cutbacks": 0, "wall_s": 0.0, "sensors": {},
+        "warnings": [], "error": f"interrupted by {sig} before the solve started"}, indent=1) + "\n")
+
+
+def _scene_name(path):
+    """(name, analysis) of a scene without meshing it."""
+    from gen.scene import read_toml, NAME_RE
     try:
-        solver = solver_for(model, index, variant, log)
-    except Exception as e:
-        raise SceneError(f"error: building the solver for {path}: {e}")
-    cmd = [str(solver), str(out / "model.dat"), str(out)]
-    if verbose:
-        cmd.append("--verbose")
-    elif quiet:
-        cmd.append("--quiet")
-    return subprocess.run(cmd).returncode, out
+        sc = read_toml(path).get("scene", {})
+    except SceneError:
+        sc = {}
+    name = sc.get("name") if isinstance(sc.get("name"), str) and NAME_RE.match(sc["name"]) else Path(path).stem
+    an = sc.get("analysis") if isinstance(sc.get("analysis"), str) else "static"
+    return name, an
+
+
+class _Interrupt(Exception):
+    def __init__(self, signo):
+        self.signo = signo
+
+
+class _Signals:
+    """SIGINT and SIGTERM during a run: before the solver starts they raise
+    _Interrupt (meshing and the build stop at once); while it runs they are
+    passed on to it, and it stops at its next step, keeps its results and exits
+    130 / 143."""
+
+    def __init__(self):
+        self.proc = None
+
+    def __enter__(self):
+        self.old = {sg: signal.signal(sg, self._handle) for sg in EXIT_SIGNAL}
+        return self
+
+    def __exit__(self, *exc):
+        for sg, h in self.old.items():
+            signal.signal(sg, h)
+        return False
+
+    def _handle(self, signo, _frame):
+        if self.proc is None:
+            raise _Interrupt(signo)
+        try:
+            self.proc.send_signal(signo)
+        except ProcessLookupError:
+            pass
+
+    def run(self, cmd):
+        self.proc = subprocess.Popen(cmd)
+        rc = self.proc.wait()
+        if rc < 0 and -rc in EXIT_SIGNAL:      # the solver died of the signal itself
+            rc = EXIT_SIGNAL[-rc]
+        return rc
+
+
+def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=True, memcheck=False):
+    """Validate, mesh, build and run one scene.  Returns (exit status, out dir).
+    Raises SceneError for bad input.  out: a directory (relative paths are the
+    caller's, see user_path)."""
+    path = scene_path(str(scene))
+    want = user_path(out) if out else None
+    out = None
+    with _Signals() as sig:
+        model = None
+        try:
+            model = build(path, sets)
+            index = load_index()
+            out = prepare_out_dir(want or RUNS / model["name"], RUNS)
+            write_model(model, out / "model.dat")
+            log = None if quiet else (lambda s: print(s, file=sys.stderr))
+            try:
+                solver = solver_for(model, index, "memcheck" if memcheck else variant, log)
+            except _Interrupt:
+                raise
+            except Exception as e:
+                raise SceneError(f"error: building the solver for {path}: {e}")
+        except _Interrupt as e:
+            name, analysis = (model["name"], model["analysis"]) if model else _scene_name(path)
+            if out is None:                    # interrupted while meshing
+                out = prepare_out_dir(want or RUNS / name, RUNS)
+            write_interrupted_summary(out, name, analysis, e.signo)
+            print(f"interrupted by {signal.Signals(e.signo).name} before the solve started "
+                  f"(summary in {out}/)", file=sys.stderr)
+            return EXIT_SIGNAL[e.signo], out
+        cmd = [str(solver), str(out / "model.dat"), str(out)]
+        if verbose:
+            cmd.append("--verbose")
+        elif quiet:
+            cmd.append("--quiet")
+        if memcheck:
+            cmd = memcheck_command(cmd)
+        rc = sig.run(cmd)
+    if rc in EXIT_SIGNAL.values():
+        write_interrupted_summary(out, model["name"], model["analysis"],
+                                  signal.SIGINT if rc == 130 else signal.SIGTERM)
+    return rc, out
 
 
 def cmd_run(argv):
-    ap = argparse.ArgumentParser(
+    ap = Parser(
         prog="build.sh run",
         description="Build the per-scene solver if stale and run it. Results go to out/runs/SCENE/ "
                     "(summary.json, sensors.csv, model.dat) or to --out DIR.")
@@ -93,13 +224,18 @@ def cmd_run(argv):
     ap.add_argument("--verbose", action="store_true", help="log every load step")
     ap.add_argument("--sanitize", action="store_true",
                     help="build and run the solver with AddressSanitizer and UBSan")
+    ap.add_argument("--memcheck", action="store_true",
+                    help="build the solver for valgrind (-march=x86-64-v3) and run it under valgrind "
+                         "memcheck: any error or leak exits with status 99")
     a = ap.parse_args(argv)
+    if a.sanitize and a.memcheck:
+        ap.error("--sanitize and --memcheck exclude each other")
     try:
         rc, out = execute(a.scene, a.set, a.out, "sanitize" if a.sanitize else "release",
-                          a.verbose, a.quiet)
+                          a.verbose, a.quiet, a.memcheck)
     except SceneError as e:
         print(str(e), file=sys.stderr)
-        return 1
+        return EXIT_INPUT
     summ = out / "summary.json"
     if not a.quiet and summ.exists():
         print_summary(json.loads(summ.read_text()), out)
@@ -127,7 +263,7 @@ def cmd_scenes(argv):
 def main(argv):
     if not argv:
         print("usage: python3 -m gen.cli {run,gen,scenes} ...", file=sys.stderr)
-        return 1
+        return EXIT_USAGE
     cmd, rest = argv[0], argv[1:]
     if cmd == "run":
         return cmd_run(rest)
@@ -137,7 +273,7 @@ def main(argv):
     if cmd == "scenes":
         return cmd_scenes(rest)
     print(f"error: unknown command {cmd!r}", file=sys.stderr)
-    return 1
+    return EXIT_USAGE
 
 
 if __name__ == "__main__":

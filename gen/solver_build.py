@@ -10,6 +10,7 @@ import os
 import shlex
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -19,15 +20,24 @@ BUILD = ROOT / "out" / "build"
 CC = os.environ.get("CC", "cc")
 JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
-RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "stability.c", "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "main.c")
+RUNTIME_SOURCES = ("model.c", "system.c", "linsolve.c", "newton.c", "stability.c", "quaternion.c", "dynamics.c",
+                   "modal.c", "output.c", "vtk.c", "interrupt.c", "main.c")
 LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
-# The runtime evaluates element kernels in parallel with OpenMP (results are
-# bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the sanitizer
-# build keeps OpenMP so that it checks the code that runs.
+# Build variants.  The runtime evaluates element kernels in parallel with OpenMP
+# (results are bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the
+# sanitizer build keeps OpenMP so that it checks the code that runs.
+#   release   -O2 -march=native: the instruction set of the machine it is built on
+#   sanitize  AddressSanitizer + UBSan (`./build.sh run --sanitize`)
+#   memcheck  for valgrind (`./build.sh run --memcheck`, and every test that runs
+#             valgrind): valgrind 3.19 cannot decode AVX-512, which -march=native
+#             emits on CPUs that have it, so this build is limited to x86-64-v3
+#             (AVX2, FMA), which valgrind decodes, whatever the machine.
+MEMCHECK_ARCH = "-march=x86-64-v3"
 VARIANTS = {
     "release": ["-O2", "-march=native", "-fopenmp"],
     "sanitize": ["-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all", "-fopenmp"],
+    "memcheck": ["-O2", "-g", MEMCHECK_ARCH, "-fopenmp"],
 }
 # Generated kernels are long straight-line functions: debug info for them only
 # costs compile time, so the sanitizer build compiles them without -g.
@@ -35,6 +45,7 @@ KERNEL_FLAGS = {
     "release": ["-O2", "-march=native", "-fPIC"],
     "sanitize": ["-O1", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all"],
+    "memcheck": ["-O2", MEMCHECK_ARCH, "-fPIC"],
 }
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
 INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse"]
@@ -42,6 +53,38 @@ INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitespars
 
 class BuildError(Exception):
     pass
+
+
+class _BuildLock:
+    """One build at a time in out/build (tests run on several workers, users in
+    several terminals): an exclusive lock on out/build/.lock while objects are
+    compiled and solvers linked.  Re-entrant within a process."""
+    _depth = 0
+    _fh = None
+    _mutex = threading.RLock()
+
+    def __enter__(self):
+        import fcntl
+        _BuildLock._mutex.acquire()
+        if _BuildLock._depth == 0:
+            BUILD.mkdir(parents=True, exist_ok=True)
+            _BuildLock._fh = open(BUILD / ".lock", "w")
+            fcntl.flock(_BuildLock._fh, fcntl.LOCK_EX)
+        _BuildLock._depth += 1
+        return self
+
+    def __exit__(self, *exc):
+        import fcntl
+        _BuildLock._depth -= 1
+        if _BuildLock._depth == 0:
+            fcntl.flock(_BuildLock._fh, fcntl.LOCK_UN)
+            _BuildLock._fh.close()
+            _BuildLock._fh = None
+        _BuildLock._mutex.release()
+        return False
+
+
+build_lock = _BuildLock
 
 
 def _newest(paths):
@@ -74,6 +117,15 @@ def _compile_many(jobs, log):
             f.result()
 
 
+def compile_object(src, obj, flags, deps, log=None):
+    """Compile C source `src` to object `obj` with `flags` (plus the project's
+    warnings and include paths) unless it is fresh: newer than src and every
+    path in deps, and compiled with the same flags.  Returns True if compiled;
+    raises BuildError with the compiler's messages."""
+    with _BuildLock():
+        return _compile(src, obj, flags, deps, log)
+
+
 def _compile(src, obj, flags, deps, log):
     if not _stale(src, obj, deps, flags):
         return False
@@ -91,6 +143,12 @@ def _compile(src, obj, flags, deps, log):
 
 
 def runtime_objects(variant="release", log=None, extra_sources=()):
+    """Objects of the runtime sources (and extra_sources in runtime/) for a variant."""
+    with _BuildLock():
+        return _runtime_objects(variant, log, extra_sources)
+
+
+def _runtime_objects(variant, log, extra_sources):
     flags = VARIANTS[variant]
     headers = list(RUNTIME.glob("*.h"))
     jobs = []
@@ -105,6 +163,11 @@ def runtime_objects(variant="release", log=None, extra_sources=()):
 def kernel_objects(pairs, index, variant="release", log=None):
     """Objects for the element and pair files behind the given pair symbols
     (e.g. 'ancf3243_svk_full')."""
+    with _BuildLock():
+        return _kernel_objects(pairs, index, variant, log)
+
+
+def _kernel_objects(pairs, index, variant, log):
     flags = KERNEL_FLAGS[variant]
     files = []
     for p in pairs:
@@ -137,6 +200,11 @@ def kernel_table_source(pairs):
 
 def build_solver(pairs, out_path, index, variant="release", log=None, main_objs=None, extra_flags=()):
     """Link a solver for the given pairs at out_path (rebuilt only when stale)."""
+    with _BuildLock():
+        return _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags)
+
+
+def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
     pairs = sorted(pairs)
     key = hashlib.sha256((variant + "\n" + "\n".join(pairs)).encode()).hexdigest()[:16]
     tdir = BUILD / variant / "tables"

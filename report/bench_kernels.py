@@ -95,14 +95,14 @@ def plain_rule(element, integration, geom):
 
 
 def build_driver(log=None):
-    from gen.solver_build import BUILD, VARIANTS, _compile, build_solver
+    from gen.solver_build import BUILD, VARIANTS, compile_object, build_solver
     index = load_index()
     pairs = [f"{p['element']}_{p['material']}_{p['integration']}" for p in index["pairs"]]
     flags = VARIANTS["release"] + ["-I" + str(BENCH)]
     objs = []
     for name in ("kernels.c", "plain.c"):
         obj = BUILD / "release" / "bench" / (Path(name).stem + ".o")
-        _compile(BENCH / name, obj, flags, [BENCH / "plain.h", ROOT / "runtime" / "bk_kernel.h"], log)
+        compile_object(BENCH / name, obj, flags, [BENCH / "plain.h", ROOT / "runtime" / "bk_kernel.h"], log)
         objs.append(obj)
     exe = build_solver(pairs, BUILD / "release" / "bench" / "bench_kernels", index, "release", log, main_objs=objs)
     return exe, index

@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "interrupt.h"
 #include "linsolve.h"
 #include "quaternion.h"
 
@@ -302,7 +303,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
 
-    int step = 0, cuts = 0;
+    int step = 0, cuts = 0, written = 0;
     while (t < o->t_end * (1.0 - 1e-12)) {
         if (o->t_end - (t + h) < 1e-6 * h)      /* land on t_end, no sliver step */
             h = o->t_end - t;
@@ -323,9 +324,11 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
             w.qdd[i] = 0.0;
         }
-        int st = DYN_MAXIT, it;
+        int st = DYN_MAXIT, it, signo = 0;
         double rnorm = 0.0, dnorm = INFINITY;
         for (it = 0; it <= o->max_iter; ++it) {
+            if ((signo = bk_interrupt_poll()) != 0)
+                break;
             if (bk_assemble_internal(s, q, w.fint, w.Ax) != 0) {
                 st = DYN_NONFINITE;
                 break;
@@ -410,6 +413,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 w.nu[c] += w.dx[s->nfree + c];
         }
         info->newton_iterations += it;
+        if (signo) {
+            memcpy(q, w.q_s, (size_t)nd * sizeof *q);
+            info->interrupted = signo;
+            snprintf(info->message, sizeof info->message,
+                     "interrupted by %s during step %d at t = %.6g s; the %d accepted steps (last t = %.6g s) "
+                     "are kept", bk_interrupt_name(signo), step + 1, tn, step, t);
+            goto done;
+        }
         double err = 0.0;
         if (st == DYN_OK) {
             for (int i = 0; i < nd; ++i) {
@@ -459,6 +470,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
             bk_output_step(out, step, t, q);
+            written = step;
             free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
             double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
             double U = bk_strain_energy(s, q) - U0;
@@ -479,6 +491,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     }
     rc = 0;
 done:
+    /* a failed or interrupted run keeps its last accepted step even when the
+     * output stride skipped it */
+    if (rc != 0 && step > written)
+        bk_output_step(out, step, t, q);
     info->converged = rc == 0;
     info->factorizations = ls.nfactor;
     info->analyses = ls.nanalyze;

@@ -1,7 +1,9 @@
 /* main.c -- the per-scene solver: solver MODEL_FILE OUT_DIR [--quiet] [--verbose]
  *
  * Exit status: 0 converged; 1 bad input (model file, output directory);
- * 2 the solve did not converge (results of every converged step are kept).
+ * 2 the solve did not converge (results of every converged step are kept);
+ * 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept, summary.json
+ * says "interrupted": true; see interrupt.h).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +11,7 @@
 #include <time.h>
 
 #include "dynamics.h"
+#include "interrupt.h"
 #include "modal.h"
 #include "model.h"
 #include "newton.h"
@@ -49,6 +52,10 @@ int main(int argc, char **argv)
         return 1;
     }
     double t0 = now();
+    if (bk_interrupt_block() != 0) {
+        fprintf(stderr, "error: cannot block SIGINT/SIGTERM for a clean interruption\n");
+        return 1;
+    }
     bk_model *m = bk_model_read(model_path, bk_linked_pairs, bk_nlinked_pairs, stderr);
     if (!m)
         return 1;
@@ -85,10 +92,12 @@ int main(int argc, char **argv)
     bk_output_close(&out);
     int wrc = bk_output_summary(&out, &info, q, stderr);
     if (rc != 0)
-        fprintf(stderr, "error: %s: %s\n", m->name, info.message);
+        fprintf(stderr, "%s: %s: %s\n", info.interrupted ? "interrupted" : "error", m->name, info.message);
     free(q);
     bk_system_free(s);
     bk_model_free(m);
+    if (info.interrupted)
+        return 128 + info.interrupted;
     if (rc != 0)
         return 2;
     return wrc == 0 ? 0 : 1;

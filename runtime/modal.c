@@ -78,6 +78,7 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         bk_run_info sinfo = {0};
         if (bk_solve_static(s, q, out, &sinfo, log) != 0) {
             snprintf(info->message, sizeof info->message, "static state for the modal analysis: %.900s", sinfo.message);
+            info->interrupted = sinfo.interrupted;
             return 1;
         }
         info->newton_iterations = sinfo.newton_iterations;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "interrupt.h"
 #include "linsolve.h"
 #include "quaternion.h"
 #include "stability.h"
@@ -22,6 +23,7 @@ typedef struct attempt {
     int id;                          /* attempt number over the run (newton.csv)  */
     int iters;
     double rnorm, dnorm, ref;
+    int signo;                       /* NEWTON_INTERRUPTED: the signal */
 } attempt;
 
 static double norm2(const double *v, int n)
@@ -32,7 +34,8 @@ static double norm2(const double *v, int n)
     return sqrt(s);
 }
 
-enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE };
+enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE,
+       NEWTON_INTERRUPTED };
 
 static const char *why(int code)
 {
@@ -43,6 +46,7 @@ static const char *why(int code)
     case NEWTON_DIVERGED: return "residual grew without bound";
     case NEWTON_LINERR: return "linear solver error";
     case NEWTON_UNSTABLE: return "the equilibrium reached is unstable (more negative tangent eigenvalues)";
+    case NEWTON_INTERRUPTED: return "interrupted";
     default: return "converged";
     }
 }
@@ -94,6 +98,8 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
     double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY;
     a->iters = 0;
     for (int it = 0;; ++it) {
+        if ((a->signo = bk_interrupt_poll()) != 0)
+            return NEWTON_INTERRUPTED;
         if (residual(s, w, q, w->nu, lam, 1) != 0)
             return NEWTON_NONFINITE;
         double rnorm = norm2(w->r, s->neq);
@@ -313,7 +319,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             /* Attempts: Newton from the predicted state, then from the last
              * equilibrium; then the increment is cut back. */
             int st = NEWTON_MAXIT;
-            for (int k = 0; k < 2 && st != NEWTON_OK; ++k) {
+            for (int k = 0; k < 2 && st != NEWTON_OK && st != NEWTON_INTERRUPTED; ++k) {
                 int predicted = k == 0 && o->predictor && have_prev;
                 if (k == 0 && !predicted)
                     continue;
@@ -368,6 +374,14 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             }
             memcpy(q, w.qsave, (size_t)nd * sizeof *q);
             memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
+            if (st == NEWTON_INTERRUPTED) {
+                info->interrupted = a.signo;
+                snprintf(info->message, sizeof info->message,
+                         "interrupted by %s during step %d at load factor %.6g; the %d converged steps (last "
+                         "load factor %.6g) are kept", bk_interrupt_name(a.signo), info->steps + 1, target,
+                         info->steps, lam);
+                goto done;
+            }
             if (cuts_in_row >= o->max_cutbacks) {
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "

@@ -3,10 +3,12 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "interrupt.h"
 #include "system.h"
 
 static double wall(void)
@@ -221,6 +223,17 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     static const char *const kind[] = {"static", "dynamic", "modal"};
     fprintf(fp, ",\n  \"analysis\": \"%s\",\n", kind[m->analysis]);
     fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
+    fprintf(fp, "  \"interrupted\": %s,\n", info->interrupted ? "true" : "false");
+    if (info->interrupted)
+        fprintf(fp, "  \"signal\": \"%s\",\n", bk_interrupt_name(info->interrupted));
+    fprintf(fp, "  \"warnings\": [");
+    for (int k = 0; k < info->nwarning; ++k) {
+        fprintf(fp, "%s\n    ", k ? "," : "");
+        json_string(fp, info->warnings[k]);
+    }
+    fprintf(fp, "%s],\n", info->nwarning ? "\n  " : "");
+    if (info->warnings_dropped)
+        fprintf(fp, "  \"warnings_dropped\": %d,\n", info->warnings_dropped);
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
     fprintf(fp, "  \"steps\": %d,\n", info->steps);
     fprintf(fp, "  \"newton_iterations\": %d,\n", info->newton_iterations);
@@ -283,6 +296,25 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         return -1;
     }
     return 0;
+}
+
+void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
+{
+    char text[BK_WARNING_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    for (int k = 0; k < info->nwarning; ++k)
+        if (strcmp(info->warnings[k], text) == 0)
+            return;
+    if (info->nwarning >= BK_MAX_WARNINGS) {
+        info->warnings_dropped++;
+        return;
+    }
+    memcpy(info->warnings[info->nwarning++], text, sizeof text);
+    if (console)
+        fprintf(console, "warning: %s: %s\n", scene, text);
 }
 
 void bk_output_close(bk_output *o)

@@ -34,6 +34,8 @@ typedef struct bk_stability_event {
 } bk_stability_event;
 
 #define BK_MAX_EVENTS 32
+#define BK_MAX_WARNINGS 16
+#define BK_WARNING_LEN 400
 
 typedef struct bk_run_info {
     int converged;
@@ -47,6 +49,10 @@ typedef struct bk_run_info {
     double strain_energy;
     double max_constraint_residual;
     char message[1024];      /* empty when converged */
+    int interrupted;         /* the signal (SIGINT, SIGTERM) that stopped the run, or 0 */
+    int nwarning;            /* warnings: likely wrong results (also on the console) */
+    int warnings_dropped;    /* beyond BK_MAX_WARNINGS */
+    char warnings[BK_MAX_WARNINGS][BK_WARNING_LEN];
     /* statics with [static] stability */
     int stability_checked;
     int negative_eigenvalues;  /* at the last equilibrium                         */
@@ -82,6 +88,11 @@ void bk_output_stability(bk_output *o, int step, double lam, int negative, doubl
 int bk_output_modes_begin(bk_output *o);
 void bk_output_mode(bk_output *o, int mode, double f_hz, double omega);
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
+/* Records a warning in info (summary.json "warnings") and prints it as
+ * "warning: SCENE: ..." on `console` unless it is NULL.  A warning already
+ * recorded with the same text is not repeated. */
+void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 void bk_output_close(bk_output *o);
 
 #endif

@@ -3,6 +3,7 @@ internal force and tangent as the generated kernels, for every single-rule
 continuum element x material pair: the kernel ratio in ./build.sh bench
 compares like with like.  Also: op counts parsed from the kernel headers agree
 with the pair descriptors.  The driver runs with timing off (no timings in tests)."""
+import pytest
 import csv
 import io
 import subprocess
@@ -13,6 +14,7 @@ from util import BUILD, ROOT, ensure_dir
 sys.path.insert(0, str(ROOT))
 
 
+@pytest.mark.slow
 def test_plain_loop_matches_generated_kernels():
     from report import bench_kernels
     exe, index = bench_kernels.build_driver()

@@ -2,10 +2,12 @@
 validated in process and, when accepted, solved by the AddressSanitizer + UBSan
 solver.  No crash (Python exception, signal, sanitizer report, multi-line error),
 no hang; every rejection is one line naming the file and the key."""
+import pytest
 from fuzz_scenes import fuzz
 from util import BUILD, ensure_dir
 
 
+@pytest.mark.slow
 def test_fuzzed_scenes_never_crash():
     work = ensure_dir(BUILD / "fuzz")
     lines = []

@@ -1,5 +1,6 @@
 """The generator: shape functions against the seed, invariant derivatives
 against sympy differentiation, freshness and determinism of out/kernels/."""
+import pytest
 import filecmp
 import os
 import subprocess
@@ -55,11 +56,13 @@ def test_invariant_derivatives_match_sympy_diff():
                         assert abs(float(ref2 - got2)) < 1e-12, (name, i, Jj, k, Ll, ref2, got2)
 
 
+@pytest.mark.slow
 def test_gen_check_passes_on_committed_kernels():
     r = run_cli(["gen", "--check"])
     assert r.returncode == 0, r.stdout + r.stderr
 
 
+@pytest.mark.slow
 def test_generation_is_byte_identical_across_hash_seeds():
     """A representative subset (the load kernel, ancf3243 with every material, ancf3363 x
     Arruda-Boyce) regenerated under two PYTHONHASHSEED values: identical to each other

@@ -1,5 +1,6 @@
 """Generated kernels against finite differences and rigid motions (C harness
 tests/kernel_check.c, built with AddressSanitizer + UBSan)."""
+import pytest
 import subprocess
 
 from util import build_program
@@ -19,6 +20,7 @@ def test_force_tangent_finite_differences_and_rigid_motion():
     check(exe, 20)
 
 
+@pytest.mark.slow
 def test_kernels_clean_under_asan_ubsan():
     """The same checks, 2 states per pair, with AddressSanitizer + UBSan."""
     exe = build_program("kernel_check.c", "kernel_check", "sanitize")

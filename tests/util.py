@@ -13,10 +13,10 @@ PY = "/usr/bin/python3"
 ENV = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONDONTWRITEBYTECODE="1")
 
 
-def run_cli(args, check=False, timeout=600):
-    """./build.sh ARGS -> CompletedProcess (text)."""
+def run_cli(args, check=False, timeout=600, env=None, cwd=None):
+    """./build.sh ARGS -> CompletedProcess (text); env: extra environment variables."""
     r = subprocess.run([str(ROOT / "build.sh")] + list(args), capture_output=True, text=True,
-                       env=ENV, timeout=timeout)
+                       env=dict(ENV, **(env or {})), timeout=timeout, cwd=cwd)
     if check and r.returncode != 0:
         raise AssertionError(f"./build.sh {' '.join(args)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
     return r
@@ -34,6 +34,19 @@ def run_scene(scene, sets=(), out=None, extra=()):
     if r.returncode != 0:
         raise AssertionError(f"scene {scene} {list(sets)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
     return load_run(out)
+
+
+def run_memcheck(scene, sets=(), out=None, threads=None, timeout=900):
+    """`./build.sh run SCENE --memcheck`: the valgrind build of the solver
+    (-march=x86-64-v3, never -march=native: valgrind cannot decode AVX-512) run
+    under valgrind memcheck.  Every test that runs valgrind goes through here
+    (tests/test_valgrind_builds.py checks it).  Returns (CompletedProcess, out)."""
+    out = Path(out or tempfile.mkdtemp(prefix="bk-vg-", dir=ensure_dir(BUILD / "runs")))
+    args = ["run", str(scene), "--memcheck", "--quiet", "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    env = {"OMP_NUM_THREADS": str(threads)} if threads else None
+    return run_cli(args, timeout=timeout, env=env), out
 
 
 def load_run(out):
@@ -66,29 +79,32 @@ def all_pair_symbols(index=None):
 def build_program(src, name, variant="sanitize", pairs=None):
     """Compile tests/<src> and link it with the kernel table of `pairs`
     (default: every generated pair).  Returns the executable path."""
-    from gen.solver_build import VARIANTS, _compile, build_solver, RUNTIME
+    from gen.solver_build import VARIANTS, compile_object, build_solver, RUNTIME
     allp, index = all_pair_symbols()
     pairs = pairs or allp
     src = ROOT / "tests" / src
     obj = BUILD / variant / (Path(src).stem + ".o")
-    _compile(src, obj, VARIANTS[variant], list(RUNTIME.glob("*.h")), None)
+    compile_object(src, obj, VARIANTS[variant], list(RUNTIME.glob("*.h")))
     return build_solver(pairs, BUILD / variant / name, index, variant, main_objs=[obj])
 
 
 def build_shared_kernels():
     """Every generated kernel (release objects, position independent) as one shared
     library for ctypes, relinked when an object is newer."""
-    from gen.solver_build import CC, kernel_objects
+    from gen.solver_build import CC, build_lock, kernel_objects
     pairs, index = all_pair_symbols()
-    objs = kernel_objects(pairs, index, "release")
-    lib = ensure_dir(BUILD) / "libkernels.so"
-    if lib.exists() and lib.stat().st_mtime >= max(o.stat().st_mtime for o in objs):
+    with build_lock():
+        objs = kernel_objects(pairs, index, "release")
+        lib = ensure_dir(BUILD) / "libkernels.so"
+        if lib.exists() and lib.stat().st_mtime >= max(o.stat().st_mtime for o in objs):
+            return lib
+        tmp = lib.with_name(lib.name + ".tmp")
+        r = subprocess.run([CC, "-shared", "-o", str(tmp)] + [str(o) for o in objs] + ["-lm"],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise AssertionError(f"linking {lib} failed:\n{r.stderr[-3000:]}")
+        tmp.replace(lib)
         return lib
-    r = subprocess.run([CC, "-shared", "-o", str(lib)] + [str(o) for o in objs] + ["-lm"],
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        raise AssertionError(f"linking {lib} failed:\n{r.stderr[-3000:]}")
-    return lib
 
 
 class Kernel:
