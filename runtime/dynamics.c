@@ -229,6 +229,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int rc = 1, *fdof = NULL;
     int nd = m->ndof;
     int nquat = 0;
+    int step = 0, cuts = 0, written = 0;
+    double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
     if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
@@ -263,7 +265,6 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     /* Consistent initial accelerations: [M s G^T; s G 0] [q''; nu] = [f_ext - f(q, q'); -s (d^2/dt^2 of
      * the explicit time dependence)]; the mass is regularized by 1e-10 mbar where it vanishes
      * (gauge directions of quaternions). */
-    double t = 0.0, h = o->dt;
     {
         s->cscale = mbar;
         bk_assemble_internal(s, q, w.fint, w.Ax);
@@ -303,7 +304,6 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
 
-    int step = 0, cuts = 0, written = 0;
     while (t < o->t_end * (1.0 - 1e-12)) {
         if (o->t_end - (t + h) < 1e-6 * h)      /* land on t_end, no sliver step */
             h = o->t_end - t;
@@ -438,16 +438,22 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             memcpy(w.a, w.a_s, (size_t)nd * sizeof *q);
             memcpy(w.nu, w.nu_s, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
             double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
-            if (st != DYN_OK)
-                info->cutbacks++, cuts++;
-            if (hn < o->dt_min || cuts > o->max_cutbacks) {
+            if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
+                char incr[64];
+                if (it > 0 && isfinite(dnorm))
+                    snprintf(incr, sizeof incr, ", last increment %.3e", dnorm);
+                else
+                    incr[0] = 0;
                 snprintf(info->message, sizeof info->message,
-                         "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e, "
-                         "last increment %.3e after %d iterations, %d cut-backs",
+                         "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e%s after "
+                         "%d iteration%s, %d cut-back%s in a row%s",
                          step + 1, tn, h, st != DYN_OK ? dyn_why(st) : "local error above tol at the smallest step",
-                         rnorm, dnorm, it, cuts);
+                         rnorm, incr, it, it == 1 ? "" : "s", cuts, cuts == 1 ? "" : "s",
+                         hn < o->dt_min ? " (the next step would be below dynamic.dt_min)" : "");
                 goto done;
             }
+            if (st != DYN_OK)
+                info->cutbacks++, cuts++;
             if (log)
                 fprintf(log, "  t = %.6g: step %.3g rejected (%s), retry with %.3g\n", t, h,
                         st != DYN_OK ? dyn_why(st) : "local error", hn);

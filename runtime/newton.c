@@ -23,8 +23,16 @@ typedef struct attempt {
     int id;                          /* attempt number over the run (newton.csv)  */
     int iters;
     double rnorm, dnorm, ref;
+    double rtol_abs;                 /* the residual tolerance of the last iteration */
+    double rcond;                    /* KLU's pivot ratio of the last factorization  */
+    int residual_met;                /* the residual met its tolerance at some iteration */
+    int singular_at_start;           /* NEWTON_SINGULAR at iteration 0               */
     int signo;                       /* NEWTON_INTERRUPTED: the signal */
 } attempt;
+
+/* Below this pivot ratio the tangent is singular to working precision: Newton
+ * increments are meaningless in its near-null directions. */
+#define ILL_RCOND 1e-12
 
 static double norm2(const double *v, int n)
 {
@@ -49,6 +57,31 @@ static const char *why(int code)
     case NEWTON_INTERRUPTED: return "interrupted";
     default: return "converged";
     }
+}
+
+/* What went wrong, for the failure message: a singular or numerically singular
+ * tangent is named as such (with its likely causes) rather than as a missed
+ * iteration limit. */
+static void diagnose(char *buf, size_t n, int code, const attempt *a, int steps, int negative)
+{
+    if (code == NEWTON_SINGULAR || (isfinite(a->rcond) && a->rcond < ILL_RCOND)) {
+        int exact = code == NEWTON_SINGULAR;
+        int len = snprintf(buf, n, "the tangent is %ssingular (KLU pivot ratio %.1e)%s", exact ? "" : "numerically ",
+                           a->rcond,
+                           a->residual_met ? ": the residual met its tolerance but the increments did not settle"
+                                           : "");
+        if (len < 0 || (size_t)len >= n)
+            return;
+        snprintf(buf + len, n - (size_t)len,
+                 "; likely cause: %s", steps == 0
+                     ? "a rigid motion or mechanism the constraints leave free (e.g. the rotation of a beam about "
+                       "its own axis at a spherical joint, or a beam held by nothing)"
+                     : negative > 0 ? "a bifurcation or limit point on the path (negative tangent eigenvalues): "
+                                      "try static.stable_path with an imperfection"
+                                    : "a mechanism that opened under the load, or a bifurcation point");
+        return;
+    }
+    snprintf(buf, n, "%s", why(code));
 }
 
 /* Residual r(q, nu) at load factor lam into w->r, and the Newton matrix into
@@ -97,6 +130,9 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
     const bk_model *m = s->m;
     double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY;
     a->iters = 0;
+    a->residual_met = 0;
+    a->singular_at_start = 0;
+    a->rcond = NAN;
     for (int it = 0;; ++it) {
         if ((a->signo = bk_interrupt_poll()) != 0)
             return NEWTON_INTERRUPTED;
@@ -129,6 +165,9 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         if (rnorm == 0.0)
             return NEWTON_OK;
         double rtol_abs = fmax(o->rtol * ref, rfloor), utol_abs = fmax(o->utol * uscale, dfloor);
+        a->rtol_abs = rtol_abs;
+        if (rnorm <= rtol_abs)
+            a->residual_met = 1;
         if (it > 0 && rnorm <= rtol_abs && dnorm <= utol_abs)
             return NEWTON_OK;
         /* Stagnation at round-off: on ill-conditioned tangents (slender
@@ -146,8 +185,11 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         if (it >= o->max_iter)
             return NEWTON_MAXIT;
         int st = bk_lin_factor(ls, w->Ax);
-        if (st == BK_LIN_SINGULAR)
+        a->rcond = st == BK_LIN_SINGULAR ? 0.0 : ls->rcond;
+        if (st == BK_LIN_SINGULAR) {
+            a->singular_at_start = it == 0;
             return NEWTON_SINGULAR;
+        }
         if (st != BK_LIN_OK)
             return NEWTON_LINERR;
         for (int i = 0; i < s->neq; ++i)
@@ -382,12 +424,25 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                          info->steps, lam);
                 goto done;
             }
-            if (cuts_in_row >= o->max_cutbacks) {
+            /* A tangent singular at the last equilibrium itself (iteration 0
+             * without predictor) does not depend on the increment: cutting
+             * back cannot help. */
+            int hopeless = st == NEWTON_SINGULAR && a.singular_at_start && !(o->predictor && have_prev);
+            if (cuts_in_row >= o->max_cutbacks || hopeless) {
+                char what[600], incr[64];
+                diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                if (a.iters > 0 && isfinite(a.dnorm))
+                    snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
+                else
+                    incr[0] = 0;
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
-                         "residual %.3e, last increment %.3e after %d iterations, %d cut-backs%s",
-                         info->steps + 1, target, lam, why(st), a.rnorm, a.dnorm, a.iters, cuts_in_row,
-                         info->negative_eigenvalues > 0
+                         "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s",
+                         info->steps + 1, target, lam, what, a.rnorm, a.rtol_abs, incr, a.iters,
+                         a.iters == 1 ? "" : "s", cuts_in_row, cuts_in_row == 1 ? "" : "s",
+                         hopeless ? " (a tangent singular at the last equilibrium does not improve with smaller "
+                                    "increments)"
+                         : info->negative_eigenvalues > 0 && info->steps > 0
                              ? "; the last equilibrium was unstable (negative tangent eigenvalues): "
                                "a bifurcation or limit point was passed"
                              : "");

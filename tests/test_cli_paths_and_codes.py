@@ -38,3 +38,74 @@ def test_usage_errors_exit_64_and_are_listed_in_help():
     readme = (ROOT / "README.md").read_text()
     for code in ("| 64 |", "| 130 |", "| 143 |", "| 2 |", "| 1 |", "| 99 |"):
         assert code in readme, code
+
+
+MECHANISM = """
+[scene]
+analysis = "static"
+[material.alu]
+law = "resultant"
+E = 7.2e10
+nu = 0.3
+rho = 2700.0
+[section.square]
+shape = "rectangle"
+b = 0.01
+h = 0.01
+[[beam]]
+name = "arm"
+element = "gef"
+material = "alu"
+section = "square"
+start = [0.0, 0.0, 0.0]
+end = END
+elements = 4
+[[constraint]]
+type = "spherical"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = FORCE
+"""
+
+
+def _mechanism(end, force):
+    d = Path(tempfile.mkdtemp(prefix="bk-mech-", dir=ensure_dir(BUILD / "runs")))
+    p = d / "mechanism.toml"
+    p.write_text(MECHANISM.replace("END", str(end)).replace("FORCE", str(force)))
+    r = run_cli(["run", str(p), "--quiet", "--out", str(d / "out")])
+    return r, json.loads((d / "out" / "summary.json").read_text())
+
+
+def test_singular_tangent_is_named_with_its_likely_cause():
+    """A beam on a spherical joint pulled along its axis can spin about the axis: the
+    tangent is singular.  Before: "no convergence within the iteration limit; residual
+    2.1e-08" (inclined beam) or "... last increment inf after 0 iterations, 12 cut-backs;
+    ... a bifurcation or limit point was passed" (axis-aligned)."""
+    r, s = _mechanism([1.0, 0.0, 0.0], [100.0, 0.0, 0.0])          # exact zero pivot
+    assert r.returncode == 2
+    msg = s["error"]
+    assert "tangent is singular" in msg and "likely cause: a rigid motion or mechanism" in msg, msg
+    assert "inf" not in msg and "iteration limit" not in msg and "bifurcation" not in msg, msg
+    assert s["cutbacks"] == 0, s      # cutting back cannot cure a singular reference state
+    r, s = _mechanism([0.8, 0.5, 0.33166247903554], [80.0, 50.0, 33.166247903554])   # pivot ratio ~1e-15
+    assert r.returncode == 2
+    msg = s["error"]
+    assert "numerically singular (KLU pivot ratio" in msg and "likely cause" in msg, msg
+    assert "iteration limit" not in msg, msg
+
+
+def test_cutback_counts_are_the_cutbacks_made():
+    """Before: max_cutbacks = 0 reported "1 cut-backs"."""
+    d = Path(tempfile.mkdtemp(prefix="bk-cut-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "pendulum_stiff_ancf", "--quiet", "--out", str(d), "--set", "dynamic.max_cutbacks=0",
+                 "--set", "dynamic.dt=0.05", "--set", "dynamic.max_iterations=2"])
+    assert r.returncode == 2
+    s = json.loads((d / "summary.json").read_text())
+    assert "0 cut-backs in a row" in s["error"] and s["cutbacks"] == 0, s
+    r = run_cli(["run", "cantilever_rollup", "--quiet", "--out", str(d), "--set", "static.max_cutbacks=1",
+                 "--set", "static.load_steps=1", "--set", "static.max_iterations=3"])
+    assert r.returncode == 2
+    s = json.loads((d / "summary.json").read_text())
+    assert s["error"].endswith("1 cut-back") and s["cutbacks"] == 1, s
