@@ -32,9 +32,14 @@
 
 #include "interrupt.h"
 #include "linsolve.h"
+#include "norms.h"
 #include "quaternion.h"
 
 #define BK_MAXDOF 1024
+
+/* Energy test of a correction, as in statics (newton.c): sqrt|dx . r| at most
+ * this fraction of the step's first correction. */
+#define ENERGY_TOL 1e-7
 
 typedef struct dyn_work {
     int nd, ne, nc;
@@ -226,13 +231,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     const bk_dynamic_opts *o = &m->dyn;
     dyn_work w = {0};
     bk_linsolver ls = {0};
+    bk_norms norms = {0};
     int rc = 1, *fdof = NULL;
     int nd = m->ndof;
     int nquat = 0;
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0) {
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_norms_init(&norms, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -325,7 +331,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qdd[i] = 0.0;
         }
         int st = DYN_MAXIT, it, signo = 0;
-        double rnorm = 0.0, dnorm = INFINITY;
+        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0;
         for (it = 0; it <= o->max_iter; ++it) {
             if ((signo = bk_interrupt_poll()) != 0)
                 break;
@@ -362,22 +368,20 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 break;
             }
             double ref = fmax(norm2(w.fext, nd), norm2(w.fint, nd));
-            double qmax = 0.0, kmax = 0.0;
-            for (int i = 0; i < nd; ++i)
-                qmax = fmax(qmax, fabs(q[i]));
-            for (int j = 0; j < s->nfree; ++j)
-                if (s->diag[j] >= 0)
-                    kmax = fmax(kmax, fabs(w.Ax[s->diag[j]]));
-            double rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
-            double dfloor = 64.0 * DBL_EPSILON * qmax;
+            /* rotation-invariant floors and scales (norms.h) */
+            double rfloor, dfloor;
+            bk_round_off_floors(&norms, s, q, w.Ax, &rfloor, &dfloor);
             double cres = norm2(w.r + s->nfree, s->ncon) / s->cscale;
             /* increments relative to the motion of this step */
-            double uscale = 1e-12 * m->length_scale;
-            for (int j = 0; j < s->nfree; ++j)
-                uscale = fmax(uscale, fabs(q[fdof[j]] - w.q_s[fdof[j]]));
+            double uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(&norms, s, q, w.q_s));
             double rtol_abs = fmax(o->rtol * ref, rfloor);
             int res_ok = rnorm <= rtol_abs, con_ok = cres <= 1e-12 * fmax(m->length_scale, 1.0);
-            if (it > 0 && con_ok && res_ok && (dnorm <= fmax(o->utol * uscale, dfloor) || rnorm <= 1e-3 * rtol_abs)) {
+            /* converged: residual and constraints within tolerance, and the
+             * last correction small in length or in energy (ENERGY_TOL), or
+             * the residual far below its tolerance */
+            if (it > 0 && con_ok && res_ok &&
+                (dnorm <= fmax(o->utol * uscale, dfloor) || rnorm <= 1e-3 * rtol_abs ||
+                 enorm <= fmax(ENERGY_TOL * eref, sqrt(rfloor * dfloor)))) {
                 st = DYN_OK;
                 break;
             }
@@ -394,7 +398,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 st = DYN_LINERR;
                 break;
             }
-            dnorm = 0.0;
+            double work_ = 0.0;
+            for (int j = 0; j < s->neq; ++j)
+                work_ += w.dx[j] * w.r[j];
             for (int j = 0; j < s->nfree; ++j) {
                 int i = fdof[j];
                 double d = w.dx[j];
@@ -405,10 +411,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 q[i] += d;
                 w.qd[i] += gp * d;
                 w.qdd[i] += bp * d;
-                dnorm = fmax(dnorm, fabs(d));
             }
             if (st == DYN_NONFINITE)
                 break;
+            dnorm = bk_norm_free_max(&norms, s, w.dx);
+            enorm = sqrt(fabs(work_));
+            if (it == 0)
+                eref = enorm;
             for (int c = 0; c < s->ncon; ++c)
                 w.nu[c] += w.dx[s->nfree + c];
         }
@@ -505,6 +514,7 @@ done:
     info->factorizations = ls.nfactor;
     info->analyses = ls.nanalyze;
     bk_lin_free(&ls);
+    bk_norms_free(&norms);
     free(fdof);
     free(quat);
     work_free(&w);

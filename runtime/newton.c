@@ -8,6 +8,7 @@
 
 #include "interrupt.h"
 #include "linsolve.h"
+#include "norms.h"
 #include "quaternion.h"
 #include "stability.h"
 
@@ -16,6 +17,7 @@ typedef struct work {
     double *qprev, *nuprev;          /* the equilibrium before the last one (predictor) */
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
+    bk_norms norms;                  /* rotation-invariant measures */
 } work;
 
 /* One Newton solve: its outcome and counters. */
@@ -33,6 +35,14 @@ typedef struct attempt {
 /* Below this pivot ratio the tangent is singular to working precision: Newton
  * increments are meaningless in its near-null directions. */
 #define ILL_RCOND 1e-12
+
+/* Energy test: the last correction's energy norm sqrt|dx . r| at most this
+ * fraction of the first one of the increment.  Newton converging
+ * quadratically, the accepted iterate is then exact to about the square of it.
+ * Unlike a length test it does not wait for corrections along directions of
+ * next to no stiffness (a beam's spin about its axis at a spherical joint),
+ * whose round-off noise depends on how the scene is turned in space. */
+#define ENERGY_TOL 1e-7
 
 static double norm2(const double *v, int n)
 {
@@ -124,11 +134,11 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
  * slender beams, which the rotation trust region below and the load increment
  * address.  It was removed rather than kept as an option that does nothing. */
 #define ROT_STEP 0.15
-static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, attempt *a,
+static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, double lam_last, attempt *a,
                   const bk_static_opts *o, double lscale, bk_output *out, int step)
 {
     const bk_model *m = s->m;
-    double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY;
+    double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY, enorm = INFINITY, eref = 0.0;
     a->iters = 0;
     a->residual_met = 0;
     a->singular_at_start = 0;
@@ -140,21 +150,14 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             return NEWTON_NONFINITE;
         double rnorm = norm2(w->r, s->neq);
         double ref = fmax(fabs(lam) * norm2(w->fext, m->ndof), norm2(w->fint, m->ndof));
-        double uscale = 0.0, qmax = 0.0, kmax = 0.0;
-        for (int i = 0; i < m->ndof; ++i) {
-            uscale = fmax(uscale, fabs(q[i] - m->q0[i]));
-            qmax = fmax(qmax, fabs(q[i]));
-        }
-        /* largest entry of the Newton matrix: with multipliers (constraint
-         * rows, the internal multipliers of the constrained beams) the
-         * stiffest couplings can sit off the diagonal */
-        for (long k = 0; k < s->nnz; ++k)
-            kmax = fmax(kmax, fabs(w->Ax[k]));
-        uscale = fmax(uscale, 1e-6 * lscale);
-        /* Round-off floors: forces of the size of K times a last-bit change of
-         * q, and increments of a few ulps of q. */
-        double rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
-        double dfloor = 64.0 * DBL_EPSILON * qmax;
+        /* Every measure is invariant under a rigid rotation of the scene:
+         * field norms, column-block norms, scalar products (norms.h).  The
+         * round-off floors use the stiffest column block of the Newton matrix:
+         * with multipliers (constraint rows, the internal multipliers of the
+         * constrained beams) the stiffest couplings can sit off the diagonal. */
+        double uscale = fmax(bk_norm_dof_max(&w->norms, s, q, m->q0), 1e-6 * lscale);
+        double rfloor, dfloor;
+        bk_round_off_floors(&w->norms, s, q, w->Ax, &rfloor, &dfloor);
         a->rnorm = rnorm;
         a->dnorm = dnorm;
         a->ref = ref;
@@ -168,7 +171,19 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
         a->rtol_abs = rtol_abs;
         if (rnorm <= rtol_abs)
             a->residual_met = 1;
-        if (it > 0 && rnorm <= rtol_abs && dnorm <= utol_abs)
+        /* converged: the residual within its tolerance, and the last
+         * correction small, in length (field norm) or in energy (see
+         * ENERGY_TOL) */
+        /* the energy scale of the increment: its first correction, or the
+         * work of the load increment on the motion from the last equilibrium
+         * (w->qsave), whichever is larger -- a good predictor must not make
+         * the test stricter */
+        double wload = 0.0;
+        for (int i = 0; i < m->ndof; ++i)
+            wload += (lam - lam_last) * w->fext[i] * (q[i] - w->qsave[i]);
+        double escale = fmax(eref, sqrt(fabs(wload)));
+        if (it > 0 && rnorm <= rtol_abs &&
+            (dnorm <= utol_abs || enorm <= fmax(ENERGY_TOL * escale, sqrt(rfloor * dfloor))))
             return NEWTON_OK;
         /* Stagnation at round-off: on ill-conditioned tangents (slender
          * higher-order elements) the residual stops decreasing a little above
@@ -196,23 +211,29 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             w->dx[i] = -w->r[i];
         if (bk_lin_solve(ls, w->dx) != BK_LIN_OK)
             return NEWTON_LINERR;
-        dnorm = 0.0;
+        double work_ = 0.0;
         for (int i = 0; i < s->neq; ++i) {
             if (!isfinite(w->dx[i]))
                 return NEWTON_NONFINITE;
-            if (i < s->nfree)
-                dnorm = fmax(dnorm, fabs(w->dx[i]));
+            work_ += w->dx[i] * w->r[i];
         }
+        dnorm = bk_norm_free_max(&w->norms, s, w->dx);
+        enorm = sqrt(fabs(work_));
+        if (it == 0)
+            eref = enorm;
         alpha = 1.0;
         /* Rotation trust region: quaternion increments are rotations only to
-         * first order; a step that changes a unit quaternion's components by
-         * more than ROT_STEP (a rotation of about 17 degrees) is shortened to
-         * that.  With it the geometrically exact beams take the load steps the
+         * first order; a step that changes a unit quaternion by more than
+         * ROT_STEP (Euclidean norm of the 4 components: a rotation of about 17
+         * degrees) is shortened to that.  With it the geometrically exact beams take the load steps the
          * ANCF elements take (two turns of roll-up in 4 steps instead of 24). */
         double dpmax = 0.0;
-        for (int k = 0; k < w->nquat; ++k)
+        for (int k = 0; k < w->nquat; ++k) {
+            double ss = 0.0;
             for (int i = 0; i < 4; ++i)
-                dpmax = fmax(dpmax, fabs(w->dx[s->eq[w->quat[k] + i]]));
+                ss += w->dx[s->eq[w->quat[k] + i]] * w->dx[s->eq[w->quat[k] + i]];
+            dpmax = fmax(dpmax, sqrt(ss));
+        }
         if (dpmax > ROT_STEP)
             alpha = ROT_STEP / dpmax;
         dnorm *= alpha;
@@ -297,7 +318,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         goto done;
     }
     w.quat = bk_quat_list(s, &w.nquat);
-    if (w.nquat < 0) {
+    if (w.nquat < 0 || bk_norms_init(&w.norms, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -370,7 +391,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
                 }
                 a.id++;
-                st = newton(s, &ls, &w, q, target, &a, o, m->length_scale, out, info->steps + 1);
+                st = newton(s, &ls, &w, q, target, lam, &a, o, m->length_scale, out, info->steps + 1);
                 info->newton_iterations += a.iters;
             }
             /* On a stable path (static.stable_path), an increment that ends
@@ -483,5 +504,6 @@ done:
     free(w.nuprev);
     free(w.Ax);
     free(w.quat);
+    bk_norms_free(&w.norms);
     return rc;
 }

@@ -66,13 +66,13 @@ def test_rotation_trust_region_lets_gef_take_one_step():
 
 
 def test_secant_predictor_saves_iterations():
-    """Roll-up to one turn with gef (40 steps): the secant predictor needs at least 10 %
-    fewer Newton iterations than starting each increment from the last equilibrium
-    (measured 204 vs 240), and both end at the same state (1e-9 m)."""
+    """Roll-up to one turn with ancf3243 (40 steps): the secant predictor needs at least
+    10 % fewer Newton iterations than starting each increment from the last equilibrium
+    (measured 224 vs 257), and both end at the same state (1e-9 m).  (With gef both take
+    200 since the energy test of norms.h: 5 iterations an increment either way.)"""
     res, res_out = {}, {}
     for p in ("secant", "none"):
-        s, rows, out = run("cantilever_rollup", ["beam.arm.element=gef", "material.alu.law=resultant",
-                                                  f"static.predictor={p}", "static.stability=false"])
+        s, rows, out = run("cantilever_rollup", [f"static.predictor={p}", "static.stability=false"])
         assert s["converged"], s["error"]
         res[p], res_out[p] = s, out
     assert res["secant"]["newton_iterations"] < 0.9 * res["none"]["newton_iterations"], \
