@@ -14,7 +14,7 @@ DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).
 PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-matplotlib
-          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind)
+          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview)
 EX_USAGE=64
 
 usage() {
@@ -40,8 +40,9 @@ Commands:
                            valgrind memcheck
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
-  plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic) and
-                         beam.png (the last ParaView frame drawn in 3-D)
+  plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic),
+                         modes.png (modal: a panel per mode shape) and beam.png
+                         (the last ParaView frame drawn in 3-D)
   scenes                 list the scenes in models/
   report [--quick]       the seed cantilever tables beside the paper's, the nearly
                          incompressible cantilever and the pendulums / falling

@@ -251,7 +251,29 @@ def print_summary(s, out):
         p, u = v["position"], v["displacement"]
         print(f"  sensor {name}: position [{p[0]:.6e}, {p[1]:.6e}, {p[2]:.6e}] m, "
               f"displacement [{u[0]:.6e}, {u[1]:.6e}, {u[2]:.6e}] m")
+    if s["analysis"] == "modal":
+        print_modes(out)
     print(f"  results in {out}/")
+
+
+def print_modes(out):
+    """The frequency table of a modal run (from modes.csv), and where the shapes are."""
+    path = Path(out) / "modes.csv"
+    if not path.exists():
+        return
+    import csv
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows:
+        return
+    print(f"  {'mode':>4}  {'frequency (Hz)':>15}  {'omega (rad/s)':>15}  {'shape scale (m)':>15}")
+    for r in rows:
+        print(f"  {int(r['mode']):4d}  {float(r['frequency_hz']):15.9g}  {float(r['omega']):15.9g}  "
+              f"{float(r['scale_m']):15.4g}")
+    if (Path(out) / "modes.pvd").exists():
+        print("  mode shapes: modes.pvd (mode_NN.vtu, time value = mode number), displaced by the scale above\n"
+              "  (largest translation 10 % of the model length, section rotation at most 0.5 rad); point data\n"
+              "  mode_shape is the mode normalized to a largest translation of 1")
 
 
 def cmd_scenes(argv):

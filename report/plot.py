@@ -1,13 +1,21 @@
 """./build.sh plot RUN_DIR: PNG plots of a run directory.
 
-  sensors.png  sensor displacement components against time (dynamic), load factor
-               (static) or mode (modal)
+  sensors.png  sensor displacement components against time (dynamic) or load
+               factor (static; modal runs about the static state: its load path)
   energy.png   kinetic, strain, potential and total energy (dynamic runs)
+  modes.png    modal runs: one panel per mode (up to 16), the centreline of the
+               state the modes are about and displaced by the drawn mode scale
   beam.png     the last ParaView frame (results.pvd) drawn in 3-D, coloured by
                displacement magnitude
+
+Every title names the scene; a run that did not converge or was interrupted
+says so on every plot.  Displacement axes span at least 1e-6 of the model
+length (said on the axis when it applies), so round-off is not drawn as a signal.
 """
 import csv
+import json
 import sys
+import textwrap
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -18,16 +26,78 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
+FLOOR = 1e-6          # smallest displacement-axis range, relative to the model length
+MAX_MODE_PANELS = 16
+
 
 def read_csv(path):
     with open(path, newline="") as fh:
         return list(csv.DictReader(fh))
 
 
-def plot_sensors(run, summary):
+def model_length(run):
+    """The model length (the longest beam, m) from model.dat, or None."""
+    p = run / "model.dat"
+    if p.exists():
+        with open(p) as fh:
+            for line in fh:
+                if line.startswith("length_scale "):
+                    return float(line.split()[1])
+                if line.startswith("q0"):
+                    break
+    return None
+
+
+def status_note(summary):
+    """'interrupted at ...' or 'NOT converged: <error>' for runs that did not finish; None otherwise."""
+    if summary.get("interrupted", False):
+        if summary.get("analysis") == "dynamic" and summary.get("time") is not None:
+            return f"interrupted at t = {summary['time']:.6g} s"
+        if summary.get("load_factor") is not None:
+            return f"interrupted at load factor = {summary['load_factor']:.6g}"
+        return "interrupted"
+    if not summary.get("converged", False):
+        return f"NOT converged: {summary.get('error') or 'no error message'}"
+    return None
+
+
+def decorate(fig, summary, what):
+    """Suptitle 'SCENE: what' and, for unfinished runs, the status in red below it."""
+    note = status_note(summary)
+    title = f"{summary['scene']}: {what}"
+    if note:
+        title += " (NOT converged)" if note.startswith("NOT") else " (interrupted)"
+    fig.suptitle(title, fontsize=11)
+    top = 0.95
+    if note:
+        lines = textwrap.wrap(note, 110)
+        fig.text(0.5, 0.955, "\n".join(lines), ha="center", va="top", color="red", fontsize=8,
+                 gid="status")
+        top = 0.95 - 0.025 * len(lines)
+    return top
+
+
+def floor_ylim(ax, length, unit="m"):
+    """If the data vary by less than FLOOR * length, show exactly that range about their
+    middle (exact zeros and round-off alike), and say so on the axis."""
+    if not length:
+        return
+    lo, hi = ax.dataLim.intervaly
+    span = FLOOR * length
+    if np.isfinite(lo) and np.isfinite(hi) and hi - lo < span:
+        mid = 0.5 * (lo + hi)
+        ax.set_ylim(mid - span / 2, mid + span / 2)
+        ax.text(0.99, 0.03, f"axis range floor {span:.1g} {unit} ({FLOOR:g} of the model length)",
+                transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color="0.35", gid="floor")
+
+
+def fig_sensors(run, summary, length):
     rows = read_csv(run / "sensors.csv")
     names = list(dict.fromkeys(r["sensor"] for r in rows))
-    xlabel = {"dynamic": "time (s)", "static": "load factor", "modal": "frequency (Hz)"}[summary["analysis"]]
+    xlabel = "time (s)" if summary["analysis"] == "dynamic" else "load factor"
+    what = "sensor displacements"
+    if summary["analysis"] == "modal":
+        what += " on the load path of the static state"
     fig, ax = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     for n in names:
         r = [x for x in rows if x["sensor"] == n]
@@ -37,15 +107,16 @@ def plot_sensors(run, summary):
     for k, c in enumerate(("ux", "uy", "uz")):
         ax[k].set_ylabel(f"{c} (m)")
         ax[k].grid(True, lw=0.3)
-    ax[0].legend(fontsize=8)
-    ax[0].set_title(f"{summary['scene']}: sensor displacements")
+        floor_ylim(ax[k], length)
+    if names:
+        ax[0].legend(fontsize=8)
     ax[2].set_xlabel(xlabel)
-    fig.tight_layout()
-    fig.savefig(run / "sensors.png", dpi=110)
-    plt.close(fig)
+    top = decorate(fig, summary, what)
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
 
 
-def plot_energy(run):
+def fig_energy(run, summary):
     e = read_csv(run / "energy.csv")
     t = [float(x["time"]) for x in e]
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -56,16 +127,16 @@ def plot_energy(run):
     ax.set_ylabel("energy (J)")
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=8)
-    ax.set_title("energy balance")
-    fig.tight_layout()
-    fig.savefig(run / "energy.png", dpi=110)
-    plt.close(fig)
+    top = decorate(fig, summary, "energy balance")
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
 
 
 def read_vtu(path):
-    """Points, displacements and cells (connectivity lists) of an ASCII .vtu."""
+    """Points, displacements, cells (type, connectivity) and field data of an ASCII .vtu."""
     root = ET.parse(path).getroot()
-    piece = root.find("UnstructuredGrid/Piece")
+    grid = root.find("UnstructuredGrid")
+    piece = grid.find("Piece")
     arr = lambda node: np.array(node.text.split(), dtype=float)
     pts = arr(piece.find("Points/DataArray")).reshape(-1, 3)
     disp = arr(piece.find("PointData/DataArray[@Name='displacement']")).reshape(-1, 3)
@@ -77,21 +148,90 @@ def read_vtu(path):
     for o, ty in zip(offs, types):
         out.append((ty, conn[start:o]))
         start = o
-    return pts, disp, out
+    fields = {a.get("Name"): float(a.text) for a in grid.findall("FieldData/DataArray")}
+    return pts, disp, out, fields
 
 
-def last_frame(run):
-    pvd = run / "results.pvd"
+def collection(run, name):
+    """(file, time value) of each data set of a .pvd collection (empty if absent)."""
+    pvd = run / name
     if not pvd.exists():
-        return None, None
-    sets = ET.parse(pvd).getroot().findall("Collection/DataSet")
+        return []
+    return [(run / d.get("file"), float(d.get("timestep")))
+            for d in ET.parse(pvd).getroot().findall("Collection/DataSet")]
+
+
+def direction_label(v):
+    names = "xyz"
+    k = int(np.argmax(np.abs(v)))
+    if abs(v[k]) > 1.0 - 5e-7:          # within 1e-3 rad of a global axis
+        return f"{'-' if v[k] < 0 else ''}{names[k]} (m)"
+    return f"along ({v[0]:.2f}, {v[1]:.2f}, {v[2]:.2f}) (m)"
+
+
+def perpendicular(e1):
+    a = np.zeros(3)
+    a[int(np.argmin(np.abs(e1)))] = 1.0
+    u = a - (a @ e1) * e1
+    return u / np.linalg.norm(u)
+
+
+def mode_panel(ax, vtu, length):
+    """One mode: the centreline of the base state (grey) and displaced by the mode (blue),
+    projected on the beam's main direction and the direction the mode moves it most."""
+    pts, disp, cells, fields = read_vtu(vtu)
+    lines = [c for ty, c in cells if ty == 4]
+    idx = np.concatenate(lines) if lines else np.zeros(0, dtype=int)
+    base, d = pts[idx] - disp[idx], disp[idx]
+    c = base - base.mean(axis=0)
+    e1 = np.linalg.svd(c, full_matrices=False)[2][0] if np.ptp(c) > 0 else np.array([1.0, 0, 0])
+    e1 = e1 * np.sign(e1[np.argmax(np.abs(e1))])
+    perp = d - np.outer(d @ e1, e1)
+    tol = 1e-9 * (length or 1.0)
+    note = None
+    if np.abs(perp).max(initial=0.0) > tol:
+        e2 = np.linalg.svd(perp, full_matrices=False)[2][0]
+    else:
+        e2 = perpendicular(e1)
+        note = "axial mode" if np.abs(d).max(initial=0.0) > tol else "the centreline does not move (torsion)"
+    e2 = e2 * np.sign(e2[np.argmax(np.abs(e2))])
+    for line in lines:
+        b = pts[line] - disp[line]
+        ax.plot(b @ e1, b @ e2, color="0.6", lw=1, ls="--")
+        ax.plot(pts[line] @ e1, pts[line] @ e2, color="C0", lw=1.5)
+    ax.set_title(f"mode {int(fields.get('MODE', 0))}: {fields.get('FREQUENCY_HZ', float('nan')):.5g} Hz, "
+                 f"scale {fields.get('MODE_SCALE', float('nan')):.3g} m", fontsize=9)
+    ax.set_xlabel(direction_label(e1), fontsize=8)
+    ax.set_ylabel(direction_label(e2), fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.grid(True, lw=0.3)
+    floor_ylim(ax, length)
+    if note:
+        ax.text(0.5, 0.75, note, transform=ax.transAxes, ha="center", fontsize=8, color="0.3")
+
+
+def fig_modes(run, summary, length):
+    sets = collection(run, "modes.pvd")
     if not sets:
-        return None, None
-    return run / sets[-1].get("file"), float(sets[-1].get("timestep"))
+        return None
+    shown = sets[:MAX_MODE_PANELS]
+    ncol = min(3, len(shown))
+    nrow = (len(shown) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.2 * nrow + 0.8), squeeze=False)
+    for ax, (vtu, _) in zip(axes.flat, shown):
+        mode_panel(ax, vtu, length)
+    for ax in list(axes.flat)[len(shown):]:
+        ax.set_visible(False)
+    what = "mode shapes (grey: the state the modes are about)"
+    if len(sets) > len(shown):
+        what += f", first {len(shown)} of {len(sets)}"
+    top = decorate(fig, summary, what)
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
 
 
-def render_beam(vtu, out_png, title):
-    pts, disp, cells = read_vtu(vtu)
+def fig_beam(vtu, summary, title):
+    pts, disp, cells, _ = read_vtu(vtu)
     mag = np.linalg.norm(disp, axis=1)
     quads = [c for ty, c in cells if ty == 9]
     lines = [c for ty, c in cells if ty == 4]
@@ -114,10 +254,33 @@ def render_beam(vtu, out_png, title):
     ax.set_zlabel("z (m)")
     sm = plt.cm.ScalarMappable(cmap="viridis", norm=norm)
     fig.colorbar(sm, ax=ax, shrink=0.6, label="|displacement| (m)")
-    ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(out_png, dpi=110)
-    plt.close(fig)
+    top = decorate(fig, summary, title)
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
+
+
+def figures(run):
+    """The plots of a run directory as {PNG file name: matplotlib Figure} (not saved)."""
+    run = Path(run)
+    summary = json.loads((run / "summary.json").read_text())
+    length = model_length(run)
+    figs = {}
+    rows = read_csv(run / "sensors.csv")
+    if summary["analysis"] != "modal" or len({r["step"] for r in rows}) > 1:
+        figs["sensors.png"] = fig_sensors(run, summary, length)
+    if (run / "energy.csv").exists():
+        figs["energy.png"] = fig_energy(run, summary)
+    if summary["analysis"] == "modal":
+        f = fig_modes(run, summary, length)
+        if f is not None:
+            figs["modes.png"] = f
+    frames = collection(run, "results.pvd")
+    if frames:
+        vtu, t = frames[-1]
+        where = {"dynamic": f"t = {t:.4g} s", "static": f"load factor {t:.4g}",
+                 "modal": f"the state the modes are about (load factor {t:.4g})"}[summary["analysis"]]
+        figs["beam.png"] = fig_beam(vtu, summary, where)
+    return figs
 
 
 def main(argv):
@@ -129,18 +292,15 @@ def main(argv):
     if not (run / "summary.json").exists() or not (run / "sensors.csv").exists():
         print(f"error: {run}: not a run directory (expected summary.json and sensors.csv)", file=sys.stderr)
         return 1
-    import json
+    figs = figures(run)
+    for name, fig in figs.items():
+        fig.savefig(run / name, dpi=110)
+        plt.close(fig)
     summary = json.loads((run / "summary.json").read_text())
-    plot_sensors(run, summary)
-    made = ["sensors.png"]
-    if (run / "energy.csv").exists():
-        plot_energy(run)
-        made.append("energy.png")
-    vtu, t = last_frame(run)
-    if vtu is not None:
-        render_beam(vtu, run / "beam.png", f"{summary['scene']} at {'t' if summary['analysis'] == 'dynamic' else 'load'} = {t:.4g}")
-        made.append("beam.png")
-    print(f"wrote {', '.join(str(run / m) for m in made)}")
+    if summary["analysis"] == "modal" and "modes.png" not in figs:
+        print(f"note: {run}: no modes.pvd (ParaView output off: output.vtk_every = 0?): no modes.png",
+              file=sys.stderr)
+    print(f"wrote {', '.join(str(run / m) for m in figs)}")
     return 0
 
 

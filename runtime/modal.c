@@ -10,6 +10,10 @@
  * sigma makes the right-hand matrix definite for free structures (rigid modes
  * have omega = 0) and massless directions (quaternion scale) give mu = 0, i.e.
  * infinite frequency, and are dropped.  Dense: meant for small models.
+ *
+ * Output: the state the modes are about goes to sensors.csv and step_*.vtu (the
+ * static load steps, or the reference as step 0); each mode to modes.csv,
+ * mode_sensors.csv and mode_NN.vtu (bk_output_mode normalizes and scales it).
  */
 #include "modal.h"
 
@@ -74,16 +78,24 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
                 return 1;
             }
     }
+    /* The state the modes are about: sensors.csv rows and step_*.vtu frames (the
+     * static load steps, or the reference as step 0); the modes go to their own
+     * files (bk_output_mode). */
     if (m->modal.about_static) {
         bk_run_info sinfo = {0};
-        if (bk_solve_static(s, q, out, &sinfo, log) != 0) {
+        int st = bk_solve_static(s, q, out, &sinfo, log);
+        bk_output_last_frame(out, sinfo.steps, sinfo.load_factor, q);
+        info->newton_iterations = sinfo.newton_iterations;
+        info->cutbacks = sinfo.cutbacks;
+        info->load_factor = sinfo.load_factor;
+        if (st != 0) {
             snprintf(info->message, sizeof info->message, "static state for the modal analysis: %.900s", sinfo.message);
             info->interrupted = sinfo.interrupted;
             return 1;
         }
-        info->newton_iterations = sinfo.newton_iterations;
     } else {
         memcpy(q, m->q0, (size_t)m->ndof * sizeof *q);
+        bk_output_step(out, 0, 0.0, q);
     }
     int md = s->maxdof;
     K = gsl_matrix_calloc((size_t)n, (size_t)n);
@@ -211,21 +223,22 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
     gsl_eigen_gensymmv_sort(mu, V, GSL_EIGEN_SORT_VAL_DESC);
     /* outputs */
     int want = m->modal.nmodes, got = 0;
-    double *shape = calloc((size_t)m->ndof, sizeof *shape), *qm = calloc((size_t)m->ndof, sizeof *qm);
-    if (!shape || !qm) {
-        free(shape);
-        free(qm);
+    double *shape = calloc((size_t)m->ndof, sizeof *shape);
+    if (!shape) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
-    bk_output_modes_begin(out);
+    if (bk_output_modes_begin(out, info->message, sizeof info->message) != 0) {
+        free(shape);
+        goto done;
+    }
     for (int k = 0; k < nz && got < want; ++k) {
         double muk = gsl_vector_get(mu, k);
         if (!(muk > 1e-14 / (trK / trM + sigma)))
             break;                              /* massless directions: infinite frequency */
         double w2 = 1.0 / muk - sigma;
         double omega = w2 > 0.0 ? sqrt(w2) : 0.0;
-        /* mode shape on all DOFs, scaled to a largest translation of 1 % of the length scale */
+        /* mode vector on all DOFs (fixed DOFs 0); bk_output_mode normalizes and scales it */
         memset(shape, 0, (size_t)m->ndof * sizeof *shape);
         for (int i = 0; i < m->ndof; ++i) {
             int j = s->eq[i];
@@ -239,18 +252,10 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
                 v = gsl_matrix_get(V, j, k);
             shape[i] = v;
         }
-        double smax = 0.0;
-        for (int i = 0; i < m->ndof; ++i)
-            smax = fmax(smax, fabs(shape[i]));
-        double a = smax > 0.0 ? 0.01 * m->length_scale / smax : 0.0;
-        for (int i = 0; i < m->ndof; ++i)
-            qm[i] = q[i] + a * shape[i];
         got++;
-        bk_output_mode(out, got, omega / (2.0 * M_PI), omega);
-        bk_output_step(out, got, omega / (2.0 * M_PI), qm);
+        bk_output_mode(out, got, omega / (2.0 * M_PI), omega, q, shape);
     }
     free(shape);
-    free(qm);
     info->steps = got;
     if (log)
         fprintf(log, "  %d modes (%d free DOFs, %d constraints of rank %d)\n", got, n, nc, r);

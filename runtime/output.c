@@ -1,9 +1,10 @@
-/* output.c -- sensors.csv and summary.json. */
+/* output.c -- sensors.csv, summary.json and the other result tables. */
 #include "output.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -98,10 +99,16 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, int iters
     fflush(stderr);
 }
 
-void bk_output_final(bk_output *o, int step, double t, const double *q)
+void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 {
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, NULL, -step, t, q);
+}
+
+void bk_output_final(bk_output *o, int step, double t, const double *q)
+{
+    if (o->m->analysis != BK_MODAL)
+        bk_output_last_frame(o, step, t, q);
     if (o->progress && wall() - o->t_start >= 1.0)
         fprintf(stderr, "\n");
 }
@@ -124,25 +131,76 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
     fflush(o->sensors);
 }
 
-int bk_output_modes_begin(bk_output *o)
+int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/modes.csv", o->dir);
     o->modes = fopen(path, "w");
-    if (!o->modes)
+    if (o->modes) {
+        fprintf(o->modes, "mode,frequency_hz,omega,scale_m\n");
+        snprintf(path, sizeof path, "%s/mode_sensors.csv", o->dir);
+        o->mode_sensors = fopen(path, "w");
+    }
+    if (!o->modes || !o->mode_sensors) {
+        snprintf(err, nerr, "%s: cannot write: %s", path, strerror(errno));
         return -1;
-    fprintf(o->modes, "mode,frequency_hz,omega\n");
+    }
+    fprintf(o->mode_sensors, "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
+    o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
+    if (!o->mode_q) {
+        snprintf(err, nerr, "out of memory for the mode output");
+        return -1;
+    }
     return 0;
 }
 
-void bk_output_mode(bk_output *o, int mode, double f_hz, double omega)
+double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi)
 {
+    const bk_model *m = o->m;
+    int n = m->ndof;
+    double *qp = o->mode_q, *qm = o->mode_q + n, pmax = 0.0;
+    for (int i = 0; i < n; ++i)
+        pmax = fmax(pmax, fabs(phi[i]));
+    /* a perturbation of 1e-6 of the model length (in the largest DOF) for the
+     * central differences of the point positions along the mode */
+    double eps = pmax > 0.0 ? 1e-6 * m->length_scale / pmax : 0.0, T = 0.0, R = 0.0;
+    for (int i = 0; i < n; ++i) {
+        qp[i] = q[i] + eps * phi[i];
+        qm[i] = q[i] - eps * phi[i];
+    }
+    if (eps > 0.0)
+        bk_vtk_mode_extent(m, qp, qm, eps, &T, &R);
+    double norm = T > 0.0 ? T : 1.0, scale = 0.0;
+    if (T > 0.0) {
+        scale = BK_MODE_SIZE * m->length_scale;
+        if (R / T * scale > BK_MODE_ROTATION)
+            scale = BK_MODE_ROTATION * T / R;
+    }
+    if (eps == 0.0)
+        eps = 1.0;                              /* zero vector: qp = qm = q, shape 0 */
     if (o->nfreq < (int)(sizeof o->freqs / sizeof *o->freqs))
         o->freqs[o->nfreq++] = f_hz;
-    if (!o->modes)
-        return;
-    fprintf(o->modes, "%d,%.17g,%.17g\n", mode, f_hz, omega);
-    fflush(o->modes);
+    if (o->modes) {
+        fprintf(o->modes, "%d,%.17g,%.17g,%.9g\n", mode, f_hz, omega, scale);
+        fflush(o->modes);
+    }
+    if (o->mode_sensors) {
+        for (int k = 0; k < m->nsensor; ++k) {
+            const bk_sensor *s = &m->sensors[k];
+            double x[3], a[3], b[3], sh[3];
+            bk_eval_point(m, q, s->elem, s->xi, x, NULL);
+            bk_eval_point(m, qp, s->elem, s->xi, a, NULL);
+            bk_eval_point(m, qm, s->elem, s->xi, b, NULL);
+            for (int i = 0; i < 3; ++i)
+                sh[i] = (a[i] - b[i]) / (2.0 * eps * norm);
+            fprintf(o->mode_sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", mode, f_hz,
+                    s->name, x[0] + scale * sh[0], x[1] + scale * sh[1], x[2] + scale * sh[2], scale * sh[0],
+                    scale * sh[1], scale * sh[2], sh[0], sh[1], sh[2]);
+        }
+        fflush(o->mode_sensors);
+    }
+    bk_vtk_mode(&o->vtk, mode, f_hz, omega, scale, norm, q, qp, qm, eps);
+    return scale;
 }
 
 void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
@@ -325,10 +383,14 @@ void bk_output_close(bk_output *o)
         fclose(o->energy);
     if (o->modes)
         fclose(o->modes);
+    if (o->mode_sensors)
+        fclose(o->mode_sensors);
+    free(o->mode_q);
+    o->mode_q = NULL;
     if (o->newton)
         fclose(o->newton);
     if (o->stability)
         fclose(o->stability);
-    o->sensors = o->energy = o->modes = o->newton = o->stability = NULL;
+    o->sensors = o->energy = o->modes = o->mode_sensors = o->newton = o->stability = NULL;
     bk_vtk_close(&o->vtk);
 }

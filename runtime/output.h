@@ -1,6 +1,7 @@
 /* output.h -- result files of a run: sensors.csv (one row per output step and
- * sensor, flushed as it is written so an interrupted run keeps its results) and
- * summary.json (written at the end, also when the solve failed). */
+ * sensor, flushed as it is written so an interrupted run keeps its results),
+ * summary.json (written at the end, also when the solve failed) and, for modal
+ * analyses, modes.csv, mode_sensors.csv and the mode files of vtk.h. */
 #ifndef BK_OUTPUT_H
 #define BK_OUTPUT_H
 
@@ -15,6 +16,8 @@ typedef struct bk_output {
     FILE *sensors;           /* owned */
     FILE *energy;            /* owned; dynamic analyses only */
     FILE *modes;             /* owned; modal analyses only */
+    FILE *mode_sensors;      /* owned; modal analyses only */
+    double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
     FILE *newton;            /* owned; static analyses: one row per Newton iteration */
     FILE *stability;         /* owned; static analyses with stability checks */
     int nfreq;
@@ -66,8 +69,11 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
 /* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
  * only after the first second, only on a terminal. */
 void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual);
-/* Writes the ParaView frame of the last state if the stride skipped it. */
+/* Writes the ParaView frame of the last state if the stride skipped it (not
+ * for modal analyses: bk_solve_modal writes the frames of the state the modes
+ * are about itself, with bk_output_last_frame), and ends the progress line. */
 void bk_output_final(bk_output *o, int step, double t, const double *q);
+void bk_output_last_frame(bk_output *o, int step, double t, const double *q);
 /* One row per sensor for the configuration q at output step `step`, time t. */
 void bk_output_step(bk_output *o, int step, double t, const double *q);
 /* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,
@@ -84,9 +90,19 @@ void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int it
  * eigenvalues of the constrained tangent (-1: factorization broke down) and
  * its smallest-magnitude and largest eigenvalue. */
 void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max);
-/* modes.csv: one row per mode (mode, frequency in Hz, angular frequency). */
-int bk_output_modes_begin(bk_output *o);
-void bk_output_mode(bk_output *o, int mode, double f_hz, double omega);
+/* Opens modes.csv and mode_sensors.csv and allocates the mode buffers; -1 on
+ * failure (a message in err). */
+int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);
+/* Mode `mode` (1, 2, ...) with frequency f_hz, angular frequency omega and
+ * vector phi[ndof] (any scale) about the state q: normalizes it to a largest
+ * point translation of 1 (mode_shape), scales it for display to a largest
+ * translation of BK_MODE_SIZE times the model length, or less if the sections
+ * would turn by more than BK_MODE_ROTATION rad, and writes the row of modes.csv
+ * (mode, frequency in Hz, angular frequency, that scale in m), the rows of
+ * mode_sensors.csv and mode_NN.vtu.  Returns the scale (m). */
+double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi);
+#define BK_MODE_SIZE 0.1
+#define BK_MODE_ROTATION 0.5
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
 /* Records a warning in info (summary.json "warnings") and prints it as
  * "warning: SCENE: ..." on `console` unless it is NULL.  A warning already

@@ -1,6 +1,7 @@
 /* vtk.c -- ParaView output: one XML UnstructuredGrid (.vtu) per written step and
  * a .pvd collection listing them with their times (rewritten after every frame,
- * so an interrupted run leaves a readable collection).
+ * so an interrupted run leaves a readable collection); modal analyses add one
+ * mode_NN.vtu per mode and their collection modes.pvd (time value = mode number).
  *
  * Every element contributes, at NX stations along its axis, a ring of points
  * around its cross-section (8 for a rectangle, 12 for a circle) joined by
@@ -9,6 +10,10 @@
  * deformation; beams with a section frame place it with d1, d2; the cable,
  * which has none, sweeps a section normal to its axis.  Point data:
  * displacement (m); cell data: strain energy density of the element (J/m^3).
+ * Mode files: the points of the base state displaced by the scaled mode, point
+ * data displacement (the scaled mode, m) and mode_shape (the mode normalized to
+ * a largest point translation of 1), field data MODE, FREQUENCY_HZ, OMEGA and
+ * MODE_SCALE (m).
  */
 #include "vtk.h"
 
@@ -136,89 +141,172 @@ static int write_pvd(const bk_vtk *v)
     return rename(tmp, path);
 }
 
-int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
+/* modes.pvd: mode_NN.vtu of modes 1..nmode, the mode number as the time value
+ * (ParaView's animation steps through the modes). */
+static int write_modes_pvd(const bk_vtk *v)
 {
-    const bk_model *m = v->m;
-    if (v->every <= 0)
-        return 0;
-    if (v->calls++ % v->every != 0 && step >= 0)
-        return 0;
-    if (v->nframe == v->cap) {                       /* grow (rare: capacity is estimated) */
-        int cap = 2 * v->cap;
-        double *nt = realloc(v->times, (size_t)cap * sizeof *nt);
-        if (!nt)
-            return -1;
-        v->times = nt;
-        int *nf = realloc(v->frames, (size_t)cap * sizeof *nf);
-        if (!nf)
-            return -1;
-        v->frames = nf;
-        v->cap = cap;
+    char path[1200], tmp[1210];
+    snprintf(path, sizeof path, "%s/modes.pvd", v->dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *fp = fopen(tmp, "w");
+    if (!fp)
+        return -1;
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
+    for (int k = 1; k <= v->nmode; ++k)
+        fprintf(fp, "    <DataSet timestep=\"%d\" part=\"0\" file=\"mode_%02d.vtu\"/>\n", k, k);
+    fprintf(fp, "  </Collection>\n</VTKFile>\n");
+    if (fclose(fp) != 0)
+        return -1;
+    return rename(tmp, path);
+}
+
+/* What a .vtu shows.  A step frame (mode == NULL): the points of q and their
+ * displacement from the reference.  A mode frame: the base state q displaced by
+ * scale * shape, where shape is the linearized motion of each point along the
+ * mode vector phi, (x(q + eps phi) - x(q - eps phi)) / (2 eps) / norm (exact for
+ * the continuum elements, whose points are linear in q). */
+typedef struct mode_view {
+    const double *qp, *qm;   /* q + eps phi, q - eps phi */
+    double eps, norm, scale;
+} mode_view;
+
+static void point_value(const bk_model *m, const double *q, const mode_view *mv, int pass, int e, double xi,
+                        double y, double z, double *out)
+{
+    double x[3], a[3];
+    if (!mv) {
+        section_point(m, q, e, xi, y, z, x);
+        if (pass == 1) {
+            section_point(m, m->q0, e, xi, y, z, a);
+            for (int i = 0; i < 3; ++i)
+                x[i] -= a[i];
+        }
+        memcpy(out, x, sizeof x);
+        return;
     }
-    int frame = step < 0 ? -step : step;
-    char path[1200];
-    snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
+    double sh[3];
+    section_point(m, mv->qp, e, xi, y, z, x);
+    section_point(m, mv->qm, e, xi, y, z, a);
+    for (int i = 0; i < 3; ++i)
+        sh[i] = (x[i] - a[i]) / (2.0 * mv->eps * mv->norm);
+    if (pass == 0) {
+        section_point(m, q, e, xi, y, z, x);
+        for (int i = 0; i < 3; ++i)
+            out[i] = x[i] + mv->scale * sh[i];
+    } else {
+        for (int i = 0; i < 3; ++i)
+            out[i] = pass == 1 ? mv->scale * sh[i] : sh[i];
+    }
+}
+
+long bk_vtk_npoints(const bk_model *m)
+{
+    long n = 0;
+    for (int e = 0; e < m->nelem; ++e)
+        n += (long)NX * ring_points(m, e) + NX;
+    return n;
+}
+
+void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, double eps, double *translation,
+                        double *rotation)
+{
+    double tmax = 0.0, rmax = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const double *g = m->geoms[m->elems[e].geom];
+        int r = ring_points(m, e);
+        for (int k = 0; k < NX; ++k) {
+            double xi = (double)k / (NX - 1), c[3], a[3], b[3];
+            section_point(m, qp, e, xi, 0.0, 0.0, a);
+            section_point(m, qm, e, xi, 0.0, 0.0, b);
+            for (int i = 0; i < 3; ++i)
+                c[i] = (a[i] - b[i]) / (2.0 * eps);
+            tmax = fmax(tmax, sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+            for (int j = 0; j < r; ++j) {
+                double y, z, d[3];
+                ring_yz(g, r, j, &y, &z);
+                section_point(m, qp, e, xi, y, z, a);
+                section_point(m, qm, e, xi, y, z, b);
+                for (int i = 0; i < 3; ++i)
+                    d[i] = (a[i] - b[i]) / (2.0 * eps);
+                tmax = fmax(tmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+                for (int i = 0; i < 3; ++i)
+                    d[i] -= c[i];
+                rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / sqrt(y * y + z * z));
+            }
+        }
+    }
+    *translation = tmax;
+    *rotation = rmax;
+}
+
+/* One XML UnstructuredGrid file: field data (name, value pairs), points,
+ * point data (displacement; mode_shape for modes), cell data (strain energy
+ * density, step frames only), cells. */
+static int write_vtu(const bk_model *m, const char *path, int nfield, const char *const *fname,
+                     const double *fval, const double *q, const mode_view *mv)
+{
     FILE *fp = fopen(path, "w");
     if (!fp)
         return -1;
-    long npts = 0, ncell = 0, nconn = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        npts += (long)NX * r + NX;
-        ncell += (long)(NX - 1) * r + 1;
-        nconn += 4L * (NX - 1) * r + NX;
-    }
+    long npts = bk_vtk_npoints(m), ncell = 0;
+    for (int e = 0; e < m->nelem; ++e)
+        ncell += (long)(NX - 1) * ring_points(m, e) + 1;
     fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                "  <UnstructuredGrid>\n    <FieldData>\n"
-                "      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n"
-                "    </FieldData>\n    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n", t, npts, ncell);
-    /* points, then displacements: same traversal twice */
-    for (int pass = 0; pass < 2; ++pass) {
+                "  <UnstructuredGrid>\n    <FieldData>\n");
+    for (int f = 0; f < nfield; ++f)
+        fprintf(fp, "      <DataArray type=\"Float64\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n",
+                fname[f], fval[f]);
+    fprintf(fp, "    </FieldData>\n    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n", npts, ncell);
+    /* points, displacements (and mode shapes): the same traversal each time */
+    int npass = mv ? 3 : 2;
+    for (int pass = 0; pass < npass; ++pass) {
         if (pass == 0)
             fprintf(fp, "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-        else
+        else if (pass == 1)
             fprintf(fp, "      <PointData Vectors=\"displacement\">\n        <DataArray type=\"Float64\" "
                         "Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+        else
+            fprintf(fp, "        <DataArray type=\"Float64\" Name=\"mode_shape\" NumberOfComponents=\"3\" format=\"ascii\">\n");
         for (int e = 0; e < m->nelem; ++e) {
             const double *g = m->geoms[m->elems[e].geom];
             int r = ring_points(m, e);
             for (int k = 0; k < NX; ++k) {
                 double xi = (double)k / (NX - 1);
                 for (int j = 0; j <= r; ++j) {
-                    double y = 0.0, z = 0.0, x[3], x0[3];
+                    double y = 0.0, z = 0.0, x[3];
                     if (j < r)
                         ring_yz(g, r, j, &y, &z);
-                    section_point(m, q, e, xi, y, z, x);
-                    if (pass == 0) {
-                        fprintf(fp, "          %.9g %.9g %.9g\n", x[0], x[1], x[2]);
-                    } else {
-                        section_point(m, m->q0, e, xi, y, z, x0);
-                        fprintf(fp, "          %.9g %.9g %.9g\n", x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]);
-                    }
+                    point_value(m, q, mv, pass, e, xi, y, z, x);
+                    fprintf(fp, "          %.9g %.9g %.9g\n", x[0], x[1], x[2]);
                 }
             }
         }
-        fprintf(fp, pass == 0 ? "        </DataArray>\n      </Points>\n"
-                              : "        </DataArray>\n      </PointData>\n");
+        fprintf(fp, "        </DataArray>\n");
+        if (pass == 0)
+            fprintf(fp, "      </Points>\n");
+        if (pass == npass - 1)
+            fprintf(fp, "      </PointData>\n");
     }
     /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
      * j = r is the centreline point */
-    fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
-                "Name=\"strain_energy_density\" format=\"ascii\">\n");
-    double qe[1024];
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_pair *p = m->pairs[el->pair];
-        for (int k = 0; k < p->element->ndof; ++k)
-            qe[k] = q[el->dofs[k]];
-        const double *g = m->geoms[el->geom];
-        double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[0] * g[3]);
-        int r = ring_points(m, e);
-        for (int c = 0; c < (NX - 1) * r + 1; ++c)
-            fprintf(fp, "          %.9g\n", dens);
+    if (!mv) {
+        fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
+                    "Name=\"strain_energy_density\" format=\"ascii\">\n");
+        double qe[1024];
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_elem *el = &m->elems[e];
+            const bk_pair *p = m->pairs[el->pair];
+            for (int k = 0; k < p->element->ndof; ++k)
+                qe[k] = q[el->dofs[k]];
+            const double *g = m->geoms[el->geom];
+            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[0] * g[3]);
+            int r = ring_points(m, e);
+            for (int c = 0; c < (NX - 1) * r + 1; ++c)
+                fprintf(fp, "          %.9g\n", dens);
+        }
+        fprintf(fp, "        </DataArray>\n      </CellData>\n");
     }
-    fprintf(fp, "        </DataArray>\n      </CellData>\n      <Cells>\n"
-                "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    fprintf(fp, "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
     long base = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e), w = r + 1;
@@ -250,12 +338,53 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
         fprintf(fp, "          4\n");                     /* VTK_POLY_LINE */
     }
     fprintf(fp, "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-    (void)nconn;
+    return fclose(fp) != 0 ? -1 : 0;
+}
+
+int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
+{
     (void)s;
-    if (fclose(fp) != 0)
+    if (v->every <= 0)
+        return 0;
+    if (v->calls++ % v->every != 0 && step >= 0)
+        return 0;
+    if (v->nframe == v->cap) {                       /* grow (rare: capacity is estimated) */
+        int cap = 2 * v->cap;
+        double *nt = realloc(v->times, (size_t)cap * sizeof *nt);
+        if (!nt)
+            return -1;
+        v->times = nt;
+        int *nf = realloc(v->frames, (size_t)cap * sizeof *nf);
+        if (!nf)
+            return -1;
+        v->frames = nf;
+        v->cap = cap;
+    }
+    int frame = step < 0 ? -step : step;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
+    static const char *const names[] = {"TIME"};
+    if (write_vtu(v->m, path, 1, names, &t, q, NULL) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
     v->nframe++;
     return write_pvd(v);
+}
+
+int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, double norm, const double *q,
+                const double *qp, const double *qm, double eps)
+{
+    if (v->every <= 0)
+        return 0;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/mode_%02d.vtu", v->dir, mode);
+    static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
+    const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
+    mode_view mv = {qp, qm, eps, norm, scale};
+    if (write_vtu(v->m, path, 5, names, vals, q, &mv) != 0)
+        return -1;
+    if (mode > v->nmode)
+        v->nmode = mode;
+    return write_modes_pvd(v);
 }

@@ -1,4 +1,5 @@
-/* vtk.h -- ParaView output (step_NNNNNN.vtu frames and results.pvd); see vtk.c. */
+/* vtk.h -- ParaView output (step_NNNNNN.vtu frames and results.pvd; modal:
+ * mode_NN.vtu and modes.pvd); see vtk.c. */
 #ifndef BK_VTK_H
 #define BK_VTK_H
 
@@ -14,6 +15,7 @@ typedef struct bk_vtk {
     int nframe, cap;
     double *times;           /* owned */
     int *frames;             /* owned */
+    int nmode;               /* mode files written (modes 1..nmode) */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
@@ -22,5 +24,20 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
  * frame number -step). */
 int bk_vtk_frame(bk_vtk *v, const struct bk_system *s, int step, double t, const double *q);
 void bk_vtk_close(bk_vtk *v);
+
+/* Number of points of every frame of the model. */
+long bk_vtk_npoints(const bk_model *m);
+/* For the mode phi given as qp = q + eps phi, qm = q - eps phi: the largest
+ * linearized point translation |dx/d(eps)| over the frame points, and the
+ * largest motion of a section point relative to its centreline point per unit
+ * distance between them (a section rotation, in rad, or a section strain). */
+void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, double eps, double *translation,
+                        double *rotation);
+/* Writes mode_NN.vtu of mode `mode` (1, 2, ...) and rewrites modes.pvd: the
+ * points of q displaced by scale * shape, shape = the linearized point motion of
+ * qp/qm divided by norm (so its largest translation is 1 when norm is the
+ * translation extent).  Nothing when ParaView output is off. */
+int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, double norm, const double *q,
+                const double *qp, const double *qm, double eps);
 
 #endif
