@@ -70,7 +70,7 @@ def decorate(fig, summary, what):
     fig.suptitle(title, fontsize=11)
     top = 0.95
     if note:
-        lines = textwrap.wrap(note, 110)
+        lines = textwrap.wrap(note, 110, break_on_hyphens=False)
         fig.text(0.5, 0.955, "\n".join(lines), ha="center", va="top", color="red", fontsize=8,
                  gid="status")
         top = 0.95 - 0.025 * len(lines)

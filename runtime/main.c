@@ -66,10 +66,12 @@ int main(int argc, char **argv)
     }
     bk_output out;
     if (bk_output_open(&out, m, out_dir, !quiet && !verbose, stderr) != 0) {
+        bk_output_close(&out);
         bk_system_free(s);
         bk_model_free(m);
         return 1;
     }
+    out.console = quiet ? NULL : stderr;
     double *q = malloc((size_t)m->ndof * sizeof *q);
     if (!q) {
         fprintf(stderr, "error: out of memory\n");

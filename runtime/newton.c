@@ -357,7 +357,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
     double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
-    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0;
+    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0, warned_singular = 0;
     attempt a = {0};
     for (int leg = 0; leg < nleg; ++leg) {
         double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
@@ -409,6 +409,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     st = NEWTON_UNSTABLE;
             }
             if (st == NEWTON_OK) {
+                if (isfinite(a.rcond) && a.rcond < ILL_RCOND && !warned_singular++)
+                    bk_warn(info, out->console, m->name,
+                            "the tangent at the equilibrium of load factor %.6g is numerically singular (KLU "
+                            "pivot ratio %.1e): the solution is not unique; likely cause: a rigid motion or "
+                            "mechanism the constraints leave free (e.g. the rotation of a beam about its own "
+                            "axis at a spherical joint), or a bifurcation point", target, a.rcond);
                 memcpy(w.qprev, w.qsave, (size_t)nd * sizeof *q);
                 memcpy(w.nuprev, w.nusave, (size_t)nc * sizeof *w.nu);
                 lam_prev = lam;

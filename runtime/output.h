@@ -24,6 +24,7 @@ typedef struct bk_output {
     double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */
     int progress;            /* 1: an updating progress line on stderr */
+    FILE *console;           /* warnings are printed here (NULL: --quiet) */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
 } bk_output;
 
