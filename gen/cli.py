@@ -177,6 +177,9 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
         model = None
         try:
             model = build(path, sets)
+            if not quiet:
+                for w in model.get("warnings", []):
+                    print(f"warning: {model['name']}: {w}", file=sys.stderr)
             index = load_index()
             out = prepare_out_dir(want or RUNS / model["name"], RUNS)
             write_model(model, out / "model.dat")
@@ -206,7 +209,21 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
     if rc in EXIT_SIGNAL.values():
         write_interrupted_summary(out, model["name"], model["analysis"],
                                   signal.SIGINT if rc == 130 else signal.SIGTERM)
+    add_scene_warnings(out, model.get("warnings", []))
     return rc, out
+
+
+def add_scene_warnings(out, warnings):
+    """The scene reader's warnings (likely locking element choices, ...) go first
+    into summary.json "warnings", beside the solver's."""
+    path = Path(out) / "summary.json"
+    if not warnings or not path.exists():
+        return
+    s = json.loads(path.read_text())
+    s["warnings"] = list(warnings) + [w for w in s.get("warnings", []) if w not in warnings]
+    tmp = path.with_name("summary.json.tmp")
+    tmp.write_text(json.dumps(s, indent=1) + "\n")
+    tmp.replace(path)
 
 
 def cmd_run(argv):
@@ -253,6 +270,9 @@ def print_summary(s, out):
               f"displacement [{u[0]:.6e}, {u[1]:.6e}, {u[2]:.6e}] m")
     if s["analysis"] == "modal":
         print_modes(out)
+    if s.get("warnings"):
+        n = len(s["warnings"])
+        print(f"  {n} warning{'s' if n > 1 else ''}: the result may be wrong (see above and summary.json)")
     print(f"  results in {out}/")
 
 

@@ -98,15 +98,19 @@ def tabulate_program(elem, integration):
 def sri_split(mat, I1, I2, J, C, params):
     """(W_full_order, W_centreline) of a material for selective reduced integration.
 
-    A material may define sri_split(I1, I2, J, C, p) (C: the right Cauchy-Green
-    tensor in the element frame, x along the axis); otherwise the split is
-    isochoric / volumetric: W_iso = W(J^-2/3 I1, J^-4/3 I2, 1), W_vol = W - W_iso."""
-    own = getattr(mat, "sri_split", None)
-    if own is not None:
-        return own(I1, I2, J, C, params)
+    At full order: the material's own uniaxial-stress energy of the axial stretch
+    (the lateral stretches chosen so that the lateral stresses vanish, derived
+    from W in gen/uniaxial.py) and the transverse shears with the small-strain
+    shear modulus, U(C11) + mu0/2 (C12^2 + C13^2): bending and stretching see the
+    material's uniaxial response whatever the element's lateral fields can do,
+    torsion and transverse shear their full stiffness.  At the centreline points:
+    the rest, W - W_full, which holds the lateral (Poisson, volumetric) response.
+    For St. Venant-Kirchhoff this is E/2 E11^2 + 2 mu (E12^2 + E13^2), the split
+    used before for that law alone."""
+    from gen.uniaxial import full_order_energy
     W = mat.energy(I1, I2, J, params)
-    W_iso = mat.energy(J**sp.Rational(-2, 3) * I1, J**sp.Rational(-4, 3) * I2, sp.Integer(1), params)
-    return W_iso, W - W_iso
+    W_full = full_order_energy(mat, params, C)
+    return W_full, W - W_full
 
 
 def material_energy(mat, part, I1, I2, J, C, params):
@@ -158,6 +162,10 @@ def body_program(elem, mat, part, want):
     inv = {"I1": I1, "I2": I2, "J": Jdet}
 
     W = material_energy(mat, part, I1, I2, Jdet, Cm, params)
+    # The uniaxial energy of the SRI split (gen/uniaxial.py) is a function of C11
+    # whose value and derivatives the program computes.
+    from gen.uniaxial import U0, define_uniaxial
+    urepl = define_uniaxial(prog, mat, params, Cm[0, 0]) if W.has(U0) else {}
     # Variables W depends on: invariants, and components of C (element frame).
     dvar = {m: first_derivatives(Fm, Cm, I1, cof)[m] for m in INVARIANTS}
     d2var = dict(second_derivatives(Fm, Cm, bm, I1))
@@ -168,20 +176,20 @@ def body_program(elem, mat, part, want):
         d2var[name] = component_second(I, Jc)
     names = list(inv)
     if want == "energy":
-        prog.output("e", w * W)
+        prog.output("e", w * W.xreplace(urepl))
         return prog, params
 
     # Material derivatives (times the point weight) as named scalars.
     Wm = {}
     for m in names:
-        d = sp.diff(W, inv[m])
+        d = sp.diff(W, inv[m]).xreplace(urepl)
         if d != 0:
             Wm[m] = prog.define(f"W_{m}", w * d)
     Wmn = {}
     if want == "tangent":
         for x, m in enumerate(names):
             for n in names[x:]:
-                d = sp.diff(W, inv[m], inv[n])
+                d = sp.diff(W, inv[m], inv[n]).xreplace(urepl)
                 if d != 0:
                     Wmn[(m, n)] = Wmn[(n, m)] = prog.define(f"W_{m}_{n}", w * d)
 
@@ -244,6 +252,37 @@ def contraction_programs(elem):
                     prog.output(f"K[{r * ndof + c}]", expr)
         progs.append(prog)
     return progs
+
+
+def invariants_program(elem):
+    """J = det F, I1 = tr C, I2 of C = F^T F at one quadrature point (t: its table
+    row), into inv[0..2]: what the runtime checks a state against (inverted or
+    over-compressed elements, strains beyond the range of a law)."""
+    slots = gradient_slots(elem)
+    nsh = elem.nshape
+    prog = Program()
+    q = [sp.Symbol(f"q[{i}]", real=True) for i in range(elem.ndof)]
+    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
+
+    F = sp.zeros(3, 3)
+    for i in range(3):
+        for J in range(3):
+            F[i, J] = prog.define(f"F{i}{J}", sp.collect(sp.expand(sum(q[3 * a + i] * g(a, J) for a in range(nsh))),
+                                                        t[1:]))
+    C = sp.zeros(3, 3)
+    for I in range(3):
+        for Jj in range(I, 3):
+            C[I, Jj] = C[Jj, I] = prog.define(f"C{I}{Jj}", sum(F[k, I] * F[k, Jj] for k in range(3)))
+    cof = cofactor(F)
+    prog.output("inv[0]", sum(F[i, 0] * cof[i, 0] for i in range(3)), op="=")
+    prog.output("inv[1]", C[0, 0] + C[1, 1] + C[2, 2], op="=")
+    prog.output("inv[2]", C[0, 0] * C[1, 1] + C[1, 1] * C[2, 2] + C[0, 0] * C[2, 2]
+                - C[0, 1]**2 - C[1, 2]**2 - C[0, 2]**2, op="=")
+    return prog
 
 
 def lowered_body(elem, mat, part, want):

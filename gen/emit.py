@@ -13,7 +13,7 @@ import sympy as sp
 
 from functools import lru_cache
 
-from gen.continuum import (A_INDEX, contraction_programs, lowered_body, rule_parts, tabulate_program,
+from gen.continuum import (A_INDEX, contraction_programs, invariants_program, lowered_body, rule_parts, tabulate_program,
                            viscous_body_program)
 from gen.element import B, H, L, XI, Y, Z, shape_functions, shape_gradients
 from gen.program import Program, count_lowered, lower, print_c, Ops
@@ -182,6 +182,11 @@ extern const bk_element bk_element_{name};
         htxt += (f"/* integration \"{rname}\": {', '.join(f'{len(p.rule)} points ({p.energy})' for p in parts)};"
                  f" tab[{ntab}] */\n")
         htxt += f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);\n"
+        nqp_r = sum(len(p.rule) for p in parts)
+        htxt += (f"/* J, I1, I2 of C = F^T F at the {nqp_r} points of \"{rname}\" (all parts, in order): "
+                 f"inv[3 p + 0..2] */\n"
+                 f"void {name}_{rname}_invariants(const double *restrict q, const double *restrict tab, "
+                 "double *restrict inv);\n")
         htxt += (f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
                  "const double *restrict tab, const double *restrict visc, double *restrict f, "
                  "double *restrict C, double *restrict K);\n")
@@ -214,6 +219,21 @@ extern const bk_element bk_element_{name};
         tprog, ntab = tabulate_program(elem, rname)
         c += _function(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
                        "double *restrict tab)", lower(tprog, ()), ["(void)q0;"])
+    # Strain invariants at every point of each integration (state checks).
+    ilow = lower(invariants_program(elem), ())
+    for rname in elem.rule_names:
+        _, parts, _ = rule_parts(elem, rname)
+        c += [f"void {name}_{rname}_invariants(const double *restrict q, const double *restrict tab, "
+              "double *restrict out)", "{"]
+        first = 0
+        for part in parts:
+            c += [f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+                  f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
+                  f"        double *restrict inv = out + 3 * ({first} + p);"]
+            c += _prologue(ilow, "        ") + _block(ilow, "        ")
+            c += ["    }"]
+            first += len(part.rule)
+        c += ["}", ""]
     # Kelvin-Voigt damping per integration (at the points of its first rule part).
     vlow = lower(viscous_body_program(elem), ())
     for rname in elem.rule_names:
@@ -267,6 +287,10 @@ def contraction_ops(elem):
 
 # ----------------------------------------------------------------------------
 # Pair file
+
+def _c_double(v):
+    return repr(float(v))
+
 
 def _kernel_fn(signature, ndof, parts, lows, zero, finish, contract=None):
     lines = [signature, "{"]
@@ -340,7 +364,9 @@ def pair_source(elem, elem_path, mat, mat_path):
               f'    &bk_element_{elem.name}, "{mat.NAME}", "{rname}", {len(mat.PARAMS)}, param_names,',
               f"    {ntab}, {nqp}, {counts['force'][1].total()}L, {counts['tangent'][1].total()}L,",
               f"    {elem.name}_{rname}_tabulate, {fns['energy']}, {fns['force']}, {fns['tangent']},",
-              f"    2, {elem.name}_{rname}_viscous",
+              f"    2, {elem.name}_{rname}_viscous,",
+              f"    {elem.name}_{rname}_invariants, {_c_double(getattr(mat, 'GREEN_STRAIN_RANGE', (0.0, 0.0))[0])}, "
+              f"{_c_double(getattr(mat, 'GREEN_STRAIN_RANGE', (0.0, 0.0))[1])}",
               "};", ""]
         parts_txt = " + ".join(f"{len(p.rule)} pts ({p.energy}, {'x'.join(map(str, rp.points))})"
                                for p, rp in zip(parts, elem.rule(rname)))

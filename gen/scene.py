@@ -352,20 +352,82 @@ def parse_point(ctx, spec, key, beams):
     return beam, min(s, beam["length"])
 
 
-def locate_node(beam, pos):
-    """(element, xi) of the node at pos (in element lengths from the beam start)."""
-    n = beam["nelem"]
-    k = min(int(pos + 1e-9), n - 1)
-    return beam["first_elem"] + k, min(max(pos - k, 0.0), 1.0)
+# Element choices measured to lock (out/report/verification.md, README "What is
+# there today"): (element, integrations, test on the small-strain nu, advice).
+LOCKING = (
+    ("ancf3243", ("full",), lambda nu: nu >= 0.1,
+     "Poisson locking: bending too stiff (26 % at nu = 0.3, slender beam); use integration = \"sri\""),
+    ("ancf3333", ("full",), lambda nu: nu >= 0.1,
+     "locks in bending (19 % too stiff at nu = 0.3, 20 elements); use ancf3363 or ancf3243 with sri"),
+    ("ancf3363", ("full",), lambda nu: nu > 0.495,
+     "volumetric locking with kappa/mu > 100 (10 % too stiff at kappa = 1000 mu); use integration = \"reduced\""),
+    ("ancf3273", ("full", "reduced"), lambda nu: nu > 0.495,
+     "volumetric locking with kappa/mu > 100 (0.76 of beam theory at kappa = 1000 mu, 10 elements); "
+     "use integration = \"sri\""),
+)
+
+
+def locking_warnings(where, ename, integ, law, params):
+    from gen.materials import all_materials
+    mod = all_materials()[law][0]
+    if not hasattr(mod, "small_strain"):
+        return []
+    _, nu = (float(x) for x in mod.small_strain(*params))
+    out = []
+    for el, integs, test, advice in LOCKING:
+        if el == ename and integ in integs and test(nu):
+            kappa_mu = 2 * (1 + nu) / (3 * (1 - 2 * nu)) if nu < 0.5 else math.inf
+            out.append(f"{where}: element {ename} with integration {integ!r} and law {law} (small-strain "
+                       f"nu = {nu:.4g}, kappa/mu = {kappa_mu:.3g}): {advice}")
+    return out
+
+
+def element_lengths(ctx, bt, where, nel, length):
+    """Element lengths of a beam: uniform, or graded by `grading` (ratio of the
+    last element's length to the first's, geometric progression) or given by
+    `element_lengths` (relative weights, scaled to the beam length)."""
+    if "grading" in bt and "element_lengths" in bt:
+        ctx.fail(f"{where}.grading", "give either grading or element_lengths, not both")
+    if "element_lengths" in bt:
+        v = bt["element_lengths"]
+        if not isinstance(v, list) or len(v) != nel or any(
+                isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(float(x)) or x <= 0
+                for x in v):
+            ctx.fail(f"{where}.element_lengths", f"expected an array of {nel} positive numbers (one per element, "
+                     f"relative lengths), found {_typename(v) if not isinstance(v, list) else repr(v)}")
+        w = [float(x) for x in v]
+    elif "grading" in bt:
+        r = get_number(ctx, bt, "grading", where, positive=True)
+        if not 1e-3 <= r <= 1e3:
+            ctx.fail(f"{where}.grading", f"expected a ratio last / first element length in [0.001, 1000], found {r!r}")
+        w = [r ** (k / (nel - 1)) if nel > 1 else 1.0 for k in range(nel)]
+    else:
+        w = [1.0] * nel
+    tot = sum(w)
+    ls = [length * x / tot for x in w]
+    if min(ls) < 1e-9 * length:
+        ctx.fail(f"{where}.element_lengths", "an element is shorter than 1e-9 of the beam")
+    return ls
+
+
+def _key(s, length):
+    """Dictionary key of an arc length on a beam (relative, rounded)."""
+    return round(s / length * 1e9) / 1e9
+
+
+def locate_node(beam, frac):
+    """(element, xi) of the node at `frac` of the beam length."""
+    return locate(beam, frac * beam["length"])
 
 
 def locate(beam, s):
     """(global element index, xi) of arc length s on a beam."""
-    n, l = beam["nelem"], beam["length"] / beam["nelem"]
-    k = min(int(s / l), n - 1)
-    xi = (s - k * l) / l
-    if xi > 1.0:
-        xi = 1.0
+    import bisect
+    starts = beam["elem_start"]
+    n = beam["nelem"]
+    k = min(max(bisect.bisect_right(starts, s + 1e-12 * beam["length"]) - 1, 0), n - 1)
+    l = beam["elem_lens"][k]
+    xi = min(max((s - starts[k]) / l, 0.0), 1.0)
     return beam["first_elem"] + k, xi
 
 
@@ -417,6 +479,7 @@ def build(path, sets=(), name=None):
     if not beams_doc:
         ctx.fail("beam", "missing; expected at least one [[beam]]")
     beams = {}
+    warnings = []       # likely wrong results (printed, and in summary.json "warnings")
     nodes = []          # (position, t, d1, d2, vectors) per global node
     dof_of_node = []
     ndof = 0
@@ -430,7 +493,8 @@ def build(path, sets=(), name=None):
         if bname is not None:
             where = f"beam.{bname}"
         check_keys(ctx, bt, {"name", "element", "material", "section", "start", "end", "up",
-                             "elements", "integration", "arc_center", "arc_axis", "arc_angle"}, where)
+                             "elements", "integration", "arc_center", "arc_axis", "arc_angle", "grading",
+                             "element_lengths"}, where)
         bname = get_name(ctx, bt, "name", where)
         if bname in beams:
             ctx.fail(f"{where}.name", f"duplicate beam name {bname!r}")
@@ -460,6 +524,8 @@ def build(path, sets=(), name=None):
         if einfo["section"] == "rectangle" and sec[0] != "rectangle":
             ctx.fail(f"{where}.section", f"element {ename} needs a rectangle section, found {sec[0]}")
         params = materials[mname][2](sec)
+        if einfo["kind"] == "continuum":
+            warnings += locking_warnings(where, ename, integ, law, params)
         if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
             ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
                      f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
@@ -497,7 +563,8 @@ def build(path, sets=(), name=None):
         if mkey not in mats_used:
             mats_used.append(mkey)
         midx = mats_used.index(mkey)
-        l = length / nel
+        lens = element_lengths(ctx, bt, where, nel, length)
+        starts = [sum(lens[:k]) for k in range(nel)]
 
         first_elem = len(elements)
         enodes = einfo["nodes"]
@@ -506,20 +573,21 @@ def build(path, sets=(), name=None):
         for k in range(nel):
             edofs = []
             end_node = None
+            l = lens[k]
             for ni, nd in enumerate(enodes):
                 xi = float(eval_fraction(nd["xi"]))
                 fields = tuple((f, d) for f, d in nd["fields"])
                 if xi == 0.0 and prev_end is not None:
                     gid = prev_end
                 else:
-                    X, t, d1, d2 = geo.at((k + xi) * l)
+                    X, t, d1, d2 = geo.at(starts[k] + xi * l)
                     gid = len(nodes)
                     nodes.append((X, t, d1, d2, fields))
                     dof_of_node.append(ndof)
                     for f, dim in fields:
                         q0.extend(reference_field(f, t, d1, d2, X))
                     ndof += sum(d for _, d in fields)
-                    node_ids_of_beam[round((k + xi) * 1e9) / 1e9] = gid
+                    node_ids_of_beam[_key(starts[k] + xi * l, length)] = gid
                 if nodes[gid][4] != fields:
                     ctx.fail(f"{where}.element", "inconsistent node layout between elements")
                 base = dof_of_node[gid]
@@ -538,7 +606,8 @@ def build(path, sets=(), name=None):
                 geoms.append((pidx, len(elements), section_geometry(sec, l)))
             elements.append((pidx, geom_index[gkey], midx, edofs))
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
-                        "first_elem": first_elem, "geo": geo, "elem_len": l, "node_at": node_ids_of_beam,
+                        "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
+                        "node_at": node_ids_of_beam,
                         "kind": einfo["kind"], "moments": einfo["moments"]}
 
     # Constraints
@@ -558,12 +627,11 @@ def build(path, sets=(), name=None):
 
     def node_of(ctx_key, spec, what):
         beam, s_ = parse_point(ctx, spec, ctx_key, beams)
-        pos = s_ / beam["elem_len"]
-        gid = beam["node_at"].get(round(pos * 1e9) / 1e9)
+        gid = beam["node_at"].get(_key(s_, beam["length"]))
         if gid is None:
-            ctx.fail(ctx_key, f"a {what} must be at a node of beam {beam['name']!r} "
-                     f"(every {beam['elem_len'] / (len(index['elements'][beam['element']]['nodes']) - 1):.6g} m), "
-                     f"found arc length {s_:.6g}")
+            near = min(beam["node_at"], key=lambda x: abs(x - s_ / beam["length"])) * beam["length"]
+            ctx.fail(ctx_key, f"a {what} must be at a node of beam {beam['name']!r} (nearest node at arc "
+                     f"length {near:.6g} m), found arc length {s_:.6g}")
         return beam, s_, gid
 
     def field_dofs(gid):
@@ -688,11 +756,12 @@ def build(path, sets=(), name=None):
                 forces.append((e, xi, 0.0, 0.0, 1 if dist == "section" else 0, val))
             else:
                 if beam["moments"] == "nodes":
-                    pos = s / beam["elem_len"]
-                    nodes_here = [x for x in beam["node_at"] if abs(x - pos) < 1e-9]
+                    frac = s / beam["length"]
+                    nodes_here = [x for x in beam["node_at"] if abs(x - frac) < 1e-9]
                     if not nodes_here:
+                        near = min(beam["node_at"], key=lambda x: abs(x - frac)) * beam["length"]
                         ctx.fail(f"{where}.at", f"element {beam['element']} takes moments at nodes only "
-                                 f"(every {beam['elem_len'] / 2:.6g} m along {beam['name']!r}), found {s:.6g}")
+                                 f"(nearest node of {beam['name']!r} at {near:.6g} m), found {s:.6g}")
                     e, xi = locate_node(beam, nodes_here[0])
                 elif beam["moments"] == "no_torsion":
                     _, t, _, _ = beam["geo"].at(s)
@@ -821,7 +890,7 @@ def build(path, sets=(), name=None):
         "fixed": sorted(fixed), "lincons": lincons, "forces": forces, "moments": moments,
         "gravity": gravity,
         "sensors": sensors, "static": stat, "beams": beams, "dynamic": dyn, "modal": modal, "qd0": qd0,
-        "vtk_every": vtk_every,
+        "vtk_every": vtk_every, "warnings": warnings,
     }
 
 

@@ -103,6 +103,11 @@ typedef struct bk_pair {
     void (*viscous)(const double *restrict q, const double *restrict qd, const double *restrict tab,
                     const double *restrict visc, double *restrict f, double *restrict C,
                     double *restrict K);
+    /* State checks: inv[3 p + 0..2] = J = det F, I1, I2 of C = F^T F at the nqp
+     * quadrature points (NULL: not offered, e.g. rod elements), and the range
+     * of principal Green strains the law is meant for (both 0: no limit). */
+    void (*invariants)(const double *restrict q, const double *restrict tab, double *restrict inv);
+    double green_strain_min, green_strain_max;
 } bk_pair;
 
 #endif

@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
 #include "norms.h"
@@ -232,13 +233,15 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     dyn_work w = {0};
     bk_linsolver ls = {0};
     bk_norms norms = {0};
+    bk_checks chk = {0};
     int rc = 1, *fdof = NULL;
     int nd = m->ndof;
     int nquat = 0;
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_norms_init(&norms, s) != 0) {
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_norms_init(&norms, s) != 0 ||
+        bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -485,6 +488,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
             bk_output_step(out, step, t, q);
+            bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
             free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
             double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
@@ -515,6 +519,7 @@ done:
     info->analyses = ls.nanalyze;
     bk_lin_free(&ls);
     bk_norms_free(&norms);
+    bk_checks_free(&chk);
     free(fdof);
     free(quat);
     work_free(&w);

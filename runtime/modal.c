@@ -88,6 +88,8 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         info->newton_iterations = sinfo.newton_iterations;
         info->cutbacks = sinfo.cutbacks;
         info->load_factor = sinfo.load_factor;
+        for (int k = 0; k < sinfo.nwarning; ++k)       /* already printed by the static solve */
+            bk_warn(info, NULL, m->name, "static state: %s", sinfo.warnings[k]);
         if (st != 0) {
             snprintf(info->message, sizeof info->message, "static state for the modal analysis: %.900s", sinfo.message);
             info->interrupted = sinfo.interrupted;

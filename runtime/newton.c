@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
 #include "norms.h"
@@ -261,6 +262,7 @@ static int probe_stability(bk_stability *st, bk_system *s, work *w, const double
 static void accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
                              bk_run_info *info, FILE *log, double *prev_lam)
 {
+    const char *s_name = out->m->name;
     int before = info->negative_eigenvalues;
     info->negative_eigenvalues = res->ok ? res->negative : before;
     info->eig_min = res->eig_min;
@@ -274,6 +276,12 @@ static void accept_stability(bk_stability *st, const bk_stability_result *res, d
         ev->neg_before = before;
         ev->neg_after = res->negative;
         ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
+        bk_warn(info, out->console, s_name,
+                "the number of negative tangent eigenvalues went from %d to %d between load factors %.6g and "
+                "%.6g (critical load factor %.6g): a %s was passed%s", before, res->negative, *prev_lam, lam,
+                ev->lam_critical, res->negative > before ? "bifurcation or limit point" : "point of regained stability",
+                res->negative > before ? "; the path beyond may be unstable (static.stable_path with an "
+                                         "imperfection follows the stable branch)" : "");
         if (log)
             fprintf(log, "  stability: negative eigenvalues of the tangent %d -> %d between load factors "
                          "%.6g and %.6g (first change at load factor %.6g)\n",
@@ -303,6 +311,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     w.Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof(double));
     bk_linsolver ls = {0};
     bk_stability stab = {0};
+    bk_checks chk = {0};
     int rc = 1, have_stab = 0;
     if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.r || !w.dx || !w.nu || !w.nusave ||
         !w.nuprev || !w.Ax) {
@@ -318,7 +327,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         goto done;
     }
     w.quat = bk_quat_list(s, &w.nquat);
-    if (w.nquat < 0 || bk_norms_init(&w.norms, s) != 0) {
+    if (w.nquat < 0 || bk_norms_init(&w.norms, s) != 0 || bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -423,6 +432,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 info->steps++;
                 info->load_factor = lam;
                 bk_output_step(out, info->steps, lam, q);
+                bk_checks_state(&chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;
                 if (a.iters <= 6 && dlam < dlam0)
                     dlam = fmin(2.0 * dlam, dlam0);
@@ -511,5 +521,6 @@ done:
     free(w.Ax);
     free(w.quat);
     bk_norms_free(&w.norms);
+    bk_checks_free(&chk);
     return rc;
 }

@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:de75a200c7edccb2f50615821ed3b3aa05df8325eb9e484d3fa04ff35e2e6ec8
+ * input hash: sha256:22929a21d22fd1bc22a2a9ec1d60e2842215f9b46a0bf78ce17163c222e77b5f
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -26,9 +26,13 @@
 extern const bk_element bk_element_ancf3243;
 /* integration "full": 12 points (all); tab[96] */
 void ancf3243_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
+void ancf3243_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "sri": 12 points (full_order), 3 points (centreline); tab[120] */
 void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 15 points of "sri" (all parts, in order): inv[3 p + 0..2] */
+void ancf3243_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.

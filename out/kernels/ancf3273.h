@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:15c03b63f30906508c02e65d7c55b5ab7c84b00da8a362d48fa759a3e4cbd303
+ * input hash: sha256:643d304d046f95e95b0e4987e4e0438689ac9542a4c318bd33cdaecfce8ab34c
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -32,10 +32,19 @@
 extern const bk_element bk_element_ancf3273;
 /* integration "full": 27 points (all); tab[405] */
 void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
+void ancf3273_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "reduced": 12 points (all); tab[180] */
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
+void ancf3273_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* integration "sri": 27 points (full_order), 4 points (centreline); tab[465] */
+void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 31 points of "sri" (all parts, in order): inv[3 p + 0..2] */
+void ancf3273_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
+void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */

@@ -1098,6 +1098,32 @@ void ancf3333_full_tabulate(const double *restrict geom, const double *restrict 
     tab[155] = x7;
 }
 
+void ancf3333_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)
+{
+    for (int p = 0; p < 12; ++p) {
+        const double *restrict t = tab + 0 + 13 * p;
+        double *restrict inv = out + 3 * (0 + p);
+        const double F00 = q[0]*t[1] + q[12]*t[6] + q[15]*t[8] + q[18]*t[9] + q[21]*t[10] + q[24]*t[12] + q[3]*t[2] + q[6]*t[4] + q[9]*t[5];
+        const double F01 = q[12]*t[7] + q[21]*t[11] + q[3]*t[3];
+        const double F02 = q[15]*t[7] + q[24]*t[11] + q[6]*t[3];
+        const double F10 = q[10]*t[5] + q[13]*t[6] + q[16]*t[8] + q[19]*t[9] + q[1]*t[1] + q[22]*t[10] + q[25]*t[12] + q[4]*t[2] + q[7]*t[4];
+        const double F11 = q[13]*t[7] + q[22]*t[11] + q[4]*t[3];
+        const double F12 = q[16]*t[7] + q[25]*t[11] + q[7]*t[3];
+        const double F20 = q[11]*t[5] + q[14]*t[6] + q[17]*t[8] + q[20]*t[9] + q[23]*t[10] + q[26]*t[12] + q[2]*t[1] + q[5]*t[2] + q[8]*t[4];
+        const double F21 = q[14]*t[7] + q[23]*t[11] + q[5]*t[3];
+        const double F22 = q[17]*t[7] + q[26]*t[11] + q[8]*t[3];
+        const double C00 = (F00*F00) + (F10*F10) + (F20*F20);
+        const double C11 = (F01*F01) + (F11*F11) + (F21*F21);
+        const double C22 = (F02*F02) + (F12*F12) + (F22*F22);
+        const double C01 = F00*F01 + F10*F11 + F20*F21;
+        const double C02 = F00*F02 + F10*F12 + F20*F22;
+        const double C12 = F01*F02 + F11*F12 + F21*F22;
+        inv[0] = F00*(F11*F22 - F12*F21) + F10*(-F01*F22 + F02*F21) + F20*(F01*F12 - F02*F11);
+        inv[1] = C00 + C11 + C22;
+        inv[2] = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+    }
+}
+
 void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K)
 {
     for (int i = 0; i < 27; ++i) f[i] = 0.0;

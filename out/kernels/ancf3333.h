@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:6b5bf4c791c92af94e19d72a6dc1cdd3071d3278dcda20bc9aa5256905f691fd
+ * input hash: sha256:28b2bdfcaad07e52c7fa5376bf2c1b0c731520f3f1711a6be06aad80a3d0eb8d
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -27,6 +27,8 @@
 extern const bk_element bk_element_ancf3333;
 /* integration "full": 12 points (all); tab[156] */
 void ancf3333_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
+void ancf3333_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.

@@ -358,5 +358,6 @@ const bk_pair bk_pair_ancf3333_arruda_boyce_full = {
     &bk_element_ancf3333, "arruda_boyce", "full", 3, param_names,
     156, 12, 4496L, 34592L,
     ancf3333_full_tabulate, ancf3333_arruda_boyce_full_energy, ancf3333_arruda_boyce_full_force, ancf3333_arruda_boyce_full_force_tangent,
-    2, ancf3333_full_viscous
+    2, ancf3333_full_viscous,
+    ancf3333_full_invariants, 0.0, 0.0
 };

@@ -411,5 +411,6 @@ const bk_pair bk_pair_ancf3333_mooney_rivlin_full = {
     &bk_element_ancf3333, "mooney_rivlin", "full", 3, param_names,
     156, 12, 4932L, 49140L,
     ancf3333_full_tabulate, ancf3333_mooney_rivlin_full_energy, ancf3333_mooney_rivlin_full_force, ancf3333_mooney_rivlin_full_force_tangent,
-    2, ancf3333_full_viscous
+    2, ancf3333_full_viscous,
+    ancf3333_full_invariants, 0.0, 0.0
 };

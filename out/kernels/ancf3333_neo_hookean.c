@@ -254,5 +254,6 @@ const bk_pair bk_pair_ancf3333_neo_hookean_full = {
     &bk_element_ancf3333, "neo_hookean", "full", 2, param_names,
     156, 12, 2880L, 28560L,
     ancf3333_full_tabulate, ancf3333_neo_hookean_full_energy, ancf3333_neo_hookean_full_force, ancf3333_neo_hookean_full_force_tangent,
-    2, ancf3333_full_viscous
+    2, ancf3333_full_viscous,
+    ancf3333_full_invariants, 0.0, 0.0
 };

@@ -324,5 +324,6 @@ const bk_pair bk_pair_ancf3333_svk_full = {
     &bk_element_ancf3333, "svk", "full", 2, param_names,
     156, 12, 3852L, 31548L,
     ancf3333_full_tabulate, ancf3333_svk_full_energy, ancf3333_svk_full_force, ancf3333_svk_full_force_tangent,
-    2, ancf3333_full_viscous
+    2, ancf3333_full_viscous,
+    ancf3333_full_invariants, -0.2, 0.5
 };

@@ -2508,6 +2508,58 @@ void ancf3363_reduced_tabulate(const double *restrict geom, const double *restri
     tab[335] = x21;
 }
 
+void ancf3363_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)
+{
+    for (int p = 0; p < 27; ++p) {
+        const double *restrict t = tab + 0 + 28 * p;
+        double *restrict inv = out + 3 * (0 + p);
+        const double F00 = q[0]*t[1] + q[12]*t[7] + q[15]*t[9] + q[18]*t[10] + q[21]*t[11] + q[24]*t[13] + q[27]*t[14] + q[30]*t[16] + q[33]*t[18] + q[36]*t[19] + q[39]*t[20] + q[3]*t[2] + q[42]*t[22] + q[45]*t[23] + q[48]*t[25] + q[51]*t[27] + q[6]*t[4] + q[9]*t[5];
+        const double F01 = q[12]*t[8] + q[21]*t[12] + q[27]*t[15] + q[30]*t[17] + q[39]*t[21] + q[3]*t[3] + q[45]*t[24] + q[48]*t[26] + q[9]*t[6];
+        const double F02 = q[12]*t[6] + q[15]*t[8] + q[24]*t[12] + q[30]*t[15] + q[33]*t[17] + q[42]*t[21] + q[48]*t[24] + q[51]*t[26] + q[6]*t[3];
+        const double F10 = q[10]*t[5] + q[13]*t[7] + q[16]*t[9] + q[19]*t[10] + q[1]*t[1] + q[22]*t[11] + q[25]*t[13] + q[28]*t[14] + q[31]*t[16] + q[34]*t[18] + q[37]*t[19] + q[40]*t[20] + q[43]*t[22] + q[46]*t[23] + q[49]*t[25] + q[4]*t[2] + q[52]*t[27] + q[7]*t[4];
+        const double F11 = q[10]*t[6] + q[13]*t[8] + q[22]*t[12] + q[28]*t[15] + q[31]*t[17] + q[40]*t[21] + q[46]*t[24] + q[49]*t[26] + q[4]*t[3];
+        const double F12 = q[13]*t[6] + q[16]*t[8] + q[25]*t[12] + q[31]*t[15] + q[34]*t[17] + q[43]*t[21] + q[49]*t[24] + q[52]*t[26] + q[7]*t[3];
+        const double F20 = q[11]*t[5] + q[14]*t[7] + q[17]*t[9] + q[20]*t[10] + q[23]*t[11] + q[26]*t[13] + q[29]*t[14] + q[2]*t[1] + q[32]*t[16] + q[35]*t[18] + q[38]*t[19] + q[41]*t[20] + q[44]*t[22] + q[47]*t[23] + q[50]*t[25] + q[53]*t[27] + q[5]*t[2] + q[8]*t[4];
+        const double F21 = q[11]*t[6] + q[14]*t[8] + q[23]*t[12] + q[29]*t[15] + q[32]*t[17] + q[41]*t[21] + q[47]*t[24] + q[50]*t[26] + q[5]*t[3];
+        const double F22 = q[14]*t[6] + q[17]*t[8] + q[26]*t[12] + q[32]*t[15] + q[35]*t[17] + q[44]*t[21] + q[50]*t[24] + q[53]*t[26] + q[8]*t[3];
+        const double C00 = (F00*F00) + (F10*F10) + (F20*F20);
+        const double C11 = (F01*F01) + (F11*F11) + (F21*F21);
+        const double C22 = (F02*F02) + (F12*F12) + (F22*F22);
+        const double C01 = F00*F01 + F10*F11 + F20*F21;
+        const double C02 = F00*F02 + F10*F12 + F20*F22;
+        const double C12 = F01*F02 + F11*F12 + F21*F22;
+        inv[0] = F00*(F11*F22 - F12*F21) + F10*(-F01*F22 + F02*F21) + F20*(F01*F12 - F02*F11);
+        inv[1] = C00 + C11 + C22;
+        inv[2] = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+    }
+}
+
+void ancf3363_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict out)
+{
+    for (int p = 0; p < 12; ++p) {
+        const double *restrict t = tab + 0 + 28 * p;
+        double *restrict inv = out + 3 * (0 + p);
+        const double F00 = q[0]*t[1] + q[12]*t[7] + q[15]*t[9] + q[18]*t[10] + q[21]*t[11] + q[24]*t[13] + q[27]*t[14] + q[30]*t[16] + q[33]*t[18] + q[36]*t[19] + q[39]*t[20] + q[3]*t[2] + q[42]*t[22] + q[45]*t[23] + q[48]*t[25] + q[51]*t[27] + q[6]*t[4] + q[9]*t[5];
+        const double F01 = q[12]*t[8] + q[21]*t[12] + q[27]*t[15] + q[30]*t[17] + q[39]*t[21] + q[3]*t[3] + q[45]*t[24] + q[48]*t[26] + q[9]*t[6];
+        const double F02 = q[12]*t[6] + q[15]*t[8] + q[24]*t[12] + q[30]*t[15] + q[33]*t[17] + q[42]*t[21] + q[48]*t[24] + q[51]*t[26] + q[6]*t[3];
+        const double F10 = q[10]*t[5] + q[13]*t[7] + q[16]*t[9] + q[19]*t[10] + q[1]*t[1] + q[22]*t[11] + q[25]*t[13] + q[28]*t[14] + q[31]*t[16] + q[34]*t[18] + q[37]*t[19] + q[40]*t[20] + q[43]*t[22] + q[46]*t[23] + q[49]*t[25] + q[4]*t[2] + q[52]*t[27] + q[7]*t[4];
+        const double F11 = q[10]*t[6] + q[13]*t[8] + q[22]*t[12] + q[28]*t[15] + q[31]*t[17] + q[40]*t[21] + q[46]*t[24] + q[49]*t[26] + q[4]*t[3];
+        const double F12 = q[13]*t[6] + q[16]*t[8] + q[25]*t[12] + q[31]*t[15] + q[34]*t[17] + q[43]*t[21] + q[49]*t[24] + q[52]*t[26] + q[7]*t[3];
+        const double F20 = q[11]*t[5] + q[14]*t[7] + q[17]*t[9] + q[20]*t[10] + q[23]*t[11] + q[26]*t[13] + q[29]*t[14] + q[2]*t[1] + q[32]*t[16] + q[35]*t[18] + q[38]*t[19] + q[41]*t[20] + q[44]*t[22] + q[47]*t[23] + q[50]*t[25] + q[53]*t[27] + q[5]*t[2] + q[8]*t[4];
+        const double F21 = q[11]*t[6] + q[14]*t[8] + q[23]*t[12] + q[29]*t[15] + q[32]*t[17] + q[41]*t[21] + q[47]*t[24] + q[50]*t[26] + q[5]*t[3];
+        const double F22 = q[14]*t[6] + q[17]*t[8] + q[26]*t[12] + q[32]*t[15] + q[35]*t[17] + q[44]*t[21] + q[50]*t[24] + q[53]*t[26] + q[8]*t[3];
+        const double C00 = (F00*F00) + (F10*F10) + (F20*F20);
+        const double C11 = (F01*F01) + (F11*F11) + (F21*F21);
+        const double C22 = (F02*F02) + (F12*F12) + (F22*F22);
+        const double C01 = F00*F01 + F10*F11 + F20*F21;
+        const double C02 = F00*F02 + F10*F12 + F20*F22;
+        const double C12 = F01*F02 + F11*F12 + F21*F22;
+        inv[0] = F00*(F11*F22 - F12*F21) + F10*(-F01*F22 + F02*F21) + F20*(F01*F12 - F02*F11);
+        inv[1] = C00 + C11 + C22;
+        inv[2] = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+    }
+}
+
 void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K)
 {
     for (int i = 0; i < 54; ++i) f[i] = 0.0;

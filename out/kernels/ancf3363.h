@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:b7ce2b18dc36c993662598e3265e1479fce5d4045713c217b3d7222577546e06
+ * input hash: sha256:d3152e517f194ec4766bdf51a26ede6de5715a40f9bfa294c7645fe00a3c44da
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -36,9 +36,13 @@
 extern const bk_element bk_element_ancf3363;
 /* integration "full": 27 points (all); tab[756] */
 void ancf3363_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
+void ancf3363_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* integration "reduced": 12 points (all); tab[336] */
 void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+/* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
+void ancf3363_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3363_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.

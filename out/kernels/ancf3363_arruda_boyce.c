@@ -412,7 +412,8 @@ const bk_pair bk_pair_ancf3363_arruda_boyce_full = {
     &bk_element_ancf3363, "arruda_boyce", "full", 3, param_names,
     756, 27, 16895L, 337655L,
     ancf3363_full_tabulate, ancf3363_arruda_boyce_full_energy, ancf3363_arruda_boyce_full_force, ancf3363_arruda_boyce_full_force_tangent,
-    2, ancf3363_full_viscous
+    2, ancf3363_full_viscous,
+    ancf3363_full_invariants, 0.0, 0.0
 };
 
 double ancf3363_arruda_boyce_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -822,5 +823,6 @@ const bk_pair bk_pair_ancf3363_arruda_boyce_reduced = {
     &bk_element_ancf3363, "arruda_boyce", "reduced", 3, param_names,
     336, 12, 7520L, 150080L,
     ancf3363_reduced_tabulate, ancf3363_arruda_boyce_reduced_energy, ancf3363_arruda_boyce_reduced_force, ancf3363_arruda_boyce_reduced_force_tangent,
-    2, ancf3363_reduced_viscous
+    2, ancf3363_reduced_viscous,
+    ancf3363_reduced_invariants, 0.0, 0.0
 };

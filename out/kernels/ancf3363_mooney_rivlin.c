@@ -465,7 +465,8 @@ const bk_pair bk_pair_ancf3363_mooney_rivlin_full = {
     &bk_element_ancf3363, "mooney_rivlin", "full", 3, param_names,
     756, 27, 17901L, 370413L,
     ancf3363_full_tabulate, ancf3363_mooney_rivlin_full_energy, ancf3363_mooney_rivlin_full_force, ancf3363_mooney_rivlin_full_force_tangent,
-    2, ancf3363_full_viscous
+    2, ancf3363_full_viscous,
+    ancf3363_full_invariants, 0.0, 0.0
 };
 
 double ancf3363_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -928,5 +929,6 @@ const bk_pair bk_pair_ancf3363_mooney_rivlin_reduced = {
     &bk_element_ancf3363, "mooney_rivlin", "reduced", 3, param_names,
     336, 12, 7956L, 164628L,
     ancf3363_reduced_tabulate, ancf3363_mooney_rivlin_reduced_energy, ancf3363_mooney_rivlin_reduced_force, ancf3363_mooney_rivlin_reduced_force_tangent,
-    2, ancf3363_reduced_viscous
+    2, ancf3363_reduced_viscous,
+    ancf3363_reduced_invariants, 0.0, 0.0
 };

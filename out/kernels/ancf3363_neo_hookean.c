@@ -308,7 +308,8 @@ const bk_pair bk_pair_ancf3363_neo_hookean_full = {
     &bk_element_ancf3363, "neo_hookean", "full", 2, param_names,
     756, 27, 13284L, 324108L,
     ancf3363_full_tabulate, ancf3363_neo_hookean_full_energy, ancf3363_neo_hookean_full_force, ancf3363_neo_hookean_full_force_tangent,
-    2, ancf3363_full_viscous
+    2, ancf3363_full_viscous,
+    ancf3363_full_invariants, 0.0, 0.0
 };
 
 double ancf3363_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -614,5 +615,6 @@ const bk_pair bk_pair_ancf3363_neo_hookean_reduced = {
     &bk_element_ancf3363, "neo_hookean", "reduced", 2, param_names,
     336, 12, 5904L, 144048L,
     ancf3363_reduced_tabulate, ancf3363_neo_hookean_reduced_energy, ancf3363_neo_hookean_reduced_force, ancf3363_neo_hookean_reduced_force_tangent,
-    2, ancf3363_reduced_viscous
+    2, ancf3363_reduced_viscous,
+    ancf3363_reduced_invariants, 0.0, 0.0
 };

@@ -378,7 +378,8 @@ const bk_pair bk_pair_ancf3363_svk_full = {
     &bk_element_ancf3363, "svk", "full", 2, param_names,
     756, 27, 15471L, 330831L,
     ancf3363_full_tabulate, ancf3363_svk_full_energy, ancf3363_svk_full_force, ancf3363_svk_full_force_tangent,
-    2, ancf3363_full_viscous
+    2, ancf3363_full_viscous,
+    ancf3363_full_invariants, -0.2, 0.5
 };
 
 double ancf3363_svk_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -754,5 +755,6 @@ const bk_pair bk_pair_ancf3363_svk_reduced = {
     &bk_element_ancf3363, "svk", "reduced", 2, param_names,
     336, 12, 6876L, 147036L,
     ancf3363_reduced_tabulate, ancf3363_svk_reduced_energy, ancf3363_svk_reduced_force, ancf3363_svk_reduced_force_tangent,
-    2, ancf3363_reduced_viscous
+    2, ancf3363_reduced_viscous,
+    ancf3363_reduced_invariants, -0.2, 0.5
 };

@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:2ce985e5cbc4f665200d9d2fc4f245d909c4e6b2dd4ce5e0d580c360cec97c56
+ * input hash: sha256:3a447a3df8a11de29d0dd00b33122c3febee1f74fbb738944a7389b895065d07
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:17e66292614aba2a953bc5a13e9fe47fed1db4efe2115d6f6682f43b37e199e1
+ * input hash: sha256:ebb94b43b99eb51cc794c5a29d15960266655338ffeca841fc4253ee9702ac38
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

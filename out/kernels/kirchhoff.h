@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:32cdaafac622329aabd757a2a3b1a504c167aa30b506c4ac5fbac7cd904e551b
+ * input hash: sha256:1d98cb3725dd2a7166944ae364e899fbc7aba482ad069c307407d1ea1a75afad
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
