@@ -176,7 +176,8 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
     with _Signals() as sig:
         model = None
         try:
-            model = build(path, sets)
+            log = None if quiet else (lambda line: print(line, file=sys.stderr, flush=True))
+            model = build(path, sets, log=log, out_dir=want or RUNS)
             if not quiet:
                 for w in model.get("warnings", []):
                     print(f"warning: {model['name']}: {w}", file=sys.stderr)

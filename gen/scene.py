@@ -4,17 +4,22 @@ model file the C solver reads (runtime/model.c documents the format).
 Every error is one line: `error: FILE: KEY: what was expected, what was found`
 raised as SceneError.  Nothing here imports sympy.
 """
+import itertools
 import json
 import math
+import time
 import re
 import tomllib
 from pathlib import Path
+
+import gen.scene_keys as K
 
 ROOT = Path(__file__).resolve().parent.parent
 KERNEL_INDEX = ROOT / "out" / "kernels" / "index.json"
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,62}$")
 
 ANALYSES = ("static", "dynamic", "modal")
+MAX_ELEMENTS = 1000000          # per beam (the model file and the solver use int indices)
 PLANNED_ANALYSES = ()
 
 STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
@@ -431,17 +436,50 @@ def locate(beam, s):
     return beam["first_elem"] + k, xi
 
 
-def build(path, sets=(), name=None):
-    """Validate the scene and return the model as a dict of plain data."""
+def _cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log):
+    """Memory, disk and time of the run estimated from the raw element counts
+    (gen/estimate.py): refuse what cannot fit, say what is large."""
+    from gen import estimate as est_mod
+    beams = []
+    for bi, bt in enumerate(beams_doc):
+        name = bt.get("name") if isinstance(bt.get("name"), str) else f"[{bi}]"
+        ename, nel = bt.get("element"), bt.get("elements")
+        if isinstance(ename, str) and ename in index["elements"] and isinstance(nel, int) and not isinstance(nel, bool) \
+                and 0 < nel <= MAX_ELEMENTS:        # beyond the limit the reader says so
+            beams.append((f"beam.{name}", ename, nel))
+    if not beams:
+        return
+    out = doc.get("output", {}) if isinstance(doc.get("output"), dict) else {}
+    st = doc.get("static", {}) if isinstance(doc.get("static"), dict) else {}
+    every = out.get("vtk_every", 1)
+    every = every if isinstance(every, int) and not isinstance(every, bool) and every >= 0 else 1
+    if every == 0:
+        frames = 0
+    elif analysis == "dynamic":
+        frames = 101
+    elif analysis == "modal":
+        md = doc.get("modal", {}) if isinstance(doc.get("modal"), dict) else {}
+        frames = (md.get("modes", 10) if isinstance(md.get("modes", 10), int) else 10) + 2
+    else:
+        ls = st.get("load_steps", 10)
+        ls = ls if isinstance(ls, int) and not isinstance(ls, bool) and ls > 0 else 10
+        frames = ls // every + 2
+    e = est_mod.estimate(beams, index, frames)
+    est_mod.check(e, beams, str(out_dir) if out_dir else str(ROOT / "out"), ctx.fail, log)
+
+
+def build(path, sets=(), name=None, log=None, out_dir=None):
+    """Validate the scene and return the model as a dict of plain data.  log: a
+    function taking a line (cost estimates and meshing progress of large
+    models); out_dir: where the results will go (disk space check)."""
     ctx = Ctx(path)
     doc = read_toml(path)
     if sets:
         apply_overrides(doc, sets, path)
     index = load_index()
-    check_keys(ctx, doc, {"scene", "material", "section", "beam", "constraint", "load", "static",
-                          "dynamic", "modal", "initial_velocity", "sensor", "output"}, "(top level)")
+    check_keys(ctx, doc, set(K.TOP), "(top level)")
     scene = get_table(ctx, doc, "scene")
-    check_keys(ctx, scene, {"analysis", "description", "name"}, "scene")
+    check_keys(ctx, scene, set(K.SCENE), "scene")
     analysis = get_str(ctx, scene, "analysis", "scene", default="static",
                        choices=ANALYSES + PLANNED_ANALYSES)
     if analysis not in ANALYSES:
@@ -464,20 +502,23 @@ def build(path, sets=(), name=None):
     sections = {}
     for sn, st in secs_doc.items():
         where = f"section.{sn}"
-        check_keys(ctx, st, {"shape", "b", "h", "radius"}, where)
+        check_keys(ctx, st, set(K.union(K.SECTION)), where)
         shape = get_str(ctx, st, "shape", where, choices=("rectangle", "circle"))
         if shape == "rectangle":
-            check_keys(ctx, st, {"shape", "b", "h"}, where)
+            check_keys(ctx, st, set(K.SECTION["rectangle"]), where)
             sections[sn] = ("rectangle", get_number(ctx, st, "b", where, positive=True, hi=1e6),
                             get_number(ctx, st, "h", where, positive=True, hi=1e6))
         else:
-            check_keys(ctx, st, {"shape", "radius"}, where)
+            check_keys(ctx, st, set(K.SECTION["circle"]), where)
             r = get_number(ctx, st, "radius", where, positive=True, hi=1e6)
             sections[sn] = ("circle", 2 * r, 2 * r)
 
     beams_doc = get_array_of_tables(ctx, doc, "beam")
     if not beams_doc:
         ctx.fail("beam", "missing; expected at least one [[beam]]")
+    _cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
+    n_total = sum(bt["elements"] for bt in beams_doc if isinstance(bt.get("elements"), int))
+    t_progress = [time.monotonic(), 0]
     beams = {}
     warnings = []       # likely wrong results (printed, and in summary.json "warnings")
     nodes = []          # (position, t, d1, d2, vectors) per global node
@@ -492,9 +533,7 @@ def build(path, sets=(), name=None):
         bname = get_name(ctx, bt, "name", where) if isinstance(bt.get("name"), str) else None
         if bname is not None:
             where = f"beam.{bname}"
-        check_keys(ctx, bt, {"name", "element", "material", "section", "start", "end", "up",
-                             "elements", "integration", "arc_center", "arc_axis", "arc_angle", "grading",
-                             "element_lengths"}, where)
+        check_keys(ctx, bt, set(K.BEAM), where)
         bname = get_name(ctx, bt, "name", where)
         if bname in beams:
             ctx.fail(f"{where}.name", f"duplicate beam name {bname!r}")
@@ -530,7 +569,7 @@ def build(path, sets=(), name=None):
             ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
                      f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
         start = get_vec3(ctx, bt, "start", where, bound=1e9)
-        nel = get_int(ctx, bt, "elements", where, lo=1, hi=1000000)
+        nel = get_int(ctx, bt, "elements", where, lo=1, hi=MAX_ELEMENTS)
         arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
         if arc_keys:
             if "end" in bt:
@@ -564,13 +603,16 @@ def build(path, sets=(), name=None):
             mats_used.append(mkey)
         midx = mats_used.index(mkey)
         lens = element_lengths(ctx, bt, where, nel, length)
-        starts = [sum(lens[:k]) for k in range(nel)]
+        starts = [0.0] + list(itertools.accumulate(lens))[:-1]
 
         first_elem = len(elements)
         enodes = einfo["nodes"]
         prev_end = None
         node_ids_of_beam = {}
         for k in range(nel):
+            if log and n_total > 100000 and k % 4096 == 0 and time.monotonic() - t_progress[0] > 2.0:
+                t_progress[0] = time.monotonic()
+                log(f"meshing: {t_progress[1] + k} of {n_total} elements")
             edofs = []
             end_node = None
             l = lens[k]
@@ -605,6 +647,7 @@ def build(path, sets=(), name=None):
                 geom_index[gkey] = len(geoms)
                 geoms.append((pidx, len(elements), section_geometry(sec, l)))
             elements.append((pidx, geom_index[gkey], midx, edofs))
+        t_progress[1] += nel
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
                         "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
                         "node_at": node_ids_of_beam,
@@ -641,14 +684,11 @@ def build(path, sets=(), name=None):
             base += dim
         return out
 
-    ctypes_ = ("clamp", "spherical", "revolute", "prescribed_rotation")
+    ctypes_ = tuple(K.CONSTRAINT)
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
         ctype = get_str(ctx, ct, "type", where, choices=ctypes_)
-        allowed = {"clamp": {"type", "a", "cross_section"}, "spherical": {"type", "a", "b"},
-                   "revolute": {"type", "a", "axis"},
-                   "prescribed_rotation": {"type", "a", "axis", "rate", "amplitude", "frequency"}}[ctype]
-        check_keys(ctx, ct, allowed, where)
+        check_keys(ctx, ct, set(K.CONSTRAINT[ctype]), where)
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         beam, s, gid = node_of(f"{where}.a", ct["a"], ctype)
@@ -742,10 +782,9 @@ def build(path, sets=(), name=None):
     gravity = None
     for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
         where = f"load[{li}]"
-        ltype = get_str(ctx, lt, "type", where, choices=("force", "moment", "gravity"))
+        ltype = get_str(ctx, lt, "type", where, choices=tuple(K.LOAD))
         if ltype in ("force", "moment"):
-            keys = {"type", "at", "value"} | ({"distribution"} if ltype == "force" else set())
-            check_keys(ctx, lt, keys, where)
+            check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             if "at" not in lt:
                 ctx.fail(f"{where}.at", "missing; expected a point like 'arm:end'")
             beam, s = parse_point(ctx, lt["at"], f"{where}.at", beams)
@@ -771,7 +810,7 @@ def build(path, sets=(), name=None):
                                  f"axis (moment component {mt:.6g} N m along the beam at {lt['at']!r})")
                 moments.append((e, xi, val))
         else:
-            check_keys(ctx, lt, {"type", "value"}, where)
+            check_keys(ctx, lt, set(K.LOAD["gravity"]), where)
             g = get_vec3(ctx, lt, "value", where)
             if gravity is not None:
                 ctx.fail(f"{where}.type", "gravity given twice")
@@ -779,7 +818,7 @@ def build(path, sets=(), name=None):
 
     # Static options
     st = get_table(ctx, doc, "static")
-    check_keys(ctx, st, set(STATIC_DEFAULTS), "static")
+    check_keys(ctx, st, set(K.STATIC), "static")
     stat = {
         "load_steps": get_int(ctx, st, "load_steps", "static", default=STATIC_DEFAULTS["load_steps"], lo=1, hi=10**7),
         "max_iterations": get_int(ctx, st, "max_iterations", "static", default=STATIC_DEFAULTS["max_iterations"], lo=1, hi=10000),
@@ -793,8 +832,7 @@ def build(path, sets=(), name=None):
         "stable_path": get_bool(ctx, st, "stable_path", "static", STATIC_DEFAULTS["stable_path"]),
     }
     dt = get_table(ctx, doc, "dynamic")
-    check_keys(ctx, dt, {"t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks",
-                         "output_every", "rayleigh_alpha", "rayleigh_beta", "rtol", "utol"}, "dynamic")
+    check_keys(ctx, dt, set(K.DYNAMIC), "dynamic")
     dyn = {k: v for k, v in DYNAMIC_DEFAULTS.items()}
     if analysis == "dynamic":
         dyn["t_end"] = get_number(ctx, dt, "t_end", "dynamic", positive=True)
@@ -818,7 +856,7 @@ def build(path, sets=(), name=None):
         ctx.fail("dynamic.dt", f"t_end / dt = {dyn['t_end'] / dyn['dt']:.3g} steps: expected at most 1e8")
 
     ot = get_table(ctx, doc, "output")
-    check_keys(ctx, ot, {"vtk_every"}, "output")
+    check_keys(ctx, ot, set(K.OUTPUT), "output")
     if analysis == "dynamic":
         n_out = dyn["t_end"] / (dyn["dt"] * dyn["output_every"])
         default_vtk = max(1, math.ceil(n_out / 100))
@@ -827,7 +865,7 @@ def build(path, sets=(), name=None):
     vtk_every = get_int(ctx, ot, "vtk_every", "output", default=default_vtk, lo=0, hi=10**9)
 
     mt = get_table(ctx, doc, "modal")
-    check_keys(ctx, mt, {"modes", "about"}, "modal")
+    check_keys(ctx, mt, set(K.MODAL), "modal")
     modal = {"modes": get_int(ctx, mt, "modes", "modal", default=10, lo=1, hi=100000),
              "about": 1 if get_str(ctx, mt, "about", "modal", default="reference",
                                    choices=("reference", "static")) == "static" else 0}
@@ -836,7 +874,7 @@ def build(path, sets=(), name=None):
     qd0 = [0.0] * ndof
     for ii, iv in enumerate(get_array_of_tables(ctx, doc, "initial_velocity")):
         where = f"initial_velocity[{ii}]"
-        check_keys(ctx, iv, {"beam", "velocity", "angular_velocity", "center"}, where)
+        check_keys(ctx, iv, set(K.INITIAL_VELOCITY), where)
         v = get_vec3(ctx, iv, "velocity", where, default=[0.0, 0.0, 0.0])
         w = get_vec3(ctx, iv, "angular_velocity", where, default=[0.0, 0.0, 0.0])
         c = get_vec3(ctx, iv, "center", where, default=[0.0, 0.0, 0.0])
@@ -869,7 +907,7 @@ def build(path, sets=(), name=None):
     seen = set()
     for si, sd in enumerate(get_array_of_tables(ctx, doc, "sensor")):
         where = f"sensor[{si}]"
-        check_keys(ctx, sd, {"name", "at"}, where)
+        check_keys(ctx, sd, set(K.SENSOR), where)
         sn = get_name(ctx, sd, "name", where)
         if sn in seen:
             ctx.fail(f"sensor.{sn}", f"duplicate sensor name {sn!r}")

@@ -59,6 +59,8 @@ int main(int argc, char **argv)
     bk_model *m = bk_model_read(model_path, bk_linked_pairs, bk_nlinked_pairs, stderr);
     if (!m)
         return 1;
+    if (!quiet && m->nelem > 100000)
+        fprintf(stderr, "setting up %d elements, %d DOFs (sparse pattern, KLU analysis)...\n", m->nelem, m->ndof);
     bk_system *s = bk_system_create(m, stderr);
     if (!s) {
         bk_model_free(m);

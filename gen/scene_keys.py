@@ -1,0 +1,45 @@
+"""Every key a scene file may hold, per table, in one place (sympy-free).
+
+The scene reader (gen/scene.py) accepts exactly these keys (plus, in
+[material.NAME], the parameter keys of the chosen law: gen/materials/*.py
+INPUTS); tests/test_docs.py checks that the README's scene reference lists
+the same keys.
+"""
+
+TOP = ("scene", "material", "section", "beam", "constraint", "load", "static", "dynamic", "modal",
+       "initial_velocity", "sensor", "output")
+
+SCENE = ("analysis", "description", "name")
+MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
+SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
+BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
+        "arc_center", "arc_axis", "arc_angle", "grading", "element_lengths")
+CONSTRAINT = {"clamp": ("type", "a", "cross_section"),
+              "spherical": ("type", "a", "b"),
+              "revolute": ("type", "a", "axis"),
+              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency")}
+LOAD = {"force": ("type", "at", "value", "distribution"),
+        "moment": ("type", "at", "value"),
+        "gravity": ("type", "value")}
+STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
+          "stable_path")
+DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
+           "rayleigh_alpha", "rayleigh_beta", "rtol", "utol")
+MODAL = ("modes", "about")
+OUTPUT = ("vtk_every",)
+INITIAL_VELOCITY = ("beam", "velocity", "angular_velocity", "center")
+SENSOR = ("name", "at")
+
+
+def union(by_type):
+    out = []
+    for keys in by_type.values():
+        out += [k for k in keys if k not in out]
+    return tuple(out)
+
+
+def all_keys():
+    """{table: keys} for every table but the law parameters of [material.NAME]."""
+    return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM,
+            "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
+            "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR}

@@ -1,0 +1,54 @@
+"""The README's scene reference lists exactly the keys the scene reader accepts
+(gen/scene_keys.py and the laws' parameter keys), so a key is never undocumented
+or documented but refused."""
+import re
+
+from gen import scene_keys as K
+from gen.materials import all_materials
+from util import ROOT
+
+
+def documented_keys():
+    text = (ROOT / "README.md").read_text()
+    start = text.index("### Scene reference")
+    table = text[start:text.index("\n\n", text.index("| key |", start))]
+    keys = set()
+    for row in table.splitlines()[2:]:
+        first = row.split("|")[1]
+        prefix = None
+        for tok in re.findall(r"`([^`]+)`", first):
+            if tok.startswith("."):
+                keys.add(prefix + tok)
+            else:
+                keys.add(tok)
+                prefix = tok.rsplit(".", 1)[0]
+    out = set()
+    for k in keys:
+        parts = k.split(".")
+        if parts[0] in ("material", "section") and len(parts) == 3:
+            parts = [parts[0], parts[2]]
+        out.add(".".join(parts))
+    return out
+
+
+def accepted_keys():
+    out = {f"{t}.{k}" for t, ks in K.all_keys().items() for k in ks}
+    for mod, _ in all_materials().values():
+        for keys, _fn in mod.INPUTS:
+            out |= {f"material.{k}" for k in keys}
+        if getattr(mod, "KIND", "continuum") == "resultant":
+            out |= {"material.E", "material.nu"}
+    return out
+
+
+def test_readme_scene_reference_matches_the_reader():
+    doc, acc = documented_keys(), accepted_keys()
+    assert not acc - doc, f"accepted but not in the README's scene reference: {sorted(acc - doc)}"
+    assert not doc - acc, f"in the README's scene reference but refused by the reader: {sorted(doc - acc)}"
+
+
+def test_readme_mentions_outputs_and_limits():
+    text = (ROOT / "README.md").read_text()
+    for needle in ("results.pvd", "step_NNNNNN.vtu", "vtk_every", "[[initial_velocity]]", "1,000,000",
+                   "about 100 frames"):
+        assert needle in text, needle
