@@ -148,8 +148,7 @@ def statics(quick, log):
     u_ref = ref[ref_mesh[1]]
     L = 1.0
     ref_unc = dist(ref[ref_mesh[0]], u_ref) / L
-    sys.path.insert(0, str(ROOT / "tests"))
-    from elastica import tip_load_cantilever
+    from references.elastica import tip_load_cantilever
     eu, ew = tip_load_cantilever(1.0, 100.0, 7.2e10 * 0.01**4 / 12, n=2000)
     el = (1.0 + eu, -ew)
     notes.append(("table3", f"Reference: `ancf3363` `reduced` (3 x 2 x 2 points, the locking-free higher-order "
@@ -157,7 +156,7 @@ def statics(quick, log):
                   f"({u_ref[0]:.9f}, {u_ref[1]:.3g}, {u_ref[2]:.9f}) m.  The same element with {ref_mesh[0]} "
                   f"elements differs by {ref_unc:.1e} L, an upper bound of the reference's discretization error "
                   f"(its convergence is at least quadratic).  For comparison the inextensible Euler-Bernoulli "
-                  f"elastica (GSL shooting, tests/elastica.py) gives a tip at ({el[0]:.9f}, {el[1]:.9f}) m "
+                  f"elastica (GSL shooting, references/elastica.py) gives a tip at ({el[0]:.9f}, {el[1]:.9f}) m "
                   f"(x, z): {dist((u_ref[0], u_ref[2]), el) / L:.1e} L from the continuum reference, the "
                   f"size of the shear, extension and Poisson effects that the resultant beams and the "
                   f"continuum elements model differently.  Error = |tip - reference| / L."))

@@ -26,8 +26,7 @@ from pathlib import Path
 from gen.cli import execute
 from gen.scene import ROOT
 
-sys.path.insert(0, str(ROOT / "tests"))
-from rigid_pendulum import rigid_pendulum  # noqa: E402
+from references.rigid_pendulum import rigid_pendulum  # noqa: E402
 
 OUT = ROOT / "out" / "report"
 RUNS = OUT / "runs" / "hard"

@@ -13,8 +13,7 @@ from pathlib import Path
 from gen.cli import execute
 from gen.scene import ROOT
 
-sys.path.insert(0, str(ROOT / "tests"))
-from elastica import heavy_cantilever  # noqa: E402
+from references.elastica import heavy_cantilever  # noqa: E402
 
 OUT = ROOT / "out" / "report"
 VARIANTS = [("ancf3243", "full"), ("ancf3243", "sri"), ("ancf3333", "full"), ("ancf3273", "full"),

@@ -1,5 +1,5 @@
 """out/report/seed_tables.md: our results for the seed cantilever Tables 2-6 next
-to the paper's columns (tests/reference/seed_cantilever_tables.csv), for every
+to the paper's columns (references/data/seed_cantilever_tables.csv), for every
 element variant.
 
 usage: ./build.sh report [--quick] [--only LABEL_SUBSTRING]
@@ -14,9 +14,8 @@ from pathlib import Path
 from gen.cli import execute
 from gen.scene import ROOT, SceneError
 
-sys.path.insert(0, str(ROOT / "tests"))
-import seed_tables  # noqa: E402
-from elastica import tip_load_cantilever  # noqa: E402
+from references import seed_tables  # noqa: E402
+from references.elastica import tip_load_cantilever  # noqa: E402
 
 OUT = ROOT / "out" / "report"
 E, B = 7.2e10, 0.01
@@ -123,7 +122,7 @@ def main(argv):
              "GEF with 10 elements in Tables 2-4 and the element count shown in Tables 5-6.",
              "Angles: Table 5 the rotation of the tip axis vector about z, Table 6 the rotation of the",
              "tip section vector d1 about x, both followed continuously along the load path.",
-             "Exact: Table 2 the linear bar F L/(E A); Tables 3-4 the inextensible elastica (tests/elastica.py);",
+             "Exact: Table 2 the linear bar F L/(E A); Tables 3-4 the inextensible elastica (references/elastica.py);",
              "Table 5 360 degrees; Table 6 Saint-Venant torsion T L/(G J), J = 0.1406 b^4, i.e. the straight",
              "twisted branch: at 100 N m the shaft is past its buckling load and ABAQUS reports a buckled",
              "branch (213 degrees); our elements follow the straight branch (no imperfection is given).", ""]

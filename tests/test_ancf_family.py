@@ -1,7 +1,7 @@
 """The ANCF family against the seed's plane-bending case at nu = 0.3 (Table 3, -100 N):
 Poisson locking of the full 3243, its cure by selective reduced integration, and the
 higher-order elements."""
-from seed_tables import value
+from references.seed_tables import value
 from util import rel, run_scene, tip
 
 ABAQUS_W = value(3, "Fz=-100 N", 0.3, "w", "abaqus_b32")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seed_tables import value
+from references.seed_tables import value
 from util import BUILD, ROOT, ensure_dir, rel, run_scene, tip
 
 E, L, B, H = 7.2e10, 1.0, 0.01, 0.01

@@ -7,15 +7,15 @@ import tempfile
 
 import numpy as np
 
-from pencil import matrix_pencil
-from rigid_pendulum import rigid_pendulum as rigid_pendulum_lists
+from references.pencil import matrix_pencil
+from references.rigid_pendulum import rigid_pendulum as rigid_pendulum_lists
 from util import BUILD, ensure_dir, load_run, run_scene
 
 G, L = 9.81, 1.0
 
 
 def rigid_pendulum(t_end, n=40000, g=G):
-    """The rigid rod pendulum (tests/rigid_pendulum.py) as arrays (times, tip x, tip z)."""
+    """The rigid rod pendulum (references/rigid_pendulum.py) as arrays (times, tip x, tip z)."""
     return tuple(np.array(v) for v in rigid_pendulum_lists(t_end, n=n, g=g, L=L))
 
 

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from elastica import tip_load_cantilever
-from seed_tables import value
+from references.elastica import tip_load_cantilever
+from references.seed_tables import value
 from util import BUILD, ROOT, Kernel, ensure_dir, load_run, rel, run_scene, tip
 
 E, L, B, H, NU = 7.2e10, 1.0, 0.01, 0.01, 0.3

@@ -1,9 +1,9 @@
-"""The seed's cantilever Tables 2-6 (tests/reference/seed_cantilever_tables.csv,
+"""The seed's cantilever Tables 2-6 (references/data/seed_cantilever_tables.csv,
 copied from shared/reference/): published values by table, case, load and nu."""
 import csv
 from pathlib import Path
 
-CSV = Path(__file__).resolve().parent / "reference" / "seed_cantilever_tables.csv"
+CSV = Path(__file__).resolve().parent / "data" / "seed_cantilever_tables.csv"
 COLUMNS = ("abaqus_b32", "ancf_full", "ancf_deficient", "gef")
 
 
