@@ -11,7 +11,7 @@ DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).
 PACKAGES=(gcc libc6-dev python3 python3-sympy python3-numpy python3-matplotlib
-          libsuitesparse-dev libgsl-dev valgrind)
+          libsuitesparse-dev libgsl-dev valgrind calculix-ccx)
 
 usage() {
     cat <<'EOF'
