@@ -29,11 +29,13 @@ What the deck represents:
     forces of the 8-node faces: -A/12 at corners, A/3 at mid-sides); gravity is
     *DLOAD GRAV on every element with the material's density.
   * Analyses: *STATIC with NLGEOM (load ramped over the step, increments of at
-    most 1/load_steps, cut back by ccx when Newton fails), or implicit *DYNAMIC (HHT-alpha, alpha = (rho_inf - 1)/(rho_inf + 1),
-    fixed step dt) with the scene's rigid initial velocity and Rayleigh damping
+    most 1/load_steps, cut back by ccx when Newton fails), or implicit *DYNAMIC
+    (HHT-alpha, alpha = (rho_inf - 1)/(rho_inf + 1), steps of at most dt, cut back
+    by ccx when Newton fails, output at every dt) with the scene's rigid initial
+    velocity and Rayleigh damping
     *DAMPING ALPHA, BETA (C = alpha M + beta K, K ccx's current tangent stiffness).
   * Output: *NODE PRINT U of the sensor nodes (section centroid at the sensor's
-    arc length) at every increment.
+    arc length) at every increment (statics) or every dt (dynamics).
 """
 import math
 
@@ -181,6 +183,8 @@ def write_deck(prob, nx, ny, nz, increments=None):
             vel += [f"{i + 1}, {k + 1}, {_f(u[k])}" for k in range(3) if u[k] != 0.0]
         if vel:
             L += ["*INITIAL CONDITIONS, TYPE=VELOCITY"] + vel
+    if prob.analysis == "dynamic":        # output at every dt (ccx lands its increments on them)
+        L += ["*TIME POINTS, NAME=TOUT, GENERATE", f"{_f(prob.dt)}, {_f(prob.t_end)}, {_f(prob.dt)}"]
     L += ["*AMPLITUDE, NAME=RAMP", "0.0, 0.0, 1.0, 1.0", "*AMPLITUDE, NAME=CONST", "0.0, 1.0, 1.0e9, 1.0"]
     amp = "RAMP" if prob.analysis == "static" else "CONST"
     L += ["*STEP, NLGEOM, INC=10000000"]
@@ -190,7 +194,7 @@ def write_deck(prob, nx, ny, nz, increments=None):
         L += ["*STATIC", f"{_f(dt)}, 1.0, {_f(dt * 1e-6)}, {_f(dt)}"]
     else:
         alpha = (prob.rho_inf - 1.0) / (prob.rho_inf + 1.0)
-        L += [f"*DYNAMIC, ALPHA={_f(alpha)}, DIRECT", f"{_f(prob.dt)}, {_f(prob.t_end)}"]
+        L += [f"*DYNAMIC, ALPHA={_f(alpha)}", f"{_f(prob.dt)}, {_f(prob.t_end)}, {_f(prob.dt * 1e-4)}, {_f(prob.dt)}"]
     L += ["*CONTROLS, PARAMETERS=FIELD", ", ".join(_f(x) for x in FIELD_CONTROLS)]
     for side, F in sorted(prob.forces.items()):
         loads = []
@@ -204,7 +208,8 @@ def write_deck(prob, nx, ny, nz, increments=None):
         if g > 0:
             L += [f"*DLOAD, AMPLITUDE={amp}",
                   "EALL, GRAV, " + _f(g) + ", " + ", ".join(_f(x / g) for x in prob.gravity)]
+    tp = ", TIME POINTS=TOUT" if prob.analysis == "dynamic" else ""
     for _, nset, _ in sets:
-        L += [f"*NODE PRINT, NSET={nset}", "U"]
+        L += [f"*NODE PRINT, NSET={nset}{tp}", "U"]
     L += ["*END STEP", ""]
     return "\n".join(L), mesh, sets
