@@ -164,7 +164,7 @@ def read_scene(scene, sets=()):
     analysis = get_str(ctx, sc, "analysis", "scene", default="static")
     if analysis not in ("static", "dynamic"):
         ctx.fail("scene.analysis", f"the CalculiX deck does static and dynamic analyses; found {analysis!r}")
-    name = sc.get("name", path.stem) if isinstance(sc.get("name", path.stem), str) else path.stem
+    name = sc["name"] if isinstance(sc.get("name"), str) else path.stem
 
     beams = get_array_of_tables(ctx, doc, "beam")
     if len(beams) != 1:
