@@ -13,8 +13,8 @@ export PYTHONDONTWRITEBYTECODE=1
 DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).
-PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-matplotlib
-          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview)
+PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-scipy python3-matplotlib
+          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview calculix-ccx)
 EX_USAGE=64
 
 usage() {
