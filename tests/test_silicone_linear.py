@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from references.beam_theory import ab_moduli, cantilever_uniform_load_tip
 from util import BUILD, ensure_dir, run_cli
 
 MU = 0.3e6
@@ -16,16 +17,7 @@ L, B, H, RHO, G = 0.3, 0.02, 0.005, 1100.0, 0.01
 
 
 def beam_tip(E, nu):
-    A, I = B * H, B * H**3 / 12
-    q = RHO * A * G
-    Gs = E / (2 * (1 + nu))
-    k = 10 * (1 + nu) / (12 + 11 * nu)            # Cowper, rectangle
-    return q * L**4 / (8 * E * I) + q * L**2 / (2 * k * Gs * A)
-
-
-def ab_moduli(mu, lm, kappa):
-    mu0 = mu * (1 + 3 / (5 * lm**2) + 99 / (175 * lm**4) + 513 / (875 * lm**6) + 42039 / (67375 * lm**8))
-    return 9 * kappa * mu0 / (3 * kappa + mu0), (3 * kappa - 2 * mu0) / (2 * (3 * kappa + mu0))
+    return cantilever_uniform_load_tip(E, nu, L, B, H, RHO * B * H * G)
 
 
 def laws(kappa_mu):
