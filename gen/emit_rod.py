@@ -209,7 +209,7 @@ extern const bk_pair bk_pair_{name}_full;
 SHARED = "rod_common"
 SHARED_UNITS = ("rod_strain", "rod_inertia", "rod_common")
 SHARED_FILES = ("rod.py", "chain.py", "emit_rod.py")
-_STRAIN_FNS = ("v", "strain", "strain_b", "strain_geo", "grad_v2z", "hess_v2z")
+_STRAIN_FNS = ("v", "strain", "strain_b", "strain_grad", "strain_geo", "grad_v2z", "hess_v2z")
 
 _D = "const double *restrict"
 _W = "double *restrict"
@@ -242,6 +242,8 @@ def _shared_programs():
          "s[6] = (Gamma, K) - t0 at a Gauss point."),
         ("strain_b", f"void bk_rod_strain_b({_D} v, {_D} t0, {_W} s, {_W} B)", lambda: rod.strain_program(1),
          f"s[6] and B[78] = ds/dv (row-major 6 x 13; {len(rod.b_pattern())} structural nonzeros, zeros written)."),
+        ("strain_grad", f"void bk_rod_strain_grad({_D} v, {_D} sg, {_W} Gv)", lambda: rod.strain_gradient_program(),
+         "Gv[13] = sum_k sg[k] ds_k/dv (= B^T sg, without forming B)."),
         ("strain_geo", f"void bk_rod_strain_geo({_D} v, {_D} sg, {_W} Hv)", lambda: rod.geometric_program(),
          "Hv[91] = sum_k sg[k] d2 s_k / dv2 (upper triangle of 13 x 13, packed by rows)."),
         ("grad_v2z", f"void bk_rod_grad_v2z({_D} c, {_D} Gv, {_W} Gz)", lambda: rod.grad_v2z_program(),
@@ -250,6 +252,8 @@ def _shared_programs():
          "Hz[190] += P^T Hv P (upper triangles: 13 x 13 packed into 19 x 19 packed)."),
         ("grad_z2q", f"void bk_rod_grad_z2q({_D} J, {_D} Gz, {_W} g)", lambda: rod.grad_z2q_program(),
          "g[21] = dz/dq^T Gz (J from bk_rod_psi_j)."),
+        ("grad_q", f"void bk_rod_grad_q({_D} q, {_D} Gz, {_W} g)", lambda: rod.grad_q_program(),
+         "g[21] = dz/dq^T Gz (= bk_rod_grad_z2q with the J of q, without forming J)."),
         ("hess_z2q", f"void bk_rod_hess_z2q(int nd, {_D} J, {_D} Hc, {_D} Hz, {_W} K)", lambda: rod.hess_z2q_program(),
          "K[nd i + j] = (dz/dq^T Hz dz/dq)_ij + Hc, 0 <= i <= j < 21 (the rest of K untouched)."),
         ("gauge_energy", f"double bk_rod_gauge_energy({_D} q, double cg)", lambda: rod.gauge_program(0),
@@ -513,9 +517,9 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
     ntab = rod.tab_layout()
     h = input_hash([elem_path, mat_path] + family_paths(elem) + core_paths())
     progs, params = rod.material_programs(elem, mat)
-    force_only = Program()                        # the force program without sg[] (unused there)
+    force_only = Program()                        # without Gv = B^T sg: the force forms no B
     force_only.defs = list(progs["force"].defs)
-    force_only.outputs = [o for o in progs["force"].outputs if not o[0].startswith("sg[")]
+    force_only.outputs = [o for o in progs["force"].outputs if not o[0].startswith("Gv[")]
     hoist = params.values()
     low = {"energy": lower(progs["energy"], hoist), "force": lower(force_only, hoist),
            "force_t": lower(progs["force"], hoist), "tangent": _renamed(lower(progs["tangent"], hoist), "y")}
@@ -538,7 +542,7 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
     cg_ops = count_ops(rod.gauge_coefficient(params))
     ops = {
         "energy": total([("psi", 1), ("v", ng), ("strain", ng), ("gauge_energy", 1)], [("energy", ng)]),
-        "force": total([("psi_j", 1), ("v", ng), ("strain_b", ng), ("grad_v2z", ng), ("grad_z2q", 1),
+        "force": total([("psi", 1), ("v", ng), ("strain", ng), ("strain_grad", ng), ("grad_v2z", ng), ("grad_q", 1),
                         ("gauge_force", 1)], [("force", ng)]),
         "tangent": total([("psi_j", 1), ("v", ng), ("strain_b", ng), ("strain_geo", ng), ("grad_v2z", ng * (1 + nc)),
                           ("hess_v2z", ng), ("grad_z2q", 1 + ng * nc), ("gauge_force", 1), ("psi_hc", 1),
@@ -560,9 +564,9 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
         out = [f"    for (int g = 0; g < {ng}; ++g) {{"]
         decl = "double c[5], v[13], s[6]"
         if want != "energy":
-            decl += ", B[78], Gv[13]"
+            decl += ", sg[6], Gv[13]"
         if want == "tangent":
-            decl += ", sg[6], Hv[91]" + (f", C[{13 * nc}]" if nc else "")
+            decl += ", B[78], Hv[91]" + (f", C[{13 * nc}]" if nc else "")
         out += [f"        {decl};", "        const double w = bk_rod_gauss_c(g, l, c);"]
         if nc:
             out.append(f"        const double *restrict lam = q + {nq} + {nc} * g;")
@@ -572,6 +576,10 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
         if want == "energy":
             out.append("        bk_rod_strain(v, tab + 1 + 6 * g, s);")
             out += _block(lows[0], "        ")
+        elif want == "force":
+            out.append("        bk_rod_strain(v, tab + 1 + 6 * g, s);")
+            out += _block(lows[0], "        ")
+            out += ["        bk_rod_strain_grad(v, sg, Gv);", "        bk_rod_grad_v2z(c, Gv, Gz);"]
         else:
             out.append("        bk_rod_strain_b(v, tab + 1 + 6 * g, s, B);")
             out += _block(lows[0], "        ")
@@ -600,10 +608,10 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
     c += point("energy", [low["energy"]])
     c += [f"    e += bk_rod_gauge_energy(q, {cg});", "    return e;", "}", ""]
     # force
-    c += [sig["force"], "{", "    const double l = tab[0];", f"    double psi[6], J[48], Gz[{rod.NZ}] = {{0.0}};"]
-    c += _prologue(low["force"], "    ") + ["    bk_rod_psi_j(q, psi, J);"]
+    c += [sig["force"], "{", "    const double l = tab[0];", f"    double psi[6], Gz[{rod.NZ}] = {{0.0}};"]
+    c += _prologue(low["force"], "    ") + ["    bk_rod_psi(q, psi);"]
     c += point("force", [low["force"]])
-    c += ["    bk_rod_grad_z2q(J, Gz, f);", f"    bk_rod_gauge_force(q, {cg}, f);", "}", ""]
+    c += ["    bk_rod_grad_q(q, Gz, f);", f"    bk_rod_gauge_force(q, {cg}, f);", "}", ""]
     # force + tangent
     c += [sig["tangent"], "{", "    const double l = tab[0];", f"    const double cg = {cg};",
           f"    double psi[6], J[48], Hc[72], Gz[{rod.NZ}] = {{0.0}}, Hz[{len(rod.tri(rod.NZ))}] = {{0.0}};",

@@ -35,9 +35,10 @@ on their own (gen/chain.py):
     s  = (Gamma - Gamma0, K - K0)              6
 
 Everything up to s is the same for the three elements and every material: it
-is emitted once, as the functions of out/kernels/rod_common.c (strains and
-their Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
-pull-backs v -> z -> q).  An element x material kernel only adds the energy as
+is emitted once, as the functions of out/kernels/rod_strain.c (strains, their
+Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
+pull-back v -> z) and rod_common.c (psi and its derivatives, the pull-back
+z -> q), with the rotary inertia in rod_inertia.c.  An element x material kernel only adds the energy as
 a function of s (material law, multipliers): sigma = dL/ds, B^T D B with
 D = d2L/ds2, and calls the shared kinematics in a loop over the Gauss points.
 """
@@ -341,6 +342,22 @@ def strain_program(order):
     return prog
 
 
+def strain_gradient_program():
+    """Gv[13] = sum_k sg_k ds_k/dv (reverse mode through w: the force without B)."""
+    from gen.chain import pull_back
+    v, wsyms, w_map, s_w = _strain_layers()
+    prog = Program()
+    for x, e in w_map.items():
+        prog.defs.append((x, e))
+    sg = _syms("sg", NS)
+    ssyms = sp.symbols("st0:6", real=True)
+    Gw, _ = pull_back(prog, "w", dict(zip(ssyms, sg)), {}, dict(zip(ssyms, s_w)), wsyms, False)
+    Gv, _ = pull_back(prog, "v", Gw, {}, w_map, v, False)
+    for a in range(NV):
+        prog.output(f"Gv[{a}]", Gv.get(v[a], 0), op="=")
+    return prog
+
+
 def geometric_program():
     """Hv[tri13] = sum_k sg_k d2 s_k / dv2 (upper triangle, all 91 entries written)."""
     from gen.chain import pull_back
@@ -413,6 +430,32 @@ def grad_z2q_program():
             acc[i] = acc.get(i, 0) + d * Gz[z]
     for i in range(NQ):
         prog.output(f"g[{i}]", acc.get(i, 0), op="=")
+    return prog
+
+
+def grad_q_program():
+    """g[21] = dz/dq^T Gz from q (reverse mode through psi: the force without J)."""
+    from gen.chain import pull_back
+    prog = Program()
+    Gz = _syms("Gz", NZ)
+    g = {}
+    for n in range(3):
+        for i in range(3):
+            g[NODE_DOF * n + i] = Gz[3 * n + i]
+    for j in range(4):
+        g[10 + j] = Gz[9 + j]
+    for a in range(2):
+        x, rq, rq_map, psi = _psi_layers(a)
+        for sym, e in rq_map.items():
+            prog.defs.append((sym, e))
+        ps = sp.symbols(f"ps{a}_0:3", real=True)
+        Gr, _ = pull_back(prog, f"r{a}", {ps[k]: Gz[13 + 3 * a + k] for k in range(3)}, {},
+                          {ps[k]: psi[k] for k in range(3)}, rq, False)
+        Gx, _ = pull_back(prog, f"x{a}", Gr, {}, rq_map, x, False)
+        for b, i in enumerate(PSI_Q[a]):
+            g[i] = g.get(i, 0) + Gx.get(x[b], 0)
+    for i in range(NQ):
+        prog.output(f"g[{i}]", g[i], op="=")
     return prog
 
 
@@ -490,7 +533,7 @@ def material_programs(elem, mat):
     """Programs of one Gauss point of an element x material kernel, in the symbols
     s[6], B[...], lam[nc] (the point's multipliers), w (weight x l), mat[...]:
       "energy":  e += w (W(s) + c_l sum_j lam_j s_cj)
-      "force":   sg[6] = dL/ds; Gv[13] = B^T sg; fl[j] = dL/dlam_j
+      "force":   sg[6] = dL/ds; Gv[13] = B^T sg (tangent path only); fl[j] = dL/dlam_j
       "tangent": Hv[tri13] += B^T D B (D = d2L/ds2); C[13 j + a] = d fl_j / dv_a
     (c_l = EA scales the multipliers), and the parameter symbols."""
     params = {name: _sym("mat", k) for k, name in enumerate(mat.PARAMS)}

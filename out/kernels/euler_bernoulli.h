@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:bb0ce1435a2fcd05d85d9a5fa364405d86b722875cd4fc6519fc37a97b6f9341
+ * input hash: sha256:6f8aa1fdd633aae615977b8d792f1e10af8f71119f381ac25fc57fbd191a5ff5
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
@@ -41,9 +41,10 @@
  *     s  = (Gamma - Gamma0, K - K0)              6
  *
  * Everything up to s is the same for the three elements and every material: it
- * is emitted once, as the functions of out/kernels/rod_common.c (strains and
- * their Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
- * pull-backs v -> z -> q).  An element x material kernel only adds the energy as
+ * is emitted once, as the functions of out/kernels/rod_strain.c (strains, their
+ * Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
+ * pull-back v -> z) and rod_common.c (psi and its derivatives, the pull-back
+ * z -> q), with the rotary inertia in rod_inertia.c.  An element x material kernel only adds the energy as
  * a function of s (material law, multipliers): sigma = dL/ds, B^T D B with
  * D = d2L/ds2, and calls the shared kinematics in a loop over the Gauss points.
  */

@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:8ceb8b13acd4cbcd11566a551df1c5ad6d48843ee5cd188ee9ce20eb146f679d
+ * input hash: sha256:9832271899f9904cc8d33c0fd7d969ef441ef5f146efd3a938339e9bb8b215fe
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
@@ -41,9 +41,10 @@
  *     s  = (Gamma - Gamma0, K - K0)              6
  *
  * Everything up to s is the same for the three elements and every material: it
- * is emitted once, as the functions of out/kernels/rod_common.c (strains and
- * their Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
- * pull-backs v -> z -> q).  An element x material kernel only adds the energy as
+ * is emitted once, as the functions of out/kernels/rod_strain.c (strains, their
+ * Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
+ * pull-back v -> z) and rod_common.c (psi and its derivatives, the pull-back
+ * z -> q), with the rotary inertia in rod_inertia.c.  An element x material kernel only adds the energy as
  * a function of s (material law, multipliers): sigma = dL/ds, B^T D B with
  * D = d2L/ds2, and calls the shared kinematics in a loop over the Gauss points.
  */

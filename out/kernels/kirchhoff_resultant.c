@@ -25,15 +25,15 @@ double kirchhoff_resultant_full_energy(const double *restrict q, const double *r
 void kirchhoff_resultant_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     const double l = tab[0];
-    double psi[6], J[48], Gz[19] = {0.0};
-    bk_rod_psi_j(q, psi, J);
+    double psi[6], Gz[19] = {0.0};
+    bk_rod_psi(q, psi);
     for (int g = 0; g < 2; ++g) {
-        double c[5], v[13], s[6], B[78], Gv[13];
+        double c[5], v[13], s[6], sg[6], Gv[13];
         const double w = bk_rod_gauss_c(g, l, c);
         const double *restrict lam = q + 21 + 3 * g;
         double *restrict fl = f + 21 + 3 * g;
         bk_rod_v(c, q, psi, v);
-        bk_rod_strain_b(v, tab + 1 + 6 * g, s, B);
+        bk_rod_strain(v, tab + 1 + 6 * g, s);
         const double x0 = mat[0]*w;
         const double sig0 = lam[0]*x0;
         const double sig1 = lam[1]*x0;
@@ -41,25 +41,19 @@ void kirchhoff_resultant_full_force(const double *restrict q, const double *rest
         const double sig3 = mat[3]*s[3]*w;
         const double sig4 = mat[4]*s[4]*w;
         const double sig5 = mat[5]*s[5]*w;
-        Gv[0] = B[0]*sig0 + B[13]*sig1 + B[26]*sig2;
-        Gv[1] = B[14]*sig1 + B[1]*sig0 + B[27]*sig2;
-        Gv[2] = B[15]*sig1 + B[28]*sig2 + B[2]*sig0;
-        Gv[3] = B[16]*sig1 + B[29]*sig2 + B[3]*sig0;
-        Gv[4] = B[17]*sig1 + B[30]*sig2 + B[4]*sig0;
-        Gv[5] = B[18]*sig1 + B[31]*sig2 + B[5]*sig0;
-        Gv[6] = B[19]*sig1 + B[32]*sig2 + B[6]*sig0;
-        Gv[7] = B[20]*sig1 + B[33]*sig2 + B[46]*sig3 + B[59]*sig4 + B[72]*sig5 + B[7]*sig0;
-        Gv[8] = B[21]*sig1 + B[34]*sig2 + B[47]*sig3 + B[60]*sig4 + B[73]*sig5 + B[8]*sig0;
-        Gv[9] = B[22]*sig1 + B[35]*sig2 + B[48]*sig3 + B[61]*sig4 + B[74]*sig5 + B[9]*sig0;
-        Gv[10] = B[49]*sig3 + B[62]*sig4 + B[75]*sig5;
-        Gv[11] = B[50]*sig3 + B[63]*sig4 + B[76]*sig5;
-        Gv[12] = B[51]*sig3 + B[64]*sig4 + B[77]*sig5;
+        sg[0] = sig0;
+        sg[1] = sig1;
+        sg[2] = sig2;
+        sg[3] = sig3;
+        sg[4] = sig4;
+        sg[5] = sig5;
         fl[0] = s[0]*x0;
         fl[1] = s[1]*x0;
         fl[2] = s[2]*x0;
+        bk_rod_strain_grad(v, sg, Gv);
         bk_rod_grad_v2z(c, Gv, Gz);
     }
-    bk_rod_grad_z2q(J, Gz, f);
+    bk_rod_grad_q(q, Gz, f);
     bk_rod_gauge_force(q, ((mat[3] + mat[4] + mat[5])/tab[0]), f);
 }
 
@@ -71,7 +65,7 @@ void kirchhoff_resultant_full_force_tangent(const double *restrict q, const doub
     for (int i = 0; i < 729; ++i) K[i] = 0.0;
     bk_rod_psi_j(q, psi, J);
     for (int g = 0; g < 2; ++g) {
-        double c[5], v[13], s[6], B[78], Gv[13], sg[6], Hv[91], C[39];
+        double c[5], v[13], s[6], sg[6], Gv[13], B[78], Hv[91], C[39];
         const double w = bk_rod_gauss_c(g, l, c);
         const double *restrict lam = q + 21 + 3 * g;
         double *restrict fl = f + 21 + 3 * g;
@@ -209,7 +203,7 @@ void kirchhoff_resultant_full_force_tangent(const double *restrict q, const doub
 
 const bk_pair bk_pair_kirchhoff_resultant_full = {
     &bk_element_kirchhoff, "resultant", "full", 6, param_names,
-    13, 2, 2571L, 12706L,
+    13, 2, 2059L, 12706L,
     kirchhoff_full_tabulate, kirchhoff_resultant_full_energy, kirchhoff_resultant_full_force, kirchhoff_resultant_full_force_tangent,
     0, 0
 };

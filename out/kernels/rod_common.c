@@ -600,6 +600,89 @@ void bk_rod_grad_z2q(const double *restrict J, const double *restrict Gz, double
     g[20] = Gz[16]*J[31] + Gz[17]*J[39] + Gz[18]*J[47];
 }
 
+void bk_rod_grad_q(const double *restrict q, const double *restrict Gz, double *restrict g)
+{
+    const double rq0_0 = q[10]*q[3] + q[11]*q[4] + q[12]*q[5] + q[13]*q[6];
+    const double rq0_1 = q[10]*q[4] - q[11]*q[3] - q[12]*q[6] + q[13]*q[5];
+    const double x0 = (rq0_1*rq0_1);
+    const double rq0_2 = q[10]*q[5] + q[11]*q[6] - q[12]*q[3] - q[13]*q[4];
+    const double x1 = (rq0_2*rq0_2);
+    const double rq0_3 = q[10]*q[6] - q[11]*q[5] + q[12]*q[4] - q[13]*q[3];
+    const double x2 = (rq0_3*rq0_3);
+    const double x3 = x0 + x1 + x2;
+    const double x4 = (2.0/((rq0_0*rq0_0) + x3));
+    const double x5 = Gz[13]*rq0_1;
+    const double x6 = Gz[14]*rq0_2;
+    const double x7 = Gz[15]*rq0_3;
+    const double r0G_0 = -x4*x5 - x4*x6 - x4*x7;
+    const double x8 = 2.0*bk_at(x3, rq0_0);
+    const double x9 = 4.0*bk_at_u(x3, rq0_0);
+    const double x10 = rq0_1*x9;
+    const double r0G_1 = Gz[13]*(x0*x9 + x8) + x10*x6 + x10*x7;
+    const double x11 = rq0_2*x9;
+    const double r0G_2 = Gz[14]*(x1*x9 + x8) + x11*x5 + x11*x7;
+    const double x12 = rq0_3*x9;
+    const double r0G_3 = Gz[15]*(x2*x9 + x8) + x12*x5 + x12*x6;
+    const double x0G_4 = q[10]*r0G_0 - q[11]*r0G_1 - q[12]*r0G_2 - q[13]*r0G_3;
+    const double x0G_5 = q[10]*r0G_1 + q[11]*r0G_0 + q[12]*r0G_3 - q[13]*r0G_2;
+    const double x0G_6 = q[10]*r0G_2 - q[11]*r0G_3 + q[12]*r0G_0 + q[13]*r0G_1;
+    const double x0G_7 = q[10]*r0G_3 + q[11]*r0G_2 - q[12]*r0G_1 + q[13]*r0G_0;
+    const double x0G_0 = q[3]*r0G_0 + q[4]*r0G_1 + q[5]*r0G_2 + q[6]*r0G_3;
+    const double rq1_0 = q[10]*q[17] + q[11]*q[18] + q[12]*q[19] + q[13]*q[20];
+    const double rq1_1 = q[10]*q[18] - q[11]*q[17] - q[12]*q[20] + q[13]*q[19];
+    const double x13 = (rq1_1*rq1_1);
+    const double rq1_2 = q[10]*q[19] + q[11]*q[20] - q[12]*q[17] - q[13]*q[18];
+    const double x14 = (rq1_2*rq1_2);
+    const double rq1_3 = q[10]*q[20] - q[11]*q[19] + q[12]*q[18] - q[13]*q[17];
+    const double x15 = (rq1_3*rq1_3);
+    const double x16 = x13 + x14 + x15;
+    const double x17 = (2.0/((rq1_0*rq1_0) + x16));
+    const double x18 = Gz[16]*rq1_1;
+    const double x19 = Gz[17]*rq1_2;
+    const double x20 = Gz[18]*rq1_3;
+    const double r1G_0 = -x17*x18 - x17*x19 - x17*x20;
+    const double x21 = 2.0*bk_at(x16, rq1_0);
+    const double x22 = 4.0*bk_at_u(x16, rq1_0);
+    const double x23 = rq1_1*x22;
+    const double r1G_1 = Gz[16]*(x13*x22 + x21) + x19*x23 + x20*x23;
+    const double x24 = rq1_2*x22;
+    const double r1G_2 = Gz[17]*(x14*x22 + x21) + x18*x24 + x20*x24;
+    const double x25 = rq1_3*x22;
+    const double r1G_3 = Gz[18]*(x15*x22 + x21) + x18*x25 + x19*x25;
+    const double x1G_0 = q[17]*r1G_0 + q[18]*r1G_1 + q[19]*r1G_2 + q[20]*r1G_3;
+    const double x0G_1 = -q[3]*r0G_1 + q[4]*r0G_0 - q[5]*r0G_3 + q[6]*r0G_2;
+    const double x1G_1 = -q[17]*r1G_1 + q[18]*r1G_0 - q[19]*r1G_3 + q[20]*r1G_2;
+    const double x0G_2 = -q[3]*r0G_2 + q[4]*r0G_3 + q[5]*r0G_0 - q[6]*r0G_1;
+    const double x1G_2 = -q[17]*r1G_2 + q[18]*r1G_3 + q[19]*r1G_0 - q[20]*r1G_1;
+    const double x0G_3 = -q[3]*r0G_3 - q[4]*r0G_2 + q[5]*r0G_1 + q[6]*r0G_0;
+    const double x1G_3 = -q[17]*r1G_3 - q[18]*r1G_2 + q[19]*r1G_1 + q[20]*r1G_0;
+    const double x1G_4 = q[10]*r1G_0 - q[11]*r1G_1 - q[12]*r1G_2 - q[13]*r1G_3;
+    const double x1G_5 = q[10]*r1G_1 + q[11]*r1G_0 + q[12]*r1G_3 - q[13]*r1G_2;
+    const double x1G_6 = q[10]*r1G_2 - q[11]*r1G_3 + q[12]*r1G_0 + q[13]*r1G_1;
+    const double x1G_7 = q[10]*r1G_3 + q[11]*r1G_2 - q[12]*r1G_1 + q[13]*r1G_0;
+    g[0] = Gz[0];
+    g[1] = Gz[1];
+    g[2] = Gz[2];
+    g[3] = x0G_4;
+    g[4] = x0G_5;
+    g[5] = x0G_6;
+    g[6] = x0G_7;
+    g[7] = Gz[3];
+    g[8] = Gz[4];
+    g[9] = Gz[5];
+    g[10] = Gz[9] + x0G_0 + x1G_0;
+    g[11] = Gz[10] + x0G_1 + x1G_1;
+    g[12] = Gz[11] + x0G_2 + x1G_2;
+    g[13] = Gz[12] + x0G_3 + x1G_3;
+    g[14] = Gz[6];
+    g[15] = Gz[7];
+    g[16] = Gz[8];
+    g[17] = x1G_4;
+    g[18] = x1G_5;
+    g[19] = x1G_6;
+    g[20] = x1G_7;
+}
+
 void bk_rod_hess_z2q(int nd, const double *restrict J, const double *restrict Hc, const double *restrict Hz, double *restrict K)
 {
     const double T0_3 = Hz[13]*J[4] + Hz[14]*J[12] + Hz[15]*J[20];
