@@ -252,8 +252,6 @@ def _shared_programs():
          "Hz[190] += P^T Hv P (upper triangles: 13 x 13 packed into 19 x 19 packed)."),
         ("grad_z2q", f"void bk_rod_grad_z2q({_D} J, {_D} Gz, {_W} g)", lambda: rod.grad_z2q_program(),
          "g[21] = dz/dq^T Gz (J from bk_rod_psi_j)."),
-        ("grad_q", f"void bk_rod_grad_q({_D} q, {_D} Gz, {_W} g)", lambda: rod.grad_q_program(),
-         "g[21] = dz/dq^T Gz (= bk_rod_grad_z2q with the J of q, without forming J)."),
         ("hess_z2q", f"void bk_rod_hess_z2q(int nd, {_D} J, {_D} Hc, {_D} Hz, {_W} K)", lambda: rod.hess_z2q_program(),
          "K[nd i + j] = (dz/dq^T Hz dz/dq)_ij + Hc, 0 <= i <= j < 21 (the rest of K untouched)."),
         ("gauge_energy", f"double bk_rod_gauge_energy({_D} q, double cg)", lambda: rod.gauge_program(0),
@@ -542,7 +540,7 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
     cg_ops = count_ops(rod.gauge_coefficient(params))
     ops = {
         "energy": total([("psi", 1), ("v", ng), ("strain", ng), ("gauge_energy", 1)], [("energy", ng)]),
-        "force": total([("psi", 1), ("v", ng), ("strain", ng), ("strain_grad", ng), ("grad_v2z", ng), ("grad_q", 1),
+        "force": total([("psi_j", 1), ("v", ng), ("strain", ng), ("strain_grad", ng), ("grad_v2z", ng), ("grad_z2q", 1),
                         ("gauge_force", 1)], [("force", ng)]),
         "tangent": total([("psi_j", 1), ("v", ng), ("strain_b", ng), ("strain_geo", ng), ("grad_v2z", ng * (1 + nc)),
                           ("hess_v2z", ng), ("grad_z2q", 1 + ng * nc), ("gauge_force", 1), ("psi_hc", 1),
@@ -608,10 +606,10 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
     c += point("energy", [low["energy"]])
     c += [f"    e += bk_rod_gauge_energy(q, {cg});", "    return e;", "}", ""]
     # force
-    c += [sig["force"], "{", "    const double l = tab[0];", f"    double psi[6], Gz[{rod.NZ}] = {{0.0}};"]
-    c += _prologue(low["force"], "    ") + ["    bk_rod_psi(q, psi);"]
+    c += [sig["force"], "{", "    const double l = tab[0];", f"    double psi[6], J[48], Gz[{rod.NZ}] = {{0.0}};"]
+    c += _prologue(low["force"], "    ") + ["    bk_rod_psi_j(q, psi, J);"]
     c += point("force", [low["force"]])
-    c += ["    bk_rod_grad_q(q, Gz, f);", f"    bk_rod_gauge_force(q, {cg}, f);", "}", ""]
+    c += ["    bk_rod_grad_z2q(J, Gz, f);", f"    bk_rod_gauge_force(q, {cg}, f);", "}", ""]
     # force + tangent
     c += [sig["tangent"], "{", "    const double l = tab[0];", f"    const double cg = {cg};",
           f"    double psi[6], J[48], Hc[72], Gz[{rod.NZ}] = {{0.0}}, Hz[{len(rod.tri(rod.NZ))}] = {{0.0}};",

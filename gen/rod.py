@@ -433,32 +433,6 @@ def grad_z2q_program():
     return prog
 
 
-def grad_q_program():
-    """g[21] = dz/dq^T Gz from q (reverse mode through psi: the force without J)."""
-    from gen.chain import pull_back
-    prog = Program()
-    Gz = _syms("Gz", NZ)
-    g = {}
-    for n in range(3):
-        for i in range(3):
-            g[NODE_DOF * n + i] = Gz[3 * n + i]
-    for j in range(4):
-        g[10 + j] = Gz[9 + j]
-    for a in range(2):
-        x, rq, rq_map, psi = _psi_layers(a)
-        for sym, e in rq_map.items():
-            prog.defs.append((sym, e))
-        ps = sp.symbols(f"ps{a}_0:3", real=True)
-        Gr, _ = pull_back(prog, f"r{a}", {ps[k]: Gz[13 + 3 * a + k] for k in range(3)}, {},
-                          {ps[k]: psi[k] for k in range(3)}, rq, False)
-        Gx, _ = pull_back(prog, f"x{a}", Gr, {}, rq_map, x, False)
-        for b, i in enumerate(PSI_Q[a]):
-            g[i] = g.get(i, 0) + Gx.get(x[b], 0)
-    for i in range(NQ):
-        prog.output(f"g[{i}]", g[i], op="=")
-    return prog
-
-
 def hess_z2q_program():
     """K[nd*i + j] = (J^T Hz J)_ij + Hc (psi_hessian_program), i <= j < 21,
     computed as J^T (Hz J) with only the needed entries of Hz J."""

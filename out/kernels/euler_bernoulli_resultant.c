@@ -25,8 +25,8 @@ double euler_bernoulli_resultant_full_energy(const double *restrict q, const dou
 void euler_bernoulli_resultant_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     const double l = tab[0];
-    double psi[6], Gz[19] = {0.0};
-    bk_rod_psi(q, psi);
+    double psi[6], J[48], Gz[19] = {0.0};
+    bk_rod_psi_j(q, psi, J);
     for (int g = 0; g < 2; ++g) {
         double c[5], v[13], s[6], sg[6], Gv[13];
         const double w = bk_rod_gauss_c(g, l, c);
@@ -52,7 +52,7 @@ void euler_bernoulli_resultant_full_force(const double *restrict q, const double
         bk_rod_strain_grad(v, sg, Gv);
         bk_rod_grad_v2z(c, Gv, Gz);
     }
-    bk_rod_grad_q(q, Gz, f);
+    bk_rod_grad_z2q(J, Gz, f);
     bk_rod_gauge_force(q, ((mat[3] + mat[4] + mat[5])/tab[0]), f);
 }
 
@@ -247,7 +247,7 @@ void euler_bernoulli_resultant_full_force_tangent(const double *restrict q, cons
 
 const bk_pair bk_pair_euler_bernoulli_resultant_full = {
     &bk_element_euler_bernoulli, "resultant", "full", 6, param_names,
-    13, 2, 2057L, 12656L,
+    13, 2, 2261L, 12656L,
     euler_bernoulli_full_tabulate, euler_bernoulli_resultant_full_energy, euler_bernoulli_resultant_full_force, euler_bernoulli_resultant_full_force_tangent,
     0, 0
 };

@@ -24,8 +24,8 @@ double gef_resultant_full_energy(const double *restrict q, const double *restric
 void gef_resultant_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     const double l = tab[0];
-    double psi[6], Gz[19] = {0.0};
-    bk_rod_psi(q, psi);
+    double psi[6], J[48], Gz[19] = {0.0};
+    bk_rod_psi_j(q, psi, J);
     for (int g = 0; g < 2; ++g) {
         double c[5], v[13], s[6], sg[6], Gv[13];
         const double w = bk_rod_gauss_c(g, l, c);
@@ -46,7 +46,7 @@ void gef_resultant_full_force(const double *restrict q, const double *restrict t
         bk_rod_strain_grad(v, sg, Gv);
         bk_rod_grad_v2z(c, Gv, Gz);
     }
-    bk_rod_grad_q(q, Gz, f);
+    bk_rod_grad_z2q(J, Gz, f);
     bk_rod_gauge_force(q, ((mat[3] + mat[4] + mat[5])/tab[0]), f);
 }
 
@@ -226,7 +226,7 @@ void gef_resultant_full_force_tangent(const double *restrict q, const double *re
 
 const bk_pair bk_pair_gef_resultant_full = {
     &bk_element_gef, "resultant", "full", 6, param_names,
-    13, 2, 2057L, 12564L,
+    13, 2, 2261L, 12564L,
     gef_full_tabulate, gef_resultant_full_energy, gef_resultant_full_force, gef_resultant_full_force_tangent,
     0, 0
 };

@@ -25,8 +25,8 @@ double kirchhoff_resultant_full_energy(const double *restrict q, const double *r
 void kirchhoff_resultant_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     const double l = tab[0];
-    double psi[6], Gz[19] = {0.0};
-    bk_rod_psi(q, psi);
+    double psi[6], J[48], Gz[19] = {0.0};
+    bk_rod_psi_j(q, psi, J);
     for (int g = 0; g < 2; ++g) {
         double c[5], v[13], s[6], sg[6], Gv[13];
         const double w = bk_rod_gauss_c(g, l, c);
@@ -53,7 +53,7 @@ void kirchhoff_resultant_full_force(const double *restrict q, const double *rest
         bk_rod_strain_grad(v, sg, Gv);
         bk_rod_grad_v2z(c, Gv, Gz);
     }
-    bk_rod_grad_q(q, Gz, f);
+    bk_rod_grad_z2q(J, Gz, f);
     bk_rod_gauge_force(q, ((mat[3] + mat[4] + mat[5])/tab[0]), f);
 }
 
@@ -203,7 +203,7 @@ void kirchhoff_resultant_full_force_tangent(const double *restrict q, const doub
 
 const bk_pair bk_pair_kirchhoff_resultant_full = {
     &bk_element_kirchhoff, "resultant", "full", 6, param_names,
-    13, 2, 2059L, 12706L,
+    13, 2, 2263L, 12706L,
     kirchhoff_full_tabulate, kirchhoff_resultant_full_energy, kirchhoff_resultant_full_force, kirchhoff_resultant_full_force_tangent,
     0, 0
 };
