@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:7687e77a6ecd3aa24d1378508961d0e30105aa91a643d3980580bf1f17b1622b
+ * input hash: sha256:098d662a5d0b63523d36c2beefa1e022430176cbbb69eaddb7f8e8285ec3cf55
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
