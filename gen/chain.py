@@ -9,9 +9,12 @@ Program, the gradient and Hessian with respect to b:
 
 Each layer is differentiated on its own (small) expressions, so deeply nested
 kinematics (rotations of rotations) cost a sum over layers instead of the
-product sympy's diff would build on the composite.  Hessians are kept as upper
-triangles in the order of the inner variable list.
+product sympy's diff would build on the composite.  The Gauss-Newton part
+J^T H J is formed as J^T (H J) with the columns of H J named once.  Hessians are
+kept as upper triangles in the order of the inner variable list.
 """
+import re
+
 import sympy as sp
 
 
@@ -50,6 +53,30 @@ def pull_back(prog, tag, G, H, mapping, inner, second=True):
     Gin = {b: _named(prog, f"{tag}G_{index[b]}", v) for b, v in sorted(Gin.items(), key=lambda kv: index[kv[0]])}
     if not second:
         return Gin, {}
+    # J^T H J, factored as J^T (H J): T[a][c] = sum_a' H_aa' da'/dc is named once
+    # and reused by every b, instead of expanding sum_aa' da/db H_aa' da'/dc.
+    Hrow = {}
+    for (a, a2), h in H.items():
+        if h == 0:
+            continue
+        Hrow.setdefault(a, {})
+        Hrow[a][a2] = Hrow[a].get(a2, 0) + h
+        if a2 != a:
+            Hrow.setdefault(a2, {})
+            Hrow[a2][a] = Hrow[a2].get(a, 0) + h
+    names = {a: re.sub(r"\W", "_", a.name) for a in outer}
+    users = {}                                   # inner symbol -> outer symbols whose map has it
+    for a in sorted(outer, key=lambda s: s.name):
+        for b in J[a]:
+            users.setdefault(b, []).append(a)
+    T = {}
+
+    def t(a, c):
+        if (a, c) not in T:
+            T[(a, c)] = _named(prog, f"{tag}T_{names[a]}_{index[c]}",
+                               sum(h * J[a2][c] for a2, h in Hrow.get(a, {}).items() if c in J[a2]))
+        return T[(a, c)]
+
     Hin = {}
 
     def add(i, j, v):
@@ -57,20 +84,13 @@ def pull_back(prog, tag, G, H, mapping, inner, second=True):
             i, j = j, i
         Hin[(i, j)] = Hin.get((i, j), 0) + v
 
-    for (a, a2), h in H.items():
-        if h == 0:
-            continue
-        for b, db in J[a].items():
-            for c, dc in J[a2].items():
-                i, j = index[b], index[c]
-                v = h * db * dc
-                if a == a2:
-                    if i <= j:
-                        add(i, j, v)
-                elif i == j:
-                    add(i, i, 2 * v)
-                else:
-                    add(i, j, v)
+    for b in sorted(users, key=lambda s: index[s]):
+        for c in sorted(users, key=lambda s: index[s]):
+            if index[c] < index[b]:
+                continue
+            v = sum(J[a][b] * t(a, c) for a in users[b] if a in Hrow and any(c in J[a2] for a2 in Hrow[a]))
+            if v != 0:
+                add(index[b], index[c], v)
     for a, g in G.items():
         if g == 0 or a not in mapping:
             continue

@@ -1,13 +1,14 @@
 """C emission for the resultant beam families: geometrically exact rods (gef,
 euler_bernoulli, kirchhoff; gen/rod.py) and the ANCF cable (gen/cable.py)."""
+from functools import lru_cache
 from pathlib import Path
 
 import sympy as sp
 
 from gen import cable, rod
 from gen.emit import BANNER, CORE_FILES, _block, _fields_c, _function, _prologue, core_paths, input_hash
-from gen.loads import axis_moment, quaternion_moment
-from gen.program import Ops, Program, count_lowered, lower
+from gen.loads import axis_moment
+from gen.program import Ops, Program, c_double, count_lowered, count_ops, lower, print_c
 
 FAMILY_FILES = {"rod": ("rod.py", "chain.py", "emit_rod.py"), "cable": ("cable.py", "emit_rod.py")}
 GEN_DIR = Path(__file__).resolve().parent
@@ -34,86 +35,6 @@ def _line_integrals(N, xi, l, A):
                 mass.output(f"m[{b * n + a}]", e, op="=")
         vol.output(f"v[{a}]", sp.factor(A * l * sp.integrate(N[a], (xi, 0, 1))), op="=")
     return lower(mass, ()), lower(vol, ())
-
-
-def _rod_parts(elem):
-    """Element-level programs of a geometrically exact rod."""
-    g = _geom()
-    l, A = g[0], g[3]
-    xi = sp.Symbol("xi", real=True)
-    N = rod.lagrange(xi)
-    shp = Program()
-    for a in range(3):
-        shp.output(f"N[{a}]", N[a], op="=")
-    mass_low, vol_low = _line_integrals(list(N), xi, l, A)
-    # frame: position and rotation at xi
-    fr = Program()
-    nodes, pc, psis, _ = rod.relative_rotation_vectors(fr, "q")
-    pos, R = rod.frame_at(xi, [n[0] for n in nodes], pc, psis[0], psis[1])
-    for i in range(3):
-        fr.output(f"pos[{i}]", pos[i], op="=")
-    for k, col in enumerate((1, 2, 0)):        # d1, d2 (section axes), d3 (axis)
-        for i in range(3):
-            fr.output(f"d[{3 * k + i}]", R[i, col], op="=")
-    # moment on the quaternion of node n
-    M = sp.Matrix([sp.Symbol(f"M[{i}]", real=True) for i in range(3)])
-    mom = []
-    for n in range(3):
-        prog = Program()
-        _, s, v = rod.node_syms("q", n)
-        Q = quaternion_moment(s, v, M)
-        pv = [s] + list(v)
-        base = rod.NODE_DOF * n + 3
-        for i in range(4):
-            prog.output(f"Q[{base + i}]", Q[i], op="=")
-            for j in range(4):
-                d = sp.diff(Q[i], pv[j])
-                if d != 0:
-                    prog.output(f"dQ[{(base + i) * elem.ndof + base + j}]", d, op="=")
-        mom.append(lower(prog, ()))
-    ref = Program()
-    for n, xn in enumerate(rod.XI_NODES):
-        b = rod.NODE_DOF * n
-        for i, v in enumerate((xn * l, 0, 0, 1, 0, 0, 0)):
-            ref.output(f"q0[{b + i}]", v, op="=")
-    for i in range(elem.ninternal):
-        ref.output(f"q0[{3 * rod.NODE_DOF + i}]", 0, op="=")
-    tab = lower(rod.tabulate_program(elem), ())
-    return (lower(shp, ()), mass_low, vol_low, lower(fr, ()), mom, lower(ref, ()), tab,
-            [rod.NODE_DOF * n for n in range(3)], rod.tab_layout(), lower(_rotary_program(elem), ()))
-
-
-def _rotary_program(elem):
-    """Rotary inertia lumped at the nodes (weights l/6, 2l/3, l/6), per unit density:
-    T = sum_n 1/2 W_n^T J_n W_n with the body angular velocity W = 2 Im(conj(p) p')/|p|^2
-    and J_n = w_n diag(Ip, I1, I2); f = d/dt dT/dp' - dT/dp and its derivatives."""
-    g = _geom()
-    l, I1, I2, Ip = g[0], g[4], g[5], g[6]
-    nd = elem.ndof
-    prog = Program()
-    T = 0
-    for n, wn in enumerate((sp.Rational(1, 6), sp.Rational(2, 3), sp.Rational(1, 6))):
-        base = rod.NODE_DOF * n + 3
-        p = [sp.Symbol(f"q[{base + k}]", real=True) for k in range(4)]
-        pd = [sp.Symbol(f"qd[{base + k}]", real=True) for k in range(4)]
-        pdd = [sp.Symbol(f"qdd[{base + k}]", real=True) for k in range(4)]
-        n2 = sum(x * x for x in p)
-        W = 2 * rod.qmul(rod.qconj((p[0], sp.Matrix(p[1:]))), (pd[0], sp.Matrix(pd[1:])))[1] / n2
-        J = [Ip, I1, I2]
-        Tn = wn * l * sum(J[k] * W[k]**2 for k in range(3)) / 2
-        T += Tn
-        dTdpd = [sp.diff(Tn, x) for x in pd]
-        f = [sum(sp.diff(dTdpd[i], p[j]) * pd[j] + sp.diff(dTdpd[i], pd[j]) * pdd[j] for j in range(4))
-             - sp.diff(Tn, p[i]) for i in range(4)]
-        for i in range(4):
-            prog.output(f"f[{base + i}]", f[i], op="=")
-            for j in range(4):
-                for arr, var in (("Mq", pdd), ("Cq", pd), ("Kq", p)):
-                    d = sp.diff(f[i], var[j])
-                    if d != 0:
-                        prog.output(f"{arr}[{(base + i) * nd + base + j}]", d, op="=")
-    prog.output("T[0]", T, op="=")
-    return prog
 
 
 def _cable_parts(elem):
@@ -157,14 +78,14 @@ def _cable_parts(elem):
 
 
 def element_source(elem, elem_path):
+    if elem.kind == "rod":
+        return _rod_element_source(elem, elem_path)
     name = elem.name
     nd = elem.ndof
     h = input_hash([elem_path] + family_paths(elem) + core_paths())
-    parts = _rod_parts(elem) if elem.kind == "rod" else _cable_parts(elem) + (None,)
-    shp, mass_low, vol_low, fr, mom, ref, tab, shape_dof, ntab, rot = parts
+    shp, mass_low, vol_low, fr, mom, ref, tab, shape_dof, ntab = _cable_parts(elem)
     nsh = len(shape_dof)
-    mod = rod if elem.kind == "rod" else cable
-    doc = (mod.__doc__ or "").strip().splitlines()
+    doc = (cable.__doc__ or "").strip().splitlines()
     hdr = [f"/* {BANNER}", f" * element: {name} -- {elem.title}", f" * source: {elem.source}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core ({', '.join(CORE_FILES)})",
@@ -185,7 +106,7 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
     fields = elem.fields()
     c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', "#include <math.h>",
          '#include "rod_math.h"', "",
-         f"static const double node_xi[{elem.nnode}] = {{{', '.join(repr(float(x)) for x in (rod.XI_NODES if elem.kind == 'rod' else (0, 1)))}}};",
+         f"static const double node_xi[{elem.nnode}] = {{{', '.join(repr(float(x)) for x in (0, 1))}}};",
          f"static const int shape_dof[{nsh}] = {{{', '.join(map(str, shape_dof))}}};"]
     c += _fields_c(name, fields) + [""]
     c += _function("static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)",
@@ -198,36 +119,25 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
             "const double *restrict M, double *restrict Q, double *restrict dQ)")
     pre = ["(void)geom; (void)xi;", f"for (int i = 0; i < {nd}; ++i) Q[i] = 0.0;",
            f"for (int i = 0; i < {nd * nd}; ++i) dQ[i] = 0.0;"]
-    if len(mom) == 1:
-        c += _function(msig, mom[0], pre)
-    else:   # moments act on the nodal quaternion of the node at xi
-        c += [msig, "{"] + [f"    {x}" for x in pre]
-        for n, low in enumerate(mom):
-            cond = ("if (xi < 0.25) {" if n == 0 else "} else if (xi < 0.75) {" if n == 1 else "} else {")
-            c += [f"    {cond}"] + _prologue(low, "        ") + _block(low, "        ")
-        c += ["    }", "}", ""]
+    c += _function(msig, mom[0], pre)
     c += _function("static void reference(const double *restrict geom, double *restrict q0)", ref, ["(void)geom;"])
-    if rot is not None:
-        c += _function("static void rotary(const double *restrict geom, const double *restrict q, "
-                       "const double *restrict qd, const double *restrict qdd, double *restrict f, "
-                       "double *restrict Mq, double *restrict Cq, double *restrict Kq, double *restrict T)", rot,
-                       [f"for (int i = 0; i < {nd}; ++i) f[i] = 0.0;",
-                        f"for (int i = 0; i < {nd * nd}; ++i) Mq[i] = Cq[i] = Kq[i] = 0.0;"])
     c += _function(f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
-                   "double *restrict tab)", tab, ["(void)q0;"] if elem.kind == "cable" else [])
+                   "double *restrict tab)", tab, ["(void)q0;"])
     c += [f"const bk_element bk_element_{name} = {{",
           f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
           f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, {'rotary' if rot is not None else '0'}",
+          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, 0",
           "};", ""]
     return htxt, "\n".join(c)
 
 
 def pair_source(elem, elem_path, mat, mat_path):
+    if elem.kind == "rod":
+        return _rod_pair_source(elem, elem_path, mat, mat_path)
     name = f"{elem.name}_{mat.NAME}"
     nd = elem.ndof
     h = input_hash([elem_path, mat_path] + family_paths(elem) + core_paths())
-    mod = rod if elem.kind == "rod" else cable
+    mod = cable
     ntab = mod.tab_layout()
     sig = {
         "energy": f"double {name}_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)",
@@ -254,7 +164,7 @@ def pair_source(elem, elem_path, mat, mat_path):
                                             f"for (int i = 0; i < {nd * nd}; ++i) K[i] = 0.0;"])
             c[-2:-2] = [f"    for (int r = 1; r < {nd}; ++r)",
                         f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];"]
-    nqp = len(rod.GAUSS) if elem.kind == "rod" else cable.NGAUSS
+    nqp = cable.NGAUSS
     c += [f"const bk_pair bk_pair_{name}_full = {{",
           f'    &bk_element_{elem.name}, "{mat.NAME}", "full", {len(mat.PARAMS)}, param_names,',
           f"    {ntab}, {nqp}, {ops['force'].total()}L, {ops['tangent'].total()}L,",
@@ -271,6 +181,461 @@ def pair_source(elem, elem_path, mat, mat_path):
            f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
            f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
            f" * Operations per element call ({nqp} Gauss points): energy {ops['energy']}; force {ops['force']};",
+           f" *   force + upper tangent {ops['tangent']}", " */"]
+    htxt = "\n".join(hdr) + f"""
+#ifndef BK_GEN_{name.upper()}_H
+#define BK_GEN_{name.upper()}_H
+#include "bk_kernel.h"
+
+extern const bk_pair bk_pair_{name}_full;
+""" + "\n".join(s + ";" for s in sig.values()) + "\n\n#endif\n"
+    return htxt, "\n".join(c), None
+
+
+# ----------------------------------------------------------------------------
+# Geometrically exact rods: one shared kinematics file for the three elements,
+# small element and pair files that call it.
+
+# The shared code is split in three files of similar compile time so that the two
+# compile jobs of a solver build (gen/solver_build.py) run side by side on a
+# first use:
+#   rod_strain   the Gauss point: v from z, strains, B = ds/dv, the geometric
+#                term, the pull-back v -> z
+#   rod_common   the nodes: psi = log(conj(p_c) p_i) and its derivatives, the
+#                pull-back z -> q, the gauge penalty, tabulate, frame, moments
+#                (its header includes the other two: the one the element and
+#                pair files include)
+#   rod_inertia  rotary inertia lumped at the nodes
+SHARED = "rod_common"
+SHARED_UNITS = ("rod_strain", "rod_inertia", "rod_common")
+SHARED_FILES = ("rod.py", "chain.py", "emit_rod.py")
+_STRAIN_FNS = ("v", "strain", "strain_b", "strain_grad", "strain_geo", "grad_v2z", "hess_v2z")
+
+_D = "const double *restrict"
+_W = "double *restrict"
+
+
+def shared_paths():
+    return [GEN_DIR / f for f in SHARED_FILES]
+
+
+def kernel_files(elem):
+    """Generated C files a pair of this element family links besides its own
+    element and pair files (index.json "files")."""
+    return [f"{u}.c" for u in SHARED_UNITS] if elem.kind == "rod" else []
+
+
+def _shared_programs():
+    """[(name, signature, program builder, doc)] of the generated shared functions."""
+    t8 = len(rod.tri(rod.NX))
+    items = [
+        ("psi", f"void bk_rod_psi({_D} q, {_W} psi)", lambda: rod.psi_program(0),
+         "psi[6] = (psi_0, psi_2), psi_i = log(conj(p_c) p_i), from the element coordinates q."),
+        ("psi_j", f"void bk_rod_psi_j({_D} q, {_W} psi, {_W} J)", lambda: rod.psi_program(1),
+         f"psi[6] and J[{6 * rod.NX}]: J[8 (3a + k) + b] = d psi_a,k / d x_b, x = q at "
+         f"PSI_Q[a] = {{{', '.join(map(str, rod.PSI_Q[0]))}}} (a = 0), {{{', '.join(map(str, rod.PSI_Q[1]))}}} (a = 1)."),
+        ("psi_hc", f"void bk_rod_psi_hc({_D} q, {_D} Gz, {_W} Hc)", lambda: rod.psi_hessian_program(),
+         f"Hc[{2 * t8}]: Hc[{t8} a + tri8(b, c)] = sum_k Gz[13 + 3a + k] d2 psi_a,k / dx_b dx_c."),
+        ("v", f"void bk_rod_v({_D} c, {_D} q, {_D} psi, {_W} v)", lambda: rod.v_program(),
+         "v[13] = (r', p_c, psi, psi') at a Gauss point with coefficients c[5] (bk_rod_gauss_c)."),
+        ("strain", f"void bk_rod_strain({_D} v, {_D} t0, {_W} s)", lambda: rod.strain_program(0),
+         "s[6] = (Gamma, K) - t0 at a Gauss point."),
+        ("strain_b", f"void bk_rod_strain_b({_D} v, {_D} t0, {_W} s, {_W} B)", lambda: rod.strain_program(1),
+         f"s[6] and B[78] = ds/dv (row-major 6 x 13; {len(rod.b_pattern())} structural nonzeros, zeros written)."),
+        ("strain_grad", f"void bk_rod_strain_grad({_D} v, {_D} sg, {_W} Gv)", lambda: rod.strain_gradient_program(),
+         "Gv[13] = sum_k sg[k] ds_k/dv (= B^T sg, without forming B)."),
+        ("strain_geo", f"void bk_rod_strain_geo({_D} v, {_D} sg, {_W} Hv)", lambda: rod.geometric_program(),
+         "Hv[91] = sum_k sg[k] d2 s_k / dv2 (upper triangle of 13 x 13, packed by rows)."),
+        ("grad_v2z", f"void bk_rod_grad_v2z({_D} c, {_D} Gv, {_W} Gz)", lambda: rod.grad_v2z_program(),
+         "Gz[19] += P^T Gv: a gradient in v (13) accumulated in z (19), v = P(c) z."),
+        ("hess_v2z", f"void bk_rod_hess_v2z({_D} c, {_D} Hv, {_W} Hz)", lambda: rod.hess_v2z_program(),
+         "Hz[190] += P^T Hv P (upper triangles: 13 x 13 packed into 19 x 19 packed)."),
+        ("grad_z2q", f"void bk_rod_grad_z2q({_D} J, {_D} Gz, {_W} g)", lambda: rod.grad_z2q_program(),
+         "g[21] = dz/dq^T Gz (J from bk_rod_psi_j)."),
+        ("hess_z2q", f"void bk_rod_hess_z2q(int nd, {_D} J, {_D} Hc, {_D} Hz, {_W} K)", lambda: rod.hess_z2q_program(),
+         "K[nd i + j] = (dz/dq^T Hz dz/dq)_ij + Hc, 0 <= i <= j < 21 (the rest of K untouched)."),
+        ("gauge_energy", f"double bk_rod_gauge_energy({_D} q, double cg)", lambda: rod.gauge_program(0),
+         "Quaternion gauge penalty sum_n w_n cg/4 (|p_n|^2 - 1)^2, w = (1/2, 1, 1/2)."),
+        ("gauge_force", f"void bk_rod_gauge_force({_D} q, double cg, {_W} f)", lambda: rod.gauge_program(1),
+         "f[21] += its gradient."),
+        ("gauge_tangent", f"void bk_rod_gauge_tangent(int nd, {_D} q, double cg, {_W} K)", lambda: rod.gauge_program(2),
+         "K[nd i + j] += its Hessian, i <= j < 21."),
+    ]
+    return items
+
+
+@lru_cache(maxsize=None)
+def _lowered(name):
+    builder = next(b for n, _, b, _ in _shared_programs() if n == name)
+    return lower(builder(), ())
+
+
+def _shared_list(names=None):
+    """[(name, signature, lowered, doc)], all or those in names."""
+    return [(n, sig, _lowered(n), doc) for n, sig, _, doc in _shared_programs() if names is None or n in names]
+
+
+def _ops(low):
+    pro, body = count_lowered(low)
+    body += pro
+    return body
+
+
+def _gen_fn(sig, low, pre=(), post=(), ret=None):
+    out = [sig, "{"] + [f"    {x}" for x in pre]
+    if ret:
+        out.append(f"    double {ret};")
+    out += _prologue(low, "    ") + _block(low, "    ") + [f"    {x}" for x in post]
+    if ret:
+        out.append(f"    return {ret};")
+    return out + ["}", ""]
+
+
+def shared_ops():
+    """{function name: Ops} of the generated shared functions."""
+    return {n: _ops(low) for n, _, low, _ in _shared_list()}
+
+
+def shared_source(unit=SHARED):
+    """(header, source) of out/kernels/<unit>.{h,c}, unit in SHARED_UNITS."""
+    h = input_hash(shared_paths() + core_paths())
+    if unit == "rod_inertia":
+        return _inertia_source(h, lower(rod.rotary_node_program(), ()))
+    strain = unit == "rod_strain"
+    progs = _shared_list(
+        [n for n, _, _, _ in _shared_programs() if (n in _STRAIN_FNS) == strain])
+    gt = rod.gauss_table()
+    ng = len(gt)
+    what = ("Gauss-point strain kinematics" if strain else
+            "nodal rotations, pull-back to q, element-level functions")
+    hdr = [f"/* {BANNER}",
+           f" * shared kinematics of the geometrically exact rods (gef, euler_bernoulli, kirchhoff): {what}",
+           f" * generator inputs: {', '.join('gen/' + f for f in SHARED_FILES)} + gen core ({', '.join(CORE_FILES)})",
+           f" * input hash: sha256:{h}", " *",
+           " * One object for all three elements and every material: their element and pair",
+           " * kernels (out/kernels/<element>.c, <element>_<material>.c) call these functions;",
+           " * rod_strain.c, rod_common.c, rod_inertia.c are three files so that they compile in parallel.",
+           " * Layouts (gen/rod.py):",
+           " *   q[21+]   element coordinates, node n: r at 7n, quaternion p at 7n + 3 (p_c = node 1)",
+           " *   z[19]    (r_0, r_1, r_2, p_c, psi_0, psi_2), psi_i = log(conj(p_c) p_i)",
+           " *   v[13]    (r', p_c, psi, psi') at a Gauss point: v = P(c) z",
+           " *   s[6]     (Gamma - Gamma0, K - K0), material components",
+           " *   t0[6]    (Gamma0, K0) of the point, tab + 1 + 6 g of bk_rod_tabulate",
+           " *   tri_n    upper triangles packed by rows: (i, j), i <= j, at i n - i (i - 1)/2 + j - i",
+           " * Operations per call (add + mul + div + call):"]
+    for n, _, low, _ in progs:
+        hdr.append(f" *   bk_rod_{n:<14} {_ops(low)}")
+    hdr += [" */", f"#ifndef BK_GEN_{unit.upper()}_H", f"#define BK_GEN_{unit.upper()}_H", ""]
+    if strain:
+        hdr += [f"/* Gauss points g = 0..{ng - 1}: (N_0, N_2, N_0', N_1', N_2', weight) at xi_g (Lagrange, d/dxi) */",
+                f"extern const double bk_rod_gauss[{ng}][6];", "",
+                "/* c[5] = (N_0, N_2, N_0'/l, N_1'/l, N_2'/l) of Gauss point g for length l; returns weight x l */",
+                f"static inline double bk_rod_gauss_c(int g, double l, {_W} c)", "{",
+                "    const double *t = bk_rod_gauss[g];",
+                "    c[0] = t[0];", "    c[1] = t[1];", "    c[2] = t[2] / l;", "    c[3] = t[3] / l;",
+                "    c[4] = t[4] / l;", "    return t[5] * l;", "}", ""]
+    else:
+        hdr += ['#include "rod_strain.h"', '#include "rod_inertia.h"', ""]
+    for n, sig, low, doc in progs:
+        hdr += [f"/* {doc} */", sig + ";"]
+    if not strain:
+        hdr += ["/* tab[13] = (l, then per Gauss point Gamma0[3], K0[3]) of the reference coordinates q0 */",
+                f"void bk_rod_tabulate({_D} geom, {_D} q0, {_W} tab);",
+                "/* Centreline position pos[3] and section frame d[9] = (d1, d2, d3) at xi */",
+                f"void bk_rod_frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d);",
+                "/* Moment M[3] fixed in space on the quaternion of the node nearest xi: Q[nd], dQ[nd*nd] */",
+                f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ);"]
+    hdr += ["", "#endif", ""]
+    c = [f"/* {BANNER} (see {unit}.h) */", f'#include "{unit}.h"', "#include <math.h>",
+         '#include "rod_math.h"', ""]
+    if strain:
+        c += [f"const double bk_rod_gauss[{ng}][6] = {{"]
+        c += [f"    {{{', '.join(c_double(x) for x in row)}}}," for row in gt]
+        c += ["};", ""]
+    for n, sig, low, _ in progs:
+        c += _gen_fn(sig, low, ret="ge" if sig.startswith("double") else None)
+    if strain:
+        return "\n".join(hdr), "\n".join(c)
+    c += [f"void bk_rod_tabulate({_D} geom, {_D} q0, {_W} tab)", "{",
+          "    const double zero[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};",
+          "    double psi[6];",
+          "    tab[0] = geom[0];",
+          "    bk_rod_psi(q0, psi);",
+          f"    for (int g = 0; g < {ng}; ++g) {{",
+          "        double c[5], v[13];",
+          "        (void)bk_rod_gauss_c(g, geom[0], c);",
+          "        bk_rod_v(c, q0, psi, v);",
+          "        bk_rod_strain(v, zero, tab + 1 + 6 * g);",
+          "    }", "}", ""]
+    fr, mom = lower(rod.frame_program(), ()), lower(rod.moment_node_program(), ())
+    c += _gen_fn(f"void bk_rod_frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)", fr,
+                 ["(void)geom;", "double psi[6];", "bk_rod_psi(q, psi);"])
+    c += _gen_fn(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", mom)
+    c += [f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)", "{",
+          "    double Qn[4], dQn[16];",
+          "    const int b = 7 * (xi < 0.25 ? 0 : xi < 0.75 ? 1 : 2) + 3;",
+          "    for (int i = 0; i < nd; ++i) Q[i] = 0.0;",
+          "    for (int i = 0; i < nd * nd; ++i) dQ[i] = 0.0;",
+          "    moment_node(q + b, M, Qn, dQn);",
+          "    for (int i = 0; i < 4; ++i) {",
+          "        Q[b + i] = Qn[i];",
+          "        for (int j = 0; j < 4; ++j) dQ[(b + i) * nd + b + j] = dQn[4 * i + j];",
+          "    }", "}", ""]
+    return "\n".join(hdr), "\n".join(c)
+
+
+def _inertia_source(h, rot):
+    hdr = [f"/* {BANNER}",
+           " * shared rotary inertia of the geometrically exact rods (gef, euler_bernoulli, kirchhoff)",
+           f" * generator inputs: {', '.join('gen/' + f for f in SHARED_FILES)} + gen core ({', '.join(CORE_FILES)})",
+           f" * input hash: sha256:{h}", " *",
+           " * Per node n (quaternion p at 7n + 3, weight w_n = 1/6, 2/3, 1/6), per unit density:",
+           " *   T = 1/2 W^T diag(Jn) W, W = 2 Im(conj(p) p')/|p|^2 (body angular velocity),",
+           " *   Jn = w_n l (Ip, I1, I2) = w_n geom[0] (geom[6], geom[4], geom[5]);",
+           " *   f = d/dt dT/dp' - dT/dp, Mq = df/dp'', Cq = df/dp', Kq = df/dp.",
+           f" * Operations per node: {_ops(rot)}",
+           " */", "#ifndef BK_GEN_ROD_INERTIA_H", "#define BK_GEN_ROD_INERTIA_H", "",
+           "/* Rotary inertia lumped at the nodes (weights l/6, 2l/3, l/6) per unit density, see",
+           " * bk_element.rotary: f[nd], Mq, Cq, Kq [nd*nd], T[1] */",
+           f"void bk_rod_rotary(int nd, {_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, "
+           f"{_W} Cq, {_W} Kq, {_W} T);", "", "#endif", ""]
+    c = [f"/* {BANNER} (see rod_inertia.h) */", '#include "rod_inertia.h"', ""]
+    c += _gen_fn(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
+                 f"{_W} Cq, {_W} Kq, {_W} T)", rot)
+    c += [f"void bk_rod_rotary(int nd, {_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, "
+          f"{_W} Cq, {_W} Kq, {_W} T)", "{",
+          "    static const double wn[3] = {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0};",
+          "    for (int i = 0; i < nd; ++i) f[i] = 0.0;",
+          "    for (int i = 0; i < nd * nd; ++i) Mq[i] = Cq[i] = Kq[i] = 0.0;",
+          "    T[0] = 0.0;",
+          "    for (int n = 0; n < 3; ++n) {",
+          "        const int b = 7 * n + 3;",
+          "        const double wl = wn[n] * geom[0];",
+          "        const double Jn[3] = {wl * geom[6], wl * geom[4], wl * geom[5]};",
+          "        double fn[4], Mn[16], Cn[16], Kn[16], Tn;",
+          "        rotary_node(Jn, q + b, qd + b, qdd + b, fn, Mn, Cn, Kn, &Tn);",
+          "        T[0] += Tn;",
+          "        for (int i = 0; i < 4; ++i) {",
+          "            f[b + i] = fn[i];",
+          "            for (int j = 0; j < 4; ++j) {",
+          "                Mq[(b + i) * nd + b + j] = Mn[4 * i + j];",
+          "                Cq[(b + i) * nd + b + j] = Cn[4 * i + j];",
+          "                Kq[(b + i) * nd + b + j] = Kn[4 * i + j];",
+          "            }", "        }", "    }", "}", ""]
+    return "\n".join(hdr), "\n".join(c)
+
+
+def _rod_element_source(elem, elem_path):
+    name = elem.name
+    nd = elem.ndof
+    h = input_hash([elem_path] + family_paths(elem) + core_paths())
+    g = _geom()
+    l, A = g[0], g[3]
+    xi = sp.Symbol("xi", real=True)
+    N = rod.lagrange(xi)
+    shp = Program()
+    for a in range(3):
+        shp.output(f"N[{a}]", N[a], op="=")
+    mass_low, vol_low = _line_integrals(list(N), xi, l, A)
+    ref = Program()
+    for n, xn in enumerate(rod.XI_NODES):
+        b = rod.NODE_DOF * n
+        for i, v in enumerate((xn * l, 0, 0, 1, 0, 0, 0)):
+            ref.output(f"q0[{b + i}]", v, op="=")
+    for i in range(elem.ninternal):
+        ref.output(f"q0[{rod.NQ + i}]", 0, op="=")
+    doc = (rod.__doc__ or "").strip().splitlines()
+    hdr = [f"/* {BANNER}", f" * element: {name} -- {elem.title}", f" * source: {elem.source}",
+           f" * generator inputs: gen/elements/{Path(elem_path).name}, "
+           f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core ({', '.join(CORE_FILES)})",
+           f" * input hash: sha256:{h}", " *"]
+    hdr += [" * " + x if x.strip() else " *" for x in doc]
+    hdr += [" */"]
+    ntab = rod.tab_layout()
+    htxt = "\n".join(hdr) + f"""
+#ifndef BK_GEN_{name.upper()}_H
+#define BK_GEN_{name.upper()}_H
+#include "bk_kernel.h"
+
+extern const bk_element bk_element_{name};
+/* tab[{ntab}] from the reference coordinates q0 (bk_rod_tabulate, {SHARED}.h) */
+void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
+
+#endif
+"""
+    fields = elem.fields()
+    shape_dof = [rod.NODE_DOF * n for n in range(3)]
+    c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{SHARED}.h"', "",
+         f"static const double node_xi[{elem.nnode}] = {{{', '.join(repr(float(x)) for x in rod.XI_NODES)}}};",
+         f"static const int shape_dof[3] = {{{', '.join(map(str, shape_dof))}}};"]
+    c += _fields_c(name, fields) + [""]
+    c += _function("static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)",
+                   lower(shp, ()), ["(void)geom; (void)y; (void)z;"])
+    c += _function("static void mass(const double *restrict geom, double *restrict m)", mass_low)
+    c += _function("static void volume(const double *restrict geom, double *restrict v)", vol_low)
+    c += ["static void moment(const double *restrict geom, double xi, const double *restrict q, "
+          "const double *restrict M, double *restrict Q, double *restrict dQ)", "{",
+          "    (void)geom;", f"    bk_rod_moment({nd}, xi, q, M, Q, dQ);", "}", ""]
+    c += _function("static void reference(const double *restrict geom, double *restrict q0)", lower(ref, ()),
+                   ["(void)geom;"])
+    c += ["static void rotary(const double *restrict geom, const double *restrict q, "
+          "const double *restrict qd, const double *restrict qdd, double *restrict f, "
+          "double *restrict Mq, double *restrict Cq, double *restrict Kq, double *restrict T)", "{",
+          f"    bk_rod_rotary({nd}, geom, q, qd, qdd, f, Mq, Cq, Kq, T);", "}", ""]
+    c += [f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
+          "double *restrict tab)", "{", "    bk_rod_tabulate(geom, q0, tab);", "}", ""]
+    c += [f"const bk_element bk_element_{name} = {{",
+          f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
+          f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
+          f"    3, shape_dof, shape, mass, volume, bk_rod_frame, moment, rotary",
+          "};", ""]
+    return htxt, "\n".join(c)
+
+
+def _renamed(low, prefix):
+    """The lowered program with its CSE temporaries x<k> renamed <prefix><k> (two
+    programs inlined in one C scope)."""
+    from gen.program import Lowered
+    names = [s for s, _ in low.prologue + low.body if s.name.startswith("x") and s.name[1:].isdigit()]
+    sub = {s: sp.Symbol(prefix + s.name[1:], real=True) for s in names}
+
+    def r(pairs):
+        return [(sub.get(s, s), e.xreplace(sub)) for s, e in pairs]
+    return Lowered(r(low.prologue), r(low.body), [(t, op, e.xreplace(sub)) for t, op, e in low.outputs])
+
+
+def _rod_pair_source(elem, elem_path, mat, mat_path):
+    name = f"{elem.name}_{mat.NAME}"
+    nd = elem.ndof
+    nq = rod.NQ
+    nc = len(elem.constrained)
+    ng = len(rod.GAUSS)
+    ntab = rod.tab_layout()
+    h = input_hash([elem_path, mat_path] + family_paths(elem) + core_paths())
+    progs, params = rod.material_programs(elem, mat)
+    force_only = Program()                        # without Gv = B^T sg: the force forms no B
+    force_only.defs = list(progs["force"].defs)
+    force_only.outputs = [o for o in progs["force"].outputs if not o[0].startswith("Gv[")]
+    hoist = params.values()
+    low = {"energy": lower(progs["energy"], hoist), "force": lower(force_only, hoist),
+           "force_t": lower(progs["force"], hoist), "tangent": _renamed(lower(progs["tangent"], hoist), "y")}
+    cg = print_c(rod.gauge_coefficient(params))
+    sh = shared_ops()
+
+    def total(calls, mats):
+        o = Ops()
+        for fn, n in calls:
+            for _ in range(n):
+                o += sh[fn]
+        for key, n in mats:
+            pro, body = count_lowered(low[key])
+            o += pro
+            for _ in range(n):
+                o += body
+        return o
+
+    gc = Ops(mul=1, div=3)                         # bk_rod_gauss_c
+    cg_ops = count_ops(rod.gauge_coefficient(params))
+    ops = {
+        "energy": total([("psi", 1), ("v", ng), ("strain", ng), ("gauge_energy", 1)], [("energy", ng)]),
+        "force": total([("psi_j", 1), ("v", ng), ("strain", ng), ("strain_grad", ng), ("grad_v2z", ng), ("grad_z2q", 1),
+                        ("gauge_force", 1)], [("force", ng)]),
+        "tangent": total([("psi_j", 1), ("v", ng), ("strain_b", ng), ("strain_geo", ng), ("grad_v2z", ng * (1 + nc)),
+                          ("hess_v2z", ng), ("grad_z2q", 1 + ng * nc), ("gauge_force", 1), ("psi_hc", 1),
+                          ("hess_z2q", 1), ("gauge_tangent", 1)], [("force_t", ng), ("tangent", ng)]),
+    }
+    for o in ops.values():
+        for _ in range(ng):
+            o += gc
+        o += cg_ops
+    ops["energy"].add += ng                         # e += per point
+    sig = {
+        "energy": f"double {name}_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)",
+        "force": f"void {name}_full_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)",
+        "tangent": f"void {name}_full_force_tangent(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)",
+    }
+
+    def point(want, lows):
+        """Loop over the Gauss points with the given material blocks inlined."""
+        out = [f"    for (int g = 0; g < {ng}; ++g) {{"]
+        decl = "double c[5], v[13], s[6]"
+        if want != "energy":
+            decl += ", sg[6], Gv[13]"
+        if want == "tangent":
+            decl += ", B[78], Hv[91]" + (f", C[{13 * nc}]" if nc else "")
+        out += [f"        {decl};", "        const double w = bk_rod_gauss_c(g, l, c);"]
+        if nc:
+            out.append(f"        const double *restrict lam = q + {nq} + {nc} * g;")
+            if want != "energy":
+                out.append(f"        double *restrict fl = f + {nq} + {nc} * g;")
+        out.append("        bk_rod_v(c, q, psi, v);")
+        if want == "energy":
+            out.append("        bk_rod_strain(v, tab + 1 + 6 * g, s);")
+            out += _block(lows[0], "        ")
+        elif want == "force":
+            out.append("        bk_rod_strain(v, tab + 1 + 6 * g, s);")
+            out += _block(lows[0], "        ")
+            out += ["        bk_rod_strain_grad(v, sg, Gv);", "        bk_rod_grad_v2z(c, Gv, Gz);"]
+        else:
+            out.append("        bk_rod_strain_b(v, tab + 1 + 6 * g, s, B);")
+            out += _block(lows[0], "        ")
+            if want == "tangent":
+                out.append("        bk_rod_strain_geo(v, sg, Hv);")
+                out += _block(lows[1], "        ")
+            out.append("        bk_rod_grad_v2z(c, Gv, Gz);")
+            if want == "tangent":
+                out.append("        bk_rod_hess_v2z(c, Hv, Hz);")
+                if nc:
+                    out += [f"        for (int j = 0; j < {nc}; ++j) {{",
+                            f"            double Cz[{rod.NZ}] = {{0.0}}, Cq[{nq}];",
+                            "            bk_rod_grad_v2z(c, C + 13 * j, Cz);",
+                            "            bk_rod_grad_z2q(J, Cz, Cq);",
+                            f"            for (int i = 0; i < {nq}; ++i) K[{nd} * i + {nq} + {nc} * g + j] = Cq[i];",
+                            "        }"]
+        return out + ["    }"]
+
+    c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{elem.name}.h"',
+         f'#include "{SHARED}.h"', "",
+         f"static const char *const param_names[{len(mat.PARAMS)}] = "
+         f"{{{', '.join(chr(34) + p + chr(34) for p in mat.PARAMS)}}};", ""]
+    # energy
+    c += [sig["energy"], "{", "    const double l = tab[0];", "    double e = 0.0, psi[6];"]
+    c += _prologue(low["energy"], "    ") + ["    bk_rod_psi(q, psi);"]
+    c += point("energy", [low["energy"]])
+    c += [f"    e += bk_rod_gauge_energy(q, {cg});", "    return e;", "}", ""]
+    # force
+    c += [sig["force"], "{", "    const double l = tab[0];", f"    double psi[6], J[48], Gz[{rod.NZ}] = {{0.0}};"]
+    c += _prologue(low["force"], "    ") + ["    bk_rod_psi_j(q, psi, J);"]
+    c += point("force", [low["force"]])
+    c += ["    bk_rod_grad_z2q(J, Gz, f);", f"    bk_rod_gauge_force(q, {cg}, f);", "}", ""]
+    # force + tangent
+    c += [sig["tangent"], "{", "    const double l = tab[0];", f"    const double cg = {cg};",
+          f"    double psi[6], J[48], Hc[72], Gz[{rod.NZ}] = {{0.0}}, Hz[{len(rod.tri(rod.NZ))}] = {{0.0}};",
+          f"    for (int i = 0; i < {nd * nd}; ++i) K[i] = 0.0;"]
+    c += _prologue(low["force_t"], "    ") + _prologue(low["tangent"], "    ") + ["    bk_rod_psi_j(q, psi, J);"]
+    c += point("tangent", [low["force_t"], low["tangent"]])
+    c += ["    bk_rod_grad_z2q(J, Gz, f);", "    bk_rod_gauge_force(q, cg, f);",
+          "    bk_rod_psi_hc(q, Gz, Hc);", f"    bk_rod_hess_z2q({nd}, J, Hc, Hz, K);",
+          f"    bk_rod_gauge_tangent({nd}, q, cg, K);",
+          f"    for (int r = 1; r < {nd}; ++r)",
+          f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];", "}", ""]
+    c += [f"const bk_pair bk_pair_{name}_full = {{",
+          f'    &bk_element_{elem.name}, "{mat.NAME}", "full", {len(mat.PARAMS)}, param_names,',
+          f"    {ntab}, {ng}, {ops['force'].total()}L, {ops['tangent'].total()}L,",
+          f"    {elem.name}_full_tabulate, {name}_full_energy, {name}_full_force, {name}_full_force_tangent,",
+          "    0, 0",
+          "};", ""]
+    hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
+           f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
+           f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",
+           f" * input hash: sha256:{h}", " *",
+           " * Computes for one element: U (energy, J), f = dU/dq, K = df/dq: the material law as a",
+           f" * function of the strains at each Gauss point, the kinematics from {SHARED}.c.",
+           f" * Inputs:  q[{nd}] ({', '.join(f'{n}@{d}' for n, d, _ in elem.fields())})",
+           f" *          tab[{ntab}] from {elem.name}_full_tabulate(geom, q0)",
+           f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
+           f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
+           f" * Operations per element call ({ng} Gauss points): energy {ops['energy']}; force {ops['force']};",
            f" *   force + upper tangent {ops['tangent']}", " */"]
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H

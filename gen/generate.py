@@ -34,6 +34,9 @@ def plan(elements=None, materials=None):
     materials = materials or all_materials()
     here = Path(__file__).resolve().parent
     units = [("header", "rod_math", [here / "rodmath.py", here / "program.py"])]
+    if any(e.kind == "rod" for e, _ in elements.values()):
+        from gen.emit_rod import SHARED_UNITS, shared_paths
+        units += [("shared", u, shared_paths()) for u in SHARED_UNITS]
     for ename, (elem, epath) in elements.items():
         fam = family_paths(elem)
         units.append(("element", ename, [epath] + fam))
@@ -54,6 +57,14 @@ def family_paths(elem):
     return fp(elem)
 
 
+def kernel_files(elem):
+    """Shared generated files an element family's pairs link (besides their own)."""
+    if elem.kind == "continuum":
+        return []
+    from gen.emit_rod import kernel_files as kf
+    return kf(elem)
+
+
 def _emitter(elem):
     if elem.kind == "continuum":
         import gen.emit as m
@@ -70,6 +81,9 @@ def produce(unit):
         from gen.emit import BANNER
         from gen.rodmath import rod_math_header
         h, c = rod_math_header(BANNER, input_hash(inputs)), None
+    elif kind == "shared":
+        from gen.emit_rod import shared_source
+        h, c = shared_source(name)
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = _emitter(elem).element_source(elem, epath)[:2]
@@ -118,7 +132,7 @@ def index_data(elements=None, materials=None):
             for r in elem.rule_names:
                 out["pairs"].append({"element": ename, "material": mname, "integration": r,
                                      "symbol": f"bk_pair_{ename}_{mname}_{r}",
-                                     "files": [f"{ename}.c", f"{ename}_{mname}.c"]})
+                                     "files": kernel_files(elem) + [f"{ename}.c", f"{ename}_{mname}.c"]})
     for mname, (mat, _) in materials.items():
         out["materials"][mname] = {"title": mat.TITLE, "params": list(mat.PARAMS),
                                    "kind": getattr(mat, "KIND", "continuum")}

@@ -107,9 +107,11 @@ def _stale(src, obj, deps, flags=None):
 
 
 def _compile_many(jobs, log):
-    """Compile (src, obj, flags, deps) jobs that are stale, two at a time."""
+    """Compile (src, obj, flags, deps) jobs that are stale, two at a time, the
+    largest source first (so that the jobs end close together)."""
     from concurrent.futures import ThreadPoolExecutor
     todo = [j for j in jobs if _stale(j[0], j[1], j[3], j[2])]
+    todo.sort(key=lambda j: -j[0].stat().st_size)
     if not todo:
         return
     with ThreadPoolExecutor(max_workers=min(JOBS, len(todo))) as ex:
@@ -160,6 +162,18 @@ def _runtime_objects(variant, log, extra_sources):
     return [j[1] for j in jobs]
 
 
+def _kernel_headers(src):
+    """Headers a generated kernel file includes with "..." (its own, its element's,
+    rod_common.h, rod_math.h, bk_kernel.h): an object is stale when one is newer."""
+    deps = [src.with_suffix(".h"), RUNTIME / "bk_kernel.h"]
+    for line in src.read_text(encoding="utf-8").splitlines()[:20]:
+        if line.startswith('#include "'):
+            h = KERNELS / line.split('"')[1]
+            if h.exists() and h not in deps:
+                deps.append(h)
+    return deps
+
+
 def kernel_objects(pairs, index, variant="release", log=None):
     """Objects for the element and pair files behind the given pair symbols
     (e.g. 'ancf3243_svk_full')."""
@@ -183,7 +197,7 @@ def _kernel_objects(pairs, index, variant, log):
         if not src.exists():
             raise BuildError(f"{src} is missing: run ./build.sh gen")
         obj = BUILD / variant / "kernels" / (Path(f).stem + ".o")
-        jobs.append((src, obj, flags, [src.with_suffix(".h"), RUNTIME / "bk_kernel.h"]))
+        jobs.append((src, obj, flags, _kernel_headers(src)))
     _compile_many(jobs, log)
     return [j[1] for j in jobs]
 

@@ -5,6 +5,10 @@
  * moment loads, per-element constants) and one per element x material pair
  * (<element>_<material>.{c,h}: energy, internal force, tangent).  Each defines
  * `const` descriptors of the types below; the runtime only calls through them.
+ * An element family may put code its elements share into further generated
+ * files (the geometrically exact rods: rod_strain.c, rod_common.c,
+ * rod_inertia.c); out/kernels/index.json lists, per pair, every file a solver
+ * links, and the descriptors point into them like into any other kernel code.
  *
  * Layouts (all arrays are plain doubles, caller-owned):
  *   geom[BK_NGEOM] element geometry: {l, b, h, A, I1, I2, Ip}: length, section

@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py)
- * input hash: sha256:ebb94b43b99eb51cc794c5a29d15960266655338ffeca841fc4253ee9702ac38
+ * input hash: sha256:c80b277ba78c4c74385da95b6ed71ff81dd3a6279fdfb148c536e926a4e228a4
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
@@ -31,16 +31,29 @@
  * bilateral constraints).  A penalty c (|p|^2 - 1)^2 / 4 per node (c = (GJ + EI1 +
  * EI2)/l) fixes the free scale of the quaternions; it does no work on the motion.
  *
- * Derivation: strains as functions of z = (r_0, r_1, r_2, p_c, psi_0, psi_2); the
- * psi_i as functions of (p_c, p_i); chain rule with sympy derivatives at both
- * levels, CSE over everything.
+ * Derivation through the strain measures, in layers that are each differentiated
+ * on their own (gen/chain.py):
+ *
+ *     q  (21 nodal coordinates)
+ *     z  = (r_0, r_1, r_2, p_c, psi_0, psi_2)   19   psi_i = log(conj(p_c) p_i)
+ *     v  = (r', p_c, psi, psi')                 13   at a Gauss point, linear in z
+ *     w  = (R_c^T r', e, e')                    11   e = exp(psi) as a quaternion
+ *     s  = (Gamma - Gamma0, K - K0)              6
+ *
+ * Everything up to s is the same for the three elements and every material: it
+ * is emitted once, as the functions of out/kernels/rod_strain.c (strains, their
+ * Jacobian B = ds/dv, the geometric term sum_k sigma_k d2 s_k / dv2, the
+ * pull-back v -> z) and rod_common.c (psi and its derivatives, the pull-back
+ * z -> q), with the rotary inertia in rod_inertia.c.  An element x material kernel only adds the energy as
+ * a function of s (material law, multipliers): sigma = dL/ds, B^T D B with
+ * D = d2L/ds2, and calls the shared kinematics in a loop over the Gauss points.
  */
 #ifndef BK_GEN_GEF_H
 #define BK_GEN_GEF_H
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_gef;
-/* tab[13] from the reference coordinates q0 */
+/* tab[13] from the reference coordinates q0 (bk_rod_tabulate, rod_common.h) */
 void gef_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 
 #endif
