@@ -133,10 +133,38 @@ def index_data(elements=None, materials=None):
                 out["pairs"].append({"element": ename, "material": mname, "integration": r,
                                      "symbol": f"bk_pair_{ename}_{mname}_{r}",
                                      "files": kernel_files(elem) + [f"{ename}.c", f"{ename}_{mname}.c"]})
-    for mname, (mat, _) in materials.items():
-        out["materials"][mname] = {"title": mat.TITLE, "params": list(mat.PARAMS),
-                                   "kind": getattr(mat, "KIND", "continuum")}
+    for mname, (mat, mpath) in materials.items():
+        out["materials"][mname] = material_data(mat, mpath)
     return out
+
+
+def material_data(mat, mpath):
+    """What the scene compiler needs of a material, as data (no sympy at run
+    time): its scene key sets with the kernel parameters as Python expressions
+    of those keys, the small-strain E and nu as expressions of the parameters,
+    the Green strain range, and for resultant laws the module whose
+    section_stiffness(E, nu, shape, b, h) turns E, nu and a section into the
+    six stiffnesses (plain math)."""
+    import sympy as sp
+    from sympy.printing.pycode import pycode
+
+    def code(e):
+        e = sp.sympify(e)
+        return pycode(sp.nsimplify(e) if e.is_Number else e, fully_qualified_modules=True)
+    inputs = []
+    for keys, fn in mat.INPUTS:
+        syms = [sp.Symbol(k, positive=True) for k in keys]
+        inputs.append({"keys": list(keys), "params": [code(v) for v in fn(*syms)]})
+    d = {"title": mat.TITLE, "params": list(mat.PARAMS), "kind": getattr(mat, "KIND", "continuum"),
+         "inputs": inputs}
+    if hasattr(mat, "small_strain"):
+        syms = [sp.Symbol(k, positive=True) for k in mat.PARAMS]
+        d["small_strain"] = [code(sp.simplify(v)) for v in mat.small_strain(*syms)]
+    if hasattr(mat, "GREEN_STRAIN_RANGE"):
+        d["green_strain_range"] = [float(x) for x in mat.GREEN_STRAIN_RANGE]
+    if hasattr(mat, "section_stiffness"):
+        d["section_stiffness"] = f"gen.materials.{Path(mpath).stem}"
+    return d
 
 
 def generate(outdir, check=False, force=False, log=print, only=None):

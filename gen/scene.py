@@ -288,14 +288,33 @@ def read_toml(path):
         raise SceneError(f"error: {path}: TOML syntax: {e}")
 
 
+def law_eval(exprs, names, values):
+    """Values of the generated expressions of a law (out/kernels/index.json
+    "materials": Python expressions written by gen/generate.py, math only) for
+    the variables `names` = `values`."""
+    import keyword
+    env = {"math": math, "__builtins__": {}}
+    for n, v in zip(names, values):
+        env[n + "_" if keyword.iskeyword(n) else n] = float(v)
+    return [float(eval(e, env)) for e in exprs]      # noqa: S307 -- the project's own generated text
+
+
+def small_strain(index, law, params):
+    """(E, nu) of a law at small strain, or None if the law states none."""
+    info = index["materials"][law]
+    if "small_strain" not in info:
+        return None
+    return law_eval(info["small_strain"], info["params"], params)
+
+
 def material_params(ctx, mname, mt, index):
     """(law, rho, params) of a [material.NAME] table; params is a function of the
-    section for resultant laws given by E and nu."""
-    from gen.materials import all_materials
+    section for resultant laws given by E and nu.  Reads the law from the
+    kernel index (no sympy)."""
     where = f"material.{mname}"
     laws = sorted(index["materials"])
     law = get_str(ctx, mt, "law", where, choices=laws)
-    mod = all_materials()[law][0]
+    info = index["materials"][law]
     rho = get_number(ctx, mt, "rho", where)
     given = sorted(k for k in mt if k not in ("law", "rho", "kelvin_voigt"))
     for k in given:
@@ -307,21 +326,26 @@ def material_params(ctx, mname, mt, index):
             test, expect = KEY_RANGES[k]
             if not test(float(mt[k])):
                 ctx.fail(f"{where}.{k}", f"expected {expect}, found {mt[k]!r}")
-    kind = getattr(mod, "KIND", "continuum")
-    inputs = list(mod.INPUTS)
-    if kind == "resultant":
-        # E, nu with the beam's section: stiffnesses from gen/materials/resultant.py
+    kind = info["kind"]
+    inputs = [(tuple(i["keys"]), i["params"]) for i in info["inputs"]]
+    if kind == "resultant" and "section_stiffness" in info:
+        # E, nu with the beam's section: stiffnesses from gen/materials/resultant.py (plain math)
         inputs.append((("E", "nu"), None))
     options = [" + ".join(keys) for keys, _ in inputs]
-    for keys, fn in inputs:
+    for keys, exprs in inputs:
         if sorted(keys) == given:
-            if fn is None:
+            if exprs is None:
+                import importlib
+                mod = importlib.import_module(info["section_stiffness"])
                 E, nu = float(mt["E"]), float(mt["nu"])
                 return law, rho, (lambda sec, E=E, nu=nu: [float(x) for x in mod.section_stiffness(E, nu, *sec)])
-            if "kelvin_voigt" in mt and not hasattr(mod, "small_strain") and kind != "resultant":
+            if "kelvin_voigt" in mt and "small_strain" not in info and kind != "resultant":
                 ctx.fail(f"{where}.kelvin_voigt", f"law {law!r} states no small-strain E, nu (small_strain()), "
                          "which Kelvin-Voigt damping needs")
-            vals = fn(*[float(mt[k]) for k in keys])
+            try:
+                vals = law_eval(exprs, keys, [mt[k] for k in keys])
+            except (ZeroDivisionError, ValueError, OverflowError):
+                vals = [math.nan]
             if not all(math.isfinite(v) for v in vals):
                 ctx.fail(where, f"parameters {', '.join(keys)} give non-finite {law} constants")
             if kind == "resultant" and not all(v > 0 for v in vals):
@@ -372,12 +396,11 @@ LOCKING = (
 )
 
 
-def locking_warnings(where, ename, integ, law, params):
-    from gen.materials import all_materials
-    mod = all_materials()[law][0]
-    if not hasattr(mod, "small_strain"):
+def locking_warnings(where, ename, integ, law, params, index):
+    ss = small_strain(index, law, params)
+    if ss is None:
         return []
-    _, nu = (float(x) for x in mod.small_strain(*params))
+    _, nu = ss
     out = []
     for el, integs, test, advice in LOCKING:
         if el == ename and integ in integs and test(nu):
@@ -564,7 +587,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
             ctx.fail(f"{where}.section", f"element {ename} needs a rectangle section, found {sec[0]}")
         params = materials[mname][2](sec)
         if einfo["kind"] == "continuum":
-            warnings += locking_warnings(where, ename, integ, law, params)
+            warnings += locking_warnings(where, ename, integ, law, params, index)
         if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
             ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
                      f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
@@ -595,8 +618,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
             if mkind == "resultant":
                 visc = [tau * v for v in params]
             else:
-                from gen.materials import all_materials
-                E_, nu_ = (float(x) for x in all_materials()[law][0].small_strain(*params))
+                E_, nu_ = small_strain(index, law, params)
                 visc = [tau * E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)), tau * E_ / (2 * (1 + nu_))]
         mkey = (tuple(params), materials[mname][1], tuple(visc))
         if mkey not in mats_used:
