@@ -77,7 +77,7 @@ static void diagnose(char *buf, size_t n, int code, const attempt *a, int steps,
 {
     if (code == NEWTON_SINGULAR || (isfinite(a->rcond) && a->rcond < ILL_RCOND)) {
         int exact = code == NEWTON_SINGULAR;
-        int len = snprintf(buf, n, "the tangent is %ssingular (KLU pivot ratio %.1e)%s", exact ? "" : "numerically ",
+        int len = snprintf(buf, n, "%ssingular tangent (KLU pivot ratio %.1e)%s", exact ? "" : "numerically ",
                            a->rcond,
                            a->residual_met ? ": the residual met its tolerance but the increments did not settle"
                                            : "");
@@ -85,8 +85,8 @@ static void diagnose(char *buf, size_t n, int code, const attempt *a, int steps,
             return;
         snprintf(buf + len, n - (size_t)len,
                  "; likely cause: %s", steps == 0
-                     ? "a rigid motion or mechanism the constraints leave free (e.g. the rotation of a beam about "
-                       "its own axis at a spherical joint, or a beam held by nothing)"
+                     ? "a rigid motion or mechanism left free: is every beam constrained against rigid motion? "
+                       "(e.g. a beam held by nothing, or one that can spin about its own axis at a spherical joint)"
                      : negative > 0 ? "a bifurcation or limit point on the path (negative tangent eigenvalues): "
                                       "try static.stable_path with an imperfection"
                                     : "a mechanism that opened under the load, or a bifurcation point");
@@ -420,7 +420,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             if (st == NEWTON_OK) {
                 if (isfinite(a.rcond) && a.rcond < ILL_RCOND && !warned_singular++)
                     bk_warn(info, out->console, m->name,
-                            "the tangent at the equilibrium of load factor %.6g is numerically singular (KLU "
+                            "numerically singular tangent at the equilibrium of load factor %.6g (KLU "
                             "pivot ratio %.1e): the solution is not unique; likely cause: a rigid motion or "
                             "mechanism the constraints leave free (e.g. the rotation of a beam about its own "
                             "axis at a spherical joint), or a bifurcation point", target, a.rcond);
