@@ -11,7 +11,6 @@ Exit status (also in ./build.sh --help and the README):
 """
 import argparse
 import json
-import os
 import shutil
 import signal
 import subprocess

@@ -10,7 +10,6 @@ scene compiler about 2.6 kB per element while the solver runs; an ASCII frame
 about 4 kB per continuum element (section rings) and 0.5 kB per rod element;
 a Newton iteration about 40 ns per tangent entry.
 """
-import math
 import os
 import shutil
 

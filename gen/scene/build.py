@@ -1,0 +1,69 @@
+"""The scene compiler's one entry: a scene file (and --set overrides) to the
+model as plain data, step by step: values and overrides (values.py, files.py),
+materials and sections (materials.py), cost (cost.py), meshing and numbering
+(mesh.py), joints (joints.py), loads (loads.py), options, initial velocities
+and sensors (options.py); the model file (model_file.py)."""
+from pathlib import Path
+
+import gen.scene_keys as K
+from gen.scene.cost import cost_check
+from gen.scene.files import apply_overrides, load_index, read_toml
+from gen.scene.joints import constraints
+from gen.scene.loads import loads
+from gen.scene.materials import material_params, sections as parse_sections
+from gen.scene.mesh import mesh_beams
+from gen.scene.options import initial_velocities, options, sensors
+from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
+
+ANALYSES = ("static", "dynamic", "modal")
+PLANNED_ANALYSES = ()
+
+
+def build(path, sets=(), name=None, log=None, out_dir=None):
+    """Validate the scene and return the model as a dict of plain data.  log: a
+    function taking a line (cost estimates and meshing progress of large
+    models); out_dir: where the results will go (disk space check)."""
+    ctx = Ctx(path)
+    doc = read_toml(path)
+    if sets:
+        apply_overrides(doc, sets, path)
+    index = load_index()
+    check_keys(ctx, doc, set(K.TOP), "(top level)")
+    scene = get_table(ctx, doc, "scene")
+    check_keys(ctx, scene, set(K.SCENE), "scene")
+    analysis = get_str(ctx, scene, "analysis", "scene", default="static",
+                       choices=ANALYSES + PLANNED_ANALYSES)
+    if analysis not in ANALYSES:
+        ctx.fail("scene.analysis", f"{analysis!r} analysis is not implemented yet; expected static")
+    if "description" in scene:
+        get_str(ctx, scene, "description", "scene")
+    sname = name or (get_name(ctx, scene, "name", "scene") if "name" in scene else Path(path).stem)
+    if not NAME_RE.match(sname):
+        ctx.fail("scene.name", f"scene name {sname!r} must be letters, digits, '_', '.', '-'")
+
+    mats_doc = get_table(ctx, doc, "material")
+    materials = {}
+    for mname, mt in mats_doc.items():
+        if not NAME_RE.match(mname):
+            ctx.fail(f"material.{mname}", "material names are letters, digits, '_', '.', '-'")
+        check_keys(ctx, mt, set(mt) if isinstance(mt, dict) else set(), f"material.{mname}")
+        materials[mname] = material_params(ctx, mname, mt, index)
+    sections = parse_sections(ctx, doc)
+
+    beams_doc = get_array_of_tables(ctx, doc, "beam")
+    if not beams_doc:
+        ctx.fail("beam", "missing; expected at least one [[beam]]")
+    cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
+    mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
+    rows = constraints(ctx, doc, mesh)          # none is allowed: the solver reports the singular tangent
+    forces, moments, gravity = loads(ctx, doc, mesh.beams)
+    stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
+    qd0 = initial_velocities(ctx, doc, mesh)
+    return {
+        "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
+        "length_scale": max(b["length"] for b in mesh.beams.values()),
+        "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
+        "fixed": sorted(rows.fixed), "lincons": rows.lincons, "forces": forces, "moments": moments,
+        "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams), "static": stat, "beams": mesh.beams,
+        "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
+    }

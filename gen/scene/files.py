@@ -1,0 +1,89 @@
+"""Scene files: reading the TOML, `--set` overrides, the kernel index."""
+import json
+import re
+import tomllib
+from pathlib import Path
+
+from gen.scene.values import SceneError, _typename
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+KERNEL_INDEX = ROOT / "out" / "kernels" / "index.json"
+
+
+def apply_overrides(doc, sets, path):
+    """Apply KEY=VALUE overrides (numbers only) to the parsed TOML document."""
+    for item in sets:
+        if "=" not in item:
+            raise SceneError(f"error: --set {item}: expected KEY=VALUE")
+        key, val = item.split("=", 1)
+        parts = key.split(".")
+        try:
+            num = int(val) if re.fullmatch(r"[+-]?\d+", val.strip()) else float(val)
+        except ValueError:
+            num = None
+        node = doc
+        for depth, p in enumerate(parts[:-1]):
+            if isinstance(node, dict):
+                if p not in node and p in ("static", "dynamic", "modal", "output") and depth == 0:
+                    node[p] = {}
+                if p not in node:
+                    raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")
+                node = node[p]
+            elif isinstance(node, list):
+                match = [t for t in node if isinstance(t, dict) and t.get("name") == p]
+                if not match and p.isdigit() and int(p) < len(node):
+                    match = [node[int(p)]]
+                if len(match) != 1:
+                    raise SceneError(f"error: {path}: --set {key}: no entry named or numbered '{p}' in "
+                                     f"'{'.'.join(parts[:depth])}'")
+                node = match[0]
+        last = parts[-1]
+        if isinstance(node, list) and last.isdigit():
+            i = int(last)
+            if i >= len(node) or isinstance(node[i], bool) or not isinstance(node[i], (int, float)):
+                raise SceneError(f"error: {path}: --set {key}: no number at index {i} of "
+                                 f"'{'.'.join(parts[:-1])}'")
+            if num is None:
+                raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
+            node[i] = num
+            continue
+        if not isinstance(node, dict):
+            raise SceneError(f"error: {path}: --set {key}: '{'.'.join(parts[:-1])}' is not a table")
+        old = node.get(parts[-1])
+        if val in ("true", "false") and (old is None or isinstance(old, bool)):
+            node[parts[-1]] = val == "true"
+            continue
+        if isinstance(old, bool):
+            raise SceneError(f"error: --set {key}: expected true or false, found {val!r}")
+        if isinstance(old, str):
+            node[parts[-1]] = val          # a string key (element, law, ...) takes the text
+            continue
+        if old is not None and (isinstance(old, bool) or not isinstance(old, (int, float))):
+            raise SceneError(f"error: {path}: --set {key}: the scene's value is {_typename(old)}, not a number")
+        if num is None and old is not None:
+            raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
+        node[parts[-1]] = val if num is None else num
+    return doc
+
+
+def load_index():
+    try:
+        return json.loads(KERNEL_INDEX.read_text(encoding="utf-8"))
+    except OSError:
+        raise SceneError(f"error: {KERNEL_INDEX}: missing; run ./build.sh gen")
+
+
+def read_toml(path):
+    try:
+        data = Path(path).read_bytes()
+    except OSError as e:
+        raise SceneError(f"error: {path}: cannot read: {e.strerror}")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise SceneError(f"error: {path}: encoding: not UTF-8 text (byte {e.start}); expected a TOML scene file")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise SceneError(f"error: {path}: TOML syntax: {e}")
+

@@ -1,0 +1,159 @@
+"""Joints: [[constraint]] tables as rows of linear, possibly rheonomic
+constraints on the DOFs (the bk_lincon form of runtime/model.h), by type.
+
+A joint type is a function (ctx, ct, where, mesh, rows, beam, s, gid) that adds
+rows with rows.row(...) or holds DOFs with rows.fixed; JOINTS maps each
+`type` (gen/scene_keys.py CONSTRAINT) to its function.  Adding a joint: a
+function here, its keys in scene_keys.CONSTRAINT, a test.
+"""
+import gen.scene_keys as K
+from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
+                              get_number, get_str, get_vec3)
+
+
+class Rows:
+    """Constraint rows being collected: fixed DOFs and linear constraints."""
+
+    def __init__(self, q0):
+        self.q0 = q0
+        self.fixed = set()
+        self.lincons = []
+
+    def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0):
+        """terms: [(dof, c0, cc, cs)]: sum (c0 + cc cos phi + cs sin phi) q = r0 + rc cos phi + rs sin phi,
+        phi(t) = kappa (rate t + amp sin(2 pi freq t)).  A static single-DOF row is a fixed DOF."""
+        terms = [t_ for t_ in terms if any(abs(c) > 1e-15 for c in t_[1:])]
+        if not terms:
+            return
+        if len(terms) == 1 and terms[0][2] == 0 and terms[0][3] == 0 and rc == 0 and rs == 0 \
+                and abs(r0 - terms[0][1] * self.q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
+            self.fixed.add(terms[0][0])
+            return
+        self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq)))
+
+
+def _axis_frame(ctx, ct, where):
+    axis = get_vec3(ctx, ct, "axis", where, nonzero=True)
+    axis = _scale(axis, 1 / _norm(axis))
+    n1 = _cross(axis, [1.0, 0.0, 0.0])
+    if _norm(n1) < 0.5:
+        n1 = _cross(axis, [0.0, 1.0, 0.0])
+    n1 = _scale(n1, 1 / _norm(n1))
+    return axis, n1, _cross(axis, n1)
+
+
+def clamp(ctx, ct, where, mesh, rows, beam, s, gid):
+    """Every nodal coordinate held (rigid section), or position and the
+    directions of the slopes held but not their lengths (free section)."""
+    fd, fixed, row = mesh.field_dofs(gid), rows.fixed, rows.row
+    mode = get_str(ctx, ct, "cross_section", where, default="rigid", choices=("rigid", "free"))
+    if mode == "rigid":
+        for dl in fd.values():
+            fixed.update(dl)
+        return
+    _, t, d1, d2 = beam["geo"].at(s)
+    normals = {"r_x": (d1, d2), "r_y": (t, d2), "r_z": (t, d1)}
+    for f, dl in fd.items():
+        if f == "r" or len(dl) != 3:
+            fixed.update(dl)                                  # position, rotations: held
+        elif f in normals:
+            for nrm in normals[f]:
+                row([(dl[i], nrm[i], 0.0, 0.0) for i in range(3)])
+        else:                   # r_yy, r_yz, r_zz: the section stays plane, free in its plane
+            row([(dl[i], t[i], 0.0, 0.0) for i in range(3)])
+
+
+def spherical(ctx, ct, where, mesh, rows, beam, s, gid):
+    """The point held in space (to ground) or at a point of another beam (b)."""
+    fd, fixed, row = mesh.field_dofs(gid), rows.fixed, rows.row
+    nodes = mesh.nodes
+    X = nodes[gid][0]
+    if "b" not in ct:
+        fixed.update(fd["r"])                                 # to ground
+        return
+    beam_b, s_b, gid_b = mesh.node_of(ctx, f"{where}.b", ct["b"], "spherical joint")
+    if _norm(_sub(X, nodes[gid_b][0])) > 1e-9 * max(1.0, _norm(X)):
+        ctx.fail(f"{where}.b", f"the points a and b must coincide in the reference configuration "
+                 f"({ct['a']} at {X}, {ct['b']} at {nodes[gid_b][0]})")
+    if gid_b == gid:
+        ctx.fail(f"{where}.b", "a and b are the same node")
+    fb = mesh.field_dofs(gid_b)
+    for i in range(3):
+        row([(fd["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
+
+
+def _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, ctype):
+    fd, fixed, row, q0 = mesh.field_dofs(gid), rows.fixed, rows.row, mesh.q0
+    axis, n1, n2 = _axis_frame(ctx, ct, where)
+    _, t, d1, d2 = beam["geo"].at(s)
+    fixed.update(fd["r"])                                     # the axis passes through the point
+    if ctype == "revolute":
+        if "p" in fd:                   # quaternion: vec(p conj(p0)) parallel to the axis
+            p0 = [q0[d] for d in fd["p"]]
+            s0, v0 = p0[0], p0[1:]
+            A = [[-v0[i]] + [(s0 if i == j else 0.0) + _skew(v0)[i][j] for j in range(3)] for i in range(3)]
+            for nrm in (n1, n2):
+                row([(fd["p"][k], sum(nrm[i] * A[i][k] for i in range(3)), 0.0, 0.0) for k in range(4)])
+        else:                           # ANCF: the material fibre along the axis stays along it
+            comps = {"r_x": _dot(axis, t), "r_y": _dot(axis, d1), "r_z": _dot(axis, d2)}
+            for f, c in comps.items():
+                if abs(c) > 1e-12 and f not in fd:
+                    ctx.fail(f"{where}.axis", f"element {beam['element']} has no nodal {f} at this "
+                             "point; a revolute axis there must lie in the cross-section plane")
+            for nrm in (n1, n2):
+                terms = []
+                for f, c in comps.items():
+                    if abs(c) > 1e-12:
+                        terms += [(fd[f][i], c * nrm[i], 0.0, 0.0) for i in range(3)]
+                row(terms)
+    else:
+        rate = get_number(ctx, ct, "rate", where, default=0.0)
+        amp = get_number(ctx, ct, "amplitude", where, default=0.0)
+        freq = get_number(ctx, ct, "frequency", where, default=0.0, nonneg=True)
+        for f, dl in fd.items():
+            if f == "r":
+                continue
+            if f == "p":                # p(t) = (cos th/2, sin th/2 axis) p0
+                s0, v0 = q0[dl[0]], [q0[d] for d in dl[1:]]
+                av = _dot(axis, v0)
+                cr = _cross(axis, v0)
+                row([(dl[0], 1.0, 0.0, 0.0)], 0.0, s0, -av, 0.5, rate, amp, freq)
+                for i in range(3):
+                    row([(dl[1 + i], 1.0, 0.0, 0.0)], 0.0, v0[i], s0 * axis[i] + cr[i], 0.5, rate, amp, freq)
+            elif len(dl) == 3:          # nodal vectors rotate rigidly
+                v0 = [q0[d] for d in dl]
+                par = _dot(axis, v0)
+                cr = _cross(axis, v0)
+                for i in range(3):
+                    row([(dl[i], 1.0, 0.0, 0.0)], par * axis[i], v0[i] - par * axis[i], cr[i],
+                        1.0, rate, amp, freq)
+            else:
+                fixed.update(dl)
+
+
+
+def revolute(ctx, ct, where, mesh, rows, beam, s, gid):
+    """The point held; the node turns about `axis` only (to ground)."""
+    _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, "revolute")
+
+
+def prescribed_rotation(ctx, ct, where, mesh, rows, beam, s, gid):
+    """The point held; the node turned about `axis` by rate t + amplitude sin(2 pi frequency t)."""
+    _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, "prescribed_rotation")
+
+
+JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescribed_rotation": prescribed_rotation}
+
+
+def constraints(ctx, doc, mesh):
+    """Rows of every [[constraint]] table."""
+    rows = Rows(mesh.q0)
+    for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
+        where = f"constraint[{ci}]"
+        ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS))
+        check_keys(ctx, ct, set(K.CONSTRAINT[ctype]), where)
+        if "a" not in ct:
+            ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
+        beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
+        JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
+    return rows
