@@ -17,7 +17,8 @@ BEAM = ("name", "element", "material", "section", "start", "end", "up", "element
 CONSTRAINT = {"clamp": ("type", "a", "cross_section"),
               "spherical": ("type", "a", "b"),
               "revolute": ("type", "a", "axis"),
-              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency")}
+              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency"),
+              "point_on_line": ("type", "a", "axis")}
 LOAD = {"force": ("type", "at", "value", "distribution"),
         "moment": ("type", "at", "value"),
         "gravity": ("type", "value")}

@@ -142,7 +142,19 @@ def prescribed_rotation(ctx, ct, where, mesh, rows, beam, s, gid):
     _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, "prescribed_rotation")
 
 
-JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescribed_rotation": prescribed_rotation}
+def point_on_line(ctx, ct, where, mesh, rows, beam, s, gid):
+    """The point stays on the line through its reference position along `axis`
+    (a roller, a slider): its position across the axis is held, along it free;
+    the section turns freely."""
+    axis, n1, n2 = _axis_frame(ctx, ct, where)
+    r = mesh.field_dofs(gid)["r"]
+    X = mesh.nodes[gid][0]
+    for nrm in (n1, n2):
+        rows.row([(r[i], nrm[i], 0.0, 0.0) for i in range(3)], _dot(nrm, X))
+
+
+JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescribed_rotation": prescribed_rotation,
+          "point_on_line": point_on_line}
 
 
 def constraints(ctx, doc, mesh):
