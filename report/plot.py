@@ -40,9 +40,11 @@ def model_length(run):
     p = run / "model.dat"
     if p.exists():
         with open(p) as fh:
-            for line in fh:
-                if line.startswith("length_scale "):
-                    return float(line.split()[1])
+            for line in fh:          # the scene record (gen/scene/model_file.py)
+                if line.startswith("scene "):
+                    for tok in line.split()[1:]:
+                        if tok.startswith("length_scale="):
+                            return float(tok.split("=", 1)[1])
                 if line.startswith("q0"):
                     break
     return None

@@ -1,9 +1,13 @@
-/* model.c -- reading the model file written by gen/scene.py.
+/* model.c -- reading the model file written by gen/scene/model_file.py.
  *
- * The format is a flat stream of whitespace-separated tokens: a keyword, then
- * the numbers that keyword announces, in a fixed order.  The scene has been
- * validated in Python; errors here mean a damaged or mismatched model file and
- * are reported as such.
+ * The format (version BK_MODEL_VERSION) is a stream of whitespace-separated
+ * tokens: a record keyword, then its fields.  Scalar records (scene, static,
+ * dynamic, output, modal; the material of a `mat` record) are named fields
+ * `key=value` in the order of gen/scene/model_file.py RECORDS, checked here by
+ * name; arrays follow their counts.  A model file of another version, or one
+ * whose fields do not match, is refused with the record and field named.  The
+ * scene has been validated in Python; errors here mean a damaged or mismatched
+ * model file and are reported as such.
  */
 #include "model.h"
 
@@ -50,6 +54,65 @@ static void expect(reader *r, const char *kw)
     const char *t = next(r, kw);
     if (t && strcmp(t, kw) != 0)
         fail(r, "expected keyword '%s', found '%s'", kw, t);
+}
+
+/* The value of the named field `rec.key` (token "key=value"). */
+static const char *field(reader *r, const char *rec, const char *key)
+{
+    char what[128];
+    snprintf(what, sizeof what, "field %s.%s", rec, key);
+    const char *t = next(r, what);
+    if (!t)
+        return NULL;
+    size_t n = strlen(key);
+    if (strncmp(t, key, n) != 0 || t[n] != '=') {
+        fail(r, "record '%s': expected field '%s=...', found '%s' (a model file of another beamkit version? "
+                "rerun ./build.sh run)", rec, key, t);
+        return NULL;
+    }
+    return t + n + 1;
+}
+
+static double parse_num(reader *r, const char *what, const char *t)
+{
+    if (!t)
+        return 0.0;
+    char *end;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (*end != '\0' || errno == ERANGE || !isfinite(v)) {
+        fail(r, "%s: expected a finite number, found '%s'", what, t);
+        return 0.0;
+    }
+    return v;
+}
+
+static int parse_int(reader *r, const char *what, const char *t, int lo, int hi)
+{
+    if (!t)
+        return lo;
+    char *end;
+    errno = 0;
+    long v = strtol(t, &end, 10);
+    if (*end != '\0' || errno == ERANGE || v < lo || v > hi) {
+        fail(r, "%s: expected an integer in [%d, %d], found '%s'", what, lo, hi, t);
+        return lo;
+    }
+    return (int)v;
+}
+
+static double fnum(reader *r, const char *rec, const char *key)
+{
+    char what[128];
+    snprintf(what, sizeof what, "%s.%s", rec, key);
+    return parse_num(r, what, field(r, rec, key));
+}
+
+static int fint(reader *r, const char *rec, const char *key, int lo, int hi)
+{
+    char what[128];
+    snprintf(what, sizeof what, "%s.%s", rec, key);
+    return parse_int(r, what, field(r, rec, key), lo, hi);
 }
 
 static double num(reader *r, const char *what)
@@ -123,16 +186,20 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         return NULL;
     }
     expect(r, "beamkit-model");
-    if (inum(r, "format version", 1, 1) != 1)
-        fail(r, "unsupported model format");
-    expect(r, "name");
-    const char *t = next(r, "scene name");
+    {
+        const char *v = next(r, "format version");
+        int ver = v ? atoi(v) : -1;
+        if (v && ver != BK_MODEL_VERSION)
+            fail(r, "model file format version %s, this solver reads version %d: the file was written by "
+                    "another version of beamkit (rerun ./build.sh run to rewrite it)", v, BK_MODEL_VERSION);
+    }
+    expect(r, "scene");
+    const char *t = field(r, "scene", "name");
     if (t && strlen(t) >= sizeof m->name)
         fail(r, "scene name longer than %zu characters", sizeof m->name - 1);
     else if (t)
         memcpy(m->name, t, strlen(t) + 1);
-    expect(r, "analysis");
-    t = next(r, "analysis type");
+    t = field(r, "scene", "analysis");
     if (t && strcmp(t, "static") == 0)
         m->analysis = BK_STATIC;
     else if (t && strcmp(t, "dynamic") == 0)
@@ -141,36 +208,35 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         m->analysis = BK_MODAL;
     else if (t)
         fail(r, "analysis '%s' is not supported by this solver (expected static, dynamic, modal)", t);
-    expect(r, "length_scale");
-    m->length_scale = num(r, "length_scale");
+    m->length_scale = fnum(r, "scene", "length_scale");
     expect(r, "static");
-    m->stat.load_steps = inum(r, "static.load_steps", 1, MAXN);
-    m->stat.max_iter = inum(r, "static.max_iterations", 1, 10000);
-    m->stat.max_cutbacks = inum(r, "static.max_cutbacks", 0, 60);
-    m->stat.cycles = inum(r, "static.cycles", 0, 1000);
-    m->stat.rtol = num(r, "static.rtol");
-    m->stat.utol = num(r, "static.utol");
-    m->stat.predictor = inum(r, "static.predictor", 0, 1);
-    m->stat.stability = inum(r, "static.stability", 0, 1);
-    m->stat.stable_path = inum(r, "static.stable_path", 0, 1);
+    m->stat.load_steps = fint(r, "static", "load_steps", 1, MAXN);
+    m->stat.max_iter = fint(r, "static", "max_iterations", 1, 10000);
+    m->stat.max_cutbacks = fint(r, "static", "max_cutbacks", 0, 60);
+    m->stat.cycles = fint(r, "static", "cycles", 0, 1000);
+    m->stat.rtol = fnum(r, "static", "rtol");
+    m->stat.utol = fnum(r, "static", "utol");
+    m->stat.predictor = fint(r, "static", "predictor", 0, 1);
+    m->stat.stability = fint(r, "static", "stability", 0, 1);
+    m->stat.stable_path = fint(r, "static", "stable_path", 0, 1);
     expect(r, "dynamic");
-    m->dyn.t_end = num(r, "dynamic.t_end");
-    m->dyn.dt = num(r, "dynamic.dt");
-    m->dyn.dt_min = num(r, "dynamic.dt_min");
-    m->dyn.rho_inf = num(r, "dynamic.rho_inf");
-    m->dyn.tol = num(r, "dynamic.tol");
-    m->dyn.max_iter = inum(r, "dynamic.max_iterations", 1, 10000);
-    m->dyn.max_cutbacks = inum(r, "dynamic.max_cutbacks", 0, 60);
-    m->dyn.output_every = inum(r, "dynamic.output_every", 1, MAXN);
-    m->dyn.rayleigh_alpha = num(r, "dynamic.rayleigh_alpha");
-    m->dyn.rayleigh_beta = num(r, "dynamic.rayleigh_beta");
-    m->dyn.rtol = num(r, "dynamic.rtol");
-    m->dyn.utol = num(r, "dynamic.utol");
+    m->dyn.t_end = fnum(r, "dynamic", "t_end");
+    m->dyn.dt = fnum(r, "dynamic", "dt");
+    m->dyn.dt_min = fnum(r, "dynamic", "dt_min");
+    m->dyn.rho_inf = fnum(r, "dynamic", "rho_inf");
+    m->dyn.tol = fnum(r, "dynamic", "tol");
+    m->dyn.max_iter = fint(r, "dynamic", "max_iterations", 1, 10000);
+    m->dyn.max_cutbacks = fint(r, "dynamic", "max_cutbacks", 0, 60);
+    m->dyn.output_every = fint(r, "dynamic", "output_every", 1, MAXN);
+    m->dyn.rayleigh_alpha = fnum(r, "dynamic", "rayleigh_alpha");
+    m->dyn.rayleigh_beta = fnum(r, "dynamic", "rayleigh_beta");
+    m->dyn.rtol = fnum(r, "dynamic", "rtol");
+    m->dyn.utol = fnum(r, "dynamic", "utol");
     expect(r, "output");
-    m->vtk_every = inum(r, "output.vtk_every", 0, MAXN);
+    m->vtk_every = fint(r, "output", "vtk_every", 0, MAXN);
     expect(r, "modal");
-    m->modal.nmodes = inum(r, "modal.modes", 1, 100000);
-    m->modal.about_static = inum(r, "modal.about", 0, 1);
+    m->modal.nmodes = fint(r, "modal", "modes", 1, 100000);
+    m->modal.about_static = fint(r, "modal", "about", 0, 1);
 
     expect(r, "ndof");
     m->ndof = inum(r, "ndof", 1, MAXN);
@@ -202,14 +268,25 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->nmat = inum(r, "mats", 1, MAXN);
     m->mats = xcalloc(r, (size_t)m->nmat, sizeof *m->mats);
     for (int i = 0; i < m->nmat && !r->failed; ++i) {
+        bk_mat *mt = &m->mats[i];
         expect(r, "mat");
-        m->mats[i].rho = num(r, "density");
-        m->mats[i].nparam = inum(r, "parameter count", 0, 8);
-        for (int k = 0; k < m->mats[i].nparam; ++k)
-            m->mats[i].params[k] = num(r, "material parameter");
-        m->mats[i].nvisc = inum(r, "viscous parameter count", 0, 8);
-        for (int k = 0; k < m->mats[i].nvisc; ++k)
-            m->mats[i].visc[k] = num(r, "viscous parameter");
+        mt->rho = fnum(r, "mat", "rho");
+        mt->nparam = fint(r, "mat", "params", 0, BK_MAT_MAXPARAM);
+        for (int k = 0; k < mt->nparam && !r->failed; ++k) {
+            /* name=value: the name is checked against the kernel's param_names below */
+            const char *tk = next(r, "material parameter");
+            const char *eq = tk ? strchr(tk, '=') : NULL;
+            if (!eq || eq == tk || (size_t)(eq - tk) >= sizeof mt->param_names[k]) {
+                fail(r, "material %d: expected a parameter 'name=value', found '%s'", i, tk ? tk : "");
+                break;
+            }
+            memcpy(mt->param_names[k], tk, (size_t)(eq - tk));
+            mt->param_names[k][eq - tk] = '\0';
+            mt->params[k] = parse_num(r, "material parameter", eq + 1);
+        }
+        mt->nvisc = fint(r, "mat", "visc", 0, BK_MAT_MAXPARAM);
+        for (int k = 0; k < mt->nvisc; ++k)
+            mt->visc[k] = num(r, "viscous parameter");
     }
 
     expect(r, "geoms");
@@ -242,8 +319,15 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         if (nd != p->element->ndof)
             fail(r, "element %d: %d DOFs given, kernel %s has %d", i, nd, p->element->name, p->element->ndof);
         if (m->mats[e->mat].nparam != p->nparam)
-            fail(r, "element %d: material has %d parameters, kernel expects %d", i,
-                 m->mats[e->mat].nparam, p->nparam);
+            fail(r, "element %d: material has %d parameters, kernel %s_%s expects %d", i,
+                 m->mats[e->mat].nparam, p->element->name, p->material, p->nparam);
+        for (int k = 0; k < p->nparam && !r->failed && k < m->mats[e->mat].nparam; ++k)
+            if (strcmp(m->mats[e->mat].param_names[k], p->param_names[k]) != 0)
+                fail(r, "element %d: material parameter %d is '%s', kernel %s_%s expects '%s'", i, k + 1,
+                     m->mats[e->mat].param_names[k], p->element->name, p->material, p->param_names[k]);
+        if (m->mats[e->mat].nvisc > 0 && p->viscous && m->mats[e->mat].nvisc != p->nvisc)
+            fail(r, "element %d: %d viscous parameters given, kernel %s_%s expects %d", i,
+                 m->mats[e->mat].nvisc, p->element->name, p->material, p->nvisc);
         e->dofs = xcalloc(r, (size_t)nd, sizeof *e->dofs);
         for (int k = 0; k < nd && !r->failed; ++k)
             e->dofs[k] = inum(r, "element DOF", 0, m->ndof - 1);

@@ -20,12 +20,16 @@ typedef struct bk_elem {
     int *dofs;         /* [ndof of the element] global DOF of each local DOF */
 } bk_elem;
 
+#define BK_MODEL_VERSION 2       /* model file format (gen/scene/model_file.py VERSION) */
+#define BK_MAT_MAXPARAM 8
+
 typedef struct bk_mat {
     int nparam;
-    double params[8];
+    double params[BK_MAT_MAXPARAM];
+    char param_names[BK_MAT_MAXPARAM][24];  /* as the model file names them; checked against the kernel */
     double rho;        /* kg/m^3 */
     int nvisc;         /* Kelvin-Voigt parameters (0: no material damping) */
-    double visc[8];
+    double visc[BK_MAT_MAXPARAM];
 } bk_mat;
 
 typedef struct bk_force_load {   /* force at a material point of an element */

@@ -195,7 +195,7 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             else:
                 E_, nu_ = small_strain(index, law, params)
                 visc = [tau * E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)), tau * E_ / (2 * (1 + nu_))]
-        mkey = (tuple(params), materials[mname][1], tuple(visc))
+        mkey = (tuple(params), materials[mname][1], tuple(visc), tuple(index["materials"][law]["params"]))
         if mkey not in mats_used:
             mats_used.append(mkey)
         midx = mats_used.index(mkey)

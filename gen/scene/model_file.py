@@ -5,20 +5,49 @@ def _f(x):
     return repr(float(x))
 
 
+# Model file format: versioned; scalar records are named fields `key=value` in
+# this order, which runtime/model.c reads by name (a model file of another
+# version, or with a field renamed, is refused naming the record and field).
+VERSION = 2
+RECORDS = {
+    "scene": ("name", "analysis", "length_scale"),
+    "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
+               "stability", "stable_path"),
+    "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
+                "rayleigh_alpha", "rayleigh_beta", "rtol", "utol"),
+    "output": ("vtk_every",),
+    "modal": ("modes", "about"),
+}
+
+
+def _value(v):
+    if isinstance(v, bool):
+        return str(int(v))
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return _f(v)
+    return str(v)
+
+
+def _record(name, values):
+    assert set(values) == set(RECORDS[name]), (name, sorted(values))
+    return name + " " + " ".join(f"{k}={_value(values[k])}" for k in RECORDS[name])
+
+
 def write_model(model, path):
     """Write the model file read by runtime/model.c."""
-    out = ["beamkit-model 1", f"name {model['name']}", f"analysis {model['analysis']}",
-           f"length_scale {_f(model['length_scale'])}"]
-    s = model["static"]
-    out.append(f"static {s['load_steps']} {s['max_iterations']} {s['max_cutbacks']} {s['cycles']} "
-               f"{_f(s['rtol'])} {_f(s['utol'])} {int(s['predictor'] == 'secant')} "
-               f"{int(s['stability'] or s['stable_path'])} {int(s['stable_path'])}")
-    d = model["dynamic"]
-    out.append(f"dynamic {_f(d['t_end'])} {_f(d['dt'])} {_f(d['dt_min'])} {_f(d['rho_inf'])} {_f(d['tol'])} "
-               f"{d['max_iterations']} {d['max_cutbacks']} {d['output_every']} {_f(d['rayleigh_alpha'])} "
-               f"{_f(d['rayleigh_beta'])} {_f(d['rtol'])} {_f(d['utol'])}")
-    out.append(f"output {model['vtk_every']}")
-    out.append(f"modal {model['modal']['modes']} {model['modal']['about']}")
+    s, d = model["static"], model["dynamic"]
+    out = [f"beamkit-model {VERSION}",
+           _record("scene", {"name": model["name"], "analysis": model["analysis"],
+                             "length_scale": float(model["length_scale"])}),
+           _record("static", {**{k: s[k] for k in ("load_steps", "max_iterations", "max_cutbacks", "cycles",
+                                                   "rtol", "utol", "stable_path")},
+                              "predictor": int(s["predictor"] == "secant"),
+                              "stability": int(s["stability"] or s["stable_path"])}),
+           _record("dynamic", {k: d[k] for k in RECORDS["dynamic"]}),
+           _record("output", {"vtk_every": model["vtk_every"]}),
+           _record("modal", {"modes": model["modal"]["modes"], "about": model["modal"]["about"]})]
     out.append(f"ndof {model['ndof']}")
     out.append("q0")
     q0 = model["q0"]
@@ -31,9 +60,9 @@ def write_model(model, path):
     out.append(f"pairs {len(model['pairs'])}")
     out += [f"pair {p}" for p in model["pairs"]]
     out.append(f"mats {len(model['mats'])}")
-    for params, rho, visc in model["mats"]:
-        out.append(f"mat {_f(rho)} {len(params)} " + " ".join(_f(v) for v in params)
-                   + f" {len(visc)} " + " ".join(_f(v) for v in visc))
+    for params, rho, visc, names in model["mats"]:
+        out.append(f"mat rho={_f(rho)} params={len(params)} " + " ".join(f"{n}={_f(v)}" for n, v in zip(names, params))
+                   + f" visc={len(visc)} " + " ".join(_f(v) for v in visc))
     out.append(f"geoms {len(model['geoms'])}")
     for p, e, g in model["geoms"]:
         out.append(f"geom {p} {e} " + " ".join(_f(x) for x in g))

@@ -1,0 +1,50 @@
+"""The model file is versioned and its scalar records are named fields
+(gen/scene/model_file.py RECORDS, read by name in runtime/model.c): a file of
+another version, a renamed or missing field, or material parameters that do not
+match the kernel's parameter names are refused with one line naming them."""
+import json
+import re
+import subprocess
+import tempfile
+from pathlib import Path
+
+from gen.scene import model_file
+from util import BUILD, ROOT, ensure_dir, run_cli
+
+
+def _run():
+    out = Path(tempfile.mkdtemp(prefix="bk-mf-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "cantilever_bend_10N", "--quiet", "--out", str(out)])
+    assert r.returncode == 0, r.stderr
+    return out, ROOT / "out" / "bin" / "cantilever_bend_10N"
+
+
+def _solve(solver, out, text):
+    p = out / "edited.dat"
+    p.write_text(text)
+    work = out / "w"
+    work.mkdir(exist_ok=True)
+    return subprocess.run([str(solver), str(p), str(work), "--quiet"], capture_output=True, text=True)
+
+
+def test_every_record_field_is_written_by_name_in_schema_order():
+    out, _ = _run()
+    text = (out / "model.dat").read_text()
+    assert text.startswith(f"beamkit-model {model_file.VERSION}\n")
+    for rec, fields in model_file.RECORDS.items():
+        line = next(l for l in text.splitlines() if l.startswith(rec + " "))
+        assert [t.split("=", 1)[0] for t in line.split()[1:]] == list(fields), (rec, line)
+    assert re.search(r"^mat rho=\S+ params=2 lambda=\S+ mu=\S+ visc=0", text, re.M), text
+
+
+def test_other_version_renamed_field_and_wrong_parameter_names_are_refused():
+    out, solver = _run()
+    text = (out / "model.dat").read_text()
+    r = _solve(solver, out, text.replace(f"beamkit-model {model_file.VERSION}", "beamkit-model 1", 1))
+    assert r.returncode == 1 and "format version 1, this solver reads version 2" in r.stderr, r.stderr
+    r = _solve(solver, out, text.replace(" rtol=", " r_tol=", 1))
+    assert r.returncode == 1 and "record 'static': expected field 'rtol=...'" in r.stderr, r.stderr
+    r = _solve(solver, out, text.replace(" lambda=", " kappa=", 1))
+    assert r.returncode == 1 and "material parameter 1 is 'kappa', kernel ancf3243_svk expects 'lambda'" in r.stderr, \
+        r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
