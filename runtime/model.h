@@ -75,6 +75,7 @@ typedef struct bk_static_opts {
     int predictor;     /* 1: secant predictor from the last two equilibria */
     int stability;     /* 1: inertia of the tangent at every equilibrium   */
     int stable_path;   /* 1: cut back increments that lose stability       */
+    int adaptive;      /* 1: adaptive load increments (static.step_control) */
 } bk_static_opts;
 
 typedef struct bk_dynamic_opts {

@@ -293,6 +293,25 @@ static void accept_stability(bk_stability *st, const bk_stability_result *res, d
     bk_output_stability(out, info->steps, lam, res->ok ? res->negative : -1, res->eig_min, res->eig_max);
 }
 
+/* The next load increment after one that converged in `iters` iterations.
+ * Fixed control (static.step_control = "fixed", or no cut-backs allowed):
+ * back towards the initial increment after easy steps.  Adaptive control (the
+ * default): grow by 2 after an increment of at most 3 iterations, by 1.5 after
+ * one of at most TARGET_ITERS, not right after a cut-back (two converged
+ * increments first), never beyond the leg; an increment that needs many
+ * iterations is kept (slowly converging problems need them at any size) and
+ * one that fails is cut back. */
+#define TARGET_ITERS 6
+static double next_increment(const bk_static_opts *o, double dlam, double dlam0, int iters, int calm)
+{
+    if (!o->adaptive || o->max_cutbacks == 0)
+        return iters <= 6 && dlam < dlam0 ? fmin(2.0 * dlam, dlam0) : dlam;
+    double f = iters <= 3 ? 2.0 : iters <= TARGET_ITERS ? 1.5 : 1.0;
+    if (calm < 2)
+        f = fmin(f, dlam < dlam0 ? 2.0 : 1.0);      /* after a cut-back: back to dlam0 at most */
+    return fmin(fmin(dlam * f, calm < 2 ? fmax(dlam0, dlam) : 1.0), 1.0);
+}
+
 int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
@@ -367,6 +386,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
      * show path independence); each leg in load_steps increments. */
     double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
     int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0, warned_singular = 0;
+    int cuts_since_growth_ok = 2;      /* converged increments since the last cut-back (at most 2) */
     attempt a = {0};
     for (int leg = 0; leg < nleg; ++leg) {
         double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
@@ -434,8 +454,9 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 bk_output_step(out, info->steps, lam, q);
                 bk_checks_state(&chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;
-                if (a.iters <= 6 && dlam < dlam0)
-                    dlam = fmin(2.0 * dlam, dlam0);
+                if (cuts_since_growth_ok < 2)
+                    cuts_since_growth_ok++;
+                dlam = next_increment(o, dlam, dlam0, a.iters, cuts_since_growth_ok);
                 if (log)
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, a.iters, a.rnorm);
@@ -488,6 +509,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             cuts_in_row++;
             info->cutbacks++;
             dlam *= 0.5;
+            cuts_since_growth_ok = 0;
             if (dlam <= 1e-14 * fmax(fabs(lam), 1.0)) {
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): the load "

@@ -64,7 +64,7 @@ def test_ctrl_c_during_a_dynamic_run():
 def test_sigterm_to_the_front_end_during_a_static_run():
     """SIGTERM sent to the build.sh process only (as `kill PID` does): passed on to the solver."""
     out = Path(tempfile.mkdtemp(prefix="bk-int-", dir=ensure_dir(BUILD / "runs")))
-    p = start("cantilever_rollup", ["static.load_steps=100000", "static.stability=false"], out)
+    p = start("cantilever_rollup", ["static.load_steps=100000", "static.stability=false", "static.step_control=fixed"], out)
     wait_rows(out, 40, p)
     os.kill(p.pid, signal.SIGTERM)
     s = check_interrupted(out, p, 143, "SIGTERM")

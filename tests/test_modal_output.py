@@ -58,7 +58,7 @@ def sagging_modal_scene(d):
     """cantilever_modal about its static state under gravity, in 4 load steps."""
     text = (ROOT / "models" / "cantilever_modal.toml").read_text()
     text = text.replace("[modal]\nmodes = 6", '[modal]\nmodes = 6\nabout = "static"')
-    text += '\n[[load]]\ntype = "gravity"\nvalue = [0.0, 0.0, -9.81]\n\n[static]\nload_steps = 4\n'
+    text += '\n[[load]]\ntype = "gravity"\nvalue = [0.0, 0.0, -9.81]\n\n[static]\nload_steps = 4\nstep_control = "fixed"\n'
     p = d / "cantilever_modal_sag.toml"
     p.write_text(text)
     return p

@@ -7,9 +7,9 @@ from gen.scene.mesh import locate, parse_point
 from gen.scene.values import (_cross, _dot, _sub, check_keys, get_array_of_tables, get_bool, get_int, get_name,
                               get_number, get_str, get_table, get_vec3)
 
-STATIC_DEFAULTS = {"load_steps": 10, "max_iterations": 25, "max_cutbacks": 12,
+STATIC_DEFAULTS = {"load_steps": 1, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "predictor": "secant", "stability": True,
-                   "stable_path": False}
+                   "stable_path": False, "step_control": "adaptive"}
 DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
                     "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
                     "rtol": 1e-8, "utol": 1e-8}
@@ -30,6 +30,8 @@ def options(ctx, doc, analysis):
                              choices=("none", "secant")),
         "stability": get_bool(ctx, st, "stability", "static", STATIC_DEFAULTS["stability"]),
         "stable_path": get_bool(ctx, st, "stable_path", "static", STATIC_DEFAULTS["stable_path"]),
+        "step_control": get_str(ctx, st, "step_control", "static", default=STATIC_DEFAULTS["step_control"],
+                                choices=("adaptive", "fixed")),
     }
     dt = get_table(ctx, doc, "dynamic")
     check_keys(ctx, dt, set(K.DYNAMIC), "dynamic")
