@@ -97,7 +97,7 @@ def test_newton_failure_keeps_converged_steps():
     keeps every converged step, and the last converged load is below the limit."""
     text = (ROOT / "models" / "cantilever_axial_m1kN.toml").read_text()
     text = text.replace("value = [-1000.0, 0.0, 0.0]", "value = [-5.0e6, 0.0, 0.0]")
-    text = text.replace("load_steps = 1", "load_steps = 10")
+    text = text.replace("load_steps = 1", "load_steps = 10\nstep_control = \"fixed\"")
     r, p, out = run_text(text, "collapse")
     assert r.returncode == 2, f"exit {r.returncode}\n{r.stderr}"
     lines = [l for l in r.stderr.splitlines() if l.startswith("error")]
