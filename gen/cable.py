@@ -15,7 +15,7 @@ from functools import lru_cache
 
 import sympy as sp
 
-from gen.element import ContinuumElement, Node, XI, L, shape_functions
+from gen.element import ContinuumElement, Node, XI, L, geom_symbol, shape_functions
 from gen.program import Program
 from gen.quadrature import gauss_unit
 
@@ -69,7 +69,7 @@ def tab_layout():
 
 def tabulate_program():
     prog = Program()
-    l = sp.Symbol("geom[0]", positive=True)
+    l = geom_symbol("L")
     N, d1, d2 = hermite()
     for g, (xg, wg) in enumerate(gauss_unit(NGAUSS)):
         base = 9 * g

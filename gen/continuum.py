@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from gen.element import B, H, L, XI, Y, Z, shape_gradients
+from gen.element import B, H, L, XI, Y, Z, geom_subs, shape_gradients
 from gen.invariants import (COMPONENTS, cofactor, component_first, component_second,
                             first_derivatives, second_derivatives)
 from gen.program import Program, lower
@@ -80,10 +80,9 @@ def rule_parts(elem, integration):
 
 
 def tabulate_program(elem, integration):
-    """Program filling tab[] from geom[] = {l, b, h}: per point w*l*b*h, then g slots."""
+    """Program filling tab[] from geom[BK_GEOM_L, _B, _H]: per point w*l*b*h, then g slots."""
     slots, parts, ntab = rule_parts(elem, integration)
-    geom = {L: sp.Symbol("geom[0]", positive=True), B: sp.Symbol("geom[1]", positive=True),
-            H: sp.Symbol("geom[2]", positive=True)}
+    geom = geom_subs()
     prog = Program()
     for part in parts:
         for p, (s, w) in enumerate(part.rule):

@@ -22,7 +22,19 @@ import sympy as sp
 # The element's symbolic reference coordinates and geometry.
 XI, Y, Z = sp.symbols("xi y z", real=True)           # xi = x / l in [0, 1]
 L, B, H = sp.symbols("l b h", positive=True)          # length, width, height
-GEOMETRY = (L, B, H)                                  # order of geom[] in C
+GEOMETRY = (L, B, H)                                  # geom[BK_GEOM_L], [BK_GEOM_B], [BK_GEOM_H] in C
+
+
+def geom_symbol(slot):
+    """The C geometry entry geom[BK_GEOM_<slot>] (runtime/bk_kernel.h) as a symbol."""
+    from gen import contract
+    contract.geom_slot(slot)                          # raises if the header has no such slot
+    return sp.Symbol(f"geom[BK_GEOM_{slot}]", positive=True)
+
+
+def geom_subs():
+    """{l, b, h} -> their geom[] entries."""
+    return {L: geom_symbol("L"), B: geom_symbol("B"), H: geom_symbol("H")}
 
 
 def vector_order(name):

@@ -5,8 +5,10 @@ from pathlib import Path
 
 import sympy as sp
 
-from gen import cable, rod
-from gen.emit import BANNER, CORE_FILES, _block, _fields_c, _function, _prologue, core_paths, input_hash
+from gen import cable, contract, rod
+from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
+from gen.element import geom_symbol
+from gen.emit import BANNER, CORE_FILES, _block, _function, _prologue, core_paths, input_hash
 from gen.loads import axis_moment
 from gen.program import Ops, Program, c_double, count_lowered, count_ops, lower, print_c
 
@@ -19,7 +21,33 @@ def family_paths(elem):
 
 
 def _geom():
-    return [sp.Symbol(f"geom[{i}]", positive=True) for i in range(7)]
+    """{slot name: symbol geom[BK_GEOM_<slot>]}."""
+    return {k: geom_symbol(k) for k in contract.geom_slots()}
+
+
+CABLE_CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_CIRCLE", "BK_CAP_MOMENT_NO_TORSION")
+ROD_CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_CIRCLE", "BK_CAP_CURVED", "BK_CAP_MOMENT_NODES")
+
+
+def _fields(elem, per_node):
+    """Field descriptors from elem.fields() [(name, dof, dim)]: the first
+    per_node * nnode are nodal, the rest element-internal."""
+    return tuple(Field(n, d, k, i // per_node if i < per_node * elem.nnode else -1)
+                 for i, (n, d, k) in enumerate(elem.fields()))
+
+
+def describe(elem):
+    """The descriptor of a cable or rod element (gen/descriptor.py)."""
+    if elem.kind == "rod":
+        return ElementDesc(name=elem.name, title=elem.title, node_xi=tuple(str(x) for x in rod.XI_NODES),
+                           ndof=elem.ndof, caps=ROD_CAPS, fields=_fields(elem, 2),
+                           shape_dof=tuple(rod.NODE_DOF * n for n in range(3)),
+                           functions={"reference": "reference", "shape": "shape", "mass": "mass",
+                                      "volume": "volume", "frame": "bk_rod_frame", "moment": "moment",
+                                      "rotary": "rotary"})
+    return ElementDesc(name=elem.name, title=elem.title, node_xi=("0", "1"), ndof=elem.ndof, caps=CABLE_CAPS,
+                       fields=_fields(elem, 2), shape_dof=(0, 3, 6, 9),
+                       functions={k: k for k in ("reference", "shape", "mass", "volume", "frame", "moment")})
 
 
 def _line_integrals(N, xi, l, A):
@@ -39,7 +67,7 @@ def _line_integrals(N, xi, l, A):
 
 def _cable_parts(elem):
     g = _geom()
-    l, A = g[0], g[3]
+    l, A = g["L"], g["A"]
     xi = sp.Symbol("xi", real=True)
     from gen.element import XI, L
     Nh, d1h, _ = cable.hermite()
@@ -84,7 +112,6 @@ def element_source(elem, elem_path):
     nd = elem.ndof
     h = input_hash([elem_path] + family_paths(elem) + core_paths())
     shp, mass_low, vol_low, fr, mom, ref, tab, shape_dof, ntab = _cable_parts(elem)
-    nsh = len(shape_dof)
     doc = (cable.__doc__ or "").strip().splitlines()
     hdr = [f"/* {BANNER}", f" * element: {name} -- {elem.title}", f" * source: {elem.source}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, "
@@ -103,12 +130,8 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
 
 #endif
 """
-    fields = elem.fields()
     c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', "#include <math.h>",
-         '#include "rod_math.h"', "",
-         f"static const double node_xi[{elem.nnode}] = {{{', '.join(repr(float(x)) for x in (0, 1))}}};",
-         f"static const int shape_dof[{nsh}] = {{{', '.join(map(str, shape_dof))}}};"]
-    c += _fields_c(name, fields) + [""]
+         '#include "rod_math.h"'] + version_guard() + [""]
     c += _function("static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)",
                    shp, ["(void)geom; (void)y; (void)z;"])
     c += _function("static void mass(const double *restrict geom, double *restrict m)", mass_low)
@@ -123,11 +146,9 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
     c += _function("static void reference(const double *restrict geom, double *restrict q0)", ref, ["(void)geom;"])
     c += _function(f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
                    "double *restrict tab)", tab, ["(void)q0;"])
-    c += [f"const bk_element bk_element_{name} = {{",
-          f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
-          f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    {nsh}, shape_dof, shape, mass, volume, frame, moment, 0",
-          "};", ""]
+    desc = describe(elem)
+    assert list(desc.shape_dof) == list(shape_dof)
+    c += element_descriptor(desc)
     return htxt, "\n".join(c)
 
 
@@ -145,9 +166,7 @@ def pair_source(elem, elem_path, mat, mat_path):
         "tangent": f"void {name}_full_force_tangent(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)",
     }
     c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{elem.name}.h"',
-         "#include <math.h>", '#include "rod_math.h"', "",
-         f"static const char *const param_names[{len(mat.PARAMS)}] = "
-         f"{{{', '.join(chr(34) + p + chr(34) for p in mat.PARAMS)}}};", ""]
+         "#include <math.h>", '#include "rod_math.h"'] + version_guard() + [""]
     ops = {}
     for want in ("energy", "force", "tangent"):
         prog, params = mod.body_program(elem, mat, want)
@@ -165,12 +184,7 @@ def pair_source(elem, elem_path, mat, mat_path):
             c[-2:-2] = [f"    for (int r = 1; r < {nd}; ++r)",
                         f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];"]
     nqp = cable.NGAUSS
-    c += [f"const bk_pair bk_pair_{name}_full = {{",
-          f'    &bk_element_{elem.name}, "{mat.NAME}", "full", {len(mat.PARAMS)}, param_names,',
-          f"    {ntab}, {nqp}, {ops['force'].total()}L, {ops['tangent'].total()}L,",
-          f"    {elem.name}_full_tabulate, {name}_full_energy, {name}_full_force, {name}_full_force_tangent,",
-          "    0, 0",
-          "};", ""]
+    c += pair_descriptors(mat.PARAMS, [_full_pair(elem, mat, ntab, nqp, ops)])
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",
@@ -190,6 +204,15 @@ def pair_source(elem, elem_path, mat, mat_path):
 extern const bk_pair bk_pair_{name}_full;
 """ + "\n".join(s + ";" for s in sig.values()) + "\n\n#endif\n"
     return htxt, "\n".join(c), None
+
+
+def _full_pair(elem, mat, ntab, nqp, ops):
+    """The one pair ("full" integration) of a cable or rod element file."""
+    name = f"{elem.name}_{mat.NAME}"
+    return PairDesc(element=elem.name, material=mat.NAME, integration="full", ntab=ntab, nqp=nqp,
+                    ops_force=ops["force"].total(), ops_force_tangent=ops["tangent"].total(),
+                    functions={"tabulate": f"{elem.name}_full_tabulate", "energy": f"{name}_full_energy",
+                               "force": f"{name}_full_force", "force_tangent": f"{name}_full_force_tangent"})
 
 
 # ----------------------------------------------------------------------------
@@ -347,7 +370,7 @@ def shared_source(unit=SHARED):
                 f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ);"]
     hdr += ["", "#endif", ""]
     c = [f"/* {BANNER} (see {unit}.h) */", f'#include "{unit}.h"', "#include <math.h>",
-         '#include "rod_math.h"', ""]
+         '#include "rod_math.h"'] + version_guard() + [""]
     if strain:
         c += [f"const double bk_rod_gauss[{ng}][6] = {{"]
         c += [f"    {{{', '.join(c_double(x) for x in row)}}}," for row in gt]
@@ -359,11 +382,11 @@ def shared_source(unit=SHARED):
     c += [f"void bk_rod_tabulate({_D} geom, {_D} q0, {_W} tab)", "{",
           "    const double zero[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};",
           "    double psi[6];",
-          "    tab[0] = geom[0];",
+          "    tab[0] = geom[BK_GEOM_L];",
           "    bk_rod_psi(q0, psi);",
           f"    for (int g = 0; g < {ng}; ++g) {{",
           "        double c[5], v[13];",
-          "        (void)bk_rod_gauss_c(g, geom[0], c);",
+          "        (void)bk_rod_gauss_c(g, geom[BK_GEOM_L], c);",
           "        bk_rod_v(c, q0, psi, v);",
           "        bk_rod_strain(v, zero, tab + 1 + 6 * g);",
           "    }", "}", ""]
@@ -391,7 +414,7 @@ def _inertia_source(h, rot):
            f" * input hash: sha256:{h}", " *",
            " * Per node n (quaternion p at 7n + 3, weight w_n = 1/6, 2/3, 1/6), per unit density:",
            " *   T = 1/2 W^T diag(Jn) W, W = 2 Im(conj(p) p')/|p|^2 (body angular velocity),",
-           " *   Jn = w_n l (Ip, I1, I2) = w_n geom[0] (geom[6], geom[4], geom[5]);",
+           " *   Jn = w_n l (Ip, I1, I2) = w_n geom[BK_GEOM_L] (geom[BK_GEOM_IP], geom[BK_GEOM_I1], geom[BK_GEOM_I2]);",
            " *   f = d/dt dT/dp' - dT/dp, Mq = df/dp'', Cq = df/dp', Kq = df/dp.",
            f" * Operations per node: {_ops(rot)}",
            " */", "#ifndef BK_GEN_ROD_INERTIA_H", "#define BK_GEN_ROD_INERTIA_H", "",
@@ -399,7 +422,7 @@ def _inertia_source(h, rot):
            " * bk_element.rotary: f[nd], Mq, Cq, Kq [nd*nd], T[1] */",
            f"void bk_rod_rotary(int nd, {_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, "
            f"{_W} Cq, {_W} Kq, {_W} T);", "", "#endif", ""]
-    c = [f"/* {BANNER} (see rod_inertia.h) */", '#include "rod_inertia.h"', ""]
+    c = [f"/* {BANNER} (see rod_inertia.h) */", '#include "rod_inertia.h"'] + version_guard() + [""]
     c += _gen_fn(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
                  f"{_W} Cq, {_W} Kq, {_W} T)", rot)
     c += [f"void bk_rod_rotary(int nd, {_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, "
@@ -410,8 +433,8 @@ def _inertia_source(h, rot):
           "    T[0] = 0.0;",
           "    for (int n = 0; n < 3; ++n) {",
           "        const int b = 7 * n + 3;",
-          "        const double wl = wn[n] * geom[0];",
-          "        const double Jn[3] = {wl * geom[6], wl * geom[4], wl * geom[5]};",
+          "        const double wl = wn[n] * geom[BK_GEOM_L];",
+          "        const double Jn[3] = {wl * geom[BK_GEOM_IP], wl * geom[BK_GEOM_I1], wl * geom[BK_GEOM_I2]};",
           "        double fn[4], Mn[16], Cn[16], Kn[16], Tn;",
           "        rotary_node(Jn, q + b, qd + b, qdd + b, fn, Mn, Cn, Kn, &Tn);",
           "        T[0] += Tn;",
@@ -430,7 +453,7 @@ def _rod_element_source(elem, elem_path):
     nd = elem.ndof
     h = input_hash([elem_path] + family_paths(elem) + core_paths())
     g = _geom()
-    l, A = g[0], g[3]
+    l, A = g["L"], g["A"]
     xi = sp.Symbol("xi", real=True)
     N = rod.lagrange(xi)
     shp = Program()
@@ -463,12 +486,7 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
 
 #endif
 """
-    fields = elem.fields()
-    shape_dof = [rod.NODE_DOF * n for n in range(3)]
-    c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{SHARED}.h"', "",
-         f"static const double node_xi[{elem.nnode}] = {{{', '.join(repr(float(x)) for x in rod.XI_NODES)}}};",
-         f"static const int shape_dof[3] = {{{', '.join(map(str, shape_dof))}}};"]
-    c += _fields_c(name, fields) + [""]
+    c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{SHARED}.h"'] + version_guard() + [""]
     c += _function("static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)",
                    lower(shp, ()), ["(void)geom; (void)y; (void)z;"])
     c += _function("static void mass(const double *restrict geom, double *restrict m)", mass_low)
@@ -484,11 +502,7 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
           f"    bk_rod_rotary({nd}, geom, q, qd, qdd, f, Mq, Cq, Kq, T);", "}", ""]
     c += [f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
           "double *restrict tab)", "{", "    bk_rod_tabulate(geom, q0, tab);", "}", ""]
-    c += [f"const bk_element bk_element_{name} = {{",
-          f'    "{name}", "{elem.title}", {elem.nnode}, {nd}, node_xi,',
-          f"    {len(fields)}, field_name, field_dof, field_dim, reference,",
-          f"    3, shape_dof, shape, mass, volume, bk_rod_frame, moment, rotary",
-          "};", ""]
+    c += element_descriptor(describe(elem))
     return htxt, "\n".join(c)
 
 
@@ -595,9 +609,7 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
         return out + ["    }"]
 
     c = [f"/* {BANNER} (see {name}.h) */", f'#include "{name}.h"', f'#include "{elem.name}.h"',
-         f'#include "{SHARED}.h"', "",
-         f"static const char *const param_names[{len(mat.PARAMS)}] = "
-         f"{{{', '.join(chr(34) + p + chr(34) for p in mat.PARAMS)}}};", ""]
+         f'#include "{SHARED}.h"'] + version_guard() + [""]
     # energy
     c += [sig["energy"], "{", "    const double l = tab[0];", "    double e = 0.0, psi[6];"]
     c += _prologue(low["energy"], "    ") + ["    bk_rod_psi(q, psi);"]
@@ -619,12 +631,7 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
           f"    bk_rod_gauge_tangent({nd}, q, cg, K);",
           f"    for (int r = 1; r < {nd}; ++r)",
           f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];", "}", ""]
-    c += [f"const bk_pair bk_pair_{name}_full = {{",
-          f'    &bk_element_{elem.name}, "{mat.NAME}", "full", {len(mat.PARAMS)}, param_names,',
-          f"    {ntab}, {ng}, {ops['force'].total()}L, {ops['tangent'].total()}L,",
-          f"    {elem.name}_full_tabulate, {name}_full_energy, {name}_full_force, {name}_full_force_tangent,",
-          "    0, 0",
-          "};", ""]
+    c += pair_descriptors(mat.PARAMS, [_full_pair(elem, mat, ntab, ng, ops)])
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",

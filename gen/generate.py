@@ -97,34 +97,30 @@ def produce(unit):
 
 
 def index_data(elements=None, materials=None):
+    """out/kernels/index.json: the kernel header version the kernels were generated
+    for, per element what the scene compiler needs (from the same descriptor the
+    C file is written from, gen/descriptor.py), per material its data, per pair
+    its symbol and the files a solver links."""
+    from gen import contract
     from gen.continuum import rule_parts
+    from gen.descriptor import index_entry
     elements = elements or all_elements()
     materials = materials or all_materials()
-    out = {"elements": {}, "materials": {}, "pairs": []}
+    out = {"kernel_version": contract.version(), "elements": {}, "materials": {}, "pairs": []}
     for ename, (elem, _) in elements.items():
         if elem.kind == "continuum":
             rules = {}
             for r in elem.rule_names:
                 _, parts, ntab = rule_parts(elem, r)
                 rules[r] = {"ntab": ntab, "points": [len(p.rule) for p in parts]}
-            nodes = [{"xi": str(n.xi), "fields": [[v, 3] for v in n.vectors]} for n in elem.nodes]
-            section, moments, curved = "rectangle", "anywhere", False
         else:
             from gen import cable, rod
             rules = {"full": {"ntab": (rod if elem.kind == "rod" else cable).tab_layout()}}
-            f = elem.fields()
-            per_node = (len(f) - elem.ninternal) // elem.nnode
-            xis = ("0", "1/2", "1") if elem.kind == "rod" else ("0", "1")
-            nodes = [{"xi": xis[n], "fields": [[name, dim] for name, _, dim in f[per_node * n: per_node * (n + 1)]]}
-                     for n in range(elem.nnode)]
-            section = "any"
-            moments = "nodes" if elem.kind == "rod" else "no_torsion"
-            curved = elem.kind == "rod"
+        d = _emitter(elem).describe(elem)
         out["elements"][ename] = {
             "kind": elem.kind, "material_kind": elem.material_kind, "title": elem.title,
-            "ndof": elem.ndof, "nodes": nodes, "internal": elem.ninternal, "integrations": rules,
-            "default_integration": elem.default_rule, "section": section, "moments": moments,
-            "curved": curved,
+            "ndof": elem.ndof, "integrations": rules, "default_integration": elem.default_rule,
+            **index_entry(d),
         }
         for mname, (mat, _) in materials.items():
             if not compatible(elem, mat):

@@ -4,20 +4,30 @@
  * (<element>.{c,h}: interpolation, mass and volume integrals, section frame,
  * moment loads, per-element constants) and one per element x material pair
  * (<element>_<material>.{c,h}: energy, internal force, tangent).  Each defines
- * `const` descriptors of the types below; the runtime only calls through them.
+ * `const` descriptors of the types below; the runtime only calls through them
+ * and knows an element by its descriptor alone: what its coordinates are
+ * (field roles), what it can do (capabilities), never by names.
  * An element family may put code its elements share into further generated
  * files (the geometrically exact rods: rod_strain.c, rod_common.c,
  * rod_inertia.c); out/kernels/index.json lists, per pair, every file a solver
  * links, and the descriptors point into them like into any other kernel code.
  *
+ * Version.  BK_KERNEL_VERSION changes whenever anything below changes.  Every
+ * generated file states the version it was generated for and does not compile
+ * against another (`#error`), and so does the kernel table of each solver
+ * (gen/solver_build.py, from the version index.json records).  The generator
+ * reads the version, the geometry slots, the field roles and the capabilities
+ * from this file (gen/contract.py).
+ *
  * Layouts (all arrays are plain doubles, caller-owned):
- *   geom[BK_NGEOM] element geometry: {l, b, h, A, I1, I2, Ip}: length, section
+ *   geom[BK_NGEOM] element geometry, slots enum bk_geom_slot: length, section
  *                width along the first section axis d1, height along the
  *                second d2, area, second moments about d1 and d2, polar moment
  *                (SI units).  Continuum elements use l, b, h.
  *   q[ndof]      element coordinates: per node its fields (nodal vectors of 3
  *                components, quaternions of 4), then element-internal unknowns
- *                (Lagrange multipliers of constrained beam theories).
+ *                (Lagrange multipliers of constrained beam theories); what each
+ *                field is says field_role.
  *   q0[ndof]     the element's coordinates in the reference configuration.
  *   tab[ntab]    per-element constants from tabulate(geom, q0): quadrature
  *                weights, shape-function gradients, reference strains.
@@ -33,7 +43,65 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_NGEOM 7
+#define BK_KERNEL_VERSION 2
+
+/* Slots of geom[]. */
+enum bk_geom_slot {
+    BK_GEOM_L = 0,                    /* element length along the axis (m)           */
+    BK_GEOM_B = 1,                    /* section width along d1 (m); circle: diameter */
+    BK_GEOM_H = 2,                    /* section height along d2 (m); circle: diameter */
+    BK_GEOM_A = 3,                    /* section area (m^2)                           */
+    BK_GEOM_I1 = 4,                   /* second moment of area about d1 (m^4)         */
+    BK_GEOM_I2 = 5,                   /* second moment of area about d2 (m^4)         */
+    BK_GEOM_IP = 6,                   /* polar moment I1 + I2 (m^4)                   */
+    BK_NGEOM = 7
+};
+
+/* Section shapes (capabilities below say which an element takes). */
+enum bk_section_shape { BK_SECTION_RECTANGLE = 1, BK_SECTION_CIRCLE = 2 };
+
+/* What a field of the element coordinates is.  Nodal vectors (3 components)
+ * are named by the derivative of the position they interpolate: r, r_x = dr/dx
+ * along the axis, r_y, r_z across the section (along d1, d2), r_yy, r_yz, r_zz
+ * the second section derivatives.  0 is not a role. */
+typedef enum bk_field_role {
+    BK_FIELD_POSITION = 1,            /* r: position (3)                              */
+    BK_FIELD_R_X,                     /* r_x: axial gradient (3)                      */
+    BK_FIELD_R_Y,                     /* r_y: section gradient along d1 (3)           */
+    BK_FIELD_R_Z,                     /* r_z: section gradient along d2 (3)           */
+    BK_FIELD_R_YY,                    /* r_yy: higher section vectors (3 each)        */
+    BK_FIELD_R_YZ,
+    BK_FIELD_R_ZZ,
+    BK_FIELD_QUATERNION,              /* p: nodal rotation, the rotation of p/|p| (4) */
+    BK_FIELD_MULTIPLIER               /* lambda: element-internal Lagrange multiplier (1) */
+} bk_field_role;
+
+/* Nodal vectors that a rigid rotation turns (and a translation leaves): the
+ * gradients of the position. */
+static inline int bk_field_is_gradient(bk_field_role role)
+{
+    return role >= BK_FIELD_R_X && role <= BK_FIELD_R_ZZ;
+}
+
+/* Element capabilities, bits of bk_element.caps. */
+enum bk_element_cap {
+    BK_CAP_SECTION_RECTANGLE = 1 << 0, /* takes rectangular sections b x h            */
+    BK_CAP_SECTION_CIRCLE = 1 << 1,    /* takes circular sections (diameter b = h)    */
+    BK_CAP_SECTION_FIELD = 1 << 2,     /* shape(xi, y, z) interpolates across the section:
+                                        * a point of the section box is the element's
+                                        * own (continuum elements); otherwise shape()
+                                        * is that of the centreline and ignores y, z */
+    BK_CAP_CURVED = 1 << 3,            /* the reference configuration may be curved:
+                                        * tabulate(geom, q0) makes it stress free      */
+    BK_CAP_MOMENT_ANYWHERE = 1 << 4,   /* moment() on the section at any xi            */
+    BK_CAP_MOMENT_NODES = 1 << 5,      /* moment() on the node nearest xi              */
+    BK_CAP_MOMENT_NO_TORSION = 1 << 6  /* moment() has no part about the axis (no section
+                                        * orientation: the cable)                      */
+};
+
+/* Largest element the runtime takes: element DOFs and position shape functions. */
+#define BK_MAX_ELEMENT_DOF 1024
+#define BK_MAX_SHAPE 128
 
 typedef struct bk_element {
     const char *name;
@@ -41,10 +109,12 @@ typedef struct bk_element {
     int nnode;                        /* nodes per element                           */
     int ndof;                         /* element coordinates, internal ones included */
     const double *node_xi;            /* [nnode] node positions along the axis, 0..1 */
-    /* Fields of the element coordinates, in order: name ("r", "r_x", "r_yz", ...
-     * nodal vectors; "p" nodal quaternion; "lambda" internal multiplier), the
-     * first element DOF and the dimension (3, 4 or 1). */
+    unsigned caps;                    /* enum bk_element_cap bits                    */
+    /* Fields of the element coordinates, in order: role, name (for messages:
+     * "r", "r_x", "r_yz", ..., "p", "lambda"), the first element DOF and the
+     * dimension (3, 4 or 1). */
     int nfield;
+    const bk_field_role *field_role;
     const char *const *field_name;
     const int *field_dof;
     const int *field_dim;

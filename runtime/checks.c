@@ -63,8 +63,7 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
         const bk_pair *p = m->pairs[el->pair];
         if (!p->invariants)
             continue;
-        for (int k = 0; k < p->element->ndof; ++k)
-            c->qe[k] = q[el->dofs[k]];
+        bk_gather(m, e, q, c->qe);
         p->invariants(c->qe, m->tabs[el->geom], c->inv);
         double jmin = INFINITY, jmax = -INFINITY, emin = INFINITY, emax = -INFINITY;
         for (int k = 0; k < p->nqp; ++k) {

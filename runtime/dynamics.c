@@ -36,12 +36,6 @@
 #include "norms.h"
 #include "quaternion.h"
 
-#define BK_MAXDOF 1024
-
-/* Energy test of a correction, as in statics (newton.c): sqrt|dx . r| at most
- * this fraction of the step's first correction. */
-#define ENERGY_TOL 1e-7
-
 typedef struct dyn_work {
     int nd, ne, nc;
     double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
@@ -91,25 +85,13 @@ static int work_alloc(dyn_work *w, const bk_system *s)
 }
 
 /* Constant mass matrix (translational inertia) on the free DOFs, in the pattern
- * of the Newton matrix. */
-static void assemble_mass(const bk_system *s, double *Mx, double *me)
+ * of the Newton matrix; work and Me: element buffers of maxdof^2. */
+static void assemble_mass(const bk_system *s, double *Mx, double *work, double *Me)
 {
-    const bk_model *m = s->m;
     memset(Mx, 0, (size_t)s->nnz * sizeof *Mx);
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_element *et = m->pairs[el->pair]->element;
-        int ns = et->nshape, nd = et->ndof;
-        double rho = m->mats[el->mat].rho;
-        et->mass(m->geoms[el->geom], me);
-        const int *sl = s->eslot + s->eslot_off[e];
-        for (int a = 0; a < ns; ++a)
-            for (int b = 0; b < ns; ++b)
-                for (int i = 0; i < 3; ++i) {
-                    int slot = sl[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i];
-                    if (slot >= 0)
-                        Mx[slot] += rho * me[a * ns + b];
-                }
+    for (int e = 0; e < s->m->nelem; ++e) {
+        bk_element_mass(s->m, e, work, Me);
+        bk_scatter_matrix(s, e, Me, 1.0, Mx);
     }
 }
 
@@ -149,15 +131,6 @@ static int *free_dofs(const bk_system *s)
     return d;
 }
 
-static void scatter_element(const bk_system *s, int e, const double *Ke, double c, double *Ax)
-{
-    int nd = s->m->pairs[s->m->elems[e].pair]->element->ndof;
-    const int *sl = s->eslot + s->eslot_off[e];
-    for (int k = 0; k < nd * nd; ++k)
-        if (sl[k] >= 0 && Ke[k] != 0.0)
-            Ax[sl[k]] += c * Ke[k];
-}
-
 /* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
  * rotary inertia.  Adds to fint and, with Ax, their contributions
  * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy. */
@@ -174,31 +147,26 @@ static double element_dynamics(const bk_system *s, dyn_work *w, const double *q,
         int visc = mat->nvisc > 0 && p->viscous != NULL;
         if (!visc && !et->rotary)
             continue;
-        int nd = et->ndof;
-        for (int k = 0; k < nd; ++k) {
-            w->qe[k] = q[el->dofs[k]];
-            w->qde[k] = w->qd[el->dofs[k]];
-            w->qdde[k] = w->qdd[el->dofs[k]];
-        }
+        bk_gather(m, e, q, w->qe);
+        bk_gather(m, e, w->qd, w->qde);
+        bk_gather(m, e, w->qdd, w->qdde);
         if (visc) {
             p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
-            for (int k = 0; k < nd; ++k)
-                fint[el->dofs[k]] += w->fe[k];
+            bk_scatter(m, e, w->fe, 1.0, fint);
             if (Ax) {
-                scatter_element(s, e, w->K1, gp, Ax);
-                scatter_element(s, e, w->K2, kp, Ax);
+                bk_scatter_matrix(s, e, w->K1, gp, Ax);
+                bk_scatter_matrix(s, e, w->K2, kp, Ax);
             }
         }
         if (et->rotary) {
             double T = 0.0;
             et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
             Trot += mat->rho * T;
-            for (int k = 0; k < nd; ++k)
-                fint[el->dofs[k]] += mat->rho * w->fe[k];
+            bk_scatter(m, e, w->fe, mat->rho, fint);
             if (Ax) {
-                scatter_element(s, e, w->K1, mat->rho * bp, Ax);
-                scatter_element(s, e, w->K2, mat->rho * gp, Ax);
-                scatter_element(s, e, w->K3, mat->rho * kp, Ax);
+                bk_scatter_matrix(s, e, w->K1, mat->rho * bp, Ax);
+                bk_scatter_matrix(s, e, w->K2, mat->rho * gp, Ax);
+                bk_scatter_matrix(s, e, w->K3, mat->rho * kp, Ax);
             }
         }
     }
@@ -216,14 +184,6 @@ static const char *dyn_why(int c)
     case DYN_LINERR: return "linear solver error";
     default: return "converged";
     }
-}
-
-static double norm2(const double *v, int n)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; ++i)
-        s += v[i] * v[i];
-    return sqrt(s);
 }
 
 int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
@@ -262,7 +222,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
     bk_external_load(s, w.fext);
     bk_gravity_load(s, w.fgrav);
-    assemble_mass(s, w.Mx, w.K1);
+    assemble_mass(s, w.Mx, w.K1, w.K2);
     double mbar = 0.0;
     for (int j = 0; j < s->nfree; ++j)
         if (s->diag[j] >= 0)
@@ -365,26 +325,25 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 if (s->eq[i] >= 0)
                     w.r[s->eq[i]] = w.fint[i] - w.fext[i];
             bk_assemble_constraints(s, q, w.nu, tn, w.r, w.Ax);
-            rnorm = norm2(w.r, s->nfree);
+            rnorm = bk_norm2(w.r, s->nfree);
             if (!isfinite(rnorm)) {
                 st = DYN_NONFINITE;
                 break;
             }
-            double ref = fmax(norm2(w.fext, nd), norm2(w.fint, nd));
+            double ref = fmax(bk_norm2(w.fext, nd), bk_norm2(w.fint, nd));
             /* rotation-invariant floors and scales (norms.h) */
-            double rfloor, dfloor;
-            bk_round_off_floors(&norms, s, q, w.Ax, &rfloor, &dfloor);
-            double cres = norm2(w.r + s->nfree, s->ncon) / s->cscale;
+            bk_floors fl = bk_round_off_floors(&norms, s, q, w.Ax);
+            double cres = bk_norm2(w.r + s->nfree, s->ncon) / s->cscale;
             /* increments relative to the motion of this step */
             double uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(&norms, s, q, w.q_s));
-            double rtol_abs = fmax(o->rtol * ref, rfloor);
+            double rtol_abs = fmax(o->rtol * ref, fl.force);
             int res_ok = rnorm <= rtol_abs, con_ok = cres <= 1e-12 * fmax(m->length_scale, 1.0);
             /* converged: residual and constraints within tolerance, and the
-             * last correction small in length or in energy (ENERGY_TOL), or
+             * last correction small in length or in energy (BK_ENERGY_TOL), or
              * the residual far below its tolerance */
             if (it > 0 && con_ok && res_ok &&
-                (dnorm <= fmax(o->utol * uscale, dfloor) || rnorm <= 1e-3 * rtol_abs ||
-                 enorm <= fmax(ENERGY_TOL * eref, sqrt(rfloor * dfloor)))) {
+                (dnorm <= fmax(o->utol * uscale, fl.increment) || rnorm <= 1e-3 * rtol_abs ||
+                 enorm <= fmax(BK_ENERGY_TOL * eref, fl.energy))) {
                 st = DYN_OK;
                 break;
             }

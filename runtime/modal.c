@@ -69,14 +69,13 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         return 1;
     }
     for (int e = 0; e < m->nelem; ++e) {
-        const bk_element *et = m->pairs[m->elems[e].pair]->element;
-        for (int f = 0; f < et->nfield; ++f)
-            if (strcmp(et->field_name[f], "lambda") == 0) {
-                snprintf(info->message, sizeof info->message,
-                         "modal analysis needs a positive semi-definite tangent; element %s has internal "
-                         "Lagrange multipliers (use gef)", et->name);
-                return 1;
-            }
+        const bk_element *et = bk_elem_type(m, e);
+        if (bk_element_has_role(et, BK_FIELD_MULTIPLIER)) {
+            snprintf(info->message, sizeof info->message,
+                     "modal analysis needs a positive semi-definite tangent; element %s has internal "
+                     "Lagrange multipliers (use gef)", et->name);
+            return 1;
+        }
     }
     /* The state the modes are about: sensors.csv rows and step_*.vtu frames (the
      * static load steps, or the reference as step 0); the modes go to their own
@@ -115,19 +114,12 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
         const bk_element *et = p->element;
-        int nd = et->ndof, ns = et->nshape;
         double *qe = buf + 3 * (size_t)md * md, *fe = qe + md, *Ke = buf;
-        for (int k = 0; k < nd; ++k)
-            qe[k] = q[el->dofs[k]];
+        bk_gather(m, e, q, qe);
         p->force_tangent(qe, m->tabs[el->geom], m->mats[el->mat].params, fe, Ke);
         add_element_block(s, e, Ke, 1.0, K);
         double rho = m->mats[el->mat].rho;
-        et->mass(m->geoms[el->geom], me);
-        memset(Ke, 0, (size_t)nd * nd * sizeof *Ke);
-        for (int a = 0; a < ns; ++a)
-            for (int b = 0; b < ns; ++b)
-                for (int i = 0; i < 3; ++i)
-                    Ke[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i] = rho * me[a * ns + b];
+        bk_element_mass(m, e, me, Ke);
         add_element_block(s, e, Ke, 1.0, M);
         if (et->rotary) {
             double Trot, *Mq = buf, *Cq = buf + (size_t)md * md, *Kq = buf + 2 * (size_t)md * md;

@@ -37,22 +37,6 @@ typedef struct attempt {
  * increments are meaningless in its near-null directions. */
 #define ILL_RCOND 1e-12
 
-/* Energy test: the last correction's energy norm sqrt|dx . r| at most this
- * fraction of the first one of the increment.  Newton converging
- * quadratically, the accepted iterate is then exact to about the square of it.
- * Unlike a length test it does not wait for corrections along directions of
- * next to no stiffness (a beam's spin about its axis at a spherical joint),
- * whose round-off noise depends on how the scene is turned in space. */
-#define ENERGY_TOL 1e-7
-
-static double norm2(const double *v, int n)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; ++i)
-        s += v[i] * v[i];
-    return sqrt(s);
-}
-
 enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE,
        NEWTON_INTERRUPTED };
 
@@ -149,16 +133,15 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             return NEWTON_INTERRUPTED;
         if (residual(s, w, q, w->nu, lam, 1) != 0)
             return NEWTON_NONFINITE;
-        double rnorm = norm2(w->r, s->neq);
-        double ref = fmax(fabs(lam) * norm2(w->fext, m->ndof), norm2(w->fint, m->ndof));
+        double rnorm = bk_norm2(w->r, s->neq);
+        double ref = fmax(fabs(lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
         /* Every measure is invariant under a rigid rotation of the scene:
          * field norms, column-block norms, scalar products (norms.h).  The
          * round-off floors use the stiffest column block of the Newton matrix:
          * with multipliers (constraint rows, the internal multipliers of the
          * constrained beams) the stiffest couplings can sit off the diagonal. */
         double uscale = fmax(bk_norm_dof_max(&w->norms, s, q, m->q0), 1e-6 * lscale);
-        double rfloor, dfloor;
-        bk_round_off_floors(&w->norms, s, q, w->Ax, &rfloor, &dfloor);
+        bk_floors fl = bk_round_off_floors(&w->norms, s, q, w->Ax);
         a->rnorm = rnorm;
         a->dnorm = dnorm;
         a->ref = ref;
@@ -168,13 +151,13 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             return NEWTON_NONFINITE;
         if (rnorm == 0.0)
             return NEWTON_OK;
-        double rtol_abs = fmax(o->rtol * ref, rfloor), utol_abs = fmax(o->utol * uscale, dfloor);
+        double rtol_abs = fmax(o->rtol * ref, fl.force), utol_abs = fmax(o->utol * uscale, fl.increment);
         a->rtol_abs = rtol_abs;
         if (rnorm <= rtol_abs)
             a->residual_met = 1;
         /* converged: the residual within its tolerance, and the last
          * correction small, in length (field norm) or in energy (see
-         * ENERGY_TOL) */
+         * BK_ENERGY_TOL, norms.h) */
         /* the energy scale of the increment: its first correction, or the
          * work of the load increment on the motion from the last equilibrium
          * (w->qsave), whichever is larger -- a good predictor must not make
@@ -184,7 +167,7 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             wload += (lam - lam_last) * w->fext[i] * (q[i] - w->qsave[i]);
         double escale = fmax(eref, sqrt(fabs(wload)));
         if (it > 0 && rnorm <= rtol_abs &&
-            (dnorm <= utol_abs || enorm <= fmax(ENERGY_TOL * escale, sqrt(rfloor * dfloor))))
+            (dnorm <= utol_abs || enorm <= fmax(BK_ENERGY_TOL * escale, fl.energy)))
             return NEWTON_OK;
         /* Stagnation at round-off: on ill-conditioned tangents (slender
          * higher-order elements) the residual stops decreasing a little above

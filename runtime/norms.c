@@ -113,11 +113,21 @@ double bk_norm_matrix_max(const bk_norms *n, const bk_system *s, const double *A
     return sqrt(mx);
 }
 
-void bk_round_off_floors(const bk_norms *n, const bk_system *s, const double *q, const double *Ax,
-                         double *rfloor, double *dfloor)
+double bk_norm2(const double *v, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; ++i)
+        s += v[i] * v[i];
+    return sqrt(s);
+}
+
+bk_floors bk_round_off_floors(const bk_norms *n, const bk_system *s, const double *q, const double *Ax)
 {
     double qmax = bk_norm_dof_max(n, s, q, NULL);
     double kmax = bk_norm_matrix_max(n, s, Ax);
-    *rfloor = 100.0 * DBL_EPSILON * kmax * qmax;
-    *dfloor = 64.0 * DBL_EPSILON * qmax;
+    bk_floors f;
+    f.force = 100.0 * DBL_EPSILON * kmax * qmax;
+    f.increment = 64.0 * DBL_EPSILON * qmax;
+    f.energy = sqrt(f.force * f.increment);
+    return f;
 }

@@ -39,10 +39,27 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
  * the stiffest field including its couplings to multipliers. */
 double bk_norm_matrix_max(const bk_norms *n, const bk_system *s, const double *Ax);
 
-/* Round-off floors of one Newton iterate q (DOF-indexed) with Newton matrix Ax:
- * forces of the size of K times a last-bit change of q (100 eps kmax qmax) and
- * increments of a few ulps of q (64 eps qmax). */
-void bk_round_off_floors(const bk_norms *n, const bk_system *s, const double *q, const double *Ax,
-                         double *rfloor, double *dfloor);
+/* Euclidean norm of v[0..n). */
+double bk_norm2(const double *v, int n);
+
+/* Round-off floors of one Newton iterate: below them a residual, an increment
+ * or a correction's energy is noise. */
+typedef struct bk_floors {
+    double force;        /* K times a last-bit change of q: 100 eps kmax qmax      */
+    double increment;    /* a few ulps of q: 64 eps qmax                           */
+    double energy;       /* of a correction's energy norm sqrt|dx . r|: sqrt(force increment) */
+} bk_floors;
+
+/* The floors of iterate q (DOF-indexed) with Newton matrix Ax. */
+bk_floors bk_round_off_floors(const bk_norms *n, const bk_system *s, const double *q, const double *Ax);
+
+/* Energy test of Newton's convergence (statics and dynamics): the last
+ * correction's energy norm sqrt|dx . r| at most this fraction of the first one
+ * of the increment (or bk_floors.energy).  Newton converging quadratically, the
+ * accepted iterate is then exact to about the square of it.  Unlike a length
+ * test it does not wait for corrections along directions of next to no
+ * stiffness (a beam's spin about its axis at a spherical joint), whose
+ * round-off noise depends on how the scene is turned in space. */
+#define BK_ENERGY_TOL 1e-7
 
 #endif

@@ -3,7 +3,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 int *bk_quat_list(const bk_system *s, int *n)
 {
@@ -21,7 +20,7 @@ int *bk_quat_list(const bk_system *s, int *n)
         const bk_elem *el = &m->elems[e];
         const bk_element *et = m->pairs[el->pair]->element;
         for (int f = 0; f < et->nfield; ++f) {
-            if (strcmp(et->field_name[f], "p") != 0 || et->field_dim[f] != 4)
+            if (et->field_role[f] != BK_FIELD_QUATERNION || et->field_dim[f] != 4)
                 continue;
             const int *d = el->dofs + et->field_dof[f];
             int ok = !seen[d[0]];

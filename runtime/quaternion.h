@@ -1,5 +1,5 @@
-/* quaternion.h -- the nodal quaternions of a model (elements with "p" fields:
- * gef, euler_bernoulli, kirchhoff).  Those elements use the rotation of p/|p|,
+/* quaternion.h -- the nodal quaternions of a model (fields of role
+ * BK_FIELD_QUATERNION: gef, euler_bernoulli, kirchhoff).  Those elements use the rotation of p/|p|,
  * so rescaling p changes no strain and no kinetic energy; the solvers keep
  * the quaternions at unit length with these helpers.
  *

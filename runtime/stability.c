@@ -60,7 +60,7 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
         const bk_elem *el = &m->elems[e];
         const bk_element *et = m->pairs[el->pair]->element;
         for (int f = 0; f < et->nfield; ++f)
-            if (strcmp(et->field_name[f], "lambda") == 0)
+            if (et->field_role[f] == BK_FIELD_MULTIPLIER)
                 for (int k = 0; k < et->field_dim[f]; ++k) {
                     int qe = s->eq[el->dofs[et->field_dof[f] + k]];
                     if (qe >= 0)

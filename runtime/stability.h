@@ -4,8 +4,9 @@
  *
  * Method.  The Newton matrix is the saddle-point (KKT) matrix
  *     A = [ K  B^T ]     B: the scaled constraint rows, and the rows of the
- *         [ B  0   ]     element-internal multipliers ("lambda" fields of the
- *                        Euler-Bernoulli and Kirchhoff beams)
+ *         [ B  0   ]     element-internal multipliers (fields of role
+ *                        BK_FIELD_MULTIPLIER: the Euler-Bernoulli and
+ *                        Kirchhoff beams)
  * with m multiplier unknowns.  Its symmetric part, regularized with -delta_i on
  * the multiplier diagonals (delta_i = 1e-8 |b_i|^2 / kmax), is factored as
  * L D L^T (SuiteSparse LDL) with the multipliers eliminated first and AMD

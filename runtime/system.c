@@ -16,8 +16,6 @@
 #define BK_OMP(...)
 #endif
 
-#define BK_MAXSHAPE 128
-#define BK_MAXDOF 1024
 /* Elements evaluated per parallel block: as many as fit in about 8 MB of
  * element tangents, at least 64 (it depends on the model only, never on the
  * thread count: the assembly order must not).  Few blocks mean few barriers,
@@ -267,9 +265,7 @@ static void eval_element(const bk_model *m, int e, const double *q, double *rest
 {
     const bk_elem *el = &m->elems[e];
     const bk_pair *p = m->pairs[el->pair];
-    int nd = p->element->ndof;
-    for (int k = 0; k < nd; ++k)
-        qe[k] = q[el->dofs[k]];
+    bk_gather(m, e, q, qe);
     const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
     if (Ke)
         p->force_tangent(qe, tab, mat, fe, Ke);
@@ -280,20 +276,66 @@ static void eval_element(const bk_model *m, int e, const double *q, double *rest
 static int scatter_element(const bk_system *s, int e, const double *fe, const double *Ke,
                            double *fint, double *Ax)
 {
-    const bk_elem *el = &s->m->elems[e];
-    int nd = s->m->pairs[el->pair]->element->ndof, bad = 0;
+    int bad = bk_scatter(s->m, e, fe, 1.0, fint);
+    if (Ax)
+        bk_scatter_matrix(s, e, Ke, 1.0, Ax);
+    return bad;
+}
+
+int bk_scatter(const bk_model *m, int e, const double *xe, double c, double *x)
+{
+    const int *d = m->elems[e].dofs;
+    const int nd = bk_elem_type(m, e)->ndof;
+    int bad = 0;
     for (int k = 0; k < nd; ++k) {
-        if (!isfinite(fe[k]))
+        if (!isfinite(xe[k]))
             bad = 1;
-        fint[el->dofs[k]] += fe[k];
-    }
-    if (Ax) {
-        const int *sl = s->eslot + s->eslot_off[e];
-        for (int k = 0; k < nd * nd; ++k)
-            if (sl[k] >= 0)
-                Ax[sl[k]] += Ke[k];
+        x[d[k]] += c * xe[k];
     }
     return bad;
+}
+
+void bk_scatter_matrix(const bk_system *s, int e, const double *Ke, double c, double *Ax)
+{
+    const int nd = bk_elem_type(s->m, e)->ndof;
+    const int *sl = s->eslot + s->eslot_off[e];
+    for (int k = 0; k < nd * nd; ++k)
+        if (sl[k] >= 0 && Ke[k] != 0.0)
+            Ax[sl[k]] += c * Ke[k];
+}
+
+void bk_element_mass(const bk_model *m, int e, double *work, double *Me)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_element *et = bk_elem_type(m, e);
+    const int ns = et->nshape, nd = et->ndof;
+    const double rho = m->mats[el->mat].rho;
+    et->mass(m->geoms[el->geom], work);
+    for (int k = 0; k < nd * nd; ++k)
+        Me[k] = 0.0;
+    for (int a = 0; a < ns; ++a)
+        for (int b = 0; b < ns; ++b)
+            for (int i = 0; i < 3; ++i)
+                Me[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i] = rho * work[a * ns + b];
+}
+
+int bk_element_has_role(const bk_element *et, bk_field_role role)
+{
+    for (int f = 0; f < et->nfield; ++f)
+        if (et->field_role[f] == role)
+            return 1;
+    return 0;
+}
+
+/* Position shape functions N of element e times a vector v into x:
+ * x[dof of shape function a, component k] += c N[a] v[k]. */
+static void scatter_shape(const bk_model *m, int e, const double *N, const double *v, double c, double *x)
+{
+    const int *d = m->elems[e].dofs;
+    const bk_element *et = bk_elem_type(m, e);
+    for (int a = 0; a < et->nshape; ++a)
+        for (int k = 0; k < 3; ++k)
+            x[d[et->shape_dof[a] + k]] += c * N[a] * v[k];
 }
 
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax)
@@ -333,12 +375,11 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
 double bk_strain_energy(const bk_system *s, const double *q)
 {
     const bk_model *m = s->m;
-    double qe[BK_MAXDOF], U = 0.0;
+    double qe[BK_MAX_ELEMENT_DOF], U = 0.0;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
-        for (int k = 0; k < p->element->ndof; ++k)
-            qe[k] = q[el->dofs[k]];
+        bk_gather(m, e, q, qe);
         U += p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params);
     }
     return U;
@@ -347,7 +388,7 @@ double bk_strain_energy(const bk_system *s, const double *q)
 void bk_external_load(const bk_system *s, double *fext)
 {
     const bk_model *m = s->m;
-    double N[BK_MAXSHAPE];
+    double N[BK_MAX_SHAPE];
     memset(fext, 0, (size_t)m->ndof * sizeof *fext);
     for (int i = 0; i < m->nforce; ++i) {
         const bk_force_load *f = &m->forces[i];
@@ -359,21 +400,19 @@ void bk_external_load(const bk_system *s, double *fext)
              * shape functions up to degree 5 across the section */
             static const double gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
             static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-            double Na[BK_MAXSHAPE];
+            double Na[BK_MAX_SHAPE];
             for (int a = 0; a < et->nshape; ++a)
                 N[a] = 0.0;
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) {
-                    et->shape(g, f->xi, 0.5 * g[1] * gp[i], 0.5 * g[2] * gp[j], Na);
+                    et->shape(g, f->xi, 0.5 * g[BK_GEOM_B] * gp[i], 0.5 * g[BK_GEOM_H] * gp[j], Na);
                     for (int a = 0; a < et->nshape; ++a)
                         N[a] += gw[i] * gw[j] * Na[a];
                 }
         } else {
             et->shape(g, f->xi, f->y, f->z, N);
         }
-        for (int a = 0; a < et->nshape; ++a)
-            for (int k = 0; k < 3; ++k)
-                fext[el->dofs[et->shape_dof[a] + k]] += N[a] * f->value[k];
+        scatter_shape(m, f->elem, N, f->value, 1.0, fext);
     }
     if (m->has_gravity) {
         double *g = calloc((size_t)m->ndof, sizeof *g);
@@ -389,17 +428,13 @@ void bk_external_load(const bk_system *s, double *fext)
 void bk_gravity_load(const bk_system *s, double *fg)
 {
     const bk_model *m = s->m;
-    double N[BK_MAXSHAPE];
+    double N[BK_MAX_SHAPE];
     memset(fg, 0, (size_t)m->ndof * sizeof *fg);
     if (m->has_gravity) {
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
-            const bk_element *et = m->pairs[el->pair]->element;
-            double rho = m->mats[el->mat].rho;
-            et->volume(m->geoms[el->geom], N);
-            for (int a = 0; a < et->nshape; ++a)
-                for (int k = 0; k < 3; ++k)
-                    fg[el->dofs[et->shape_dof[a] + k]] += rho * N[a] * m->gravity[k];
+            bk_elem_type(m, e)->volume(m->geoms[el->geom], N);
+            scatter_shape(m, e, N, m->gravity, m->mats[el->mat].rho, fg);
         }
     }
 }
@@ -407,23 +442,15 @@ void bk_gravity_load(const bk_system *s, double *fg)
 void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    double qe[BK_MAXDOF];
+    double qe[BK_MAX_ELEMENT_DOF];
     for (int i = 0; i < m->nmoment; ++i) {
         const bk_moment_load *mo = &m->moments[i];
         const bk_elem *el = &m->elems[mo->elem];
-        const bk_element *et = m->pairs[el->pair]->element;
-        int nd = et->ndof;
-        for (int k = 0; k < nd; ++k)
-            qe[k] = q[el->dofs[k]];
-        et->moment(m->geoms[el->geom], mo->xi, qe, mo->value, s->fe, s->Ke);
-        for (int k = 0; k < nd; ++k)
-            fint[el->dofs[k]] -= lam * s->fe[k];
-        if (!Ax)
-            continue;
-        const int *sl = s->eslot + s->eslot_off[mo->elem];
-        for (int k = 0; k < nd * nd; ++k)
-            if (sl[k] >= 0 && s->Ke[k] != 0.0)
-                Ax[sl[k]] -= lam * s->Ke[k];
+        bk_gather(m, mo->elem, q, qe);
+        bk_elem_type(m, mo->elem)->moment(m->geoms[el->geom], mo->xi, qe, mo->value, s->fe, s->Ke);
+        bk_scatter(m, mo->elem, s->fe, -lam, fint);
+        if (Ax)
+            bk_scatter_matrix(s, mo->elem, s->Ke, -lam, Ax);
     }
 }
 
@@ -494,10 +521,7 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t)
 
 void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d)
 {
-    const bk_elem *el = &m->elems[e];
-    const bk_element *et = m->pairs[el->pair]->element;
-    double qe[BK_MAXDOF], dd[9];
-    for (int k = 0; k < et->ndof; ++k)
-        qe[k] = q[el->dofs[k]];
-    et->frame(m->geoms[el->geom], xi, qe, pos, d ? d : dd);
+    double qe[BK_MAX_ELEMENT_DOF], dd[9];
+    bk_gather(m, e, q, qe);
+    bk_elem_type(m, e)->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d ? d : dd);
 }

@@ -78,4 +78,35 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t);
  * frame d1, d2, d3 (NaN where the element defines none). */
 void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d);
 
+/* Element e of the model: its descriptor and DOF count. */
+static inline const bk_element *bk_elem_type(const bk_model *m, int e)
+{
+    return m->pairs[m->elems[e].pair]->element;
+}
+
+/* Gather: xe[k] = x[dofs[k]] over the element's DOFs (x indexed by DOF). */
+static inline void bk_gather(const bk_model *m, int e, const double *x, double *xe)
+{
+    const int *d = m->elems[e].dofs;
+    const int nd = bk_elem_type(m, e)->ndof;
+    for (int k = 0; k < nd; ++k)
+        xe[k] = x[d[k]];
+}
+
+/* Scatter: x[dofs[k]] += c xe[k] over the element's DOFs.  Returns 1 when xe has
+ * a non-finite entry, else 0. */
+int bk_scatter(const bk_model *m, int e, const double *xe, double c, double *x);
+
+/* Scatter of an element matrix Ke[ndof*ndof] (row-major) into the Newton
+ * matrix values Ax: Ax += c Ke on the entries of free rows and columns. */
+void bk_scatter_matrix(const bk_system *s, int e, const double *Ke, double c, double *Ax);
+
+/* Element mass Me[ndof*ndof] = rho (m (x) I3) on the position shape functions'
+ * DOFs (zero elsewhere), m[nshape*nshape] = bk_element.mass per unit density;
+ * work[nshape*nshape] is scratch. */
+void bk_element_mass(const bk_model *m, int e, double *work, double *Me);
+
+/* 1 when some field of the element has the role. */
+int bk_element_has_role(const bk_element *et, bk_field_role role);
+
 #endif

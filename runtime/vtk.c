@@ -25,16 +25,36 @@
 #include "system.h"
 
 #define NX 4
-#define BK_MAXSHAPE 128
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
+/* Section shape of element e (enum bk_section_shape).  An element that takes
+ * one shape only has that one (the continuum elements: their box b x h).  An
+ * element that takes several (rods, cable) has the beam's, which the model file
+ * does not state (geom[] has no slot for it): the two sections the scene
+ * compiler writes are told apart by their area, A = b h for a rectangle and
+ * A = pi b^2 / 4 with b = h the diameter for a circle. */
+static int section_shape(const bk_model *m, int e)
+{
+    const unsigned both = BK_CAP_SECTION_RECTANGLE | BK_CAP_SECTION_CIRCLE;
+    const unsigned caps = bk_elem_type(m, e)->caps & both;
+    if (caps == BK_CAP_SECTION_RECTANGLE)
+        return BK_SECTION_RECTANGLE;
+    if (caps == BK_CAP_SECTION_CIRCLE)
+        return BK_SECTION_CIRCLE;
+    const double *g = m->geoms[m->elems[e].geom];
+    const double A = g[BK_GEOM_A], b = g[BK_GEOM_B];
+    if (b == g[BK_GEOM_H] && fabs(A - 0.25 * M_PI * b * b) <= 1e-12 * A)
+        return BK_SECTION_CIRCLE;
+    return BK_SECTION_RECTANGLE;
+}
+
+/* Points of the section ring: 8 around a rectangle, 12 around a circle. */
 static int ring_points(const bk_model *m, int e)
 {
-    const double *g = m->geoms[m->elems[e].geom];
-    return fabs(g[3] - g[1] * g[2]) < 1e-12 * g[3] ? 8 : 12;  /* rectangle: A = b h */
+    return section_shape(m, e) == BK_SECTION_CIRCLE ? 12 : 8;
 }
 
 /* Section point k of n in section coordinates (y along d1, z along d2). */
@@ -42,12 +62,12 @@ static void ring_yz(const double *g, int n, int k, double *y, double *z)
 {
     if (n == 8) {
         static const double uy[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, uz[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
-        *y = 0.5 * g[1] * uy[k];
-        *z = 0.5 * g[2] * uz[k];
+        *y = 0.5 * g[BK_GEOM_B] * uy[k];
+        *z = 0.5 * g[BK_GEOM_H] * uz[k];
     } else {
         double a = 2.0 * M_PI * k / n;
-        *y = 0.5 * g[1] * cos(a);
-        *z = 0.5 * g[1] * sin(a);
+        *y = 0.5 * g[BK_GEOM_B] * cos(a);
+        *z = 0.5 * g[BK_GEOM_B] * sin(a);
     }
 }
 
@@ -59,22 +79,14 @@ static void unit(double *v)
             v[i] /= n;
 }
 
-static int has_field(const bk_element *et, const char *name)
-{
-    for (int f = 0; f < et->nfield; ++f)
-        if (strcmp(et->field_name[f], name) == 0)
-            return 1;
-    return 0;
-}
-
 /* Position of section point (y, z) at station xi of element e for coordinates q. */
 static void section_point(const bk_model *m, const double *q, int e, double xi, double y, double z, double *x)
 {
     const bk_elem *el = &m->elems[e];
     const bk_element *et = m->pairs[el->pair]->element;
     const double *g = m->geoms[el->geom];
-    double d[9], N[BK_MAXSHAPE];
-    if (has_field(et, "r_y")) {                     /* continuum: the element's own field */
+    double d[9], N[BK_MAX_SHAPE];
+    if (et->caps & BK_CAP_SECTION_FIELD) {         /* continuum: the element's own field */
         et->shape(g, xi, y, z, N);
         for (int i = 0; i < 3; ++i)
             x[i] = 0.0;
@@ -292,14 +304,13 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     if (!mv) {
         fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
                     "Name=\"strain_energy_density\" format=\"ascii\">\n");
-        double qe[1024];
+        double qe[BK_MAX_ELEMENT_DOF];
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
             const bk_pair *p = m->pairs[el->pair];
-            for (int k = 0; k < p->element->ndof; ++k)
-                qe[k] = q[el->dofs[k]];
+            bk_gather(m, e, q, qe);
             const double *g = m->geoms[el->geom];
-            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[0] * g[3]);
+            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
             int r = ring_points(m, e);
             for (int c = 0; c < (NX - 1) * r + 1; ++c)
                 fprintf(fp, "          %.9g\n", dens);

@@ -74,14 +74,14 @@ static void rigid(const bk_element *e, const double *geom, const double R[9], co
     e->reference(geom, q);
     for (int f = 0; f < e->nfield; ++f) {
         double *v = q + e->field_dof[f];
-        const char *name = e->field_name[f];
-        if (name[0] == 'r' && e->field_dim[f] == 3) {
+        const bk_field_role role = e->field_role[f];
+        if (role == BK_FIELD_POSITION || bk_field_is_gradient(role)) {
             double w[3];
             for (int i = 0; i < 3; ++i)
                 w[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
             for (int i = 0; i < 3; ++i)
-                v[i] = w[i] + (strcmp(name, "r") == 0 ? x0[i] : 0.0);
-        } else if (strcmp(name, "p") == 0) {
+                v[i] = w[i] + (role == BK_FIELD_POSITION ? x0[i] : 0.0);
+        } else if (role == BK_FIELD_QUATERNION) {
             double s = v[0], x = v[1], y = v[2], z = v[3];
             v[0] = qr[0] * s - qr[1] * x - qr[2] * y - qr[3] * z;
             v[1] = qr[0] * x + qr[1] * s + qr[2] * z - qr[3] * y;
@@ -95,15 +95,15 @@ static void rigid(const bk_element *e, const double *geom, const double R[9], co
  * curvature-like vectors ~ 1/h, multipliers ~ 1e-3. */
 static void dof_scale(const bk_element *e, const double *geom, double *sc)
 {
-    double hmin = fmin(geom[1], geom[2]);
+    double hmin = fmin(geom[BK_GEOM_B], geom[BK_GEOM_H]);
     for (int f = 0; f < e->nfield; ++f) {
-        const char *name = e->field_name[f];
+        const bk_field_role role = e->field_role[f];
         double v = 1.0;
-        if (strcmp(name, "r") == 0)
-            v = geom[0];
-        else if (name[0] == 'r' && strlen(name) > 3)
+        if (role == BK_FIELD_POSITION)
+            v = geom[BK_GEOM_L];
+        else if (role == BK_FIELD_R_YY || role == BK_FIELD_R_YZ || role == BK_FIELD_R_ZZ)
             v = 1.0 / hmin;
-        else if (strcmp(name, "lambda") == 0)
+        else if (role == BK_FIELD_MULTIPLIER)
             v = 1e-3;
         for (int i = 0; i < e->field_dim[f]; ++i)
             sc[e->field_dof[f] + i] = v;
@@ -197,13 +197,13 @@ int main(int argc, char **argv)
             const double eps = 1e-4;
             rigid(e, geom, Rid, qid, zero, q);
             for (int f = 0; f < e->nfield; ++f)
-                if (e->field_name[f][0] == 'r' && e->field_dim[f] == 3)
+                if (e->field_role[f] == BK_FIELD_POSITION || bk_field_is_gradient(e->field_role[f]))
                     q[e->field_dof[f]] *= 1.0 + eps;
             double Ueps = p->energy(q, tab, mat);
             p->force(q, tab, mat, f);
             double fscale = maxabs(f, n) / eps;
             /* inextensible elements store no energy in a stretch: use force x length */
-            double Uscale = fmax(Ueps / (eps * eps), fscale * geom[0]);
+            double Uscale = fmax(Ueps / (eps * eps), fscale * geom[BK_GEOM_L]);
 
             double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_visc = 0, e_mom = 0;
 

@@ -63,8 +63,8 @@ def test_mass_matrix_and_volume_integrals_match_quadrature():
 
     class Element(ctypes.Structure):      # the leading fields of bk_element (runtime/bk_kernel.h)
         _fields_ = [("name", ctypes.c_char_p), ("title", ctypes.c_char_p), ("nnode", ctypes.c_int),
-                    ("ndof", ctypes.c_int), ("node_xi", D), ("nfield", ctypes.c_int),
-                    ("field_name", ctypes.c_void_p), ("field_dof", ctypes.c_void_p),
+                    ("ndof", ctypes.c_int), ("node_xi", D), ("caps", ctypes.c_uint), ("nfield", ctypes.c_int),
+                    ("field_role", ctypes.c_void_p), ("field_name", ctypes.c_void_p), ("field_dof", ctypes.c_void_p),
                     ("field_dim", ctypes.c_void_p), ("reference", ctypes.c_void_p),
                     ("nshape", ctypes.c_int), ("shape_dof", ctypes.c_void_p), ("shape", ctypes.c_void_p),
                     ("mass", ctypes.CFUNCTYPE(None, D, D)), ("volume", ctypes.CFUNCTYPE(None, D, D))]

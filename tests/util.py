@@ -88,6 +88,28 @@ def build_program(src, name, variant="sanitize", pairs=None):
     return build_solver(pairs, BUILD / variant / name, index, variant, main_objs=[obj])
 
 
+def build_runtime_program(srcs, name, variant="sanitize"):
+    """Compile tests/<src> for each of srcs and link them with the runtime objects
+    (all but main.c) into a test program; no generated kernels.  Returns its path."""
+    from gen.solver_build import CC, LIBS, RUNTIME, VARIANTS, build_lock, compile_object, runtime_objects
+    flags = VARIANTS[variant]
+    deps = list(RUNTIME.glob("*.h")) + list((ROOT / "tests").glob("*.h"))
+    with build_lock():
+        objs = [o for o in runtime_objects(variant) if o.name != "main.o"]
+        for src in srcs:
+            obj = BUILD / variant / (Path(src).stem + ".o")
+            compile_object(ROOT / "tests" / src, obj, flags + ["-I" + str(ROOT / "tests")], deps)
+            objs.append(obj)
+        exe = ensure_dir(BUILD / variant) / name
+        if exe.exists() and exe.stat().st_mtime >= max(o.stat().st_mtime for o in objs):
+            return exe
+        r = subprocess.run([CC] + flags + [str(o) for o in objs] + ["-o", str(exe)] + LIBS,
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise AssertionError(f"linking {exe} failed:\n{r.stderr[-3000:]}")
+        return exe
+
+
 def build_shared_kernels():
     """Every generated kernel (release objects, position independent) as one shared
     library for ctypes, relinked when an object is newer."""

@@ -2,8 +2,10 @@
 #include "ancf3243_arruda_boyce.h"
 #include "ancf3243.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3243_arruda_boyce_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -365,14 +367,6 @@ void ancf3243_arruda_boyce_full_force_tangent(const double *restrict q, const do
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
-
-const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
-    &bk_element_ancf3243, "arruda_boyce", "full", 3, param_names,
-    96, 12, 3884L, 25808L,
-    ancf3243_full_tabulate, ancf3243_arruda_boyce_full_energy, ancf3243_arruda_boyce_full_force, ancf3243_arruda_boyce_full_force_tangent,
-    2, ancf3243_full_viscous,
-    ancf3243_full_invariants, 0.0, 0.0
-};
 
 double ancf3243_arruda_boyce_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -1776,10 +1770,42 @@ void ancf3243_arruda_boyce_sri_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
+static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+
+const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
+    .element = &bk_element_ancf3243,
+    .material = "arruda_boyce",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 96,
+    .nqp = 12,
+    .ops_force = 3884L,
+    .ops_force_tangent = 25808L,
+    .tabulate = ancf3243_full_tabulate,
+    .energy = ancf3243_arruda_boyce_full_energy,
+    .force = ancf3243_arruda_boyce_full_force,
+    .force_tangent = ancf3243_arruda_boyce_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_full_viscous,
+    .invariants = ancf3243_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3243_arruda_boyce_sri = {
-    &bk_element_ancf3243, "arruda_boyce", "sri", 3, param_names,
-    120, 15, 17535L, 42775L,
-    ancf3243_sri_tabulate, ancf3243_arruda_boyce_sri_energy, ancf3243_arruda_boyce_sri_force, ancf3243_arruda_boyce_sri_force_tangent,
-    2, ancf3243_sri_viscous,
-    ancf3243_sri_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3243,
+    .material = "arruda_boyce",
+    .integration = "sri",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 120,
+    .nqp = 15,
+    .ops_force = 17535L,
+    .ops_force_tangent = 42775L,
+    .tabulate = ancf3243_sri_tabulate,
+    .energy = ancf3243_arruda_boyce_sri_energy,
+    .force = ancf3243_arruda_boyce_sri_force,
+    .force_tangent = ancf3243_arruda_boyce_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_sri_viscous,
+    .invariants = ancf3243_sri_invariants,
 };

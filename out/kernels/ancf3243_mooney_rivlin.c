@@ -2,8 +2,10 @@
 #include "ancf3243_mooney_rivlin.h"
 #include "ancf3243.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"c10", "c01", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3243_mooney_rivlin_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -418,14 +420,6 @@ void ancf3243_mooney_rivlin_full_force_tangent(const double *restrict q, const d
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
-
-const bk_pair bk_pair_ancf3243_mooney_rivlin_full = {
-    &bk_element_ancf3243, "mooney_rivlin", "full", 3, param_names,
-    96, 12, 4320L, 40356L,
-    ancf3243_full_tabulate, ancf3243_mooney_rivlin_full_energy, ancf3243_mooney_rivlin_full_force, ancf3243_mooney_rivlin_full_force_tangent,
-    2, ancf3243_full_viscous,
-    ancf3243_full_invariants, 0.0, 0.0
-};
 
 double ancf3243_mooney_rivlin_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -1486,10 +1480,42 @@ void ancf3243_mooney_rivlin_sri_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
+static const char *const param_names[3] = {"c10", "c01", "kappa"};
+
+const bk_pair bk_pair_ancf3243_mooney_rivlin_full = {
+    .element = &bk_element_ancf3243,
+    .material = "mooney_rivlin",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 96,
+    .nqp = 12,
+    .ops_force = 4320L,
+    .ops_force_tangent = 40356L,
+    .tabulate = ancf3243_full_tabulate,
+    .energy = ancf3243_mooney_rivlin_full_energy,
+    .force = ancf3243_mooney_rivlin_full_force,
+    .force_tangent = ancf3243_mooney_rivlin_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_full_viscous,
+    .invariants = ancf3243_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3243_mooney_rivlin_sri = {
-    &bk_element_ancf3243, "mooney_rivlin", "sri", 3, param_names,
-    120, 15, 8863L, 36153L,
-    ancf3243_sri_tabulate, ancf3243_mooney_rivlin_sri_energy, ancf3243_mooney_rivlin_sri_force, ancf3243_mooney_rivlin_sri_force_tangent,
-    2, ancf3243_sri_viscous,
-    ancf3243_sri_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3243,
+    .material = "mooney_rivlin",
+    .integration = "sri",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 120,
+    .nqp = 15,
+    .ops_force = 8863L,
+    .ops_force_tangent = 36153L,
+    .tabulate = ancf3243_sri_tabulate,
+    .energy = ancf3243_mooney_rivlin_sri_energy,
+    .force = ancf3243_mooney_rivlin_sri_force,
+    .force_tangent = ancf3243_mooney_rivlin_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_sri_viscous,
+    .invariants = ancf3243_sri_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3243_neo_hookean.h"
 #include "ancf3243.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3243_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -261,14 +263,6 @@ void ancf3243_neo_hookean_full_force_tangent(const double *restrict q, const dou
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
-
-const bk_pair bk_pair_ancf3243_neo_hookean_full = {
-    &bk_element_ancf3243, "neo_hookean", "full", 2, param_names,
-    96, 12, 2268L, 19776L,
-    ancf3243_full_tabulate, ancf3243_neo_hookean_full_energy, ancf3243_neo_hookean_full_force, ancf3243_neo_hookean_full_force_tangent,
-    2, ancf3243_full_viscous,
-    ancf3243_full_invariants, 0.0, 0.0
-};
 
 double ancf3243_neo_hookean_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -972,10 +966,42 @@ void ancf3243_neo_hookean_sri_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3243_neo_hookean_full = {
+    .element = &bk_element_ancf3243,
+    .material = "neo_hookean",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 96,
+    .nqp = 12,
+    .ops_force = 2268L,
+    .ops_force_tangent = 19776L,
+    .tabulate = ancf3243_full_tabulate,
+    .energy = ancf3243_neo_hookean_full_energy,
+    .force = ancf3243_neo_hookean_full_force,
+    .force_tangent = ancf3243_neo_hookean_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_full_viscous,
+    .invariants = ancf3243_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3243_neo_hookean_sri = {
-    &bk_element_ancf3243, "neo_hookean", "sri", 2, param_names,
-    120, 15, 3804L, 26082L,
-    ancf3243_sri_tabulate, ancf3243_neo_hookean_sri_energy, ancf3243_neo_hookean_sri_force, ancf3243_neo_hookean_sri_force_tangent,
-    2, ancf3243_sri_viscous,
-    ancf3243_sri_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3243,
+    .material = "neo_hookean",
+    .integration = "sri",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 120,
+    .nqp = 15,
+    .ops_force = 3804L,
+    .ops_force_tangent = 26082L,
+    .tabulate = ancf3243_sri_tabulate,
+    .energy = ancf3243_neo_hookean_sri_energy,
+    .force = ancf3243_neo_hookean_sri_force,
+    .force_tangent = ancf3243_neo_hookean_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_sri_viscous,
+    .invariants = ancf3243_sri_invariants,
 };

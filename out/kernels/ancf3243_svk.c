@@ -2,8 +2,10 @@
 #include "ancf3243_svk.h"
 #include "ancf3243.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3243_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -331,14 +333,6 @@ void ancf3243_svk_full_force_tangent(const double *restrict q, const double *res
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
-
-const bk_pair bk_pair_ancf3243_svk_full = {
-    &bk_element_ancf3243, "svk", "full", 2, param_names,
-    96, 12, 3240L, 22764L,
-    ancf3243_full_tabulate, ancf3243_svk_full_energy, ancf3243_svk_full_force, ancf3243_svk_full_force_tangent,
-    2, ancf3243_full_viscous,
-    ancf3243_full_invariants, -0.2, 0.5
-};
 
 double ancf3243_svk_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -973,10 +967,46 @@ void ancf3243_svk_sri_force_tangent(const double *restrict q, const double *rest
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3243_svk_full = {
+    .element = &bk_element_ancf3243,
+    .material = "svk",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 96,
+    .nqp = 12,
+    .ops_force = 3240L,
+    .ops_force_tangent = 22764L,
+    .tabulate = ancf3243_full_tabulate,
+    .energy = ancf3243_svk_full_energy,
+    .force = ancf3243_svk_full_force,
+    .force_tangent = ancf3243_svk_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_full_viscous,
+    .invariants = ancf3243_full_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
+};
+
 const bk_pair bk_pair_ancf3243_svk_sri = {
-    &bk_element_ancf3243, "svk", "sri", 2, param_names,
-    120, 15, 3093L, 25628L,
-    ancf3243_sri_tabulate, ancf3243_svk_sri_energy, ancf3243_svk_sri_force, ancf3243_svk_sri_force_tangent,
-    2, ancf3243_sri_viscous,
-    ancf3243_sri_invariants, -0.2, 0.5
+    .element = &bk_element_ancf3243,
+    .material = "svk",
+    .integration = "sri",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 120,
+    .nqp = 15,
+    .ops_force = 3093L,
+    .ops_force_tangent = 25628L,
+    .tabulate = ancf3243_sri_tabulate,
+    .energy = ancf3243_svk_sri_energy,
+    .force = ancf3243_svk_sri_force,
+    .force_tangent = ancf3243_svk_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3243_sri_viscous,
+    .invariants = ancf3243_sri_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
 };

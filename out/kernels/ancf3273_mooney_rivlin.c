@@ -2,8 +2,10 @@
 #include "ancf3273_mooney_rivlin.h"
 #include "ancf3273.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"c10", "c01", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3273_mooney_rivlin_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -473,14 +475,6 @@ void ancf3273_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
-    &bk_element_ancf3273, "mooney_rivlin", "full", 3, param_names,
-    405, 27, 13770L, 224316L,
-    ancf3273_full_tabulate, ancf3273_mooney_rivlin_full_energy, ancf3273_mooney_rivlin_full_force, ancf3273_mooney_rivlin_full_force_tangent,
-    2, ancf3273_full_viscous,
-    ancf3273_full_invariants, 0.0, 0.0
-};
-
 double ancf3273_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -948,14 +942,6 @@ void ancf3273_mooney_rivlin_reduced_force_tangent(const double *restrict q, cons
     for (int r = 1; r < 42; ++r)
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
-
-const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
-    &bk_element_ancf3273, "mooney_rivlin", "reduced", 3, param_names,
-    180, 12, 6120L, 99696L,
-    ancf3273_reduced_tabulate, ancf3273_mooney_rivlin_reduced_energy, ancf3273_mooney_rivlin_reduced_force, ancf3273_mooney_rivlin_reduced_force_tangent,
-    2, ancf3273_reduced_viscous,
-    ancf3273_reduced_invariants, 0.0, 0.0
-};
 
 double ancf3273_mooney_rivlin_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -2124,10 +2110,61 @@ void ancf3273_mooney_rivlin_sri_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
+static const char *const param_names[3] = {"c10", "c01", "kappa"};
+
+const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
+    .element = &bk_element_ancf3273,
+    .material = "mooney_rivlin",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 405,
+    .nqp = 27,
+    .ops_force = 13770L,
+    .ops_force_tangent = 224316L,
+    .tabulate = ancf3273_full_tabulate,
+    .energy = ancf3273_mooney_rivlin_full_energy,
+    .force = ancf3273_mooney_rivlin_full_force,
+    .force_tangent = ancf3273_mooney_rivlin_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_full_viscous,
+    .invariants = ancf3273_full_invariants,
+};
+
+const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
+    .element = &bk_element_ancf3273,
+    .material = "mooney_rivlin",
+    .integration = "reduced",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 180,
+    .nqp = 12,
+    .ops_force = 6120L,
+    .ops_force_tangent = 99696L,
+    .tabulate = ancf3273_reduced_tabulate,
+    .energy = ancf3273_mooney_rivlin_reduced_energy,
+    .force = ancf3273_mooney_rivlin_reduced_force,
+    .force_tangent = ancf3273_mooney_rivlin_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_reduced_viscous,
+    .invariants = ancf3273_reduced_invariants,
+};
+
 const bk_pair bk_pair_ancf3273_mooney_rivlin_sri = {
-    &bk_element_ancf3273, "mooney_rivlin", "sri", 3, param_names,
-    465, 31, 22437L, 224177L,
-    ancf3273_sri_tabulate, ancf3273_mooney_rivlin_sri_energy, ancf3273_mooney_rivlin_sri_force, ancf3273_mooney_rivlin_sri_force_tangent,
-    2, ancf3273_sri_viscous,
-    ancf3273_sri_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3273,
+    .material = "mooney_rivlin",
+    .integration = "sri",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 465,
+    .nqp = 31,
+    .ops_force = 22437L,
+    .ops_force_tangent = 224177L,
+    .tabulate = ancf3273_sri_tabulate,
+    .energy = ancf3273_mooney_rivlin_sri_energy,
+    .force = ancf3273_mooney_rivlin_sri_force,
+    .force_tangent = ancf3273_mooney_rivlin_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_sri_viscous,
+    .invariants = ancf3273_sri_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3273_neo_hookean.h"
 #include "ancf3273.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3273_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -316,14 +318,6 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-const bk_pair bk_pair_ancf3273_neo_hookean_full = {
-    &bk_element_ancf3273, "neo_hookean", "full", 2, param_names,
-    405, 27, 9153L, 178011L,
-    ancf3273_full_tabulate, ancf3273_neo_hookean_full_energy, ancf3273_neo_hookean_full_force, ancf3273_neo_hookean_full_force_tangent,
-    2, ancf3273_full_viscous,
-    ancf3273_full_invariants, 0.0, 0.0
-};
-
 double ancf3273_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -634,14 +628,6 @@ void ancf3273_neo_hookean_reduced_force_tangent(const double *restrict q, const 
     for (int r = 1; r < 42; ++r)
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
-
-const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
-    &bk_element_ancf3273, "neo_hookean", "reduced", 2, param_names,
-    180, 12, 4068L, 79116L,
-    ancf3273_reduced_tabulate, ancf3273_neo_hookean_reduced_energy, ancf3273_neo_hookean_reduced_force, ancf3273_neo_hookean_reduced_force_tangent,
-    2, ancf3273_reduced_viscous,
-    ancf3273_reduced_invariants, 0.0, 0.0
-};
 
 double ancf3273_neo_hookean_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -1453,10 +1439,61 @@ void ancf3273_neo_hookean_sri_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3273_neo_hookean_full = {
+    .element = &bk_element_ancf3273,
+    .material = "neo_hookean",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 405,
+    .nqp = 27,
+    .ops_force = 9153L,
+    .ops_force_tangent = 178011L,
+    .tabulate = ancf3273_full_tabulate,
+    .energy = ancf3273_neo_hookean_full_energy,
+    .force = ancf3273_neo_hookean_full_force,
+    .force_tangent = ancf3273_neo_hookean_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_full_viscous,
+    .invariants = ancf3273_full_invariants,
+};
+
+const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
+    .element = &bk_element_ancf3273,
+    .material = "neo_hookean",
+    .integration = "reduced",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 180,
+    .nqp = 12,
+    .ops_force = 4068L,
+    .ops_force_tangent = 79116L,
+    .tabulate = ancf3273_reduced_tabulate,
+    .energy = ancf3273_neo_hookean_reduced_energy,
+    .force = ancf3273_neo_hookean_reduced_force,
+    .force_tangent = ancf3273_neo_hookean_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_reduced_viscous,
+    .invariants = ancf3273_reduced_invariants,
+};
+
 const bk_pair bk_pair_ancf3273_neo_hookean_sri = {
-    &bk_element_ancf3273, "neo_hookean", "sri", 2, param_names,
-    465, 31, 12327L, 206725L,
-    ancf3273_sri_tabulate, ancf3273_neo_hookean_sri_energy, ancf3273_neo_hookean_sri_force, ancf3273_neo_hookean_sri_force_tangent,
-    2, ancf3273_sri_viscous,
-    ancf3273_sri_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3273,
+    .material = "neo_hookean",
+    .integration = "sri",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 465,
+    .nqp = 31,
+    .ops_force = 12327L,
+    .ops_force_tangent = 206725L,
+    .tabulate = ancf3273_sri_tabulate,
+    .energy = ancf3273_neo_hookean_sri_energy,
+    .force = ancf3273_neo_hookean_sri_force,
+    .force_tangent = ancf3273_neo_hookean_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_sri_viscous,
+    .invariants = ancf3273_sri_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3273_svk.h"
 #include "ancf3273.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3273_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -386,14 +388,6 @@ void ancf3273_svk_full_force_tangent(const double *restrict q, const double *res
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-const bk_pair bk_pair_ancf3273_svk_full = {
-    &bk_element_ancf3273, "svk", "full", 2, param_names,
-    405, 27, 11340L, 184734L,
-    ancf3273_full_tabulate, ancf3273_svk_full_energy, ancf3273_svk_full_force, ancf3273_svk_full_force_tangent,
-    2, ancf3273_full_viscous,
-    ancf3273_full_invariants, -0.2, 0.5
-};
-
 double ancf3273_svk_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -774,14 +768,6 @@ void ancf3273_svk_reduced_force_tangent(const double *restrict q, const double *
     for (int r = 1; r < 42; ++r)
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
-
-const bk_pair bk_pair_ancf3273_svk_reduced = {
-    &bk_element_ancf3273, "svk", "reduced", 2, param_names,
-    180, 12, 5040L, 82104L,
-    ancf3273_reduced_tabulate, ancf3273_svk_reduced_energy, ancf3273_svk_reduced_force, ancf3273_svk_reduced_force_tangent,
-    2, ancf3273_reduced_viscous,
-    ancf3273_reduced_invariants, -0.2, 0.5
-};
 
 double ancf3273_svk_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -1524,10 +1510,67 @@ void ancf3273_svk_sri_force_tangent(const double *restrict q, const double *rest
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3273_svk_full = {
+    .element = &bk_element_ancf3273,
+    .material = "svk",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 405,
+    .nqp = 27,
+    .ops_force = 11340L,
+    .ops_force_tangent = 184734L,
+    .tabulate = ancf3273_full_tabulate,
+    .energy = ancf3273_svk_full_energy,
+    .force = ancf3273_svk_full_force,
+    .force_tangent = ancf3273_svk_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_full_viscous,
+    .invariants = ancf3273_full_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
+};
+
+const bk_pair bk_pair_ancf3273_svk_reduced = {
+    .element = &bk_element_ancf3273,
+    .material = "svk",
+    .integration = "reduced",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 180,
+    .nqp = 12,
+    .ops_force = 5040L,
+    .ops_force_tangent = 82104L,
+    .tabulate = ancf3273_reduced_tabulate,
+    .energy = ancf3273_svk_reduced_energy,
+    .force = ancf3273_svk_reduced_force,
+    .force_tangent = ancf3273_svk_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_reduced_viscous,
+    .invariants = ancf3273_reduced_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
+};
+
 const bk_pair bk_pair_ancf3273_svk_sri = {
-    &bk_element_ancf3273, "svk", "sri", 2, param_names,
-    465, 31, 10719L, 205301L,
-    ancf3273_sri_tabulate, ancf3273_svk_sri_energy, ancf3273_svk_sri_force, ancf3273_svk_sri_force_tangent,
-    2, ancf3273_sri_viscous,
-    ancf3273_sri_invariants, -0.2, 0.5
+    .element = &bk_element_ancf3273,
+    .material = "svk",
+    .integration = "sri",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 465,
+    .nqp = 31,
+    .ops_force = 10719L,
+    .ops_force_tangent = 205301L,
+    .tabulate = ancf3273_sri_tabulate,
+    .energy = ancf3273_svk_sri_energy,
+    .force = ancf3273_svk_sri_force,
+    .force_tangent = ancf3273_svk_sri_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3273_sri_viscous,
+    .invariants = ancf3273_sri_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
 };

@@ -2,8 +2,10 @@
 #include "ancf3333_arruda_boyce.h"
 #include "ancf3333.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3333_arruda_boyce_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -354,10 +356,23 @@ void ancf3333_arruda_boyce_full_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+
 const bk_pair bk_pair_ancf3333_arruda_boyce_full = {
-    &bk_element_ancf3333, "arruda_boyce", "full", 3, param_names,
-    156, 12, 4496L, 34592L,
-    ancf3333_full_tabulate, ancf3333_arruda_boyce_full_energy, ancf3333_arruda_boyce_full_force, ancf3333_arruda_boyce_full_force_tangent,
-    2, ancf3333_full_viscous,
-    ancf3333_full_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3333,
+    .material = "arruda_boyce",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 156,
+    .nqp = 12,
+    .ops_force = 4496L,
+    .ops_force_tangent = 34592L,
+    .tabulate = ancf3333_full_tabulate,
+    .energy = ancf3333_arruda_boyce_full_energy,
+    .force = ancf3333_arruda_boyce_full_force,
+    .force_tangent = ancf3333_arruda_boyce_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3333_full_viscous,
+    .invariants = ancf3333_full_invariants,
 };

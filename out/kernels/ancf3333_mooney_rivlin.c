@@ -2,8 +2,10 @@
 #include "ancf3333_mooney_rivlin.h"
 #include "ancf3333.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"c10", "c01", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3333_mooney_rivlin_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -407,10 +409,23 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+static const char *const param_names[3] = {"c10", "c01", "kappa"};
+
 const bk_pair bk_pair_ancf3333_mooney_rivlin_full = {
-    &bk_element_ancf3333, "mooney_rivlin", "full", 3, param_names,
-    156, 12, 4932L, 49140L,
-    ancf3333_full_tabulate, ancf3333_mooney_rivlin_full_energy, ancf3333_mooney_rivlin_full_force, ancf3333_mooney_rivlin_full_force_tangent,
-    2, ancf3333_full_viscous,
-    ancf3333_full_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3333,
+    .material = "mooney_rivlin",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 156,
+    .nqp = 12,
+    .ops_force = 4932L,
+    .ops_force_tangent = 49140L,
+    .tabulate = ancf3333_full_tabulate,
+    .energy = ancf3333_mooney_rivlin_full_energy,
+    .force = ancf3333_mooney_rivlin_full_force,
+    .force_tangent = ancf3333_mooney_rivlin_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3333_full_viscous,
+    .invariants = ancf3333_full_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3333_neo_hookean.h"
 #include "ancf3333.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3333_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -250,10 +252,23 @@ void ancf3333_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
 const bk_pair bk_pair_ancf3333_neo_hookean_full = {
-    &bk_element_ancf3333, "neo_hookean", "full", 2, param_names,
-    156, 12, 2880L, 28560L,
-    ancf3333_full_tabulate, ancf3333_neo_hookean_full_energy, ancf3333_neo_hookean_full_force, ancf3333_neo_hookean_full_force_tangent,
-    2, ancf3333_full_viscous,
-    ancf3333_full_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3333,
+    .material = "neo_hookean",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 156,
+    .nqp = 12,
+    .ops_force = 2880L,
+    .ops_force_tangent = 28560L,
+    .tabulate = ancf3333_full_tabulate,
+    .energy = ancf3333_neo_hookean_full_energy,
+    .force = ancf3333_neo_hookean_full_force,
+    .force_tangent = ancf3333_neo_hookean_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3333_full_viscous,
+    .invariants = ancf3333_full_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3363_arruda_boyce.h"
 #include "ancf3363.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3363_arruda_boyce_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -408,14 +410,6 @@ void ancf3363_arruda_boyce_full_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-const bk_pair bk_pair_ancf3363_arruda_boyce_full = {
-    &bk_element_ancf3363, "arruda_boyce", "full", 3, param_names,
-    756, 27, 16895L, 337655L,
-    ancf3363_full_tabulate, ancf3363_arruda_boyce_full_energy, ancf3363_arruda_boyce_full_force, ancf3363_arruda_boyce_full_force_tangent,
-    2, ancf3363_full_viscous,
-    ancf3363_full_invariants, 0.0, 0.0
-};
-
 double ancf3363_arruda_boyce_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -819,10 +813,42 @@ void ancf3363_arruda_boyce_reduced_force_tangent(const double *restrict q, const
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+
+const bk_pair bk_pair_ancf3363_arruda_boyce_full = {
+    .element = &bk_element_ancf3363,
+    .material = "arruda_boyce",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 756,
+    .nqp = 27,
+    .ops_force = 16895L,
+    .ops_force_tangent = 337655L,
+    .tabulate = ancf3363_full_tabulate,
+    .energy = ancf3363_arruda_boyce_full_energy,
+    .force = ancf3363_arruda_boyce_full_force,
+    .force_tangent = ancf3363_arruda_boyce_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_full_viscous,
+    .invariants = ancf3363_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3363_arruda_boyce_reduced = {
-    &bk_element_ancf3363, "arruda_boyce", "reduced", 3, param_names,
-    336, 12, 7520L, 150080L,
-    ancf3363_reduced_tabulate, ancf3363_arruda_boyce_reduced_energy, ancf3363_arruda_boyce_reduced_force, ancf3363_arruda_boyce_reduced_force_tangent,
-    2, ancf3363_reduced_viscous,
-    ancf3363_reduced_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3363,
+    .material = "arruda_boyce",
+    .integration = "reduced",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 336,
+    .nqp = 12,
+    .ops_force = 7520L,
+    .ops_force_tangent = 150080L,
+    .tabulate = ancf3363_reduced_tabulate,
+    .energy = ancf3363_arruda_boyce_reduced_energy,
+    .force = ancf3363_arruda_boyce_reduced_force,
+    .force_tangent = ancf3363_arruda_boyce_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_reduced_viscous,
+    .invariants = ancf3363_reduced_invariants,
 };

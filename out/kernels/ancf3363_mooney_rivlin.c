@@ -2,8 +2,10 @@
 #include "ancf3363_mooney_rivlin.h"
 #include "ancf3363.h"
 #include <math.h>
-
-static const char *const param_names[3] = {"c10", "c01", "kappa"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3363_mooney_rivlin_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -461,14 +463,6 @@ void ancf3363_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-const bk_pair bk_pair_ancf3363_mooney_rivlin_full = {
-    &bk_element_ancf3363, "mooney_rivlin", "full", 3, param_names,
-    756, 27, 17901L, 370413L,
-    ancf3363_full_tabulate, ancf3363_mooney_rivlin_full_energy, ancf3363_mooney_rivlin_full_force, ancf3363_mooney_rivlin_full_force_tangent,
-    2, ancf3363_full_viscous,
-    ancf3363_full_invariants, 0.0, 0.0
-};
-
 double ancf3363_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -925,10 +919,42 @@ void ancf3363_mooney_rivlin_reduced_force_tangent(const double *restrict q, cons
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+static const char *const param_names[3] = {"c10", "c01", "kappa"};
+
+const bk_pair bk_pair_ancf3363_mooney_rivlin_full = {
+    .element = &bk_element_ancf3363,
+    .material = "mooney_rivlin",
+    .integration = "full",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 756,
+    .nqp = 27,
+    .ops_force = 17901L,
+    .ops_force_tangent = 370413L,
+    .tabulate = ancf3363_full_tabulate,
+    .energy = ancf3363_mooney_rivlin_full_energy,
+    .force = ancf3363_mooney_rivlin_full_force,
+    .force_tangent = ancf3363_mooney_rivlin_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_full_viscous,
+    .invariants = ancf3363_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3363_mooney_rivlin_reduced = {
-    &bk_element_ancf3363, "mooney_rivlin", "reduced", 3, param_names,
-    336, 12, 7956L, 164628L,
-    ancf3363_reduced_tabulate, ancf3363_mooney_rivlin_reduced_energy, ancf3363_mooney_rivlin_reduced_force, ancf3363_mooney_rivlin_reduced_force_tangent,
-    2, ancf3363_reduced_viscous,
-    ancf3363_reduced_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3363,
+    .material = "mooney_rivlin",
+    .integration = "reduced",
+    .nparam = 3,
+    .param_names = param_names,
+    .ntab = 336,
+    .nqp = 12,
+    .ops_force = 7956L,
+    .ops_force_tangent = 164628L,
+    .tabulate = ancf3363_reduced_tabulate,
+    .energy = ancf3363_mooney_rivlin_reduced_energy,
+    .force = ancf3363_mooney_rivlin_reduced_force,
+    .force_tangent = ancf3363_mooney_rivlin_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_reduced_viscous,
+    .invariants = ancf3363_reduced_invariants,
 };

@@ -2,8 +2,10 @@
 #include "ancf3363_neo_hookean.h"
 #include "ancf3363.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3363_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -304,14 +306,6 @@ void ancf3363_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-const bk_pair bk_pair_ancf3363_neo_hookean_full = {
-    &bk_element_ancf3363, "neo_hookean", "full", 2, param_names,
-    756, 27, 13284L, 324108L,
-    ancf3363_full_tabulate, ancf3363_neo_hookean_full_energy, ancf3363_neo_hookean_full_force, ancf3363_neo_hookean_full_force_tangent,
-    2, ancf3363_full_viscous,
-    ancf3363_full_invariants, 0.0, 0.0
-};
-
 double ancf3363_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -611,10 +605,42 @@ void ancf3363_neo_hookean_reduced_force_tangent(const double *restrict q, const 
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3363_neo_hookean_full = {
+    .element = &bk_element_ancf3363,
+    .material = "neo_hookean",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 756,
+    .nqp = 27,
+    .ops_force = 13284L,
+    .ops_force_tangent = 324108L,
+    .tabulate = ancf3363_full_tabulate,
+    .energy = ancf3363_neo_hookean_full_energy,
+    .force = ancf3363_neo_hookean_full_force,
+    .force_tangent = ancf3363_neo_hookean_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_full_viscous,
+    .invariants = ancf3363_full_invariants,
+};
+
 const bk_pair bk_pair_ancf3363_neo_hookean_reduced = {
-    &bk_element_ancf3363, "neo_hookean", "reduced", 2, param_names,
-    336, 12, 5904L, 144048L,
-    ancf3363_reduced_tabulate, ancf3363_neo_hookean_reduced_energy, ancf3363_neo_hookean_reduced_force, ancf3363_neo_hookean_reduced_force_tangent,
-    2, ancf3363_reduced_viscous,
-    ancf3363_reduced_invariants, 0.0, 0.0
+    .element = &bk_element_ancf3363,
+    .material = "neo_hookean",
+    .integration = "reduced",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 336,
+    .nqp = 12,
+    .ops_force = 5904L,
+    .ops_force_tangent = 144048L,
+    .tabulate = ancf3363_reduced_tabulate,
+    .energy = ancf3363_neo_hookean_reduced_energy,
+    .force = ancf3363_neo_hookean_reduced_force,
+    .force_tangent = ancf3363_neo_hookean_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_reduced_viscous,
+    .invariants = ancf3363_reduced_invariants,
 };

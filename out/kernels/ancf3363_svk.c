@@ -2,8 +2,10 @@
 #include "ancf3363_svk.h"
 #include "ancf3363.h"
 #include <math.h>
-
-static const char *const param_names[2] = {"lambda", "mu"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf3363_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -374,14 +376,6 @@ void ancf3363_svk_full_force_tangent(const double *restrict q, const double *res
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-const bk_pair bk_pair_ancf3363_svk_full = {
-    &bk_element_ancf3363, "svk", "full", 2, param_names,
-    756, 27, 15471L, 330831L,
-    ancf3363_full_tabulate, ancf3363_svk_full_energy, ancf3363_svk_full_force, ancf3363_svk_full_force_tangent,
-    2, ancf3363_full_viscous,
-    ancf3363_full_invariants, -0.2, 0.5
-};
-
 double ancf3363_svk_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -751,10 +745,46 @@ void ancf3363_svk_reduced_force_tangent(const double *restrict q, const double *
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+static const char *const param_names[2] = {"lambda", "mu"};
+
+const bk_pair bk_pair_ancf3363_svk_full = {
+    .element = &bk_element_ancf3363,
+    .material = "svk",
+    .integration = "full",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 756,
+    .nqp = 27,
+    .ops_force = 15471L,
+    .ops_force_tangent = 330831L,
+    .tabulate = ancf3363_full_tabulate,
+    .energy = ancf3363_svk_full_energy,
+    .force = ancf3363_svk_full_force,
+    .force_tangent = ancf3363_svk_full_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_full_viscous,
+    .invariants = ancf3363_full_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
+};
+
 const bk_pair bk_pair_ancf3363_svk_reduced = {
-    &bk_element_ancf3363, "svk", "reduced", 2, param_names,
-    336, 12, 6876L, 147036L,
-    ancf3363_reduced_tabulate, ancf3363_svk_reduced_energy, ancf3363_svk_reduced_force, ancf3363_svk_reduced_force_tangent,
-    2, ancf3363_reduced_viscous,
-    ancf3363_reduced_invariants, -0.2, 0.5
+    .element = &bk_element_ancf3363,
+    .material = "svk",
+    .integration = "reduced",
+    .nparam = 2,
+    .param_names = param_names,
+    .ntab = 336,
+    .nqp = 12,
+    .ops_force = 6876L,
+    .ops_force_tangent = 147036L,
+    .tabulate = ancf3363_reduced_tabulate,
+    .energy = ancf3363_svk_reduced_energy,
+    .force = ancf3363_svk_reduced_force,
+    .force_tangent = ancf3363_svk_reduced_force_tangent,
+    .nvisc = 2,
+    .viscous = ancf3363_reduced_viscous,
+    .invariants = ancf3363_reduced_invariants,
+    .green_strain_min = -0.2,
+    .green_strain_max = 0.5,
 };

@@ -2,12 +2,10 @@
 #include "ancf_cable.h"
 #include <math.h>
 #include "rod_math.h"
-
-static const double node_xi[2] = {0.0, 1.0};
-static const int shape_dof[4] = {0, 3, 6, 9};
-static const char *const field_name[4] = {"r", "r_x", "r", "r_x"};
-static const int field_dof[4] = {0, 3, 6, 9};
-static const int field_dim[4] = {3, 3, 3, 3};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
 {
@@ -15,24 +13,24 @@ static void shape(const double *restrict geom, double xi, double y, double z, do
     const double x0 = (xi*xi);
     const double x1 = (xi*xi*xi);
     const double x2 = -3.0*x0 + 2.0*x1;
-    const double x3 = x1*geom[0];
-    const double x4 = x0*geom[0];
+    const double x3 = x1*geom[BK_GEOM_L];
+    const double x4 = x0*geom[BK_GEOM_L];
     N[0] = x2 + 1.0;
-    N[1] = xi*geom[0] + x3 - 2.0*x4;
+    N[1] = xi*geom[BK_GEOM_L] + x3 - 2.0*x4;
     N[2] = -x2;
     N[3] = x3 - x4;
 }
 
 static void mass(const double *restrict geom, double *restrict m)
 {
-    const double x0 = geom[0]*geom[3];
+    const double x0 = geom[BK_GEOM_A]*geom[BK_GEOM_L];
     const double x1 = 0.37142857142857144*x0;
-    const double x2 = geom[3]*(geom[0]*geom[0]);
+    const double x2 = geom[BK_GEOM_A]*(geom[BK_GEOM_L]*geom[BK_GEOM_L]);
     const double x3 = 0.05238095238095238*x2;
     const double x4 = 0.12857142857142856*x0;
     const double x5 = 0.030952380952380953*x2;
     const double x6 = -x5;
-    const double x7 = geom[3]*(geom[0]*geom[0]*geom[0]);
+    const double x7 = geom[BK_GEOM_A]*(geom[BK_GEOM_L]*geom[BK_GEOM_L]*geom[BK_GEOM_L]);
     const double x8 = 0.009523809523809525*x7;
     const double x9 = -0.007142857142857143*x7;
     const double x10 = -x3;
@@ -56,8 +54,8 @@ static void mass(const double *restrict geom, double *restrict m)
 
 static void volume(const double *restrict geom, double *restrict v)
 {
-    const double x0 = 0.5*geom[0]*geom[3];
-    const double x1 = 0.08333333333333333*geom[3]*(geom[0]*geom[0]);
+    const double x0 = 0.5*geom[BK_GEOM_A]*geom[BK_GEOM_L];
+    const double x1 = 0.08333333333333333*geom[BK_GEOM_A]*(geom[BK_GEOM_L]*geom[BK_GEOM_L]);
     v[0] = x0;
     v[1] = x1;
     v[2] = x0;
@@ -72,17 +70,17 @@ static void frame(const double *restrict geom, double xi, const double *restrict
     const double x2 = (xi*xi*xi);
     const double x3 = -x1 + 2.0*x2;
     const double x4 = x3 + 1.0;
-    const double x5 = xi*geom[0];
-    const double x6 = x2*geom[0];
-    const double x7 = x0*geom[0];
+    const double x5 = xi*geom[BK_GEOM_L];
+    const double x6 = x2*geom[BK_GEOM_L];
+    const double x7 = x0*geom[BK_GEOM_L];
     const double x8 = x5 + x6 - 2.0*x7;
     const double x9 = -x3;
     const double x10 = x6 - x7;
-    const double x11 = (1.0/geom[0]);
+    const double x11 = (1.0/geom[BK_GEOM_L]);
     const double x12 = 6.0*x0 - 6.0*xi;
     const double x13 = x11*x12;
-    const double x14 = x1*geom[0];
-    const double x15 = x11*(geom[0] + x14 - 4.0*x5);
+    const double x14 = x1*geom[BK_GEOM_L];
+    const double x15 = x11*(geom[BK_GEOM_L] + x14 - 4.0*x5);
     const double x16 = -x11*x12;
     const double x17 = x11*(x14 - 2.0*x5);
     pos[0] = q[0]*x4 + q[3]*x8 + q[6]*x9 + q[9]*x10;
@@ -104,13 +102,13 @@ static void moment(const double *restrict geom, double xi, const double *restric
     (void)geom; (void)xi;
     for (int i = 0; i < 12; ++i) Q[i] = 0.0;
     for (int i = 0; i < 144; ++i) dQ[i] = 0.0;
-    const double x0 = (1.0/geom[0]);
+    const double x0 = (1.0/geom[BK_GEOM_L]);
     const double x1 = (xi*xi);
     const double x2 = 6.0*x1 - 6.0*xi;
     const double x3 = x0*x2;
-    const double x4 = xi*geom[0];
-    const double x5 = 3.0*x1*geom[0];
-    const double x6 = geom[0] - 4.0*x4 + x5;
+    const double x4 = xi*geom[BK_GEOM_L];
+    const double x5 = 3.0*x1*geom[BK_GEOM_L];
+    const double x6 = geom[BK_GEOM_L] - 4.0*x4 + x5;
     const double x7 = x0*x6;
     const double x8 = -x2;
     const double x9 = x0*x8;
@@ -126,7 +124,7 @@ static void moment(const double *restrict geom, double xi, const double *restric
     const double x17 = (2.0/((x12*x12)));
     const double x18 = x14*x17;
     const double dQs0_0 = -rx0*x18;
-    const double x24 = (1.0/(geom[0]*geom[0]));
+    const double x24 = (1.0/(geom[BK_GEOM_L]*geom[BK_GEOM_L]));
     const double x25 = x24*(x2*x2);
     const double x19 = M[2]*x13;
     const double dQs0_1 = -rx1*x18 - x19;
@@ -377,7 +375,7 @@ static void reference(const double *restrict geom, double *restrict q0)
     q0[3] = 1.0;
     q0[4] = 0;
     q0[5] = 0;
-    q0[6] = geom[0];
+    q0[6] = geom[BK_GEOM_L];
     q0[7] = 0;
     q0[8] = 0;
     q0[9] = 1.0;
@@ -388,15 +386,15 @@ static void reference(const double *restrict geom, double *restrict q0)
 void ancf_cable_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
 {
     (void)q0;
-    const double x0 = 0.17392742256872692*geom[0];
-    const double x1 = (1.0/geom[0]);
+    const double x0 = 0.17392742256872692*geom[BK_GEOM_L];
+    const double x1 = (1.0/geom[BK_GEOM_L]);
     const double x2 = 0.3876663792812862*x1;
-    const double x3 = (1.0/(geom[0]*geom[0]));
+    const double x3 = (1.0/(geom[BK_GEOM_L]*geom[BK_GEOM_L]));
     const double x4 = 5.166817869564316*x3;
     const double x5 = -x4;
     const double x6 = 3.583408934782158*x1;
     const double x7 = 1.5834089347821578*x1;
-    const double x8 = 0.32607257743127305*geom[0];
+    const double x8 = 0.32607257743127305*geom[BK_GEOM_L];
     const double x9 = 1.3266193350044282*x1;
     const double x10 = 2.0398862615091375*x3;
     const double x11 = -x10;
@@ -441,8 +439,31 @@ void ancf_cable_full_tabulate(const double *restrict geom, const double *restric
     tab[35] = x6;
 }
 
+static const double node_xi[2] = {0.0, 1.0};
+static const bk_field_role field_role[4] = {BK_FIELD_POSITION, BK_FIELD_R_X, BK_FIELD_POSITION, BK_FIELD_R_X};
+static const char *const field_name[4] = {"r", "r_x", "r", "r_x"};
+static const int field_dof[4] = {0, 3, 6, 9};
+static const int field_dim[4] = {3, 3, 3, 3};
+static const int shape_dof[4] = {0, 3, 6, 9};
+
 const bk_element bk_element_ancf_cable = {
-    "ancf_cable", "ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF", 2, 12, node_xi,
-    4, field_name, field_dof, field_dim, reference,
-    4, shape_dof, shape, mass, volume, frame, moment, 0
+    .name = "ancf_cable",
+    .title = "ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF",
+    .nnode = 2,
+    .ndof = 12,
+    .node_xi = node_xi,
+    .caps = BK_CAP_SECTION_RECTANGLE | BK_CAP_SECTION_CIRCLE | BK_CAP_MOMENT_NO_TORSION,
+    .nfield = 4,
+    .field_role = field_role,
+    .field_name = field_name,
+    .field_dof = field_dof,
+    .field_dim = field_dim,
+    .nshape = 4,
+    .shape_dof = shape_dof,
+    .reference = reference,
+    .shape = shape,
+    .mass = mass,
+    .volume = volume,
+    .frame = frame,
+    .moment = moment,
 };

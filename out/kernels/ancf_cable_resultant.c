@@ -3,8 +3,10 @@
 #include "ancf_cable.h"
 #include <math.h>
 #include "rod_math.h"
-
-static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double ancf_cable_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -797,9 +799,20 @@ void ancf_cable_resultant_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 12 + c] = K[c * 12 + r];
 }
 
+static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+
 const bk_pair bk_pair_ancf_cable_resultant_full = {
-    &bk_element_ancf_cable, "resultant", "full", 6, param_names,
-    36, 4, 662L, 3787L,
-    ancf_cable_full_tabulate, ancf_cable_resultant_full_energy, ancf_cable_resultant_full_force, ancf_cable_resultant_full_force_tangent,
-    0, 0
+    .element = &bk_element_ancf_cable,
+    .material = "resultant",
+    .integration = "full",
+    .nparam = 6,
+    .param_names = param_names,
+    .ntab = 36,
+    .nqp = 4,
+    .ops_force = 662L,
+    .ops_force_tangent = 3787L,
+    .tabulate = ancf_cable_full_tabulate,
+    .energy = ancf_cable_resultant_full_energy,
+    .force = ancf_cable_resultant_full_force,
+    .force_tangent = ancf_cable_resultant_full_force_tangent,
 };

@@ -2,8 +2,10 @@
 #include "euler_bernoulli_resultant.h"
 #include "euler_bernoulli.h"
 #include "rod_common.h"
-
-static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double euler_bernoulli_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -245,9 +247,20 @@ void euler_bernoulli_resultant_full_force_tangent(const double *restrict q, cons
         for (int c = 0; c < r; ++c) K[r * 25 + c] = K[c * 25 + r];
 }
 
+static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+
 const bk_pair bk_pair_euler_bernoulli_resultant_full = {
-    &bk_element_euler_bernoulli, "resultant", "full", 6, param_names,
-    13, 2, 2261L, 12656L,
-    euler_bernoulli_full_tabulate, euler_bernoulli_resultant_full_energy, euler_bernoulli_resultant_full_force, euler_bernoulli_resultant_full_force_tangent,
-    0, 0
+    .element = &bk_element_euler_bernoulli,
+    .material = "resultant",
+    .integration = "full",
+    .nparam = 6,
+    .param_names = param_names,
+    .ntab = 13,
+    .nqp = 2,
+    .ops_force = 2261L,
+    .ops_force_tangent = 12656L,
+    .tabulate = euler_bernoulli_full_tabulate,
+    .energy = euler_bernoulli_resultant_full_energy,
+    .force = euler_bernoulli_resultant_full_force,
+    .force_tangent = euler_bernoulli_resultant_full_force_tangent,
 };

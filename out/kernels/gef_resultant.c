@@ -2,8 +2,10 @@
 #include "gef_resultant.h"
 #include "gef.h"
 #include "rod_common.h"
-
-static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double gef_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -224,9 +226,20 @@ void gef_resultant_full_force_tangent(const double *restrict q, const double *re
         for (int c = 0; c < r; ++c) K[r * 21 + c] = K[c * 21 + r];
 }
 
+static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+
 const bk_pair bk_pair_gef_resultant_full = {
-    &bk_element_gef, "resultant", "full", 6, param_names,
-    13, 2, 2261L, 12564L,
-    gef_full_tabulate, gef_resultant_full_energy, gef_resultant_full_force, gef_resultant_full_force_tangent,
-    0, 0
+    .element = &bk_element_gef,
+    .material = "resultant",
+    .integration = "full",
+    .nparam = 6,
+    .param_names = param_names,
+    .ntab = 13,
+    .nqp = 2,
+    .ops_force = 2261L,
+    .ops_force_tangent = 12564L,
+    .tabulate = gef_full_tabulate,
+    .energy = gef_resultant_full_energy,
+    .force = gef_resultant_full_force,
+    .force_tangent = gef_resultant_full_force_tangent,
 };

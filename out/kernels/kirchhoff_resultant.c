@@ -2,8 +2,10 @@
 #include "kirchhoff_resultant.h"
 #include "kirchhoff.h"
 #include "rod_common.h"
-
-static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 double kirchhoff_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
@@ -201,9 +203,20 @@ void kirchhoff_resultant_full_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+
 const bk_pair bk_pair_kirchhoff_resultant_full = {
-    &bk_element_kirchhoff, "resultant", "full", 6, param_names,
-    13, 2, 2263L, 12706L,
-    kirchhoff_full_tabulate, kirchhoff_resultant_full_energy, kirchhoff_resultant_full_force, kirchhoff_resultant_full_force_tangent,
-    0, 0
+    .element = &bk_element_kirchhoff,
+    .material = "resultant",
+    .integration = "full",
+    .nparam = 6,
+    .param_names = param_names,
+    .ntab = 13,
+    .nqp = 2,
+    .ops_force = 2263L,
+    .ops_force_tangent = 12706L,
+    .tabulate = kirchhoff_full_tabulate,
+    .energy = kirchhoff_resultant_full_energy,
+    .force = kirchhoff_resultant_full_force,
+    .force_tangent = kirchhoff_resultant_full_force_tangent,
 };

@@ -2,6 +2,10 @@
 #include "rod_common.h"
 #include <math.h>
 #include "rod_math.h"
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 void bk_rod_psi(const double *restrict q, double *restrict psi)
 {
@@ -1085,11 +1089,11 @@ void bk_rod_tabulate(const double *restrict geom, const double *restrict q0, dou
 {
     const double zero[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     double psi[6];
-    tab[0] = geom[0];
+    tab[0] = geom[BK_GEOM_L];
     bk_rod_psi(q0, psi);
     for (int g = 0; g < 2; ++g) {
         double c[5], v[13];
-        (void)bk_rod_gauss_c(g, geom[0], c);
+        (void)bk_rod_gauss_c(g, geom[BK_GEOM_L], c);
         bk_rod_v(c, q0, psi, v);
         bk_rod_strain(v, zero, tab + 1 + 6 * g);
     }

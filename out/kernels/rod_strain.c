@@ -2,6 +2,10 @@
 #include "rod_strain.h"
 #include <math.h>
 #include "rod_math.h"
+#include "bk_kernel.h"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
+#error "generated for runtime/bk_kernel.h version 2: regenerate out/kernels with ./build.sh gen"
+#endif
 
 const double bk_rod_gauss[2][6] = {
     {0.45534180126147955, -0.12200846792814622, -2.1547005383792515, 2.309401076758503, -0.15470053837925152, 0.5},

@@ -1,0 +1,109 @@
+"""What the Python side knows of runtime/bk_kernel.h, read from the header itself
+(no sympy: the scene compiler may import it): the kernel version, the slots of
+geom[], the section shapes, the field roles and the element capabilities.
+
+The header is the one definition; this module only parses it, so a slot, role
+or capability added there is known here without a second list.
+"""
+import re
+from functools import lru_cache
+from pathlib import Path
+
+HEADER = Path(__file__).resolve().parent.parent / "runtime" / "bk_kernel.h"
+
+# Nodal vector names of the generator (gen/element.py, gen/rod.py) -> field role.
+_ROLE_OF_NAME = {"r": "BK_FIELD_POSITION", "r_x": "BK_FIELD_R_X", "r_y": "BK_FIELD_R_Y",
+                 "r_z": "BK_FIELD_R_Z", "r_yy": "BK_FIELD_R_YY", "r_yz": "BK_FIELD_R_YZ",
+                 "r_zz": "BK_FIELD_R_ZZ", "p": "BK_FIELD_QUATERNION", "lambda": "BK_FIELD_MULTIPLIER"}
+
+
+@lru_cache(maxsize=None)
+def _text():
+    return HEADER.read_text(encoding="utf-8")
+
+
+def _strip_comments(s):
+    return re.sub(r"/\*.*?\*/", "", s, flags=re.S)
+
+
+def version():
+    """BK_KERNEL_VERSION of the header."""
+    m = re.search(r"^#define\s+BK_KERNEL_VERSION\s+(\d+)\s*$", _text(), re.M)
+    if not m:
+        raise RuntimeError(f"{HEADER}: no '#define BK_KERNEL_VERSION <n>'")
+    return int(m.group(1))
+
+
+@lru_cache(maxsize=None)
+def _enum(name):
+    """[(constant, value)] of `enum name { ... }` or `typedef enum name { ... }`,
+    values as C gives them (explicit, shifted, or previous + 1)."""
+    src = _strip_comments(_text())
+    m = re.search(r"enum\s+" + re.escape(name) + r"\s*\{(.*?)\}", src, re.S)
+    if not m:
+        raise RuntimeError(f"{HEADER}: no enum {name}")
+    out, nxt = [], 0
+    for item in m.group(1).split(","):
+        item = item.strip()
+        if not item:
+            continue
+        if "=" in item:
+            k, v = (x.strip() for x in item.split("=", 1))
+            sh = re.fullmatch(r"(\d+)\s*<<\s*(\d+)", v)
+            val = int(sh.group(1)) << int(sh.group(2)) if sh else int(v)
+        else:
+            k, val = item, nxt
+        out.append((k, val))
+        nxt = val + 1
+    return tuple(out)
+
+
+def geom_slots():
+    """Slot names of geom[] in order, without the prefix: ("L", "B", "H", "A", ...)."""
+    slots = [(k, v) for k, v in _enum("bk_geom_slot") if k != "BK_NGEOM"]
+    names = [k[len("BK_GEOM_"):] for k, v in sorted(slots, key=lambda kv: kv[1])]
+    assert [v for _, v in sorted(slots, key=lambda kv: kv[1])] == list(range(len(names))), slots
+    return tuple(names)
+
+
+def ngeom():
+    return dict(_enum("bk_geom_slot"))["BK_NGEOM"]
+
+
+def geom_slot(name):
+    """Index of a geom[] slot ("L", "B", ...)."""
+    return geom_slots().index(name)
+
+
+def section_shapes():
+    """{"rectangle": 1, "circle": 2, ...}."""
+    return {k[len("BK_SECTION_"):].lower(): v for k, v in _enum("bk_section_shape")}
+
+
+def field_roles():
+    """{role constant: value}."""
+    return dict(_enum("bk_field_role"))
+
+
+def capabilities():
+    """{capability constant: bit}."""
+    return dict(_enum("bk_element_cap"))
+
+
+def role_of(field_name):
+    """Role constant of a field name of the generator ("r", "r_x", "p", "lambda", ...)."""
+    try:
+        role = _ROLE_OF_NAME[field_name]
+    except KeyError:
+        raise ValueError(f"field {field_name!r} has no role in {HEADER.name} (bk_field_role): "
+                         "add one there and here") from None
+    if role not in field_roles():
+        raise RuntimeError(f"{HEADER}: bk_field_role lacks {role}")
+    return role
+
+
+def max_sizes():
+    """(BK_MAX_ELEMENT_DOF, BK_MAX_SHAPE)."""
+    t = _text()
+    get = lambda n: int(re.search(r"^#define\s+" + n + r"\s+(\d+)", t, re.M).group(1))
+    return get("BK_MAX_ELEMENT_DOF"), get("BK_MAX_SHAPE")
