@@ -75,6 +75,15 @@ def geom_slot(name):
     return geom_slots().index(name)
 
 
+def geom_vector(**values):
+    """geom[] in slot order from values named by slot ("L", "B", ...; missing ones 0)."""
+    slots = geom_slots()
+    unknown = set(values) - set(slots)
+    if unknown:
+        raise KeyError(f"no geom[] slot {sorted(unknown)} in {HEADER}")
+    return [float(values.get(k, 0.0)) for k in slots]
+
+
 def section_shapes():
     """{"rectangle": 1, "circle": 2, ...}."""
     return {k[len("BK_SECTION_"):].lower(): v for k, v in _enum("bk_section_shape")}

@@ -30,14 +30,16 @@ MATERIALS = {
 
 
 def section_geom(l, b, h):
-    """geom[7] = {l, b, h, A, I1, I2, Ip} of a rectangle (Saint-Venant J for Ip-like torsion)."""
+    """geom[] of a rectangle in the slot order of runtime/bk_kernel.h."""
+    from gen import contract
     A = b * h
     I1, I2 = b * h**3 / 12, h * b**3 / 12
-    return [l, b, h, A, I1, I2, I1 + I2]
+    return contract.geom_vector(L=l, B=b, H=h, A=A, I1=I1, I2=I2, IP=I1 + I2,
+                                SHAPE=contract.section_shapes()["rectangle"])
 
 
 def resultant_params(geom, E=1e10, nu=0.3):
-    l, b, h, A, I1, I2, _ = geom
+    l, b, h, A, I1, I2 = geom[:6]
     G = E / (2 * (1 + nu))
     k = 10 * (1 + nu) / (12 + 11 * nu)
     a, c = max(b, h), min(b, h)

@@ -43,7 +43,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 2
+#define BK_KERNEL_VERSION 3
 
 /* Slots of geom[]. */
 enum bk_geom_slot {
@@ -54,7 +54,8 @@ enum bk_geom_slot {
     BK_GEOM_I1 = 4,                   /* second moment of area about d1 (m^4)         */
     BK_GEOM_I2 = 5,                   /* second moment of area about d2 (m^4)         */
     BK_GEOM_IP = 6,                   /* polar moment I1 + I2 (m^4)                   */
-    BK_NGEOM = 7
+    BK_GEOM_SHAPE = 7,                /* section shape, enum bk_section_shape (0: unstated) */
+    BK_NGEOM = 8
 };
 
 /* Section shapes (capabilities below say which an element takes). */

@@ -261,7 +261,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         m->pairs[i] = find_pair(t, avail, navail);
         if (!m->pairs[i])
             fail(r, "kernel '%s' is not linked into this solver (rebuild with ./build.sh run)", t);
-        else if (m->pairs[i]->element->nshape > 128 || m->pairs[i]->element->ndof > 1024)
+        else if (m->pairs[i]->element->nshape > BK_MAX_SHAPE || m->pairs[i]->element->ndof > BK_MAX_ELEMENT_DOF)
             fail(r, "kernel '%s' is larger than this runtime supports", t);
     }
 

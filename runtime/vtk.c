@@ -30,12 +30,10 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* Section shape of element e (enum bk_section_shape).  An element that takes
- * one shape only has that one (the continuum elements: their box b x h).  An
- * element that takes several (rods, cable) has the beam's, which the model file
- * does not state (geom[] has no slot for it): the two sections the scene
- * compiler writes are told apart by their area, A = b h for a rectangle and
- * A = pi b^2 / 4 with b = h the diameter for a circle. */
+/* Section shape of element e (enum bk_section_shape): an element that takes
+ * one shape only has that one (the continuum elements: their box b x h); else
+ * the beam's, geom[BK_GEOM_SHAPE] as the scene compiler writes it (a
+ * rectangle where a hand-made model leaves it unstated). */
 static int section_shape(const bk_model *m, int e)
 {
     const unsigned both = BK_CAP_SECTION_RECTANGLE | BK_CAP_SECTION_CIRCLE;
@@ -44,11 +42,8 @@ static int section_shape(const bk_model *m, int e)
         return BK_SECTION_RECTANGLE;
     if (caps == BK_CAP_SECTION_CIRCLE)
         return BK_SECTION_CIRCLE;
-    const double *g = m->geoms[m->elems[e].geom];
-    const double A = g[BK_GEOM_A], b = g[BK_GEOM_B];
-    if (b == g[BK_GEOM_H] && fabs(A - 0.25 * M_PI * b * b) <= 1e-12 * A)
-        return BK_SECTION_CIRCLE;
-    return BK_SECTION_RECTANGLE;
+    const double shape = m->geoms[m->elems[e].geom][BK_GEOM_SHAPE];
+    return shape == (double)BK_SECTION_CIRCLE ? BK_SECTION_CIRCLE : BK_SECTION_RECTANGLE;
 }
 
 /* Points of the section ring: 8 around a rectangle, 12 around a circle. */

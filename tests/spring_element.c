@@ -4,8 +4,8 @@
 
 #include <math.h>
 
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 2
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 2"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 3"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

@@ -156,7 +156,8 @@ class Kernel:
     def tabulate(self, geom, q0=None):
         import numpy as np
         tab = np.zeros(self.ntab)
-        geom = list(geom) + [0.0] * (7 - len(geom))
+        from gen import contract
+        geom = list(geom) + [0.0] * (contract.ngeom() - len(geom))
         g, gp = self._arr(geom)
         q0, q0p = self._arr(np.zeros(self.ndof) if q0 is None else q0)
         t, tp = self._arr(tab)

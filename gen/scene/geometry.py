@@ -122,7 +122,9 @@ def frame_quaternion(t, d1, d2):
 
 
 def section_geometry(sec, l):
-    """geom[7] = {l, b, h, A, I1, I2, Ip} of a section (runtime/bk_kernel.h)."""
+    """geom[] of an element of length l with section sec, in the slot order of
+    runtime/bk_kernel.h (gen/contract.py): l, b, h, A, I1, I2, Ip, shape."""
+    from gen import contract
     shape, b, h = sec
     if shape == "rectangle":
         A, I1, I2 = b * h, b * h**3 / 12, h * b**3 / 12
@@ -130,4 +132,5 @@ def section_geometry(sec, l):
         r = b / 2
         A, I1 = math.pi * r * r, math.pi * r**4 / 4
         I2 = I1
-    return [l, b, h, A, I1, I2, I1 + I2]
+    return contract.geom_vector(L=l, B=b, H=h, A=A, I1=I1, I2=I2, IP=I1 + I2,
+                                SHAPE=contract.section_shapes()[shape])
