@@ -44,9 +44,11 @@ Commands:
                          modes.png (modal: a panel per mode shape) and beam.png
                          (the last ParaView frame drawn in 3-D)
   scenes                 list the scenes in models/
-  report [--quick]       the seed cantilever tables beside the paper's, the nearly
-                         incompressible cantilever and the pendulums / falling
-                         silicone: out/report/{seed_tables,incompressible,pendulum}.md
+  report [--quick]       the seed cantilever tables beside the paper's, the
+                         verification matrix (continuum elements x laws x
+                         compressibility vs beam theory and CalculiX) and the
+                         pendulums / falling silicone:
+                         out/report/{seed_tables,verification,pendulum}.md
   hard [--quick]         numerical stability on hard cases (buckling, two-turn
                          roll-up, torsion, stiff pendulums, incompressibility,
                          slenderness, long runs) per element: out/report/hard.md
@@ -153,7 +155,7 @@ case "$cmd" in
     report)
         shift
         "$PY" -m report.seed_tables "$@"
-        "$PY" -m report.incompressible "$@"
+        "$PY" -m report.verification "$@"
         exec "$PY" -m report.dynamics "$@"
         ;;
     bench)
