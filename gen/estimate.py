@@ -6,8 +6,8 @@ to change; large ones print the estimate first.
 The constants were measured on this project's machines (Debian 12, 2 cores):
 the solver holds about 30 bytes per entry of the element tangents (values,
 pattern, KLU factors, LDL^T of the stability check) plus 2 kB per element; the
-scene compiler about 2.6 kB per element while the solver runs; an ASCII frame
-about 4 kB per continuum element (section rings) and 0.5 kB per rod element;
+scene compiler about 2.6 kB per element while the solver runs; a binary frame
+about 3.5 kB per continuum element (section rings) and 0.5 kB per rod element;
 a Newton iteration about 40 ns per tangent entry.
 """
 import os
@@ -16,7 +16,7 @@ import shutil
 SOLVER_BYTES_PER_ENTRY = 30.0
 SOLVER_BYTES_PER_ELEMENT = 2000.0
 MESH_BYTES_PER_ELEMENT = 2600.0
-FRAME_BYTES = {"continuum": 4000.0}
+FRAME_BYTES = {"continuum": 3500.0}
 FRAME_BYTES_OTHER = 500.0
 SECONDS_PER_ENTRY_ITERATION = 40e-9
 

@@ -135,23 +135,10 @@ def fig_energy(run, summary):
 
 
 def read_vtu(path):
-    """Points, displacements, cells (type, connectivity) and field data of an ASCII .vtu."""
-    root = ET.parse(path).getroot()
-    grid = root.find("UnstructuredGrid")
-    piece = grid.find("Piece")
-    arr = lambda node: np.array(node.text.split(), dtype=float)
-    pts = arr(piece.find("Points/DataArray")).reshape(-1, 3)
-    disp = arr(piece.find("PointData/DataArray[@Name='displacement']")).reshape(-1, 3)
-    cells = piece.find("Cells")
-    conn = arr(cells.find("DataArray[@Name='connectivity']")).astype(int)
-    offs = arr(cells.find("DataArray[@Name='offsets']")).astype(int)
-    types = arr(cells.find("DataArray[@Name='types']")).astype(int)
-    out, start = [], 0
-    for o, ty in zip(offs, types):
-        out.append((ty, conn[start:o]))
-        start = o
-    fields = {a.get("Name"): float(a.text) for a in grid.findall("FieldData/DataArray")}
-    return pts, disp, out, fields
+    """Points, displacements, cells (type, connectivity) and field data of a .vtu."""
+    from report import vtu
+    d = vtu.read(path)
+    return d["points"], d["displacement"], vtu.cells(d), d["fields"]
 
 
 def collection(run, name):

@@ -19,6 +19,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -248,32 +249,68 @@ void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, d
 
 /* One XML UnstructuredGrid file: field data (name, value pairs), points,
  * point data (displacement; mode_shape for modes), cell data (strain energy
- * density, step frames only), cells. */
+ * density, step frames only), cells.  The arrays are appended raw binary
+ * (little endian, a UInt64 byte count before each), which ParaView reads and
+ * which is written ~10 times faster than ASCII; the XML header names every
+ * array with its offset into the appended block. */
+static void put_u64(FILE *fp, uint64_t n)
+{
+    fwrite(&n, sizeof n, 1, fp);
+}
+
 static int write_vtu(const bk_model *m, const char *path, int nfield, const char *const *fname,
                      const double *fval, const double *q, const mode_view *mv)
 {
-    FILE *fp = fopen(path, "w");
+    FILE *fp = fopen(path, "wb");
     if (!fp)
         return -1;
-    long npts = bk_vtk_npoints(m), ncell = 0;
-    for (int e = 0; e < m->nelem; ++e)
-        ncell += (long)(NX - 1) * ring_points(m, e) + 1;
-    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                "  <UnstructuredGrid>\n    <FieldData>\n");
+    long npts = bk_vtk_npoints(m), ncell = 0, nconn = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        ncell += (long)(NX - 1) * r + 1;
+        nconn += 4L * (NX - 1) * r + NX;
+    }
+    int npass = mv ? 3 : 2;
+    /* byte sizes of the appended arrays, in the order they are written */
+    const uint64_t sz_pts = (uint64_t)npts * 3 * sizeof(double), sz_cell = (uint64_t)ncell * sizeof(double);
+    const uint64_t sz_conn = (uint64_t)nconn * sizeof(int64_t), sz_off = (uint64_t)ncell * sizeof(int64_t);
+    uint64_t off = 0;
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+                "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n");
     for (int f = 0; f < nfield; ++f)
         fprintf(fp, "      <DataArray type=\"Float64\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n",
                 fname[f], fval[f]);
     fprintf(fp, "    </FieldData>\n    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n", npts, ncell);
+    fprintf(fp, "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+                "offset=\"%llu\"/>\n      </Points>\n", (unsigned long long)off);
+    off += 8 + sz_pts;
+    fprintf(fp, "      <PointData Vectors=\"displacement\">\n        <DataArray type=\"Float64\" Name=\"displacement\" "
+                "NumberOfComponents=\"3\" format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)off);
+    off += 8 + sz_pts;
+    if (mv) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"mode_shape\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    fprintf(fp, "      </PointData>\n");
+    if (!mv) {
+        fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
+                    "Name=\"strain_energy_density\" format=\"appended\" offset=\"%llu\"/>\n      </CellData>\n",
+                (unsigned long long)off);
+        off += 8 + sz_cell;
+    }
+    fprintf(fp, "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" "
+                "offset=\"%llu\"/>\n", (unsigned long long)off);
+    off += 8 + sz_conn;
+    fprintf(fp, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"%llu\"/>\n",
+            (unsigned long long)off);
+    off += 8 + sz_off;
+    fprintf(fp, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"%llu\"/>\n"
+                "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _",
+            (unsigned long long)off);
     /* points, displacements (and mode shapes): the same traversal each time */
-    int npass = mv ? 3 : 2;
     for (int pass = 0; pass < npass; ++pass) {
-        if (pass == 0)
-            fprintf(fp, "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-        else if (pass == 1)
-            fprintf(fp, "      <PointData Vectors=\"displacement\">\n        <DataArray type=\"Float64\" "
-                        "Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-        else
-            fprintf(fp, "        <DataArray type=\"Float64\" Name=\"mode_shape\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+        put_u64(fp, sz_pts);
         for (int e = 0; e < m->nelem; ++e) {
             const double *g = m->geoms[m->elems[e].geom];
             int r = ring_points(m, e);
@@ -284,21 +321,13 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
                     if (j < r)
                         ring_yz(g, r, j, &y, &z);
                     point_value(m, q, mv, pass, e, xi, y, z, x);
-                    fprintf(fp, "          %.9g %.9g %.9g\n", x[0], x[1], x[2]);
+                    fwrite(x, sizeof(double), 3, fp);
                 }
             }
         }
-        fprintf(fp, "        </DataArray>\n");
-        if (pass == 0)
-            fprintf(fp, "      </Points>\n");
-        if (pass == npass - 1)
-            fprintf(fp, "      </PointData>\n");
     }
-    /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
-     * j = r is the centreline point */
     if (!mv) {
-        fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
-                    "Name=\"strain_energy_density\" format=\"ascii\">\n");
+        put_u64(fp, sz_cell);
         double qe[BK_MAX_ELEMENT_DOF];
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
@@ -308,42 +337,48 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
             double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
             int r = ring_points(m, e);
             for (int c = 0; c < (NX - 1) * r + 1; ++c)
-                fprintf(fp, "          %.9g\n", dens);
+                fwrite(&dens, sizeof dens, 1, fp);
         }
-        fprintf(fp, "        </DataArray>\n      </CellData>\n");
     }
-    fprintf(fp, "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    long base = 0;
+    /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
+     * j = r is the centreline point */
+    put_u64(fp, sz_conn);
+    int64_t base = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e), w = r + 1;
         for (int k = 0; k + 1 < NX; ++k)
             for (int j = 0; j < r; ++j) {
                 int j2 = (j + 1) % r;
-                fprintf(fp, "          %ld %ld %ld %ld\n", base + k * w + j, base + k * w + j2,
-                        base + (k + 1) * w + j2, base + (k + 1) * w + j);
+                int64_t quad[4] = {base + k * w + j, base + k * w + j2, base + (k + 1) * w + j2,
+                                   base + (k + 1) * w + j};
+                fwrite(quad, sizeof *quad, 4, fp);
             }
-        fprintf(fp, "         ");
-        for (int k = 0; k < NX; ++k)
-            fprintf(fp, " %ld", base + k * w + r);
-        fprintf(fp, "\n");
-        base += (long)NX * w;
+        for (int k = 0; k < NX; ++k) {
+            int64_t c = base + k * w + r;
+            fwrite(&c, sizeof c, 1, fp);
+        }
+        base += (int64_t)NX * w;
     }
-    fprintf(fp, "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    long off = 0;
+    put_u64(fp, sz_off);
+    int64_t o = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e);
-        for (int c = 0; c < (NX - 1) * r; ++c)
-            fprintf(fp, "          %ld\n", off += 4);
-        fprintf(fp, "          %ld\n", off += NX);
+        for (int c = 0; c < (NX - 1) * r; ++c) {
+            o += 4;
+            fwrite(&o, sizeof o, 1, fp);
+        }
+        o += NX;
+        fwrite(&o, sizeof o, 1, fp);
     }
-    fprintf(fp, "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    put_u64(fp, (uint64_t)ncell);
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e);
+        const unsigned char quad = 9, line = 4;          /* VTK_QUAD, VTK_POLY_LINE */
         for (int c = 0; c < (NX - 1) * r; ++c)
-            fprintf(fp, "          9\n");                 /* VTK_QUAD */
-        fprintf(fp, "          4\n");                     /* VTK_POLY_LINE */
+            fputc(quad, fp);
+        fputc(line, fp);
     }
-    fprintf(fp, "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
     return fclose(fp) != 0 ? -1 : 0;
 }
 

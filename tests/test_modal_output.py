@@ -50,8 +50,8 @@ def pvd(path):
 
 
 def vtu_points(path):
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-    return np.array(piece.find("Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
+    from report import vtu
+    return vtu.read(path)["points"]
 
 
 def sagging_modal_scene(d):

@@ -20,19 +20,10 @@ def fresh():
 
 
 def vtu_centreline(path):
-    root = ET.parse(path).getroot()
-    piece = root.find("UnstructuredGrid/Piece")
-    pts = np.array(piece.find("Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    disp = np.array(piece.find("PointData/DataArray[@Name='displacement']").text.split(), dtype=float).reshape(-1, 3)
-    cells = piece.find("Cells")
-    conn = np.array(cells.find("DataArray[@Name='connectivity']").text.split(), dtype=int)
-    offs = np.array(cells.find("DataArray[@Name='offsets']").text.split(), dtype=int)
-    types = np.array(cells.find("DataArray[@Name='types']").text.split(), dtype=int)
-    lines, start = [], 0
-    for o, t in zip(offs, types):
-        if t == 4:
-            lines.append(conn[start:o])
-        start = o
+    from report import vtu
+    d = vtu.read(path)
+    pts, disp = d["points"], d["displacement"]
+    lines = [c for t, c in vtu.cells(d) if t == 4]
     return pts, disp, lines
 
 
