@@ -117,32 +117,12 @@ static int fint(reader *r, const char *rec, const char *key, int lo, int hi)
 
 static double num(reader *r, const char *what)
 {
-    const char *t = next(r, what);
-    if (!t)
-        return 0.0;
-    char *end;
-    errno = 0;
-    double v = strtod(t, &end);
-    if (*end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fail(r, "%s: expected a finite number, found '%s'", what, t);
-        return 0.0;
-    }
-    return v;
+    return parse_num(r, what, next(r, what));
 }
 
 static int inum(reader *r, const char *what, int lo, int hi)
 {
-    const char *t = next(r, what);
-    if (!t)
-        return lo;
-    char *end;
-    errno = 0;
-    long v = strtol(t, &end, 10);
-    if (*end != '\0' || errno == ERANGE || v < lo || v > hi) {
-        fail(r, "%s: expected an integer in [%d, %d], found '%s'", what, lo, hi, t);
-        return lo;
-    }
-    return (int)v;
+    return parse_int(r, what, next(r, what), lo, hi);
 }
 
 static void *xcalloc(reader *r, size_t n, size_t size)
