@@ -12,7 +12,8 @@ Modules, one job each:
   run          run ccx in a work directory, cached under out/calculix/ by deck hash
   results      parse ccx's .dat output (node displacements, time histories)
   extrapolate  Richardson extrapolation with the observed order
-  study        the mesh study: decks for each mesh, runs, extrapolation
+  study        the mesh study: decks for each mesh, runs, extrapolation, checks
+  data         the committed references (references/data/calculix_silicone.json)
   uniaxial     closed-form uniaxial-stress responses of our laws and of ccx's,
                to state the remaining law differences
 
@@ -20,3 +21,4 @@ Nothing here imports sympy.
 """
 from calculix.scene import read_scene          # noqa: F401
 from calculix.study import reference, Study    # noqa: F401
+from calculix.data import reference_data       # noqa: F401

@@ -28,14 +28,21 @@ What the deck represents:
   * Loads: a force on an end face is a uniform dead traction (consistent nodal
     forces of the 8-node faces: -A/12 at corners, A/3 at mid-sides); gravity is
     *DLOAD GRAV on every element with the material's density.
-  * Analyses: *STATIC with NLGEOM (load ramped over the step, increments of at
-    most 1/load_steps, cut back by ccx when Newton fails), or implicit *DYNAMIC
+  * Mesh: structured bricks, uniform or graded (calculix.mesh.Grading).
+  * Analyses: *STATIC with NLGEOM in steps of time 1: (1) the loads ramped 0 -> 1
+    (first increment 1/load_steps, grown or cut back by ccx, ccx's default
+    tolerances); (2) for nearly incompressible hyperelastic laws only, the bulk
+    modulus raised at full load from KAPPA0_RATIO mu0 to the material's (a
+    temperature-dependent card, temperature 0 -> 1; continuation_kappa); (3) one
+    increment at full load with the tight FIELD_CONTROLS, whose result is printed
+    (only the last equilibrium matters: a hyperelastic solid under dead loads is
+    path independent).  Or implicit *DYNAMIC
     (HHT-alpha, alpha = (rho_inf - 1)/(rho_inf + 1), steps of at most dt, cut back
     by ccx when Newton fails, output at every dt) with the scene's rigid initial
     velocity and Rayleigh damping
     *DAMPING ALPHA, BETA (C = alpha M + beta K, K ccx's current tangent stiffness).
   * Output: *NODE PRINT U of the sensor nodes (section centroid at the sensor's
-    arc length) at every increment (statics) or every dt (dynamics).
+    arc length) in the last static step, or at every dt (dynamics).
 """
 import math
 
@@ -45,6 +52,13 @@ from calculix.mesh import build_mesh
 # force and correction 1e-6 of the increment (ccx's defaults are 5e-3 and 1e-2);
 # the other six entries are ccx's defaults.
 FIELD_CONTROLS = (1e-6, 1e-6, 0.0, 0.0, 0.02, 1e-5, 1e-3, 1e-8)
+
+
+# Static bulk-modulus continuation (continuation_kappa): used when the small-strain
+# bulk modulus is at least CONTINUATION_RATIO times the shear modulus; the first
+# loading has KAPPA0_RATIO times the shear modulus (Poisson's ratio 0.35).
+CONTINUATION_RATIO = 50.0
+KAPPA0_RATIO = 3.0
 
 
 class DeckError(ValueError):
@@ -65,22 +79,52 @@ def _axis_index(v):
     return None
 
 
-def material_cards(mat):
-    """*MATERIAL ... lines for a calculix.scene.Material."""
+def _small_strain_moduli(mat):
+    E, nu = mat.small_strain()
+    return E / (2 * (1 + nu)), E / (3 * (1 - 2 * nu))
+
+
+def continuation_kappa(prob):
+    """Bulk modulus of the first loading of a static bulk-modulus continuation, or None.
+
+    For a nearly incompressible hyperelastic solid (kappa >= CONTINUATION_RATIO mu0)
+    ccx's Newton needs hundreds of iterations to ramp the load (a linearized rotation
+    changes the volume to second order, and kappa turns that into large residuals).
+    The static deck then loads the solid with the bulk modulus KAPPA0_RATIO mu0
+    (temperature 0), raises it to the material's (temperature 1: ccx interpolates
+    the compressibility D linearly in temperature) at full load, and finishes with
+    one tight increment: the same equilibrium (a hyperelastic solid under dead loads
+    has no memory of the path), in about a quarter of the iterations."""
+    mat = prob.material
+    if prob.analysis != "static" or mat.law not in ("arruda_boyce", "mooney_rivlin", "neo_hookean"):
+        return None
+    mu0, K = _small_strain_moduli(mat)
+    if K < CONTINUATION_RATIO * mu0:
+        return None
+    return KAPPA0_RATIO * mu0
+
+
+def material_cards(mat, kappa0=None):
+    """*MATERIAL ... lines for a calculix.scene.Material; with `kappa0` (a bulk
+    modulus) the hyperelastic card has a second data line at temperature 0 with
+    that bulk modulus, the material's own at temperature 1."""
     p = mat.p
     out = ["*MATERIAL, NAME=M", "*DENSITY", _f(mat.rho)]
     if mat.law == "svk":
-        out += ["*ELASTIC", f"{_f(p['E'])}, {_f(p['nu'])}"]
-    elif mat.law == "mooney_rivlin":
-        out += ["*HYPERELASTIC, MOONEY-RIVLIN", f"{_f(p['c10'])}, {_f(p['c01'])}, {_f(2 / p['kappa'])}"]
+        if kappa0 is not None:
+            raise DeckError("the bulk-modulus continuation is for the hyperelastic laws")
+        return out + ["*ELASTIC", f"{_f(p['E'])}, {_f(p['nu'])}"]
+    if mat.law == "mooney_rivlin":
+        head, coef, K = "*HYPERELASTIC, MOONEY-RIVLIN", [p["c10"], p["c01"]], p["kappa"]
     elif mat.law == "arruda_boyce":
-        out += ["*HYPERELASTIC, ARRUDA-BOYCE", f"{_f(p['mu'])}, {_f(p['lambda_m'])}, {_f(2 / p['kappa'])}"]
+        head, coef, K = "*HYPERELASTIC, ARRUDA-BOYCE", [p["mu"], p["lambda_m"]], p["kappa"]
     elif mat.law == "neo_hookean":
-        K = p["lambda"] + 2 * p["mu"] / 3
-        out += ["*HYPERELASTIC, NEO HOOKE", f"{_f(p['mu'] / 2)}, {_f(2 / K)}"]
+        head, coef, K = "*HYPERELASTIC, NEO HOOKE", [p["mu"] / 2], p["lambda"] + 2 * p["mu"] / 3
     else:
         raise DeckError(f"law {mat.law!r} has no CalculiX card here")
-    return out
+    if kappa0 is None:
+        return out + [head, ", ".join(_f(x) for x in coef + [2 / K])]
+    return out + [head] + [", ".join(_f(x) for x in coef + [2 / k, T]) for k, T in ((kappa0, 0.0), (K, 1.0))]
 
 
 def _free_clamp(prob, mesh, side):
@@ -91,15 +135,16 @@ def _free_clamp(prob, mesh, side):
                         f"section axes along global axes; found t = {prob.t}, d1 = {prob.d1}, d2 = {prob.d2}")
     (ia, _), (ib, sb), (ic, sc) = ax
     face = mesh.face(side)
-    by_pos = {(round(y * 2 * mesh.ny), round(z * 2 * mesh.nz)): (n, y, z, w) for n, y, z, w in face}
-    centre = by_pos.get((0, 0))
-    # P: a node on the line z = 0 at y > 0 (a corner or mid-side node of the face)
-    cands = sorted((v for (jy, kz), v in by_pos.items() if kz == 0 and jy > 0 and abs(v[3]) > 0), key=lambda v: -v[1])
+    by_lattice = {(J, K): (n, y, z, w) for n, J, K, y, z, w in face}
+    centre = by_lattice.get((mesh.ny, mesh.nz))
+    # P: a node on the line z = 0 at y > 0 (a corner or mid-side node of the face), the farthest out
+    cands = sorted((v for (J, K), v in by_lattice.items() if K == mesh.nz and J > mesh.ny and abs(v[3]) > 0),
+                   key=lambda v: -v[1])
     if centre is None or not cands:
         raise DeckError(f"mesh {mesh.label}: the free clamp needs a node at the face centroid (ny, nz not both odd)")
     P = cands[0]
     # the section coordinates in metres
-    pts = [(n, y * prob.b, z * prob.h, w) for n, y, z, w in face]
+    pts = [(n, y * prob.b, z * prob.h, w) for n, y, z, w in by_lattice.values()]
     yP = P[1] * prob.b
     lines = ["** free clamp: every node of the face has zero axial displacement", "*BOUNDARY"]
     lines += [f"{n}, {ia + 1}, {ia + 1}, 0.0" for n, _, _, _ in pts]
@@ -138,16 +183,19 @@ def sensor_nodes(prob, mesh):
     for name, s in prob.sensors:
         n = mesh.node_at(s / prob.length)
         if n is None:
+            where = ("graded along the axis: the ends are always nodes" if mesh.grading.x.graded else
+                     f"nodes every {prob.length / (2 * mesh.nx):.6g} m along the axis")
             raise DeckError(f"error: {prob.path}: sensor.{name}.at: no node of mesh {mesh.label} at the centroid "
-                            f"of the section at {s:.6g} m (nodes every {prob.length / (2 * mesh.nx):.6g} m along "
-                            "the axis, ny and nz not both odd)")
+                            f"of the section at {s:.6g} m ({where}; ny and nz not both odd)")
         out.append((name, n))
     return out
 
 
-def write_deck(prob, nx, ny, nz, increments=None):
-    """(deck text, mesh, [(sensor name, node set name, node id)])."""
-    mesh = build_mesh(prob, nx, ny, nz)
+def write_deck(prob, nx, ny, nz, increments=None, grading=None, continuation=True):
+    """(deck text, mesh, [(sensor name, node set name, node id)]); `grading` a
+    calculix.mesh.Grading (default uniform); continuation=False loads with the
+    material's own bulk modulus from the start (see continuation_kappa)."""
+    mesh = build_mesh(prob, nx, ny, nz, grading)
     sens = sensor_nodes(prob, mesh)
     L = [f"** beamkit -> CalculiX: scene {prob.path}, C3D20R mesh {mesh.label}",
          "*HEADING", f"beamkit scene {prob.name}, C3D20R {mesh.label}",
@@ -161,14 +209,15 @@ def write_deck(prob, nx, ny, nz, increments=None):
     for k, (name, n) in enumerate(sens):
         sets.append((name, f"S{k + 1}", n))
         L += [f"*NSET, NSET=S{k + 1}", str(n)]
-    L += material_cards(prob.material)
+    kappa0 = continuation_kappa(prob) if continuation else None
+    L += material_cards(prob.material, kappa0)
     if prob.analysis == "dynamic" and (prob.rayleigh_alpha or prob.rayleigh_beta):
         L += [f"*DAMPING, ALPHA={_f(prob.rayleigh_alpha)}, BETA={_f(prob.rayleigh_beta)}"]
     L += ["*SOLID SECTION, ELSET=EALL, MATERIAL=M"]
     for side, mode in prob.clamps:
         face = mesh.face(side)
         L += [f"*NSET, NSET=CLAMP_{side.upper()}"]
-        ids = [str(n) for n, _, _, _ in face]
+        ids = [str(row[0]) for row in face]
         L += [", ".join(ids[i:i + 16]) for i in range(0, len(ids), 16)]
         if mode == "rigid":
             L += ["** rigid clamp: every node of the face fixed", "*BOUNDARY", f"CLAMP_{side.upper()}, 1, 3, 0.0"]
@@ -185,31 +234,53 @@ def write_deck(prob, nx, ny, nz, increments=None):
             L += ["*INITIAL CONDITIONS, TYPE=VELOCITY"] + vel
     if prob.analysis == "dynamic":        # output at every dt (ccx lands its increments on them)
         L += ["*TIME POINTS, NAME=TOUT, GENERATE", f"{_f(prob.dt)}, {_f(prob.t_end)}, {_f(prob.dt)}"]
-    L += ["*AMPLITUDE, NAME=RAMP", "0.0, 0.0, 1.0, 1.0", "*AMPLITUDE, NAME=CONST", "0.0, 1.0, 1.0e9, 1.0"]
+    loads = []
     amp = "RAMP" if prob.analysis == "static" else "CONST"
-    L += ["*STEP, NLGEOM, INC=10000000"]
-    if prob.analysis == "static":
-        n = increments or prob.load_steps
-        dt = 1.0 / n
-        L += ["*STATIC", f"{_f(dt)}, 1.0, {_f(dt * 1e-6)}, {_f(dt)}"]
-    else:
-        alpha = (prob.rho_inf - 1.0) / (prob.rho_inf + 1.0)
-        L += [f"*DYNAMIC, ALPHA={_f(alpha)}", f"{_f(prob.dt)}, {_f(prob.t_end)}, {_f(prob.dt * 1e-4)}, {_f(prob.dt)}"]
-    L += ["*CONTROLS, PARAMETERS=FIELD", ", ".join(_f(x) for x in FIELD_CONTROLS)]
     for side, F in sorted(prob.forces.items()):
-        loads = []
-        for n, _, _, wt in mesh.face(side):
-            loads += [f"{n}, {k + 1}, {_f(wt * F[k])}" for k in range(3) if F[k] != 0.0]
-        if loads:
-            L += [f"** force {F} N on the {side} face as a uniform traction (consistent nodal weights)",
-                  f"*CLOAD, AMPLITUDE={amp}"] + loads
+        cl = []
+        for n, _, _, _, _, wt in mesh.face(side):
+            cl += [f"{n}, {k + 1}, {_f(wt * F[k])}" for k in range(3) if F[k] != 0.0]
+        if cl:
+            loads += [f"** force {F} N on the {side} face as a uniform traction (consistent nodal weights)",
+                      f"*CLOAD, AMPLITUDE={amp}"] + cl
     if prob.gravity is not None:
         g = math.sqrt(sum(x * x for x in prob.gravity))
         if g > 0:
-            L += [f"*DLOAD, AMPLITUDE={amp}",
-                  "EALL, GRAV, " + _f(g) + ", " + ", ".join(_f(x / g) for x in prob.gravity)]
+            loads += [f"*DLOAD, AMPLITUDE={amp}",
+                      "EALL, GRAV, " + _f(g) + ", " + ", ".join(_f(x / g) for x in prob.gravity)]
     tp = ", TIME POINTS=TOUT" if prob.analysis == "dynamic" else ""
+    prints = []
     for _, nset, _ in sets:
-        L += [f"*NODE PRINT, NSET={nset}{tp}", "U"]
-    L += ["*END STEP", ""]
+        prints += [f"*NODE PRINT, NSET={nset}{tp}", "U"]
+    tight = ["*CONTROLS, PARAMETERS=FIELD", ", ".join(_f(x) for x in FIELD_CONTROLS)]
+    if prob.analysis == "static":
+        n = increments or prob.load_steps
+        dt = 1.0 / n
+        if kappa0 is not None:
+            L += ["*INITIAL CONDITIONS, TYPE=TEMPERATURE", "NALL, 0.0"]
+        # the load factor follows the total time: 0 -> 1 in the first step, 1 after
+        L += ["*AMPLITUDE, NAME=RAMP, TIME=TOTAL TIME", "0.0, 0.0, 1.0, 1.0, 1.0e9, 1.0"]
+        L += ["** step 1: the loads ramped 0 -> 1 (ccx's default tolerances, increments cut back and grown by ccx)",
+              "*STEP, NLGEOM, INC=10000000", "*STATIC", f"{_f(dt)}, 1.0, {_f(dt * 1e-6)}, 1.0"]
+        L += loads + ["*END STEP"]
+        if kappa0 is not None:
+            L += [f"** step 2: bulk modulus {kappa0:.6g} Pa (temperature 0) -> the material's (temperature 1), "
+                  "at full load", "*STEP, NLGEOM, INC=10000000", "*STATIC", f"{_f(0.1)}, 1.0, {_f(1e-7)}, 1.0",
+                  "*TEMPERATURE", "NALL, 1.0", "*END STEP"]
+        L += ["** last step: one increment at full load with tight tolerances (the result)",
+              "*STEP, NLGEOM, INC=10000000", "*STATIC", "1.0, 1.0, 1.0e-6, 1.0"] + tight + prints + ["*END STEP", ""]
+    else:
+        L += ["*AMPLITUDE, NAME=CONST", "0.0, 1.0, 1.0e9, 1.0"]
+        alpha = (prob.rho_inf - 1.0) / (prob.rho_inf + 1.0)
+        L += ["*STEP, NLGEOM, INC=10000000", f"*DYNAMIC, ALPHA={_f(alpha)}",
+              f"{_f(prob.dt)}, {_f(prob.t_end)}, {_f(prob.dt * 1e-4)}, {_f(prob.dt)}"]
+        L += tight + loads + prints + ["*END STEP", ""]
     return "\n".join(L), mesh, sets
+
+
+def final_time(prob, continuation=True):
+    """ccx's total time at the end of the deck's analysis: the number of static
+    steps (each of time 1), or t_end."""
+    if prob.analysis == "dynamic":
+        return prob.t_end
+    return 3.0 if continuation and continuation_kappa(prob) is not None else 2.0
