@@ -183,9 +183,11 @@ class Study:
         return out
 
     def _extrapolate(self, vals, scale):
-        """Richardson on one component; differences below 1e-6 of the largest
-        component (`scale`) are round-off: ccx's .dat prints 7 digits."""
-        return richardson(vals, self.ratio, order=self.order, tiny=1e-6 * scale)
+        """Richardson on one component; differences below 1e-5 of the largest
+        component (`scale`) count as converged: ccx's .dat prints 7 digits and its
+        Newton stops at 1e-6, so smaller differences are noise, and an order
+        observed from noise (near 0) would blow the extrapolation up."""
+        return richardson(vals, self.ratio, order=self.order, tiny=1e-5 * scale)
 
     def write_history_csv(self, path, sensor):
         path = Path(path)
