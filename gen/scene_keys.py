@@ -25,7 +25,7 @@ LOAD = {"force": ("type", "at", "value", "distribution"),
 STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
           "stable_path", "step_control")
 DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
-           "rayleigh_alpha", "rayleigh_beta", "rtol", "utol")
+           "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
 MODAL = ("modes", "about")
 OUTPUT = ("vtk_every",)
 INITIAL_VELOCITY = ("beam", "velocity", "angular_velocity", "center")

@@ -36,6 +36,19 @@
 #include "norms.h"
 #include "quaternion.h"
 
+/* dynamic.jacobian = "reuse" (modified Newton across steps): a step starts with
+ * the factors of an earlier iteration matrix of the same step size and keeps
+ * them while their measured contraction rate (residual after / before a
+ * correction made with them) is at most BK_REUSE_MAX_RATE and predicts
+ * convergence within BK_REUSE_ITERATIONS more corrections; else the iteration
+ * matrix is assembled and factorized anew.  A kept-factor correction that led
+ * to a non-finite force (an inverted element) or raised the residual more than
+ * BK_REUSE_DIVERGED times is taken back and redone with a new matrix; a step
+ * that fails all the same is retried with full Newton before it is halved. */
+#define BK_REUSE_MAX_RATE 0.5
+#define BK_REUSE_ITERATIONS 5
+#define BK_REUSE_DIVERGED 10.0
+
 typedef struct dyn_work {
     int nd, ne, nc;
     double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
@@ -173,6 +186,51 @@ static double element_dynamics(const bk_system *s, dyn_work *w, const double *q,
     return Trot;
 }
 
+/* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
+ * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
+ * matrix K_t (1 + gamma' beta_R) + (beta' + gamma' alpha_R) M + rotary/viscous terms
+ * + constraint rows into w->Ax.  Returns nonzero on a non-finite force. */
+static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q, double tn, double bp,
+                        double gp, int matrix, double *rnorm)
+{
+    const bk_model *m = s->m;
+    const bk_dynamic_opts *o = &m->dyn;
+    const int nd = m->ndof;
+    const double ra = o->rayleigh_alpha, rb = o->rayleigh_beta;
+    /* the damping force beta_R K_t q' needs K_t even when the matrix is kept */
+    double *A = matrix || rb != 0.0 ? w->Ax : NULL;
+    if (bk_assemble_internal(s, q, w->fint, A) != 0)
+        return -1;
+    if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
+        free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
+        for (int i = 0; i < nd; ++i)
+            w->fint[i] += rb * w->tmp[i];
+        if (matrix)
+            for (long k = 0; k < s->nnz; ++k)
+                w->Ax[k] *= 1.0 + gp * rb;
+    }
+    A = matrix ? w->Ax : NULL;
+    bk_assemble_follower(s, q, 1.0, w->fint, A);
+    element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
+    free_matvec(s, fdof, w->Mx, w->qdd, w->tmp);
+    for (int i = 0; i < nd; ++i)
+        w->fint[i] += w->tmp[i];
+    if (ra != 0.0) {
+        free_matvec(s, fdof, w->Mx, w->qd, w->tmp);
+        for (int i = 0; i < nd; ++i)
+            w->fint[i] += ra * w->tmp[i];
+    }
+    if (matrix)
+        for (long k = 0; k < s->nnz; ++k)
+            w->Ax[k] += (bp + gp * ra) * w->Mx[k];
+    for (int i = 0; i < nd; ++i)
+        if (s->eq[i] >= 0)
+            w->r[s->eq[i]] = w->fint[i] - w->fext[i];
+    bk_assemble_constraints(s, q, w->nu, tn, w->r, A);
+    *rnorm = bk_norm2(w->r, s->nfree);
+    return isfinite(*rnorm) ? 0 : -1;
+}
+
 enum { DYN_OK = 0, DYN_MAXIT, DYN_NONFINITE, DYN_SINGULAR, DYN_LINERR };
 
 static const char *dyn_why(int c)
@@ -216,7 +274,12 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     const double rho = o->rho_inf;
     const double am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
     const double gam = 0.5 + af - am, bet = 0.25 * (gam + 0.5) * (gam + 0.5);
-    const double ra = o->rayleigh_alpha, rb = o->rayleigh_beta;
+    const double ra = o->rayleigh_alpha;
+    int have_factors = 0;                       /* ls holds factors of an iteration matrix of step factors_h */
+    double factors_h = 0.0;
+    bk_floors fl = {0};
+    double krate = 0.0;                         /* last measured contraction rate of the kept factors */
+    int full_retry = 0;                         /* this step failed with kept factors: full Newton */
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
@@ -294,45 +357,46 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qdd[i] = 0.0;
         }
         int st = DYN_MAXIT, it, signo = 0;
-        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0;
+        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0, rprev = INFINITY;
+        int prev_reused = 0;                    /* the last correction was made with kept factors */
+        int step_reused = 0;                    /* ... and some correction of this step */
+        double dnorm_prev = INFINITY, enorm_prev = INFINITY;
         for (it = 0; it <= o->max_iter; ++it) {
             if ((signo = bk_interrupt_poll()) != 0)
                 break;
-            if (bk_assemble_internal(s, q, w.fint, w.Ax) != 0) {
-                st = DYN_NONFINITE;
-                break;
+            /* Jacobian reuse (dynamic.jacobian = "reuse"): the factors of an earlier
+             * iteration matrix of this step size serve while they contract fast
+             * (see below); otherwise the matrix is assembled and factorized anew. */
+            int fresh = !o->reuse_jacobian || full_retry || !have_factors || factors_h != h ||
+                        krate > BK_REUSE_MAX_RATE;
+            int rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, fresh, &rnorm);
+            if (prev_reused && rs == 0)
+                krate = rnorm / rprev;              /* contraction rate of the last kept-factor correction */
+            if (prev_reused && (rs != 0 || rnorm > BK_REUSE_DIVERGED * rprev)) {
+                /* a kept-factor correction that led to a non-finite force or diverged
+                 * is taken back and this iteration redone from the previous point with
+                 * a new matrix */
+                for (int j = 0; j < s->nfree; ++j) {
+                    int i = fdof[j];
+                    q[i] -= w.dx[j];
+                    w.qd[i] -= gp * w.dx[j];
+                    w.qdd[i] -= bp * w.dx[j];
+                }
+                for (int c = 0; c < s->ncon; ++c)
+                    w.nu[c] -= w.dx[s->nfree + c];
+                dnorm = dnorm_prev, enorm = enorm_prev;
+                krate = INFINITY;
+                fresh = 1;
+                rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm);
             }
-            if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
-                free_matvec(s, fdof, w.Ax, w.qd, w.tmp);
-                for (int i = 0; i < nd; ++i)
-                    w.fint[i] += rb * w.tmp[i];
-                for (long k = 0; k < s->nnz; ++k)
-                    w.Ax[k] *= 1.0 + gp * rb;
-            }
-            bk_assemble_follower(s, q, 1.0, w.fint, w.Ax);
-            element_dynamics(s, &w, q, gp, bp, 1.0, w.fint, w.Ax);
-            free_matvec(s, fdof, w.Mx, w.qdd, w.tmp);
-            for (int i = 0; i < nd; ++i)
-                w.fint[i] += w.tmp[i];
-            if (ra != 0.0) {
-                free_matvec(s, fdof, w.Mx, w.qd, w.tmp);
-                for (int i = 0; i < nd; ++i)
-                    w.fint[i] += ra * w.tmp[i];
-            }
-            for (long k = 0; k < s->nnz; ++k)
-                w.Ax[k] += (bp + gp * ra) * w.Mx[k];
-            for (int i = 0; i < nd; ++i)
-                if (s->eq[i] >= 0)
-                    w.r[s->eq[i]] = w.fint[i] - w.fext[i];
-            bk_assemble_constraints(s, q, w.nu, tn, w.r, w.Ax);
-            rnorm = bk_norm2(w.r, s->nfree);
-            if (!isfinite(rnorm)) {
+            if (rs != 0) {
                 st = DYN_NONFINITE;
                 break;
             }
             double ref = fmax(bk_norm2(w.fext, nd), bk_norm2(w.fint, nd));
-            /* rotation-invariant floors and scales (norms.h) */
-            bk_floors fl = bk_round_off_floors(&norms, s, q, w.Ax);
+            /* rotation-invariant floors and scales (norms.h), from the last assembled matrix */
+            if (fresh)
+                fl = bk_round_off_floors(&norms, s, q, w.Ax);
             double cres = bk_norm2(w.r + s->nfree, s->ncon) / s->cscale;
             /* increments relative to the motion of this step */
             double uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(&norms, s, q, w.q_s));
@@ -349,11 +413,31 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             }
             if (it == o->max_iter)
                 break;
-            int fs = bk_lin_factor(&ls, w.Ax);
-            if (fs != BK_LIN_OK) {
-                st = fs == BK_LIN_SINGULAR ? DYN_SINGULAR : DYN_LINERR;
-                break;
+            /* kept factors must reach the tolerance within BK_REUSE_ITERATIONS more
+             * corrections at their last measured rate, else this iteration takes a
+             * new matrix (the residual is the same, only the matrix is added) */
+            if (!fresh && krate > 0.0 && rnorm * pow(krate, BK_REUSE_ITERATIONS) > rtol_abs) {
+                fresh = 1;
+                if (dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm) != 0) {
+                    st = DYN_NONFINITE;
+                    break;
+                }
+                fl = bk_round_off_floors(&norms, s, q, w.Ax);
             }
+            if (fresh) {
+                int fs = bk_lin_factor(&ls, w.Ax);
+                have_factors = fs == BK_LIN_OK;
+                factors_h = h;
+                krate = 0.0;                        /* rate of the new factors: not yet measured */
+                if (fs != BK_LIN_OK) {
+                    st = fs == BK_LIN_SINGULAR ? DYN_SINGULAR : DYN_LINERR;
+                    break;
+                }
+            }
+            prev_reused = !fresh;
+            step_reused |= !fresh;
+            rprev = rnorm;
+            dnorm_prev = dnorm, enorm_prev = enorm;
             for (int i = 0; i < s->neq; ++i)
                 w.dx[i] = -w.r[i];
             if (bk_lin_solve(&ls, w.dx) != BK_LIN_OK) {
@@ -378,11 +462,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 break;
             dnorm = bk_norm_free_max(&norms, s, w.dx);
             enorm = sqrt(fabs(work_));
+
             if (it == 0)
                 eref = enorm;
             for (int c = 0; c < s->ncon; ++c)
                 w.nu[c] += w.dx[s->nfree + c];
         }
+        if (st != DYN_OK)
+            have_factors = 0;                   /* a retry starts from a fresh matrix */
         info->newton_iterations += it;
         if (signo) {
             memcpy(q, w.q_s, (size_t)nd * sizeof *q);
@@ -408,6 +495,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             memcpy(w.qdd, w.qdd_s, (size_t)nd * sizeof *q);
             memcpy(w.a, w.a_s, (size_t)nd * sizeof *q);
             memcpy(w.nu, w.nu_s, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+            if (st != DYN_OK && step_reused && st != DYN_SINGULAR) {
+                /* the fallback: the same step again with full Newton, before any halving */
+                full_retry = 1;
+                if (log)
+                    fprintf(log, "  t = %.6g: step %.3g failed with kept factors (%s), retried with full Newton\n",
+                            t, h, dyn_why(st));
+                continue;
+            }
             double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
             if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
                 char incr[64];
@@ -432,6 +527,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             continue;
         }
         cuts = 0;
+        full_retry = 0;
         /* Quaternions back to unit length, their rates without the gauge
          * component: the rotations and angular velocities are unchanged,
          * and the massless gauge direction cannot drift over long runs. */

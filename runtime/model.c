@@ -213,6 +213,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->dyn.rayleigh_beta = fnum(r, "dynamic", "rayleigh_beta");
     m->dyn.rtol = fnum(r, "dynamic", "rtol");
     m->dyn.utol = fnum(r, "dynamic", "utol");
+    m->dyn.reuse_jacobian = fint(r, "dynamic", "jacobian", 0, 1);
     expect(r, "output");
     m->vtk_every = fint(r, "output", "vtk_every", 0, MAXN);
     expect(r, "modal");

@@ -84,6 +84,7 @@ typedef struct bk_dynamic_opts {
     int max_iter, max_cutbacks, output_every;
     double rayleigh_alpha, rayleigh_beta;
     double rtol, utol;
+    int reuse_jacobian;    /* 1: keep the factorized Jacobian while Newton contracts fast (dynamic.jacobian) */
 } bk_dynamic_opts;
 
 typedef struct bk_modal_opts {

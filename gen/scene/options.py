@@ -12,7 +12,7 @@ STATIC_DEFAULTS = {"load_steps": 1, "max_iterations": 25, "max_cutbacks": 12,
                    "stable_path": False, "step_control": "adaptive"}
 DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
                     "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
-                    "rtol": 1e-8, "utol": 1e-8}
+                    "rtol": 1e-8, "utol": 1e-8, "jacobian": "reuse"}
 
 
 def options(ctx, doc, analysis):
@@ -53,6 +53,8 @@ def options(ctx, doc, analysis):
         dyn[k] = get_number(ctx, dt, k, "dynamic", default=DYNAMIC_DEFAULTS[k], positive=True)
     dyn["max_iterations"] = get_int(ctx, dt, "max_iterations", "dynamic", default=25, lo=1, hi=10000)
     dyn["max_cutbacks"] = get_int(ctx, dt, "max_cutbacks", "dynamic", default=12, lo=0, hi=60)
+    dyn["jacobian"] = get_str(ctx, dt, "jacobian", "dynamic", default=DYNAMIC_DEFAULTS["jacobian"],
+                              choices=("reuse", "every_iteration"))
     dyn["output_every"] = get_int(ctx, dt, "output_every", "dynamic", default=1, lo=1, hi=10**9)
     if analysis == "dynamic" and dyn["t_end"] / dyn["dt"] > 1e8:
         ctx.fail("dynamic.dt", f"t_end / dt = {dyn['t_end'] / dyn['dt']:.3g} steps: expected at most 1e8")
