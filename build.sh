@@ -9,7 +9,11 @@ export BK_CALLER_CWD="${BK_CALLER_CWD:-$PWD}"
 cd "$ROOT"
 PY=/usr/bin/python3
 export PYTHONPATH="$ROOT${PYTHONPATH:+:$PYTHONPATH}"
-export PYTHONDONTWRITEBYTECODE=1
+# Bytecode of gen/, calculix/, report/ (and of the standard library modules they
+# import) is cached under out/pycache, outside the source tree: a run of a built
+# scene imports the scene compiler in ~40 ms instead of compiling it each time.
+unset PYTHONDONTWRITEBYTECODE
+export PYTHONPYCACHEPREFIX="$ROOT/out/pycache"
 DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).

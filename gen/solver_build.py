@@ -109,11 +109,11 @@ def _stale(src, obj, deps, flags=None):
 def _compile_many(jobs, log):
     """Compile (src, obj, flags, deps) jobs that are stale, two at a time, the
     largest source first (so that the jobs end close together)."""
-    from concurrent.futures import ThreadPoolExecutor
     todo = [j for j in jobs if _stale(j[0], j[1], j[3], j[2])]
     todo.sort(key=lambda j: -j[0].stat().st_size)
     if not todo:
         return
+    from concurrent.futures import ThreadPoolExecutor      # 8 ms: only when compiling
     with ThreadPoolExecutor(max_workers=min(JOBS, len(todo))) as ex:
         for f in [ex.submit(_compile, *j, log) for j in todo]:
             f.result()
