@@ -347,14 +347,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.qdd_s, w.qdd, (size_t)nd * sizeof *q);
         memcpy(w.a_s, w.a, (size_t)nd * sizeof *q);
         memcpy(w.nu_s, w.nu, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
-        /* predictor with q''_{n+1} = 0 */
+        /* predictor with constant acceleration, q''_{n+1} = q''_n */
         for (int i = 0; i < nd; ++i) {
             if (s->eq[i] < 0)
                 continue;
-            double an = (af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+            double an = (w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
             q[i] = w.q_s[i] + h * w.qd_s[i] + h * h * ((0.5 - bet) * w.a_s[i] + bet * an);
             w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
-            w.qdd[i] = 0.0;
+            w.qdd[i] = w.qdd_s[i];
         }
         int st = DYN_MAXIT, it, signo = 0;
         double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0, rprev = INFINITY;

@@ -11,6 +11,8 @@ clamp) 0.34 % undamped; 8 uniform elements 12 % (the tip lags in the swing back,
 t ~ 0.49 s), which the test shows too, so the reference can tell a wrong answer."""
 import csv
 import tempfile
+
+import pytest
 from pathlib import Path
 
 from calculix import reference_data
@@ -27,10 +29,10 @@ def tip_history(sets):
                 for row in csv.DictReader(f) if row["sensor"] == "tip"}
 
 
-def history_error(ours, name):
+def history_error(ours, name, ref_tol=2e-3):
     """max over the reference's output times of |(ux, uz) ours - ref| / max |u| of the reference."""
     ref = reference_data(name)
-    assert ref.relative_error(0) <= 2e-3 and ref.relative_error(2) <= 2e-3
+    assert ref.relative_error(0) <= ref_tol and ref.relative_error(2) <= ref_tol
     scale = max(max(abs(u[0]), abs(u[2])) for _, u, _ in ref.history)
     worst, n = 0.0, 0
     for t, u, _ in ref.history:
@@ -53,11 +55,15 @@ def test_coarse_uniform_mesh_is_seen_to_be_off():
     assert e > 0.05, e
 
 
+@pytest.mark.slow
 def test_damped_free_fall_within_two_percent_of_calculix():
     """Stiffness-proportional Rayleigh damping, beta = 5 ms in both codes (C = beta K_t, the
-    current tangent). The damping moves the tip by more than the allowed error (the
-    undamped history is > 2.5 % off the damped reference), so the test sees whether
-    damping is applied."""
+    current tangent, not linearized in the damping force, so both codes need many
+    Newton iterations: ours ~30 s here, ccx ~8 iterations a step).  Measured 0.69 %;
+    the reference is good to 0.76 % (ccx's own time-step error with damping: halving
+    dt moves u_x by up to 2e-3 m).  The damping moves the tip by more than the allowed
+    error (the undamped history is 8.7 % off the damped reference), so the test sees
+    whether damping is applied."""
     damped = tip_history(["dynamic.rayleigh_beta=0.005"])
-    assert history_error(damped, "silicone_fall_rayleigh") <= 0.02
-    assert history_error(tip_history([]), "silicone_fall_rayleigh") > 0.025
+    assert history_error(damped, "silicone_fall_rayleigh", ref_tol=1e-2) <= 0.02
+    assert history_error(tip_history([]), "silicone_fall_rayleigh", ref_tol=1e-2) > 0.05
