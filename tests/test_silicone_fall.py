@@ -60,10 +60,10 @@ def test_damped_free_fall_within_two_percent_of_calculix():
     """Stiffness-proportional Rayleigh damping, beta = 5 ms in both codes (C = beta K_t, the
     current tangent, not linearized in the damping force, so both codes need many
     Newton iterations: ours ~30 s here, ccx ~8 iterations a step).  Measured 0.69 %;
-    the reference is good to 0.76 % (ccx's own time-step error with damping: halving
+    the reference is good to 0.8 % in u_x, 1.0 % in u_z (ccx's own time-step error with damping: halving
     dt moves u_x by up to 2e-3 m).  The damping moves the tip by more than the allowed
     error (the undamped history is 8.7 % off the damped reference), so the test sees
     whether damping is applied."""
     damped = tip_history(["dynamic.rayleigh_beta=0.005"])
-    assert history_error(damped, "silicone_fall_rayleigh", ref_tol=1e-2) <= 0.02
-    assert history_error(tip_history([]), "silicone_fall_rayleigh", ref_tol=1e-2) > 0.05
+    assert history_error(damped, "silicone_fall_rayleigh", ref_tol=1.5e-2) <= 0.02
+    assert history_error(tip_history([]), "silicone_fall_rayleigh", ref_tol=1.5e-2) > 0.05
