@@ -47,9 +47,10 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
     st->x = malloc(N * sizeof(double));
     st->y = malloc(N * sizeof(double));
     st->z = malloc(N * sizeof(double));
+    st->xmax = malloc(N * sizeof(double));
     if (!st->ismult || !st->Bp || !st->Bi || !st->src || !st->srct || !st->Bx || !st->Bprev || !st->Bnow || !st->Lp || !st->Parent ||
         !st->Lnz || !st->Flag || !st->Pattern || !st->P || !st->Pinv || !st->D || !st->Y || !st->x ||
-        !st->y || !st->z)
+        !st->y || !st->z || !st->xmax)
         return -1;
 
     /* Multiplier unknowns: the constraint rows and the element-internal
@@ -272,17 +273,24 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
     res->eig_min = lam;
     st->have_vec = isfinite(lam);
 
-    /* Power iteration for the largest magnitude (an estimate: a few digits). */
-    start_vector(st->y, n);
-    double big = 0.0;
+    /* Power iteration for the largest magnitude (an estimate: a few digits),
+     * warm-started from the previous check's vector: it stops when two
+     * estimates agree to 1e-3. */
+    if (!st->have_vmax)
+        start_vector(st->xmax, n);
+    double big = 0.0, prev = 0.0;
     for (int it = 0; it < POW_ITERS; ++it) {
-        matvec(st, st->y, st->z);
+        matvec(st, st->xmax, st->z);
         big = sqrt(dot(st->z, st->z, n));
         if (!(big > 0.0))
             break;
         for (int i = 0; i < n; ++i)
-            st->y[i] = st->z[i] / big;
+            st->xmax[i] = st->z[i] / big;
+        if (it > 0 && fabs(big - prev) <= 1e-3 * big)
+            break;
+        prev = big;
     }
+    st->have_vmax = big > 0.0 && isfinite(big);
     res->eig_max = big;
 }
 
@@ -314,6 +322,7 @@ void bk_stability_free(bk_stability *st)
     free(st->x);
     free(st->y);
     free(st->z);
+    free(st->xmax);
     free(st->Li);
     free(st->Lx);
     memset(st, 0, sizeof *st);

@@ -44,7 +44,9 @@ typedef struct bk_stability {
     int *Lp, *Parent, *Lnz, *Flag, *Pattern, *P, *Pinv, *Li;
     double *Lx, *D, *Y;
     double *x, *y, *z;              /* iteration vectors                        */
+    double *xmax;                   /* the last power-iteration vector          */
     int have_vec;                   /* x holds the last eigenvector             */
+    int have_vmax;                  /* xmax holds one                           */
 } bk_stability;
 
 typedef struct bk_stability_result {
