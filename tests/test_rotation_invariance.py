@@ -1,5 +1,5 @@
 """The seed scenes turned rigidly in space (tests/rotate_scene.py) take the same
-steps and cut-backs, Newton iterations within 4 % (dynamics: with full Newton,
+steps and cut-backs, Newton iterations within 2 % (dynamics: 4 %, with full Newton,
 dynamic.jacobian = "every_iteration"), and give the rotated results
 to 1e-8 of the model length: convergence tests and round-off floors are
 invariant under rotation (runtime/norms.h).  Before: the stiff pendulum (E = 7e11,
@@ -67,7 +67,10 @@ def test_rotated_scene_converges_the_same(scene, sets):
         a, b = run(src, sets + full, d / "aligned-full"), run(rot, sets + full, d / "rotated-full")
         assert (a["steps"], a["cutbacks"]) == (b["steps"], b["cutbacks"])
     ia, ib = a["newton_iterations"], b["newton_iterations"]
-    assert abs(ia - ib) <= 0.04 * ia, (ia, ib)     # steps that end at the tolerance may take one more
+    # statics: within 2 %; dynamics 4 %: with the constant-acceleration predictor many
+    # steps converge right at the tolerance, and round-off decides whether one takes a
+    # third iteration (silicone fall, 0.1 s: 266 against 258)
+    assert abs(ia - ib) <= (0.04 if a["analysis"] == "dynamic" else 0.02) * ia, (ia, ib)
     check_positions(a, b, src, tol)
 
 
