@@ -139,7 +139,7 @@ case "$cmd" in
             echo "error: run needs a SCENE (./build.sh scenes lists them)" >&2
             exit $EX_USAGE
         fi
-        exec "$PY" -m gen.cli run "$@"
+        exec "$PY" -S "$ROOT/gen/fastrun.py" run "$@"   # gen/cli.py unless an identical run is cached
         ;;
     gen)
         shift

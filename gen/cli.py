@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 from gen.paths import user_path
+from gen.run_summary import add_scene_warnings, print_summary
 from gen.scene import ROOT, SceneError, build, load_index, write_model
 
 MODELS = ROOT / "models"
@@ -190,6 +191,10 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
                 raise
             except Exception as e:
                 raise SceneError(f"error: building the solver for {path}: {e}")
+            if variant == "release" and not memcheck:
+                from gen.fastrun import record
+                record(str(path), list(sets), out / "model.dat", solver, model["name"], model["analysis"],
+                       model.get("warnings", []))
         except _Interrupt as e:
             name, analysis = (model["name"], model["analysis"]) if model else _scene_name(path)
             if out is None:                    # interrupted while meshing
@@ -211,19 +216,6 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
                                   signal.SIGINT if rc == 130 else signal.SIGTERM)
     add_scene_warnings(out, model.get("warnings", []))
     return rc, out
-
-
-def add_scene_warnings(out, warnings):
-    """The scene reader's warnings (likely locking element choices, ...) go first
-    into summary.json "warnings", beside the solver's."""
-    path = Path(out) / "summary.json"
-    if not warnings or not path.exists():
-        return
-    s = json.loads(path.read_text())
-    s["warnings"] = list(warnings) + [w for w in s.get("warnings", []) if w not in warnings]
-    tmp = path.with_name("summary.json.tmp")
-    tmp.write_text(json.dumps(s, indent=1) + "\n")
-    tmp.replace(path)
 
 
 def cmd_run(argv):
@@ -257,43 +249,6 @@ def cmd_run(argv):
     if not a.quiet and summ.exists():
         print_summary(json.loads(summ.read_text()), out)
     return rc
-
-
-def print_summary(s, out):
-    status = "converged" if s["converged"] else "NOT converged"
-    print(f"scene {s['scene']} ({s['analysis']}): {status}; {s['steps']} steps, "
-          f"{s['newton_iterations']} Newton iterations, {s['dofs']} DOFs, {s['elements']} elements, "
-          f"wall {s['wall_s']:.3f} s")
-    for name, v in s["sensors"].items():
-        p, u = v["position"], v["displacement"]
-        print(f"  sensor {name}: position [{p[0]:.6e}, {p[1]:.6e}, {p[2]:.6e}] m, "
-              f"displacement [{u[0]:.6e}, {u[1]:.6e}, {u[2]:.6e}] m")
-    if s["analysis"] == "modal":
-        print_modes(out)
-    if s.get("warnings"):
-        n = len(s["warnings"])
-        print(f"  {n} warning{'s' if n > 1 else ''}: the result may be wrong (see above and summary.json)")
-    print(f"  results in {out}/")
-
-
-def print_modes(out):
-    """The frequency table of a modal run (from modes.csv), and where the shapes are."""
-    path = Path(out) / "modes.csv"
-    if not path.exists():
-        return
-    import csv
-    with open(path, newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    if not rows:
-        return
-    print(f"  {'mode':>4}  {'frequency (Hz)':>15}  {'omega (rad/s)':>15}  {'shape scale (m)':>15}")
-    for r in rows:
-        print(f"  {int(r['mode']):4d}  {float(r['frequency_hz']):15.9g}  {float(r['omega']):15.9g}  "
-              f"{float(r['scale_m']):15.4g}")
-    if (Path(out) / "modes.pvd").exists():
-        print("  mode shapes: modes.pvd (mode_NN.vtu, time value = mode number), displaced by the scale above\n"
-              "  (largest translation 10 % of the model length, section rotation at most 0.5 rad); point data\n"
-              "  mode_shape is the mode normalized to a largest translation of 1")
 
 
 def cmd_scenes(argv):

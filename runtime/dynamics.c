@@ -393,7 +393,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qdd[i] = w.qdd_s[i];
         }
         int st = DYN_MAXIT, it, signo = 0;
-        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0, rprev = INFINITY;
+        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0, rprev = INFINITY, rall = 0.0;
+        int eref_it = -1;                       /* the correction whose energy is eref */
         int prev_reused = 0;                    /* the last correction was made with kept factors */
         int step_reused = 0;                    /* ... and some correction of this step */
         double dnorm_prev = INFINITY, enorm_prev = INFINITY;
@@ -406,9 +407,11 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             int fresh = !o->reuse_jacobian || full_retry || !have_factors || factors_h != h ||
                         krate > BK_REUSE_MAX_RATE;
             int rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, fresh, &rnorm);
+            /* the rates over every row: free rows and the (balanced) constraint rows */
+            rall = rs == 0 ? bk_norm2(w.r, s->neq) : INFINITY;
             if (prev_reused && rs == 0)
-                krate = rnorm / rprev;              /* contraction rate of the last kept-factor correction */
-            if (prev_reused && (rs != 0 || rnorm > BK_REUSE_DIVERGED * rprev)) {
+                krate = rall / rprev;               /* contraction rate of the last kept-factor correction */
+            if (prev_reused && (rs != 0 || rall > BK_REUSE_DIVERGED * rprev)) {
                 /* a kept-factor correction that led to a non-finite force or diverged
                  * is taken back and this iteration redone from the previous point with
                  * a new matrix */
@@ -421,9 +424,12 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 for (int c = 0; c < s->ncon; ++c)
                     w.nu[c] -= w.dx[s->nfree + c];
                 dnorm = dnorm_prev, enorm = enorm_prev;
+                if (eref_it == it - 1)
+                    eref_it = -1;                   /* the energy scale came from the undone one */
                 krate = INFINITY;
                 fresh = 1;
                 rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm);
+                rall = rs == 0 ? bk_norm2(w.r, s->neq) : INFINITY;
             }
             if (rs != 0) {
                 st = DYN_NONFINITE;
@@ -452,7 +458,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             /* kept factors must reach the tolerance within BK_REUSE_ITERATIONS more
              * corrections at their last measured rate, else this iteration takes a
              * new matrix (the residual is the same, only the matrix is added) */
-            if (!fresh && krate > 0.0 && rnorm * pow(krate, BK_REUSE_ITERATIONS) > rtol_abs) {
+            double kp = krate > 0.0 ? pow(krate, BK_REUSE_ITERATIONS) : 0.0;
+            if (!fresh && kp > 0.0 && (rnorm * kp > rtol_abs || cres * kp > 1e-12 * fmax(m->length_scale, 1.0))) {
                 fresh = 1;
                 if (dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm) != 0) {
                     st = DYN_NONFINITE;
@@ -472,7 +479,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             }
             prev_reused = !fresh;
             step_reused |= !fresh;
-            rprev = rnorm;
+            rprev = rall;
             dnorm_prev = dnorm, enorm_prev = enorm;
             for (int i = 0; i < s->neq; ++i)
                 w.dx[i] = -w.r[i];
@@ -499,8 +506,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             dnorm = bk_norm_free_max(&norms, s, w.dx);
             enorm = sqrt(fabs(work_));
 
-            if (it == 0)
-                eref = enorm;
+            if (eref_it < 0)
+                eref = enorm, eref_it = it;
             for (int c = 0; c < s->ncon; ++c)
                 w.nu[c] += w.dx[s->nfree + c];
         }

@@ -12,10 +12,10 @@
 #include <string.h>
 
 /* A refactorization is kept when its condition estimate is no worse than this
- * fraction of the one of the last full factorization, and, when that one was
- * itself poor (below BK_RCOND_POOR: pivots chosen at a bad state, e.g. a
- * diverging Newton iterate), when it is not poor too: else the pivots are
- * chosen again for the new values. */
+ * fraction of the one of the last full factorization, and that one was not
+ * poor (below BK_RCOND_POOR: pivots chosen at a bad state, e.g. a diverging
+ * Newton iterate): else the pivots are chosen again for the new values (every
+ * time, while the matrix itself stays that ill-conditioned). */
 #define BK_REFACTOR_RCOND_DROP 1e-3
 #define BK_RCOND_POOR 1e-12
 
@@ -57,8 +57,7 @@ int bk_lin_factor(bk_linsolver *s, double *Ax)
         /* Reuse the pivot order and the factor storage: no allocation. */
         if (klu_refactor((int *)s->Ap, (int *)s->Ai, Ax, s->sym, s->num, &s->common) &&
             klu_rcond(s->sym, s->num, &s->common) && s->common.rcond > 1e-300 &&
-            s->common.rcond >= BK_REFACTOR_RCOND_DROP * s->rcond_factor &&
-            (s->rcond_factor >= BK_RCOND_POOR || s->common.rcond >= BK_RCOND_POOR)) {
+            s->common.rcond >= BK_REFACTOR_RCOND_DROP * s->rcond_factor && s->rcond_factor >= BK_RCOND_POOR) {
             s->rcond = s->common.rcond;
             s->nfactor++;
             return BK_LIN_OK;

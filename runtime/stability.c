@@ -276,8 +276,16 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
     /* Power iteration for the largest magnitude (an estimate: a few digits),
      * warm-started from the previous check's vector: it stops when two
      * estimates agree to 1e-3. */
-    if (!st->have_vmax)
+    if (!st->have_vmax) {
         start_vector(st->xmax, n);
+    } else {
+        /* a tenth of a fresh start vector, so that a mode that has overtaken the
+         * previous dominant one is not missing from the warm start */
+        start_vector(st->z, n);
+        for (int i = 0; i < n; ++i)
+            st->xmax[i] += 0.1 * st->z[i];
+        normalize(st->xmax, n);
+    }
     double big = 0.0, prev = 0.0;
     for (int it = 0; it < POW_ITERS; ++it) {
         matvec(st, st->xmax, st->z);
@@ -286,7 +294,7 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
             break;
         for (int i = 0; i < n; ++i)
             st->xmax[i] = st->z[i] / big;
-        if (it > 0 && fabs(big - prev) <= 1e-3 * big)
+        if (it >= 3 && fabs(big - prev) <= 1e-3 * big)
             break;
         prev = big;
     }

@@ -1,0 +1,57 @@
+"""What `./build.sh run` prints after a solve, and the scene warnings it adds to
+summary.json; standard library only (os, json), so that the fast path of a
+repeated run (gen/fastrun.py) can use it without the scene compiler."""
+import os
+
+
+def add_scene_warnings(out, warnings):
+    """The scene reader's warnings (likely locking element choices, ...) go first
+    into summary.json "warnings", beside the solver's."""
+    path = os.path.join(str(out), "summary.json")
+    if not warnings or not os.path.exists(path):
+        return
+    import json
+    with open(path, encoding="utf-8") as fh:
+        s = json.load(fh)
+    s["warnings"] = list(warnings) + [w for w in s.get("warnings", []) if w not in warnings]
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as fh:
+        fh.write(json.dumps(s, indent=1) + "\n")
+    os.replace(tmp, path)
+
+
+def print_summary(s, out):
+    status = "converged" if s["converged"] else "NOT converged"
+    print(f"scene {s['scene']} ({s['analysis']}): {status}; {s['steps']} steps, "
+          f"{s['newton_iterations']} Newton iterations, {s['dofs']} DOFs, {s['elements']} elements, "
+          f"wall {s['wall_s']:.3f} s")
+    for name, v in s["sensors"].items():
+        p, u = v["position"], v["displacement"]
+        print(f"  sensor {name}: position [{p[0]:.6e}, {p[1]:.6e}, {p[2]:.6e}] m, "
+              f"displacement [{u[0]:.6e}, {u[1]:.6e}, {u[2]:.6e}] m")
+    if s["analysis"] == "modal":
+        print_modes(out)
+    if s.get("warnings"):
+        n = len(s["warnings"])
+        print(f"  {n} warning{'s' if n > 1 else ''}: the result may be wrong (see above and summary.json)")
+    print(f"  results in {out}/")
+
+
+def print_modes(out):
+    """The frequency table of a modal run (from modes.csv), and where the shapes are."""
+    path = os.path.join(str(out), "modes.csv")
+    if not os.path.exists(path):
+        return
+    import csv
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows:
+        return
+    print(f"  {'mode':>4}  {'frequency (Hz)':>15}  {'omega (rad/s)':>15}  {'shape scale (m)':>15}")
+    for r in rows:
+        print(f"  {int(r['mode']):4d}  {float(r['frequency_hz']):15.9g}  {float(r['omega']):15.9g}  "
+              f"{float(r['scale_m']):15.4g}")
+    if os.path.exists(os.path.join(str(out), "modes.pvd")):
+        print("  mode shapes: modes.pvd (mode_NN.vtu, time value = mode number), displaced by the scale above\n"
+              "  (largest translation 10 % of the model length, section rotation at most 0.5 rad); point data\n"
+              "  mode_shape is the mode normalized to a largest translation of 1")
