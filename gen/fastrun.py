@@ -35,6 +35,7 @@ CACHE = os.path.join(ROOT, "out", "cache", "run")
 MARKER = ".beamkit-run"            # as gen/cli.py: a directory made by ./build.sh run
 SOURCES = (("gen", True), ("runtime", False), (os.path.join("out", "kernels"), False))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
+MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
 EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
@@ -181,8 +182,22 @@ def record(scene, sets, model_path, solver, name, analysis, warnings):
                 with open(tmp, "w", encoding="utf-8") as fh:
                     fh.write(data)
             os.replace(tmp, os.path.join(CACHE, k + ext))
+        prune()
     except OSError:
         pass                           # no cache: the next run takes the full path
+
+
+def prune(limit=MAX_ENTRIES):
+    """Remove the least recently written entries beyond `limit`."""
+    with os.scandir(CACHE) as it:
+        runs = [(e.stat().st_mtime_ns, e.name[:-4]) for e in it if e.name.endswith(".run")]
+    runs.sort()
+    for _, k in runs[:max(0, len(runs) - limit)]:
+        for ext in (".run", ".dat"):
+            try:
+                os.unlink(os.path.join(CACHE, k + ext))
+            except FileNotFoundError:
+                pass
 
 
 def prepare_out(out):

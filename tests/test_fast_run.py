@@ -120,3 +120,15 @@ def test_ctrl_c_during_a_reused_run():
     assert p.returncode == 130 and "Traceback" not in se, (p.returncode, se[-2000:])
     s = json.loads((out / "summary.json").read_text())
     assert s["interrupted"] is True and s["signal"] == "SIGINT" and s["steps"] >= 20
+
+
+def test_cache_keeps_the_newest_entries_only(monkeypatch):
+    import gen.fastrun as fr
+    d = out_dir()
+    monkeypatch.setattr(fr, "CACHE", str(d))
+    for i in range(5):
+        for ext in (".run", ".dat"):
+            (d / f"k{i}{ext}").write_text("x")
+        os.utime(d / f"k{i}.run", ns=(i + 1, (i + 1) * 10**9))
+    fr.prune(limit=2)
+    assert sorted(p.name for p in d.iterdir()) == ["k3.dat", "k3.run", "k4.dat", "k4.run"]
