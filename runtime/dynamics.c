@@ -115,20 +115,28 @@ static void assemble_mass(const bk_system *s, double *Mx, double *work, double *
     }
 }
 
-/* y = A x over the free DOFs (A in the Newton pattern, its free block only);
- * x, y indexed by DOF, fdof maps equations to DOFs. */
-static void free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
-                        double *y)
+/* y = A x over the free DOFs for A in compressed columns (Ap, Ai, Ax) over the
+ * equations, rows beyond the free ones ignored; x, y indexed by DOF (y over all
+ * ndof), fdof maps equations to DOFs. */
+static void csc_free_matvec(int ndof, int nfree, const int *fdof, const int *Ap, const int *Ai,
+                            const double *Ax, const double *x, double *y)
 {
-    memset(y, 0, (size_t)s->m->ndof * sizeof *y);
-    for (int j = 0; j < s->nfree; ++j) {
+    memset(y, 0, (size_t)ndof * sizeof *y);
+    for (int j = 0; j < nfree; ++j) {
         double xj = x[fdof[j]];
         if (xj == 0.0)
             continue;
-        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k)
-            if (s->Ai[k] < s->nfree)
-                y[fdof[s->Ai[k]]] += Ax[k] * xj;
+        for (int k = Ap[j]; k < Ap[j + 1]; ++k)
+            if (Ai[k] < nfree)
+                y[fdof[Ai[k]]] += Ax[k] * xj;
     }
+}
+
+/* y = A x, A in the Newton pattern (its free block). */
+static void free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
+                        double *y)
+{
+    csc_free_matvec(s->m->ndof, s->nfree, fdof, s->Ap, s->Ai, Ax, x, y);
 }
 
 /* The free block's nonzeros of the mass matrix Mx (in the Newton pattern, where
@@ -146,17 +154,10 @@ static void compact_mass(const bk_system *s, dyn_work *w, const double *Mx)
     }
 }
 
-/* y = M x over the free DOFs (free_matvec with the compact mass). */
+/* y = M x over the free DOFs, with the compact mass. */
 static void mass_matvec(const bk_system *s, const dyn_work *w, const int *fdof, const double *x, double *y)
 {
-    memset(y, 0, (size_t)s->m->ndof * sizeof *y);
-    for (int j = 0; j < s->nfree; ++j) {
-        double xj = x[fdof[j]];
-        if (xj == 0.0)
-            continue;
-        for (int k = w->Mp[j]; k < w->Mp[j + 1]; ++k)
-            y[fdof[w->Mi[k]]] += w->Mv[k] * xj;
-    }
+    csc_free_matvec(s->m->ndof, s->nfree, fdof, w->Mp, w->Mi, w->Mv, x, y);
 }
 
 static double dot_free(const bk_system *s, const int *fdof, const double *a, const double *b)

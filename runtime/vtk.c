@@ -132,40 +132,40 @@ void bk_vtk_close(bk_vtk *v)
     v->frames = NULL;
 }
 
-static int write_pvd(const bk_vtk *v)
+/* A ParaView collection DIR/NAME of n files: entry k is file_fmt with id[k] (k + 1
+ * when id is NULL) at time value t[k] (k + 1 when t is NULL); written to a
+ * temporary file and renamed, so a reader never sees half a collection. */
+static int write_collection(const char *dir, const char *name, int n, const double *t, const int *id,
+                            const char *file_fmt)
 {
-    char path[1200], tmp[1210];
-    snprintf(path, sizeof path, "%s/results.pvd", v->dir);
+    char path[1200], tmp[1210], file[64];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     FILE *fp = fopen(tmp, "w");
     if (!fp)
         return -1;
     fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
-    for (int k = 0; k < v->nframe; ++k)
-        fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"step_%06d.vtu\"/>\n", v->times[k], v->frames[k]);
+    for (int k = 0; k < n; ++k) {
+        snprintf(file, sizeof file, file_fmt, id ? id[k] : k + 1);
+        fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"%s\"/>\n", t ? t[k] : (double)(k + 1),
+                file);
+    }
     fprintf(fp, "  </Collection>\n</VTKFile>\n");
     if (fclose(fp) != 0)
         return -1;
     return rename(tmp, path);
 }
 
+static int write_pvd(const bk_vtk *v)
+{
+    return write_collection(v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
+}
+
 /* modes.pvd: mode_NN.vtu of modes 1..nmode, the mode number as the time value
  * (ParaView's animation steps through the modes). */
 static int write_modes_pvd(const bk_vtk *v)
 {
-    char path[1200], tmp[1210];
-    snprintf(path, sizeof path, "%s/modes.pvd", v->dir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *fp = fopen(tmp, "w");
-    if (!fp)
-        return -1;
-    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
-    for (int k = 1; k <= v->nmode; ++k)
-        fprintf(fp, "    <DataSet timestep=\"%d\" part=\"0\" file=\"mode_%02d.vtu\"/>\n", k, k);
-    fprintf(fp, "  </Collection>\n</VTKFile>\n");
-    if (fclose(fp) != 0)
-        return -1;
-    return rename(tmp, path);
+    return write_collection(v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
 }
 
 /* What a .vtu shows.  A step frame (mode == NULL): the points of q and their
