@@ -11,19 +11,17 @@ Exit status (also in ./build.sh --help and the README):
 """
 import argparse
 import json
-import shutil
 import signal
 import subprocess
 import sys
 from pathlib import Path
 
-from gen.paths import user_path
+from gen.paths import prepare_run_dir, scene_location, user_path
 from gen.run_summary import add_scene_warnings, print_summary
 from gen.scene import ROOT, SceneError, build, load_index, write_model
 
 MODELS = ROOT / "models"
 RUNS = ROOT / "out" / "runs"
-MARKER = ".beamkit-run"
 RESULT_FILES = ("summary.json", "sensors.csv", "energy.csv", "modes.csv", "model.dat", "results.pvd")
 
 
@@ -46,40 +44,22 @@ class Parser(argparse.ArgumentParser):
 
 
 def scene_path(spec):
-    spec = str(spec)
-    if spec.endswith(".toml") or "/" in spec:
-        p = user_path(spec)
-        if not p.is_file():
+    p, named = scene_location(spec, MODELS)
+    p = Path(p)
+    if not p.is_file():
+        if not named:
             raise SceneError(f"error: {spec}: no such scene file (looked for {p})")
-        return p
-    cand = MODELS / f"{spec}.toml"
-    if not cand.is_file():
         names = sorted(x.stem for x in MODELS.glob("*.toml"))
-        raise SceneError(f"error: scene {spec!r}: no models/{spec}.toml (scenes: {', '.join(names)})")
-    return cand
+        raise SceneError(f"error: scene {str(spec)!r}: no models/{spec}.toml (scenes: {', '.join(names)})")
+    return p
 
 
 def prepare_out_dir(out, default):
     """Create or reuse an output directory; never mix with foreign files."""
-    out = Path(out)
-    if out.exists():
-        if not out.is_dir():
-            raise SceneError(f"error: --out {out}: exists and is not a directory")
-        entries = [e for e in out.iterdir()]
-        if entries and not (out / MARKER).exists():
-            raise SceneError(f"error: --out {out}: directory exists, is not empty and was not made by "
-                             f"./build.sh run; choose a new or empty directory")
-        for e in entries:
-            if e.name == MARKER:
-                continue
-            if e.is_dir() and not e.is_symlink():
-                shutil.rmtree(e)
-            else:
-                e.unlink()
-    else:
-        out.mkdir(parents=True)
-    (out / MARKER).write_text("results of ./build.sh run; cleared on the next run into this directory\n")
-    return out
+    why = prepare_run_dir(out)
+    if why:
+        raise SceneError(why)
+    return Path(out)
 
 
 def solver_for(model, index, variant="release", log=None):

@@ -31,8 +31,10 @@ except ImportError:                    # pragma: no cover
     from hashlib import sha256
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+if ROOT not in sys.path:               # run as a script: gen/ is importable from the repository
+    sys.path.insert(0, ROOT)
+from gen.paths import caller_path, prepare_run_dir, scene_location  # noqa: E402
 CACHE = os.path.join(ROOT, "out", "cache", "run")
-MARKER = ".beamkit-run"            # as gen/cli.py: a directory made by ./build.sh run
 SOURCES = (("gen", True), ("runtime", False), (os.path.join("out", "kernels"), False))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
 MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
@@ -72,17 +74,9 @@ def key(scene, scene_bytes, sets, fp):
     return h.hexdigest()[:32]
 
 
-def caller_path(p):
-    p = os.path.expanduser(p)
-    return p if os.path.isabs(p) else os.path.join(os.environ.get("BK_CALLER_CWD") or os.getcwd(), p)
-
-
 def scene_file(spec):
     """The scene file as gen/cli.py resolves it, or None (then gen/cli.py says why)."""
-    if spec.endswith(".toml") or "/" in spec:
-        p = caller_path(spec)
-    else:
-        p = os.path.join(ROOT, "models", spec + ".toml")
+    p, _ = scene_location(spec, os.path.join(ROOT, "models"))
     return os.path.realpath(p) if os.path.isfile(p) else None
 
 
@@ -200,30 +194,6 @@ def prune(limit=MAX_ENTRIES):
                 pass
 
 
-def prepare_out(out):
-    """As gen/cli.py prepare_out_dir, or None when it would refuse (then gen/cli.py says why)."""
-    if os.path.exists(out):
-        if not os.path.isdir(out):
-            return None
-        entries = os.listdir(out)
-        if entries and not os.path.exists(os.path.join(out, MARKER)):
-            return None
-        for e in entries:
-            p = os.path.join(out, e)
-            if e == MARKER:
-                continue
-            if os.path.isdir(p) and not os.path.islink(p):
-                import shutil
-                shutil.rmtree(p)
-            else:
-                os.unlink(p)
-    else:
-        os.makedirs(out)
-    with open(os.path.join(out, MARKER), "w") as fh:
-        fh.write("results of ./build.sh run; cleared on the next run into this directory\n")
-    return out
-
-
 def run_solver(cmd):
     """Start the solver; SIGINT and SIGTERM are passed on to it (it stops at its next
     step, keeps its results and exits 130 / 143).  Returns its exit status."""
@@ -268,8 +238,8 @@ def fast_run(argv):
         return None
     entry, model = hit
     out = os.path.normpath(caller_path(want)) if want else os.path.join(ROOT, "out", "runs", entry["name"])
-    if prepare_out(out) is None:
-        return None
+    if prepare_run_dir(out) is not None:
+        return None                    # gen/cli.py says why
     if not quiet:
         for w in entry["warnings"]:
             print(f"warning: {entry['name']}: {w}", file=sys.stderr)
