@@ -368,7 +368,7 @@ def case_slenderness(quick):
             ref = P * L ** 3 / (3 * E * I) + shear
             sets = element_sets("arm", element, integ) + [
                 f"section.square.b={h!r}", f"section.square.h={h!r}", f"load.0.value.2={-P!r}",
-                "static.load_steps=1", "material.alu.nu=0.3"]
+                "static.load_steps=1", "material.alu.nu=0.3", "static.eigenvalues=true"]
             s = run("cantilever_bend_10N", sets, f"slender-{element}-{integ}-{slender}")
             w = -s["sensors"]["tip"]["displacement"][2] if s["converged"] else float("nan")
             st = s.get("stability", {})

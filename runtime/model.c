@@ -198,6 +198,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.utol = fnum(r, "static", "utol");
     m->stat.predictor = fint(r, "static", "predictor", 0, 1);
     m->stat.stability = fint(r, "static", "stability", 0, 1);
+    m->stat.eigenvalues = fint(r, "static", "eigenvalues", 0, 1);
     m->stat.stable_path = fint(r, "static", "stable_path", 0, 1);
     m->stat.adaptive = fint(r, "static", "step_control", 0, 1);
     expect(r, "dynamic");

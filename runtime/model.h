@@ -74,6 +74,7 @@ typedef struct bk_static_opts {
     double utol;       /* increment tolerance relative to the displacement */
     int predictor;     /* 1: secant predictor from the last two equilibria */
     int stability;     /* 1: inertia of the tangent at every equilibrium   */
+    int eigenvalues;   /* 1: also the extreme eigenvalues at every check (static.eigenvalues) */
     int stable_path;   /* 1: cut back increments that lose stability       */
     int adaptive;      /* 1: adaptive load increments (static.step_control) */
 } bk_static_opts;

@@ -19,6 +19,24 @@ static double wall(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The result tables are flushed at most every BK_FLUSH_INTERVAL seconds of wall
+ * time while a run goes on (a write per step costs more than the step in small
+ * models), and when they are closed: a run killed outright loses at most that
+ * much of its tables; an interrupted one (SIGINT/SIGTERM) loses nothing. */
+#define BK_FLUSH_INTERVAL 0.5
+
+static void flush_due(bk_output *o)
+{
+    double now = wall();
+    if (now - o->t_flush < BK_FLUSH_INTERVAL)
+        return;
+    o->t_flush = now;
+    FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability};
+    for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k)
+        if (tables[k])
+            fflush(tables[k]);
+}
+
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
 {
     memset(o, 0, sizeof *o);
@@ -109,6 +127,7 @@ void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
     if (o->m->analysis != BK_MODAL)
         bk_output_last_frame(o, step, t, q);
+    bk_vtk_flush(&o->vtk);
     if (o->progress && wall() - o->t_start >= 1.0)
         fprintf(stderr, "\n");
 }
@@ -128,7 +147,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
                 step, t, s->name, pos[0], pos[1], pos[2], disp[0], disp[1], disp[2],
                 g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
-    fflush(o->sensors);
+    flush_due(o);
 }
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
@@ -217,7 +236,7 @@ void bk_output_stability(bk_output *o, int step, double lam, int negative, doubl
     if (!o->stability)
         return;
     fprintf(o->stability, "%d,%.17g,%d,%.9e,%.6e\n", step, lam, negative, eig_min, eig_max);
-    fflush(o->stability);
+    flush_due(o);
 }
 
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
@@ -227,7 +246,7 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
         return;
     fprintf(o->energy, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3e\n", step, t, T, U, Vg, Vf,
             T + U + Vg + Vf, cres);
-    fflush(o->energy);
+    flush_due(o);
 }
 
 static void json_string(FILE *fp, const char *s)

@@ -26,6 +26,7 @@ typedef struct bk_output {
     int progress;            /* 1: an updating progress line on stderr */
     FILE *console;           /* warnings are printed here (NULL: --quiet) */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
+    double t_flush;          /* wall clock of the last flush of the result tables */
 } bk_output;
 
 /* A change of the number of negative eigenvalues of the tangent between two

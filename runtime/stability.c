@@ -242,6 +242,8 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
     }
     res->ok = 1;
     res->negative = c;
+    if (!st->s->m->stat.eigenvalues)       /* the inertia alone (static.eigenvalues = false) */
+        return;
 
     /* Inverse iteration for the smallest-magnitude eigenvalue, warm-started
      * from the previous eigenvector. */

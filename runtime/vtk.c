@@ -1,6 +1,8 @@
 /* vtk.c -- ParaView output: one XML UnstructuredGrid (.vtu) per written step and
- * a .pvd collection listing them with their times (rewritten after every frame,
- * so an interrupted run leaves a readable collection); modal analyses add one
+ * a .pvd collection listing them with their times (rewritten at most every
+ * BK_PVD_INTERVAL seconds of wall time while frames come, and at the end, so
+ * that a run killed outright still leaves a readable collection, short of the
+ * frames of its last half second; an interrupted run lists them all); modal analyses add one
  * mode_NN.vtu per mode and their collection modes.pvd (time value = mode number).
  *
  * Every element contributes, at NX stations along its axis, a ring of points
@@ -22,10 +24,19 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "system.h"
 
 #define NX 4
+#define BK_PVD_INTERVAL 0.5
+
+static double wall_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -410,6 +421,16 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
     v->nframe++;
+    v->pvd_stale = 1;
+    return wall_s() - v->t_pvd >= BK_PVD_INTERVAL ? bk_vtk_flush(v) : 0;
+}
+
+int bk_vtk_flush(bk_vtk *v)
+{
+    if (v->every <= 0 || !v->pvd_stale)
+        return 0;
+    v->pvd_stale = 0;
+    v->t_pvd = wall_s();
     return write_pvd(v);
 }
 

@@ -16,6 +16,8 @@ typedef struct bk_vtk {
     double *times;           /* owned */
     int *frames;             /* owned */
     int nmode;               /* mode files written (modes 1..nmode) */
+    int pvd_stale;           /* results.pvd lacks frames written since its last write */
+    double t_pvd;            /* wall clock of that write (s) */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
@@ -23,6 +25,10 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
 /* Writes a frame for every `every`-th call (step < 0: write unconditionally,
  * frame number -step). */
 int bk_vtk_frame(bk_vtk *v, const struct bk_system *s, int step, double t, const double *q);
+/* Rewrites results.pvd when frames were written since its last write (frames
+ * rewrite it at most every BK_PVD_INTERVAL s of wall time); 0, or -1 on a write
+ * error. */
+int bk_vtk_flush(bk_vtk *v);
 void bk_vtk_close(bk_vtk *v);
 
 /* Number of points of every frame of the model. */

@@ -57,6 +57,7 @@ static void scene_init(scene *s, int nnode, const double (*x)[3])
     snprintf(m->name, sizeof m->name, "spring_check");
     m->analysis = BK_STATIC;
     m->length_scale = 1.0;
+    m->stat.eigenvalues = 1;          /* the eigenvalue estimates are checked too */
     m->ndof = 3 * nnode;
     m->q0 = s->q0;
     m->qd0 = s->qd0;

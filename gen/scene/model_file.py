@@ -12,7 +12,7 @@ VERSION = 2
 RECORDS = {
     "scene": ("name", "analysis", "length_scale"),
     "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
-               "stability", "stable_path", "step_control"),
+               "stability", "eigenvalues", "stable_path", "step_control"),
     "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
                 "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian"),
     "output": ("vtk_every",),
@@ -44,7 +44,8 @@ def write_model(model, path):
            _record("static", {**{k: s[k] for k in ("load_steps", "max_iterations", "max_cutbacks", "cycles",
                                                    "rtol", "utol", "stable_path")},
                               "predictor": int(s["predictor"] == "secant"),
-                              "stability": int(s["stability"] or s["stable_path"]),
+                              "stability": int(s["stability"] or s["stable_path"] or s["eigenvalues"]),
+                              "eigenvalues": int(s["eigenvalues"]),
                               "step_control": int(s["step_control"] == "adaptive")}),
            _record("dynamic", {**{k: d[k] for k in RECORDS["dynamic"] if k != "jacobian"},
                                "jacobian": int(d["jacobian"] == "reuse")}),

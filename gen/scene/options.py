@@ -9,7 +9,7 @@ from gen.scene.values import (_cross, _dot, _sub, check_keys, get_array_of_table
 
 STATIC_DEFAULTS = {"load_steps": 1, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "predictor": "secant", "stability": True,
-                   "stable_path": False, "step_control": "adaptive"}
+                   "eigenvalues": False, "stable_path": False, "step_control": "adaptive"}
 DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
                     "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
                     "rtol": 1e-8, "utol": 1e-8, "jacobian": "reuse"}
@@ -29,6 +29,7 @@ def options(ctx, doc, analysis):
         "predictor": get_str(ctx, st, "predictor", "static", default=STATIC_DEFAULTS["predictor"],
                              choices=("none", "secant")),
         "stability": get_bool(ctx, st, "stability", "static", STATIC_DEFAULTS["stability"]),
+        "eigenvalues": get_bool(ctx, st, "eigenvalues", "static", STATIC_DEFAULTS["eigenvalues"]),
         "stable_path": get_bool(ctx, st, "stable_path", "static", STATIC_DEFAULTS["stable_path"]),
         "step_control": get_str(ctx, st, "step_control", "static", default=STATIC_DEFAULTS["step_control"],
                                 choices=("adaptive", "fixed")),
