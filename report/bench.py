@@ -33,7 +33,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from gen.cli import execute  # noqa: E402
 from gen.scene import ROOT, SceneError  # noqa: E402
-from report import bench_kernels  # noqa: E402
+from report import bench_kernels, bench_targets  # noqa: E402
 
 OUT = ROOT / "out" / "report"
 WORK = OUT / "bench"
@@ -536,6 +536,9 @@ def main(argv):
     srows = scaling(quick, log)
     log(" toolchain")
     tc = toolchain(quick, log)
+    log(" targets around the solve")
+    targets = bench_targets.measure(WORK, quick, log)
+    (OUT / "bench_targets.json").write_text(json.dumps(targets, indent=1) + "\n")
 
     # ---- files
     write_csv(OUT / "bench_workprecision.csv", points,
@@ -635,12 +638,18 @@ def main(argv):
     L.append(f"| element evaluation on all cores, bit-identical for any thread count | OpenMP over elements; "
              f"bit-identical results for 1, 2, 3 threads (tests/test_parallel.py); assembly at {nbig:,} elements "
              f"{par:.2f}x as fast with 2 threads as with 1 (machine load average {load[0]:.1f} on "
-             f"{os.cpu_count()} cores during the run) | {met(par > 1.2)} |")
+             f"{os.cpu_count()} cores during the run; target ≥ 1.7x) | {met(par >= 1.7)} |")
     L.append(f"| incremental regeneration; full regeneration < 10 min | unchanged pairs are skipped by input hash "
              f"(re-run: {tc['regen_incremental_redone']} units redone, {tc['regen_incremental_s']:.1f} s); "
              f"{tc['regen_scope']}: {regen_total:.0f} s | "
              f"{met(tc['regen_incremental_redone'] == 0 and (quick or regen_total < 600))} |")
-    L += [""]
+    for target, measured, status in bench_targets.target_rows(targets, met):
+        L.append(f"| {target} | {measured} | {status} |")
+    L += ["", "Around the solve (`bench_targets.json`): the front end is the whole `./build.sh run` process minus "
+          "the solver's own wall time; output and stability shares compare the default run with "
+          "`output.vtk_every = 0` and `static.stability = false` (the CSV tables cannot be switched off; they are "
+          "flushed at most every 0.5 s); solver runs are interleaved, medians of "
+          f"{3 if quick else 9} runs each.", ""]
 
     # ---- work-precision sections
     notes = dict(snotes + dnotes)
