@@ -268,14 +268,31 @@ def fast_run(argv):
     return rc
 
 
+class SiteOnDemand:
+    """The last import finder while the site packages are not loaded: the first
+    top-level import that the standard library and the repository cannot
+    satisfy (sympy to generate a kernel, matplotlib to plot, ...) loads them
+    (site.main(), with its .pth files) and is retried; a run that needs none,
+    e.g. a scene with new --set numbers and a built solver, never pays for them."""
+
+    @staticmethod
+    def find_spec(name, path=None, target=None):
+        if path is not None:           # a submodule: its package was found without the site
+            return None
+        sys.meta_path.remove(SiteOnDemand)
+        import site
+        site.main()
+        from importlib.machinery import PathFinder
+        return PathFinder.find_spec(name)
+
+
 def main(argv):
     if argv and argv[0] == "run":
         rc = fast_run(argv[1:])
         if rc is not None:
             return rc
     if sys.flags.no_site:              # build.sh starts this with -S (15 ms less): the
-        import site                    # full path gets the site packages back
-        site.main()
+        sys.meta_path.append(SiteOnDemand)   # site packages come when an import needs them
     from gen.cli import main as cli_main
     return cli_main(argv)
 

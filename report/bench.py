@@ -630,7 +630,7 @@ def main(argv):
     no_full = all(r["full_factorizations"] == 1 for r in fa)
     L.append(f"| symbolic analysis once per run; no allocation in the step loop | "
              f"{'1 analysis' if one_an else 'several analyses'} per run; after the first, "
-             f"{'every' if no_full else 'not every'} factorization is an in-place KLU refactor "
+             f"{'every' if no_full else 'not every'} factorization is in place (band LU, or KLU refactor) "
              f"({sum(r['factorizations'] - r['full_factorizations'] for r in fa)} of "
              f"{sum(r['factorizations'] for r in fa)} in the scaling runs); assembly writes into buffers made at "
              f"set-up; the heap allocation count of a dynamic run (valgrind) does not grow with the number of "
@@ -705,7 +705,7 @@ def main(argv):
     L += ["## Scaling", "",
           "One long `ancf3243` x `svk` beam (elements 0.1 m long, clamped), bench/newton_iter.c: the model read "
           "as the solver reads it, then the median over several Newton iterations at a deformed state of "
-          "assembly (forces and tangent), KLU numeric factorization (refactor) and solve.  Peak memory: "
+          "assembly (forces and tangent), numeric factorization (the band LU up to its storage limit, KLU refactor beyond) and solve.  Peak memory: "
           "VmHWM of that process (model, system, matrix, factors).", "",
           "![scaling](bench_scaling.png)", "",
           "| elements | threads | equations | nnz | iteration | assembly | factor | solve | set-up | peak memory |",

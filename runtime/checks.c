@@ -65,18 +65,28 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
             continue;
         bk_gather(m, e, q, c->qe);
         p->invariants(c->qe, m->tabs[el->geom], c->inv);
+        const int ranged = !c->strain && (p->green_strain_min != 0.0 || p->green_strain_max != 0.0);
         double jmin = INFINITY, jmax = -INFINITY, emin = INFINITY, emax = -INFINITY;
         for (int k = 0; k < p->nqp; ++k) {
             const double *v = c->inv + 3 * k;
             jmin = fmin(jmin, v[0]);
             jmax = fmax(jmax, v[0]);
-            double x[3];
-            bk_principal_from_invariants(v[1], v[2], v[0] * v[0], x);
+            if (!ranged)
+                continue;
+            /* the eigenvalues of C lie within I1/3 -+ 2 sqrt(-(I2 - I1^2/3)/3) (the
+             * trigonometric form of the roots): only when that interval leaves the
+             * law's range are they computed */
+            double s3 = v[1] / 3.0, a = v[2] - v[1] * v[1] / 3.0, r = a < 0.0 ? 2.0 * sqrt(-a / 3.0) : 0.0;
+            double x[3] = {s3 - r, s3, s3 + r};
+            if (0.5 * (x[0] - 1.0) < p->green_strain_min || 0.5 * (x[2] - 1.0) > p->green_strain_max)
+                bk_principal_from_invariants(v[1], v[2], v[0] * v[0], x);
             emin = fmin(emin, 0.5 * (x[0] - 1.0));
             emax = fmax(emax, 0.5 * (x[2] - 1.0));
         }
-        double pos[3];
-        bk_eval_point(m, q, e, 0.5, pos, NULL);
+        double pos[3] = {NAN, NAN, NAN};
+        if ((!c->inverted && jmin <= 0.0) || (!c->volume && ((jmin > 0.0 && jmin < BK_J_MIN) || jmax > BK_J_MAX)) ||
+            (ranged && (emin < p->green_strain_min || emax > p->green_strain_max)))
+            bk_eval_point(m, q, e, 0.5, pos, NULL);       /* where, for a warning */
         if (!c->inverted && jmin <= 0.0) {
             c->inverted = 1;
             bk_warn(info, console, m->name,
@@ -91,8 +101,7 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
                     "%s %.6g: a deformation this large is unlikely to be meant",
                     e + 1, p->element->name, p->material, pos[0], pos[1], pos[2], jv, BK_J_MIN, BK_J_MAX, what, t);
         }
-        if (!c->strain && (p->green_strain_min != 0.0 || p->green_strain_max != 0.0) &&
-            (emin < p->green_strain_min || emax > p->green_strain_max)) {
+        if (ranged && (emin < p->green_strain_min || emax > p->green_strain_max)) {
             c->strain = 1;
             double ev = emax > p->green_strain_max ? emax : emin;
             bk_warn(info, console, m->name,

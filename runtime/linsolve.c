@@ -1,4 +1,4 @@
-/* linsolve.c -- KLU wrapper: analyse once, factor once, then refactor.
+/* linsolve.c -- the linear solver of the Newton systems: a band LU (bandlu.c) for narrow bands, else KLU: analyse once, factor once, then refactor.
  *
  * The first numeric factorization (klu_factor) chooses the pivots and
  * allocates the LU factors.  Later factorizations on the same pattern reuse
@@ -26,6 +26,16 @@ int bk_lin_init(bk_linsolver *s, int n, const int *Ap, const int *Ai)
     s->Ap = Ap;
     s->Ai = Ai;
     klu_defaults(&s->common);
+    int bp = bk_band_plan(&s->band, n, Ap, Ai, BK_BAND_MAX_STORAGE);
+    if (bp < 0)
+        return BK_LIN_ERROR;
+    if (bp == 0 && s->band.kl + s->band.ku <= BK_BAND_MAX_WIDTH) {
+        s->use_band = 1;
+        s->nanalyze = 1;
+        return BK_LIN_OK;
+    }
+    if (bp == 0)
+        bk_band_free(&s->band);
     s->sym = klu_analyze(n, (int *)Ap, (int *)Ai, &s->common);
     if (!s->sym)
         return BK_LIN_ERROR;
@@ -53,6 +63,17 @@ static int full_factor(bk_linsolver *s, double *Ax)
 
 int bk_lin_factor(bk_linsolver *s, double *Ax)
 {
+    if (s->use_band) {
+        int rc = bk_band_factor(&s->band, Ax);
+        s->nfactor++;
+        if (s->nfactor == 1)
+            s->nfull = 1;                /* the only one that sets up storage (in bk_lin_init) */
+        s->rcond = rc == 0 ? s->band.rcond : 0.0;
+        s->rcond_factor = s->rcond;
+        if (rc == 2)
+            return BK_LIN_ERROR;
+        return rc == 1 || !(s->rcond > 1e-300) ? BK_LIN_SINGULAR : BK_LIN_OK;
+    }
     if (s->num) {
         /* Reuse the pivot order and the factor storage: no allocation. */
         if (klu_refactor((int *)s->Ap, (int *)s->Ai, Ax, s->sym, s->num, &s->common) &&
@@ -68,6 +89,12 @@ int bk_lin_factor(bk_linsolver *s, double *Ax)
 
 int bk_lin_solve(bk_linsolver *s, double *b)
 {
+    if (s->use_band) {
+        if (!(s->rcond > 1e-300))
+            return BK_LIN_ERROR;
+        bk_band_solve(&s->band, b);
+        return BK_LIN_OK;
+    }
     if (!s->num)
         return BK_LIN_ERROR;
     return klu_solve(s->sym, s->num, s->n, 1, b, &s->common) ? BK_LIN_OK : BK_LIN_ERROR;
@@ -75,6 +102,7 @@ int bk_lin_solve(bk_linsolver *s, double *b)
 
 void bk_lin_free(bk_linsolver *s)
 {
+    bk_band_free(&s->band);
     if (s->num)
         klu_free_numeric(&s->num, &s->common);
     if (s->sym)

@@ -1,6 +1,10 @@
-/* linsolve.h -- sparse direct solves with KLU (SuiteSparse).
+/* linsolve.h -- sparse direct solves: a band LU (bandlu.h) when the matrix is
+ * a narrow band in reverse Cuthill-McKee order (beams, chains of beams), else
+ * KLU (SuiteSparse).
  *
- * The symbolic analysis (fill-reducing ordering, block triangular form) is
+ * Band: the ordering and the band layout are planned once by bk_lin_init();
+ * every factorization chooses its pivots (partial pivoting within the band)
+ * in place, with no allocation.  KLU: the symbolic analysis (fill-reducing ordering, block triangular form) is
  * computed once for a pattern by bk_lin_init() and reused by every numeric
  * factorization.  The first numeric factorization chooses the pivots and
  * allocates the factors; later ones refactor in place with those pivots
@@ -14,8 +18,18 @@
 
 #include <klu.h>
 
+#include "bandlu.h"
+
+/* The band solver is used when its storage, (2 kl + ku + 1) n doubles, stays
+ * within BK_BAND_MAX_STORAGE and its width kl + ku within BK_BAND_MAX_WIDTH
+ * (wider bands do more work per column than a sparse LU's fill). */
+#define BK_BAND_MAX_WIDTH 240
+#define BK_BAND_MAX_STORAGE (1L << 28)
+
 typedef struct bk_linsolver {
     int n;
+    int use_band;            /* 1: the band LU below, 0: KLU */
+    bk_band band;
     const int *Ap, *Ai;
     klu_common common;
     klu_symbolic *sym;

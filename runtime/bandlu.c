@@ -1,0 +1,260 @@
+/* bandlu.c -- band LU with partial pivoting after a reverse Cuthill-McKee
+ * ordering (see bandlu.h). */
+#include "bandlu.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* y[0..m) -= a x[0..m): the inner loop of the factorization and the solves
+ * (contiguous, vectorized). */
+static inline void axpy_sub(int m, double a, const double *restrict x, double *restrict y)
+{
+#pragma omp simd
+    for (int r = 0; r < m; ++r)
+        y[r] -= a * x[r];
+}
+
+/* Breadth-first search from `root` over the unvisited nodes of the pattern
+ * (neighbours by increasing degree); appends them to order[*len...]; returns
+ * the last node reached (the deepest level).  mark: 1 = visited. */
+static int bfs(int root, const int *Ap, const int *Ai, const int *deg, char *mark, int *order, int *len,
+               int *nbr)
+{
+    int head = *len, last = root;
+    order[(*len)++] = root;
+    mark[root] = 1;
+    while (head < *len) {
+        int v = order[head++], k = 0;
+        last = v;
+        for (int p = Ap[v]; p < Ap[v + 1]; ++p) {
+            int u = Ai[p];
+            if (mark[u])
+                continue;
+            mark[u] = 1;
+            /* insertion by degree (lists are short: the couplings of one node) */
+            int q = k++;
+            while (q > 0 && deg[nbr[q - 1]] > deg[u]) {
+                nbr[q] = nbr[q - 1];
+                --q;
+            }
+            nbr[q] = u;
+        }
+        for (int q = 0; q < k; ++q)
+            order[(*len)++] = nbr[q];
+    }
+    return last;
+}
+
+/* Reverse Cuthill-McKee order of the (structurally symmetric) pattern:
+ * perm[new] = old.  Each connected component starts from a pseudo-peripheral
+ * node (the end of a search from the end of a search from its node of least
+ * degree). */
+static int rcm(int n, const int *Ap, const int *Ai, int *perm)
+{
+    int *deg = malloc((size_t)n * sizeof *deg), *nbr = malloc((size_t)n * sizeof *nbr);
+    int *tmp = malloc((size_t)n * sizeof *tmp);
+    char *mark = calloc((size_t)n, 1);
+    if (!deg || !nbr || !tmp || !mark) {
+        free(deg), free(nbr), free(tmp), free(mark);
+        return -1;
+    }
+    for (int i = 0; i < n; ++i)
+        deg[i] = Ap[i + 1] - Ap[i];
+    int len = 0;
+    for (;;) {
+        int start = -1;
+        for (int i = 0; i < n; ++i)
+            if (!mark[i] && (start < 0 || deg[i] < deg[start]))
+                start = i;
+        if (start < 0)
+            break;
+        /* two trial searches to find a far end of the component, then the real one */
+        int root = start;
+        for (int trial = 0; trial < 2; ++trial) {
+            int l0 = len, tl = len;
+            int far = bfs(root, Ap, Ai, deg, mark, tmp, &tl, nbr);
+            for (int k = l0; k < tl; ++k)
+                mark[tmp[k]] = 0;
+            root = far;
+        }
+        bfs(root, Ap, Ai, deg, mark, perm, &len, nbr);
+    }
+    for (int i = 0; i < n / 2; ++i) {
+        int t = perm[i];
+        perm[i] = perm[n - 1 - i];
+        perm[n - 1 - i] = t;
+    }
+    free(deg), free(nbr), free(tmp), free(mark);
+    return 0;
+}
+
+int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_storage)
+{
+    memset(b, 0, sizeof *b);
+    b->n = n;
+    b->Ap = Ap;
+    b->Ai = Ai;
+    b->perm = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->perm);
+    b->iperm = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->iperm);
+    if (!b->perm || !b->iperm || rcm(n, Ap, Ai, b->perm) != 0) {
+        bk_band_free(b);
+        return -1;
+    }
+    for (int i = 0; i < n; ++i)
+        b->iperm[b->perm[i]] = i;
+    int kl = 0, ku = 0;
+    for (int j = 0; j < n; ++j)
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            int d = b->iperm[Ai[p]] - b->iperm[j];
+            if (d > kl)
+                kl = d;
+            if (-d > ku)
+                ku = -d;
+        }
+    b->kl = kl;
+    b->ku = ku;
+    b->ldab = 2 * kl + ku + 1;
+    if ((double)b->ldab * n > (double)max_storage) {
+        bk_band_free(b);
+        return 1;
+    }
+    long nnz = Ap[n];
+    b->map = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *b->map);
+    b->ab = malloc((size_t)b->ldab * (size_t)(n > 0 ? n : 1) * sizeof *b->ab);
+    b->rs = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->rs);
+    b->ipiv = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->ipiv);
+    b->w = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->w);
+    if (!b->map || !b->ab || !b->rs || !b->ipiv || !b->w) {
+        bk_band_free(b);
+        return -1;
+    }
+    const int kv = kl + ku;
+    for (int j = 0; j < n; ++j)
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            int i = b->iperm[Ai[p]], c = b->iperm[j];
+            b->map[p] = (long)(kv + i - c) + (long)c * b->ldab;
+        }
+    b->rcond = NAN;
+    return 0;
+}
+
+int bk_band_factor(bk_band *b, const double *Ax)
+{
+    const int n = b->n, kl = b->kl, kv = b->kl + b->ku, ldab = b->ldab;
+    double *ab = b->ab, *rs = b->rs;
+    memset(ab, 0, (size_t)ldab * (size_t)n * sizeof *ab);
+    for (int i = 0; i < n; ++i)
+        rs[i] = 0.0;
+    for (int j = 0; j < n; ++j)
+        for (int p = b->Ap[j]; p < b->Ap[j + 1]; ++p) {
+            double a = fabs(Ax[p]);
+            int i = b->iperm[b->Ai[p]];
+            if (!(a <= INFINITY))
+                return 2;
+            if (a > rs[i])
+                rs[i] = a;
+        }
+    for (int i = 0; i < n; ++i) {
+        if (!(rs[i] > 0.0))
+            return 1;                                /* an empty row */
+        rs[i] = 1.0 / rs[i];
+    }
+    for (int j = 0; j < n; ++j)
+        for (int p = b->Ap[j]; p < b->Ap[j + 1]; ++p)
+            ab[b->map[p]] += Ax[p] * rs[b->iperm[b->Ai[p]]];
+
+    double umin = INFINITY, umax = 0.0;
+    int ju = 0;                                      /* last column of U touched so far */
+    int kvu = 0;                                     /* superdiagonals U has (ku without interchanges) */
+    for (int j = 0; j < n; ++j) {
+        const int km = kl < n - 1 - j ? kl : n - 1 - j;
+        double *col = ab + kv + (long)j * ldab;      /* col[r] = A(j + r, j) */
+        double amax = 0.0;
+        int piv = 0;
+        for (int r = 0; r <= km; ++r)
+            if (fabs(col[r]) > amax) {
+                amax = fabs(col[r]);
+                piv = r;
+            }
+        if (!(amax > 0.0))
+            return 1;
+        if (fabs(col[0]) >= BK_BAND_PIVOT_TOL * amax)
+            piv = 0;
+        b->ipiv[j] = j + piv;
+        int last = j + b->ku + piv;
+        if (last > n - 1)
+            last = n - 1;
+        if (last > ju)
+            ju = last;
+        if (piv != 0) {                              /* swap rows j and j + piv over columns j..ju */
+            for (int c = j; c <= ju; ++c) {
+                double *x = ab + (kv + j - c) + (long)c * ldab, *y = x + piv, t = *x;
+                *x = *y;
+                *y = t;
+            }
+        }
+        const double d = col[0], inv = 1.0 / d;
+        for (int r = 1; r <= km; ++r)
+            col[r] *= inv;
+        if (ju - j > kvu)
+            kvu = ju - j;
+        for (int c = j + 1; c <= ju; ++c) {
+            double *cc = ab + (kv + j - c) + (long)c * ldab;   /* cc[r] = A(j + r, c) */
+            const double a = cc[0];
+            if (a != 0.0)
+                axpy_sub(km, a, col + 1, cc + 1);
+        }
+        double u = fabs(d);
+        if (u < umin)
+            umin = u;
+        if (u > umax)
+            umax = u;
+    }
+    b->rcond = n > 0 ? umin / umax : 1.0;
+    b->kvu = kvu;
+    return 0;
+}
+
+void bk_band_solve(bk_band *b, double *x)
+{
+    const int n = b->n, kl = b->kl, kv = b->kl + b->ku, kvu = b->kvu, ldab = b->ldab;
+    const double *ab = b->ab;
+    double *w = b->w;
+    for (int i = 0; i < n; ++i)
+        w[i] = x[b->perm[i]] * b->rs[i];
+    for (int j = 0; j < n; ++j) {                    /* L: unit lower, with the interchanges */
+        int p = b->ipiv[j];
+        if (p != j) {
+            double t = w[j];
+            w[j] = w[p];
+            w[p] = t;
+        }
+        const int km = kl < n - 1 - j ? kl : n - 1 - j;
+        const double *col = ab + kv + (long)j * ldab, t = w[j];
+        if (t != 0.0)
+            axpy_sub(km, t, col + 1, w + j + 1);
+    }
+    for (int j = n - 1; j >= 0; --j) {               /* U: kvu superdiagonals */
+        const double *col = ab + kv + (long)j * ldab;   /* col[i - j] = U(i, j) */
+        w[j] /= col[0];
+        const double t = w[j];
+        const int i0 = j - kvu > 0 ? j - kvu : 0;
+        if (t != 0.0)
+            axpy_sub(j - i0, t, col - (j - i0), w + i0);
+    }
+    for (int i = 0; i < n; ++i)
+        x[b->perm[i]] = w[i];
+}
+
+void bk_band_free(bk_band *b)
+{
+    free(b->perm);
+    free(b->iperm);
+    free(b->map);
+    free(b->ab);
+    free(b->rs);
+    free(b->ipiv);
+    free(b->w);
+    memset(b, 0, sizeof *b);
+}
