@@ -9,6 +9,7 @@
 #include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
+#include "nonlinear.h"
 #include "norms.h"
 #include "quaternion.h"
 #include "stability.h"
@@ -18,7 +19,7 @@ typedef struct work {
     double *qprev, *nuprev;          /* the equilibrium before the last one (predictor) */
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
-    bk_norms norms;                  /* rotation-invariant measures */
+    const bk_norms *norms;           /* rotation-invariant measures (the solver's) */
 } work;
 
 /* One Newton solve: its outcome and counters. */
@@ -35,10 +36,11 @@ typedef struct attempt {
 
 /* Below this pivot ratio the tangent is singular to working precision: Newton
  * increments are meaningless in its near-null directions. */
-#define ILL_RCOND 1e-12
+#define ILL_RCOND BK_ILL_RCOND
 
-enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE,
-       NEWTON_INTERRUPTED };
+enum { NEWTON_OK = BK_NL_OK, NEWTON_MAXIT = BK_NL_MAXIT, NEWTON_NONFINITE = BK_NL_NONFINITE,
+       NEWTON_SINGULAR = BK_NL_SINGULAR, NEWTON_DIVERGED = BK_NL_DIVERGED, NEWTON_LINERR = BK_NL_LINERR,
+       NEWTON_INTERRUPTED = BK_NL_INTERRUPTED, NEWTON_UNSTABLE = BK_NL_NCODES };
 
 static const char *why(int code)
 {
@@ -107,10 +109,9 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
     bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
 }
 
-/* Newton iteration at load factor lam, from the state in q, w->nu.  Returns
- * a NEWTON_* code; every iteration is recorded in newton.csv (alpha: the
- * fraction of the Newton step taken, below 1 when the rotation trust region
- * shortened it).
+/* The static problem for the nonlinear solver (nonlinear.h): the residual at
+ * load factor lam, the update of q and the multipliers, the rotation trust
+ * region.
  *
  * A line search on the energy slope s(alpha) = dx . r(x + alpha dx), tried as
  * a retry before cutting an increment back, rescued none of the hard cases
@@ -118,111 +119,98 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
  * their failures are the alternation between membrane and bending residuals of
  * slender beams, which the rotation trust region below and the load increment
  * address.  It was removed rather than kept as an option that does nothing. */
-#define ROT_STEP 0.15
-static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, double lam_last, attempt *a,
-                  const bk_static_opts *o, double lscale, bk_output *out, int step)
+typedef struct static_problem {
+    bk_system *s;
+    work *w;
+    double *q;
+    double lam, lam_last;            /* the load factor sought, the last equilibrium's */
+    double lscale;
+} static_problem;
+
+static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
 {
+    static_problem *p = ctx;
+    bk_system *s = p->s;
+    work *w = p->w;
     const bk_model *m = s->m;
-    double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY, enorm = INFINITY, eref = 0.0;
-    a->iters = 0;
-    a->residual_met = 0;
-    a->singular_at_start = 0;
-    a->rcond = NAN;
-    for (int it = 0;; ++it) {
-        if ((a->signo = bk_interrupt_poll()) != 0)
-            return NEWTON_INTERRUPTED;
-        if (residual(s, w, q, w->nu, lam, 1) != 0)
-            return NEWTON_NONFINITE;
-        double rnorm = bk_norm2(w->r, s->neq);
-        double ref = fmax(fabs(lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
-        /* Every measure is invariant under a rigid rotation of the scene:
-         * field norms, column-block norms, scalar products (norms.h).  The
-         * round-off floors use the stiffest column block of the Newton matrix:
-         * with multipliers (constraint rows, the internal multipliers of the
-         * constrained beams) the stiffest couplings can sit off the diagonal. */
-        double uscale = fmax(bk_norm_dof_max(&w->norms, s, q, m->q0), 1e-6 * lscale);
-        bk_floors fl = bk_round_off_floors(&w->norms, s, q, w->Ax);
-        a->rnorm = rnorm;
-        a->dnorm = dnorm;
-        a->ref = ref;
-        a->iters = it;
-        bk_output_iteration(out, a->id, step, lam, it, rnorm, ref, it ? dnorm : NAN, it ? alpha : NAN, ls->rcond);
-        if (!isfinite(rnorm))
-            return NEWTON_NONFINITE;
-        if (rnorm == 0.0)
-            return NEWTON_OK;
-        double rtol_abs = fmax(o->rtol * ref, fl.force), utol_abs = fmax(o->utol * uscale, fl.increment);
-        a->rtol_abs = rtol_abs;
-        if (rnorm <= rtol_abs)
-            a->residual_met = 1;
-        /* converged: the residual within its tolerance, and the last
-         * correction small, in length (field norm) or in energy (see
-         * BK_ENERGY_TOL, norms.h) */
-        /* the energy scale of the increment: its first correction, or the
-         * work of the load increment on the motion from the last equilibrium
-         * (w->qsave), whichever is larger -- a good predictor must not make
-         * the test stricter */
-        double wload = 0.0;
-        for (int i = 0; i < m->ndof; ++i)
-            wload += (lam - lam_last) * w->fext[i] * (q[i] - w->qsave[i]);
-        double escale = fmax(eref, sqrt(fabs(wload)));
-        if (it > 0 && rnorm <= rtol_abs &&
-            (dnorm <= utol_abs || enorm <= fmax(BK_ENERGY_TOL * escale, fl.energy)))
-            return NEWTON_OK;
-        /* Stagnation at round-off: on ill-conditioned tangents (slender
-         * higher-order elements) the residual stops decreasing a little above
-         * its floor while the increments are already at noise level; accept
-         * within a factor 1e3 (residual) and 1e2 (increment) of the
-         * tolerances once an iteration no longer halves the residual. */
-        if (it > 1 && rnorm > 0.5 * rprev && rnorm <= 1e3 * rtol_abs && dnorm <= 1e2 * utol_abs)
-            return NEWTON_OK;
-        rprev = rnorm;
-        if (r0 < 0.0)
-            r0 = fmax(rnorm, 1e-300);
-        else if (rnorm > 1e12 * r0)
-            return NEWTON_DIVERGED;
-        if (it >= o->max_iter)
-            return NEWTON_MAXIT;
-        int st = bk_lin_factor(ls, w->Ax);
-        a->rcond = st == BK_LIN_SINGULAR ? 0.0 : ls->rcond;
-        if (st == BK_LIN_SINGULAR) {
-            a->singular_at_start = it == 0;
-            return NEWTON_SINGULAR;
-        }
-        if (st != BK_LIN_OK)
-            return NEWTON_LINERR;
-        for (int i = 0; i < s->neq; ++i)
-            w->dx[i] = -w->r[i];
-        if (bk_lin_solve(ls, w->dx) != BK_LIN_OK)
-            return NEWTON_LINERR;
-        double work_ = 0.0;
-        for (int i = 0; i < s->neq; ++i) {
-            if (!isfinite(w->dx[i]))
-                return NEWTON_NONFINITE;
-            work_ += w->dx[i] * w->r[i];
-        }
-        dnorm = bk_norm_free_max(&w->norms, s, w->dx);
-        enorm = sqrt(fabs(work_));
-        if (it == 0)
-            eref = enorm;
-        alpha = 1.0;
-        /* Rotation trust region: quaternion increments are rotations only to
-         * first order; a step that changes a unit quaternion by more than
-         * ROT_STEP (Euclidean norm of the 4 components: a rotation of about 17
-         * degrees) is shortened to that.  With it the geometrically exact beams take the load steps the
-         * ANCF elements take (two turns of roll-up in 4 steps instead of 24). */
-        double dpmax = 0.0;
-        for (int k = 0; k < w->nquat; ++k) {
-            double ss = 0.0;
-            for (int i = 0; i < 4; ++i)
-                ss += w->dx[s->eq[w->quat[k] + i]] * w->dx[s->eq[w->quat[k] + i]];
-            dpmax = fmax(dpmax, sqrt(ss));
-        }
-        if (dpmax > ROT_STEP)
-            alpha = ROT_STEP / dpmax;
-        dnorm *= alpha;
-        step_to(s, w, q, w->nu, w->dx, alpha, q, w->nu);
+    (void)r, (void)Ax;               /* w->r, w->Ax are the solver's buffers */
+    if (residual(s, w, p->q, w->nu, p->lam, matrix) != 0)
+        return -1;
+    /* Every measure is invariant under a rigid rotation of the scene: field
+     * norms, column-block norms, scalar products (norms.h). */
+    ev->rnorm = bk_norm2(w->r, s->neq);
+    ev->ref = fmax(fabs(p->lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
+    ev->uscale = fmax(bk_norm_dof_max(w->norms, s, p->q, m->q0), 1e-6 * p->lscale);
+    /* the energy scale of the increment besides its first correction: the
+     * work of the load increment on the motion from the last equilibrium
+     * (w->qsave) */
+    double wload = 0.0;
+    for (int i = 0; i < m->ndof; ++i)
+        wload += (p->lam - p->lam_last) * w->fext[i] * (p->q[i] - w->qsave[i]);
+    ev->escale = sqrt(fabs(wload));
+    ev->cres = 0.0;
+    return 0;
+}
+
+static void sp_update(void *ctx, const double *dx, double alpha)
+{
+    static_problem *p = ctx;
+    step_to(p->s, p->w, p->q, p->w->nu, dx, alpha, p->q, p->w->nu);
+}
+
+/* Rotation trust region: quaternion increments are rotations only to first
+ * order; a step that changes a unit quaternion by more than ROT_STEP
+ * (Euclidean norm of the 4 components: a rotation of about 17 degrees) is
+ * shortened to that.  With it the geometrically exact beams take the load
+ * steps the ANCF elements take (two turns of roll-up in 4 steps instead of
+ * 24). */
+#define ROT_STEP 0.15
+static double sp_step_limit(void *ctx, const double *dx)
+{
+    static_problem *p = ctx;
+    const bk_system *s = p->s;
+    const work *w = p->w;
+    double dpmax = 0.0;
+    for (int k = 0; k < w->nquat; ++k) {
+        double ss = 0.0;
+        for (int i = 0; i < 4; ++i)
+            ss += dx[s->eq[w->quat[k] + i]] * dx[s->eq[w->quat[k] + i]];
+        dpmax = fmax(dpmax, sqrt(ss));
     }
+    return dpmax > ROT_STEP ? ROT_STEP / dpmax : 1.0;
+}
+
+static bk_nl_opts static_nl_opts(const bk_static_opts *o)
+{
+    bk_nl_opts no = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol, .ctol = 0.0,
+                     .accept_far_below = 0, .stagnation = 1, .divergence = 1, .reuse = 0};
+    return no;
+}
+
+/* Newton iteration at load factor lam, from the state in q, w->nu.  Returns
+ * a NEWTON_* code; every iteration is recorded in newton.csv (alpha: the
+ * fraction of the Newton step taken, below 1 when the rotation trust region
+ * shortened it). */
+static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, double lam_last, attempt *a,
+                  const bk_static_opts *o, double lscale, int step)
+{
+    static_problem sp = {.s = s, .w = w, .q = q, .lam = lam, .lam_last = lam_last, .lscale = lscale};
+    bk_nl_problem p = {.ctx = &sp, .q = q, .residual = sp_residual, .update = sp_update,
+                       .step_limit = sp_step_limit};
+    bk_nl_opts no = static_nl_opts(o);
+    bk_nl_row row = {.attempt = a->id, .step = step, .lam = lam};
+    bk_nl_result res;
+    bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
+    a->iters = res.iters;
+    a->rnorm = res.rnorm;
+    a->dnorm = res.dnorm;
+    a->ref = res.ref;
+    a->rtol_abs = res.rtol_abs;
+    a->rcond = res.rcond;
+    a->residual_met = res.residual_met;
+    a->singular_at_start = res.singular_at_start;
+    a->signo = res.signo;
+    return res.code;
 }
 
 /* Stability of the equilibrium q at load factor lam (not yet accepted):
@@ -300,23 +288,20 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     const bk_model *m = s->m;
     const bk_static_opts *o = &m->stat;
     work w = {0};
-    int nd = m->ndof, ne = s->neq > 0 ? s->neq : 1, nc = s->ncon > 0 ? s->ncon : 1;
+    int nd = m->ndof, nc = s->ncon > 0 ? s->ncon : 1;
     w.fint = calloc((size_t)nd, sizeof(double));
     w.fext = calloc((size_t)nd, sizeof(double));
     w.qsave = calloc((size_t)nd, sizeof(double));
     w.qprev = calloc((size_t)nd, sizeof(double));
-    w.r = calloc((size_t)ne, sizeof(double));
-    w.dx = calloc((size_t)ne, sizeof(double));
     w.nu = calloc((size_t)nc, sizeof(double));
     w.nusave = calloc((size_t)nc, sizeof(double));
     w.nuprev = calloc((size_t)nc, sizeof(double));
-    w.Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof(double));
-    bk_linsolver ls = {0};
+    bk_nl nl = {0};
+    int have_nl = 0;
     bk_stability stab = {0};
     bk_checks chk = {0};
     int rc = 1, have_stab = 0;
-    if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.r || !w.dx || !w.nu || !w.nusave ||
-        !w.nuprev || !w.Ax) {
+    if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.nu || !w.nusave || !w.nuprev) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -324,12 +309,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to solve");
         goto done;
     }
-    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
-        snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
+    have_nl = 1;
+    if (bk_nl_init(&nl, s, out, info->message, sizeof info->message) != 0)
         goto done;
-    }
+    w.r = nl.r, w.dx = nl.dx, w.Ax = nl.Ax, w.norms = &nl.norms;
     w.quat = bk_quat_list(s, &w.nquat);
-    if (w.nquat < 0 || bk_norms_init(&w.norms, s) != 0 || bk_checks_init(&chk, s) != 0) {
+    if (w.nquat < 0 || bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -403,7 +388,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
                 }
                 a.id++;
-                st = newton(s, &ls, &w, q, target, lam, &a, o, m->length_scale, out, info->steps + 1);
+                st = newton(s, &nl, &w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
                 info->newton_iterations += a.iters;
             }
             /* On a stable path (static.stable_path), an increment that ends
@@ -508,24 +493,21 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     rc = 0;
 done:
     info->converged = rc == 0;
-    info->factorizations = ls.nfactor;
-    info->analyses = ls.nanalyze;
+    info->factorizations = nl.ls.nfactor;
+    info->analyses = nl.ls.nanalyze;
     info->stability_checked = have_stab;
-    bk_lin_free(&ls);
+    if (have_nl)
+        bk_nl_free(&nl);
     if (have_stab)
         bk_stability_free(&stab);
     free(w.fint);
     free(w.fext);
     free(w.qsave);
     free(w.qprev);
-    free(w.r);
-    free(w.dx);
     free(w.nu);
     free(w.nusave);
     free(w.nuprev);
-    free(w.Ax);
     free(w.quat);
-    bk_norms_free(&w.norms);
     bk_checks_free(&chk);
     return rc;
 }
