@@ -23,7 +23,8 @@ LOAD = {"force": ("type", "at", "value", "distribution"),
         "moment": ("type", "at", "value"),
         "gravity": ("type", "value")}
 STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
-          "stable_path", "step_control")
+          "stable_path", "step_control", "method", "arc_constraint", "target_load_factor", "max_steps",
+          "max_displacement", "arc_iterations")
 DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
            "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
 MODAL = ("modes", "about")

@@ -247,7 +247,8 @@ static void accept_stability(bk_stability *st, const bk_stability_result *res, d
         ev->neg_before = before;
         ev->neg_after = res->negative;
         ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
-        bk_warn(info, out->console, s_name,
+        if (!out->m->stat.arc_length)    /* arc-length: reported as critical points */
+            bk_warn(info, out->console, s_name,
                 "the number of negative tangent eigenvalues went from %d to %d between load factors %.6g and "
                 "%.6g (critical load factor %.6g): a %s was passed%s", before, res->negative, *prev_lam, lam,
                 ev->lam_critical, res->negative > before ? "bifurcation or limit point" : "point of regained stability",
@@ -281,6 +282,530 @@ static double next_increment(const bk_static_opts *o, double dlam, double dlam0,
     if (calm < 2)
         f = fmin(f, dlam < dlam0 ? 2.0 : 1.0);      /* after a cut-back: back to dlam0 at most */
     return fmin(fmin(dlam * f, calm < 2 ? fmax(dlam0, dlam) : 1.0), 1.0);
+}
+
+/* ---- Arc-length continuation (static.method = "arc_length") ----
+ *
+ * The unknowns x (free DOFs and multipliers) and the load factor lam follow
+ * the equilibrium path r(x, lam) = 0 in steps of arc length dl:
+ *     |x - x_n|_W^2 + psi^2 (lam - lam_n)^2 = dl^2
+ * (Crisfield).  W weighs the free DOFs: 1 for positions, L^2 for the
+ * dimensionless fields (position gradients, quaternions; L the model's length
+ * scale), so that a rotation counts as the motion it causes over the model, 0
+ * for multipliers; psi = 0 (cylindrical) or psi^2 = t0' W t0 (spherical: a
+ * unit load factor counts as the linear displacement at full load, t0 the
+ * tangent at the start).  Each Newton correction is bordered: with
+ * K dx_r = -r and K t = -dr/dlam, dx = dx_r + dlam t with dlam from the
+ * constraint (the root nearer the current increment; where the quadratic has
+ * none, the dlam closest to satisfying it).  The predictor goes along the
+ * tangent, oriented so that it makes an acute angle with the last increment:
+ * the path never turns back, and the load factor may exceed 1 and go down.
+ * The arc length follows the iteration count (sqrt(arc_iterations / iters),
+ * in [0.5, 2], at most 8 times the first), is halved on failure, and the first
+ * is the arc of a load increment target / load_steps along the tangent. */
+typedef struct arc_ctx {
+    static_problem sp;               /* the residual, the update of q and nu; sp.lam: the iterate's */
+    work *w;
+    const double *W;                 /* [neq] weights of the constraint */
+    const int *fdof;                 /* [nfree] equation -> DOF */
+    double *rl, *t, *tmp, *fol;      /* [neq] x 3, [ndof] */
+    double lam0;                     /* the load factor at the start of the step (x_n: w->qsave) */
+    double dl, psi2;
+    double pending;                  /* the load-factor part of the last correction */
+} arc_ctx;
+
+/* dr/dlam at (q, nu, lam) into rl[neq]: the dead and follower loads, and the
+ * load-factor dependence of rheonomic constraints (central difference). */
+static void load_derivative(bk_system *s, work *w, const double *q, double lam, double *rl, double *fol,
+                            double *tmp)
+{
+    const bk_model *m = s->m;
+    memset(fol, 0, (size_t)m->ndof * sizeof *fol);
+    bk_assemble_follower(s, q, 1.0, fol, NULL);
+    for (int i = 0; i < m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            rl[s->eq[i]] = fol[i] - w->fext[i];
+    for (int c = 0; c < s->ncon; ++c)
+        rl[s->nfree + c] = 0.0;
+    if (s->ncon > 0) {
+        double d = 1e-6 * fmax(1.0, fabs(lam));
+        memset(tmp, 0, (size_t)s->neq * sizeof *tmp);
+        bk_assemble_constraints(s, q, w->nu, lam + d, tmp, NULL);
+        for (int j = 0; j < s->neq; ++j)
+            rl[j] += tmp[j] / (2.0 * d);
+        memset(tmp, 0, (size_t)s->neq * sizeof *tmp);
+        bk_assemble_constraints(s, q, w->nu, lam - d, tmp, NULL);
+        for (int j = 0; j < s->neq; ++j)
+            rl[j] -= tmp[j] / (2.0 * d);
+    }
+}
+
+static int arc_augment(void *ctx, bk_linsolver *ls, double *dx)
+{
+    arc_ctx *c = ctx;
+    bk_system *s = c->sp.s;
+    const double *q = c->sp.q, *q0 = c->w->qsave;
+    load_derivative(s, c->w, q, c->sp.lam, c->rl, c->fol, c->tmp);
+    for (int j = 0; j < s->neq; ++j)
+        c->t[j] = -c->rl[j];
+    if (bk_lin_solve(ls, c->t) != BK_LIN_OK)
+        return -1;
+    double dlam = c->sp.lam - c->lam0;
+    double A = c->psi2, B = 2.0 * c->psi2 * dlam, C = c->psi2 * dlam * dlam - c->dl * c->dl, D1 = c->psi2 * dlam;
+    for (int j = 0; j < s->nfree; ++j) {
+        double wj = c->W[j], a = q[c->fdof[j]] - q0[c->fdof[j]], u = a + dx[j], tj = c->t[j];
+        A += wj * tj * tj;
+        B += 2.0 * wj * u * tj;
+        C += wj * u * u;
+        D1 += wj * a * tj;
+    }
+    if (!(A > 0.0))
+        return -1;
+    double disc = B * B - 4.0 * A * C, r;
+    if (disc < 0.0)
+        r = -B / (2.0 * A);          /* no root: the closest to the constraint */
+    else {
+        double sq = sqrt(disc), r1 = (-B + sq) / (2.0 * A), r2 = (-B - sq) / (2.0 * A);
+        r = D1 >= 0.0 ? fmax(r1, r2) : fmin(r1, r2);   /* the acute angle with the increment */
+    }
+    for (int j = 0; j < s->neq; ++j)
+        dx[j] += r * c->t[j];
+    c->pending = r;
+    return 0;
+}
+
+static void arc_update(void *ctx, const double *dx, double alpha)
+{
+    arc_ctx *c = ctx;
+    sp_update(&c->sp, dx, alpha);
+    c->sp.lam += alpha * c->pending;
+}
+
+static double arc_step_limit(void *ctx, const double *dx)
+{
+    arc_ctx *c = ctx;
+    return sp_step_limit(&c->sp, dx);
+}
+
+/* The tangent at the equilibrium (q, w->nu, lam): t = -K^-1 dr/dlam into c->t;
+ * its weighted square length into *tWt.  Returns 0, or a BK_NL_* code. */
+static int arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, double *tWt)
+{
+    if (residual(s, c->w, q, c->w->nu, lam, 1) != 0)
+        return BK_NL_NONFINITE;
+    int st = bk_lin_factor(&nl->ls, nl->Ax);
+    if (st != BK_LIN_OK)
+        return st == BK_LIN_SINGULAR ? BK_NL_SINGULAR : BK_NL_LINERR;
+    load_derivative(s, c->w, q, lam, c->rl, c->fol, c->tmp);
+    for (int j = 0; j < s->neq; ++j)
+        c->t[j] = -c->rl[j];
+    if (bk_lin_solve(&nl->ls, c->t) != BK_LIN_OK)
+        return BK_NL_LINERR;
+    double ss = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        ss += c->W[j] * c->t[j] * c->t[j];
+    if (!isfinite(ss))
+        return BK_NL_NONFINITE;
+    *tWt = ss;
+    return BK_NL_OK;
+}
+
+/* One arc step of length dl from the equilibrium in q, w->nu at lam0 along
+ * the tangent c->t oriented by sigma: the predictor, then the bordered Newton
+ * iteration.  On success q, w->nu, c->sp.lam hold the new equilibrium; on
+ * failure the start is restored.  w->qsave, w->nusave: the start. */
+static int arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, double sigma, double tWt,
+                    double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info)
+{
+    work *w = c->w;
+    const bk_model *m = s->m;
+    memcpy(w->qsave, q, (size_t)m->ndof * sizeof *q);
+    memcpy(w->nusave, w->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    double dlp = sigma * dl / sqrt(tWt + c->psi2);
+    step_to(s, w, q, w->nu, c->t, dlp, q, w->nu);
+    c->lam0 = lam0;
+    c->dl = dl;
+    c->sp.lam = lam0 + dlp;
+    c->sp.lam_last = lam0;
+    c->pending = 0.0;
+    bk_nl_problem p = {.ctx = c, .q = q, .residual = sp_residual, .augment = arc_augment, .update = arc_update,
+                       .step_limit = arc_step_limit};
+    /* sp_residual reads the static_problem at the start of the context */
+    bk_nl_opts no = static_nl_opts(o);
+    a->id++;
+    bk_nl_row row = {.attempt = a->id, .step = step, .lam = lam0 + dlp};
+    bk_nl_result res;
+    int st = bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
+    info->newton_iterations += res.iters;
+    a->iters = res.iters, a->rnorm = res.rnorm, a->dnorm = res.dnorm, a->ref = res.ref;
+    a->rtol_abs = res.rtol_abs, a->rcond = res.rcond, a->residual_met = res.residual_met;
+    a->singular_at_start = res.singular_at_start, a->signo = res.signo;
+    if (st != BK_NL_OK) {
+        memcpy(q, w->qsave, (size_t)m->ndof * sizeof *q);
+        memcpy(w->nu, w->nusave, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    }
+    return st;
+}
+
+/* Displacements of the first sensors at q into cp. */
+static void sensor_displacements(const bk_model *m, const double *q, bk_critical_point *cp)
+{
+    cp->nsensor = m->nsensor < BK_CRIT_SENSORS ? m->nsensor : BK_CRIT_SENSORS;
+    for (int k = 0; k < cp->nsensor; ++k) {
+        double p[3], p0[3];
+        bk_eval_point(m, q, m->sensors[k].elem, m->sensors[k].xi, p, NULL);
+        bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, p0, NULL);
+        for (int i = 0; i < 3; ++i)
+            cp->u[k][i] = p[i] - p0[i];
+    }
+}
+
+static double max_sensor_displacement(const bk_model *m, const double *q)
+{
+    bk_critical_point cp;
+    double d = 0.0;
+    sensor_displacements(m, q, &cp);
+    for (int k = 0; k < cp.nsensor; ++k)
+        d = fmax(d, sqrt(cp.u[k][0] * cp.u[k][0] + cp.u[k][1] * cp.u[k][1] + cp.u[k][2] * cp.u[k][2]));
+    return d;
+}
+
+/* The path state of one equilibrium (for the bisection of a limit point). */
+typedef struct arc_point {
+    double *q, *nu;
+    double lam;
+} arc_point;
+
+static void arc_save(const bk_system *s, const work *w, const double *q, double lam, arc_point *p)
+{
+    memcpy(p->q, q, (size_t)s->m->ndof * sizeof *q);
+    memcpy(p->nu, w->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    p->lam = lam;
+}
+
+static void arc_restore(const bk_system *s, work *w, double *q, double *lam, const arc_point *p)
+{
+    memcpy(q, p->q, (size_t)s->m->ndof * sizeof *q);
+    memcpy(w->nu, p->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    *lam = p->lam;
+}
+
+/* Orientation of the tangent c->t at the equilibrium q (lam) along the path
+ * coming from (q_from, lam_from): +1 when the load factor grows along it. */
+static double arc_orientation(const bk_system *s, const arc_ctx *c, const double *q, double lam,
+                              const double *q_from, double lam_from)
+{
+    double d = c->psi2 * (lam - lam_from);
+    for (int j = 0; j < s->nfree; ++j)
+        d += c->W[j] * (q[c->fdof[j]] - q_from[c->fdof[j]]) * c->t[j];
+    return d >= 0.0 ? 1.0 : -1.0;
+}
+
+/* Bisection on the arc length from the equilibrium A (orientation sigma_a,
+ * the load factor growing when sigma_a > 0) for the limit point within the
+ * arc dl: the arc s at which the orientation of the load factor turns.
+ * Returns the extreme load factor found (the state there in best), the
+ * number of bisection solves in *nsolve. */
+#define ARC_BISECTIONS 14
+#define ARC_NEAR 3
+static double arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, const arc_point *A,
+                               double sigma_a, double dl, const bk_static_opts *o, attempt *a, int step,
+                               bk_run_info *info, arc_point *best, double lam_b)
+{
+    double lo = 0.0, hi = dl, lam_best = sigma_a > 0.0 ? fmax(A->lam, lam_b) : fmin(A->lam, lam_b);
+    int have_best = 0;
+    for (int k = 0; k < ARC_BISECTIONS; ++k) {
+        double mid = 0.5 * (lo + hi), lam = A->lam, tWt;
+        arc_restore(s, c->w, q, &lam, A);
+        if (arc_tangent(s, nl, c, q, lam, &tWt) != BK_NL_OK)
+            break;
+        if (arc_step(s, nl, c, q, lam, sigma_a, tWt, mid, o, a, step, info) != BK_NL_OK)
+            break;
+        double lam_m = c->sp.lam;
+        if (sigma_a > 0.0 ? lam_m >= lam_best : lam_m <= lam_best) {
+            lam_best = lam_m;
+            arc_save(s, c->w, q, lam_m, best);
+            have_best = 1;
+        }
+        if (arc_tangent(s, nl, c, q, lam_m, &tWt) != BK_NL_OK)
+            break;
+        double sg = arc_orientation(s, c, q, lam_m, A->q, A->lam);
+        if (sg == sigma_a)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    if (!have_best)
+        best->lam = NAN;
+    return lam_best;
+}
+
+static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *out, bk_run_info *info, FILE *log,
+                      bk_stability *stab, int have_stab, bk_checks *chk)
+{
+    const bk_model *m = s->m;
+    const bk_static_opts *o = &m->stat;
+    int nd = m->ndof, ne = s->neq, nc = s->ncon > 0 ? s->ncon : 1, rc = 1;
+    bk_critical_point cand[BK_MAX_EVENTS];          /* bifurcation candidates */
+    int cand_neg[BK_MAX_EVENTS][2], ncand = 0;
+    arc_ctx c = {.sp = {.s = s, .w = w, .q = q, .lscale = m->length_scale}, .w = w};
+    double *W = calloc((size_t)ne, sizeof *W), *dprev = calloc((size_t)ne, sizeof *dprev);
+    int *fdof = calloc((size_t)(s->nfree > 0 ? s->nfree : 1), sizeof *fdof);
+    c.rl = calloc((size_t)ne, sizeof *c.rl), c.t = calloc((size_t)ne, sizeof *c.t);
+    c.tmp = calloc((size_t)ne, sizeof *c.tmp), c.fol = calloc((size_t)nd, sizeof *c.fol);
+    arc_point A = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    arc_point B = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    arc_point best = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    double *qstart = calloc((size_t)nd, sizeof(double));
+    info->continuation = 1;
+    if (!W || !dprev || !fdof || !c.rl || !c.t || !c.tmp || !c.fol || !A.q || !A.nu || !B.q || !B.nu || !best.q ||
+        !best.nu || !qstart) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    c.W = W, c.fdof = fdof;
+    for (int i = 0; i < nd; ++i)
+        if (s->eq[i] >= 0 && s->eq[i] < s->nfree)
+            fdof[s->eq[i]] = i;
+    {
+        const double L2 = m->length_scale * m->length_scale;
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_elem *el = &m->elems[e];
+            const bk_element *et = m->pairs[el->pair]->element;
+            for (int f = 0; f < et->nfield; ++f) {
+                bk_field_role role = et->field_role[f];
+                double wt = role == BK_FIELD_POSITION ? 1.0
+                            : bk_field_is_gradient(role) || role == BK_FIELD_QUATERNION ? L2 : 0.0;
+                for (int i = 0; i < et->field_dim[f]; ++i) {
+                    int eqn = s->eq[el->dofs[et->field_dof[f] + i]];
+                    if (eqn >= 0 && eqn < s->nfree)
+                        W[eqn] = wt;
+                }
+            }
+        }
+    }
+    memcpy(qstart, q, (size_t)nd * sizeof *q);
+    double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, dlam_prev = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
+    double travelled = 0.0, prev_lam = 0.0;
+    int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
+    attempt a = {0};
+    bk_stability_result sres;
+    if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
+        snprintf(info->message, sizeof info->message,
+                 "static.method = \"arc_length\": the scene has no load to scale (expected a force, moment or "
+                 "gravity load)");
+        goto done;
+    }
+    for (;;) {
+        double tWt;
+        int st = arc_tangent(s, nl, &c, q, lam, &tWt);
+        if (st != BK_NL_OK || !(tWt > 0.0)) {
+            snprintf(info->message, sizeof info->message,
+                     "arc-length: no tangent at the equilibrium of step %d, load factor %.6g (%s): the tangent "
+                     "is singular there (a bifurcation point hit exactly, or a mechanism)", info->steps, lam,
+                     st != BK_NL_OK ? bk_nl_why(st) : "the load moves nothing");
+            goto done;
+        }
+        if (info->steps == 0) {
+            c.psi2 = o->arc_spherical ? tWt : 0.0;
+            dl = dl0 = target / o->load_steps * sqrt(tWt + c.psi2);
+        }
+        double sigma = have_dir ? arc_orientation(s, &c, q, lam, A.q, A.lam) : 1.0;
+        /* a limit point between the last two equilibria: the load factor turned */
+        if (have_dir && sigma != sigma_prev && info->ncritical < BK_MAX_EVENTS) {
+            arc_save(s, w, q, lam, &B);
+            int step = info->steps;
+            double lc = arc_bisect_limit(s, nl, &c, q, &A, sigma_prev, dl_prev, o, &a, step, info, &best, lam);
+            bk_critical_point *cp = &info->critical[info->ncritical++];
+            cp->limit = 1;
+            cp->step = step;
+            cp->lam = lc;
+            sensor_displacements(m, isfinite(best.lam) ? best.q : B.q, cp);
+            if (out->console) {
+                fprintf(out->console, "%s: limit point at load factor %.6g (between steps %d and %d)", m->name, lc,
+                        step - 1, step);
+                if (cp->nsensor)
+                    fprintf(out->console, ", sensor %s displacement [%.6g, %.6g, %.6g] m", m->sensors[0].name,
+                            cp->u[0][0], cp->u[0][1], cp->u[0][2]);
+                fprintf(out->console, "\n");
+            }
+            if (log)
+                fprintf(log, "  limit point: load factor %.6g between steps %d and %d\n", lc, step - 1, step);
+            /* a stability event of the same step is this limit point */
+            if (info->nstability > 0 && info->stability[info->nstability - 1].step == step)
+                info->stability[info->nstability - 1].lam_critical = lc;
+            claimed = step;
+            arc_restore(s, w, q, &lam, &B);
+            if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)", info->steps,
+                         bk_nl_why(st));
+                goto done;
+            }
+        }
+        if (info->steps >= o->max_steps) {
+            snprintf(info->message, sizeof info->message,
+                     "arc-length: the load-factor target %.6g was not reached within static.max_steps = %d steps; "
+                     "the path is kept up to step %d, load factor %.6g, largest sensor displacement %.6g m",
+                     target, o->max_steps, info->steps, lam, max_sensor_displacement(m, q));
+            goto done;
+        }
+        /* the step: predictor along the oriented tangent, bordered Newton, cut-backs */
+        arc_save(s, w, q, lam, &A);
+        int cuts = 0;
+        for (;;) {
+            st = arc_step(s, nl, &c, q, lam, sigma, tWt, dl, o, &a, info->steps + 1, info);
+            if (st == BK_NL_OK || st == BK_NL_INTERRUPTED)
+                break;
+            if (cuts >= o->max_cutbacks) {
+                char what[600];
+                diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                snprintf(info->message, sizeof info->message,
+                         "arc-length failed at step %d from load factor %.6g (arc length %.3e): %s; residual %.3e "
+                         "(tolerance %.3e) after %d iterations, %d cut-backs; the path is kept up to step %d",
+                         info->steps + 1, lam, dl, what, a.rnorm, a.rtol_abs, a.iters, cuts, info->steps);
+                goto done;
+            }
+            cuts++;
+            info->cutbacks++;
+            calm = 0;
+            dl *= 0.5;
+            if (log)
+                fprintf(log, "  cut-back at load factor %.6g (%s): new arc length %.3g\n", lam, bk_nl_why(st), dl);
+            if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
+                         info->steps, bk_nl_why(st));
+                goto done;
+            }
+        }
+        if (st == BK_NL_INTERRUPTED) {
+            info->interrupted = a.signo;
+            snprintf(info->message, sizeof info->message,
+                     "interrupted by %s during step %d from load factor %.6g; the %d converged steps are kept",
+                     bk_interrupt_name(a.signo), info->steps + 1, lam, info->steps);
+            goto done;
+        }
+        double lam_new = c.sp.lam;
+        int reached = (lam - target) * (lam_new - target) <= 0.0 && lam_new > lam;
+        if (reached && lam_new != target) {
+            /* land on the target by load control from the arc point */
+            arc_save(s, w, q, lam_new, &B);
+            memcpy(w->qsave, A.q, (size_t)nd * sizeof *q);
+            a.id++;
+            int lst = newton(s, nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
+            info->newton_iterations += a.iters;
+            if (lst == NEWTON_OK)
+                lam_new = target;
+            else
+                arc_restore(s, w, q, &lam_new, &B);
+        }
+        for (int j = 0; j < s->nfree; ++j)
+            dprev[j] = q[fdof[j]] - A.q[fdof[j]];
+        dlam_prev = lam_new - lam;
+        dl_prev = dl;
+        travelled += dl;
+        sigma_prev = sigma;
+        have_dir = 1;
+        lam = lam_new;
+        info->steps++;
+        info->load_factor = lam;
+        bk_output_step(out, info->steps, lam, q);
+        bk_checks_state(chk, s, q, "load factor", lam, info, out->console);
+        if (log)
+            fprintf(log, "  step %d: load factor %.6g, arc length %.3g, %d iterations, residual %.3e\n", info->steps,
+                    lam, dl, a.iters, a.rnorm);
+        if (have_stab) {
+            probe_stability(stab, s, w, q, lam, 0, &sres);
+            accept_stability(stab, &sres, lam, out, info, log, &prev_lam);
+        }
+        /* a change of the negative-eigenvalue count in the last step without
+         * a limit point: a bifurcation candidate (its load factor from the
+         * bisection on the inertia of the interpolated tangent, sensors
+         * interpolated); kept unless a limit point is within ARC_NEAR steps
+         * (the count flickers while the smallest eigenvalue hovers about zero
+         * on the flat top of a limit point) */
+        if (info->nstability > 0 && info->stability[info->nstability - 1].step == info->steps &&
+            claimed != info->steps && ncand < BK_MAX_EVENTS) {
+            const bk_stability_event *ev = &info->stability[info->nstability - 1];
+            bk_critical_point *cp = &cand[ncand++], ca, cb;
+            double f = isfinite(ev->lam_critical) && lam != A.lam ? (ev->lam_critical - A.lam) / (lam - A.lam) : 1.0;
+            sensor_displacements(m, A.q, &ca);
+            sensor_displacements(m, q, &cb);
+            cp->limit = 0;
+            cp->step = info->steps;
+            cp->lam = ev->lam_critical;
+            cp->nsensor = cb.nsensor;
+            for (int k = 0; k < cb.nsensor; ++k)
+                for (int i = 0; i < 3; ++i)
+                    cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
+            cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
+            claimed = info->steps;
+        }
+        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
+        if (reached) {
+            rc = 0;
+            goto done;
+        }
+        if (o->max_displacement > 0.0 && max_sensor_displacement(m, q) >= o->max_displacement) {
+            if (out->console)
+                fprintf(out->console, "%s: arc-length stopped at the displacement limit %.6g m (step %d, load "
+                        "factor %.6g)\n", m->name, o->max_displacement, info->steps, lam);
+            rc = 0;
+            goto done;
+        }
+        /* a closed loop: back at the start after going around */
+        if (travelled > 4.0 * dl0 && info->steps > 4) {
+            double d2 = c.psi2 * lam * lam;
+            for (int j = 0; j < s->nfree; ++j) {
+                double dj = q[fdof[j]] - qstart[fdof[j]];
+                d2 += W[j] * dj * dj;
+            }
+            if (sqrt(d2) < 0.5 * dl && fabs(lam) < 0.5 * fabs(dlam_prev) + 1e-12) {
+                snprintf(info->message, sizeof info->message,
+                         "arc-length: the path returned to its start at step %d (a closed loop: load factor %.6g, "
+                         "distance %.3e from the start, arc length %.3e); the target %.6g is not on this path",
+                         info->steps, lam, sqrt(d2), dl, target);
+                goto done;
+            }
+        }
+        /* the next arc length from the iteration count */
+        double f = sqrt((double)o->arc_iters / (a.iters > 1 ? a.iters : 1));
+        f = fmin(fmax(f, 0.5), 2.0);
+        if (calm < 2) {
+            f = fmin(f, 1.0);
+            calm++;
+        }
+        dl = fmin(dl * f, 8.0 * dl0);
+    }
+done:
+    /* the bifurcations: candidates away from every limit point, merged by
+     * step; a change taken back within ARC_NEAR steps (0 -> 1 -> 0) is the
+     * flicker of an eigenvalue about zero and no bifurcation */
+    char gone[BK_MAX_EVENTS] = {0};
+    for (int k = 0; k + 1 < ncand; ++k)
+        if (!gone[k] && cand_neg[k][0] == cand_neg[k + 1][1] && cand_neg[k][1] == cand_neg[k + 1][0] &&
+            cand[k + 1].step - cand[k].step <= ARC_NEAR)
+            gone[k] = gone[k + 1] = 1;
+    for (int k = 0; k < ncand; ++k) {
+        int near = gone[k];
+        for (int j = 0; j < info->ncritical; ++j)
+            near |= info->critical[j].limit && abs(info->critical[j].step - cand[k].step) <= ARC_NEAR;
+        if (near || info->ncritical >= BK_MAX_EVENTS)
+            continue;
+        int at = info->ncritical;
+        while (at > 0 && info->critical[at - 1].step > cand[k].step) {
+            info->critical[at] = info->critical[at - 1];
+            at--;
+        }
+        info->critical[at] = cand[k];
+        info->ncritical++;
+        if (out->console)
+            fprintf(out->console, "%s: bifurcation at load factor %.6g (between steps %d and %d: negative tangent "
+                    "eigenvalues %d -> %d)\n", m->name, cand[k].lam, cand[k].step - 1, cand[k].step, cand_neg[k][0],
+                    cand_neg[k][1]);
+    }
+    free(W), free(dprev), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(qstart);
+    free(A.q), free(A.nu), free(B.q), free(B.nu), free(best.q), free(best.nu);
+    return rc;
 }
 
 int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
@@ -349,6 +874,10 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     if (have_stab) {
         probe_stability(&stab, s, &w, q, 0.0, 0, &sres);
         accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
+    }
+    if (o->arc_length) {
+        rc = arc_length(s, &nl, &w, q, out, info, log, &stab, have_stab, &chk);
+        goto done;
     }
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
