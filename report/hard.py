@@ -444,9 +444,9 @@ def case_continuation(quick):
              "`static.method = \"arc_length\"` (runtime/newton.c): cylindrical arc-length constraint, tangent "
              "predictor oriented along the last increment, arc length from the iteration count, limit points "
              "refined by bisection on the arc length, bifurcations from the change of the negative-eigenvalue "
-             "count (bisection on the inertia).  `gef` is the reference element.  Lee's frame is not here: "
-             "the scene language has no rigid beam-to-beam joint yet (a corner needs one), and follower loads "
-             "for its second variant do not exist yet either.", "",
+             "count (bisection on the inertia).  `gef` is the reference element.  Lee's frame with a follower "
+             "load is not here: follower forces do not exist in the scene language yet.  The ANCF continuum "
+             "elements take no rigid beam-to-beam joint (Lee's frame) and no curved reference (the arch).", "",
              "| benchmark | element | converged | steps | iterations | critical points (load) | reference | error |",
              "|---|---|---|---|---|---|---|---|"]
     rows = []
@@ -460,6 +460,8 @@ def case_continuation(quick):
               ["gef", "euler_bernoulli", "ancf_cable"]),
              ("deep arch 215°, P_cr", "deep_arch_215", "arch", 1000.0, 897.0, "DaDeppo & Schmidt 1975",
               ["gef", "euler_bernoulli", "kirchhoff"]),
+             ("Lee's frame, P_max L²/EI", "lee_frame", ("column", "beam"), 1.0, 18.5, "literature value",
+              ["gef", "euler_bernoulli", "kirchhoff"]),
              ("seed cantilever, Euler load", "cantilever_euler_arc", "arm", 200.0, PCR, "π²EI/(4L²)",
               ["gef", "euler_bernoulli", "ancf3243", "ancf3363"])]
     if quick:
@@ -467,7 +469,7 @@ def case_continuation(quick):
     paths = []
     for title, scene, beam, load, ref, refname, elems in cases:
         for element in elems:
-            sets = [f"beam.{beam}.element={element}"]
+            sets = [f"beam.{b}.element={element}" for b in (beam if isinstance(beam, tuple) else (beam,))]
             if element.startswith("ancf3"):
                 sets += ["material.alu.law=svk"] + (["beam.arm.integration=reduced"] if element == "ancf3363" else [])
             sc = str(cable) if element == "ancf_cable" else scene
@@ -483,6 +485,24 @@ def case_continuation(quick):
             rows.append(dict(benchmark=scene, element=element, converged=s["converged"], steps=s["steps"],
                              iterations=s["newton_iterations"], critical=val, reference=ref))
             paths.append((title, element, s))
+    # branch switch onto the post-buckled elastica (P = 200 N): tip vs the inextensible elastica
+    ex, ez = elastica_compressed(200.0)
+    lines += ["", "Branch switch (`static.branch_switch`, models/cantilever_postbuckling.toml): 200 N on the seed "
+              "cantilever without imperfection; tip at the full load against the inextensible elastica "
+              f"(x = {ex:.5f} L, deflection {ez:.5f} L).", "",
+              "| element | converged | steps | iterations | tip x (m) | deflection (m) | tip error / L | warnings |",
+              "|---|---|---|---|---|---|---|---|"]
+    for element in (["gef"] if quick else ["gef", "euler_bernoulli", "ancf3243"]):
+        sets = [f"beam.arm.element={element}"] + (["material.alu.law=svk"] if element.startswith("ancf3") else [])
+        s = run("cantilever_postbuckling", sets, f"arc-postbuckling-{element}")
+        p = s["sensors"]["tip"]["position"]
+        dfl = math.hypot(p[1], p[2])
+        err = math.hypot(p[0] - ex, dfl - ez)
+        lines.append(f"| {element} | {s['converged']} | {s['steps']} | {s['newton_iterations']} | {p[0]:.5f} | "
+                     f"{dfl:.5f} | {err:.1e} | {len(s.get('warnings', []))} |")
+        rows.append(dict(benchmark="cantilever_postbuckling", element=element, converged=s["converged"],
+                         steps=s["steps"], iterations=s["newton_iterations"], critical=err, reference=0.0))
+        paths.append(("post-buckling (branch switch)", element, s))
     lines += ["", "The truss is exact for every element with the axial law ½EA(|r′|−1)² (a straight pin-ended bar "
               "carries its axial force only); the path passes both limit points and ends on the inverted branch.  "
               "The arch's limit point needs no imperfection (the supports are not symmetric).  "
@@ -490,8 +510,11 @@ def case_continuation(quick):
               "(its regularized internal multipliers in the inertia check); `kirchhoff` is inextensible, so an "
               "axial load moves nothing on the straight path and arc-length has no tangent to follow there "
               "(it stops with that message).  The continuum ANCF elements take no curved reference (no arch).  "
-              "Branch switching at a bifurcation (onto the post-buckled elastica) is not implemented: the path "
-              "stays on the straight branch.", ""]
+              "The branch switch follows the elastica with the rod elements; with `ancf3243` the switch step "
+              "does not converge (the cause is not investigated yet) and "
+              "the path goes on along the straight branch with a warning.  The square section leaves the "
+              "buckling plane free: the count of negative eigenvalues flickers on the post-buckled path (a "
+              "neutral direction), which the critical-point list filters as flicker.", ""]
     try:
         plot_paths(paths, OUT / "hard_continuation_paths.png")
         lines += ["![continuation paths](hard_continuation_paths.png)", ""]

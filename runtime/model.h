@@ -82,6 +82,7 @@ typedef struct bk_static_opts {
     int max_steps;     /* step budget of the path */
     double max_displacement;   /* > 0: stop when a sensor moved this far (m) */
     int arc_iters;     /* Newton iterations per step the arc length aims at */
+    int branch_switch; /* 1: onto the secondary branch at the first bifurcation */
 } bk_static_opts;
 
 typedef struct bk_dynamic_opts {

@@ -301,8 +301,13 @@ static double next_increment(const bk_static_opts *o, double dlam, double dlam0,
  * tangent, oriented so that it makes an acute angle with the last increment:
  * the path never turns back, and the load factor may exceed 1 and go down.
  * The arc length follows the iteration count (sqrt(arc_iterations / iters),
- * in [0.5, 2], at most 8 times the first), is halved on failure, and the first
- * is the arc of a load increment target / load_steps along the tangent. */
+ * in [0.5, 2], at most 8 times the first or 0.05 of the model length), is
+ * halved on failure, and the first is the arc of a load increment
+ * target / load_steps along the tangent.  With static.branch_switch the step
+ * after the first bifurcation starts along the null vector of the tangent
+ * (the eigenvector of its eigenvalue nearest zero) with the load factor kept:
+ * the arc-length sphere about the equilibrium past the bifurcation meets the
+ * secondary branch, and the path follows it from there. */
 typedef struct arc_ctx {
     static_problem sp;               /* the residual, the update of q and nu; sp.lam: the iterate's */
     work *w;
@@ -415,17 +420,17 @@ static int arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double la
  * iteration.  On success q, w->nu, c->sp.lam hold the new equilibrium; on
  * failure the start is restored.  w->qsave, w->nusave: the start. */
 static int arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, double sigma, double tWt,
-                    double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info)
+                    double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info, double lam_scale)
 {
     work *w = c->w;
     const bk_model *m = s->m;
     memcpy(w->qsave, q, (size_t)m->ndof * sizeof *q);
     memcpy(w->nusave, w->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
-    double dlp = sigma * dl / sqrt(tWt + c->psi2);
+    double dlp = sigma * dl / sqrt(tWt + lam_scale * c->psi2);
     step_to(s, w, q, w->nu, c->t, dlp, q, w->nu);
     c->lam0 = lam0;
     c->dl = dl;
-    c->sp.lam = lam0 + dlp;
+    c->sp.lam = lam0 + lam_scale * dlp;
     c->sp.lam_last = lam0;
     c->pending = 0.0;
     bk_nl_problem p = {.ctx = c, .q = q, .residual = sp_residual, .augment = arc_augment, .update = arc_update,
@@ -519,7 +524,7 @@ static double arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, c
         arc_restore(s, c->w, q, &lam, A);
         if (arc_tangent(s, nl, c, q, lam, &tWt) != BK_NL_OK)
             break;
-        if (arc_step(s, nl, c, q, lam, sigma_a, tWt, mid, o, a, step, info) != BK_NL_OK)
+        if (arc_step(s, nl, c, q, lam, sigma_a, tWt, mid, o, a, step, info, 1.0) != BK_NL_OK)
             break;
         double lam_m = c->sp.lam;
         if (sigma_a > 0.0 ? lam_m >= lam_best : lam_m <= lam_best) {
@@ -540,6 +545,25 @@ static double arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, c
     return lam_best;
 }
 
+/* The direction of a branch switch into c->t: the eigenvector of the
+ * smallest-magnitude eigenvalue of the last stability check (the null vector
+ * at the bifurcation), its free part, the sign of its largest weighted
+ * component positive; its weighted square length into *tWt. */
+static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx *c, double *tWt)
+{
+    double ss = 0.0, big = 0.0;
+    for (int j = 0; j < s->neq; ++j) {
+        c->t[j] = j < s->nfree ? st->x[j] : 0.0;
+        ss += c->W[j] * c->t[j] * c->t[j];
+        if (sqrt(c->W[j]) * fabs(c->t[j]) > fabs(big))
+            big = sqrt(c->W[j]) * c->t[j];
+    }
+    if (big < 0.0)
+        for (int j = 0; j < s->nfree; ++j)
+            c->t[j] = -c->t[j];
+    *tWt = ss;
+}
+
 static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *out, bk_run_info *info, FILE *log,
                       bk_stability *stab, int have_stab, bk_checks *chk)
 {
@@ -549,17 +573,17 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     bk_critical_point cand[BK_MAX_EVENTS];          /* bifurcation candidates */
     int cand_neg[BK_MAX_EVENTS][2], ncand = 0;
     arc_ctx c = {.sp = {.s = s, .w = w, .q = q, .lscale = m->length_scale}, .w = w};
-    double *W = calloc((size_t)ne, sizeof *W), *dprev = calloc((size_t)ne, sizeof *dprev);
+    double *W = calloc((size_t)ne, sizeof *W);
     int *fdof = calloc((size_t)(s->nfree > 0 ? s->nfree : 1), sizeof *fdof);
     c.rl = calloc((size_t)ne, sizeof *c.rl), c.t = calloc((size_t)ne, sizeof *c.t);
     c.tmp = calloc((size_t)ne, sizeof *c.tmp), c.fol = calloc((size_t)nd, sizeof *c.fol);
     arc_point A = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
     arc_point B = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
     arc_point best = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
-    double *qstart = calloc((size_t)nd, sizeof(double));
+    double *qstart = calloc((size_t)nd, sizeof(double)), *tprim = calloc((size_t)ne, sizeof(double));
     info->continuation = 1;
-    if (!W || !dprev || !fdof || !c.rl || !c.t || !c.tmp || !c.fol || !A.q || !A.nu || !B.q || !B.nu || !best.q ||
-        !best.nu || !qstart) {
+    if (!W || !fdof || !c.rl || !c.t || !c.tmp || !c.fol || !A.q || !A.nu || !B.q || !B.nu || !best.q ||
+        !best.nu || !qstart || !tprim) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -588,6 +612,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, dlam_prev = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
     double travelled = 0.0, prev_lam = 0.0;
     int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
+    int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
     attempt a = {0};
     bk_stability_result sres;
     if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
@@ -612,7 +637,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         }
         double sigma = have_dir ? arc_orientation(s, &c, q, lam, A.q, A.lam) : 1.0;
         /* a limit point between the last two equilibria: the load factor turned */
-        if (have_dir && sigma != sigma_prev && info->ncritical < BK_MAX_EVENTS) {
+        if (have_dir && sigma != sigma_prev && !after_switch && info->ncritical < BK_MAX_EVENTS) {
             arc_save(s, w, q, lam, &B);
             int step = info->steps;
             double lc = arc_bisect_limit(s, nl, &c, q, &A, sigma_prev, dl_prev, o, &a, step, info, &best, lam);
@@ -642,6 +667,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 goto done;
             }
         }
+        after_switch = 0;
         if (info->steps >= o->max_steps) {
             snprintf(info->message, sizeof info->message,
                      "arc-length: the load-factor target %.6g was not reached within static.max_steps = %d steps; "
@@ -653,7 +679,44 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         arc_save(s, w, q, lam, &A);
         int cuts = 0;
         for (;;) {
-            st = arc_step(s, nl, &c, q, lam, sigma, tWt, dl, o, &a, info->steps + 1, info);
+            double dls = dl;
+            if (switching) {
+                /* branch switch: the predictor along the null vector of the
+                 * tangent past the bifurcation, the load factor kept; the
+                 * sphere about the last equilibrium meets the secondary branch */
+                memcpy(tprim, c.t, (size_t)ne * sizeof *tprim);
+                branch_direction(s, stab, &c, &tWt);
+                dls = fmax(dl, 1e-2 * m->length_scale);
+            }
+            st = arc_step(s, nl, &c, q, lam, switching ? 1.0 : sigma, tWt, dls, o, &a, info->steps + 1, info,
+                          switching ? 0.0 : 1.0);
+            if (switching && st == BK_NL_OK) {
+                /* on the secondary branch the step is across the primary tangent */
+                double tt = 0.0, dd = 0.0, td = 0.0;
+                for (int j = 0; j < s->nfree; ++j) {
+                    double dj = q[fdof[j]] - A.q[fdof[j]];
+                    tt += W[j] * tprim[j] * tprim[j], dd += W[j] * dj * dj, td += W[j] * tprim[j] * dj;
+                }
+                if (tt > 0.0 && dd > 0.0 && fabs(td) > 0.9 * sqrt(tt * dd))
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) came back "
+                            "to the primary branch (the eigenvector nearest zero is not the buckling mode?)",
+                            info->steps, lam);
+                dl = dls;
+                if (out->console)
+                    fprintf(out->console, "%s: branch switch at step %d (load factor %.6g) onto the secondary branch "
+                            "along the null vector of the tangent\n", m->name, info->steps, lam);
+            }
+            if (switching && st != BK_NL_OK && st != BK_NL_INTERRUPTED) {
+                bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                        "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
+                switching = 0;
+                if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                    snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
+                             info->steps, bk_nl_why(st));
+                    goto done;
+                }
+                continue;
+            }
             if (st == BK_NL_OK || st == BK_NL_INTERRUPTED)
                 break;
             if (cuts >= o->max_cutbacks) {
@@ -684,6 +747,11 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                      bk_interrupt_name(a.signo), info->steps + 1, lam, info->steps);
             goto done;
         }
+        if (switching) {
+            switching = 0;
+            switched = 1;
+            after_switch = 1;           /* no limit point between the branches */
+        }
         double lam_new = c.sp.lam;
         int reached = (lam - target) * (lam_new - target) <= 0.0 && lam_new > lam;
         if (reached && lam_new != target) {
@@ -698,8 +766,6 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             else
                 arc_restore(s, w, q, &lam_new, &B);
         }
-        for (int j = 0; j < s->nfree; ++j)
-            dprev[j] = q[fdof[j]] - A.q[fdof[j]];
         dlam_prev = lam_new - lam;
         dl_prev = dl;
         travelled += dl;
@@ -722,9 +788,9 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
          * bisection on the inertia of the interpolated tangent, sensors
          * interpolated); kept unless a limit point is within ARC_NEAR steps
          * (the count flickers while the smallest eigenvalue hovers about zero
-         * on the flat top of a limit point) */
+         * on the flat top of a limit point); not the change of a branch switch */
         if (info->nstability > 0 && info->stability[info->nstability - 1].step == info->steps &&
-            claimed != info->steps && ncand < BK_MAX_EVENTS) {
+            claimed != info->steps && !after_switch && ncand < BK_MAX_EVENTS) {
             const bk_stability_event *ev = &info->stability[info->nstability - 1];
             bk_critical_point *cp = &cand[ncand++], ca, cb;
             double f = isfinite(ev->lam_critical) && lam != A.lam ? (ev->lam_critical - A.lam) / (lam - A.lam) : 1.0;
@@ -739,9 +805,11 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
             cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
             claimed = info->steps;
+            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before)
+                switching = 1;          /* the next step switches branch */
         }
         bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
-        if (reached) {
+        if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
             rc = 0;
             goto done;
         }
@@ -774,7 +842,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             f = fmin(f, 1.0);
             calm++;
         }
-        dl = fmin(dl * f, 8.0 * dl0);
+        dl = fmin(dl * f, fmax(8.0 * dl0, 0.05 * m->length_scale));
     }
 done:
     /* the bifurcations: candidates away from every limit point, merged by
@@ -803,7 +871,7 @@ done:
                     "eigenvalues %d -> %d)\n", m->name, cand[k].lam, cand[k].step - 1, cand[k].step, cand_neg[k][0],
                     cand_neg[k][1]);
     }
-    free(W), free(dprev), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(qstart);
+    free(W), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(qstart), free(tprim);
     free(A.q), free(A.nu), free(B.q), free(B.nu), free(best.q), free(best.nu);
     return rc;
 }

@@ -111,3 +111,127 @@ def test_arc_length_options_are_checked():
     check_error(TRUSS.replace('method = "arc_length"\n', ""), "static.target_load_factor", "arc_length")
     check_error(TRUSS.replace("target_load_factor = 1.0", "target_load_factor = 1.0\narc_constraint = \"ball\""),
                 "static.arc_constraint", "cylindrical")
+
+
+def test_branch_switch_follows_the_post_buckled_elastica():
+    # inextensible elastica of the cantilever under a dead end load P > P_E:
+    # L sqrt(P / EI) = K(m), m = k^2, k = sin(alpha / 2) (alpha: the tip angle);
+    # tip along the load x = L (2 E(m) / K(m) - 1), deflection 2 k L / K(m)
+    from scipy.special import ellipe, ellipk
+    s, rows = run_scene("cantilever_postbuckling")
+    assert s["converged"], s["error"]
+    EI, L, P = 7.2e10 * 0.01**4 / 12.0, 1.0, 200.0
+    m = brentq(lambda m: ellipk(m) - L * math.sqrt(P / EI), 1e-12, 1.0 - 1e-12)
+    x_ref = L * (2.0 * ellipe(m) / ellipk(m) - 1.0)
+    d_ref = 2.0 * math.sqrt(m) * L / ellipk(m)
+    p = s["sensors"]["tip"]["position"]
+    assert abs(p[0] - x_ref) < 2e-4 * L, (p, x_ref)
+    assert abs(math.hypot(p[1], p[2]) - d_ref) < 2e-4 * L, (p, d_ref)
+    assert s["load_factor"] == 1.0
+    crit = s["critical_points"]
+    assert [c["type"] for c in crit] == ["bifurcation"], crit
+    assert rel(crit[0]["load_factor"] * P, math.pi**2 * EI / 4.0) < 2e-3
+
+
+def test_spherical_constraint_finds_the_same_limit_loads():
+    text = TRUSS.replace("target_load_factor = 1.0", 'target_load_factor = 1.0\narc_constraint = "spherical"')
+    d = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    (d / "truss_spherical.toml").write_text(text)
+    s, _ = run_scene(d / "truss_spherical.toml", out=d / "out")
+    _, fmax = truss_limit()
+    lims = [c["load_factor"] * F_REF for c in s["critical_points"] if c["type"] == "limit_point"]
+    assert len(lims) == 2 and rel(lims[0], fmax) < 1e-4 and rel(lims[1], -fmax) < 1e-4, lims
+
+
+def test_lee_frame_limit_load_and_snap_back():
+    # Lee's frame (dead load at L/5 from the rigid corner, both ends pinned):
+    # the limit load commonly quoted from the literature is P L^2 / EI = 18.5
+    # (1.85 for L = 120, EI = 1440); the scene's load factor is P L^2 / EI.
+    s, rows = run_scene("lee_frame")
+    assert s["converged"], s["error"]
+    lim = [c for c in s["critical_points"] if c["type"] == "limit_point"]
+    assert len(lim) == 1 and [c["type"] for c in s["critical_points"]] == ["limit_point"], s["critical_points"]
+    assert rel(lim[0]["load_factor"], 18.5) < 5e-3, lim
+    # past the limit: the snap-back (the load point's vertical displacement
+    # turns back while the load falls) and a negative load factor
+    uz = [float(r["uz"]) for r in rows]
+    lam = [float(r["time"]) for r in rows]
+    k = uz.index(min(uz))
+    assert lam[k] < lim[0]["load_factor"] and uz[-1] - uz[k] > 0.05 * 1.2, (uz[k], uz[-1])
+    assert min(lam) < 0.0
+
+
+def test_rigid_joint_needs_rod_nodes():
+    lee = (ROOT / "models" / "lee_frame.toml").read_text()
+    bad = lee.replace('name = "beam"\nelement = "gef"', 'name = "beam"\nelement = "ancf_cable"').replace(
+        'type = "revolute"\na = "beam:end"\naxis = [0.0, 1.0, 0.0]', 'type = "spherical"\na = "beam:end"').replace(
+        "EI1 = 10.0", "EI1 = 1.0")
+    check_error(bad, "constraint[2].b", "gef-family")
+
+
+JOINED = """[scene]
+analysis = "static"
+[material.steel]
+law = "resultant"
+E = 2.0e11
+nu = 0.3
+rho = 7800.0
+[section.round]
+shape = "circle"
+radius = 0.01
+{beams}
+[[constraint]]
+type = "clamp"
+a = "a:start"
+{joint}
+[[load]]
+type = "force"
+at = "{tip}:end"
+value = [0.0, 900.0, -1500.0]
+[[load]]
+type = "moment"
+at = "{tip}:end"
+value = [300.0, 0.0, 0.0]
+[static]
+load_steps = 4
+[[sensor]]
+name = "tip"
+at = "{tip}:end"
+"""
+BEAM = """[[beam]]
+name = "{name}"
+element = "gef"
+material = "steel"
+section = "round"
+start = {start}
+end = {end}
+up = {up}
+elements = {n}
+"""
+
+
+def test_rigid_joint_between_differently_oriented_sections_is_one_beam():
+    # a circular section is the same beam whatever its section axes: a beam cut
+    # in two, the second half's section turned 90 degrees about the axis and
+    # joined rigidly (clamp with b), must deform as the whole beam under a
+    # large 3-D load (bending both ways and torsion); a relative rotation taken
+    # in the wrong frame would not
+    one = JOINED.format(beams=BEAM.format(name="a", start=[0.0, 0.0, 0.0], end=[1.0, 0.0, 0.0], up=[0.0, 0.0, 1.0],
+                                          n=10), joint="", tip="a")
+    two = JOINED.format(beams=BEAM.format(name="a", start=[0.0, 0.0, 0.0], end=[0.5, 0.0, 0.0], up=[0.0, 0.0, 1.0],
+                                          n=5)
+                        + BEAM.format(name="b", start=[0.5, 0.0, 0.0], end=[1.0, 0.0, 0.0], up=[0.0, 1.0, 0.0], n=5),
+                        joint='[[constraint]]\ntype = "clamp"\na = "a:end"\nb = "b:start"', tip="b")
+    d = Path(tempfile.mkdtemp(prefix="bk-joint-", dir=ensure_dir(BUILD / "runs")))
+    res = []
+    for name, text in (("one", one), ("two", two)):
+        (d / f"{name}.toml").write_text(text)
+        s, _ = run_scene(d / f"{name}.toml", out=d / name)
+        assert s["converged"], s["error"]
+        res.append(s["sensors"]["tip"])
+    u1, u2 = res[0]["displacement"], res[1]["displacement"]
+    assert math.hypot(*u1) > 0.3, u1          # large deflection
+    assert max(abs(a - b) for a, b in zip(u1, u2)) < 1e-7 * math.hypot(*u1), (u1, u2)
+    # the tip frames agree up to the quarter turn of the second half's section axes
+    d3a, d3b = res[0]["d3"], res[1]["d3"]
+    assert max(abs(a - b) for a, b in zip(d3a, d3b)) < 1e-7, (d3a, d3b)

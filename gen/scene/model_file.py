@@ -16,7 +16,7 @@ RECORDS = {
     "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
                 "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian"),
     "continuation": ("method", "arc_constraint", "target_load_factor", "max_steps", "max_displacement",
-                     "arc_iterations"),
+                     "arc_iterations", "branch_switch"),
     "output": ("vtk_every",),
     "modal": ("modes", "about"),
 }
