@@ -235,3 +235,14 @@ def test_rigid_joint_between_differently_oriented_sections_is_one_beam():
     # the tip frames agree up to the quarter turn of the second half's section axes
     d3a, d3b = res[0]["d3"], res[1]["d3"]
     assert max(abs(a - b) for a, b in zip(d3a, d3b)) < 1e-7, (d3a, d3b)
+
+
+def test_plot_draws_the_path_with_its_limit_points():
+    from report.plot import figures
+    out = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    s, _ = run_scene("truss_snap_through", out=out)
+    figs = figures(out)
+    assert "path.png" in figs
+    texts = [t.get_text() for ax in figs["path.png"].axes for t in ax.texts]
+    assert sum(t.startswith("limit ") for t in texts) == 2, texts
+    assert any(f"{s['critical_points'][0]['load_factor']:.4g}" in t for t in texts), texts
