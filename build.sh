@@ -45,8 +45,10 @@ Commands:
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic),
-                         modes.png (modal: a panel per mode shape) and beam.png
-                         (the last ParaView frame drawn in 3-D)
+                         modes.png (modal: a panel per mode shape), beam.png
+                         (the last ParaView frame drawn in 3-D) and path.png
+                         (arc-length runs: load factor against displacement,
+                         critical points marked)
   scenes                 list the scenes in models/
   report [--quick]       the seed cantilever tables beside the paper's, the
                          verification matrix (continuum elements x laws x

@@ -14,7 +14,7 @@ MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
 BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
         "arc_center", "arc_axis", "arc_angle", "grading", "element_lengths")
-CONSTRAINT = {"clamp": ("type", "a", "cross_section"),
+CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
               "spherical": ("type", "a", "b"),
               "revolute": ("type", "a", "axis"),
               "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency"),
@@ -23,7 +23,8 @@ LOAD = {"force": ("type", "at", "value", "distribution"),
         "moment": ("type", "at", "value"),
         "gravity": ("type", "value")}
 STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
-          "eigenvalues", "stable_path", "step_control")
+          "eigenvalues", "stable_path", "step_control", "method", "arc_constraint", "target_load_factor",
+          "max_steps", "max_displacement", "arc_iterations", "branch_switch")
 DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
            "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
 MODAL = ("modes", "about")

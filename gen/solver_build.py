@@ -20,7 +20,8 @@ BUILD = ROOT / "out" / "build"
 CC = os.environ.get("CC", "cc")
 JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
-RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "newton.c", "stability.c", "quaternion.c", "dynamics.c",
+RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c", "newton.c", "stability.c",
+                   "quaternion.c", "dynamics.c",
                    "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c", "main.c")
 LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP

@@ -7,6 +7,9 @@
                state the modes are about and displaced by the drawn mode scale
   beam.png     the last ParaView frame (results.pvd) drawn in 3-D, coloured by
                displacement magnitude
+  path.png     arc-length runs (static.method = "arc_length"): the load factor
+               against each sensor's displacement components, the limit points
+               and bifurcations (summary.json critical_points) marked
 
 Every title names the scene; a run that did not converge or was interrupted
 says so on every plot.  Displacement axes span at least 1e-6 of the model
@@ -248,6 +251,48 @@ def fig_beam(vtu, summary, title):
     return fig
 
 
+def path_panel(ax, rows, summary, sensor):
+    """Load factor against the displacement components of one sensor that move,
+    with the critical points of the path marked (limit points: triangles,
+    bifurcations: squares)."""
+    r = [x for x in rows if x["sensor"] == sensor]
+    lam = [float(x["time"]) for x in r]
+    big = max((abs(float(x[c])) for x in r for c in ("ux", "uy", "uz")), default=0.0)
+    comps = [c for c in ("ux", "uy", "uz") if any(abs(float(x[c])) > 1e-9 * big for x in r)] or ["ux"]
+    for c in comps:
+        ax.plot([float(x[c]) for x in r], lam, marker="." if len(r) < 80 else None, ms=3, lw=1,
+                label=f"{sensor} {c}")
+    for cp in summary.get("critical_points", []):
+        u = cp.get("displacement", {}).get(sensor)
+        if not u or cp.get("load_factor") is None:
+            continue
+        lim = cp["type"] == "limit_point"
+        for c in comps:
+            v = u["xyz".index(c[1])]
+            if v is None:
+                continue
+            ax.plot([v], [cp["load_factor"]], "v" if lim else "s", color="red" if lim else "tab:blue", ms=7,
+                    mfc="none", mew=1.5)
+            ax.annotate(f"{'limit' if lim else 'bifurcation'} {cp['load_factor']:.4g}", (v, cp["load_factor"]),
+                        textcoords="offset points", xytext=(6, 4), fontsize=7)
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel(f"displacement of {sensor} (m)")
+    ax.set_ylabel("load factor")
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=7)
+
+
+def fig_path(run, summary):
+    rows = read_csv(run / "sensors.csv")
+    names = list(dict.fromkeys(r["sensor"] for r in rows))
+    fig, axes = plt.subplots(1, max(len(names), 1), figsize=(6 * max(len(names), 1), 5), squeeze=False)
+    for ax, n in zip(axes[0], names):
+        path_panel(ax, rows, summary, n)
+    top = decorate(fig, summary, "load-displacement path (arc length)")
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
+
+
 def figures(run):
     """The plots of a run directory as {PNG file name: matplotlib Figure} (not saved)."""
     run = Path(run)
@@ -259,6 +304,8 @@ def figures(run):
         figs["sensors.png"] = fig_sensors(run, summary, length)
     if (run / "energy.csv").exists():
         figs["energy.png"] = fig_energy(run, summary)
+    if "critical_points" in summary:
+        figs["path.png"] = fig_path(run, summary)
     if summary["analysis"] == "modal":
         f = fig_modes(run, summary, length)
         if f is not None:

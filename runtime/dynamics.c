@@ -33,27 +33,19 @@
 #include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
+#include "nonlinear.h"
 #include "norms.h"
 #include "quaternion.h"
 
-/* dynamic.jacobian = "reuse" (modified Newton across steps): a step starts with
- * the factors of an earlier iteration matrix of the same step size and keeps
- * them while their measured contraction rate (residual after / before a
- * correction made with them) is at most BK_REUSE_MAX_RATE and predicts
- * convergence within BK_REUSE_ITERATIONS more corrections; else the iteration
- * matrix is assembled and factorized anew.  A kept-factor correction that led
- * to a non-finite force (an inverted element) or raised the residual more than
- * BK_REUSE_DIVERGED times is taken back and redone with a new matrix; a step
- * that fails all the same is retried with full Newton before it is halved. */
-#define BK_REUSE_MAX_RATE 0.5
-#define BK_REUSE_ITERATIONS 5
-#define BK_REUSE_DIVERGED 10.0
-
+/* dynamic.jacobian = "reuse" (modified Newton across steps): the Jacobian-reuse
+ * policy of the nonlinear solver (nonlinear.h, BK_REUSE_*); a step that fails
+ * with kept factors is retried with full Newton before it is halved. */
 typedef struct dyn_work {
     int nd, ne, nc;
     double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
     double *q_s, *qd_s, *qdd_s, *a_s, *nu_s;   /* saved for cut-backs                 */
-    double *fint, *fext, *fgrav, *r, *dx, *Ax, *Mx, *tmp;
+    double *fint, *fext, *fgrav, *Mx, *tmp;
+    double *r, *dx, *Ax;                       /* the nonlinear solver's buffers (not owned) */
     double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
     int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
     double *Mv;
@@ -67,7 +59,7 @@ static double *dalloc(size_t n)
 static void work_free(dyn_work *w)
 {
     double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
-                    &w->fint, &w->fext, &w->fgrav, &w->r, &w->dx, &w->Ax, &w->Mx, &w->tmp, &w->qe,
+                    &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
                     &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
     for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
         free(*p[i]);
@@ -88,12 +80,12 @@ static int work_alloc(dyn_work *w, const bk_system *s)
     w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
     w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
     w->nu_s = dalloc(nc);
-    w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd), w->r = dalloc(ne);
-    w->dx = dalloc(ne), w->Ax = dalloc(nnz), w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
+    w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd);
+    w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
     w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
     w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
     double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->fint,
-                     w->fext, w->fgrav, w->r, w->dx, w->Ax, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
+                     w->fext, w->fgrav, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
                      w->fe, w->K1, w->K2, w->K3};
     for (size_t i = 0; i < sizeof all / sizeof *all; ++i)
         if (!all[i])
@@ -267,7 +259,53 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     return isfinite(*rnorm) ? 0 : -1;
 }
 
-enum { DYN_OK = 0, DYN_MAXIT, DYN_NONFINITE, DYN_SINGULAR, DYN_LINERR };
+enum { DYN_OK = BK_NL_OK, DYN_MAXIT = BK_NL_MAXIT, DYN_NONFINITE = BK_NL_NONFINITE, DYN_SINGULAR = BK_NL_SINGULAR,
+       DYN_LINERR = BK_NL_LINERR };
+
+/* One step's Newton problem for the nonlinear solver (nonlinear.h): the
+ * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
+ * q'' by beta' dq. */
+typedef struct dyn_problem {
+    bk_system *s;
+    dyn_work *w;
+    const int *fdof;
+    const bk_norms *norms;
+    double *q;
+    double tn, bp, gp;
+} dyn_problem;
+
+static int dp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
+{
+    dyn_problem *p = ctx;
+    bk_system *s = p->s;
+    dyn_work *w = p->w;
+    const bk_model *m = s->m;
+    (void)r, (void)Ax;                          /* w->r, w->Ax are the solver's buffers */
+    if (dyn_residual(s, w, p->fdof, p->q, p->tn, p->bp, p->gp, matrix, &ev->rnorm) != 0)
+        return -1;
+    ev->ref = fmax(bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
+    ev->cres = bk_norm2(w->r + s->nfree, s->ncon) / s->cscale;
+    /* increments relative to the motion of this step */
+    ev->uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(p->norms, s, p->q, w->q_s));
+    ev->escale = 0.0;
+    return 0;
+}
+
+static void dp_update(void *ctx, const double *dx, double alpha)
+{
+    dyn_problem *p = ctx;
+    const bk_system *s = p->s;
+    dyn_work *w = p->w;
+    for (int j = 0; j < s->nfree; ++j) {
+        int i = p->fdof[j];
+        double d = alpha * dx[j];
+        p->q[i] += d;
+        w->qd[i] += p->gp * d;
+        w->qdd[i] += p->bp * d;
+    }
+    for (int c = 0; c < s->ncon; ++c)
+        w->nu[c] += alpha * dx[s->nfree + c];
+}
 
 static const char *dyn_why(int c)
 {
@@ -285,8 +323,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     const bk_model *m = s->m;
     const bk_dynamic_opts *o = &m->dyn;
     dyn_work w = {0};
-    bk_linsolver ls = {0};
-    bk_norms norms = {0};
+    bk_nl nl = {0};
+    int have_nl = 0;
     bk_checks chk = {0};
     int rc = 1, *fdof = NULL;
     int nd = m->ndof;
@@ -294,8 +332,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_norms_init(&norms, s) != 0 ||
-        bk_checks_init(&chk, s) != 0) {
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -303,18 +340,21 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to integrate");
         goto done;
     }
-    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
-        snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
+    have_nl = 1;
+    if (bk_nl_init(&nl, s, NULL, info->message, sizeof info->message) != 0)
         goto done;
-    }
+    w.r = nl.r, w.dx = nl.dx, w.Ax = nl.Ax;
+    bk_linsolver *ls = &nl.ls;
     const double rho = o->rho_inf;
     const double am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
     const double gam = 0.5 + af - am, bet = 0.25 * (gam + 0.5) * (gam + 0.5);
     const double ra = o->rayleigh_alpha;
-    int have_factors = 0;                       /* ls holds factors of an iteration matrix of step factors_h */
-    double factors_h = 0.0;
-    bk_floors fl = {0};
-    double krate = 0.0;                         /* last measured contraction rate of the kept factors */
+    /* Newton: rotation-invariant tests; converged when the residual is within
+     * rtol (or far below it), the constraints hold to 1e-12 L and the last
+     * correction is small in length or energy */
+    const bk_nl_opts nlo = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol,
+                            .ctol = 1e-12 * fmax(m->length_scale, 1.0), .accept_far_below = 1,
+                            .stagnation = 0, .divergence = 0, .reuse = o->reuse_jacobian};
     int full_retry = 0;                         /* this step failed with kept factors: full Newton */
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
@@ -355,7 +395,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.r[s->nfree + c] = -s->cscale * (2.0 * bk_constraint_row(lc, w.qd, t, 1, 0)
                                             + bk_constraint_row(lc, q, t, 2, 1));
         }
-        if (bk_lin_factor(&ls, w.Ax) != BK_LIN_OK || bk_lin_solve(&ls, w.r) != BK_LIN_OK) {
+        if (bk_lin_factor(ls, w.Ax) != BK_LIN_OK || bk_lin_solve(ls, w.r) != BK_LIN_OK) {
             snprintf(info->message, sizeof info->message,
                      "initial accelerations: singular mass/constraint system (is every DOF given mass or held?)");
             goto done;
@@ -393,127 +433,12 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
             w.qdd[i] = w.qdd_s[i];
         }
-        int st = DYN_MAXIT, it, signo = 0;
-        double rnorm = 0.0, dnorm = INFINITY, enorm = INFINITY, eref = 0.0, rprev = INFINITY, rall = 0.0;
-        int eref_it = -1;                       /* the correction whose energy is eref */
-        int prev_reused = 0;                    /* the last correction was made with kept factors */
-        int step_reused = 0;                    /* ... and some correction of this step */
-        double dnorm_prev = INFINITY, enorm_prev = INFINITY;
-        for (it = 0; it <= o->max_iter; ++it) {
-            if ((signo = bk_interrupt_poll()) != 0)
-                break;
-            /* Jacobian reuse (dynamic.jacobian = "reuse"): the factors of an earlier
-             * iteration matrix of this step size serve while they contract fast
-             * (see below); otherwise the matrix is assembled and factorized anew. */
-            int fresh = !o->reuse_jacobian || full_retry || !have_factors || factors_h != h ||
-                        krate > BK_REUSE_MAX_RATE;
-            int rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, fresh, &rnorm);
-            /* the rates over every row: free rows and the (balanced) constraint rows */
-            rall = rs == 0 ? bk_norm2(w.r, s->neq) : INFINITY;
-            if (prev_reused && rs == 0)
-                krate = rall / rprev;               /* contraction rate of the last kept-factor correction */
-            if (prev_reused && (rs != 0 || rall > BK_REUSE_DIVERGED * rprev)) {
-                /* a kept-factor correction that led to a non-finite force or diverged
-                 * is taken back and this iteration redone from the previous point with
-                 * a new matrix */
-                for (int j = 0; j < s->nfree; ++j) {
-                    int i = fdof[j];
-                    q[i] -= w.dx[j];
-                    w.qd[i] -= gp * w.dx[j];
-                    w.qdd[i] -= bp * w.dx[j];
-                }
-                for (int c = 0; c < s->ncon; ++c)
-                    w.nu[c] -= w.dx[s->nfree + c];
-                dnorm = dnorm_prev, enorm = enorm_prev;
-                if (eref_it == it - 1)
-                    eref_it = -1;                   /* the energy scale came from the undone one */
-                krate = INFINITY;
-                fresh = 1;
-                rs = dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm);
-                rall = rs == 0 ? bk_norm2(w.r, s->neq) : INFINITY;
-            }
-            if (rs != 0) {
-                st = DYN_NONFINITE;
-                break;
-            }
-            double ref = fmax(bk_norm2(w.fext, nd), bk_norm2(w.fint, nd));
-            /* rotation-invariant floors and scales (norms.h), from the last assembled matrix */
-            if (fresh)
-                fl = bk_round_off_floors(&norms, s, q, w.Ax);
-            double cres = bk_norm2(w.r + s->nfree, s->ncon) / s->cscale;
-            /* increments relative to the motion of this step */
-            double uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(&norms, s, q, w.q_s));
-            double rtol_abs = fmax(o->rtol * ref, fl.force);
-            int res_ok = rnorm <= rtol_abs, con_ok = cres <= 1e-12 * fmax(m->length_scale, 1.0);
-            /* converged: residual and constraints within tolerance, and the
-             * last correction small in length or in energy (BK_ENERGY_TOL), or
-             * the residual far below its tolerance */
-            if (it > 0 && con_ok && res_ok &&
-                (dnorm <= fmax(o->utol * uscale, fl.increment) || rnorm <= 1e-3 * rtol_abs ||
-                 enorm <= fmax(BK_ENERGY_TOL * eref, fl.energy))) {
-                st = DYN_OK;
-                break;
-            }
-            if (it == o->max_iter)
-                break;
-            /* kept factors must reach the tolerance within BK_REUSE_ITERATIONS more
-             * corrections at their last measured rate, else this iteration takes a
-             * new matrix (the residual is the same, only the matrix is added) */
-            double kp = krate > 0.0 ? pow(krate, BK_REUSE_ITERATIONS) : 0.0;
-            if (!fresh && kp > 0.0 && (rnorm * kp > rtol_abs || cres * kp > 1e-12 * fmax(m->length_scale, 1.0))) {
-                fresh = 1;
-                if (dyn_residual(s, &w, fdof, q, tn, bp, gp, 1, &rnorm) != 0) {
-                    st = DYN_NONFINITE;
-                    break;
-                }
-                fl = bk_round_off_floors(&norms, s, q, w.Ax);
-            }
-            if (fresh) {
-                int fs = bk_lin_factor(&ls, w.Ax);
-                have_factors = fs == BK_LIN_OK;
-                factors_h = h;
-                krate = 0.0;                        /* rate of the new factors: not yet measured */
-                if (fs != BK_LIN_OK) {
-                    st = fs == BK_LIN_SINGULAR ? DYN_SINGULAR : DYN_LINERR;
-                    break;
-                }
-            }
-            prev_reused = !fresh;
-            step_reused |= !fresh;
-            rprev = rall;
-            dnorm_prev = dnorm, enorm_prev = enorm;
-            for (int i = 0; i < s->neq; ++i)
-                w.dx[i] = -w.r[i];
-            if (bk_lin_solve(&ls, w.dx) != BK_LIN_OK) {
-                st = DYN_LINERR;
-                break;
-            }
-            double work_ = 0.0;
-            for (int j = 0; j < s->neq; ++j)
-                work_ += w.dx[j] * w.r[j];
-            for (int j = 0; j < s->nfree; ++j) {
-                int i = fdof[j];
-                double d = w.dx[j];
-                if (!isfinite(d)) {
-                    st = DYN_NONFINITE;
-                    break;
-                }
-                q[i] += d;
-                w.qd[i] += gp * d;
-                w.qdd[i] += bp * d;
-            }
-            if (st == DYN_NONFINITE)
-                break;
-            dnorm = bk_norm_free_max(&norms, s, w.dx);
-            enorm = sqrt(fabs(work_));
-
-            if (eref_it < 0)
-                eref = enorm, eref_it = it;
-            for (int c = 0; c < s->ncon; ++c)
-                w.nu[c] += w.dx[s->nfree + c];
-        }
-        if (st != DYN_OK)
-            have_factors = 0;                   /* a retry starts from a fresh matrix */
+        dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
+        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update};
+        bk_nl_result res;
+        int st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
+        int it = res.iters, signo = st == BK_NL_INTERRUPTED ? res.signo : 0, step_reused = res.reused;
+        double rnorm = res.rnorm, dnorm = res.dnorm;
         info->newton_iterations += it;
         if (signo) {
             memcpy(q, w.q_s, (size_t)nd * sizeof *q);
@@ -614,10 +539,10 @@ done:
     if (rc != 0 && step > written)
         bk_output_step(out, step, t, q);
     info->converged = rc == 0;
-    info->factorizations = ls.nfactor;
-    info->analyses = ls.nanalyze;
-    bk_lin_free(&ls);
-    bk_norms_free(&norms);
+    info->factorizations = nl.ls.nfactor;
+    info->analyses = nl.ls.nanalyze;
+    if (have_nl)
+        bk_nl_free(&nl);
     bk_checks_free(&chk);
     free(fdof);
     free(quat);

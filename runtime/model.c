@@ -201,6 +201,14 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     m->stat.eigenvalues = fint(r, "static", "eigenvalues", 0, 1);
     m->stat.stable_path = fint(r, "static", "stable_path", 0, 1);
     m->stat.adaptive = fint(r, "static", "step_control", 0, 1);
+    expect(r, "continuation");
+    m->stat.arc_length = fint(r, "continuation", "method", 0, 1);
+    m->stat.arc_spherical = fint(r, "continuation", "arc_constraint", 0, 1);
+    m->stat.target = fnum(r, "continuation", "target_load_factor");
+    m->stat.max_steps = fint(r, "continuation", "max_steps", 1, MAXN);
+    m->stat.max_displacement = fnum(r, "continuation", "max_displacement");
+    m->stat.arc_iters = fint(r, "continuation", "arc_iterations", 1, 10000);
+    m->stat.branch_switch = fint(r, "continuation", "branch_switch", 0, 1);
     expect(r, "dynamic");
     m->dyn.t_end = fnum(r, "dynamic", "t_end");
     m->dyn.dt = fnum(r, "dynamic", "dt");

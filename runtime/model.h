@@ -77,6 +77,13 @@ typedef struct bk_static_opts {
     int eigenvalues;   /* 1: also the extreme eigenvalues at every check (static.eigenvalues) */
     int stable_path;   /* 1: cut back increments that lose stability       */
     int adaptive;      /* 1: adaptive load increments (static.step_control) */
+    int arc_length;    /* 1: arc-length continuation (static.method) */
+    int arc_spherical; /* 1: spherical constraint, 0: cylindrical (static.arc_constraint) */
+    double target;     /* load-factor target of the path (static.target_load_factor) */
+    int max_steps;     /* step budget of the path */
+    double max_displacement;   /* > 0: stop when a sensor moved this far (m) */
+    int arc_iters;     /* Newton iterations per step the arc length aims at */
+    int branch_switch; /* 1: onto the secondary branch at the first bifurcation */
 } bk_static_opts;
 
 typedef struct bk_dynamic_opts {

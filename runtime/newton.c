@@ -9,6 +9,7 @@
 #include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
+#include "nonlinear.h"
 #include "norms.h"
 #include "quaternion.h"
 #include "stability.h"
@@ -18,7 +19,7 @@ typedef struct work {
     double *qprev, *nuprev;          /* the equilibrium before the last one (predictor) */
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
-    bk_norms norms;                  /* rotation-invariant measures */
+    const bk_norms *norms;           /* rotation-invariant measures (the solver's) */
 } work;
 
 /* One Newton solve: its outcome and counters. */
@@ -35,10 +36,11 @@ typedef struct attempt {
 
 /* Below this pivot ratio the tangent is singular to working precision: Newton
  * increments are meaningless in its near-null directions. */
-#define ILL_RCOND 1e-12
+#define ILL_RCOND BK_ILL_RCOND
 
-enum { NEWTON_OK = 0, NEWTON_MAXIT, NEWTON_NONFINITE, NEWTON_SINGULAR, NEWTON_DIVERGED, NEWTON_LINERR, NEWTON_UNSTABLE,
-       NEWTON_INTERRUPTED };
+enum { NEWTON_OK = BK_NL_OK, NEWTON_MAXIT = BK_NL_MAXIT, NEWTON_NONFINITE = BK_NL_NONFINITE,
+       NEWTON_SINGULAR = BK_NL_SINGULAR, NEWTON_DIVERGED = BK_NL_DIVERGED, NEWTON_LINERR = BK_NL_LINERR,
+       NEWTON_INTERRUPTED = BK_NL_INTERRUPTED, NEWTON_UNSTABLE = BK_NL_NCODES };
 
 static const char *why(int code)
 {
@@ -107,10 +109,9 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
     bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
 }
 
-/* Newton iteration at load factor lam, from the state in q, w->nu.  Returns
- * a NEWTON_* code; every iteration is recorded in newton.csv (alpha: the
- * fraction of the Newton step taken, below 1 when the rotation trust region
- * shortened it).
+/* The static problem for the nonlinear solver (nonlinear.h): the residual at
+ * load factor lam, the update of q and the multipliers, the rotation trust
+ * region.
  *
  * A line search on the energy slope s(alpha) = dx . r(x + alpha dx), tried as
  * a retry before cutting an increment back, rescued none of the hard cases
@@ -118,111 +119,98 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
  * their failures are the alternation between membrane and bending residuals of
  * slender beams, which the rotation trust region below and the load increment
  * address.  It was removed rather than kept as an option that does nothing. */
-#define ROT_STEP 0.15
-static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam, double lam_last, attempt *a,
-                  const bk_static_opts *o, double lscale, bk_output *out, int step)
+typedef struct static_problem {
+    bk_system *s;
+    work *w;
+    double *q;
+    double lam, lam_last;            /* the load factor sought, the last equilibrium's */
+    double lscale;
+} static_problem;
+
+static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
 {
+    static_problem *p = ctx;
+    bk_system *s = p->s;
+    work *w = p->w;
     const bk_model *m = s->m;
-    double dnorm = INFINITY, r0 = -1.0, alpha = 1.0, rprev = INFINITY, enorm = INFINITY, eref = 0.0;
-    a->iters = 0;
-    a->residual_met = 0;
-    a->singular_at_start = 0;
-    a->rcond = NAN;
-    for (int it = 0;; ++it) {
-        if ((a->signo = bk_interrupt_poll()) != 0)
-            return NEWTON_INTERRUPTED;
-        if (residual(s, w, q, w->nu, lam, 1) != 0)
-            return NEWTON_NONFINITE;
-        double rnorm = bk_norm2(w->r, s->neq);
-        double ref = fmax(fabs(lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
-        /* Every measure is invariant under a rigid rotation of the scene:
-         * field norms, column-block norms, scalar products (norms.h).  The
-         * round-off floors use the stiffest column block of the Newton matrix:
-         * with multipliers (constraint rows, the internal multipliers of the
-         * constrained beams) the stiffest couplings can sit off the diagonal. */
-        double uscale = fmax(bk_norm_dof_max(&w->norms, s, q, m->q0), 1e-6 * lscale);
-        bk_floors fl = bk_round_off_floors(&w->norms, s, q, w->Ax);
-        a->rnorm = rnorm;
-        a->dnorm = dnorm;
-        a->ref = ref;
-        a->iters = it;
-        bk_output_iteration(out, a->id, step, lam, it, rnorm, ref, it ? dnorm : NAN, it ? alpha : NAN, ls->rcond);
-        if (!isfinite(rnorm))
-            return NEWTON_NONFINITE;
-        if (rnorm == 0.0)
-            return NEWTON_OK;
-        double rtol_abs = fmax(o->rtol * ref, fl.force), utol_abs = fmax(o->utol * uscale, fl.increment);
-        a->rtol_abs = rtol_abs;
-        if (rnorm <= rtol_abs)
-            a->residual_met = 1;
-        /* converged: the residual within its tolerance, and the last
-         * correction small, in length (field norm) or in energy (see
-         * BK_ENERGY_TOL, norms.h) */
-        /* the energy scale of the increment: its first correction, or the
-         * work of the load increment on the motion from the last equilibrium
-         * (w->qsave), whichever is larger -- a good predictor must not make
-         * the test stricter */
-        double wload = 0.0;
-        for (int i = 0; i < m->ndof; ++i)
-            wload += (lam - lam_last) * w->fext[i] * (q[i] - w->qsave[i]);
-        double escale = fmax(eref, sqrt(fabs(wload)));
-        if (it > 0 && rnorm <= rtol_abs &&
-            (dnorm <= utol_abs || enorm <= fmax(BK_ENERGY_TOL * escale, fl.energy)))
-            return NEWTON_OK;
-        /* Stagnation at round-off: on ill-conditioned tangents (slender
-         * higher-order elements) the residual stops decreasing a little above
-         * its floor while the increments are already at noise level; accept
-         * within a factor 1e3 (residual) and 1e2 (increment) of the
-         * tolerances once an iteration no longer halves the residual. */
-        if (it > 1 && rnorm > 0.5 * rprev && rnorm <= 1e3 * rtol_abs && dnorm <= 1e2 * utol_abs)
-            return NEWTON_OK;
-        rprev = rnorm;
-        if (r0 < 0.0)
-            r0 = fmax(rnorm, 1e-300);
-        else if (rnorm > 1e12 * r0)
-            return NEWTON_DIVERGED;
-        if (it >= o->max_iter)
-            return NEWTON_MAXIT;
-        int st = bk_lin_factor(ls, w->Ax);
-        a->rcond = st == BK_LIN_SINGULAR ? 0.0 : ls->rcond;
-        if (st == BK_LIN_SINGULAR) {
-            a->singular_at_start = it == 0;
-            return NEWTON_SINGULAR;
-        }
-        if (st != BK_LIN_OK)
-            return NEWTON_LINERR;
-        for (int i = 0; i < s->neq; ++i)
-            w->dx[i] = -w->r[i];
-        if (bk_lin_solve(ls, w->dx) != BK_LIN_OK)
-            return NEWTON_LINERR;
-        double work_ = 0.0;
-        for (int i = 0; i < s->neq; ++i) {
-            if (!isfinite(w->dx[i]))
-                return NEWTON_NONFINITE;
-            work_ += w->dx[i] * w->r[i];
-        }
-        dnorm = bk_norm_free_max(&w->norms, s, w->dx);
-        enorm = sqrt(fabs(work_));
-        if (it == 0)
-            eref = enorm;
-        alpha = 1.0;
-        /* Rotation trust region: quaternion increments are rotations only to
-         * first order; a step that changes a unit quaternion by more than
-         * ROT_STEP (Euclidean norm of the 4 components: a rotation of about 17
-         * degrees) is shortened to that.  With it the geometrically exact beams take the load steps the
-         * ANCF elements take (two turns of roll-up in 4 steps instead of 24). */
-        double dpmax = 0.0;
-        for (int k = 0; k < w->nquat; ++k) {
-            double ss = 0.0;
-            for (int i = 0; i < 4; ++i)
-                ss += w->dx[s->eq[w->quat[k] + i]] * w->dx[s->eq[w->quat[k] + i]];
-            dpmax = fmax(dpmax, sqrt(ss));
-        }
-        if (dpmax > ROT_STEP)
-            alpha = ROT_STEP / dpmax;
-        dnorm *= alpha;
-        step_to(s, w, q, w->nu, w->dx, alpha, q, w->nu);
+    (void)r, (void)Ax;               /* w->r, w->Ax are the solver's buffers */
+    if (residual(s, w, p->q, w->nu, p->lam, matrix) != 0)
+        return -1;
+    /* Every measure is invariant under a rigid rotation of the scene: field
+     * norms, column-block norms, scalar products (norms.h). */
+    ev->rnorm = bk_norm2(w->r, s->neq);
+    ev->ref = fmax(fabs(p->lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
+    ev->uscale = fmax(bk_norm_dof_max(w->norms, s, p->q, m->q0), 1e-6 * p->lscale);
+    /* the energy scale of the increment besides its first correction: the
+     * work of the load increment on the motion from the last equilibrium
+     * (w->qsave) */
+    double wload = 0.0;
+    for (int i = 0; i < m->ndof; ++i)
+        wload += (p->lam - p->lam_last) * w->fext[i] * (p->q[i] - w->qsave[i]);
+    ev->escale = sqrt(fabs(wload));
+    ev->cres = 0.0;
+    return 0;
+}
+
+static void sp_update(void *ctx, const double *dx, double alpha)
+{
+    static_problem *p = ctx;
+    step_to(p->s, p->w, p->q, p->w->nu, dx, alpha, p->q, p->w->nu);
+}
+
+/* Rotation trust region: quaternion increments are rotations only to first
+ * order; a step that changes a unit quaternion by more than ROT_STEP
+ * (Euclidean norm of the 4 components: a rotation of about 17 degrees) is
+ * shortened to that.  With it the geometrically exact beams take the load
+ * steps the ANCF elements take (two turns of roll-up in 4 steps instead of
+ * 24). */
+#define ROT_STEP 0.15
+static double sp_step_limit(void *ctx, const double *dx)
+{
+    static_problem *p = ctx;
+    const bk_system *s = p->s;
+    const work *w = p->w;
+    double dpmax = 0.0;
+    for (int k = 0; k < w->nquat; ++k) {
+        double ss = 0.0;
+        for (int i = 0; i < 4; ++i)
+            ss += dx[s->eq[w->quat[k] + i]] * dx[s->eq[w->quat[k] + i]];
+        dpmax = fmax(dpmax, sqrt(ss));
     }
+    return dpmax > ROT_STEP ? ROT_STEP / dpmax : 1.0;
+}
+
+static bk_nl_opts static_nl_opts(const bk_static_opts *o)
+{
+    bk_nl_opts no = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol, .ctol = 0.0,
+                     .accept_far_below = 0, .stagnation = 1, .divergence = 1, .reuse = 0};
+    return no;
+}
+
+/* Newton iteration at load factor lam, from the state in q, w->nu.  Returns
+ * a NEWTON_* code; every iteration is recorded in newton.csv (alpha: the
+ * fraction of the Newton step taken, below 1 when the rotation trust region
+ * shortened it). */
+static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, double lam_last, attempt *a,
+                  const bk_static_opts *o, double lscale, int step)
+{
+    static_problem sp = {.s = s, .w = w, .q = q, .lam = lam, .lam_last = lam_last, .lscale = lscale};
+    bk_nl_problem p = {.ctx = &sp, .q = q, .residual = sp_residual, .update = sp_update,
+                       .step_limit = sp_step_limit};
+    bk_nl_opts no = static_nl_opts(o);
+    bk_nl_row row = {.attempt = a->id, .step = step, .lam = lam};
+    bk_nl_result res;
+    bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
+    a->iters = res.iters;
+    a->rnorm = res.rnorm;
+    a->dnorm = res.dnorm;
+    a->ref = res.ref;
+    a->rtol_abs = res.rtol_abs;
+    a->rcond = res.rcond;
+    a->residual_met = res.residual_met;
+    a->singular_at_start = res.singular_at_start;
+    a->signo = res.signo;
+    return res.code;
 }
 
 /* Stability of the equilibrium q at load factor lam (not yet accepted):
@@ -259,7 +247,8 @@ static void accept_stability(bk_stability *st, const bk_stability_result *res, d
         ev->neg_before = before;
         ev->neg_after = res->negative;
         ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
-        bk_warn(info, out->console, s_name,
+        if (!out->m->stat.arc_length)    /* arc-length: reported as critical points */
+            bk_warn(info, out->console, s_name,
                 "the number of negative tangent eigenvalues went from %d to %d between load factors %.6g and "
                 "%.6g (critical load factor %.6g): a %s was passed%s", before, res->negative, *prev_lam, lam,
                 ev->lam_critical, res->negative > before ? "bifurcation or limit point" : "point of regained stability",
@@ -295,28 +284,617 @@ static double next_increment(const bk_static_opts *o, double dlam, double dlam0,
     return fmin(fmin(dlam * f, calm < 2 ? fmax(dlam0, dlam) : 1.0), 1.0);
 }
 
+/* ---- Arc-length continuation (static.method = "arc_length") ----
+ *
+ * The unknowns x (free DOFs and multipliers) and the load factor lam follow
+ * the equilibrium path r(x, lam) = 0 in steps of arc length dl:
+ *     |x - x_n|_W^2 + psi^2 (lam - lam_n)^2 = dl^2
+ * (Crisfield).  W weighs the free DOFs: 1 for positions, L^2 for the
+ * dimensionless fields (position gradients, quaternions; L the model's length
+ * scale), so that a rotation counts as the motion it causes over the model, 0
+ * for multipliers; psi = 0 (cylindrical) or psi^2 = t0' W t0 (spherical: a
+ * unit load factor counts as the linear displacement at full load, t0 the
+ * tangent at the start).  Each Newton correction is bordered: with
+ * K dx_r = -r and K t = -dr/dlam, dx = dx_r + dlam t with dlam from the
+ * constraint (the root nearer the current increment; where the quadratic has
+ * none, the dlam closest to satisfying it).  The predictor goes along the
+ * tangent, oriented so that it makes an acute angle with the last increment:
+ * the path never turns back, and the load factor may exceed 1 and go down.
+ * The arc length follows the iteration count (sqrt(arc_iterations / iters),
+ * in [0.5, 2], at most 8 times the first or 0.05 of the model length), is
+ * halved on failure, and the first is the arc of a load increment
+ * target / load_steps along the tangent.  With static.branch_switch the step
+ * after the first bifurcation starts along the null vector of the tangent
+ * (the eigenvector of its eigenvalue nearest zero) with the load factor kept:
+ * the arc-length sphere about the equilibrium past the bifurcation meets the
+ * secondary branch, and the path follows it from there. */
+typedef struct arc_ctx {
+    static_problem sp;               /* the residual, the update of q and nu; sp.lam: the iterate's */
+    work *w;
+    const double *W;                 /* [neq] weights of the constraint */
+    const int *fdof;                 /* [nfree] equation -> DOF */
+    double *rl, *t, *tmp, *fol;      /* [neq] x 3, [ndof] */
+    double lam0;                     /* the load factor at the start of the step (x_n: w->qsave) */
+    double dl, psi2;
+    double pending;                  /* the load-factor part of the last correction */
+} arc_ctx;
+
+/* dr/dlam at (q, nu, lam) into rl[neq]: the dead and follower loads, and the
+ * load-factor dependence of rheonomic constraints (central difference). */
+static void load_derivative(bk_system *s, work *w, const double *q, double lam, double *rl, double *fol,
+                            double *tmp)
+{
+    const bk_model *m = s->m;
+    memset(fol, 0, (size_t)m->ndof * sizeof *fol);
+    bk_assemble_follower(s, q, 1.0, fol, NULL);
+    for (int i = 0; i < m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            rl[s->eq[i]] = fol[i] - w->fext[i];
+    for (int c = 0; c < s->ncon; ++c)
+        rl[s->nfree + c] = 0.0;
+    if (s->ncon > 0) {
+        double d = 1e-6 * fmax(1.0, fabs(lam));
+        memset(tmp, 0, (size_t)s->neq * sizeof *tmp);
+        bk_assemble_constraints(s, q, w->nu, lam + d, tmp, NULL);
+        for (int j = 0; j < s->neq; ++j)
+            rl[j] += tmp[j] / (2.0 * d);
+        memset(tmp, 0, (size_t)s->neq * sizeof *tmp);
+        bk_assemble_constraints(s, q, w->nu, lam - d, tmp, NULL);
+        for (int j = 0; j < s->neq; ++j)
+            rl[j] -= tmp[j] / (2.0 * d);
+    }
+}
+
+static int arc_augment(void *ctx, bk_linsolver *ls, double *dx)
+{
+    arc_ctx *c = ctx;
+    bk_system *s = c->sp.s;
+    const double *q = c->sp.q, *q0 = c->w->qsave;
+    load_derivative(s, c->w, q, c->sp.lam, c->rl, c->fol, c->tmp);
+    for (int j = 0; j < s->neq; ++j)
+        c->t[j] = -c->rl[j];
+    if (bk_lin_solve(ls, c->t) != BK_LIN_OK)
+        return -1;
+    double dlam = c->sp.lam - c->lam0;
+    double A = c->psi2, B = 2.0 * c->psi2 * dlam, C = c->psi2 * dlam * dlam - c->dl * c->dl, D1 = c->psi2 * dlam;
+    for (int j = 0; j < s->nfree; ++j) {
+        double wj = c->W[j], a = q[c->fdof[j]] - q0[c->fdof[j]], u = a + dx[j], tj = c->t[j];
+        A += wj * tj * tj;
+        B += 2.0 * wj * u * tj;
+        C += wj * u * u;
+        D1 += wj * a * tj;
+    }
+    if (!(A > 0.0))
+        return -1;
+    double disc = B * B - 4.0 * A * C, r;
+    if (disc < 0.0)
+        r = -B / (2.0 * A);          /* no root: the closest to the constraint */
+    else {
+        double sq = sqrt(disc), r1 = (-B + sq) / (2.0 * A), r2 = (-B - sq) / (2.0 * A);
+        r = D1 >= 0.0 ? fmax(r1, r2) : fmin(r1, r2);   /* the acute angle with the increment */
+    }
+    for (int j = 0; j < s->neq; ++j)
+        dx[j] += r * c->t[j];
+    c->pending = r;
+    return 0;
+}
+
+static void arc_update(void *ctx, const double *dx, double alpha)
+{
+    arc_ctx *c = ctx;
+    sp_update(&c->sp, dx, alpha);
+    c->sp.lam += alpha * c->pending;
+}
+
+static double arc_step_limit(void *ctx, const double *dx)
+{
+    arc_ctx *c = ctx;
+    return sp_step_limit(&c->sp, dx);
+}
+
+/* The tangent at the equilibrium (q, w->nu, lam): t = -K^-1 dr/dlam into c->t;
+ * its weighted square length into *tWt.  Returns 0, or a BK_NL_* code. */
+static int arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, double *tWt)
+{
+    if (residual(s, c->w, q, c->w->nu, lam, 1) != 0)
+        return BK_NL_NONFINITE;
+    int st = bk_lin_factor(&nl->ls, nl->Ax);
+    if (st != BK_LIN_OK)
+        return st == BK_LIN_SINGULAR ? BK_NL_SINGULAR : BK_NL_LINERR;
+    load_derivative(s, c->w, q, lam, c->rl, c->fol, c->tmp);
+    for (int j = 0; j < s->neq; ++j)
+        c->t[j] = -c->rl[j];
+    if (bk_lin_solve(&nl->ls, c->t) != BK_LIN_OK)
+        return BK_NL_LINERR;
+    double ss = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        ss += c->W[j] * c->t[j] * c->t[j];
+    if (!isfinite(ss))
+        return BK_NL_NONFINITE;
+    *tWt = ss;
+    return BK_NL_OK;
+}
+
+/* One arc step of length dl from the equilibrium in q, w->nu at lam0 along
+ * the tangent c->t oriented by sigma: the predictor, then the bordered Newton
+ * iteration.  On success q, w->nu, c->sp.lam hold the new equilibrium; on
+ * failure the start is restored.  w->qsave, w->nusave: the start. */
+static int arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, double sigma, double tWt,
+                    double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info, double lam_scale)
+{
+    work *w = c->w;
+    const bk_model *m = s->m;
+    memcpy(w->qsave, q, (size_t)m->ndof * sizeof *q);
+    memcpy(w->nusave, w->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    double dlp = sigma * dl / sqrt(tWt + lam_scale * c->psi2);
+    step_to(s, w, q, w->nu, c->t, dlp, q, w->nu);
+    c->lam0 = lam0;
+    c->dl = dl;
+    c->sp.lam = lam0 + lam_scale * dlp;
+    c->sp.lam_last = lam0;
+    c->pending = 0.0;
+    bk_nl_problem p = {.ctx = c, .q = q, .residual = sp_residual, .augment = arc_augment, .update = arc_update,
+                       .step_limit = arc_step_limit};
+    /* sp_residual reads the static_problem at the start of the context */
+    bk_nl_opts no = static_nl_opts(o);
+    a->id++;
+    bk_nl_row row = {.attempt = a->id, .step = step, .lam = lam0 + dlp};
+    bk_nl_result res;
+    int st = bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
+    info->newton_iterations += res.iters;
+    a->iters = res.iters, a->rnorm = res.rnorm, a->dnorm = res.dnorm, a->ref = res.ref;
+    a->rtol_abs = res.rtol_abs, a->rcond = res.rcond, a->residual_met = res.residual_met;
+    a->singular_at_start = res.singular_at_start, a->signo = res.signo;
+    if (st != BK_NL_OK) {
+        memcpy(q, w->qsave, (size_t)m->ndof * sizeof *q);
+        memcpy(w->nu, w->nusave, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    }
+    return st;
+}
+
+/* Displacements of the first sensors at q into cp. */
+static void sensor_displacements(const bk_model *m, const double *q, bk_critical_point *cp)
+{
+    cp->nsensor = m->nsensor < BK_CRIT_SENSORS ? m->nsensor : BK_CRIT_SENSORS;
+    for (int k = 0; k < cp->nsensor; ++k) {
+        double p[3], p0[3];
+        bk_eval_point(m, q, m->sensors[k].elem, m->sensors[k].xi, p, NULL);
+        bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, p0, NULL);
+        for (int i = 0; i < 3; ++i)
+            cp->u[k][i] = p[i] - p0[i];
+    }
+}
+
+static double max_sensor_displacement(const bk_model *m, const double *q)
+{
+    bk_critical_point cp;
+    double d = 0.0;
+    sensor_displacements(m, q, &cp);
+    for (int k = 0; k < cp.nsensor; ++k)
+        d = fmax(d, sqrt(cp.u[k][0] * cp.u[k][0] + cp.u[k][1] * cp.u[k][1] + cp.u[k][2] * cp.u[k][2]));
+    return d;
+}
+
+/* The path state of one equilibrium (for the bisection of a limit point). */
+typedef struct arc_point {
+    double *q, *nu;
+    double lam;
+} arc_point;
+
+static void arc_save(const bk_system *s, const work *w, const double *q, double lam, arc_point *p)
+{
+    memcpy(p->q, q, (size_t)s->m->ndof * sizeof *q);
+    memcpy(p->nu, w->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    p->lam = lam;
+}
+
+static void arc_restore(const bk_system *s, work *w, double *q, double *lam, const arc_point *p)
+{
+    memcpy(q, p->q, (size_t)s->m->ndof * sizeof *q);
+    memcpy(w->nu, p->nu, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+    *lam = p->lam;
+}
+
+/* Orientation of the tangent c->t at the equilibrium q (lam) along the path
+ * coming from (q_from, lam_from): +1 when the load factor grows along it. */
+static double arc_orientation(const bk_system *s, const arc_ctx *c, const double *q, double lam,
+                              const double *q_from, double lam_from)
+{
+    double d = c->psi2 * (lam - lam_from);
+    for (int j = 0; j < s->nfree; ++j)
+        d += c->W[j] * (q[c->fdof[j]] - q_from[c->fdof[j]]) * c->t[j];
+    return d >= 0.0 ? 1.0 : -1.0;
+}
+
+/* Bisection on the arc length from the equilibrium A (orientation sigma_a,
+ * the load factor growing when sigma_a > 0) for the limit point within the
+ * arc dl: the arc s at which the orientation of the load factor turns.
+ * Returns the extreme load factor found (the state there in best), the
+ * number of bisection solves in *nsolve. */
+#define ARC_BISECTIONS 14
+#define ARC_NEAR 3
+static double arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, const arc_point *A,
+                               double sigma_a, double dl, const bk_static_opts *o, attempt *a, int step,
+                               bk_run_info *info, arc_point *best, double lam_b)
+{
+    double lo = 0.0, hi = dl, lam_best = sigma_a > 0.0 ? fmax(A->lam, lam_b) : fmin(A->lam, lam_b);
+    int have_best = 0;
+    for (int k = 0; k < ARC_BISECTIONS; ++k) {
+        double mid = 0.5 * (lo + hi), lam = A->lam, tWt;
+        arc_restore(s, c->w, q, &lam, A);
+        if (arc_tangent(s, nl, c, q, lam, &tWt) != BK_NL_OK)
+            break;
+        if (arc_step(s, nl, c, q, lam, sigma_a, tWt, mid, o, a, step, info, 1.0) != BK_NL_OK)
+            break;
+        double lam_m = c->sp.lam;
+        if (sigma_a > 0.0 ? lam_m >= lam_best : lam_m <= lam_best) {
+            lam_best = lam_m;
+            arc_save(s, c->w, q, lam_m, best);
+            have_best = 1;
+        }
+        if (arc_tangent(s, nl, c, q, lam_m, &tWt) != BK_NL_OK)
+            break;
+        double sg = arc_orientation(s, c, q, lam_m, A->q, A->lam);
+        if (sg == sigma_a)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    if (!have_best)
+        best->lam = NAN;
+    return lam_best;
+}
+
+/* The direction of a branch switch into c->t: the eigenvector of the
+ * smallest-magnitude eigenvalue of the last stability check (the null vector
+ * at the bifurcation), its free part, the sign of its largest weighted
+ * component positive; its weighted square length into *tWt. */
+static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx *c, double *tWt)
+{
+    double ss = 0.0, big = 0.0;
+    for (int j = 0; j < s->neq; ++j) {
+        c->t[j] = j < s->nfree ? st->x[j] : 0.0;
+        ss += c->W[j] * c->t[j] * c->t[j];
+        if (sqrt(c->W[j]) * fabs(c->t[j]) > fabs(big))
+            big = sqrt(c->W[j]) * c->t[j];
+    }
+    if (big < 0.0)
+        for (int j = 0; j < s->nfree; ++j)
+            c->t[j] = -c->t[j];
+    *tWt = ss;
+}
+
+static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *out, bk_run_info *info, FILE *log,
+                      bk_stability *stab, int have_stab, bk_checks *chk)
+{
+    const bk_model *m = s->m;
+    const bk_static_opts *o = &m->stat;
+    int nd = m->ndof, ne = s->neq, nc = s->ncon > 0 ? s->ncon : 1, rc = 1;
+    bk_critical_point cand[BK_MAX_EVENTS];          /* bifurcation candidates */
+    int cand_neg[BK_MAX_EVENTS][2], ncand = 0;
+    arc_ctx c = {.sp = {.s = s, .w = w, .q = q, .lscale = m->length_scale}, .w = w};
+    double *W = calloc((size_t)ne, sizeof *W);
+    int *fdof = calloc((size_t)(s->nfree > 0 ? s->nfree : 1), sizeof *fdof);
+    c.rl = calloc((size_t)ne, sizeof *c.rl), c.t = calloc((size_t)ne, sizeof *c.t);
+    c.tmp = calloc((size_t)ne, sizeof *c.tmp), c.fol = calloc((size_t)nd, sizeof *c.fol);
+    arc_point A = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    arc_point B = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    arc_point best = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
+    double *qstart = calloc((size_t)nd, sizeof(double)), *tprim = calloc((size_t)ne, sizeof(double));
+    info->continuation = 1;
+    if (!W || !fdof || !c.rl || !c.t || !c.tmp || !c.fol || !A.q || !A.nu || !B.q || !B.nu || !best.q ||
+        !best.nu || !qstart || !tprim) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    c.W = W, c.fdof = fdof;
+    for (int i = 0; i < nd; ++i)
+        if (s->eq[i] >= 0 && s->eq[i] < s->nfree)
+            fdof[s->eq[i]] = i;
+    {
+        const double L2 = m->length_scale * m->length_scale;
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_elem *el = &m->elems[e];
+            const bk_element *et = m->pairs[el->pair]->element;
+            for (int f = 0; f < et->nfield; ++f) {
+                bk_field_role role = et->field_role[f];
+                double wt = role == BK_FIELD_POSITION ? 1.0
+                            : bk_field_is_gradient(role) || role == BK_FIELD_QUATERNION ? L2 : 0.0;
+                for (int i = 0; i < et->field_dim[f]; ++i) {
+                    int eqn = s->eq[el->dofs[et->field_dof[f] + i]];
+                    if (eqn >= 0 && eqn < s->nfree)
+                        W[eqn] = wt;
+                }
+            }
+        }
+    }
+    memcpy(qstart, q, (size_t)nd * sizeof *q);
+    double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, dlam_prev = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
+    double travelled = 0.0, prev_lam = 0.0;
+    int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
+    int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
+    attempt a = {0};
+    bk_stability_result sres;
+    if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
+        snprintf(info->message, sizeof info->message,
+                 "static.method = \"arc_length\": the scene has no load to scale (expected a force, moment or "
+                 "gravity load)");
+        goto done;
+    }
+    for (;;) {
+        double tWt;
+        int st = arc_tangent(s, nl, &c, q, lam, &tWt);
+        if (st != BK_NL_OK || !(tWt > 0.0)) {
+            snprintf(info->message, sizeof info->message,
+                     "arc-length: no tangent at the equilibrium of step %d, load factor %.6g (%s): the tangent "
+                     "is singular there (a bifurcation point hit exactly, or a mechanism)", info->steps, lam,
+                     st != BK_NL_OK ? bk_nl_why(st) : "the load moves nothing");
+            goto done;
+        }
+        if (info->steps == 0) {
+            c.psi2 = o->arc_spherical ? tWt : 0.0;
+            dl = dl0 = target / o->load_steps * sqrt(tWt + c.psi2);
+        }
+        double sigma = have_dir ? arc_orientation(s, &c, q, lam, A.q, A.lam) : 1.0;
+        /* a limit point between the last two equilibria: the load factor turned */
+        if (have_dir && sigma != sigma_prev && !after_switch && info->ncritical < BK_MAX_EVENTS) {
+            arc_save(s, w, q, lam, &B);
+            int step = info->steps;
+            double lc = arc_bisect_limit(s, nl, &c, q, &A, sigma_prev, dl_prev, o, &a, step, info, &best, lam);
+            bk_critical_point *cp = &info->critical[info->ncritical++];
+            cp->limit = 1;
+            cp->step = step;
+            cp->lam = lc;
+            sensor_displacements(m, isfinite(best.lam) ? best.q : B.q, cp);
+            if (out->console) {
+                fprintf(out->console, "%s: limit point at load factor %.6g (between steps %d and %d)", m->name, lc,
+                        step - 1, step);
+                if (cp->nsensor)
+                    fprintf(out->console, ", sensor %s displacement [%.6g, %.6g, %.6g] m", m->sensors[0].name,
+                            cp->u[0][0], cp->u[0][1], cp->u[0][2]);
+                fprintf(out->console, "\n");
+            }
+            if (log)
+                fprintf(log, "  limit point: load factor %.6g between steps %d and %d\n", lc, step - 1, step);
+            /* a stability event of the same step is this limit point */
+            if (info->nstability > 0 && info->stability[info->nstability - 1].step == step)
+                info->stability[info->nstability - 1].lam_critical = lc;
+            claimed = step;
+            arc_restore(s, w, q, &lam, &B);
+            if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)", info->steps,
+                         bk_nl_why(st));
+                goto done;
+            }
+        }
+        after_switch = 0;
+        if (info->steps >= o->max_steps) {
+            snprintf(info->message, sizeof info->message,
+                     "arc-length: the load-factor target %.6g was not reached within static.max_steps = %d steps; "
+                     "the path is kept up to step %d, load factor %.6g, largest sensor displacement %.6g m",
+                     target, o->max_steps, info->steps, lam, max_sensor_displacement(m, q));
+            goto done;
+        }
+        /* the step: predictor along the oriented tangent, bordered Newton, cut-backs */
+        arc_save(s, w, q, lam, &A);
+        int cuts = 0;
+        for (;;) {
+            double dls = dl;
+            if (switching) {
+                /* branch switch: the predictor along the null vector of the
+                 * tangent past the bifurcation, the load factor kept; the
+                 * sphere about the last equilibrium meets the secondary branch */
+                memcpy(tprim, c.t, (size_t)ne * sizeof *tprim);
+                branch_direction(s, stab, &c, &tWt);
+                dls = fmax(dl, 1e-2 * m->length_scale);
+            }
+            st = arc_step(s, nl, &c, q, lam, switching ? 1.0 : sigma, tWt, dls, o, &a, info->steps + 1, info,
+                          switching ? 0.0 : 1.0);
+            if (switching && st == BK_NL_OK) {
+                /* on the secondary branch the step is across the primary tangent */
+                double tt = 0.0, dd = 0.0, td = 0.0;
+                for (int j = 0; j < s->nfree; ++j) {
+                    double dj = q[fdof[j]] - A.q[fdof[j]];
+                    tt += W[j] * tprim[j] * tprim[j], dd += W[j] * dj * dj, td += W[j] * tprim[j] * dj;
+                }
+                if (tt > 0.0 && dd > 0.0 && fabs(td) > 0.9 * sqrt(tt * dd))
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) came back "
+                            "to the primary branch (the eigenvector nearest zero is not the buckling mode?)",
+                            info->steps, lam);
+                dl = dls;
+                if (out->console)
+                    fprintf(out->console, "%s: branch switch at step %d (load factor %.6g) onto the secondary branch "
+                            "along the null vector of the tangent\n", m->name, info->steps, lam);
+            }
+            if (switching && st != BK_NL_OK && st != BK_NL_INTERRUPTED) {
+                bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                        "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
+                switching = 0;
+                if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                    snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
+                             info->steps, bk_nl_why(st));
+                    goto done;
+                }
+                continue;
+            }
+            if (st == BK_NL_OK || st == BK_NL_INTERRUPTED)
+                break;
+            if (cuts >= o->max_cutbacks) {
+                char what[600];
+                diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                snprintf(info->message, sizeof info->message,
+                         "arc-length failed at step %d from load factor %.6g (arc length %.3e): %s; residual %.3e "
+                         "(tolerance %.3e) after %d iterations, %d cut-backs; the path is kept up to step %d",
+                         info->steps + 1, lam, dl, what, a.rnorm, a.rtol_abs, a.iters, cuts, info->steps);
+                goto done;
+            }
+            cuts++;
+            info->cutbacks++;
+            calm = 0;
+            dl *= 0.5;
+            if (log)
+                fprintf(log, "  cut-back at load factor %.6g (%s): new arc length %.3g\n", lam, bk_nl_why(st), dl);
+            if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
+                         info->steps, bk_nl_why(st));
+                goto done;
+            }
+        }
+        if (st == BK_NL_INTERRUPTED) {
+            info->interrupted = a.signo;
+            snprintf(info->message, sizeof info->message,
+                     "interrupted by %s during step %d from load factor %.6g; the %d converged steps are kept",
+                     bk_interrupt_name(a.signo), info->steps + 1, lam, info->steps);
+            goto done;
+        }
+        if (switching) {
+            switching = 0;
+            switched = 1;
+            after_switch = 1;           /* no limit point between the branches */
+        }
+        double lam_new = c.sp.lam;
+        int reached = (lam - target) * (lam_new - target) <= 0.0 && lam_new > lam;
+        if (reached && lam_new != target) {
+            /* land on the target by load control from the arc point */
+            arc_save(s, w, q, lam_new, &B);
+            memcpy(w->qsave, A.q, (size_t)nd * sizeof *q);
+            a.id++;
+            int lst = newton(s, nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
+            info->newton_iterations += a.iters;
+            if (lst == NEWTON_OK)
+                lam_new = target;
+            else
+                arc_restore(s, w, q, &lam_new, &B);
+        }
+        dlam_prev = lam_new - lam;
+        dl_prev = dl;
+        travelled += dl;
+        sigma_prev = sigma;
+        have_dir = 1;
+        lam = lam_new;
+        info->steps++;
+        info->load_factor = lam;
+        bk_output_step(out, info->steps, lam, q);
+        bk_checks_state(chk, s, q, "load factor", lam, info, out->console);
+        if (log)
+            fprintf(log, "  step %d: load factor %.6g, arc length %.3g, %d iterations, residual %.3e\n", info->steps,
+                    lam, dl, a.iters, a.rnorm);
+        if (have_stab) {
+            probe_stability(stab, s, w, q, lam, 0, &sres);
+            accept_stability(stab, &sres, lam, out, info, log, &prev_lam);
+        }
+        /* a change of the negative-eigenvalue count in the last step without
+         * a limit point: a bifurcation candidate (its load factor from the
+         * bisection on the inertia of the interpolated tangent, sensors
+         * interpolated); kept unless a limit point is within ARC_NEAR steps
+         * (the count flickers while the smallest eigenvalue hovers about zero
+         * on the flat top of a limit point); not the change of a branch switch */
+        if (info->nstability > 0 && info->stability[info->nstability - 1].step == info->steps &&
+            claimed != info->steps && !after_switch && ncand < BK_MAX_EVENTS) {
+            const bk_stability_event *ev = &info->stability[info->nstability - 1];
+            bk_critical_point *cp = &cand[ncand++], ca, cb;
+            double f = isfinite(ev->lam_critical) && lam != A.lam ? (ev->lam_critical - A.lam) / (lam - A.lam) : 1.0;
+            sensor_displacements(m, A.q, &ca);
+            sensor_displacements(m, q, &cb);
+            cp->limit = 0;
+            cp->step = info->steps;
+            cp->lam = ev->lam_critical;
+            cp->nsensor = cb.nsensor;
+            for (int k = 0; k < cb.nsensor; ++k)
+                for (int i = 0; i < 3; ++i)
+                    cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
+            cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
+            claimed = info->steps;
+            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before)
+                switching = 1;          /* the next step switches branch */
+        }
+        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
+        if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
+            rc = 0;
+            goto done;
+        }
+        if (o->max_displacement > 0.0 && max_sensor_displacement(m, q) >= o->max_displacement) {
+            if (out->console)
+                fprintf(out->console, "%s: arc-length stopped at the displacement limit %.6g m (step %d, load "
+                        "factor %.6g)\n", m->name, o->max_displacement, info->steps, lam);
+            rc = 0;
+            goto done;
+        }
+        /* a closed loop: back at the start after going around */
+        if (travelled > 4.0 * dl0 && info->steps > 4) {
+            double d2 = c.psi2 * lam * lam;
+            for (int j = 0; j < s->nfree; ++j) {
+                double dj = q[fdof[j]] - qstart[fdof[j]];
+                d2 += W[j] * dj * dj;
+            }
+            if (sqrt(d2) < 0.5 * dl && fabs(lam) < 0.5 * fabs(dlam_prev) + 1e-12) {
+                snprintf(info->message, sizeof info->message,
+                         "arc-length: the path returned to its start at step %d (a closed loop: load factor %.6g, "
+                         "distance %.3e from the start, arc length %.3e); the target %.6g is not on this path",
+                         info->steps, lam, sqrt(d2), dl, target);
+                goto done;
+            }
+        }
+        /* the next arc length from the iteration count */
+        double f = sqrt((double)o->arc_iters / (a.iters > 1 ? a.iters : 1));
+        f = fmin(fmax(f, 0.5), 2.0);
+        if (calm < 2) {
+            f = fmin(f, 1.0);
+            calm++;
+        }
+        dl = fmin(dl * f, fmax(8.0 * dl0, 0.05 * m->length_scale));
+    }
+done:
+    /* the bifurcations: candidates away from every limit point, merged by
+     * step; a change taken back within ARC_NEAR steps (0 -> 1 -> 0) is the
+     * flicker of an eigenvalue about zero and no bifurcation */
+    char gone[BK_MAX_EVENTS] = {0};
+    for (int k = 0; k + 1 < ncand; ++k)
+        if (!gone[k] && cand_neg[k][0] == cand_neg[k + 1][1] && cand_neg[k][1] == cand_neg[k + 1][0] &&
+            cand[k + 1].step - cand[k].step <= ARC_NEAR)
+            gone[k] = gone[k + 1] = 1;
+    for (int k = 0; k < ncand; ++k) {
+        int near = gone[k];
+        for (int j = 0; j < info->ncritical; ++j)
+            near |= info->critical[j].limit && abs(info->critical[j].step - cand[k].step) <= ARC_NEAR;
+        if (near || info->ncritical >= BK_MAX_EVENTS)
+            continue;
+        int at = info->ncritical;
+        while (at > 0 && info->critical[at - 1].step > cand[k].step) {
+            info->critical[at] = info->critical[at - 1];
+            at--;
+        }
+        info->critical[at] = cand[k];
+        info->ncritical++;
+        if (out->console)
+            fprintf(out->console, "%s: bifurcation at load factor %.6g (between steps %d and %d: negative tangent "
+                    "eigenvalues %d -> %d)\n", m->name, cand[k].lam, cand[k].step - 1, cand[k].step, cand_neg[k][0],
+                    cand_neg[k][1]);
+    }
+    free(W), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(qstart), free(tprim);
+    free(A.q), free(A.nu), free(B.q), free(B.nu), free(best.q), free(best.nu);
+    return rc;
+}
+
 int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
     const bk_static_opts *o = &m->stat;
     work w = {0};
-    int nd = m->ndof, ne = s->neq > 0 ? s->neq : 1, nc = s->ncon > 0 ? s->ncon : 1;
+    int nd = m->ndof, nc = s->ncon > 0 ? s->ncon : 1;
     w.fint = calloc((size_t)nd, sizeof(double));
     w.fext = calloc((size_t)nd, sizeof(double));
     w.qsave = calloc((size_t)nd, sizeof(double));
     w.qprev = calloc((size_t)nd, sizeof(double));
-    w.r = calloc((size_t)ne, sizeof(double));
-    w.dx = calloc((size_t)ne, sizeof(double));
     w.nu = calloc((size_t)nc, sizeof(double));
     w.nusave = calloc((size_t)nc, sizeof(double));
     w.nuprev = calloc((size_t)nc, sizeof(double));
-    w.Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof(double));
-    bk_linsolver ls = {0};
+    bk_nl nl = {0};
+    int have_nl = 0;
     bk_stability stab = {0};
     bk_checks chk = {0};
     int rc = 1, have_stab = 0;
-    if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.r || !w.dx || !w.nu || !w.nusave ||
-        !w.nuprev || !w.Ax) {
+    if (!w.fint || !w.fext || !w.qsave || !w.qprev || !w.nu || !w.nusave || !w.nuprev) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -324,12 +902,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to solve");
         goto done;
     }
-    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
-        snprintf(info->message, sizeof info->message, "sparse analysis (KLU) failed");
+    have_nl = 1;
+    if (bk_nl_init(&nl, s, out, info->message, sizeof info->message) != 0)
         goto done;
-    }
+    w.r = nl.r, w.dx = nl.dx, w.Ax = nl.Ax, w.norms = &nl.norms;
     w.quat = bk_quat_list(s, &w.nquat);
-    if (w.nquat < 0 || bk_norms_init(&w.norms, s) != 0 || bk_checks_init(&chk, s) != 0) {
+    if (w.nquat < 0 || bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -364,6 +942,10 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     if (have_stab) {
         probe_stability(&stab, s, &w, q, 0.0, 0, &sres);
         accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
+    }
+    if (o->arc_length) {
+        rc = arc_length(s, &nl, &w, q, out, info, log, &stab, have_stab, &chk);
+        goto done;
     }
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
      * show path independence); each leg in load_steps increments. */
@@ -403,7 +985,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
                 }
                 a.id++;
-                st = newton(s, &ls, &w, q, target, lam, &a, o, m->length_scale, out, info->steps + 1);
+                st = newton(s, &nl, &w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
                 info->newton_iterations += a.iters;
             }
             /* On a stable path (static.stable_path), an increment that ends
@@ -508,24 +1090,21 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     rc = 0;
 done:
     info->converged = rc == 0;
-    info->factorizations = ls.nfactor;
-    info->analyses = ls.nanalyze;
+    info->factorizations = nl.ls.nfactor;
+    info->analyses = nl.ls.nanalyze;
     info->stability_checked = have_stab;
-    bk_lin_free(&ls);
+    if (have_nl)
+        bk_nl_free(&nl);
     if (have_stab)
         bk_stability_free(&stab);
     free(w.fint);
     free(w.fext);
     free(w.qsave);
     free(w.qprev);
-    free(w.r);
-    free(w.dx);
     free(w.nu);
     free(w.nusave);
     free(w.nuprev);
-    free(w.Ax);
     free(w.quat);
-    bk_norms_free(&w.norms);
     bk_checks_free(&chk);
     return rc;
 }

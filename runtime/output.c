@@ -343,6 +343,24 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         }
         fprintf(fp, "%s]},\n", info->nstability ? "\n  " : "");
     }
+    if (info->continuation) {
+        fprintf(fp, "  \"critical_points\": [");
+        for (int k = 0; k < info->ncritical; ++k) {
+            const bk_critical_point *c = &info->critical[k];
+            fprintf(fp, "%s\n    {\"type\": \"%s\", \"step\": %d, \"load_factor\": ", k ? "," : "",
+                    c->limit ? "limit_point" : "bifurcation", c->step);
+            json_num(fp, c->lam);
+            fprintf(fp, ", \"displacement\": {");
+            for (int j = 0; j < c->nsensor; ++j) {
+                fprintf(fp, "%s", j ? ", " : "");
+                json_string(fp, m->sensors[j].name);
+                fprintf(fp, ": ");
+                json_vec(fp, c->u[j]);
+            }
+            fprintf(fp, "}}");
+        }
+        fprintf(fp, "%s],\n", info->ncritical ? "\n  " : "");
+    }
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
         json_string(fp, info->message);

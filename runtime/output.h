@@ -38,6 +38,19 @@ typedef struct bk_stability_event {
     double lam_critical;     /* interpolated critical load factor (NaN: unknown)   */
 } bk_stability_event;
 
+/* A critical point of an arc-length path: a limit point (the load factor
+ * turns; refined by bisection on the arc length) or a bifurcation (the
+ * negative-eigenvalue count changes without a limit point; refined by
+ * bisection on the inertia). */
+#define BK_CRIT_SENSORS 4
+typedef struct bk_critical_point {
+    int limit;               /* 1: limit point, 0: bifurcation                    */
+    int step;                /* the first equilibrium past it                     */
+    double lam;              /* critical load factor                              */
+    int nsensor;             /* sensors with a displacement below (the first ones) */
+    double u[BK_CRIT_SENSORS][3];   /* their displacements there (m; NaN: unknown) */
+} bk_critical_point;
+
 #define BK_MAX_EVENTS 32
 #define BK_MAX_WARNINGS 16
 #define BK_WARNING_LEN 400
@@ -64,6 +77,10 @@ typedef struct bk_run_info {
     double eig_min, eig_max;   /* smallest-magnitude and largest eigenvalue there  */
     int nstability;
     bk_stability_event stability[BK_MAX_EVENTS];
+    /* statics with static.method = "arc_length" */
+    int continuation;
+    int ncritical;
+    bk_critical_point critical[BK_MAX_EVENTS];
 } bk_run_info;
 
 /* progress: show an updating line on stderr (only if it is a terminal). */

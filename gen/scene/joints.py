@@ -46,6 +46,9 @@ def clamp(ctx, ct, where, mesh, rows, beam, s, gid):
     """Every nodal coordinate held (rigid section), or position and the
     directions of the slopes held but not their lengths (free section)."""
     fd, fixed, row = mesh.field_dofs(gid), rows.fixed, rows.row
+    if "b" in ct:
+        _rigid_joint(ctx, ct, where, mesh, rows, beam, gid)
+        return
     mode = get_str(ctx, ct, "cross_section", where, default="rigid", choices=("rigid", "free"))
     if mode == "rigid":
         for dl in fd.values():
@@ -61,6 +64,45 @@ def clamp(ctx, ct, where, mesh, rows, beam, s, gid):
                 row([(dl[i], nrm[i], 0.0, 0.0) for i in range(3)])
         else:                   # r_yy, r_yz, r_zz: the section stays plane, free in its plane
             row([(dl[i], t[i], 0.0, 0.0) for i in range(3)])
+
+
+def _quat_mul(p, r):
+    """Hamilton product p r of quaternions (s, x, y, z)."""
+    ps, pv, rs, rv = p[0], p[1:], r[0], r[1:]
+    c = _cross(pv, rv)
+    return [ps * rs - _dot(pv, rv)] + [ps * rv[i] + rs * pv[i] + c[i] for i in range(3)]
+
+
+def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
+    """clamp with b: the sections at a and b (coinciding points of two beams)
+    move as one: equal positions and p_b = p_a r with the constant relative
+    rotation r = conj(p_a0) p_b0 (rows linear in the quaternions; gef-family
+    nodes only)."""
+    q0 = mesh.q0
+    if "cross_section" in ct:
+        ctx.fail(f"{where}.cross_section", "expected no cross_section with b (a rigid beam-to-beam joint)")
+    beam_b, s_b, gid_b = mesh.node_of(ctx, f"{where}.b", ct["b"], "rigid joint")
+    X, Xb = mesh.nodes[gid][0], mesh.nodes[gid_b][0]
+    if _norm(_sub(X, Xb)) > 1e-9 * max(1.0, _norm(X)):
+        ctx.fail(f"{where}.b", f"the points a and b must coincide in the reference configuration "
+                 f"({ct['a']} at {X}, {ct['b']} at {Xb})")
+    if gid_b == gid:
+        ctx.fail(f"{where}.b", "a and b are the same node")
+    fa, fb = mesh.field_dofs(gid), mesh.field_dofs(gid_b)
+    for f, name in ((fa, ct["a"]), (fb, ct["b"])):
+        if set(f) != {"r", "p"}:
+            ctx.fail(f"{where}.b", "a rigid beam-to-beam joint needs gef-family nodes (position and quaternion) "
+                     f"at both points; {name} has fields {sorted(f)}")
+    for i in range(3):
+        rows.row([(fa["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
+    pa0 = [q0[d] for d in fa["p"]]
+    pb0 = [q0[d] for d in fb["p"]]
+    rel = _quat_mul([pa0[0], -pa0[1], -pa0[2], -pa0[3]], pb0)
+    n2 = sum(x * x for x in pa0)
+    rel = [x / n2 for x in rel]
+    cols = [_quat_mul([1.0 if k == j else 0.0 for k in range(4)], rel) for j in range(4)]   # p -> p r
+    for k in range(4):
+        rows.row([(fb["p"][k], 1.0, 0.0, 0.0)] + [(fa["p"][j], -cols[j][k], 0.0, 0.0) for j in range(4)])
 
 
 def spherical(ctx, ct, where, mesh, rows, beam, s, gid):

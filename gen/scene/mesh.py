@@ -205,6 +205,7 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         first_elem = len(elements)
         enodes = einfo["nodes"]
         prev_end = None
+        prev_p = None           # the last nodal quaternion: its neighbours keep its hemisphere
         node_ids_of_beam = {}
         for k in range(nel):
             if log and n_total > 100000 and k % 4096 == 0 and time.monotonic() - t_progress[0] > 2.0:
@@ -224,7 +225,12 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                     nodes.append((X, t, d1, d2, fields))
                     dof_of_node.append(ndof)
                     for f, dim in fields:
-                        q0.extend(reference_field(f, t, d1, d2, X))
+                        val = reference_field(f, t, d1, d2, X)
+                        if f == "p":    # p and -p are one rotation; interpolation needs one sign
+                            if prev_p is not None and sum(u * v for u, v in zip(val, prev_p)) < 0.0:
+                                val = [-v for v in val]
+                            prev_p = val
+                        q0.extend(val)
                     ndof += sum(d for _, d in fields)
                     node_ids_of_beam[_key(starts[k] + xi * l, length)] = gid
                 if nodes[gid][4] != fields:

@@ -15,6 +15,8 @@ RECORDS = {
                "stability", "eigenvalues", "stable_path", "step_control"),
     "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
                 "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian"),
+    "continuation": ("method", "arc_constraint", "target_load_factor", "max_steps", "max_displacement",
+                     "arc_iterations", "branch_switch"),
     "output": ("vtk_every",),
     "modal": ("modes", "about"),
 }
@@ -47,6 +49,9 @@ def write_model(model, path):
                               "stability": int(s["stability"] or s["stable_path"] or s["eigenvalues"]),
                               "eigenvalues": int(s["eigenvalues"]),
                               "step_control": int(s["step_control"] == "adaptive")}),
+           _record("continuation", {**{k: s[k] for k in RECORDS["continuation"]},
+                                    "method": int(s["method"] == "arc_length"),
+                                    "arc_constraint": int(s["arc_constraint"] == "spherical")}),
            _record("dynamic", {**{k: d[k] for k in RECORDS["dynamic"] if k != "jacobian"},
                                "jacobian": int(d["jacobian"] == "reuse")}),
            _record("output", {"vtk_every": model["vtk_every"]}),

@@ -9,10 +9,44 @@ from gen.scene.values import (_cross, _dot, _sub, check_keys, get_array_of_table
 
 STATIC_DEFAULTS = {"load_steps": 1, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "predictor": "secant", "stability": True,
-                   "eigenvalues": False, "stable_path": False, "step_control": "adaptive"}
+                   "eigenvalues": False, "stable_path": False, "step_control": "adaptive", "method": "load_control",
+                   "arc_constraint": "cylindrical", "target_load_factor": 1.0, "max_steps": 1000,
+                   "max_displacement": 0.0, "arc_iterations": 5, "branch_switch": False}
 DYNAMIC_DEFAULTS = {"rho_inf": 0.8, "tol": 0.0, "max_iterations": 25, "max_cutbacks": 12,
                     "output_every": 1, "rayleigh_alpha": 0.0, "rayleigh_beta": 0.0,
                     "rtol": 1e-8, "utol": 1e-8, "jacobian": "reuse"}
+
+
+def continuation_options(ctx, st, stat):
+    """The arc-length keys of [static] (checked also when load control ignores them)."""
+    d = STATIC_DEFAULTS
+    c = {"method": get_str(ctx, st, "method", "static", default=d["method"], choices=("load_control", "arc_length")),
+         "arc_constraint": get_str(ctx, st, "arc_constraint", "static", default=d["arc_constraint"],
+                                   choices=("cylindrical", "spherical")),
+         "target_load_factor": get_number(ctx, st, "target_load_factor", "static", default=d["target_load_factor"],
+                                          positive=True),
+         "max_steps": get_int(ctx, st, "max_steps", "static", default=d["max_steps"], lo=1, hi=10**7),
+         "max_displacement": get_number(ctx, st, "max_displacement", "static", default=d["max_displacement"],
+                                        nonneg=True),
+         "arc_iterations": get_int(ctx, st, "arc_iterations", "static", default=d["arc_iterations"], lo=1,
+                                   hi=stat["max_iterations"]),
+         "branch_switch": get_bool(ctx, st, "branch_switch", "static", d["branch_switch"])}
+    if c["method"] == "arc_length":
+        if stat["cycles"]:
+            ctx.fail("static.cycles", f"expected 0 with method = \"arc_length\" (the path is followed, not "
+                                      f"cycled), found {stat['cycles']!r}")
+        if c["branch_switch"] and not stat["stability"]:
+            ctx.fail("static.branch_switch", "expected static.stability = true (the switch follows the null vector "
+                                             "of the stability check)")
+        if stat["stable_path"]:
+            ctx.fail("static.stable_path", "expected false with method = \"arc_length\" (arc-length follows "
+                                           "the path through limit points; stable_path is for load control)")
+    else:
+        for k in ("arc_constraint", "target_load_factor", "max_steps", "max_displacement", "arc_iterations",
+                  "branch_switch"):
+            if k in st:
+                ctx.fail("static." + k, 'expected only with method = "arc_length" (load control ignores it)')
+    return c
 
 
 def options(ctx, doc, analysis):
@@ -34,6 +68,9 @@ def options(ctx, doc, analysis):
         "step_control": get_str(ctx, st, "step_control", "static", default=STATIC_DEFAULTS["step_control"],
                                 choices=("adaptive", "fixed")),
     }
+    stat.update(continuation_options(ctx, st, stat))
+    if stat["branch_switch"]:
+        stat["eigenvalues"] = True     # the switch follows the eigenvector of the eigenvalue nearest zero
     dt = get_table(ctx, doc, "dynamic")
     check_keys(ctx, dt, set(K.DYNAMIC), "dynamic")
     dyn = {k: v for k, v in DYNAMIC_DEFAULTS.items()}

@@ -1,0 +1,248 @@
+"""Arc-length continuation (static.method = "arc_length", runtime/newton.c) on
+benchmarks with independent references: the von Mises two-bar truss (closed
+form derived below), the clamped-hinged deep circular arch (DaDeppo and
+Schmidt 1975), the Euler bifurcation of the seed cantilever (closed form), and
+the bad-input and budget behaviour."""
+import json
+import math
+import tempfile
+from pathlib import Path
+
+from scipy.optimize import brentq
+
+from test_bad_input import check_error
+from util import BUILD, ROOT, ensure_dir, load_run, rel, run_cli, run_scene
+
+# --- the two-bar truss (models/truss_snap_through.toml) -----------------------
+# Half model: one pin-ended bar from (0, 0) to the apex (b, h) on the symmetry
+# line, EA, half load F downwards.  A straight pin-ended bar carries only its
+# axial force N = EA (L / L0 - 1) (tension positive), L = sqrt(b^2 + y^2) at
+# apex height y.  Vertical equilibrium of the apex: F = -N y / L, i.e.
+#     F(y) = EA y (1 / L - 1 / L0).
+# dF/dy = EA (1/L - 1/L0 - y^2/L^3) = EA (b^2 / L^3 - 1 / L0) = 0 at
+#     L* = (b^2 L0)^(1/3),  y* = sqrt(L*^2 - b^2),  F_max = EA y* (1/L* - 1/L0)
+# and by the oddness of F(y) the mirrored minimum -F_max at -y*.
+EA, B, H, F_REF = 1.0e6, 1.0, 0.1, 400.0
+L0 = math.hypot(B, H)
+
+
+def truss_force(y):
+    return EA * y * (1.0 / math.hypot(B, y) - 1.0 / L0)
+
+
+def truss_limit():
+    Ls = (B * B * L0) ** (1.0 / 3.0)
+    ys = math.sqrt(Ls * Ls - B * B)
+    return ys, EA * ys * (1.0 / Ls - 1.0 / L0)
+
+
+def test_truss_snap_through_limit_loads_and_path_match_the_closed_form():
+    s, rows = run_scene("truss_snap_through")
+    assert s["converged"], s["error"]
+    ys, fmax = truss_limit()
+    crit = s["critical_points"]
+    assert [c["type"] for c in crit] == ["limit_point", "limit_point"], crit
+    # the snap: up to +F_max at height y*, down through zero to -F_max at -y*
+    assert rel(crit[0]["load_factor"] * F_REF, fmax) < 1e-4, (crit[0], fmax)
+    assert rel(crit[1]["load_factor"] * F_REF, -fmax) < 1e-4, (crit[1], fmax)
+    assert abs(crit[0]["displacement"]["apex"][2] - (ys - H)) < 1e-3 * H
+    assert abs(crit[1]["displacement"]["apex"][2] - (-ys - H)) < 1e-3 * H
+    # every equilibrium of the path is on the closed-form curve, the load factor
+    # rises, falls below zero and ends on the target on the inverted branch
+    lams = [float(r["time"]) for r in rows]
+    for r in rows:
+        y = H + float(r["uz"])
+        assert abs(float(r["time"]) * F_REF - truss_force(y)) < 1e-5 * fmax, r
+    k = lams.index(min(lams))
+    assert max(lams[:k]) < fmax / F_REF * (1 + 1e-9) and lams[k] < 0.0 and lams[-1] == 1.0
+    y_end = brentq(lambda y: truss_force(y) - F_REF, -10 * H, -ys)
+    assert abs(H + float(rows[-1]["uz"]) - y_end) < 1e-6 * H
+    # the stability count follows: unstable between the limit points
+    ev = s["stability"]["events"]
+    assert [(e["negative_before"], e["negative_after"]) for e in ev] == [(0, 1), (1, 0)]
+
+
+def test_truss_step_budget_keeps_the_path_and_says_where():
+    out = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "truss_snap_through", "--quiet", "--out", str(out), "--set", "static.max_steps=3"])
+    assert r.returncode != 0
+    assert "not reached within static.max_steps = 3 steps" in r.stderr and "load factor" in r.stderr, r.stderr
+    s, rows = load_run(out)
+    assert not s["converged"] and s["steps"] == 3 and len(rows) == 4
+
+
+def test_deep_arch_limit_load_within_one_percent_of_dadeppo_schmidt():
+    # DaDeppo and Schmidt (J. Appl. Mech. 42 (1975) 894-896), clamped-hinged
+    # 215-degree arch, crown point load: P_cr R^2 / EI = 8.97 (897 for
+    # R = 100, EI = 1e6, the value quoted by e.g. Ibrahimbegovic 1995).
+    s, rows = run_scene("deep_arch_215")
+    assert s["converged"], s["error"]
+    lim = [c for c in s["critical_points"] if c["type"] == "limit_point"]
+    assert lim, s["critical_points"]
+    p_cr = lim[0]["load_factor"] * 1000.0
+    assert rel(p_cr * 100.0**2 / 1.0e6, 8.97) < 0.01, p_cr
+    # past the limit the load factor falls (snap-through)
+    lams = [float(r["time"]) for r in rows]
+    assert lams[-1] < lim[0]["load_factor"] - 0.05
+
+
+def test_euler_bifurcation_without_imperfection_on_the_arc_length_path():
+    s, _ = run_scene("cantilever_euler_arc")
+    assert s["converged"], s["error"]
+    bif = [c for c in s["critical_points"] if c["type"] == "bifurcation"]
+    assert len(bif) == 1, s["critical_points"]
+    EI = 7.2e10 * 0.01**4 / 12.0
+    p_e = math.pi**2 * EI / 4.0
+    assert rel(bif[0]["load_factor"] * 200.0, p_e) < 2e-3, (bif, p_e)
+
+
+TRUSS = (ROOT / "models" / "truss_snap_through.toml").read_text()
+
+
+def test_arc_length_options_are_checked():
+    check_error(TRUSS.replace('method = "arc_length"', 'method = "arc"'), "static.method",
+                "expected one of|expected")
+    check_error(TRUSS.replace("target_load_factor = 1.0", "target_load_factor = -1.0"),
+                "static.target_load_factor", "positive")
+    check_error(TRUSS.replace("target_load_factor = 1.0", "target_load_factor = 1.0\narc_iterations = 40"),
+                "static.arc_iterations", "expected")
+    check_error(TRUSS.replace("target_load_factor = 1.0", "target_load_factor = 1.0\ncycles = 1"),
+                "static.cycles", "arc_length")
+    check_error(TRUSS.replace('method = "arc_length"\n', ""), "static.target_load_factor", "arc_length")
+    check_error(TRUSS.replace("target_load_factor = 1.0", "target_load_factor = 1.0\narc_constraint = \"ball\""),
+                "static.arc_constraint", "cylindrical")
+
+
+def test_branch_switch_follows_the_post_buckled_elastica():
+    # inextensible elastica of the cantilever under a dead end load P > P_E:
+    # L sqrt(P / EI) = K(m), m = k^2, k = sin(alpha / 2) (alpha: the tip angle);
+    # tip along the load x = L (2 E(m) / K(m) - 1), deflection 2 k L / K(m)
+    from scipy.special import ellipe, ellipk
+    s, rows = run_scene("cantilever_postbuckling")
+    assert s["converged"], s["error"]
+    EI, L, P = 7.2e10 * 0.01**4 / 12.0, 1.0, 200.0
+    m = brentq(lambda m: ellipk(m) - L * math.sqrt(P / EI), 1e-12, 1.0 - 1e-12)
+    x_ref = L * (2.0 * ellipe(m) / ellipk(m) - 1.0)
+    d_ref = 2.0 * math.sqrt(m) * L / ellipk(m)
+    p = s["sensors"]["tip"]["position"]
+    assert abs(p[0] - x_ref) < 2e-4 * L, (p, x_ref)
+    assert abs(math.hypot(p[1], p[2]) - d_ref) < 2e-4 * L, (p, d_ref)
+    assert s["load_factor"] == 1.0
+    crit = s["critical_points"]
+    assert [c["type"] for c in crit] == ["bifurcation"], crit
+    assert rel(crit[0]["load_factor"] * P, math.pi**2 * EI / 4.0) < 2e-3
+
+
+def test_spherical_constraint_finds_the_same_limit_loads():
+    text = TRUSS.replace("target_load_factor = 1.0", 'target_load_factor = 1.0\narc_constraint = "spherical"')
+    d = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    (d / "truss_spherical.toml").write_text(text)
+    s, _ = run_scene(d / "truss_spherical.toml", out=d / "out")
+    _, fmax = truss_limit()
+    lims = [c["load_factor"] * F_REF for c in s["critical_points"] if c["type"] == "limit_point"]
+    assert len(lims) == 2 and rel(lims[0], fmax) < 1e-4 and rel(lims[1], -fmax) < 1e-4, lims
+
+
+def test_lee_frame_limit_load_and_snap_back():
+    # Lee's frame (dead load at L/5 from the rigid corner, both ends pinned):
+    # the limit load commonly quoted from the literature is P L^2 / EI = 18.5
+    # (1.85 for L = 120, EI = 1440); the scene's load factor is P L^2 / EI.
+    s, rows = run_scene("lee_frame")
+    assert s["converged"], s["error"]
+    lim = [c for c in s["critical_points"] if c["type"] == "limit_point"]
+    assert len(lim) == 1 and [c["type"] for c in s["critical_points"]] == ["limit_point"], s["critical_points"]
+    assert rel(lim[0]["load_factor"], 18.5) < 5e-3, lim
+    # past the limit: the snap-back (the load point's vertical displacement
+    # turns back while the load falls) and a negative load factor
+    uz = [float(r["uz"]) for r in rows]
+    lam = [float(r["time"]) for r in rows]
+    k = uz.index(min(uz))
+    assert lam[k] < lim[0]["load_factor"] and uz[-1] - uz[k] > 0.05 * 1.2, (uz[k], uz[-1])
+    assert min(lam) < 0.0
+
+
+def test_rigid_joint_needs_rod_nodes():
+    lee = (ROOT / "models" / "lee_frame.toml").read_text()
+    bad = lee.replace('name = "beam"\nelement = "gef"', 'name = "beam"\nelement = "ancf_cable"').replace(
+        'type = "revolute"\na = "beam:end"\naxis = [0.0, 1.0, 0.0]', 'type = "spherical"\na = "beam:end"').replace(
+        "EI1 = 10.0", "EI1 = 1.0")
+    check_error(bad, "constraint[2].b", "gef-family")
+
+
+JOINED = """[scene]
+analysis = "static"
+[material.steel]
+law = "resultant"
+E = 2.0e11
+nu = 0.3
+rho = 7800.0
+[section.round]
+shape = "circle"
+radius = 0.01
+{beams}
+[[constraint]]
+type = "clamp"
+a = "a:start"
+{joint}
+[[load]]
+type = "force"
+at = "{tip}:end"
+value = [0.0, 900.0, -1500.0]
+[[load]]
+type = "moment"
+at = "{tip}:end"
+value = [300.0, 0.0, 0.0]
+[static]
+load_steps = 4
+[[sensor]]
+name = "tip"
+at = "{tip}:end"
+"""
+BEAM = """[[beam]]
+name = "{name}"
+element = "gef"
+material = "steel"
+section = "round"
+start = {start}
+end = {end}
+up = {up}
+elements = {n}
+"""
+
+
+def test_rigid_joint_between_differently_oriented_sections_is_one_beam():
+    # a circular section is the same beam whatever its section axes: a beam cut
+    # in two, the second half's section turned 90 degrees about the axis and
+    # joined rigidly (clamp with b), must deform as the whole beam under a
+    # large 3-D load (bending both ways and torsion); a relative rotation taken
+    # in the wrong frame would not
+    one = JOINED.format(beams=BEAM.format(name="a", start=[0.0, 0.0, 0.0], end=[1.0, 0.0, 0.0], up=[0.0, 0.0, 1.0],
+                                          n=10), joint="", tip="a")
+    two = JOINED.format(beams=BEAM.format(name="a", start=[0.0, 0.0, 0.0], end=[0.5, 0.0, 0.0], up=[0.0, 0.0, 1.0],
+                                          n=5)
+                        + BEAM.format(name="b", start=[0.5, 0.0, 0.0], end=[1.0, 0.0, 0.0], up=[0.0, 1.0, 0.0], n=5),
+                        joint='[[constraint]]\ntype = "clamp"\na = "a:end"\nb = "b:start"', tip="b")
+    d = Path(tempfile.mkdtemp(prefix="bk-joint-", dir=ensure_dir(BUILD / "runs")))
+    res = []
+    for name, text in (("one", one), ("two", two)):
+        (d / f"{name}.toml").write_text(text)
+        s, _ = run_scene(d / f"{name}.toml", out=d / name)
+        assert s["converged"], s["error"]
+        res.append(s["sensors"]["tip"])
+    u1, u2 = res[0]["displacement"], res[1]["displacement"]
+    assert math.hypot(*u1) > 0.3, u1          # large deflection
+    assert max(abs(a - b) for a, b in zip(u1, u2)) < 1e-7 * math.hypot(*u1), (u1, u2)
+    # the tip frames agree up to the quarter turn of the second half's section axes
+    d3a, d3b = res[0]["d3"], res[1]["d3"]
+    assert max(abs(a - b) for a, b in zip(d3a, d3b)) < 1e-7, (d3a, d3b)
+
+
+def test_plot_draws_the_path_with_its_limit_points():
+    from report.plot import figures
+    out = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    s, _ = run_scene("truss_snap_through", out=out)
+    figs = figures(out)
+    assert "path.png" in figs
+    texts = [t.get_text() for ax in figs["path.png"].axes for t in ax.texts]
+    assert sum(t.startswith("limit ") for t in texts) == 2, texts
+    assert any(f"{s['critical_points'][0]['load_factor']:.4g}" in t for t in texts), texts
