@@ -9,10 +9,9 @@ Exit status (also in ./build.sh --help and the README):
   130 interrupted by SIGINT (Ctrl-C), 143 by SIGTERM: results so far are kept and
       summary.json says "interrupted": true
 """
-import argparse
 import json
+import os
 import signal
-import subprocess
 import sys
 from pathlib import Path
 
@@ -33,14 +32,19 @@ class UsageError(Exception):
     pass
 
 
-class Parser(argparse.ArgumentParser):
-    """argparse with usage errors on exit status 64 (sysexits EX_USAGE), not 2,
-    which is the status of a solve that did not converge."""
+def Parser(**kw):
+    """An argparse parser with usage errors on exit status 64 (sysexits
+    EX_USAGE), not 2, which is the status of a solve that did not converge
+    (argparse is imported only for the command lines that need it)."""
+    import argparse
 
-    def error(self, message):
-        self.print_usage(sys.stderr)
-        print(f"error: {self.prog}: {message}", file=sys.stderr)
-        sys.exit(EXIT_USAGE)
+    class _Parser(argparse.ArgumentParser):
+        def error(self, message):
+            self.print_usage(sys.stderr)
+            print(f"error: {self.prog}: {message}", file=sys.stderr)
+            sys.exit(EXIT_USAGE)
+
+    return _Parser(**kw)
 
 
 def scene_path(spec):
@@ -119,7 +123,7 @@ class _Signals:
     130 / 143."""
 
     def __init__(self):
-        self.proc = None
+        self.pid = None
 
     def __enter__(self):
         self.old = {sg: signal.signal(sg, self._handle) for sg in EXIT_SIGNAL}
@@ -131,16 +135,17 @@ class _Signals:
         return False
 
     def _handle(self, signo, _frame):
-        if self.proc is None:
+        if self.pid is None:
             raise _Interrupt(signo)
         try:
-            self.proc.send_signal(signo)
+            os.kill(self.pid, signo)
         except ProcessLookupError:
             pass
 
     def run(self, cmd):
-        self.proc = subprocess.Popen(cmd)
-        rc = self.proc.wait()
+        self.pid = os.posix_spawnp(cmd[0], cmd, os.environ)   # cheaper than fork + exec of this process
+        _, status = os.waitpid(self.pid, 0)
+        rc = os.waitstatus_to_exitcode(status)
         if rc < 0 and -rc in EXIT_SIGNAL:      # the solver died of the signal itself
             rc = EXIT_SIGNAL[-rc]
         return rc
@@ -199,6 +204,11 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
 
 
 def cmd_run(argv):
+    from gen.fastrun import parse
+    simple = parse(argv)
+    if simple is not None:             # the common forms (scene, --set, --out, --quiet or --verbose):
+        scene, sets, out, quiet, verbose = simple   # no argument parser to import
+        return run_and_report(scene, sets, out, "release", verbose, quiet, False)
     ap = Parser(
         prog="build.sh run",
         description="Build the per-scene solver if stale and run it. Results go to out/runs/SCENE/ "
@@ -219,14 +229,19 @@ def cmd_run(argv):
     a = ap.parse_args(argv)
     if a.sanitize and a.memcheck:
         ap.error("--sanitize and --memcheck exclude each other")
+    return run_and_report(a.scene, a.set, a.out, "sanitize" if a.sanitize else "release", a.verbose, a.quiet,
+                          a.memcheck)
+
+
+def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck):
+    """execute() and the summary on the console; the exit status."""
     try:
-        rc, out = execute(a.scene, a.set, a.out, "sanitize" if a.sanitize else "release",
-                          a.verbose, a.quiet, a.memcheck)
+        rc, out = execute(scene, sets, out, variant, verbose, quiet, memcheck)
     except SceneError as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT
     summ = out / "summary.json"
-    if not a.quiet and summ.exists():
+    if not quiet and summ.exists():
         print_summary(json.loads(summ.read_text()), out)
     return rc
 

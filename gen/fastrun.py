@@ -274,13 +274,23 @@ class SiteOnDemand:
     satisfy (sympy to generate a kernel, matplotlib to plot, ...) loads them
     (site.main(), with its .pth files) and is retried; a run that needs none,
     e.g. a scene with new --set numbers and a built solver, never pays for them."""
+    names = None                       # top-level names in the site directories (listed once)
 
     @staticmethod
     def find_spec(name, path=None, target=None):
         if path is not None:           # a submodule: its package was found without the site
             return None
+        import site                    # with -S, importing it changes nothing; site.main() does
+        if SiteOnDemand.names is None:
+            SiteOnDemand.names = set()
+            for d in site.getsitepackages() + [site.getusersitepackages()]:
+                try:
+                    SiteOnDemand.names.update(n.split(".", 1)[0] for n in os.listdir(d))
+                except OSError:
+                    pass
+        if name not in SiteOnDemand.names:   # a probe of the standard library (msvcrt, nt, ...)
+            return None
         sys.meta_path.remove(SiteOnDemand)
-        import site
         site.main()
         from importlib.machinery import PathFinder
         return PathFinder.find_spec(name)

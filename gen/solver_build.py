@@ -5,11 +5,13 @@ any header is newer.  A solver is linked from the runtime objects, the objects
 of the element and pair kernels in use, and a generated kernel table naming
 the pair descriptors (runtime/bk_kernel.h).
 """
-import hashlib
 import os
-import shlex
-import subprocess
 import sys
+
+try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
+    from _sha256 import sha256
+except ImportError:                    # pragma: no cover
+    from hashlib import sha256
 import threading
 from pathlib import Path
 
@@ -136,6 +138,7 @@ def _compile(src, obj, flags, deps, log):
     cmd = [CC] + WARN + flags + INCLUDES + ["-c", str(src), "-o", str(obj)]
     if log:
         log(f"  cc {src.relative_to(ROOT)}")
+    import subprocess                  # only when something is compiled (a run of a built solver needs none)
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise BuildError(f"compiling {src}:\n{r.stderr}")
@@ -230,7 +233,7 @@ def build_solver(pairs, out_path, index, variant="release", log=None, main_objs=
 
 def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
     pairs = sorted(pairs)
-    key = hashlib.sha256((variant + "\n" + "\n".join(pairs)).encode()).hexdigest()[:16]
+    key = sha256((variant + "\n" + "\n".join(pairs)).encode()).hexdigest()[:16]
     tdir = BUILD / variant / "tables"
     tdir.mkdir(parents=True, exist_ok=True)
     tsrc = tdir / f"table_{key}.c"
@@ -252,6 +255,8 @@ def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
     cmd = [CC] + VARIANTS[variant] + list(extra_flags) + [str(o) for o in objs] + ["-o", str(out_path)] + LIBS
     if log:
         log(f"  link {out_path.relative_to(ROOT) if out_path.is_relative_to(ROOT) else out_path}")
+    import shlex
+    import subprocess
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise BuildError(f"linking {out_path}:\n{r.stderr}\ncommand: {shlex.join(cmd)}")
