@@ -33,6 +33,7 @@
 #include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
+#include "loads.h"
 #include "norms.h"
 #include "quaternion.h"
 
@@ -247,6 +248,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     }
     A = matrix ? w->Ax : NULL;
     bk_assemble_follower(s, q, 1.0, w->fint, A);
+    bk_assemble_loads(s, q, tn, w->fint, A);
     element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
     mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
@@ -339,6 +341,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_assemble_internal(s, q, w.fint, w.Ax);
         memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
         bk_assemble_follower(s, q, 1.0, w.fint, NULL);
+        bk_assemble_loads(s, q, t, w.fint, NULL);
         element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
         for (int k = 0; k < (int)s->nnz; ++k)
             w.Ax[k] += w.Mx[k];
@@ -366,6 +369,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     }
     double U0 = bk_strain_energy(s, q);
     bk_output_step(out, 0, 0.0, q);
+    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, NULL);    /* multipliers of step 0 not kept */
     {
         mass_matvec(s, &w, fdof, w.qd, w.tmp);
         double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
@@ -587,6 +591,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
             bk_output_step(out, step, t, q);
+            bk_output_forces(out, s, step, t, q, w.qd, w.qdd, w.nu);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
             mass_matvec(s, &w, fdof, w.qd, w.tmp);

@@ -9,6 +9,7 @@
 #include "checks.h"
 #include "interrupt.h"
 #include "linsolve.h"
+#include "loads.h"
 #include "norms.h"
 #include "quaternion.h"
 #include "stability.h"
@@ -88,6 +89,7 @@ static int residual(bk_system *s, work *w, const double *q, const double *nu, do
     if (bk_assemble_internal(s, q, w->fint, Ax) != 0)
         return -1;
     bk_assemble_follower(s, q, lam, w->fint, Ax);
+    bk_assemble_loads(s, q, lam, w->fint, Ax);
     for (int i = 0; i < m->ndof; ++i)
         if (s->eq[i] >= 0)
             w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
@@ -359,6 +361,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     }
 
     bk_output_step(out, 0, 0.0, q);
+    bk_output_forces(out, s, 0, 0.0, q, NULL, NULL, w.nu);
     double prev_lam = 0.0;
     bk_stability_result sres;
     if (have_stab) {
@@ -435,6 +438,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 info->steps++;
                 info->load_factor = lam;
                 bk_output_step(out, info->steps, lam, q);
+                bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w.nu);
                 bk_checks_state(&chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;
                 if (cuts_since_growth_ok < 2)

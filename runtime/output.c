@@ -42,6 +42,8 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
     }
     fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
     fflush(o->sensors);
+    if (bk_forces_open(&o->forces, m, dir, err) != 0)
+        return -1;
     if (m->analysis == BK_DYNAMIC) {
         snprintf(path, sizeof path, "%s/energy.csv", dir);
         o->energy = fopen(path, "w");
@@ -129,6 +131,12 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
                 g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
     fflush(o->sensors);
+}
+
+void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
+                      const double *qdd, const double *nu)
+{
+    bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu);
 }
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
@@ -324,6 +332,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         }
         fprintf(fp, "%s]},\n", info->nstability ? "\n  " : "");
     }
+    bk_forces_summary(&o->forces, fp);
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
         json_string(fp, info->message);
@@ -393,4 +402,5 @@ void bk_output_close(bk_output *o)
         fclose(o->stability);
     o->sensors = o->energy = o->modes = o->mode_sensors = o->newton = o->stability = NULL;
     bk_vtk_close(&o->vtk);
+    bk_forces_close(&o->forces);
 }

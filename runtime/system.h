@@ -71,6 +71,9 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
  * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */
 double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs);
 
+/* Coefficient of term k of a constraint row at time t (the entry of G(t)). */
+double bk_constraint_coef(const bk_lincon *c, int k, double t);
+
 /* Largest |G(t) q - g(t)| over the constraint rows. */
 double bk_constraint_residual(const bk_system *s, const double *q, double t);
 

@@ -6,6 +6,7 @@ and sensors (options.py); the model file (model_file.py)."""
 from pathlib import Path
 
 import gen.scene_keys as K
+from gen.scene.amplitude import Amplitudes
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -55,8 +56,9 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         ctx.fail("beam", "missing; expected at least one [[beam]]")
     cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
-    rows = constraints(ctx, doc, mesh)          # none is allowed: the solver reports the singular tangent
-    forces, moments, gravity = loads(ctx, doc, mesh.beams)
+    amps = Amplitudes(ctx, doc)
+    rows = constraints(ctx, doc, mesh, amps)    # none is allowed: the solver reports the singular tangent
+    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
     qd0 = initial_velocities(ctx, doc, mesh)
     return {
@@ -66,4 +68,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
+        "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
+        "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
+                     for b in mesh.beams.values() for k in range(b["nelem"])],
     }
