@@ -37,18 +37,14 @@ int bk_section_frame(const bk_model *m, int e, const double *qe, double xi, doub
     return 0;
 }
 
-/* A follower vector at xi: v = R(qe) R0^T v0 (R0 the frame of the reference
- * coordinates q0e), and with dv != NULL dv[3 ndof] = dv/dqe by central
- * differences; qe is perturbed and restored. */
-static void follower_vector(const bk_model *m, int e, double *qe, const double *q0e, double xi, const double *v0,
-                            double *v, double *dv)
+/* A follower vector at xi: v = c1 e1 + c2 e2 + c3 e3 in the section frame of
+ * qe, and with dv != NULL dv[3 ndof] = dv/dqe by central differences; qe is
+ * perturbed and restored. */
+static void follower_vector(const bk_model *m, int e, double *qe, double xi, const double *c, double *v,
+                            double *dv)
 {
-    double R0[9], R[9];
+    double R[9];
     const int nd = bk_elem_type(m, e)->ndof;
-    bk_section_frame(m, e, q0e, xi, R0);
-    double c[3];
-    for (int i = 0; i < 3; ++i)
-        c[i] = R0[3 * i] * v0[0] + R0[3 * i + 1] * v0[1] + R0[3 * i + 2] * v0[2];
     bk_section_frame(m, e, qe, xi, R);
     for (int k = 0; k < 3; ++k)
         v[k] = c[0] * R[k] + c[1] * R[3 + k] + c[2] * R[6 + k];
@@ -109,7 +105,7 @@ static void force_shape(const bk_model *m, const bk_force_load *f, double *N)
 }
 
 typedef struct scratch {
-    double qe[BK_MAX_ELEMENT_DOF], q0e[BK_MAX_ELEMENT_DOF];
+    double qe[BK_MAX_ELEMENT_DOF];
     double N[BK_MAX_SHAPE];
     double *dv;                  /* [3 ndof] */
     double *Qk, *Kk;             /* moment kernel: [ndof], [ndof^2] */
@@ -121,7 +117,7 @@ static void point_force(const bk_model *m, const bk_force_load *f, double fac, s
     double v[3];
     force_shape(m, f, w->N);
     if (f->follower) {
-        follower_vector(m, f->elem, w->qe, w->q0e, f->xi, f->value, v, K ? w->dv : NULL);
+        follower_vector(m, f->elem, w->qe, f->xi, f->value, v, K ? w->dv : NULL);
         add_force(et, w->N, v, w->dv, fac, Q, K);
     } else {
         add_force(et, w->N, f->value, NULL, fac, Q, NULL);
@@ -144,7 +140,7 @@ static void point_moment(const bk_model *m, const bk_moment_load *mo, double fac
     }
     /* Q = B(q) M(q), B[:, k] = Q(q, e_k): dQ = sum_k M_k dQ(e_k) + B dM/dq */
     double M[3];
-    follower_vector(m, mo->elem, w->qe, w->q0e, mo->xi, mo->value, M, K ? w->dv : NULL);
+    follower_vector(m, mo->elem, w->qe, mo->xi, mo->value, M, K ? w->dv : NULL);
     for (int k = 0; k < 3; ++k) {
         double ek[3] = {0.0, 0.0, 0.0};
         ek[k] = 1.0;
@@ -167,7 +163,7 @@ static void dist_load(const bk_model *m, const bk_dist_load *d, double fac, scra
         double xi = d->xi0 + half * (1.0 + GX[p]), wt = fac * GW[p] * half * g[BK_GEOM_L], v[3];
         et->shape(g, xi, 0.0, 0.0, w->N);
         if (d->follower) {
-            follower_vector(m, d->elem, w->qe, w->q0e, xi, d->value, v, K ? w->dv : NULL);
+            follower_vector(m, d->elem, w->qe, xi, d->value, v, K ? w->dv : NULL);
             add_force(et, w->N, v, w->dv, wt, Q, K);
         } else {
             add_force(et, w->N, d->value, NULL, wt, Q, NULL);
@@ -247,7 +243,6 @@ static void begin(const bk_model *m, int e, const double *q, scratch *w, double 
 {
     const int nd = bk_elem_type(m, e)->ndof;
     bk_gather(m, e, q, w->qe);
-    bk_gather(m, e, m->q0, w->q0e);
     memset(Q, 0, (size_t)nd * sizeof *Q);
     if (K)
         memset(K, 0, (size_t)nd * (size_t)nd * sizeof *K);
@@ -331,7 +326,6 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
         return;
     }
     bk_gather(m, e, q, w.qe);
-    bk_gather(m, e, m->q0, w.q0e);
     double lf = bk_load_factor(m, -1, x);
     if (m->has_gravity) {
         et->volume(m->geoms[m->elems[e].geom], w.N);

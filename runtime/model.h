@@ -47,7 +47,7 @@ typedef struct bk_force_load {   /* force at a material point of an element */
     int elem;
     double xi, y, z;   /* element coordinates of the point */
     int section;       /* 1: spread uniformly over the cross-section at xi */
-    double value[3];   /* N (follower: in the reference configuration) */
+    double value[3];   /* N (follower: components along the section frame e1, e2, e3) */
     int amp;           /* amplitude index, -1: the default (load factor in statics, 1 in dynamics) */
     int follower;      /* 1: turns with the section frame at the point */
 } bk_force_load;
@@ -55,7 +55,7 @@ typedef struct bk_force_load {   /* force at a material point of an element */
 typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
     double xi;
-    double value[3];   /* N m (follower: in the reference configuration) */
+    double value[3];   /* N m (follower: along e1, e2, e3 of the section) */
     int amp, follower; /* as for forces; not follower: fixed in space */
 } bk_moment_load;
 
@@ -63,7 +63,7 @@ typedef struct bk_dist_load {    /* force per unit reference length on xi0..xi1 
     int elem;
     double xi0, xi1;
     int follower, amp;
-    double value[3];   /* N/m (follower: in the reference configuration) */
+    double value[3];   /* N/m (follower: along e1, e2, e3 of the section) */
 } bk_dist_load;
 
 typedef struct bk_tendon_piece {

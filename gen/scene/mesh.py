@@ -205,7 +205,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         first_elem = len(elements)
         enodes = einfo["nodes"]
         prev_end = None
-        node_ids_of_beam = {}
+        prev_quat = None            # quaternions of successive nodes on the same side: the
+        node_ids_of_beam = {}       # relative rotations within an element stay below 180 degrees
         for k in range(nel):
             if log and n_total > 100000 and k % 4096 == 0 and time.monotonic() - t_progress[0] > 2.0:
                 t_progress[0] = time.monotonic()
@@ -224,7 +225,12 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                     nodes.append((X, t, d1, d2, fields))
                     dof_of_node.append(ndof)
                     for f, dim in fields:
-                        q0.extend(reference_field(f, t, d1, d2, X))
+                        val = reference_field(f, t, d1, d2, X)
+                        if f == "p":
+                            if prev_quat is not None and sum(a * b for a, b in zip(val, prev_quat)) < 0:
+                                val = [-v for v in val]
+                            prev_quat = val
+                        q0.extend(val)
                     ndof += sum(d for _, d in fields)
                     node_ids_of_beam[_key(starts[k] + xi * l, length)] = gid
                 if nodes[gid][4] != fields:
