@@ -368,8 +368,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
     }
     double U0 = bk_strain_energy(s, q);
-    bk_output_step(out, 0, 0.0, q);
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, NULL);    /* multipliers of step 0 not kept */
+    bk_output_step(out, 0, 0.0, q);
     {
         mass_matvec(s, &w, fdof, w.qd, w.tmp);
         double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
@@ -590,8 +590,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         double cr = bk_constraint_residual(s, q, t);
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
-            bk_output_step(out, step, t, q);
             bk_output_forces(out, s, step, t, q, w.qd, w.qdd, w.nu);
+            bk_output_step(out, step, t, q);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
             mass_matvec(s, &w, fdof, w.qd, w.tmp);

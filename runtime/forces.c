@@ -29,12 +29,16 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
     /* element buffers: q, qd, qdd, force, work, and four ndof^2 matrices */
     f->buf = calloc(6 * md + 4 * md * md, sizeof *f->buf);
     f->last = calloc((size_t)(m->nreaction ? m->nreaction : 1), sizeof *f->last);
-    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last) {
+    f->sec = malloc(12 * (size_t)m->nelem * sizeof *f->sec);
+    f->sec_step = -1;
+    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec) {
         fprintf(err, "error: out of memory for the reactions and section forces\n");
         return -1;
     }
     for (size_t i = 0; i < 4 * nd; ++i)
         f->fld[i] = -1;
+    for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
+        f->sec[i] = NAN;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_element *et = bk_elem_type(m, e);
         for (int k = 0; k < et->nfield; ++k) {
@@ -87,6 +91,7 @@ void bk_forces_close(bk_forces *f)
     free(f->fext);
     free(f->buf);
     free(f->last);
+    free(f->sec);
     memset(f, 0, sizeof *f);
 }
 
@@ -328,12 +333,15 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
                 out[0] = sg * (F[0] * d[6] + F[1] * d[7] + F[2] * d[8]) / n3;
                 out[3] = sg * (M[0] * d[6] + M[1] * d[7] + M[2] * d[8]) / n3;
             }
+            for (int i = 0; i < 6; ++i)
+                f->sec[12 * (size_t)e + 6 * end + i] = out[i];
             if (f->sections)
                 fprintf(f->sections, "%d,%.17g,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
                         step, x, sr->beam, e, end, end ? sr->s1 : sr->s0, xn[0], xn[1], xn[2], out[0], out[1],
                         out[2], out[3], out[4], out[5]);
         }
     }
+    f->sec_step = step;
     if (f->sections)
         fflush(f->sections);
 }

@@ -39,6 +39,9 @@ typedef struct bk_forces {
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */
     double (*last)[9];            /* [nreaction] force, moment, point at the last output step */
     int have_last;
+    double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
+                                   * element at output step sec_step (for the ParaView frames) */
+    int sec_step;
 } bk_forces;
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);

@@ -360,8 +360,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         s->cscale = cnt && sum > 0.0 ? sum / cnt : 1.0;
     }
 
-    bk_output_step(out, 0, 0.0, q);
     bk_output_forces(out, s, 0, 0.0, q, NULL, NULL, w.nu);
+    bk_output_step(out, 0, 0.0, q);
     double prev_lam = 0.0;
     bk_stability_result sres;
     if (have_stab) {
@@ -437,8 +437,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 lam = target;
                 info->steps++;
                 info->load_factor = lam;
-                bk_output_step(out, info->steps, lam, q);
                 bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w.nu);
+                bk_output_step(out, info->steps, lam, q);
                 bk_checks_state(&chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;
                 if (cuts_since_growth_ok < 2)

@@ -44,6 +44,8 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
     fflush(o->sensors);
     if (bk_forces_open(&o->forces, m, dir, err) != 0)
         return -1;
+    o->vtk.sec = o->forces.sec;
+    o->vtk.sec_step = &o->forces.sec_step;
     if (m->analysis == BK_DYNAMIC) {
         snprintf(path, sizeof path, "%s/energy.csv", dir);
         o->energy = fopen(path, "w");

@@ -16,6 +16,8 @@ typedef struct bk_vtk {
     double *times;           /* owned */
     int *frames;             /* owned */
     int nmode;               /* mode files written (modes 1..nmode) */
+    const double *sec;       /* section forces per element end (forces.h bk_forces.sec), or NULL */
+    const int *sec_step;     /* the output step they are of */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */

@@ -167,6 +167,11 @@ def test_cantilever_root_moment_small_and_large_deflection():
         assert abs(float(root["M2"]) - P * x_tip) < 1e-8 * P
         for r in sec:
             assert abs(float(r["M2"]) - P * (x_tip - float(r["x"]))) < 1e-7 * P
+        # the ParaView frame carries them as point data, linear along each element
+        from report import vtu
+        frame = vtu.read(out / f"step_{summary['steps']:06d}.vtu")
+        assert abs(frame["section_moment"][0][1] - float(root["M2"])) < 1e-12 * P
+        assert abs(frame["section_force"][-1][0] - float(sec[-1]["N"])) < 1e-12 * P
 
 
 def test_curved_frame_bending_and_torsion_by_hand():
