@@ -392,3 +392,21 @@ def test_bad_amplitudes_tendons_and_followers():
     dist = (MODELS / "cantilever_distributed.toml").read_text()
     check_error(dist.replace('from = "arm:0.5"\nto = "arm:end"', 'from = "arm:0.5"\nto = "arm:0.2"'), "load[1].to",
                 "beyond `from`")
+
+
+def test_follower_pressure_ramped_in_dynamics():
+    """The ring of ring_pressure.toml in dynamics, the pressure ramped in over
+    20 ms (the breathing mode has a 0.6 ms period: quasi-static): hoop force
+    -p R at 30 ms, inertia and all (dynamic reactions and section forces)."""
+    text = (MODELS / "ring_pressure.toml").read_text()
+    text = text.replace('analysis = "static"', 'analysis = "dynamic"').replace(
+        "[static]\nload_steps = 2\n", "[dynamic]\nt_end = 0.03\ndt = 1e-3\nrho_inf = 0.5\n").replace(
+        "follower = true", 'follower = true\namplitude = {type = "ramp", t0 = 0.0, t1 = 0.02}')
+    _, out = run(None, text=text)
+    last = [r for r in rows(out, "sections.csv") if r["step"] == "30"]
+    assert len(last) == 32
+    for r in last:
+        assert abs(float(r["N"]) / -500.0 - 1) < 1e-3, r
+    mid = [r for r in rows(out, "sections.csv") if r["step"] == "10"]
+    for r in mid:                                            # half the pressure at 10 ms
+        assert abs(float(r["N"]) / -250.0 - 1) < 1e-2, r
