@@ -410,3 +410,15 @@ def test_follower_pressure_ramped_in_dynamics():
     mid = [r for r in rows(out, "sections.csv") if r["step"] == "10"]
     for r in mid:                                            # half the pressure at 10 ms
         assert abs(float(r["N"]) / -250.0 - 1) < 1e-2, r
+
+
+def test_modal_about_static_state_under_distributed_load():
+    """Loads enter a modal analysis only through its static state: the state
+    under the distributed loads of cantilever_distributed, with its reactions
+    (1 N, 0.625 N m), and the first frequency of the clamped beam (Euler-
+    Bernoulli 8.34 Hz; the tiny load does not shift it)."""
+    summary, out = run("cantilever_distributed", ["scene.analysis=modal", "modal.about=static", "modal.modes=2"])
+    (rc,) = summary["reactions"]
+    assert abs(rc["force"][2] - 1.0) < 1e-9 and abs(rc["moment"][1] + 0.625) < 1e-5
+    f1 = 1.8751040687**2 / (2 * math.pi) * math.sqrt(EI / (2700.0 * B * H))
+    assert abs(summary["frequencies_hz"][0] / f1 - 1) < 2e-3

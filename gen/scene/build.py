@@ -61,6 +61,16 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
     qd0 = initial_velocities(ctx, doc, mesh)
+    load_types = [lt.get("type") for lt in get_array_of_tables(ctx, doc, "load")]
+    follower = [i for i, lt in enumerate(get_array_of_tables(ctx, doc, "load")) if lt.get("follower") is True]
+    if follower and analysis == "static" and stat["stability"]:
+        mesh.warnings.append(f"load[{follower[0]}]: follower loads are not conservative: the stability check "
+                             "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
+    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon") or i in follower]
+    if stiff and analysis == "modal" and modal["about"]:
+        mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
+                             "the elastic forces only, without the load stiffness of moments, follower loads and "
+                             "tendons")
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
         "length_scale": max(b["length"] for b in mesh.beams.values()),
