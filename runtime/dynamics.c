@@ -368,7 +368,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
     }
     double U0 = bk_strain_energy(s, q);
-    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, NULL);    /* multipliers of step 0 not kept */
+    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
     {
         mass_matvec(s, &w, fdof, w.qd, w.tmp);

@@ -10,6 +10,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from util import BUILD, ROOT, build_program, ensure_dir, run_cli, run_scene
 
@@ -60,11 +61,13 @@ elements = 10
 """
 
 
-def test_reactions_balance_the_loads_3d_gef():
-    """Clamped gef beam, tip force and moment and a mid-span force, large 3-D
-    deflection: the clamp's force and moment (about the clamp) balance the
-    loads at their deformed points."""
-    text = GEF_BEAM.format(element="gef") + """
+@pytest.mark.parametrize("element", ["gef", "euler_bernoulli", "kirchhoff"])
+def test_reactions_balance_the_loads_3d_rods(element):
+    """Clamped rod, tip force and moment and a mid-span force, large 3-D
+    deflection: the clamp's force and moment (about the clamp; from the
+    quaternion DOFs' generalized forces) balance the loads at their deformed
+    points."""
+    text = GEF_BEAM.format(element=element) + """
 [[constraint]]
 type = "clamp"
 a = "arm:start"
@@ -422,3 +425,37 @@ def test_modal_about_static_state_under_distributed_load():
     assert abs(rc["force"][2] - 1.0) < 1e-9 and abs(rc["moment"][1] + 0.625) < 1e-5
     f1 = 1.8751040687**2 / (2 * math.pi) * math.sqrt(EI / (2700.0 * B * H))
     assert abs(summary["frequencies_hz"][0] / f1 - 1) < 2e-3
+
+
+def test_cable_reactions_through_the_slope_and_axial_section_force():
+    """ancf_cable cantilever (positions and slopes r_x only), tip force: the
+    clamp's moment is the work-conjugate moment of the slope forces, P times
+    the tip's horizontal offset; its sections report N (and T = 0) only."""
+    P = 20.0
+    text = GEF_BEAM.format(element="ancf_cable") + f"""
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 0.0, {-P}]
+[static]
+rtol = 1e-12
+load_steps = 2
+[[sensor]]
+name = "tip"
+at = "arm:end"
+"""
+    summary, out = run(None, text=text)
+    x_tip = summary["sensors"]["tip"]["position"][0]
+    (rc,) = summary["reactions"]
+    assert x_tip < 0.995                                     # 1.1 cm of deflection
+    assert np.abs(np.array(rc["force"]) - [0, 0, P]).max() < 1e-8 * P
+    assert np.abs(np.array(rc["moment"]) - [0, -P * x_tip, 0]).max() < 1e-8 * P
+    for r in rows(out, "sections.csv"):
+        if r["step"] == "2":
+            assert math.isnan(float(r["M2"])) and abs(float(r["T"])) < 1e-9 * P
+    tip = [r for r in rows(out, "sections.csv") if r["step"] == "2"][-1]
+    d3 = vec([r for r in rows(out, "sensors.csv") if r["step"] == "2"][-1], "d3x", "d3y", "d3z")
+    assert abs(float(tip["N"]) - np.dot([0, 0, -P], d3 / np.linalg.norm(d3))) < 1e-8 * P
