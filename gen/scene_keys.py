@@ -22,7 +22,7 @@ CONSTRAINT = {"clamp": ("type", "a", "cross_section"),
               "point_on_line": ("type", "a", "axis")}
 LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower"),
         "moment": ("type", "at", "value", "amplitude", "follower"),
-        "gravity": ("type", "value"),
+        "gravity": ("type", "value", "amplitude"),
         "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower"),
         "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude")}
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),

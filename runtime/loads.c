@@ -258,7 +258,7 @@ static void finish(bk_system *s, int e, const double *Q, const double *K, double
 void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    int any = m->ndload > 0 || m->ntendon > 0;
+    int any = m->ndload > 0 || m->ntendon > 0 || (m->has_gravity && m->gravity_amp);
     for (int i = 0; i < m->nforce && !any; ++i)
         any = varying_force(&m->forces[i]);
     for (int i = 0; i < m->nmoment && !any; ++i)
@@ -295,6 +295,16 @@ void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, do
         dist_load(m, d, bk_load_factor(m, d->amp, x), &w, Q, d->follower ? K : NULL);
         finish(s, d->elem, Q, d->follower ? K : NULL, fint, Ax);
     }
+    if (m->has_gravity && m->gravity_amp) {
+        double gf = bk_amp_eval(m->gravity_amp, x, 0);
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_element *et = bk_elem_type(m, e);
+            memset(Q, 0, (size_t)et->ndof * sizeof *Q);
+            et->volume(m->geoms[m->elems[e].geom], w.N);
+            add_force(et, w.N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Q, NULL);
+            bk_scatter(m, e, Q, -1.0, fint);
+        }
+    }
     for (int i = 0; i < m->ntendon; ++i) {
         const bk_tendon *t = &m->tendons[i];
         double T = t->tension * bk_load_factor(m, t->amp, x);
@@ -326,10 +336,10 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
         return;
     }
     bk_gather(m, e, q, w.qe);
-    double lf = bk_load_factor(m, -1, x);
     if (m->has_gravity) {
+        double gf = m->gravity_amp ? bk_amp_eval(m->gravity_amp, x, 0) : bk_load_factor(m, -1, x);
         et->volume(m->geoms[m->elems[e].geom], w.N);
-        add_force(et, w.N, m->gravity, NULL, lf * m->mats[m->elems[e].mat].rho, Qe, NULL);
+        add_force(et, w.N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Qe, NULL);
     }
     for (int i = 0; i < m->nforce; ++i) {
         const bk_force_load *f = &m->forces[i];

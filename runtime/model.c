@@ -194,6 +194,9 @@ static void read_extras(reader *r, bk_model *m)
             fail(r, "constraint %d: amplitude %d of %d", i, ai, m->namp);
         m->lincons[i].ampl = ai >= 0 && ai < m->namp ? &m->amps[ai] : NULL;
     }
+    if (m->gravity_ampid >= m->namp)
+        fail(r, "gravity: amplitude %d of %d", m->gravity_ampid, m->namp);
+    m->gravity_amp = m->gravity_ampid >= 0 && m->gravity_ampid < m->namp ? &m->amps[m->gravity_ampid] : NULL;
     for (int i = 0; i < m->nforce && !r->failed; ++i)
         if (m->forces[i].amp >= m->namp)
             fail(r, "force %d: amplitude %d of %d", i, m->forces[i].amp, m->namp);
@@ -529,9 +532,12 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
 
     expect(r, "gravity");
     m->has_gravity = inum(r, "gravity flag", 0, 1);
-    if (m->has_gravity)
+    m->gravity_ampid = -1;
+    if (m->has_gravity) {
         for (int k = 0; k < 3; ++k)
             m->gravity[k] = num(r, "gravity");
+        m->gravity_ampid = inum(r, "gravity amplitude", -1, MAXN);
+    }
 
     expect(r, "sensors");
     m->nsensor = inum(r, "sensors", 0, MAXN);

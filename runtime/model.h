@@ -174,6 +174,8 @@ typedef struct bk_model {
     bk_moment_load *moments;
     int has_gravity;
     double gravity[3];
+    int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
+    const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
     int nsensor;
     bk_sensor *sensors;
     int namp;

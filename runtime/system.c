@@ -434,7 +434,7 @@ void bk_gravity_load(const bk_system *s, double *fg)
     const bk_model *m = s->m;
     double N[BK_MAX_SHAPE];
     memset(fg, 0, (size_t)m->ndof * sizeof *fg);
-    if (m->has_gravity) {
+    if (m->has_gravity && !m->gravity_amp) {       /* with an amplitude: bk_assemble_loads */
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
             bk_elem_type(m, e)->volume(m->geoms[el->geom], N);

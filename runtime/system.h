@@ -53,7 +53,8 @@ double bk_strain_energy(const bk_system *s, const double *q);
  * point forces and gravity. */
 void bk_external_load(const bk_system *s, double *fext);
 
-/* The gravity part alone, into fg[ndof] (zeroed here). */
+/* The gravity part alone, into fg[ndof] (zeroed here; zero when gravity has an
+ * amplitude: bk_assemble_loads applies it then). */
 void bk_gravity_load(const bk_system *s, double *fg);
 
 /* Configuration-dependent loads (moments on sections) at load factor lam:

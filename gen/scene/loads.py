@@ -111,6 +111,6 @@ def loads(ctx, doc, beams, amps):
             g = get_vec3(ctx, lt, "value", where)
             if gravity is not None:
                 ctx.fail(f"{where}.type", "gravity given twice")
-            gravity = g
+            gravity = (g, amps.ref(lt, "amplitude", where))
 
     return forces, moments, gravity, dloads, tendons

@@ -85,7 +85,7 @@ def write_model(model, path):
     for e, xi, v, amp, fol in model["moments"]:
         out.append(f"moment {e} {_f(xi)} " + " ".join(_f(x) for x in v) + f" {amp} {fol}")
     g = model["gravity"]
-    out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g))
+    out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g[0]) + f" {g[1]}")
     out.append(f"sensors {len(model['sensors'])}")
     for n, e, xi in model["sensors"]:
         out.append(f"sensor {n} {e} {_f(xi)}")
