@@ -7,7 +7,7 @@ the same keys.
 """
 
 TOP = ("scene", "material", "section", "beam", "constraint", "load", "static", "dynamic", "modal",
-       "initial_velocity", "sensor", "output")
+       "initial_velocity", "sensor", "output", "amplitude")
 
 SCENE = ("analysis", "description", "name")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -17,11 +17,18 @@ BEAM = ("name", "element", "material", "section", "start", "end", "up", "element
 CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
               "spherical": ("type", "a", "b"),
               "revolute": ("type", "a", "axis"),
-              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency"),
+              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency", "angle",
+                                      "angle_amplitude"),
               "point_on_line": ("type", "a", "axis")}
-LOAD = {"force": ("type", "at", "value", "distribution"),
-        "moment": ("type", "at", "value"),
-        "gravity": ("type", "value")}
+LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower"),
+        "moment": ("type", "at", "value", "amplitude", "follower"),
+        "gravity": ("type", "value", "amplitude"),
+        "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower"),
+        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude")}
+AMPLITUDE = {"ramp": ("type", "t0", "t1"),
+             "step": ("type", "t0"),
+             "sine": ("type", "amplitude", "frequency", "phase", "offset"),
+             "table": ("type", "points", "file")}
 STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
           "eigenvalues", "stable_path", "step_control", "method", "arc_constraint", "target_load_factor",
           "max_steps", "max_displacement", "arc_iterations", "branch_switch")
@@ -44,4 +51,5 @@ def all_keys():
     """{table: keys} for every table but the law parameters of [material.NAME]."""
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
-            "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR}
+            "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
+            "amplitude": union(AMPLITUDE)}

@@ -23,8 +23,8 @@ CC = os.environ.get("CC", "cc")
 JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
 RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c", "newton.c", "stability.c",
-                   "quaternion.c", "dynamics.c",
-                   "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c", "main.c")
+                   "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c",
+                   "main.c", "amplitude.c", "loads.c", "forces.c")
 LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP
 # (results are bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the

@@ -34,6 +34,7 @@
 #include "interrupt.h"
 #include "linsolve.h"
 #include "nonlinear.h"
+#include "loads.h"
 #include "norms.h"
 #include "quaternion.h"
 
@@ -239,6 +240,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     }
     A = matrix ? w->Ax : NULL;
     bk_assemble_follower(s, q, 1.0, w->fint, A);
+    bk_assemble_loads(s, q, tn, w->fint, A);
     element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
     mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
@@ -379,6 +381,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_assemble_internal(s, q, w.fint, w.Ax);
         memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
         bk_assemble_follower(s, q, 1.0, w.fint, NULL);
+        bk_assemble_loads(s, q, t, w.fint, NULL);
         element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
         for (int k = 0; k < (int)s->nnz; ++k)
             w.Ax[k] += w.Mx[k];
@@ -405,6 +408,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
     }
     double U0 = bk_strain_energy(s, q);
+    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
     {
         mass_matvec(s, &w, fdof, w.qd, w.tmp);
@@ -511,6 +515,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         double cr = bk_constraint_residual(s, q, t);
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
+            bk_output_forces(out, s, step, t, q, w.qd, w.qdd, w.nu);
             bk_output_step(out, step, t, q);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;

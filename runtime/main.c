@@ -93,8 +93,8 @@ int main(int argc, char **argv)
     bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
     info.wall_s = now() - t0;
+    int wrc = bk_output_summary(&out, &info, q, stderr);   /* before the close: it reports the reactions */
     bk_output_close(&out);
-    int wrc = bk_output_summary(&out, &info, q, stderr);
     if (rc != 0)
         fprintf(stderr, "%s: %s: %s\n", info.interrupted ? "interrupted" : "error", m->name, info.message);
     free(q);

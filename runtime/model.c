@@ -149,6 +149,137 @@ static const bk_pair *find_pair(const char *sym, const bk_pair *const *avail, in
 
 #define MAXN 100000000
 
+static void copy_token(reader *r, char *dst, size_t n, const char *what)
+{
+    const char *t = next(r, what);
+    if (t && strlen(t) >= n)
+        fail(r, "%s longer than %zu characters", what, n - 1);
+    else if (t)
+        memcpy(dst, t, strlen(t) + 1);
+}
+
+/* Amplitudes, distributed loads, tendons, reactions and the beams' elements
+ * (for sections.csv), after the sensors. */
+static void read_extras(reader *r, bk_model *m)
+{
+    expect(r, "amplitudes");
+    m->namp = inum(r, "amplitudes", 0, MAXN);
+    m->amps = xcalloc(r, (size_t)m->namp, sizeof *m->amps);
+    for (int i = 0; i < m->namp && !r->failed; ++i) {
+        bk_amplitude *a = &m->amps[i];
+        expect(r, "amplitude");
+        const char *t = next(r, "amplitude type");
+        if (!t)
+            break;
+        static const char *names[] = {"ramp", "step", "sine", "table"};
+        for (int k = 0; k < 4; ++k)
+            if (strcmp(t, names[k]) == 0)
+                a->type = BK_AMP_RAMP + k;
+        if (!a->type)
+            fail(r, "amplitude %d: unknown type '%s' (expected ramp, step, sine, table)", i, t);
+        a->npar = inum(r, "amplitude parameter count", 1, MAXN);
+        static const int need[] = {2, 1, 4, 0};
+        if (!r->failed && a->type && (a->type == BK_AMP_TABLE ? a->npar % 2 != 0 : a->npar != need[a->type - 1]))
+            fail(r, "amplitude %d: %d parameters for type '%s'", i, a->npar, t);
+        a->par = xcalloc(r, (size_t)a->npar, sizeof *a->par);
+        for (int k = 0; k < a->npar && !r->failed; ++k)
+            a->par[k] = num(r, "amplitude parameter");
+        for (int k = 2; a->type == BK_AMP_TABLE && k < a->npar && !r->failed; k += 2)
+            if (!(a->par[k] > a->par[k - 2]))
+                fail(r, "amplitude %d: table points out of time order", i);
+    }
+    for (int i = 0; i < m->nlincon && !r->failed; ++i) {
+        int ai = m->lincons[i].ampid;
+        if (ai >= m->namp)
+            fail(r, "constraint %d: amplitude %d of %d", i, ai, m->namp);
+        m->lincons[i].ampl = ai >= 0 && ai < m->namp ? &m->amps[ai] : NULL;
+    }
+    if (m->gravity_ampid >= m->namp)
+        fail(r, "gravity: amplitude %d of %d", m->gravity_ampid, m->namp);
+    m->gravity_amp = m->gravity_ampid >= 0 && m->gravity_ampid < m->namp ? &m->amps[m->gravity_ampid] : NULL;
+    for (int i = 0; i < m->nforce && !r->failed; ++i)
+        if (m->forces[i].amp >= m->namp)
+            fail(r, "force %d: amplitude %d of %d", i, m->forces[i].amp, m->namp);
+    for (int i = 0; i < m->nmoment && !r->failed; ++i)
+        if (m->moments[i].amp >= m->namp)
+            fail(r, "moment %d: amplitude %d of %d", i, m->moments[i].amp, m->namp);
+
+    expect(r, "dloads");
+    m->ndload = inum(r, "dloads", 0, MAXN);
+    m->dloads = xcalloc(r, (size_t)m->ndload, sizeof *m->dloads);
+    for (int i = 0; i < m->ndload && !r->failed; ++i) {
+        bk_dist_load *d = &m->dloads[i];
+        expect(r, "dload");
+        d->elem = inum(r, "distributed load element", 0, m->nelem - 1);
+        d->xi0 = num(r, "distributed load xi0");
+        d->xi1 = num(r, "distributed load xi1");
+        d->follower = inum(r, "distributed load follower flag", 0, 1);
+        d->amp = inum(r, "distributed load amplitude", -1, m->namp - 1);
+        for (int k = 0; k < 3; ++k)
+            d->value[k] = num(r, "distributed load value");
+    }
+
+    expect(r, "tendons");
+    m->ntendon = inum(r, "tendons", 0, MAXN);
+    m->tendons = xcalloc(r, (size_t)m->ntendon, sizeof *m->tendons);
+    for (int i = 0; i < m->ntendon && !r->failed; ++i) {
+        bk_tendon *t = &m->tendons[i];
+        expect(r, "tendon");
+        t->amp = inum(r, "tendon amplitude", -1, m->namp - 1);
+        t->tension = num(r, "tendon tension");
+        t->npiece = inum(r, "tendon pieces", 1, MAXN);
+        t->pieces = xcalloc(r, (size_t)t->npiece, sizeof *t->pieces);
+        for (int k = 0; k < t->npiece && !r->failed; ++k) {
+            bk_tendon_piece *p = &t->pieces[k];
+            expect(r, "piece");
+            p->elem = inum(r, "tendon element", 0, m->nelem - 1);
+            p->xi0 = num(r, "tendon xi0");
+            p->xi1 = num(r, "tendon xi1");
+            p->dy = num(r, "tendon dy");
+            p->dz = num(r, "tendon dz");
+            if (!r->failed && !(m->pairs[m->elems[p->elem].pair]->element->caps & BK_CAP_SECTION_FIELD))
+                fail(r, "tendon %d: element %d does not interpolate across its section", i, p->elem);
+        }
+    }
+
+    expect(r, "reactions");
+    m->nreaction = inum(r, "reactions", 0, MAXN);
+    m->reactions = xcalloc(r, (size_t)m->nreaction, sizeof *m->reactions);
+    for (int i = 0; i < m->nreaction && !r->failed; ++i) {
+        bk_reaction *c = &m->reactions[i];
+        expect(r, "reaction");
+        c->index = inum(r, "reaction index", 0, MAXN);
+        copy_token(r, c->type, sizeof c->type, "reaction type");
+        copy_token(r, c->at, sizeof c->at, "reaction point");
+        c->elem = inum(r, "reaction element", 0, m->nelem - 1);
+        c->xi = num(r, "reaction xi");
+        c->nfixed = inum(r, "reaction fixed DOFs", 0, MAXN);
+        c->fixed = xcalloc(r, (size_t)c->nfixed, sizeof *c->fixed);
+        for (int k = 0; k < c->nfixed && !r->failed; ++k)
+            c->fixed[k] = inum(r, "reaction fixed DOF", 0, m->ndof - 1);
+        c->nlin = inum(r, "reaction constraints", 0, MAXN);
+        c->lin = xcalloc(r, (size_t)c->nlin, sizeof *c->lin);
+        for (int k = 0; k < c->nlin && !r->failed; ++k)
+            c->lin[k] = inum(r, "reaction constraint", 0, m->nlincon - 1);
+        c->nside = inum(r, "reaction side DOFs", 0, MAXN);
+        c->side = xcalloc(r, (size_t)c->nside, sizeof *c->side);
+        for (int k = 0; k < c->nside && !r->failed; ++k)
+            c->side[k] = inum(r, "reaction side DOF", 0, m->ndof - 1);
+    }
+
+    expect(r, "sections");
+    m->nsection = inum(r, "sections", 0, MAXN);
+    m->sections = xcalloc(r, (size_t)m->nsection, sizeof *m->sections);
+    for (int i = 0; i < m->nsection && !r->failed; ++i) {
+        bk_section_rec *c = &m->sections[i];
+        expect(r, "section");
+        copy_token(r, c->beam, sizeof c->beam, "section beam name");
+        c->elem = inum(r, "section element", 0, m->nelem - 1);
+        c->s0 = num(r, "section start");
+        c->s1 = num(r, "section end");
+    }
+}
+
 bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navail, FILE *err)
 {
     reader R = {0}, *r = &R;
@@ -372,6 +503,9 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         c->rate = num(r, "constraint angle rate");
         c->amp = num(r, "constraint angle amplitude");
         c->freq = num(r, "constraint angle frequency");
+        c->angle = num(r, "constraint angle");
+        c->ampl = NULL;                       /* resolved with the amplitudes */
+        c->ampid = (int)num(r, "constraint angle amplitude index");
     }
 
     expect(r, "forces");
@@ -387,6 +521,8 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         f->section = inum(r, "force distribution", 0, 1);
         for (int k = 0; k < 3; ++k)
             f->value[k] = num(r, "force value");
+        f->amp = inum(r, "force amplitude", -1, MAXN);
+        f->follower = inum(r, "force follower flag", 0, 1);
     }
 
     expect(r, "moments");
@@ -399,13 +535,18 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         mo->xi = num(r, "moment xi");
         for (int k = 0; k < 3; ++k)
             mo->value[k] = num(r, "moment value");
+        mo->amp = inum(r, "moment amplitude", -1, MAXN);
+        mo->follower = inum(r, "moment follower flag", 0, 1);
     }
 
     expect(r, "gravity");
     m->has_gravity = inum(r, "gravity flag", 0, 1);
-    if (m->has_gravity)
+    m->gravity_ampid = -1;
+    if (m->has_gravity) {
         for (int k = 0; k < 3; ++k)
             m->gravity[k] = num(r, "gravity");
+        m->gravity_ampid = inum(r, "gravity amplitude", -1, MAXN);
+    }
 
     expect(r, "sensors");
     m->nsensor = inum(r, "sensors", 0, MAXN);
@@ -421,6 +562,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         s->elem = inum(r, "sensor element", 0, m->nelem - 1);
         s->xi = num(r, "sensor xi");
     }
+    read_extras(r, m);
     expect(r, "end");
     fclose(r->fp);
     if (r->failed) {
@@ -461,5 +603,22 @@ void bk_model_free(bk_model *m)
     free(m->forces);
     free(m->moments);
     free(m->sensors);
+    if (m->amps)
+        for (int i = 0; i < m->namp; ++i)
+            free(m->amps[i].par);
+    free(m->amps);
+    free(m->dloads);
+    if (m->tendons)
+        for (int i = 0; i < m->ntendon; ++i)
+            free(m->tendons[i].pieces);
+    free(m->tendons);
+    if (m->reactions)
+        for (int i = 0; i < m->nreaction; ++i) {
+            free(m->reactions[i].fixed);
+            free(m->reactions[i].lin);
+            free(m->reactions[i].side);
+        }
+    free(m->reactions);
+    free(m->sections);
     free(m);
 }

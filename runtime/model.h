@@ -20,7 +20,7 @@ typedef struct bk_elem {
     int *dofs;         /* [ndof of the element] global DOF of each local DOF */
 } bk_elem;
 
-#define BK_MODEL_VERSION 2       /* model file format (gen/scene/model_file.py VERSION) */
+#define BK_MODEL_VERSION 3       /* model file format (gen/scene/model_file.py VERSION) */
 #define BK_MAT_MAXPARAM 8
 
 typedef struct bk_mat {
@@ -32,18 +32,70 @@ typedef struct bk_mat {
     double visc[BK_MAT_MAXPARAM];
 } bk_mat;
 
+/* Amplitude: the history a load or a prescribed angle is multiplied by, as a
+ * function of the time (dynamics) or the load factor (statics); see
+ * runtime/amplitude.h.  par: ramp t0, t1; step t0; sine amplitude, frequency,
+ * phase, offset; table x0, a0, x1, a1, ... */
+enum bk_amplitude_type { BK_AMP_RAMP = 1, BK_AMP_STEP, BK_AMP_SINE, BK_AMP_TABLE };
+typedef struct bk_amplitude {
+    int type;
+    int npar;
+    double *par;
+} bk_amplitude;
+
 typedef struct bk_force_load {   /* force at a material point of an element */
     int elem;
     double xi, y, z;   /* element coordinates of the point */
     int section;       /* 1: spread uniformly over the cross-section at xi */
-    double value[3];   /* N */
+    double value[3];   /* N (follower: components along the section frame e1, e2, e3) */
+    int amp;           /* amplitude index, -1: the default (load factor in statics, 1 in dynamics) */
+    int follower;      /* 1: turns with the section frame at the point */
 } bk_force_load;
 
-typedef struct bk_moment_load {  /* moment on the cross-section at xi (fixed in space) */
+typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
     double xi;
-    double value[3];   /* N m */
+    double value[3];   /* N m (follower: along e1, e2, e3 of the section) */
+    int amp, follower; /* as for forces; not follower: fixed in space */
 } bk_moment_load;
+
+typedef struct bk_dist_load {    /* force per unit reference length on xi0..xi1 of an element */
+    int elem;
+    double xi0, xi1;
+    int follower, amp;
+    double value[3];   /* N/m (follower: along e1, e2, e3 of the section) */
+} bk_dist_load;
+
+typedef struct bk_tendon_piece {
+    int elem;
+    double xi0, xi1;   /* part of the element the tendon runs through */
+    double dy, dz;     /* offset from the centreline along the section axes (m) */
+} bk_tendon_piece;
+
+typedef struct bk_tendon {       /* a tendon pulled with tension amp(x) T: potential T l(q) */
+    int amp;
+    double tension;
+    int npiece;
+    bk_tendon_piece *pieces;
+} bk_tendon;
+
+/* The rows one [[constraint]] added (fixed DOFs and linear constraints): its
+ * reaction is reported as one force and moment (about the point `elem`, `xi`). */
+typedef struct bk_reaction {
+    int index;         /* of the [[constraint]] table */
+    char type[32], at[64];
+    int elem;
+    double xi;
+    int nfixed, nlin, nside;
+    int *fixed, *lin;
+    int *side;         /* DOFs of body a when the joint is between bodies (nside 0: all) */
+} bk_reaction;
+
+typedef struct bk_section_rec {  /* an element of a beam, for sections.csv */
+    char beam[64];
+    int elem;
+    double s0, s1;     /* arc length of its start and end (m) */
+} bk_section_rec;
 
 typedef struct bk_sensor {
     char name[64];
@@ -54,7 +106,7 @@ typedef struct bk_sensor {
 /* A constraint linear in q, possibly rheonomic:
  *   sum_k (c0[k] + cc[k] cos phi(t) + cs[k] sin phi(t)) q[dof[k]]
  *       = r0 + rc cos phi(t) + rs sin phi(t),
- *   phi(t) = kappa (rate t + amp sin(2 pi freq t)).
+ *   phi(t) = kappa (rate t + amp sin(2 pi freq t) + angle a(t)).
  * Clamps, spherical joints, revolute joints and prescribed rotations of ANCF
  * slopes and of quaternions are all of this form. */
 typedef struct bk_lincon {
@@ -63,6 +115,9 @@ typedef struct bk_lincon {
     double *c0, *cc, *cs;
     double r0, rc, rs;
     double kappa, rate, amp, freq;
+    double angle;                 /* phi += kappa angle a(t) with a = *ampl (NULL: none) */
+    int ampid;                    /* index of *ampl in the model's amplitudes, -1: none */
+    const bk_amplitude *ampl;
 } bk_lincon;
 
 typedef struct bk_static_opts {
@@ -127,8 +182,20 @@ typedef struct bk_model {
     bk_moment_load *moments;
     int has_gravity;
     double gravity[3];
+    int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
+    const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
     int nsensor;
     bk_sensor *sensors;
+    int namp;
+    bk_amplitude *amps;
+    int ndload;
+    bk_dist_load *dloads;
+    int ntendon;
+    bk_tendon *tendons;
+    int nreaction;
+    bk_reaction *reactions;
+    int nsection;
+    bk_section_rec *sections;
     bk_static_opts stat;
     bk_dynamic_opts dyn;
     bk_modal_opts modal;

@@ -10,6 +10,7 @@
 #include "interrupt.h"
 #include "linsolve.h"
 #include "nonlinear.h"
+#include "loads.h"
 #include "norms.h"
 #include "quaternion.h"
 #include "stability.h"
@@ -90,6 +91,7 @@ static int residual(bk_system *s, work *w, const double *q, const double *nu, do
     if (bk_assemble_internal(s, q, w->fint, Ax) != 0)
         return -1;
     bk_assemble_follower(s, q, lam, w->fint, Ax);
+    bk_assemble_loads(s, q, lam, w->fint, Ax);
     for (int i = 0; i < m->ndof; ++i)
         if (s->eq[i] >= 0)
             w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
@@ -319,8 +321,10 @@ typedef struct arc_ctx {
     double pending;                  /* the load-factor part of the last correction */
 } arc_ctx;
 
-/* dr/dlam at (q, nu, lam) into rl[neq]: the dead and follower loads, and the
- * load-factor dependence of rheonomic constraints (central difference). */
+/* dr/dlam at (q, nu, lam) into rl[neq]: the dead and follower loads, and, by
+ * central differences in lam, the loads of loads.c (amplitudes, follower and
+ * distributed loads, tendons) and the load-factor dependence of rheonomic
+ * constraints. */
 static void load_derivative(bk_system *s, work *w, const double *q, double lam, double *rl, double *fol,
                             double *tmp)
 {
@@ -332,6 +336,16 @@ static void load_derivative(bk_system *s, work *w, const double *q, double lam, 
             rl[s->eq[i]] = fol[i] - w->fext[i];
     for (int c = 0; c < s->ncon; ++c)
         rl[s->nfree + c] = 0.0;
+    {
+        double d = 1e-6 * fmax(1.0, fabs(lam));
+        for (int sgn = 1; sgn >= -1; sgn -= 2) {
+            memset(fol, 0, (size_t)m->ndof * sizeof *fol);
+            bk_assemble_loads(s, q, lam + sgn * d, fol, NULL);
+            for (int i = 0; i < m->ndof; ++i)
+                if (s->eq[i] >= 0)
+                    rl[s->eq[i]] += sgn * fol[i] / (2.0 * d);
+        }
+    }
     if (s->ncon > 0) {
         double d = 1e-6 * fmax(1.0, fabs(lam));
         memset(tmp, 0, (size_t)s->neq * sizeof *tmp);
@@ -774,6 +788,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         lam = lam_new;
         info->steps++;
         info->load_factor = lam;
+        bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w->nu);
         bk_output_step(out, info->steps, lam, q);
         bk_checks_state(chk, s, q, "load factor", lam, info, out->console);
         if (log)
@@ -936,6 +951,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         s->cscale = cnt && sum > 0.0 ? sum / cnt : 1.0;
     }
 
+    bk_output_forces(out, s, 0, 0.0, q, NULL, NULL, w.nu);
     bk_output_step(out, 0, 0.0, q);
     double prev_lam = 0.0;
     bk_stability_result sres;
@@ -1016,6 +1032,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                 lam = target;
                 info->steps++;
                 info->load_factor = lam;
+                bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w.nu);
                 bk_output_step(out, info->steps, lam, q);
                 bk_checks_state(&chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;

@@ -31,7 +31,7 @@ static void flush_due(bk_output *o)
     if (now - o->t_flush < BK_FLUSH_INTERVAL)
         return;
     o->t_flush = now;
-    FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability};
+    FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
     for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k)
         if (tables[k])
             fflush(tables[k]);
@@ -60,6 +60,10 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
     }
     fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
     fflush(o->sensors);
+    if (bk_forces_open(&o->forces, m, dir, err) != 0)
+        return -1;
+    o->vtk.sec = o->forces.sec;
+    o->vtk.sec_step = &o->forces.sec_step;
     if (m->analysis == BK_DYNAMIC) {
         snprintf(path, sizeof path, "%s/energy.csv", dir);
         o->energy = fopen(path, "w");
@@ -148,6 +152,12 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
                 g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
     flush_due(o);
+}
+
+void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
+                      const double *qdd, const double *nu)
+{
+    bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu);
 }
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
@@ -361,6 +371,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         }
         fprintf(fp, "%s],\n", info->ncritical ? "\n  " : "");
     }
+    bk_forces_summary(&o->forces, fp);
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
         json_string(fp, info->message);
@@ -430,4 +441,5 @@ void bk_output_close(bk_output *o)
         fclose(o->stability);
     o->sensors = o->energy = o->modes = o->mode_sensors = o->newton = o->stability = NULL;
     bk_vtk_close(&o->vtk);
+    bk_forces_close(&o->forces);
 }

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 
+#include "forces.h"
 #include "model.h"
 #include "vtk.h"
 
@@ -27,6 +28,7 @@ typedef struct bk_output {
     FILE *console;           /* warnings are printed here (NULL: --quiet) */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
     double t_flush;          /* wall clock of the last flush of the result tables */
+    bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
 } bk_output;
 
 /* A change of the number of negative eigenvalues of the tangent between two
@@ -95,6 +97,9 @@ void bk_output_final(bk_output *o, int step, double t, const double *q);
 void bk_output_last_frame(bk_output *o, int step, double t, const double *q);
 /* One row per sensor for the configuration q at output step `step`, time t. */
 void bk_output_step(bk_output *o, int step, double t, const double *q);
+/* Reactions and section forces of the output step (forces.h bk_forces_step). */
+void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
+                      const double *qdd, const double *nu);
 /* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,
  * potential of the other constant loads, their total, constraint residual. */
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,

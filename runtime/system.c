@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "amplitude.h"
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -392,6 +394,8 @@ void bk_external_load(const bk_system *s, double *fext)
     memset(fext, 0, (size_t)m->ndof * sizeof *fext);
     for (int i = 0; i < m->nforce; ++i) {
         const bk_force_load *f = &m->forces[i];
+        if (f->amp >= 0 || f->follower)
+            continue;                  /* bk_assemble_loads (loads.h) */
         const bk_elem *el = &m->elems[f->elem];
         const bk_element *et = m->pairs[el->pair]->element;
         const double *g = m->geoms[el->geom];
@@ -430,7 +434,7 @@ void bk_gravity_load(const bk_system *s, double *fg)
     const bk_model *m = s->m;
     double N[BK_MAX_SHAPE];
     memset(fg, 0, (size_t)m->ndof * sizeof *fg);
-    if (m->has_gravity) {
+    if (m->has_gravity && !m->gravity_amp) {       /* with an amplitude: bk_assemble_loads */
         for (int e = 0; e < m->nelem; ++e) {
             const bk_elem *el = &m->elems[e];
             bk_elem_type(m, e)->volume(m->geoms[el->geom], N);
@@ -445,6 +449,8 @@ void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fin
     double qe[BK_MAX_ELEMENT_DOF];
     for (int i = 0; i < m->nmoment; ++i) {
         const bk_moment_load *mo = &m->moments[i];
+        if (mo->amp >= 0 || mo->follower)
+            continue;                  /* bk_assemble_loads (loads.h) */
         const bk_elem *el = &m->elems[mo->elem];
         bk_gather(m, mo->elem, q, qe);
         bk_elem_type(m, mo->elem)->moment(m->geoms[el->geom], mo->xi, qe, mo->value, s->fe, s->Ke);
@@ -461,6 +467,11 @@ static void angle_factors(const bk_lincon *c, double t, int k, double *C, double
     double phi = c->kappa * (c->rate * t + c->amp * sin(w * t));
     double d1 = c->kappa * (c->rate + c->amp * w * cos(w * t));
     double d2 = -c->kappa * c->amp * w * w * sin(w * t);
+    if (c->ampl) {
+        phi += c->kappa * c->angle * bk_amp_eval(c->ampl, t, 0);
+        d1 += c->kappa * c->angle * bk_amp_eval(c->ampl, t, 1);
+        d2 += c->kappa * c->angle * bk_amp_eval(c->ampl, t, 2);
+    }
     double cp = cos(phi), sp = sin(phi);
     if (k == 0) {
         *C = cp;
@@ -509,6 +520,13 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
         if (r)
             r[s->nfree + c] = s->cscale * g;
     }
+}
+
+double bk_constraint_coef(const bk_lincon *c, int k, double t)
+{
+    double C, S;
+    angle_factors(c, t, 0, &C, &S);
+    return c->c0[k] + c->cc[k] * C + c->cs[k] * S;
 }
 
 double bk_constraint_residual(const bk_system *s, const double *q, double t)

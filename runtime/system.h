@@ -53,7 +53,8 @@ double bk_strain_energy(const bk_system *s, const double *q);
  * point forces and gravity. */
 void bk_external_load(const bk_system *s, double *fext);
 
-/* The gravity part alone, into fg[ndof] (zeroed here). */
+/* The gravity part alone, into fg[ndof] (zeroed here; zero when gravity has an
+ * amplitude: bk_assemble_loads applies it then). */
 void bk_gravity_load(const bk_system *s, double *fg);
 
 /* Configuration-dependent loads (moments on sections) at load factor lam:
@@ -70,6 +71,9 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
 /* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
  * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */
 double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs);
+
+/* Coefficient of term k of a constraint row at time t (the entry of G(t)). */
+double bk_constraint_coef(const bk_lincon *c, int k, double t);
 
 /* Largest |G(t) q - g(t)| over the constraint rows. */
 double bk_constraint_residual(const bk_system *s, const double *q, double t);

@@ -270,7 +270,7 @@ static void put_u64(FILE *fp, uint64_t n)
 }
 
 static int write_vtu(const bk_model *m, const char *path, int nfield, const char *const *fname,
-                     const double *fval, const double *q, const mode_view *mv)
+                     const double *fval, const double *q, const mode_view *mv, const double *sec)
 {
     FILE *fp = fopen(path, "wb");
     if (!fp)
@@ -301,6 +301,14 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     if (mv) {
         fprintf(fp, "        <DataArray type=\"Float64\" Name=\"mode_shape\" NumberOfComponents=\"3\" "
                     "format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    /* section forces (N, Q2, Q3) and moments (T, M2, M3), linear along each element
+     * between its end values (sections.csv) */
+    for (int a = 0; sec && a < 2; ++a) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", a ? "section_moment" : "section_force",
+                (unsigned long long)off);
         off += 8 + sz_pts;
     }
     fprintf(fp, "      </PointData>\n");
@@ -334,6 +342,20 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
                     point_value(m, q, mv, pass, e, xi, y, z, x);
                     fwrite(x, sizeof(double), 3, fp);
                 }
+            }
+        }
+    }
+    for (int a = 0; sec && a < 2; ++a) {
+        put_u64(fp, sz_pts);
+        for (int e = 0; e < m->nelem; ++e) {
+            int r = ring_points(m, e);
+            const double *v0 = sec + 12 * (size_t)e + 3 * a, *v1 = v0 + 6;
+            for (int k = 0; k < NX; ++k) {
+                double xi = (double)k / (NX - 1), x[3];
+                for (int i = 0; i < 3; ++i)
+                    x[i] = (1.0 - xi) * v0[i] + xi * v1[i];
+                for (int j = 0; j <= r; ++j)
+                    fwrite(x, sizeof(double), 3, fp);
             }
         }
     }
@@ -416,7 +438,8 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     char path[1200];
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     static const char *const names[] = {"TIME"};
-    if (write_vtu(v->m, path, 1, names, &t, q, NULL) != 0)
+    const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
+    if (write_vtu(v->m, path, 1, names, &t, q, NULL, sec) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
@@ -444,7 +467,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, do
     static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
     const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
     mode_view mv = {qp, qm, eps, norm, scale};
-    if (write_vtu(v->m, path, 5, names, vals, q, &mv) != 0)
+    if (write_vtu(v->m, path, 5, names, vals, q, &mv, NULL) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;

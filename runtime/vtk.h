@@ -18,6 +18,8 @@ typedef struct bk_vtk {
     int nmode;               /* mode files written (modes 1..nmode) */
     int pvd_stale;           /* results.pvd lacks frames written since its last write */
     double t_pvd;            /* wall clock of that write (s) */
+    const double *sec;       /* section forces per element end (forces.h bk_forces.sec), or NULL */
+    const int *sec_step;     /* the output step they are of */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */

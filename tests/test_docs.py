@@ -25,7 +25,7 @@ def documented_keys():
     out = set()
     for k in keys:
         parts = k.split(".")
-        if parts[0] in ("material", "section") and len(parts) == 3:
+        if parts[0] in ("material", "section", "amplitude") and len(parts) == 3:
             parts = [parts[0], parts[2]]
         out.add(".".join(parts))
     return out

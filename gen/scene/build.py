@@ -6,6 +6,7 @@ and sensors (options.py); the model file (model_file.py)."""
 from pathlib import Path
 
 import gen.scene_keys as K
+from gen.scene.amplitude import Amplitudes
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -55,10 +56,21 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         ctx.fail("beam", "missing; expected at least one [[beam]]")
     cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
-    rows = constraints(ctx, doc, mesh)          # none is allowed: the solver reports the singular tangent
-    forces, moments, gravity = loads(ctx, doc, mesh.beams)
+    amps = Amplitudes(ctx, doc)
+    rows = constraints(ctx, doc, mesh, amps)    # none is allowed: the solver reports the singular tangent
+    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
     qd0 = initial_velocities(ctx, doc, mesh)
+    load_types = [lt.get("type") for lt in get_array_of_tables(ctx, doc, "load")]
+    follower = [i for i, lt in enumerate(get_array_of_tables(ctx, doc, "load")) if lt.get("follower") is True]
+    if follower and analysis == "static" and stat["stability"]:
+        mesh.warnings.append(f"load[{follower[0]}]: follower loads are not conservative: the stability check "
+                             "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
+    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon") or i in follower]
+    if stiff and analysis == "modal" and modal["about"]:
+        mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
+                             "the elastic forces only, without the load stiffness of moments, follower loads and "
+                             "tendons")
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
         "length_scale": max(b["length"] for b in mesh.beams.values()),
@@ -66,4 +78,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
+        "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
+        "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
+                     for b in mesh.beams.values() for k in range(b["nelem"])],
     }

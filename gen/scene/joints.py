@@ -14,14 +14,18 @@ from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_ke
 class Rows:
     """Constraint rows being collected: fixed DOFs and linear constraints."""
 
-    def __init__(self, q0):
+    def __init__(self, q0, amps=None):
         self.q0 = q0
+        self.amps = amps
         self.fixed = set()
         self.lincons = []
+        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side)
+        self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
 
-    def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0):
+    def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1):
         """terms: [(dof, c0, cc, cs)]: sum (c0 + cc cos phi + cs sin phi) q = r0 + rc cos phi + rs sin phi,
-        phi(t) = kappa (rate t + amp sin(2 pi freq t)).  A static single-DOF row is a fixed DOF."""
+        phi(t) = kappa (rate t + amp sin(2 pi freq t) + angle a(t)), a the amplitude ampid (-1: none).
+        A static single-DOF row is a fixed DOF."""
         terms = [t_ for t_ in terms if any(abs(c) > 1e-15 for c in t_[1:])]
         if not terms:
             return
@@ -29,7 +33,7 @@ class Rows:
                 and abs(r0 - terms[0][1] * self.q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
             self.fixed.add(terms[0][0])
             return
-        self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq)))
+        self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq, angle, float(ampid))))
 
 
 def _axis_frame(ctx, ct, where):
@@ -120,6 +124,7 @@ def spherical(ctx, ct, where, mesh, rows, beam, s, gid):
     if gid_b == gid:
         ctx.fail(f"{where}.b", "a and b are the same node")
     fb = mesh.field_dofs(gid_b)
+    rows.side = list(fd["r"])                                 # the reaction on beam a
     for i in range(3):
         row([(fd["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
 
@@ -152,6 +157,13 @@ def _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, ctype):
         rate = get_number(ctx, ct, "rate", where, default=0.0)
         amp = get_number(ctx, ct, "amplitude", where, default=0.0)
         freq = get_number(ctx, ct, "frequency", where, default=0.0, nonneg=True)
+        angle = get_number(ctx, ct, "angle", where, default=0.0)
+        ampid = rows.amps.ref(ct, "angle_amplitude", where) if rows.amps else -1
+        if ampid >= 0 and "angle" not in ct:
+            ctx.fail(f"{where}.angle", "missing; `angle_amplitude` scales the angle `angle` (rad)")
+        if "angle" in ct and ampid < 0:
+            ampid = rows.amps.ref({"a": {"type": "ramp"}}, "a", where) if rows.amps else -1
+        tf = (rate, amp, freq, angle, ampid)
         for f, dl in fd.items():
             if f == "r":
                 continue
@@ -159,16 +171,16 @@ def _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, ctype):
                 s0, v0 = q0[dl[0]], [q0[d] for d in dl[1:]]
                 av = _dot(axis, v0)
                 cr = _cross(axis, v0)
-                row([(dl[0], 1.0, 0.0, 0.0)], 0.0, s0, -av, 0.5, rate, amp, freq)
+                row([(dl[0], 1.0, 0.0, 0.0)], 0.0, s0, -av, 0.5, *tf)
                 for i in range(3):
-                    row([(dl[1 + i], 1.0, 0.0, 0.0)], 0.0, v0[i], s0 * axis[i] + cr[i], 0.5, rate, amp, freq)
+                    row([(dl[1 + i], 1.0, 0.0, 0.0)], 0.0, v0[i], s0 * axis[i] + cr[i], 0.5, *tf)
             elif len(dl) == 3:          # nodal vectors rotate rigidly
                 v0 = [q0[d] for d in dl]
                 par = _dot(axis, v0)
                 cr = _cross(axis, v0)
                 for i in range(3):
                     row([(dl[i], 1.0, 0.0, 0.0)], par * axis[i], v0[i] - par * axis[i], cr[i],
-                        1.0, rate, amp, freq)
+                        1.0, *tf)
             else:
                 fixed.update(dl)
 
@@ -199,9 +211,11 @@ JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescri
           "point_on_line": point_on_line}
 
 
-def constraints(ctx, doc, mesh):
-    """Rows of every [[constraint]] table."""
-    rows = Rows(mesh.q0)
+def constraints(ctx, doc, mesh, amps=None):
+    """Rows of every [[constraint]] table, and which rows each one added (its
+    reaction: rows.reactions)."""
+    from gen.scene.mesh import locate
+    rows = Rows(mesh.q0, amps)
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
         ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS))
@@ -209,5 +223,10 @@ def constraints(ctx, doc, mesh):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
+        fixed0, nlin0 = set(rows.fixed), len(rows.lincons)
+        rows.side = None
         JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
+        e, xi = locate(beam, s)
+        rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
+                               list(range(nlin0, len(rows.lincons))), rows.side))
     return rows

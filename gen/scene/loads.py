@@ -1,27 +1,95 @@
-"""[[load]] tables: point forces and moments on beams, gravity."""
+"""[[load]] tables: point forces and moments on beams (dead or follower),
+distributed loads along beams, tendons, gravity; each with an amplitude
+(gen/scene/amplitude.py; -1: the default, the load factor in statics and 1 in
+dynamics)."""
 import gen.scene_keys as K
 from gen.scene.mesh import locate, locate_node, parse_point
-from gen.scene.values import _dot, _norm, check_keys, get_array_of_tables, get_str, get_vec3
+from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_number,
+                              get_str, get_vec3)
 
 
-def loads(ctx, doc, beams):
-    """(forces, moments, gravity) of the scene."""
+def _span(ctx, lt, where, beams):
+    """(beam, [(element, xi0, xi1)]) of the part of a beam a distributed load or a
+    tendon covers: `beam` (all of it) or `from` and `to` (points on one beam)."""
+    if "beam" in lt and ("from" in lt or "to" in lt):
+        ctx.fail(f"{where}.beam", "give either `beam` (the whole beam) or `from` and `to`, not both")
+    if "beam" in lt:
+        bname = lt["beam"]
+        if not isinstance(bname, str) or bname not in beams:
+            ctx.fail(f"{where}.beam", f"no beam named {bname!r} (beams: {', '.join(beams) or 'none'})")
+        beam, s0, s1 = beams[bname], 0.0, beams[bname]["length"]
+    else:
+        for k in ("from", "to"):
+            if k not in lt:
+                ctx.fail(f"{where}.{k}", "missing; expected a point like 'arm:0.2' (or `beam` for a whole beam)")
+        beam, s0 = parse_point(ctx, lt["from"], f"{where}.from", beams)
+        beam_b, s1 = parse_point(ctx, lt["to"], f"{where}.to", beams)
+        if beam_b is not beam:
+            ctx.fail(f"{where}.to", f"expected a point on beam {beam['name']!r} like `from`, found {lt['to']!r}")
+        if not s1 > s0 + 1e-12 * beam["length"]:
+            ctx.fail(f"{where}.to", f"expected a point beyond `from` (arc length {s0:.6g} m), found {s1:.6g} m")
+    pieces = []
+    for k in range(beam["nelem"]):
+        a, l = beam["elem_start"][k], beam["elem_lens"][k]
+        lo, hi = max(s0, a), min(s1, a + l)
+        if hi > lo + 1e-12 * l:
+            pieces.append((beam["first_elem"] + k, (lo - a) / l, (hi - a) / l))
+    return beam, pieces
+
+
+def _follower(ctx, lt, where, beam):
+    fol = get_bool(ctx, lt, "follower", where, False)
+    if fol and beam["kind"] == "cable":
+        ctx.fail(f"{where}.follower", f"element {beam['element']} has no section frame for a follower load to "
+                 "turn with")
+    return int(fol)
+
+
+def loads(ctx, doc, beams, amps):
+    """(forces, moments, gravity, distributed, tendons) of the scene."""
     forces = []
     moments = []
+    dloads = []
+    tendons = []
     gravity = None
     for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
         where = f"load[{li}]"
         ltype = get_str(ctx, lt, "type", where, choices=tuple(K.LOAD))
-        if ltype in ("force", "moment"):
+        if ltype == "distributed":
+            check_keys(ctx, lt, set(K.LOAD[ltype]), where)
+            beam, pieces = _span(ctx, lt, where, beams)
+            val = get_vec3(ctx, lt, "value", where)
+            fol, amp = _follower(ctx, lt, where, beam), amps.ref(lt, "amplitude", where)
+            dloads += [(e, x0, x1, fol, amp, val) for e, x0, x1 in pieces]
+        elif ltype == "tendon":
+            check_keys(ctx, lt, set(K.LOAD[ltype]), where)
+            beam, pieces = _span(ctx, lt, where, beams)
+            if beam["kind"] != "continuum":
+                ctx.fail(f"{where}.beam", f"tendons are routed through continuum ANCF beams only (ancf3243, "
+                         f"ancf3333, ancf3273, ancf3363), beam {beam['name']!r} is {beam['element']}")
+            off = lt.get("offset")
+            if (not isinstance(off, list) or len(off) != 2
+                    or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
+                ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, along the section axes d1, d2), found "
+                         f"{_typename(off) if not isinstance(off, list) else off}")
+            _shape, b, h = beam["section"]
+            if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
+                ctx.fail(f"{where}.offset", f"the tendon at {list(map(float, off))} m lies outside the section of "
+                         f"beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
+            T = get_number(ctx, lt, "tension", where, nonneg=True)
+            amp = amps.ref(lt, "amplitude", where)
+            tendons.append((amp, T, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces]))
+        elif ltype in ("force", "moment"):
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             if "at" not in lt:
                 ctx.fail(f"{where}.at", "missing; expected a point like 'arm:end'")
             beam, s = parse_point(ctx, lt["at"], f"{where}.at", beams)
             val = get_vec3(ctx, lt, "value", where)
             e, xi = locate(beam, s)
+            fol, amp = _follower(ctx, lt, where, beam), amps.ref(lt, "amplitude", where)
             if ltype == "force":
                 dist = get_str(ctx, lt, "distribution", where, default="point", choices=("point", "section"))
-                forces.append((e, xi, 0.0, 0.0, 1 if dist == "section" else 0, val))
+                forces.append((e, xi, 0.0, 0.0, 1 if dist == "section" else 0, val, amp, fol))
             else:
                 if beam["moments"] == "nodes":
                     frac = s / beam["length"]
@@ -37,12 +105,12 @@ def loads(ctx, doc, beams):
                     if mt > 1e-9 * max(_norm(val), 1e-300):
                         ctx.fail(f"{where}.value", f"element {beam['element']} cannot carry a torque about its "
                                  f"axis (moment component {mt:.6g} N m along the beam at {lt['at']!r})")
-                moments.append((e, xi, val))
+                moments.append((e, xi, val, amp, fol))
         else:
             check_keys(ctx, lt, set(K.LOAD["gravity"]), where)
             g = get_vec3(ctx, lt, "value", where)
             if gravity is not None:
                 ctx.fail(f"{where}.type", "gravity given twice")
-            gravity = g
+            gravity = (g, amps.ref(lt, "amplitude", where))
 
-    return forces, moments, gravity
+    return forces, moments, gravity, dloads, tendons

@@ -8,7 +8,7 @@ def _f(x):
 # Model file format: versioned; scalar records are named fields `key=value` in
 # this order, which runtime/model.c reads by name (a model file of another
 # version, or with a field renamed, is refused naming the record and field).
-VERSION = 2
+VERSION = 3
 RECORDS = {
     "scene": ("name", "analysis", "length_scale"),
     "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
@@ -85,15 +85,33 @@ def write_model(model, path):
         out.append(f"lincon {len(terms)} " + " ".join(f"{d} {_f(a)} {_f(b)} {_f(c)}" for d, a, b, c in terms)
                    + " " + " ".join(_f(x) for x in rhs) + " " + " ".join(_f(x) for x in tf))
     out.append(f"forces {len(model['forces'])}")
-    for e, xi, y, z, dist, v in model["forces"]:
-        out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v))
+    for e, xi, y, z, dist, v, amp, fol in model["forces"]:
+        out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v) + f" {amp} {fol}")
     out.append(f"moments {len(model['moments'])}")
-    for e, xi, v in model["moments"]:
-        out.append(f"moment {e} {_f(xi)} " + " ".join(_f(x) for x in v))
+    for e, xi, v, amp, fol in model["moments"]:
+        out.append(f"moment {e} {_f(xi)} " + " ".join(_f(x) for x in v) + f" {amp} {fol}")
     g = model["gravity"]
-    out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g))
+    out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g[0]) + f" {g[1]}")
     out.append(f"sensors {len(model['sensors'])}")
     for n, e, xi in model["sensors"]:
         out.append(f"sensor {n} {e} {_f(xi)}")
+    out.append(f"amplitudes {len(model['amplitudes'])}")
+    for atype, params in model["amplitudes"]:
+        out.append(f"amplitude {atype} {len(params)} " + " ".join(_f(x) for x in params))
+    out.append(f"dloads {len(model['dloads'])}")
+    for e, x0, x1, fol, amp, v in model["dloads"]:
+        out.append(f"dload {e} {_f(x0)} {_f(x1)} {fol} {amp} " + " ".join(_f(x) for x in v))
+    out.append(f"tendons {len(model['tendons'])}")
+    for amp, T, pieces in model["tendons"]:
+        out.append(f"tendon {amp} {_f(T)} {len(pieces)}")
+        out += [f"piece {e} {_f(x0)} {_f(x1)} {_f(dy)} {_f(dz)}" for e, x0, x1, dy, dz in pieces]
+    out.append(f"reactions {len(model['reactions'])}")
+    for ci, ctype, at, e, xi, fixed, lins, side in model["reactions"]:
+        side = side or []
+        out.append(f"reaction {ci} {ctype} {at} {e} {_f(xi)} {len(fixed)} " + " ".join(map(str, fixed))
+                   + f" {len(lins)} " + " ".join(map(str, lins)) + f" {len(side)} " + " ".join(map(str, side)))
+    out.append(f"sections {len(model['sections'])}")
+    for bname, e, s0, s1 in model["sections"]:
+        out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
     out.append("end")
     Path(path).write_text("\n".join(out) + "\n", encoding="utf-8")

@@ -1,0 +1,127 @@
+"""Amplitudes: the time (dynamics) or load-factor (statics) history a load or a
+prescribed motion is multiplied by.  [amplitude.NAME] tables, or an inline
+table in the load, referenced by a load's `amplitude` key (a constraint's
+`angle_amplitude`).
+
+Types (gen/scene_keys.py AMPLITUDE), x the time or the load factor:
+  ramp   0 before t0, linear to 1 at t1, 1 after (t0 = 0, t1 = 1)
+  step   0 before t0, 1 from t0 on
+  sine   offset + amplitude sin(2 pi frequency x + phase)
+  table  piecewise linear through points [[x, a], ...] (x strictly increasing),
+         inline or from a CSV file of two columns (path relative to the scene),
+         constant beyond the first and last point
+Model-file form: (type, [parameters]) -- runtime/amplitude.c evaluates it.
+"""
+import csv
+import math
+from pathlib import Path
+
+import gen.scene_keys as K
+from gen.scene.values import _typename, check_keys, get_number, get_str
+
+TYPES = tuple(K.AMPLITUDE)
+
+
+class Amplitudes:
+    """The scene's amplitudes as they are referenced, numbered in order of use."""
+
+    def __init__(self, ctx, doc):
+        self.ctx = ctx
+        self.named = doc.get("amplitude", {})
+        if not isinstance(self.named, dict):
+            ctx.fail("amplitude", f"expected tables [amplitude.NAME], found {_typename(self.named)}")
+        self.rows = []          # (type, params) per amplitude
+        self.index = {}         # name -> row
+        for name, tbl in self.named.items():
+            self.index[name] = self._parse(tbl, f"amplitude.{name}")
+
+    def ref(self, tbl, key, where):
+        """Index of the amplitude tbl[key] (a name or an inline table), -1 when absent."""
+        if key not in tbl:
+            return -1
+        v = tbl[key]
+        if isinstance(v, str):
+            if v not in self.index:
+                self.ctx.fail(f"{where}.{key}", f"no [amplitude.{v}] table (amplitudes: "
+                              f"{', '.join(self.index) or 'none'})")
+            return self.index[v]
+        if isinstance(v, dict):
+            return self._parse(v, f"{where}.{key}")
+        self.ctx.fail(f"{where}.{key}", f"expected the name of an [amplitude.NAME] table or an inline "
+                      f"table, found {_typename(v)}")
+
+    def _parse(self, tbl, where):
+        ctx = self.ctx
+        if not isinstance(tbl, dict):
+            ctx.fail(where, f"expected a table, found {_typename(tbl)}")
+        atype = get_str(ctx, tbl, "type", where, choices=TYPES)
+        check_keys(ctx, tbl, set(K.AMPLITUDE[atype]), where)
+        if atype == "ramp":
+            t0 = get_number(ctx, tbl, "t0", where, default=0.0)
+            t1 = get_number(ctx, tbl, "t1", where, default=1.0)
+            if not t1 > t0:
+                ctx.fail(f"{where}.t1", f"expected t1 > t0 = {t0:g}, found {t1:g}")
+            params = [t0, t1]
+        elif atype == "step":
+            params = [get_number(ctx, tbl, "t0", where, default=0.0)]
+        elif atype == "sine":
+            params = [get_number(ctx, tbl, "amplitude", where, default=1.0),
+                      get_number(ctx, tbl, "frequency", where, nonneg=True),
+                      get_number(ctx, tbl, "phase", where, default=0.0),
+                      get_number(ctx, tbl, "offset", where, default=0.0)]
+        else:
+            params = self._table(tbl, where)
+        self.rows.append((atype, params))
+        return len(self.rows) - 1
+
+    def _table(self, tbl, where):
+        ctx = self.ctx
+        if ("points" in tbl) == ("file" in tbl):
+            ctx.fail(where, "a table amplitude needs exactly one of `points` (inline [[x, a], ...]) and `file` "
+                     "(a CSV file of x, a rows)")
+        if "points" in tbl:
+            key = f"{where}.points"
+            pts = tbl["points"]
+            if not isinstance(pts, list):
+                ctx.fail(key, f"expected an array of [x, a] pairs, found {_typename(pts)}")
+            rows = []
+            for i, p in enumerate(pts):
+                if (not isinstance(p, list) or len(p) != 2
+                        or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in p)):
+                    ctx.fail(key, f"entry {i}: expected a pair [x, a] of numbers, found {p!r}")
+                rows.append((float(p[0]), float(p[1])))
+        else:
+            key = f"{where}.file"
+            fname = tbl["file"]
+            if not isinstance(fname, str):
+                ctx.fail(key, f"expected a path to a CSV file, found {_typename(fname)}")
+            path = Path(fname)
+            if not path.is_absolute():
+                path = Path(ctx.path).resolve().parent / path
+            try:
+                text = path.read_text(encoding="utf-8")
+            except OSError as e:
+                ctx.fail(key, f"cannot read {str(path)!r}: {e.strerror}")
+            rows = []
+            for ln, rec in enumerate(csv.reader(text.splitlines()), 1):
+                rec = [c.strip() for c in rec]
+                if not rec or not any(rec) or rec[0].startswith("#"):
+                    continue
+                try:
+                    vals = [float(c) for c in rec]
+                except ValueError:
+                    if not rows:
+                        continue                    # a header line
+                    ctx.fail(key, f"{path.name} line {ln}: expected two numbers x, a, found {','.join(rec)!r}")
+                if len(vals) != 2:
+                    ctx.fail(key, f"{path.name} line {ln}: expected two columns x, a, found {len(vals)}")
+                rows.append((vals[0], vals[1]))
+        if not rows:
+            ctx.fail(key, "expected at least one point")
+        for i, (x, a) in enumerate(rows):
+            if not (math.isfinite(x) and math.isfinite(a)):
+                ctx.fail(key, f"point {i}: expected finite numbers, found {x!r}, {a!r}")
+            if i and not x > rows[i - 1][0]:
+                ctx.fail(key, f"points out of time order: x = {x:g} (point {i}) after x = {rows[i - 1][0]:g}; "
+                         "expected strictly increasing x")
+        return [v for p in rows for v in p]

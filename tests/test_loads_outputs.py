@@ -1,0 +1,495 @@
+"""Issue 16, outputs and loads: reactions (reactions.csv, summary.json) that
+balance the applied loads, section forces (sections.csv) against equilibrium
+of the free part (closed forms and hand calculation), amplitudes, distributed,
+follower and tendon loads against closed forms, their Jacobians against central
+differences of the load vector, and the bad-input messages."""
+import csv
+import math
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from util import BUILD, ROOT, build_program, ensure_dir, run_cli, run_scene
+
+E, B, H = 7.2e10, 0.01, 0.01
+EI = E * B * H**3 / 12
+MODELS = ROOT / "models"
+
+
+def rows(out, name):
+    with open(Path(out) / name, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def vec(r, *keys):
+    return np.array([float(r[k]) for k in keys])
+
+
+def run(scene, sets=(), text=None):
+    out = Path(tempfile.mkdtemp(prefix="bk-lo-", dir=ensure_dir(BUILD / "runs")))
+    if text is not None:
+        p = out / "scene.toml"
+        p.write_text(text)
+        scene = p
+    summary, _ = run_scene(scene, sets, out=out / "run")
+    return summary, out / "run"
+
+
+GEF_BEAM = """
+[scene]
+analysis = "static"
+[material.alu]
+law = "resultant"
+E = 7.2e10
+nu = 0.3
+rho = 2700.0
+[section.square]
+shape = "rectangle"
+b = 0.01
+h = 0.01
+[[beam]]
+name = "arm"
+element = "{element}"
+material = "alu"
+section = "square"
+start = [0.0, 0.0, 0.0]
+end = [1.0, 0.0, 0.0]
+elements = 10
+"""
+
+
+@pytest.mark.parametrize("element", ["gef", "euler_bernoulli", "kirchhoff"])
+def test_reactions_balance_the_loads_3d_rods(element):
+    """Clamped rod, tip force and moment and a mid-span force, large 3-D
+    deflection: the clamp's force and moment (about the clamp; from the
+    quaternion DOFs' generalized forces) balance the loads at their deformed
+    points."""
+    text = GEF_BEAM.format(element=element) + """
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 30.0, -50.0]
+[[load]]
+type = "moment"
+at = "arm:end"
+value = [5.0, 0.0, 2.0]
+[[load]]
+type = "force"
+at = "arm:0.5"
+value = [10.0, 0.0, 20.0]
+[static]
+load_steps = 4
+rtol = 1e-12
+[[sensor]]
+name = "tip"
+at = "arm:end"
+[[sensor]]
+name = "mid"
+at = "arm:0.5"
+"""
+    summary, out = run(None, text=text)
+    tip = np.array(summary["sensors"]["tip"]["position"])
+    mid = np.array(summary["sensors"]["mid"]["position"])
+    assert np.linalg.norm(tip - [1, 0, 0]) > 0.2                 # large deflection
+    (rc,) = summary["reactions"]
+    F, M = np.array(rc["force"]), np.array(rc["moment"])
+    Ft, Mt, Fm = np.array([0, 30, -50.0]), np.array([5, 0, 2.0]), np.array([10, 0, 20.0])
+    assert np.abs(F + Ft + Fm).max() < 1e-8 * 60
+    assert np.abs(M + np.cross(tip, Ft) + Mt + np.cross(mid, Fm)).max() < 1e-8 * 60
+    last = rows(out, "reactions.csv")[-1]
+    assert np.allclose(vec(last, "Fx", "Fy", "Fz"), F, rtol=0, atol=1e-12)
+
+
+def test_reactions_with_multiplier_constraints_ancf_free_clamp():
+    """ANCF cantilever, 100 N at the tip (seed Table 3, large deflection), with
+    the `free` clamp (slope directions by linear constraints, reactions from
+    their multipliers, -s G^T nu, mapped through the slopes' work-conjugate
+    moment): force P, moment P times the tip's horizontal offset."""
+    summary, _ = run("cantilever_bend_100N", ["constraint.0.cross_section=free", "static.rtol=1e-12"])
+    (rc,) = summary["reactions"]
+    x_tip = summary["sensors"]["tip"]["position"][0]
+    z_tip = summary["sensors"]["tip"]["position"][2]
+    assert np.abs(np.array(rc["force"]) - [0, 0, 100.0]).max() < 1e-7
+    assert np.abs(np.array(rc["moment"]) - [0, -100.0 * x_tip, 0]).max() < 1e-7
+    assert z_tip < -0.4
+
+
+def test_simply_supported_beam_reactions_and_midspan_moment():
+    """Statically determinate: pinned at one end, a roller (point_on_line, two
+    linear constraints) at the other, P at mid-span: reactions P/2, section
+    moment -P x / 2 about d1 (sagging) left of the load, -P L / 4 under it (hand
+    calculation)."""
+    P = 2.0
+    # a revolute pin (it also holds the twist about the beam's own axis) and a roller
+    text = GEF_BEAM.format(element="gef") + f"""
+[[constraint]]
+type = "revolute"
+a = "arm:start"
+axis = [0.0, 1.0, 0.0]
+[[constraint]]
+type = "point_on_line"
+a = "arm:end"
+axis = [1.0, 0.0, 0.0]
+[[load]]
+type = "force"
+at = "arm:0.5"
+value = [0.0, 0.0, {-P}]
+"""
+    summary, out = run(None, text=text)
+    r0, r1 = summary["reactions"]
+    assert np.abs(np.array(r0["force"]) - [0, 0, P / 2]).max() < 1e-9
+    assert np.abs(np.array(r1["force"]) - [0, 0, P / 2]).max() < 1e-9
+    assert np.abs(r0["moment"]).max() < 1e-9 and np.abs(r1["moment"]).max() < 1e-9
+    for r in rows(out, "sections.csv"):
+        if r["step"] != "1":
+            continue
+        s = float(r["s"])
+        m_ref = -P / 2 * min(s, 1.0 - s)            # sagging: the moment vector along -d1
+        assert abs(float(r["M2"]) - m_ref) < 1e-6 * P, (s, r["M2"], m_ref)
+        assert abs(abs(float(r["Q3"])) - P / 2) < 1e-5 * P       # the section turned by 2e-3 rad
+
+
+def test_cantilever_root_moment_small_and_large_deflection():
+    """Root section moment of a tip-loaded ANCF cantilever: P L at 1 N (small
+    deflection) and P times the tip's horizontal offset at 100 N (seed Table 3);
+    along the beam M2(s) = P (x_tip - x(s)), the section's own point."""
+    for P, scene in ((1.0, "cantilever_bend_10N"), (100.0, "cantilever_bend_100N")):
+        sets = ["static.rtol=1e-12"] + (["load.0.value.2=-1.0"] if P == 1.0 else [])
+        summary, out = run(scene, sets)
+        x_tip = summary["sensors"]["tip"]["position"][0]
+        sec = [r for r in rows(out, "sections.csv") if int(r["step"]) == summary["steps"]]
+        root = [r for r in sec if r["element"] == "0" and r["end"] == "0"][0]
+        if P == 1.0:
+            assert abs(float(root["M2"]) - P * 1.0) < 2e-4 * P
+        assert abs(float(root["M2"]) - P * x_tip) < 1e-8 * P
+        for r in sec:
+            assert abs(float(r["M2"]) - P * (x_tip - float(r["x"]))) < 1e-7 * P
+        # the ParaView frame carries them as point data, linear along each element
+        from report import vtu
+        frame = vtu.read(out / f"step_{summary['steps']:06d}.vtu")
+        assert abs(frame["section_moment"][0][1] - float(root["M2"])) < 1e-12 * P
+        assert abs(frame["section_force"][-1][0] - float(sec[-1]["N"])) < 1e-12 * P
+
+
+def test_curved_frame_bending_and_torsion_by_hand():
+    """Quarter-circle gef cantilever (R = 1 m, in the x-y plane) with an
+    out-of-plane tip force P: at the section at angle phi, M = P R sin(a - phi)
+    about the radial direction and T = P R (1 - cos(a - phi)) (a = 90 deg)."""
+    P, R = 0.5, 1.0
+    text = GEF_BEAM.format(element="gef").replace('end = [1.0, 0.0, 0.0]', """arc_center = [0.0, 1.0, 0.0]
+arc_axis = [0.0, 0.0, 1.0]
+arc_angle = 90.0""").replace("elements = 10", "elements = 12") + f"""
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 0.0, {-P}]
+"""
+    summary, out = run(None, text=text)
+    n = 0
+    for r in rows(out, "sections.csv"):
+        if r["step"] != "1":
+            continue
+        phi = float(r["s"]) / R
+        a = math.pi / 2 - phi
+        # section frame: e3 the tangent, e2 = up = z, e1 = e2 x e3 points outward
+        # hand calculation on the reference geometry: the deflection (1e-3 R) moves the arms
+        assert abs(abs(float(r["M2"])) - P * R * math.sin(a)) < 2e-4 * P * R, (phi, r["M2"])
+        assert abs(abs(float(r["T"])) - P * R * (1 - math.cos(a))) < 2e-4 * P * R, (phi, r["T"])
+        assert abs(abs(float(r["Q3"])) - P) < 1e-4 * P
+        n += 1
+    assert n == 24
+
+
+def test_distributed_load_cantilever():
+    """0.5 N/m over the whole gef cantilever and 1 N/m over its outer half:
+    tip deflection q L^4 / 8 EI + q (3 L^4 - 4 a^3 L + a^4) / 24 EI (Euler-Bernoulli;
+    shear adds 1e-4), reactions and the section moments from statics."""
+    summary, out = run("cantilever_distributed", ["static.rtol=1e-12"])
+    w = 0.5 / (8 * EI) + 1.0 * (3 - 4 * 0.125 + 0.0625) / (24 * EI)
+    uz = summary["sensors"]["tip"]["displacement"][2]
+    assert abs(-uz / w - 1) < 3e-4, (uz, w)
+    (rc,) = summary["reactions"]
+    assert abs(rc["force"][2] - 1.0) < 1e-9
+    assert abs(rc["moment"][1] + (0.25 + 0.375)) < 1e-5
+    for r in rows(out, "sections.csv"):
+        if r["step"] != "1":
+            continue
+        s = float(r["s"])
+        m_ref = 0.5 * (1 - s) ** 2 / 2 + (1.0 * (1 - s) ** 2 / 2 if s >= 0.5 else 0.5 * (0.75 - s))
+        assert abs(float(r["M2"]) - m_ref) < 1e-5, (s, r["M2"], m_ref)
+
+
+def test_follower_force_and_moment_turn_with_the_tip_section():
+    """gef cantilever, follower tip force 100 N along -d2 and torque 10 N m
+    about d3 of the tip section: the clamp's force is +100 d2(tip) and its
+    moment balances 10 d3(tip) + r_tip x F, with d2, d3 from sensors.csv."""
+    summary, out = run("cantilever_follower", ["static.rtol=1e-12"])
+    tip = [r for r in rows(out, "sensors.csv") if r["sensor"] == "tip"][-1]
+    d2, d3 = vec(tip, "d2x", "d2y", "d2z"), vec(tip, "d3x", "d3y", "d3z")
+    x = vec(tip, "x", "y", "z")
+    (rc,) = summary["reactions"]
+    F, M = np.array(rc["force"]), np.array(rc["moment"])
+    assert abs(d2[2]) < 0.9                                 # the tip section has turned
+    assert np.abs(F - 100 * d2).max() < 1e-7
+    assert np.abs(M + 10 * d3 + np.cross(x, -100 * d2)).max() < 1e-7
+
+
+def test_follower_pressure_on_a_ring_is_pure_hoop_compression():
+    """Closed ring, uniform follower pressure p: N = -p R in every section,
+    no bending, no net reaction (clamp + closing joint)."""
+    p, R = 1000.0, 0.5
+    summary, out = run("ring_pressure", ["static.rtol=1e-12"])
+    for r in rows(out, "sections.csv"):
+        if r["step"] == "2":
+            assert abs(float(r["N"]) / (-p * R) - 1) < 2e-5, r
+            assert abs(float(r["M2"])) < 1e-4 * p * R * R and abs(float(r["M3"])) < 1e-4 * p * R * R
+    tot = sum(np.array(rc["force"]) for rc in summary["reactions"])
+    assert np.abs(tot).max() < 1e-8 * p * R
+
+
+def test_load_jacobians_against_central_differences():
+    """dQ/dq of follower forces, moments, distributed follower loads and
+    tendons (runtime/loads.c) against central differences of Q itself."""
+    exe = build_loads_check()
+    for scene, x, el in (("cantilever_follower", 0.7, "arm"), ("ring_pressure", 1.0, "ring"),
+                         ("tendon_ancf", 1.0, "arm")):
+        _, out = run(scene, [f"beam.{el}.elements=4"])
+        r = subprocess.run([str(exe), str(out / "model.dat"), str(x)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        err, big = map(float, r.stdout.split())
+        assert big > 0 and err < 1e-6 * big, (scene, err, big)
+
+
+def build_loads_check():
+    from gen.solver_build import VARIANTS, build_solver, compile_object, RUNTIME, runtime_objects
+    from util import all_pair_symbols
+    pairs, index = all_pair_symbols()
+    pairs = [p for p in pairs if p.startswith(("gef_resultant", "ancf3243_svk"))]
+    obj = BUILD / "sanitize" / "loads_check.o"
+    compile_object(ROOT / "tests" / "loads_check.c", obj, VARIANTS["sanitize"], list(RUNTIME.glob("*.h")))
+    objs = [o for o in runtime_objects("sanitize") if o.name != "main.o"] + [obj]
+    return build_solver(pairs, BUILD / "sanitize" / "loads_check", index, "sanitize", main_objs=objs)
+
+
+def tip_angle(out):
+    r = [r for r in rows(out, "sensors.csv") if r["sensor"] == "tip"][-1]
+    return math.atan2(float(r["d3z"]), float(r["d3x"]))
+
+
+def test_tendon_bends_at_constant_curvature_T_d_over_EI():
+    """ANCF beam, tendon at d = 4 mm above the centreline from the clamp to the
+    tip pulled with T: curvature T d / E I (small strain), here from the tip
+    slope; no net reaction (the tendon's loads are internal)."""
+    summary, out = run("tendon_ancf", ["static.rtol=1e-12"])
+    k_ref = 150.0 * 0.004 / EI
+    assert abs(tip_angle(out) / k_ref - 1) < 2e-4
+    assert np.abs(summary["reactions"][0]["force"]).max() < 1e-6
+    summary, out = run("tendon_ancf", ["load.0.tension=15000", "beam.arm.elements=40", "static.load_steps=4"])
+    assert abs(tip_angle(out) / (15000 * 0.004 / EI) - 1) < 1e-2        # kappa L = 1 rad
+
+
+def test_amplitudes_static_table_and_prescribed_rotation_ramp():
+    """Tip force times a load-factor table (0, 1 at 0.5, 0.25 at 1), the clamp
+    turned by 0.5 rad times a ramp from 0.5 to 1: tip at
+    R(theta) (L, 0, -a P L^3 / 3 EI) at each load factor (gef, shear 3e-4)."""
+    for variant in ("inline", "csv"):
+        if variant == "inline":
+            _, out = run("cantilever_amplitudes")
+        else:
+            d = Path(tempfile.mkdtemp(prefix="bk-amp-", dir=ensure_dir(BUILD / "runs")))
+            (d / "amp.csv").write_text("x,a\n0,0\n0.5,1\n1,0.25\n")
+            text = (MODELS / "cantilever_amplitudes.toml").read_text().replace(
+                "points = [[0.0, 0.0], [0.5, 1.0], [1.0, 0.25]]", 'file = "amp.csv"')
+            (d / "s.toml").write_text(text)
+            run_scene(d / "s.toml", out=d / "run")
+            out = d / "run"
+        w = 1.0 / (3 * EI)
+        for r in rows(out, "sensors.csv"):
+            lam = float(r["time"])
+            a = np.interp(lam, [0, 0.5, 1], [0, 1, 0.25])
+            th = 0.5 * min(max((lam - 0.5) / 0.5, 0), 1)
+            x = vec(r, "x", "y", "z")
+            assert abs(x[0] - math.cos(th)) < 1e-4 and abs(x[1] - math.sin(th)) < 1e-4, (lam, x)
+            assert abs(x[2] + a * w) < 1e-3 * w + 1e-12, (lam, x[2], a * w)
+
+
+def test_amplitude_sine_in_dynamics_quasi_static():
+    """Tip force 1 N (1 - cos 2 pi t)/2 on a gef cantilever: against the
+    first-mode response (f1 = 8.34 Hz from Euler-Bernoulli) of that forcing,
+    u = w (1/2 - cos(W t)/(2(1 - r^2)) + r^2 cos(w1 t)/(2(1 - r^2)))."""
+    _, out = run("cantilever_sine_load")
+    A, rho = B * H, 2700.0
+    w = 1.0 / (3 * EI)
+    om = 1.8751040687**2 * math.sqrt(EI / (rho * A))
+    Om = 2 * math.pi
+    r2 = (Om / om) ** 2
+    worst = 0.0
+    for r in rows(out, "sensors.csv"):
+        t = float(r["time"])
+        a = 0.5 - 0.5 * math.cos(Om * t) / (1 - r2) + 0.5 * r2 / (1 - r2) * math.cos(om * t)
+        worst = max(worst, abs(float(r["uz"]) + a * w))
+    assert worst < 6e-3 * w
+
+
+def test_dynamic_reactions_include_inertia_rigid_pendulum():
+    """Stiff gef pendulum released horizontally: the pin force against the
+    rigid rod's m a_cm - m g from the current angle (omega^2 = 3 g sin(th)/L,
+    alpha = 3 g cos(th)/2L), after the release transient (t > 0.1 s)."""
+    _, out = run("pendulum_stiff_gef", ["dynamic.t_end=1.0", "dynamic.rho_inf=0.0", "material.rod.E=7e13"])
+    g, L, m = 9.81, 1.0, 2700 * 1e-4
+    S, R = rows(out, "sensors.csv"), rows(out, "reactions.csv")
+    assert len(S) == len(R) > 50
+    worst = 0.0
+    for s, r in zip(S, R):
+        if float(s["time"]) <= 0.1:
+            continue
+        th = math.atan2(-float(s["z"]), float(s["x"]))
+        w2, al = 3 * g * math.sin(th) / L, 3 * g * math.cos(th) / (2 * L)
+        er, et = np.array([math.cos(th), 0, -math.sin(th)]), np.array([-math.sin(th), 0, -math.cos(th)])
+        F = m * (L / 2) * (al * et - w2 * er) + np.array([0, 0, m * g])
+        worst = max(worst, np.abs(F - vec(r, "Fx", "Fy", "Fz")).max())
+    assert worst < 0.02 * m * g
+
+
+BAD_BASE = (MODELS / "cantilever_amplitudes.toml").read_text()
+
+
+def check_error(text, key, expected, files=()):
+    d = Path(tempfile.mkdtemp(prefix="bk-bad-", dir=ensure_dir(BUILD / "bad")))
+    for name, body in files:
+        (d / name).write_text(body)
+    p = d / "bad.toml"
+    p.write_text(text)
+    r = run_cli(["run", str(p), "--out", str(d / "out")])
+    assert r.returncode == 1, r.stderr
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith(f"error: {p}: {key}:"), r.stderr
+    assert expected in lines[0], lines[0]
+
+
+def test_bad_amplitudes_tendons_and_followers():
+    check_error(BAD_BASE.replace('type = "table"', 'type = "smooth_step"'), "amplitude.up_down.type",
+                "expected one of")
+    check_error(BAD_BASE.replace("[0.5, 1.0], [1.0, 0.25]", "[0.5, 1.0], [0.4, 0.25]"),
+                "amplitude.up_down.points", "out of time order")
+    check_error(BAD_BASE.replace("points = [[0.0, 0.0], [0.5, 1.0], [1.0, 0.25]]", 'file = "a.csv"'),
+                "amplitude.up_down.file", "out of time order", files=[("a.csv", "0,0\n0.5,1\n0.5,2\n")])
+    check_error(BAD_BASE.replace('amplitude = "up_down"', 'amplitude = "nope"'), "load[0].amplitude",
+                "no [amplitude.nope] table")
+    tendon = (MODELS / "tendon_ancf.toml").read_text()
+    check_error(tendon.replace("offset = [0.0, 0.004]", "offset = [0.0, 0.006]"), "load[0].offset",
+                "outside the section")
+    check_error(tendon.replace('element = "ancf3243"', 'element = "gef"').replace('law = "svk"', 'law = "resultant"')
+                .replace('integration = "sri"\n', ""), "load[0].beam", "continuum ANCF beams only")
+    cable = (MODELS / "cantilever_follower.toml").read_text().replace('element = "gef"', 'element = "ancf_cable"')
+    check_error(cable, "load[0].follower", "no section frame")
+    dist = (MODELS / "cantilever_distributed.toml").read_text()
+    check_error(dist.replace('from = "arm:0.5"\nto = "arm:end"', 'from = "arm:0.5"\nto = "arm:0.2"'), "load[1].to",
+                "beyond `from`")
+
+
+def test_follower_pressure_ramped_in_dynamics():
+    """The ring of ring_pressure.toml in dynamics, the pressure ramped in over
+    20 ms (the breathing mode has a 0.6 ms period: quasi-static): hoop force
+    -p R at 30 ms, inertia and all (dynamic reactions and section forces)."""
+    text = (MODELS / "ring_pressure.toml").read_text()
+    text = text.replace('analysis = "static"', 'analysis = "dynamic"').replace(
+        "[static]\nload_steps = 2\n", "[dynamic]\nt_end = 0.03\ndt = 1e-3\nrho_inf = 0.5\n").replace(
+        "follower = true", 'follower = true\namplitude = {type = "ramp", t0 = 0.0, t1 = 0.02}')
+    _, out = run(None, text=text)
+    last = [r for r in rows(out, "sections.csv") if r["step"] == "30"]
+    assert len(last) == 32
+    for r in last:
+        assert abs(float(r["N"]) / -500.0 - 1) < 1e-3, r
+    mid = [r for r in rows(out, "sections.csv") if r["step"] == "10"]
+    for r in mid:                                            # half the pressure at 10 ms
+        assert abs(float(r["N"]) / -250.0 - 1) < 1e-2, r
+
+
+def test_modal_about_static_state_under_distributed_load():
+    """Loads enter a modal analysis only through its static state: the state
+    under the distributed loads of cantilever_distributed, with its reactions
+    (1 N, 0.625 N m), and the first frequency of the clamped beam (Euler-
+    Bernoulli 8.34 Hz; the tiny load does not shift it)."""
+    summary, out = run("cantilever_distributed", ["scene.analysis=modal", "modal.about=static", "modal.modes=2"])
+    (rc,) = summary["reactions"]
+    assert abs(rc["force"][2] - 1.0) < 1e-9 and abs(rc["moment"][1] + 0.625) < 1e-5
+    f1 = 1.8751040687**2 / (2 * math.pi) * math.sqrt(EI / (2700.0 * B * H))
+    assert abs(summary["frequencies_hz"][0] / f1 - 1) < 2e-3
+
+
+def test_cable_reactions_through_the_slope_and_axial_section_force():
+    """ancf_cable cantilever (positions and slopes r_x only), tip force: the
+    clamp's moment is the work-conjugate moment of the slope forces, P times
+    the tip's horizontal offset; its sections report N (and T = 0) only."""
+    P = 20.0
+    text = GEF_BEAM.format(element="ancf_cable") + f"""
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 0.0, {-P}]
+[static]
+rtol = 1e-12
+load_steps = 2
+[[sensor]]
+name = "tip"
+at = "arm:end"
+"""
+    summary, out = run(None, text=text)
+    x_tip = summary["sensors"]["tip"]["position"][0]
+    (rc,) = summary["reactions"]
+    assert x_tip < 0.995                                     # 1.1 cm of deflection
+    assert np.abs(np.array(rc["force"]) - [0, 0, P]).max() < 1e-8 * P
+    assert np.abs(np.array(rc["moment"]) - [0, -P * x_tip, 0]).max() < 1e-8 * P
+    for r in rows(out, "sections.csv"):
+        if r["step"] == "2":
+            assert math.isnan(float(r["M2"])) and abs(float(r["T"])) < 1e-9 * P
+    tip = [r for r in rows(out, "sections.csv") if r["step"] == "2"][-1]
+    d3 = vec([r for r in rows(out, "sensors.csv") if r["step"] == "2"][-1], "d3x", "d3y", "d3z")
+    assert abs(float(tip["N"]) - np.dot([0, 0, -P], d3 / np.linalg.norm(d3))) < 1e-8 * P
+
+
+def test_gravity_with_amplitudes_static_step_and_dynamic_ramp():
+    """Self-weight q = rho A g of a gef cantilever: with a step at load factor
+    0.5 the tip is at rest before and at q L^4 / 8 EI from it (statics); ramped
+    in over 1 s (first period 0.12 s) the dynamic tip and clamp force are within
+    2 % of the static values at 1.5 s."""
+    q = 2700.0 * B * H * 9.81
+    w = q / (8 * EI)
+    text = GEF_BEAM.format(element="gef") + """
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "gravity"
+value = [0.0, 0.0, -9.81]
+amplitude = {type = "step", t0 = 0.5}
+[static]
+load_steps = 4
+step_control = "fixed"
+[[sensor]]
+name = "tip"
+at = "arm:end"
+"""
+    _, out = run(None, text=text)
+    for r in rows(out, "sensors.csv"):
+        uz = float(r["uz"])
+        assert (uz == 0.0) if float(r["time"]) < 0.5 else abs(-uz / w - 1) < 1e-3, r
+    text = text.replace('{type = "step", t0 = 0.5}', '{type = "ramp", t0 = 0.0, t1 = 1.0}').replace(
+        'analysis = "static"', 'analysis = "dynamic"').replace(
+        '[static]\nload_steps = 4\nstep_control = "fixed"', "[dynamic]\nt_end = 1.5\ndt = 5e-3\nrho_inf = 0.6")
+    summary, out = run(None, text=text)
+    assert abs(-summary["sensors"]["tip"]["displacement"][2] / w - 1) < 0.02
+    assert abs(summary["reactions"][0]["force"][2] / q - 1) < 0.02
