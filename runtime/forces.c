@@ -35,6 +35,25 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
         fprintf(err, "error: out of memory for the reactions and section forces\n");
         return -1;
     }
+    /* the elements that touch a DOF a reaction reads from the residual */
+    char *held = calloc(nd ? nd : 1, 1);
+    f->relem = malloc((size_t)(m->nelem ? m->nelem : 1) * sizeof *f->relem);
+    if (!held || !f->relem) {
+        free(held);
+        fprintf(err, "error: out of memory for the reactions and section forces\n");
+        return -1;
+    }
+    for (int c = 0; c < m->nreaction; ++c)
+        for (int k = 0; k < m->reactions[c].nfixed; ++k)
+            held[m->reactions[c].fixed[k]] = 1;
+    for (int e = 0; e < m->nelem; ++e) {
+        int touch = 0;
+        for (int k = 0; k < bk_elem_type(m, e)->ndof && !touch; ++k)
+            touch = held[m->elems[e].dofs[k]];
+        if (touch)
+            f->relem[f->nrelem++] = e;
+    }
+    free(held);
     for (size_t i = 0; i < 4 * nd; ++i)
         f->fld[i] = -1;
     for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
@@ -92,6 +111,7 @@ void bk_forces_close(bk_forces *f)
     free(f->buf);
     free(f->last);
     free(f->sec);
+    free(f->relem);
     memset(f, 0, sizeof *f);
 }
 
@@ -149,19 +169,32 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
     const bk_model *m = s->m;
     const int nd = m->ndof;
     double lf = bk_load_factor(m, -1, x);
-    bk_assemble_internal(s, q, f->res, NULL);
+    size_t md = (size_t)s->maxdof;
+    double *qe = f->buf, *qde = qe + md, *qdde = qde + md, *fe = qdde + md, *tmp = fe + md;
+    double *K1 = tmp + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
+    /* internal forces of the elements at the held DOFs (the only entries read) */
+    memset(f->res, 0, (size_t)nd * sizeof *f->res);
+    for (int k = 0; k < f->nrelem; ++k) {
+        const int e = f->relem[k];
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        bk_gather(m, e, q, qe);
+        p->force(qe, m->tabs[el->geom], m->mats[el->mat].params, fe);
+        bk_scatter(m, e, fe, 1.0, f->res);
+    }
     bk_assemble_follower(s, q, lf, f->res, NULL);
     bk_assemble_loads(s, q, x, f->res, NULL);
-    bk_external_load(s, f->fext);
+    if (!f->have_fext) {                     /* dead loads of unit factor: constant */
+        bk_external_load(s, f->fext);
+        f->have_fext = 1;
+    }
     for (int i = 0; i < nd; ++i)
         f->res[i] -= lf * f->fext[i];
     if (!qdd)
         return;
-    size_t md = (size_t)s->maxdof;
-    double *qe = f->buf, *qde = qe + md, *qdde = qde + md, *fe = qdde + md, *tmp = fe + md;
-    double *K1 = tmp + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
     const double ra = m->dyn.rayleigh_alpha, rb = m->dyn.rayleigh_beta;
-    for (int e = 0; e < m->nelem; ++e) {
+    for (int kk = 0; kk < f->nrelem; ++kk) {
+        const int e = f->relem[kk];
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
         const bk_element *et = p->element;
@@ -343,15 +376,16 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
 }
 
 void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
-                    const double *qdd, const double *nu)
+                    const double *qdd, const double *nu, int with_sections)
 {
     if (!f->m)
         return;
     if (f->reactions) {
-        full_residual(f, s, x, q, qd, qdd);
+        if (f->nrelem > 0)
+            full_residual(f, s, x, q, qd, qdd);
         write_reactions(f, s, step, x, q, nu);
     }
-    if (f->sections)
+    if (f->sections && with_sections)
         write_sections(f, s, step, x, q, qd, qdd);
 }
 

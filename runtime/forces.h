@@ -37,6 +37,8 @@ typedef struct bk_forces {
     int *fld;                     /* [4 ndof] global DOFs of the field of each DOF (-1 unused) */
     signed char *kind, *comp;     /* [ndof] 0 none, 1 position, 2 gradient, 3 quaternion; component */
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */
+    int have_fext;                /* fext holds the dead loads of unit load factor */
+    int nrelem, *relem;           /* the elements with a DOF held by a reaction's constraint */
     double (*last)[9];            /* [nreaction] force, moment, point at the last output step */
     int have_last;
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
@@ -45,12 +47,13 @@ typedef struct bk_forces {
 } bk_forces;
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);
-/* Rows of reactions.csv and sections.csv for the state q at x (time or load
- * factor); qd, qdd: velocities and accelerations (NULL in statics); nu: the
- * constraint multipliers (NULL: unknown, the linear constraints' reactions are
- * NaN). */
+/* Rows of reactions.csv and, when with_sections, of sections.csv for the
+ * state q at x (time or load factor); qd, qdd: velocities and accelerations
+ * (NULL in statics); nu: the constraint multipliers (NULL: unknown, the linear
+ * constraints' reactions are NaN).  The residual at the held DOFs comes from
+ * the elements that touch them only. */
 void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
-                    const double *qdd, const double *nu);
+                    const double *qdd, const double *nu, int with_sections);
 /* The "reactions" member of summary.json (with a trailing comma). */
 void bk_forces_summary(const bk_forces *f, FILE *fp);
 void bk_forces_close(bk_forces *f);

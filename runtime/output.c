@@ -64,6 +64,15 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
         return -1;
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
+    /* section forces at the steps that get a ParaView frame; without frames at
+     * the stride their default would have (gen/scene/options.py: about 100
+     * frames in dynamics, every equilibrium in statics) */
+    if (m->vtk_every > 0)
+        o->sections_every = m->vtk_every;
+    else if (m->analysis == BK_DYNAMIC)
+        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
+    else
+        o->sections_every = 1;
     if (m->analysis == BK_DYNAMIC) {
         snprintf(path, sizeof path, "%s/energy.csv", dir);
         o->energy = fopen(path, "w");
@@ -157,7 +166,8 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
 void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
                       const double *qdd, const double *nu)
 {
-    bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu);
+    int with_sections = o->forces_calls++ % o->sections_every == 0;
+    bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu, with_sections);
 }
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)

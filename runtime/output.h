@@ -29,6 +29,7 @@ typedef struct bk_output {
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
     double t_flush;          /* wall clock of the last flush of the result tables */
     bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
+    int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
 } bk_output;
 
 /* A change of the number of negative eigenvalues of the tangent between two
