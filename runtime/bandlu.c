@@ -114,7 +114,10 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
         }
     b->kl = kl;
     b->ku = ku;
-    b->ldab = 2 * kl + ku + 1;
+    /* rows below the band up to a multiple of BK_BAND_LANES: the update loops
+     * run over whole vectors (the extra rows hold zeros and stay zero) */
+    b->klp = (kl + BK_BAND_LANES - 1) / BK_BAND_LANES * BK_BAND_LANES;
+    b->ldab = kl + ku + b->klp + 1;
     if ((double)b->ldab * n > (double)max_storage) {
         bk_band_free(b);
         return 1;
@@ -171,16 +174,18 @@ int bk_band_factor(bk_band *b, const double *Ax)
         const int km = kl < n - 1 - j ? kl : n - 1 - j;
         double *col = ab + kv + (long)j * ldab;      /* col[r] = A(j + r, j) */
         double amax = 0.0;
-        int piv = 0;
+#pragma omp simd reduction(max : amax)
         for (int r = 0; r <= km; ++r)
-            if (fabs(col[r]) > amax) {
-                amax = fabs(col[r]);
-                piv = r;
-            }
+            amax = fmax(amax, fabs(col[r]));
         if (!(amax > 0.0))
             return 1;
-        if (fabs(col[0]) >= BK_BAND_PIVOT_TOL * amax)
-            piv = 0;
+        int piv = 0;
+        if (!(fabs(col[0]) >= BK_BAND_PIVOT_TOL * amax))   /* the diagonal is too small: the largest */
+            for (int r = 1; r <= km; ++r)
+                if (fabs(col[r]) == amax) {
+                    piv = r;
+                    break;
+                }
         b->ipiv[j] = j + piv;
         int last = j + b->ku + piv;
         if (last > n - 1)
@@ -199,11 +204,12 @@ int bk_band_factor(bk_band *b, const double *Ax)
             col[r] *= inv;
         if (ju - j > kvu)
             kvu = ju - j;
+        const int kp = km == kl ? b->klp : km;          /* whole vectors inside the band */
         for (int c = j + 1; c <= ju; ++c) {
             double *cc = ab + (kv + j - c) + (long)c * ldab;   /* cc[r] = A(j + r, c) */
             const double a = cc[0];
             if (a != 0.0)
-                axpy_sub(km, a, col + 1, cc + 1);
+                axpy_sub(kp, a, col + 1, cc + 1);
         }
         double u = fabs(d);
         if (u < umin)

@@ -29,9 +29,11 @@
 #define BK_BANDLU_H
 
 #define BK_BAND_PIVOT_TOL 1e-3
+#define BK_BAND_LANES 8          /* doubles per vector register (AVX-512; two AVX2 registers) */
 
 typedef struct bk_band {
-    int n, kl, ku, ldab;     /* ldab = 2 kl + ku + 1 */
+    int n, kl, ku, ldab;     /* ldab = kl + ku + klp + 1 */
+    int klp;                 /* kl rounded up to a multiple of BK_BAND_LANES */
     int kvu;                 /* superdiagonals of the last U (ku, up to kl + ku with interchanges) */
     int *perm, *iperm;       /* [n] new -> old, old -> new */
     long *map;               /* [nnz] position of each CSC entry in ab */
