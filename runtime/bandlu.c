@@ -175,8 +175,10 @@ int bk_band_factor(bk_band *b, const double *Ax)
         double *col = ab + kv + (long)j * ldab;      /* col[r] = A(j + r, j) */
         double amax = 0.0;
 #pragma omp simd reduction(max : amax)
-        for (int r = 0; r <= km; ++r)
-            amax = fmax(amax, fabs(col[r]));
+        for (int r = 0; r <= km; ++r) {
+            const double a = fabs(col[r]);        /* (not fmax: a library call per entry) */
+            amax = a > amax ? a : amax;
+        }
         if (!(amax > 0.0))
             return 1;
         int piv = 0;

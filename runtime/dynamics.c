@@ -356,7 +356,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
      * correction is small in length or energy */
     const bk_nl_opts nlo = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol,
                             .ctol = 1e-12 * fmax(m->length_scale, 1.0), .accept_far_below = 1,
-                            .stagnation = 0, .divergence = 0, .reuse = o->reuse_jacobian};
+                            .stagnation = 0, .divergence = 0, .reuse = o->reuse_jacobian,
+                            .lazy_matrix = 1};
     int full_retry = 0;                         /* this step failed with kept factors: full Newton */
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);

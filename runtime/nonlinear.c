@@ -72,8 +72,9 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
             code = BK_NL_INTERRUPTED;
             break;
         }
-        int fresh = !o->reuse || fresh_all || !nl->have_factors || nl->factors_key != key ||
-                    nl->krate > BK_REUSE_MAX_RATE;
+        const int want = !o->reuse || fresh_all || !nl->have_factors || nl->factors_key != key ||
+                         nl->krate > BK_REUSE_MAX_RATE;
+        int fresh = want && !(o->lazy_matrix && it > 0);
         int rs = p->residual(p->ctx, fresh, r, Ax, &ev);
         rall = rs == 0 ? bk_norm2(r, neq) : INFINITY;
         if (prev_reused && rs == 0)
@@ -157,9 +158,9 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
         /* kept factors must reach the tolerance within BK_REUSE_ITERATIONS
          * more corrections at their last measured rate, else this iteration
          * takes a new matrix (the residual is the same, only the matrix is
-         * added) */
+         * added); so does a lazy iteration that wanted one */
         double kp = nl->krate > 0.0 ? pow(nl->krate, BK_REUSE_ITERATIONS) : 0.0;
-        if (!fresh && kp > 0.0 && (rnorm * kp > rtol_abs || (o->ctol > 0.0 && ev.cres * kp > o->ctol))) {
+        if (!fresh && (want || (kp > 0.0 && (rnorm * kp > rtol_abs || (o->ctol > 0.0 && ev.cres * kp > o->ctol))))) {
             fresh = 1;
             bk_nl_eval ev2;
             if (p->residual(p->ctx, 1, r, Ax, &ev2) != 0) {

@@ -83,6 +83,9 @@ typedef struct bk_nl_opts {
     int stagnation;       /* accept stagnation near round-off */
     int divergence;       /* residual above 1e12 times the first: diverged */
     int reuse;            /* Jacobian reuse across solves (see above) */
+    int lazy_matrix;      /* after the first iteration: the residual alone first, and the matrix
+                           * only when that residual is not converged (for solves that mostly
+                           * converge after one or two corrections: time steps) */
 } bk_nl_opts;
 
 /* The label of the newton.csv rows of one solve (row == NULL: none). */
