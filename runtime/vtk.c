@@ -29,6 +29,7 @@
 #include "system.h"
 
 #define NX 4
+#define MAX_RING 12              /* points of the largest section ring (ring_points) */
 #define BK_PVD_INTERVAL 0.5
 
 static double wall_s(void)
@@ -275,6 +276,8 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     FILE *fp = fopen(path, "wb");
     if (!fp)
         return -1;
+    char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
+    setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
     long npts = bk_vtk_npoints(m), ncell = 0, nconn = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e);
@@ -332,17 +335,18 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
         put_u64(fp, sz_pts);
         for (int e = 0; e < m->nelem; ++e) {
             const double *g = m->geoms[m->elems[e].geom];
-            int r = ring_points(m, e);
+            int r = ring_points(m, e), np = 0;
+            double pts[3 * NX * (MAX_RING + 1)];  /* the element's points, written at once */
             for (int k = 0; k < NX; ++k) {
                 double xi = (double)k / (NX - 1);
                 for (int j = 0; j <= r; ++j) {
-                    double y = 0.0, z = 0.0, x[3];
+                    double y = 0.0, z = 0.0;
                     if (j < r)
                         ring_yz(g, r, j, &y, &z);
-                    point_value(m, q, mv, pass, e, xi, y, z, x);
-                    fwrite(x, sizeof(double), 3, fp);
+                    point_value(m, q, mv, pass, e, xi, y, z, pts + 3 * np++);
                 }
             }
+            fwrite(pts, sizeof(double), 3 * (size_t)np, fp);
         }
     }
     for (int a = 0; sec && a < 2; ++a) {
@@ -350,13 +354,16 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
         for (int e = 0; e < m->nelem; ++e) {
             int r = ring_points(m, e);
             const double *v0 = sec + 12 * (size_t)e + 3 * a, *v1 = v0 + 6;
+            double vals[3 * NX * (MAX_RING + 1)];
+            int np = 0;
             for (int k = 0; k < NX; ++k) {
                 double xi = (double)k / (NX - 1), x[3];
                 for (int i = 0; i < 3; ++i)
                     x[i] = (1.0 - xi) * v0[i] + xi * v1[i];
-                for (int j = 0; j <= r; ++j)
-                    fwrite(x, sizeof(double), 3, fp);
+                for (int j = 0; j <= r; ++j, ++np)
+                    memcpy(vals + 3 * np, x, sizeof x);
             }
+            fwrite(vals, sizeof(double), 3 * (size_t)np, fp);
         }
     }
     if (!mv) {
@@ -368,9 +375,11 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
             bk_gather(m, e, q, qe);
             const double *g = m->geoms[el->geom];
             double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
-            int r = ring_points(m, e);
-            for (int c = 0; c < (NX - 1) * r + 1; ++c)
-                fwrite(&dens, sizeof dens, 1, fp);
+            int r = ring_points(m, e), nc = (NX - 1) * r + 1;
+            double vals[(NX - 1) * MAX_RING + 1];
+            for (int c = 0; c < nc; ++c)
+                vals[c] = dens;
+            fwrite(vals, sizeof dens, (size_t)nc, fp);
         }
     }
     /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
@@ -378,41 +387,44 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     put_u64(fp, sz_conn);
     int64_t base = 0;
     for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e), w = r + 1;
+        int r = ring_points(m, e), w = r + 1, nv = 0;
+        int64_t conn[4 * (NX - 1) * MAX_RING + NX];
         for (int k = 0; k + 1 < NX; ++k)
             for (int j = 0; j < r; ++j) {
                 int j2 = (j + 1) % r;
-                int64_t quad[4] = {base + k * w + j, base + k * w + j2, base + (k + 1) * w + j2,
-                                   base + (k + 1) * w + j};
-                fwrite(quad, sizeof *quad, 4, fp);
+                conn[nv++] = base + k * w + j;
+                conn[nv++] = base + k * w + j2;
+                conn[nv++] = base + (k + 1) * w + j2;
+                conn[nv++] = base + (k + 1) * w + j;
             }
-        for (int k = 0; k < NX; ++k) {
-            int64_t c = base + k * w + r;
-            fwrite(&c, sizeof c, 1, fp);
-        }
+        for (int k = 0; k < NX; ++k)
+            conn[nv++] = base + k * w + r;
+        fwrite(conn, sizeof *conn, (size_t)nv, fp);
         base += (int64_t)NX * w;
     }
     put_u64(fp, sz_off);
     int64_t o = 0;
     for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
+        int r = ring_points(m, e), nv = 0;
+        int64_t offs[(NX - 1) * MAX_RING + 1];
         for (int c = 0; c < (NX - 1) * r; ++c) {
             o += 4;
-            fwrite(&o, sizeof o, 1, fp);
+            offs[nv++] = o;
         }
         o += NX;
-        fwrite(&o, sizeof o, 1, fp);
+        offs[nv++] = o;
+        fwrite(offs, sizeof o, (size_t)nv, fp);
     }
     put_u64(fp, (uint64_t)ncell);
     for (int e = 0; e < m->nelem; ++e) {
         int r = ring_points(m, e);
-        const unsigned char quad = 9, line = 4;          /* VTK_QUAD, VTK_POLY_LINE */
-        for (int c = 0; c < (NX - 1) * r; ++c)
-            fputc(quad, fp);
-        fputc(line, fp);
+        unsigned char types[(NX - 1) * MAX_RING + 1];
+        memset(types, 9, (size_t)(NX - 1) * r);         /* VTK_QUAD */
+        types[(NX - 1) * r] = 4;                         /* VTK_POLY_LINE */
+        fwrite(types, 1, (size_t)(NX - 1) * r + 1, fp);
     }
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
-    return fclose(fp) != 0 ? -1 : 0;
+    return fclose(fp) != 0 ? -1 : 0;              /* (flushes iobuf before it goes out of scope) */
 }
 
 int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
