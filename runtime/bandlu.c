@@ -266,3 +266,114 @@ void bk_band_free(bk_band *b)
     free(b->w);
     memset(b, 0, sizeof *b);
 }
+
+int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, long max_storage)
+{
+    memset(b, 0, sizeof *b);
+    b->n = n;
+    b->Ap = Ap;
+    b->Ai = Ai;
+    size_t N = (size_t)(n > 0 ? n : 1);
+    b->perm = malloc(N * sizeof *b->perm);
+    b->iperm = malloc(N * sizeof *b->iperm);
+    if (!b->perm || !b->iperm || rcm(n, Ap, Ai, b->perm) != 0) {
+        bk_bandsym_free(b);
+        return -1;
+    }
+    for (int i = 0; i < n; ++i)
+        b->iperm[b->perm[i]] = i;
+    int kd = 0;
+    for (int j = 0; j < n; ++j)
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            int d = b->iperm[Ai[p]] - b->iperm[j];
+            if (d > kd)
+                kd = d;
+            if (-d > kd)
+                kd = -d;
+        }
+    b->kd = kd;
+    b->ldab = kd + 1;
+    if ((double)b->ldab * n > (double)max_storage) {
+        bk_bandsym_free(b);
+        return 1;
+    }
+    long nnz = Ap[n];
+    b->map = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *b->map);
+    b->ab = malloc((size_t)b->ldab * N * sizeof *b->ab);
+    b->D = malloc(N * sizeof *b->D);
+    b->w = malloc(N * sizeof *b->w);
+    if (!b->map || !b->ab || !b->D || !b->w) {
+        bk_bandsym_free(b);
+        return -1;
+    }
+    for (int j = 0; j < n; ++j)
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            int i = b->iperm[Ai[p]], c = b->iperm[j];
+            b->map[p] = i >= c ? (long)(i - c) + (long)c * b->ldab : -1;
+        }
+    return 0;
+}
+
+int bk_bandsym_factor(bk_bandsym *b, const double *Ax)
+{
+    const int n = b->n, kd = b->kd, ldab = b->ldab;
+    double *ab = b->ab;
+    memset(ab, 0, (size_t)ldab * (size_t)n * sizeof *ab);
+    for (long p = 0; p < b->Ap[n]; ++p)
+        if (b->map[p] >= 0)
+            ab[b->map[p]] = Ax[p];
+    for (int j = 0; j < n; ++j) {
+        double *col = ab + (long)j * ldab;           /* col[r] = A(j + r, j) */
+        const double d = col[0];
+        b->D[j] = d;
+        if (d == 0.0 || !isfinite(d))
+            return -1;
+        const int km = kd < n - 1 - j ? kd : n - 1 - j;
+        const double inv = 1.0 / d;
+        for (int c = 1; c <= km; ++c) {              /* column j + c, rows j + c ... j + km */
+            const double f = col[c] * inv;
+            if (f != 0.0)
+                axpy_sub(km - c + 1, f, col + c, ab + (long)(j + c) * ldab);
+        }
+        for (int r = 1; r <= km; ++r)
+            col[r] *= inv;
+    }
+    return 0;
+}
+
+void bk_bandsym_solve(bk_bandsym *b, double *x)
+{
+    const int n = b->n, kd = b->kd, ldab = b->ldab;
+    const double *ab = b->ab;
+    double *w = b->w;
+    for (int i = 0; i < n; ++i)
+        w[i] = x[b->perm[i]];
+    for (int j = 0; j < n; ++j) {                    /* L */
+        const int km = kd < n - 1 - j ? kd : n - 1 - j;
+        if (w[j] != 0.0)
+            axpy_sub(km, w[j], ab + (long)j * ldab + 1, w + j + 1);
+    }
+    for (int j = 0; j < n; ++j)                      /* D */
+        w[j] /= b->D[j];
+    for (int j = n - 1; j >= 0; --j) {               /* L^T */
+        const int km = kd < n - 1 - j ? kd : n - 1 - j;
+        const double *col = ab + (long)j * ldab + 1;
+        double s = 0.0;
+        for (int r = 0; r < km; ++r)
+            s += col[r] * w[j + 1 + r];
+        w[j] -= s;
+    }
+    for (int i = 0; i < n; ++i)
+        x[b->perm[i]] = w[i];
+}
+
+void bk_bandsym_free(bk_bandsym *b)
+{
+    free(b->perm);
+    free(b->iperm);
+    free(b->map);
+    free(b->ab);
+    free(b->D);
+    free(b->w);
+    memset(b, 0, sizeof *b);
+}

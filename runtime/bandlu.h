@@ -31,6 +31,12 @@
 #define BK_BAND_PIVOT_TOL 1e-3
 #define BK_BAND_LANES 8          /* doubles per vector register (AVX-512; two AVX2 registers) */
 
+/* Limits of the band solvers' use (linsolve.c, stability.c): storage in
+ * doubles, and the width kl + ku (a wider band does more work per column than
+ * a sparse factorization's fill). */
+#define BK_BAND_MAX_STORAGE (1L << 28)
+#define BK_BAND_MAX_WIDTH 240
+
 typedef struct bk_band {
     int n, kl, ku, ldab;     /* ldab = kl + ku + klp + 1 */
     int klp;                 /* kl rounded up to a multiple of BK_BAND_LANES */
@@ -49,5 +55,29 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
 int bk_band_factor(bk_band *b, const double *Ax);
 void bk_band_solve(bk_band *b, double *x);
 void bk_band_free(bk_band *b);
+
+
+/* bandsym: LDL^T without pivoting of a symmetric matrix stored as a band
+ * (lower triangle) after the same reverse Cuthill-McKee ordering: for the
+ * inertia of a symmetric matrix (the negative entries of D, by Sylvester's law
+ * the negative eigenvalues) and solves with it.  Same sizes and directions as
+ * above; the values are read from the entries (i, j) with i at or below j in
+ * the new order (the matrix must be symmetric).
+ *   bk_bandsym_plan   0, 1 (band larger than allowed), -1 (out of memory);
+ *   bk_bandsym_factor 0, or -1 on a zero or non-finite pivot (D[j], new order,
+ *                     holds the pivots); no allocation;
+ *   bk_bandsym_solve  x[n] overwritten with A^-1 x (w[n] of the plan as scratch). */
+typedef struct bk_bandsym {
+    int n, kd, ldab;         /* half bandwidth, ldab = kd + 1 */
+    int *perm, *iperm;
+    long *map;               /* [nnz] position in ab, -1: the upper triangle (ignored) */
+    const int *Ap, *Ai;
+    double *ab, *D, *w;
+} bk_bandsym;
+
+int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, long max_storage);
+int bk_bandsym_factor(bk_bandsym *b, const double *Ax);
+void bk_bandsym_solve(bk_bandsym *b, double *x);
+void bk_bandsym_free(bk_bandsym *b);
 
 #endif

@@ -20,11 +20,8 @@
 
 #include "bandlu.h"
 
-/* The band solver is used when its storage, (2 kl + ku + 1) n doubles, stays
- * within BK_BAND_MAX_STORAGE and its width kl + ku within BK_BAND_MAX_WIDTH
- * (wider bands do more work per column than a sparse LU's fill). */
-#define BK_BAND_MAX_WIDTH 240
-#define BK_BAND_MAX_STORAGE (1L << 28)
+/* The band solver is used when its storage stays within BK_BAND_MAX_STORAGE
+ * and its width kl + ku within BK_BAND_MAX_WIDTH (bandlu.h). */
 
 typedef struct bk_linsolver {
     int n;

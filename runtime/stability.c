@@ -99,8 +99,18 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
     }
     st->Bp[n] = (int)nz;
 
-    /* Ordering: AMD on the whole pattern, then the multipliers first (each
-     * keeps its AMD rank). */
+    /* A narrow band in reverse Cuthill-McKee order (beams): a band LDL^T, any
+     * symmetric order has the same inertia (Sylvester).  Else AMD on the whole
+     * pattern, then the multipliers first (each keeps its AMD rank). */
+    int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, BK_BAND_MAX_STORAGE);
+    if (bp < 0)
+        return -1;
+    if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2) {
+        st->use_band = 1;
+        return 0;
+    }
+    if (bp == 0)
+        bk_bandsym_free(&st->band);
     int *perm = st->Pattern; /* scratch */
     double control[AMD_CONTROL], info[AMD_INFO];
     amd_defaults(control);
@@ -192,13 +202,20 @@ static void start_vector(double *x, int n)
 static int inertia(bk_stability *st)
 {
     int n = st->n;
-    int d = ldl_numeric(n, st->Bp, st->Bi, st->Bx, st->Lp, st->Parent, st->Lnz, st->Li, st->Lx, st->D,
-                        st->Y, st->Pattern, st->Flag, st->P, st->Pinv);
-    if (d != n)
-        return -1;
+    const double *D = st->D;
+    if (st->use_band) {
+        if (bk_bandsym_factor(&st->band, st->Bx) != 0)
+            return -1;
+        D = st->band.D;
+    } else {
+        int d = ldl_numeric(n, st->Bp, st->Bi, st->Bx, st->Lp, st->Parent, st->Lnz, st->Li, st->Lx, st->D,
+                            st->Y, st->Pattern, st->Flag, st->P, st->Pinv);
+        if (d != n)
+            return -1;
+    }
     int neg = 0;
     for (int i = 0; i < n; ++i)
-        neg += st->D[i] < 0.0;
+        neg += D[i] < 0.0;
     neg -= st->nmult;
     return neg < 0 ? 0 : neg;
 }
@@ -251,11 +268,16 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
         start_vector(st->x, n);
     double lam = NAN;
     for (int it = 0; it < INV_ITERS; ++it) {
-        ldl_perm(n, st->z, st->x, st->P);
-        ldl_lsolve(n, st->z, st->Lp, st->Li, st->Lx);
-        ldl_dsolve(n, st->z, st->D);
-        ldl_ltsolve(n, st->z, st->Lp, st->Li, st->Lx);
-        ldl_permt(n, st->y, st->z, st->P);
+        if (st->use_band) {
+            memcpy(st->y, st->x, (size_t)n * sizeof *st->y);
+            bk_bandsym_solve(&st->band, st->y);
+        } else {
+            ldl_perm(n, st->z, st->x, st->P);
+            ldl_lsolve(n, st->z, st->Lp, st->Li, st->Lx);
+            ldl_dsolve(n, st->z, st->D);
+            ldl_ltsolve(n, st->z, st->Lp, st->Li, st->Lx);
+            ldl_permt(n, st->y, st->z, st->P);
+        }
         /* y = A^-1 x; Rayleigh quotient of the normalized y */
         normalize(st->y, n);
         matvec(st, st->y, st->z);
@@ -335,5 +357,6 @@ void bk_stability_free(bk_stability *st)
     free(st->xmax);
     free(st->Li);
     free(st->Lx);
+    bk_bandsym_free(&st->band);
     memset(st, 0, sizeof *st);
 }

@@ -31,6 +31,7 @@
 #ifndef BK_STABILITY_H
 #define BK_STABILITY_H
 
+#include "bandlu.h"
 #include "system.h"
 
 typedef struct bk_stability {
@@ -47,6 +48,8 @@ typedef struct bk_stability {
     double *xmax;                   /* the last power-iteration vector          */
     int have_vec;                   /* x holds the last eigenvector             */
     int have_vmax;                  /* xmax holds one                           */
+    int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
+    bk_bandsym band;
 } bk_stability;
 
 typedef struct bk_stability_result {

@@ -85,6 +85,43 @@ static int dense_solve(int n, double *A, double *b, double *x)
     return 0;
 }
 
+/* Negative eigenvalues of the symmetric matrix A (n x n, row-major, destroyed)
+ * by cyclic Jacobi rotations. */
+static int jacobi_negative(int n, double *A)
+{
+    for (int sweep = 0; sweep < 100; ++sweep) {
+        double off = 0.0;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q)
+                off += A[p * n + q] * A[p * n + q];
+        if (off < 1e-26)
+            break;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q) {
+                double apq = A[p * n + q];
+                if (fabs(apq) < 1e-300)
+                    continue;
+                double th = 0.5 * (A[q * n + q] - A[p * n + p]) / apq;
+                double t = (th >= 0 ? 1.0 : -1.0) / (fabs(th) + sqrt(th * th + 1.0));
+                double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                for (int k = 0; k < n; ++k) {
+                    double akp = A[k * n + p], akq = A[k * n + q];
+                    A[k * n + p] = c * akp - s * akq;
+                    A[k * n + q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < n; ++k) {
+                    double apk = A[p * n + k], aqk = A[q * n + k];
+                    A[p * n + k] = c * apk - s * aqk;
+                    A[q * n + k] = s * apk + c * aqk;
+                }
+            }
+    }
+    int neg = 0;
+    for (int i = 0; i < n; ++i)
+        neg += A[i * n + i] < 0.0;
+    return neg;
+}
+
 /* Dense pattern-and-values matrix D (row-major) to CSC (entries where mask). */
 static void to_csc(int n, const double *D, const char *mask, int *Ap, int *Ai, double *Ax)
 {
@@ -206,8 +243,41 @@ static void run(const char *name, int kind)
         for (int i = 0; i < n; ++i)
             lerr = fmax(lerr, fabs(c[i] - xt[i]));
     }
-    printf("case=%s n=%d kl=%d ku=%d plan=%d factor=%d err=%.3e rcond=%.3e lin_band=%d lin_factor=%d lin_err=%.3e\n",
-           name, n, band.kl, band.ku, plan, fac, err, band.rcond, ls.use_band, lf, lerr);
+    /* symmetric cases: the band LDL^T's inertia against Jacobi eigenvalues, and its solve */
+    int sym_neg = -1, jac_neg = -1, sym_fac = -9;
+    double sym_err = NAN;
+    if (kind == INDEFINITE || kind == KKT) {
+        /* the multipliers' zero diagonal regularized as the stability check does */
+        for (int k = 0; k < nm; ++k)
+            AT(nd + k, nd + k) = -1e-8;
+        to_csc(n, D, mask, Ap, Ai, Ax);
+        bk_bandsym bs;
+        if (bk_bandsym_plan(&bs, n, Ap, Ai, 1L << 24) == 0 && (sym_fac = bk_bandsym_factor(&bs, Ax)) == 0) {
+            sym_neg = 0;
+            for (int i = 0; i < n; ++i)
+                sym_neg += bs.D[i] < 0.0;
+            double *y = malloc((size_t)n * sizeof *y);
+            for (int i = 0; i < n; ++i) {
+                y[i] = 0.0;
+                for (int j = 0; j < n; ++j)
+                    y[i] += D[i * n + j] * xt[j];
+            }
+            bk_bandsym_solve(&bs, y);
+            sym_err = 0.0;
+            for (int i = 0; i < n; ++i)
+                sym_err = fmax(sym_err, fabs(y[i] - xt[i]));
+            free(y);
+        }
+        bk_bandsym_free(&bs);
+        double *A = malloc((size_t)n * n * sizeof *A);
+        memcpy(A, D, (size_t)n * n * sizeof *A);
+        jac_neg = jacobi_negative(n, A);
+        free(A);
+    }
+    printf("case=%s n=%d kl=%d ku=%d plan=%d factor=%d err=%.3e rcond=%.3e lin_band=%d lin_factor=%d lin_err=%.3e "
+           "sym_factor=%d sym_negative=%d jacobi_negative=%d sym_err=%.3e\n",
+           name, n, band.kl, band.ku, plan, fac, err, band.rcond, ls.use_band, lf, lerr, sym_fac, sym_neg, jac_neg,
+           sym_err);
     bk_lin_free(&ls);
     bk_band_free(&band);
     free(D), free(mask), free(scr), free(Ap), free(Ai), free(Ax), free(Ax2), free(xt), free(b), free(xr), free(bd),
