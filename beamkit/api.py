@@ -29,6 +29,9 @@ RUNS = ROOT / "out" / "runs"
 SOLVERS = ROOT / "out" / "bin" / "api"
 EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED = 0, 1, 2
 EXIT_SIGNAL = {130: "SIGINT", 143: "SIGTERM"}
+# Solvers this process has built or found fresh: {sorted pairs: (path, (size, mtime_ns))}.
+# A Dask worker keeps them across the runs it is given.
+_SOLVERS = {}
 
 
 class BeamkitError(Exception):
@@ -89,20 +92,14 @@ class Scene:
             except SceneError as e:
                 raise BeamkitError(str(e)) from None
             self.name = name
-        self._solvers = {}
 
     def __repr__(self):
         return f"Scene({self.path!r}, sets={self.sets!r})"
 
-    def __getstate__(self):                # the solver memo stays in the process that built it
-        d = dict(self.__dict__)
-        d["_solvers"] = {}
-        return d
-
     def with_sets(self, sets):
         """A copy with more overrides."""
         s = Scene.__new__(Scene)
-        s.__dict__.update(self.__getstate__())
+        s.__dict__.update(self.__dict__)
         s.sets = self.sets + set_strings(sets)
         return s
 
@@ -119,7 +116,7 @@ class Scene:
         in out/build by gen/solver_build.py) and reused while its file is unchanged.
         Numeric overrides never change the pairs, so they never rebuild it."""
         key = tuple(sorted(pairs))
-        hit = self._solvers.get(key)
+        hit = _SOLVERS.get(key)
         if hit is not None:
             try:
                 st = os.stat(hit[0])
@@ -141,7 +138,7 @@ class Scene:
             first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
             raise BeamkitError(f"error: building the solver for {self.path}: {first}") from None
         st = os.stat(path)
-        self._solvers[key] = (str(path), (st.st_size, st.st_mtime_ns))
+        _SOLVERS[key] = (str(path), (st.st_size, st.st_mtime_ns))
         return str(path)
 
     def run(self, sets=None, out=None, threads=None, verbose=False):
