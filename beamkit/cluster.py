@@ -17,7 +17,7 @@ import time
 
 from beamkit.api import BeamkitError
 
-CONNECT_TIMEOUT_S = 6
+CONNECT_TIMEOUT_S = 5
 
 
 def scheduler_address(scheduler=None):
@@ -38,6 +38,7 @@ def connect(scheduler=None, workers=None):
     if addr:
         if "://" not in addr:
             raise BeamkitError(f"error: --scheduler {addr}: expected an address tcp://HOST:PORT")
+        _reachable(addr)
         try:
             client = Client(addr, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
         except (OSError, TimeoutError, ValueError) as e:
@@ -58,6 +59,28 @@ def connect(scheduler=None, workers=None):
     finally:
         client.close()
         cluster.close()
+
+
+def _reachable(addr):
+    """A TCP connection to a tcp:// address, at most CONNECT_TIMEOUT_S: a refused or
+    silent port is reported before Dask's client starts (and retries)."""
+    import socket
+    scheme, _, rest = addr.partition("://")
+    if scheme != "tcp":
+        return                             # tls://, ucx://, ...: Dask's client says
+    host, _, port = rest.rpartition(":")
+    host = host.strip("[]")
+    try:
+        port = int(port.split("/")[0])
+    except ValueError:
+        raise BeamkitError(f"error: --scheduler {addr}: expected an address tcp://HOST:PORT") from None
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S):
+            pass
+    except OSError as e:
+        why = "timed out" if isinstance(e, TimeoutError) else (e.strerror or str(e))
+        raise BeamkitError(f"error: --scheduler {addr}: no Dask scheduler answered within "
+                           f"{CONNECT_TIMEOUT_S} s ({why})") from None
 
 
 def nworkers(client):

@@ -279,7 +279,7 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
                     bounds={k: (float(a), float(b)) for k, a, b in zip(keys, lo, hi)},
                     cost=0.5 * float(resid @ resid), rms=math.sqrt(float(resid @ resid) / m), residual=resid,
                     m=m, nfev=len(log), jacobian=J, covariance=cov, correlation=corr, dir=out,
-                    best_dir=evals / best, at_bound=at_bound, status=r.message, sensor=sensor,
+                    best_dir=evals / best, at_bound=at_bound, status=r.message, success=bool(r.status > 0), sensor=sensor,
                     data=d, wall_s=time.monotonic() - t0, plot=None)
     (out / "fit.json").write_text(json.dumps({
         "scene": str(sc.path), "sets": sc.sets, "data": str(d.path), "sensor": sensor,
