@@ -95,11 +95,13 @@ you call build.sh from.
 Exit status:
   0    success
   1    bad input (scene file, key, value; output directory): one "error:" line
-  2    the solve did not converge (results of the converged steps are kept)
+  2    the solve did not converge (results of the converged steps are kept);
+       sweep: sweep.csv is written but some runs failed; fit: a run failed or
+       the optimizer stopped before converging
   64   usage error (unknown command or option, missing argument)
   99   run --memcheck: valgrind found an error or a leak
   130  interrupted by Ctrl-C (SIGINT), 143 by SIGTERM: results so far are kept,
-       summary.json has "interrupted": true
+       summary.json has "interrupted": true (sweep: the finished runs are kept)
 EOF
 }
 

@@ -3,7 +3,7 @@
 Exit status: 0 every run converged (sweep) / the fit converged; 1 bad input
 (one `error:` line); 2 sweep: the table is written but some runs failed (their
 rows say why); fit: a run failed or the optimizer stopped without converging;
-64 usage error.
+64 usage error; 130 sweep interrupted by Ctrl-C (the finished runs are kept).
 """
 import argparse
 import os
@@ -11,7 +11,7 @@ import sys
 
 from gen.paths import caller_path
 
-EXIT_OK, EXIT_INPUT, EXIT_FAILED, EXIT_USAGE = 0, 1, 2, 64
+EXIT_OK, EXIT_INPUT, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 64, 130
 
 
 class Parser(argparse.ArgumentParser):
@@ -71,6 +71,10 @@ def cmd_sweep(argv):
     except BeamkitError as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("\ninterrupted: the finished runs are kept (sweep.csv); the same command runs the rest",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
     nf = len(res.failed)
     print(f"sweep {res.out}: {len(res.rows)} runs ({res.reused} reused), {nf} failed, {res.wall_s:.1f} s; "
           f"table {res.csv}")
@@ -108,6 +112,9 @@ def cmd_fit(argv):
     except BeamkitError as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("\ninterrupted: the runs so far are in OUT/evals/", file=sys.stderr)
+        return EXIT_INTERRUPTED
     print(f"fit {res.dir}: {res.m} measured values, {res.nfev} runs, {res.wall_s:.1f} s; {res.status}")
     print(res.table())
     print(f"  residual: rms {res.rms:.4g} m, cost {res.cost:.4g} m^2; plot {res.plot}")

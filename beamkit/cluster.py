@@ -83,14 +83,6 @@ def _reachable(addr):
                            f"{CONNECT_TIMEOUT_S} s ({why})") from None
 
 
-def nworkers(client):
-    """Worker threads the client's cluster has now."""
-    try:
-        return max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()))
-    except Exception:
-        return 1
-
-
 class Progress:
     """runs done / total and time left on stderr: one line rewritten in place on a
     terminal, else a line at every tenth of the runs."""

@@ -15,7 +15,8 @@ ID is a hash of the scene and the run's overrides) and sweep_KEY.png (an output
 against each swept key).  A finished run leaves runs/ID/sweep-run.json: a
 sweep run again over the same directory reuses those and runs only the rest.
 A run that fails (bad value, no convergence, a lost worker) is a row with its
-error.  Sweeps write no ParaView frames unless vtk=True (output.vtk_every=0).
+error (and is not retried by a restart; delete its directory to retry it); an
+interrupted run leaves no marker and runs again.  Sweeps write no ParaView frames unless vtk=True (output.vtk_every=0).
 """
 import hashlib
 import itertools
@@ -133,8 +134,10 @@ def execute(scene, params, out_dir, threads=1):
         s = r.summary
         rec.update(converged=r.converged, wall_s=r.wall_s, error=None if r.converged else (r.error or "not converged"),
                    summary={k: v for k, v in s.items() if k not in ("warnings",)})
-        if s.get("interrupted"):
+        if s.get("interrupted"):           # not done: no marker, a restart runs it again
             rec["error"] = r.error or "interrupted"
+            rec["total_s"] = time.monotonic() - t0
+            return rec
     except BeamkitError as e:
         rec["error"] = str(e)
     except Exception as e:                 # anything else is this run's row, not the sweep's end
@@ -191,7 +194,9 @@ def output_value(summary, o):
 class SweepResult:
     """rows: one dict per run (run, dir, the swept keys, converged, wall_s, the
     outputs, error) in the order of the combinations; csv, plots: paths;
-    reused: runs taken from an earlier sweep; wall_s: the sweep's time."""
+    reused: runs taken from an earlier sweep; wall_s: the sweep's time, timing:
+    its parts (setup_s: the scene and solver, runs_s: the cluster and the runs,
+    plots_s)."""
 
     def __init__(self, rows, keys, outputs, out, csv, plots, reused, wall_s):
         self.rows, self.keys, self.outputs, self.out = rows, keys, outputs, out
@@ -253,6 +258,7 @@ def sweep(scene, grid=None, random=None, samples=None, seed=0, sets=None, out=No
     bar.done = reused
     if progress and reused:
         print(f"sweep: {reused} of {len(combos)} runs done before, reused", flush=True)
+    t_runs = time.monotonic()
     if todo:
         ctx = _given(client) if client is not None else connect(scheduler, workers)
         with ctx as cl:
@@ -275,8 +281,11 @@ def sweep(scene, grid=None, random=None, samples=None, seed=0, sets=None, out=No
                 _write(out, combos, ids, records, keys, outputs)
                 raise
     rows = _write(out, combos, ids, records, keys, outputs)
+    t_plots = time.monotonic()
     plots = plot_sweep(out, rows, keys, plot or outputs[0]) if rows else []
-    return SweepResult(rows, keys, outputs, out, out / "sweep.csv", plots, reused, time.monotonic() - t0)
+    res = SweepResult(rows, keys, outputs, out, out / "sweep.csv", plots, reused, time.monotonic() - t0)
+    res.timing = {"setup_s": t_runs - t0, "runs_s": t_plots - t_runs, "plots_s": time.monotonic() - t_plots}
+    return res
 
 
 class _given:
