@@ -54,8 +54,9 @@ Commands:
       --output OUT           a column: SENSOR.ux (.uy .uz .x .y .z), steps,
                              newton_iterations, strain_energy, frequency.N, ...
       --plot OUT             the output drawn against each key (default the first)
-      --scheduler tcp://HOST:PORT  an existing Dask cluster (or
-                             DASK_SCHEDULER_ADDRESS); default a local cluster
+      --scheduler tcp://HOST:PORT  an existing Dask cluster (or its
+                             --scheduler-file, or DASK_SCHEDULER_ADDRESS);
+                             default a local cluster
       --workers N            local workers (default: the cores);  --threads N
                              OpenMP threads per solver (default 1);  --vtk
   fit SCENE --data MEASURED.csv --param KEY=lo:hi[:start] ... [options]

@@ -27,7 +27,8 @@ def _common(ap):
                     help="override a scene value in every run (as for ./build.sh run)")
     ap.add_argument("--out", metavar="DIR", help="results directory")
     ap.add_argument("--scheduler", metavar="tcp://HOST:PORT",
-                    help="an existing Dask scheduler (default: $DASK_SCHEDULER_ADDRESS, else a local cluster)")
+                    help="an existing Dask scheduler, its address or its --scheduler-file "
+                         "(default: $DASK_SCHEDULER_ADDRESS, else a local cluster)")
     ap.add_argument("--workers", type=int, metavar="N", help="workers of the local cluster (default: the cores)")
     ap.add_argument("--threads", type=int, default=1, metavar="N",
                     help="OpenMP threads of each solver (default 1: the workers share the cores)")

@@ -2,12 +2,14 @@
 
     with connect(scheduler=None, workers=None) as client: ...
 
-scheduler: an address `tcp://HOST:PORT` (else the environment's
-DASK_SCHEDULER_ADDRESS); without one a local cluster with `workers` workers (default:
-the machine's cores), each one thread in this process: a run is a solver
-process, so the solves run side by side while the scene compiler's few
-milliseconds per run take turns.  An unreachable scheduler raises BeamkitError
-after CONNECT_TIMEOUT_S seconds, leaving nothing running.
+scheduler: an address `tcp://HOST:PORT` or the file that `dask scheduler
+--scheduler-file FILE` writes (else the environment's DASK_SCHEDULER_ADDRESS);
+without one a local cluster with `workers` workers (default: the machine's
+cores), each one thread in this process: a run is a solver process, so the
+solves run side by side while the scene compiler's few milliseconds per run
+take turns.  An unreachable scheduler raises BeamkitError within 2 x
+CONNECT_TIMEOUT_S seconds (a TCP connection, then Dask's handshake), leaving
+nothing running.
 """
 import contextlib
 import logging
@@ -36,8 +38,17 @@ def connect(scheduler=None, workers=None):
         raise BeamkitError("error: Dask is not installed: apt-get install python3-distributed "
                            "(./build.sh deps)") from None
     if addr:
+        if "://" not in addr and os.path.isfile(addr):       # a file of dask scheduler --scheduler-file
+            import json
+            try:
+                with open(addr, encoding="utf-8") as fh:
+                    addr = json.load(fh)["address"]
+            except (OSError, ValueError, KeyError, TypeError):
+                raise BeamkitError(f"error: --scheduler {addr}: not a Dask scheduler file "
+                                   f"(JSON with \"address\")") from None
         if "://" not in addr:
-            raise BeamkitError(f"error: --scheduler {addr}: expected an address tcp://HOST:PORT")
+            raise BeamkitError(f"error: --scheduler {addr}: expected an address tcp://HOST:PORT "
+                               f"or a scheduler file")
         _reachable(addr)
         try:
             client = Client(addr, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
@@ -51,7 +62,8 @@ def connect(scheduler=None, workers=None):
             client.close()
         return
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=False, dashboard_address=None,
+    # (the scheduler's HTTP server, which Dask always starts, on a free local port)
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=False, dashboard_address="127.0.0.1:0",
                            silence_logs=logging.ERROR)
     client = Client(cluster, set_as_default=False)
     try:

@@ -132,6 +132,9 @@ def test_sweep_local_cluster_and_separate_scheduler_give_the_same_table():
             c.wait_for_workers(2, timeout=90)
             pids = set(c.run(os.getpid).values())
         assert pids == {p.pid for p in procs[1:]}          # the runs go to the two worker processes
+        from beamkit.cluster import connect
+        with connect(str(sched_file)) as c:                 # the scheduler file names it too
+            assert len(c.scheduler_info()["workers"]) == 2
         args = ["sweep", "pendulum_soft_ancf", "--set", "dynamic.t_end=0.2", "--out", str(out_remote), "--quiet",
                 "--scheduler", addr]
         for k, v in pendulum_grid().items():
