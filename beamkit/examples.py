@@ -1,8 +1,10 @@
-"""The "measurement" of the silicone calibration example of the README.
+"""The "measurements" of the silicone calibration examples of the README.
 
-    python3 -m beamkit.examples [OUT.csv]     (default models/data/silicone_fall_measured.csv)
+    python3 -m beamkit.examples     writes models/data/silicone_fall_calculix.csv, and
+                                    models/data/silicone_fall_measured.csv when missing
+                                    (delete it to make it again: one fine run, ~35 s)
 
-It is made with our own solver, not measured: models/silicone_fall_damped.toml
+silicone_fall_measured.csv is made with our own solver, not measured: models/silicone_fall_damped.toml
 (Kelvin-Voigt retardation time 5 ms, Arruda-Boyce mu = 0.3 MPa) on a finer mesh
 and step than the fit uses (24 elements graded 3 instead of 12, dt = 0.5 ms
 instead of 1 ms), over 0 ... 0.3 s; the tip displacement ux, uz every 5 ms with
@@ -13,7 +15,7 @@ discretization error of the coarser model.  (CalculiX has no Kelvin-Voigt law
 for hyperelastic solids, and our runs with its Rayleigh damping take about a
 minute each: too slow for an example fit.)
 """
-import sys
+import json
 from pathlib import Path
 
 import numpy as np
@@ -45,5 +47,23 @@ def silicone_measurement(path=DEFAULT):
     return write_data(path, t, vals, note)
 
 
+def calculix_measurement(path=ROOT / "models" / "data" / "silicone_fall_calculix.csv", every=5):
+    """The CalculiX tip history of silicone_fall (undamped; C3D20R solid, extrapolated
+    from three meshes: references/data/calculix_silicone.json) every `every` ms:
+    an independent solver's "measurement" for fitting mu alone."""
+    ref = json.loads((ROOT / "references" / "data" / "calculix_silicone.json").read_text())
+    h = ref["references"]["silicone_fall"]["history"]
+    col = {c: i for i, c in enumerate(h["columns"])}
+    rows = h["rows"][::every]
+    t = np.array([r[col["t"]] for r in rows])
+    vals = {c: np.array([r[col[c]] for r in rows]) for c in ("ux", "uz")}
+    note = ("silicone_fall tip displacement (m) of CalculiX (ccx 2.20, C3D20R, meshes 16x2x2, 32x2x2, 64x2x2,\n"
+            "extrapolated; undamped) from references/data/calculix_silicone.json, every 5 ms;\n"
+            "written by python3 -m beamkit.examples (see beamkit/examples.py)")
+    return write_data(path, t, vals, note)
+
+
 if __name__ == "__main__":
-    print(silicone_measurement(sys.argv[1] if len(sys.argv) > 1 else DEFAULT))
+    print(calculix_measurement())
+    if not DEFAULT.exists():
+        print(silicone_measurement())

@@ -378,7 +378,7 @@ def plot_fit(res, sc):
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("load factor" if d.time_column == "load_factor" else "time (s)")
     title = ", ".join(f"{k.split('.')[-1]} = {res.values[k]:.4g} ± {res.stderr[k]:.2g}" for k in res.keys)
-    fig.suptitle(f"{sc.name or Path(str(sc.path)).stem}: {title}; rms {res.rms:.3g} m", fontsize=9)
+    fig.suptitle(f"{sc.name or Path(str(sc.path)).stem}: rms {res.rms:.3g} m\n{title}", fontsize=9)
     fig.tight_layout()
     p = Path(res.dir) / "fit.png"
     fig.savefig(p, dpi=100)
