@@ -103,13 +103,16 @@ def cmd_fit(argv):
                     help="most residual evaluations of the optimizer (default 30)")
     a = ap.parse_args(argv)
     from beamkit.api import BeamkitError
-    from beamkit.fit import fit
+    from beamkit.fit import RunFailed, fit
     if not a.param:
         ap.error("fit needs at least one --param KEY=lo:hi")
     try:
         res = fit(_scene(a.scene), caller_path(a.data), a.param, sensor=a.sensor, sets=a.set,
                   out=caller_path(a.out) if a.out else None, scheduler=a.scheduler, workers=a.workers,
                   diff_step=a.diff_step, max_nfev=a.max_runs, threads=a.threads, progress=not a.quiet)
+    except RunFailed as e:
+        print(str(e), file=sys.stderr)
+        return EXIT_FAILED
     except BeamkitError as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT

@@ -21,8 +21,8 @@ history by less than the solver resolves (1e-7 of the model length per
 measured value), or, for several, a Jacobian whose columns (scaled to unit
 length) have a condition number above 100 (forward differences with a step h
 cannot tell a condition number beyond about 1/h from a singular Jacobian:
-E and rho of a pendulum under gravity, of which only E/rho matters, give 220
-with the default step).
+E and rho of a pendulum under gravity, of which only E/rho matters, give a
+few hundred with the default step).
 """
 import csv
 import json
@@ -39,6 +39,10 @@ TIME_COLUMNS = ("t", "time", "load_factor")
 COMPONENTS = ("x", "y", "z", "ux", "uy", "uz")
 RESOLUTION = 1e-7          # of the model length: below it a change is the solver's tolerance
 COLLINEAR_COND = 100.0
+
+
+class RunFailed(BeamkitError):
+    """A run of the fit failed (did not converge, ...): not bad input."""
 
 
 class Data:
@@ -239,7 +243,7 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
         for tkey, p, f in futs:
             h = f.result()
             if h["error"]:
-                raise BeamkitError(f"error: fit: the run at {_fmt(p)} failed: {h['error']}")
+                raise RunFailed(f"error: fit: the run at {_fmt(p)} failed: {h['error']}")
             cache[tkey] = (_residual(h, d, sc.path), run_id(sc, p))
             log.append({"params": p, "cost": 0.5 * float(np.sum(cache[tkey][0] ** 2)), "dir": f"evals/{run_id(sc, p)}"})
             if progress:

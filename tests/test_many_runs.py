@@ -58,6 +58,8 @@ def test_api_reproduces_build_sh_run_to_the_last_digit():
     assert [float(x["time"]) for x in rows] == s.time.tolist()
     assert run.converged and run_d.converged and run.energy["total"].shape == (len(rows),)
     assert run.summary["sensors"]["B"]["displacement"] == s.displacement[-1].tolist()
+    modal = Scene("cantilever_modal").run(out=tmpdir("modal"))
+    assert np.allclose(modal.frequencies, modal.summary["frequencies_hz"][:len(modal.frequencies)], rtol=1e-8)
 
 
 def test_api_imports_no_sympy_and_reuses_the_solver():
