@@ -1,6 +1,7 @@
 """The "measurements" of the silicone calibration examples of the README.
 
-    python3 -m beamkit.examples     writes models/data/silicone_fall_calculix.csv, and
+    python3 -m beamkit.examples     writes models/data/silicone_fall_calculix.csv,
+                                    models/data/silicone_fall_rayleigh_calculix.csv and
                                     models/data/silicone_fall_measured.csv when missing
                                     (delete it to make it again: one fine run, ~35 s)
 
@@ -47,23 +48,28 @@ def silicone_measurement(path=DEFAULT):
     return write_data(path, t, vals, note)
 
 
-def calculix_measurement(path=ROOT / "models" / "data" / "silicone_fall_calculix.csv", every=5):
-    """The CalculiX tip history of silicone_fall (undamped; C3D20R solid, extrapolated
-    from three meshes: references/data/calculix_silicone.json) every `every` ms:
-    an independent solver's "measurement" for fitting mu alone."""
+def calculix_measurement(path=ROOT / "models" / "data" / "silicone_fall_calculix.csv", every=5,
+                         name="silicone_fall"):
+    """The CalculiX tip history of silicone_fall (C3D20R solid, extrapolated from its
+    meshes: references/data/calculix_silicone.json, entry `name`: silicone_fall
+    undamped, silicone_fall_rayleigh with Rayleigh beta = 5 ms) every `every` ms:
+    an independent solver's "measurement"."""
     ref = json.loads((ROOT / "references" / "data" / "calculix_silicone.json").read_text())
-    h = ref["references"]["silicone_fall"]["history"]
+    entry = ref["references"][name]
+    h = entry["history"]
     col = {c: i for i, c in enumerate(h["columns"])}
     rows = h["rows"][::every]
     t = np.array([r[col["t"]] for r in rows])
     vals = {c: np.array([r[col[c]] for r in rows]) for c in ("ux", "uz")}
-    note = ("silicone_fall tip displacement (m) of CalculiX (ccx 2.20, C3D20R, meshes 16x2x2, 32x2x2, 64x2x2,\n"
-            "extrapolated; undamped) from references/data/calculix_silicone.json, every 5 ms;\n"
-            "written by python3 -m beamkit.examples (see beamkit/examples.py)")
+    note = (f"silicone_fall tip displacement (m) of CalculiX (ccx 2.20, C3D20R, meshes {', '.join(entry['meshes'])},\n"
+            f"extrapolated; --set {' '.join(entry['sets']) or '(none)'}) from references/data/calculix_silicone.json\n"
+            f"entry {name}, every {every} ms; written by python3 -m beamkit.examples (beamkit/examples.py)")
     return write_data(path, t, vals, note)
 
 
 if __name__ == "__main__":
     print(calculix_measurement())
+    print(calculix_measurement(ROOT / "models" / "data" / "silicone_fall_rayleigh_calculix.csv",
+                               name="silicone_fall_rayleigh"))
     if not DEFAULT.exists():
         print(silicone_measurement())
