@@ -18,7 +18,8 @@ DEFAULT_SCENE=cantilever_bend_100N
 
 # Debian packages the project needs (build, generator, tests, plots).
 PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-scipy python3-matplotlib
-          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview calculix-ccx)
+          python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview calculix-ccx
+          python3-distributed)
 EX_USAGE=64
 
 usage() {
@@ -42,6 +43,30 @@ Commands:
       --sanitize           build and run with AddressSanitizer + UBSan
       --memcheck           build for valgrind (-march=x86-64-v3) and run under
                            valgrind memcheck
+  sweep SCENE [options]  every combination of scene values, each run its own solver
+                         process on a Dask cluster: OUT/sweep.csv (one row per run:
+                         the values, converged, wall_s, outputs, error), OUT/runs/,
+                         OUT/sweep_KEY.png; OUT defaults to out/sweeps/SCENE; a
+                         sweep run again skips the runs already done
+      --grid KEY=v1,v2,...   values of a key (repeatable: every combination)
+      --random KEY=lo:hi     uniform draws (with --samples N [--seed S])
+      --set KEY=VALUE        in every run;  --out DIR;  --quiet
+      --output OUT           a column: SENSOR.ux (.uy .uz .x .y .z), steps,
+                             newton_iterations, strain_energy, frequency.N, ...
+      --plot OUT             the output drawn against each key (default the first)
+      --scheduler tcp://HOST:PORT  an existing Dask cluster (or its
+                             --scheduler-file, or DASK_SCHEDULER_ADDRESS);
+                             default a local cluster
+      --workers N            local workers (default: the cores);  --threads N
+                             OpenMP threads per solver (default 1);  --vtk
+  fit SCENE --data MEASURED.csv --param KEY=lo:hi[:start] ... [options]
+                         least squares of a sensor history against measured points
+                         (CSV: t or load_factor, and x,y,z or ux,uy,uz; empty cells
+                         missing): fitted values, standard errors, residual and
+                         OUT/fit.png (default OUT out/fit/SCENE); refuses a
+                         parameter the data cannot identify.  --sensor NAME,
+                         --diff-step H, --max-runs N, and --set, --out,
+                         --scheduler, --workers, --threads, --quiet as for sweep
   gen [--check] [--force]  regenerate out/kernels/ (incremental by input hash);
                          --check fails if the committed kernels are stale
   plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic),
@@ -73,11 +98,13 @@ you call build.sh from.
 Exit status:
   0    success
   1    bad input (scene file, key, value; output directory): one "error:" line
-  2    the solve did not converge (results of the converged steps are kept)
+  2    the solve did not converge (results of the converged steps are kept);
+       sweep: sweep.csv is written but some runs failed; fit: a run failed or
+       the optimizer stopped before converging
   64   usage error (unknown command or option, missing argument)
   99   run --memcheck: valgrind found an error or a leak
   130  interrupted by Ctrl-C (SIGINT), 143 by SIGTERM: results so far are kept,
-       summary.json has "interrupted": true
+       summary.json has "interrupted": true (sweep: the finished runs are kept)
 EOF
 }
 
@@ -146,6 +173,9 @@ case "$cmd" in
     gen)
         shift
         exec "$PY" -m gen.cli gen "$@"
+        ;;
+    sweep|fit)
+        exec "$PY" -m beamkit.cli "$@"
         ;;
     scenes)
         exec "$PY" -m gen.cli scenes

@@ -144,7 +144,8 @@ def test_progress_line_on_a_terminal_only():
 def test_help_lists_commands_and_options():
     r = subprocess.run([str(ROOT / "build.sh"), "--help"], capture_output=True, text=True, env=ENV)
     assert r.returncode == 0
-    for word in ("test", "run SCENE", "--set", "--out", "gen", "--check", "bench", "plot", "report", "scenes"):
+    for word in ("test", "run SCENE", "--set", "--out", "gen", "--check", "bench", "plot", "report", "scenes",
+                 "sweep SCENE", "--grid", "--random", "--scheduler", "fit SCENE", "--data", "--param"):
         assert word in r.stdout, word
     r = subprocess.run([str(ROOT / "build.sh"), "run", "--help"], capture_output=True, text=True, env=ENV)
     assert r.returncode == 0

@@ -3,6 +3,7 @@ model as plain data, step by step: values and overrides (values.py, files.py),
 materials and sections (materials.py), cost (cost.py), meshing and numbering
 (mesh.py), joints (joints.py), loads (loads.py), options, initial velocities
 and sensors (options.py); the model file (model_file.py)."""
+import copy
 from pathlib import Path
 
 import gen.scene_keys as K
@@ -20,12 +21,14 @@ ANALYSES = ("static", "dynamic", "modal")
 PLANNED_ANALYSES = ()
 
 
-def build(path, sets=(), name=None, log=None, out_dir=None):
+def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     """Validate the scene and return the model as a dict of plain data.  log: a
     function taking a line (cost estimates and meshing progress of large
-    models); out_dir: where the results will go (disk space check)."""
+    models); out_dir: where the results will go (disk space check); doc: the
+    scene as parsed TOML (a dict, copied; the Python API), else read from path
+    (which names the scene in messages either way)."""
     ctx = Ctx(path)
-    doc = read_toml(path)
+    doc = read_toml(path) if doc is None else copy.deepcopy(doc)
     if sets:
         apply_overrides(doc, sets, path)
     index = load_index()
