@@ -180,9 +180,12 @@ int main(int argc, char **argv)
         double tlf = NAN, tlft = NAN, dl = NAN;
         if (p->force_lanes && p->force_tangent_lanes) {
             const int W = BK_LANES, np = p->nparam;
-            double *lq = malloc((size_t)nd * W * sizeof *lq), *ltab = malloc(((size_t)p->ntab + 1) * W * sizeof *ltab);
-            double *lmat = malloc((size_t)(np + 1) * W * sizeof *lmat), *lf = malloc((size_t)nd * W * sizeof *lf);
-            double *lK = malloc((size_t)nd * nd * W * sizeof *lK);
+            /* 64-byte aligned, as the runtime's buffers (runtime/system.c) */
+            double *lq = aligned_alloc(64, (size_t)nd * W * sizeof *lq);
+            double *ltab = aligned_alloc(64, ((size_t)p->ntab + 1) * W * sizeof *ltab);
+            double *lmat = aligned_alloc(64, (size_t)(np + 1) * W * sizeof *lmat);
+            double *lf = aligned_alloc(64, (size_t)nd * W * sizeof *lf);
+            double *lK = aligned_alloc(64, (size_t)nd * nd * W * sizeof *lK);
             if (!lq || !ltab || !lmat || !lf || !lK)
                 return 1;
             for (int l = 0; l < W; ++l) {

@@ -35,6 +35,15 @@ static int lane_pair(const bk_pair *p)
     return p->force_lanes && p->force_tangent_lanes && p->nparam <= BK_MAT_MAXPARAM;
 }
 
+/* n doubles aligned to 64 bytes (a cache line, one AVX-512 register): the lane
+ * kernels' vector loads and stores then never straddle two lines (every group
+ * slot is a multiple of BK_LANES = 8 doubles).  Freed with free(). */
+static double *alloc_lanes(size_t n)
+{
+    size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
+    return aligned_alloc(64, bytes ? bytes : 64);
+}
+
 static int cmp_int(const void *a, const void *b)
 {
     int x = *(const int *)a, y = *(const int *)b;
@@ -260,11 +269,11 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         if (blk > s->ngroup)
             blk = s->ngroup > 0 ? s->ngroup : 1;
         s->eval_block = (int)blk;
-        s->bq = malloc((size_t)blk * sq * sizeof *s->bq);
-        s->bf = malloc((size_t)blk * sq * sizeof *s->bf);
-        s->bK = malloc((size_t)blk * sK * sizeof *s->bK);
-        s->btab = malloc((size_t)blk * st * sizeof *s->btab);
-        s->bmat = malloc((size_t)blk * BK_LANES * BK_MAT_MAXPARAM * sizeof *s->bmat);
+        s->bq = alloc_lanes((size_t)blk * sq);
+        s->bf = alloc_lanes((size_t)blk * sq);
+        s->bK = alloc_lanes((size_t)blk * sK);
+        s->btab = alloc_lanes((size_t)blk * st);
+        s->bmat = alloc_lanes((size_t)blk * BK_LANES * BK_MAT_MAXPARAM);
         if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
             goto oom;
     }
