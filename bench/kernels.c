@@ -7,8 +7,13 @@
  *   then per pair:  pair NAME NMAT m_1 .. m_NMAT LAW NPTS NSHAPE  [NPTS x (1 + 3 NSHAPE) numbers]
  *   (LAW "-" and NPTS 0: no plain loop for this pair)
  * Prints CSV: per pair the median time of one internal-force call and of one
- * force + tangent call of the generated kernel and of the plain quadrature
- * loop (bench/plain.c), and the largest difference between the two.
+ * force + tangent call of the generated kernel (one element per call), of its
+ * lane kernels per element (BK_LANES elements per call, what the solvers use;
+ * NaN when the pair has none) and of the plain quadrature loop
+ * (bench/plain.c), the largest difference between the generated kernel and the
+ * plain loop and between the lane kernel and the one-element kernel.
+ * Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID): on a shared
+ * machine a time slice given to another process does not count.
  */
 #include <math.h>
 #include <stdio.h>
@@ -28,13 +33,13 @@ typedef struct job {
     int law;
     const double *q, *tab, *mat;
     double *f, *K;
-    int tangent, plain;
+    int tangent, plain, lanes;
 } job;
 
 static double now(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
@@ -42,6 +47,10 @@ static void call(const job *j)
 {
     if (j->plain)
         plain_force_tangent(j->rule, j->law, j->mat, j->q, j->f, j->tangent ? j->K : NULL);
+    else if (j->lanes && j->tangent)
+        j->p->force_tangent_lanes(j->q, j->tab, j->mat, j->f, j->K);
+    else if (j->lanes)
+        j->p->force_lanes(j->q, j->tab, j->mat, j->f);
     else if (j->tangent)
         j->p->force_tangent(j->q, j->tab, j->mat, j->f, j->K);
     else
@@ -125,7 +134,8 @@ int main(int argc, char **argv)
     if (fscanf(in, "%255s %d %lf", word, &repeats, &target) != 3 || repeats < 1)
         return 1;
     printf("pair,ndof,nqp,ops_force,ops_force_tangent,t_force_s,t_force_tangent_s,"
-           "t_plain_force_s,t_plain_force_tangent_s,plain_rel_diff_f,plain_rel_diff_K\n");
+           "t_lanes_force_s,t_lanes_force_tangent_s,"
+           "t_plain_force_s,t_plain_force_tangent_s,plain_rel_diff_f,plain_rel_diff_K,lanes_rel_diff\n");
     char name[256], law[64];
     while (fscanf(in, "%255s", word) == 1) {
         int nmat, npts, nshape;
@@ -162,15 +172,54 @@ int main(int argc, char **argv)
             q[k] += 0.01 * sin(1.7 * k + 0.3) * (k % 3 == 0 ? 1.0 : 0.7) * (fabs(q[k]) > 0.05 ? 1.0 : geom[0] / 0.1);
         /* TARGET_SECONDS <= 0: no timing, only the comparison (tests) */
         int timed = target > 0.0;
-        job j = {p, NULL, -1, q, tab, mat, f, K, 0, 0};
+        job j = {p, NULL, -1, q, tab, mat, f, K, 0, 0, 0};
         double tf = timed ? time_call(&j, repeats, target) : NAN;
         j.tangent = 1;
         double tft = timed ? time_call(&j, repeats, target) : NAN;
+        /* lane kernels: BK_LANES differently deformed copies, lane-ordered */
+        double tlf = NAN, tlft = NAN, dl = NAN;
+        if (p->force_lanes && p->force_tangent_lanes) {
+            const int W = BK_LANES, np = p->nparam;
+            /* 64-byte aligned, as the runtime's buffers (runtime/system.c) */
+            double *lq = aligned_alloc(64, (size_t)nd * W * sizeof *lq);
+            double *ltab = aligned_alloc(64, ((size_t)p->ntab + 1) * W * sizeof *ltab);
+            double *lmat = aligned_alloc(64, (size_t)(np + 1) * W * sizeof *lmat);
+            double *lf = aligned_alloc(64, (size_t)nd * W * sizeof *lf);
+            double *lK = aligned_alloc(64, (size_t)nd * nd * W * sizeof *lK);
+            if (!lq || !ltab || !lmat || !lf || !lK)
+                return 1;
+            for (int l = 0; l < W; ++l) {
+                for (int k = 0; k < nd; ++k)
+                    lq[k * W + l] = q[k] * (1.0 + 1e-3 * l * cos(0.9 * k + l));
+                for (int k = 0; k < p->ntab; ++k)
+                    ltab[k * W + l] = tab[k];
+                for (int k = 0; k < np; ++k)
+                    lmat[k * W + l] = mat[k];
+            }
+            job lj = {p, NULL, -1, lq, ltab, lmat, lf, lK, 0, 0, 1};
+            tlf = timed ? time_call(&lj, repeats, target) / W : NAN;
+            lj.tangent = 1;
+            tlft = timed ? time_call(&lj, repeats, target) / W : NAN;
+            /* every lane against the one-element kernel */
+            p->force_tangent_lanes(lq, ltab, lmat, lf, lK);
+            double num = 0.0, den = 0.0;
+            for (int l = 0; l < W; ++l) {
+                for (int k = 0; k < nd; ++k)
+                    f2[k] = lq[k * W + l];
+                p->force_tangent(f2, tab, mat, f, K);
+                for (int k = 0; k < nd * nd; ++k) {
+                    num = fmax(num, fabs(lK[k * W + l] - K[k]));
+                    den = fmax(den, fabs(K[k]));
+                }
+            }
+            dl = num / den;
+            free(lq), free(ltab), free(lmat), free(lf), free(lK);
+        }
         double tpf = NAN, tpft = NAN, df = NAN, dK = NAN;
         plain_rule rule = {npts, nshape, pts};
         int lw = plain_law(law);
         if (npts > 0 && lw >= 0 && 3 * nshape == nd) {
-            job pj = {p, &rule, lw, q, tab, mat, f2, K2, 0, 1};
+            job pj = {p, &rule, lw, q, tab, mat, f2, K2, 0, 1, 0};
             tpf = timed ? time_call(&pj, repeats, target) : NAN;
             pj.tangent = 1;
             tpft = timed ? time_call(&pj, repeats, target) : NAN;
@@ -183,8 +232,8 @@ int main(int argc, char **argv)
             df = maxabs(f2, (size_t)nd) / maxabs(f, (size_t)nd);
             dK = maxabs(K2, (size_t)nd * nd) / maxabs(K, (size_t)nd * nd);
         }
-        printf("%s,%d,%d,%ld,%ld,%.6e,%.6e,%.6e,%.6e,%.3e,%.3e\n", name, nd, p->nqp, p->ops_force,
-               p->ops_force_tangent, tf, tft, tpf, tpft, df, dK);
+        printf("%s,%d,%d,%ld,%ld,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.3e,%.3e,%.3e\n", name, nd, p->nqp, p->ops_force,
+               p->ops_force_tangent, tf, tft, tlf, tlft, tpf, tpft, df, dK, dl);
         fflush(stdout);
         free(q), free(tab), free(f), free(K), free(f2), free(K2), free(pts);
     }

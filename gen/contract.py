@@ -34,6 +34,14 @@ def version():
     return int(m.group(1))
 
 
+def lanes():
+    """BK_LANES of the header: elements per call of a lane kernel."""
+    m = re.search(r"^#define\s+BK_LANES\s+(\d+)\s*$", _text(), re.M)
+    if not m:
+        raise RuntimeError(f"{HEADER}: no '#define BK_LANES <n>'")
+    return int(m.group(1))
+
+
 @lru_cache(maxsize=None)
 def _enum(name):
     """[(constant, value)] of `enum name { ... }` or `typedef enum name { ... }`,

@@ -57,7 +57,8 @@ class PairDesc:
 
 
 ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "moment", "rotary")
-PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "viscous", "invariants")
+PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "force_lanes", "force_tangent_lanes",
+                  "viscous", "invariants")
 
 
 def version_guard():
@@ -143,6 +144,7 @@ def pair_descriptors(params, pairs):
                    ("param_names", "param_names"), ("ntab", str(p.ntab)), ("nqp", str(p.nqp)),
                    ("ops_force", f"{p.ops_force}L"), ("ops_force_tangent", f"{p.ops_force_tangent}L")]
         members += [(k, p.functions[k]) for k in ("tabulate", "energy", "force", "force_tangent")]
+        members += [(k, p.functions[k]) for k in ("force_lanes", "force_tangent_lanes") if p.functions.get(k)]
         if p.nvisc:
             members += [("nvisc", str(p.nvisc)), ("viscous", p.functions["viscous"])]
         if p.functions.get("invariants"):

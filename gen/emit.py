@@ -6,6 +6,7 @@ Files written (see runtime/bk_kernel.h for the contract):
   <element>_<material>.h / .c energy, force, force + tangent per integration
 """
 import hashlib
+import re
 import sys
 from pathlib import Path
 
@@ -54,6 +55,49 @@ def _block(low, indent):
 
 def _prologue(low, indent):
     return [f"{indent}const double {s.name} = {print_c(e)};" for s, e in low.prologue]
+
+
+# ----------------------------------------------------------------------------
+# Lane kernels (runtime/bk_kernel.h, "Lane kernels"): BK_LANES elements per call,
+# every array in structure-of-arrays order, entry k of lane l at [k * BK_LANES + l].
+# The body of the one-element kernel, printed inside `#pragma omp simd` over the
+# lanes, so that the compiler vectorizes across elements.
+
+_LANE_ARRAYS = re.compile(r"\b(q|t|mat|f|K|A)\[(\d+)\]")
+
+
+def lanes():
+    return contract.lanes()
+
+
+def _lane(line):
+    w = lanes()
+    return _LANE_ARRAYS.sub(lambda m: f"{m.group(1)}[{int(m.group(2)) * w} + l]", line)
+
+
+# libm functions the lane kernels may call, with their arity: glibc's libmvec has
+# vector variants of them (x86-64), which `declare simd` lets the compiler use.
+_VECTOR_MATH = {"log": 1, "exp": 1, "cbrt": 1, "pow": 2}
+
+
+def _vector_math_decls(lines):
+    """Declarations that make the libm calls in `lines` vectorizable (libmvec);
+    sqrt needs none (an instruction, with -fno-math-errno)."""
+    used = sorted({m.group(1) for x in lines for m in re.finditer(r"\b(\w+)\(", x)} & set(_VECTOR_MATH))
+    if not used:
+        return []
+    out = ["", "/* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */",
+           "#if defined(__GLIBC__) && defined(__x86_64__)"]
+    for fn in used:
+        out += ["#pragma omp declare simd notinbranch",
+                f"double {fn}({', '.join(['double'] * _VECTOR_MATH[fn])});"]
+    return out + ["#endif"]
+
+
+def _lane_loop(lines, indent):
+    """Lines of one element's straight-line code as a loop over the lanes."""
+    return ([f"{indent}#pragma omp simd", f"{indent}for (int l = 0; l < {lanes()}; ++l) {{"] +
+            [_lane(x) for x in lines] + [f"{indent}}}"])
 
 
 # ----------------------------------------------------------------------------
@@ -198,6 +242,10 @@ extern const bk_element bk_element_{name};
              f" * A[{len(A_INDEX)}] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.\n"
              f" * {contraction_ops(elem)} operations. */\n"
              f"void {name}_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);\n")
+    htxt += (f"/* The same for BK_LANES = {lanes()} elements, every array in lane order "
+             "(runtime/bk_kernel.h, \"Lane kernels\"). */\n"
+             f"void {name}_tangent_contract_lanes(const double *restrict A, const double *restrict t, "
+             "double *restrict K);\n")
     htxt += "\n#endif\n"
 
     c = ["/* " + BANNER + f" (see {name}.h) */", f'#include "{name}.h"', "#include <math.h>"]
@@ -266,6 +314,18 @@ extern const bk_element bk_element_{name};
           "{"]
     c += [f"    {name}_contract_row{a}(A, t, K);" for a, low in enumerate(lows) if low.outputs]
     c += ["}", ""]
+    # The same over BK_LANES elements (lane kernels: A, t, K in lane order).
+    for a, low in enumerate(lows):
+        if not low.outputs:
+            continue
+        c += [f"static BK_NOINLINE void {name}_contract_lanes_row{a}(const double *restrict A, "
+              "const double *restrict t, double *restrict K)", "{"]
+        c += _lane_loop(_prologue(low, "        ") + _block(low, "        "), "    ")
+        c += ["}", ""]
+    c += [f"void {name}_tangent_contract_lanes(const double *restrict A, const double *restrict t, "
+          "double *restrict K)", "{"]
+    c += [f"    {name}_contract_lanes_row{a}(A, t, K);" for a, low in enumerate(lows) if low.outputs]
+    c += ["}", ""]
     c += element_descriptor(describe(elem))
     return htxt, "\n".join(c)
 
@@ -304,6 +364,33 @@ def _kernel_fn(signature, ndof, parts, lows, zero, finish, contract_fn=None):
     return lines
 
 
+def _lane_kernel_fn(signature, ndof, parts, lows, contract_fn=None):
+    """One lane kernel: per quadrature point the one-element body in a loop over
+    the lanes (the prologue inside it: the parameters are per lane), then the
+    tangent contraction over the lanes."""
+    w = lanes()
+    lines = [signature, "{", f"    for (int i = 0; i < {ndof * w}; ++i) f[i] = 0.0;"]
+    if contract_fn:
+        lines += [f"    for (int r = 0; r < {ndof}; ++r)",
+                  f"        for (int i = r * {ndof + 1} * {w}; i < (r + 1) * {ndof} * {w}; ++i) K[i] = 0.0;"]
+    for part, low in zip(parts, lows):
+        lines.append(f"    {{   /* energy part \"{part.energy}\": {len(part.rule)} quadrature points */")
+        lines.append(f"        for (int p = 0; p < {len(part.rule)}; ++p) {{")
+        lines.append(f"            const double *restrict t = tab + ({part.tab_offset} + {part.stride} * p) * {w};")
+        if contract_fn:
+            lines.append(f"            double A[{len(A_INDEX) * w}];")
+        lines += _lane_loop(_prologue(low, "                ") + _block(low, "                "), "            ")
+        if contract_fn:
+            lines.append(f"            {contract_fn}(A, t, K);")
+        lines += ["        }", "    }"]
+    if contract_fn:
+        lines += [f"    for (int r = 1; r < {ndof}; ++r)",
+                  "        for (int c = 0; c < r; ++c)",
+                  f"            for (int l = 0; l < {w}; ++l) K[(r * {ndof} + c) * {w} + l] = K[(c * {ndof} + r) * {w} + l];"]
+    lines += ["}", ""]
+    return lines
+
+
 def pair_source(elem, elem_path, mat, mat_path):
     name = f"{elem.name}_{mat.NAME}"
     ndof = elem.ndof
@@ -312,6 +399,8 @@ def pair_source(elem, elem_path, mat, mat_path):
         "energy": f"double {name}_{{r}}_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)",
         "force": f"void {name}_{{r}}_force(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)",
         "tangent": f"void {name}_{{r}}_force_tangent(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)",
+        "force_lanes": f"void {name}_{{r}}_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)",
+        "tangent_lanes": f"void {name}_{{r}}_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)",
     }
     c = ["/* " + BANNER + f" (see {name}.h) */", f'#include "{name}.h"', f'#include "{elem.name}.h"',
          "#include <math.h>"] + version_guard() + [""]
@@ -351,17 +440,26 @@ def pair_source(elem, elem_path, mat, mat_path):
                                    contract_fn=f"{elem.name}_tangent_contract")
             c += lines
             fns[want] = s.split("(")[0].split()[-1]
+            if want in ("force", "tangent"):
+                s = sig[want + "_lanes" if want == "force" else "tangent_lanes"].format(r=rname)
+                decls.append(s + ";")
+                c += _lane_kernel_fn(s, ndof, parts, lows,
+                                     contract_fn=f"{elem.name}_tangent_contract_lanes" if want == "tangent" else None)
+                fns[want + "_lanes"] = s.split("(")[0].split()[-1]
         descs.append(PairDesc(
             element=elem.name, material=mat.NAME, integration=rname, ntab=ntab, nqp=nqp,
             ops_force=counts["force"][1].total(), ops_force_tangent=counts["tangent"][1].total(),
             functions={"tabulate": f"{elem.name}_{rname}_tabulate", "energy": fns["energy"], "force": fns["force"],
-                       "force_tangent": fns["tangent"], "viscous": f"{elem.name}_{rname}_viscous",
+                       "force_tangent": fns["tangent"], "force_lanes": fns["force_lanes"],
+                       "force_tangent_lanes": fns["tangent_lanes"], "viscous": f"{elem.name}_{rname}_viscous",
                        "invariants": f"{elem.name}_{rname}_invariants"},
             nvisc=2, green_strain_range=tuple(getattr(mat, "GREEN_STRAIN_RANGE", (0.0, 0.0)))))
         parts_txt = " + ".join(f"{len(p.rule)} pts ({p.energy}, {'x'.join(map(str, rp.points))})"
                                for p, rp in zip(parts, elem.rule(rname)))
         summary.append((rname, parts_txt, ntab, counts))
     c += pair_descriptors(mat.PARAMS, descs)
+    ng = len(version_guard())
+    c[4 + ng:4 + ng] = _vector_math_decls(c)
 
     hdr = [f"/* {BANNER}",
            f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",

@@ -54,7 +54,26 @@ def lower(prog, hoistable):
     output needs; move assignments whose inputs are all in `hoistable` (e.g. the
     material parameters) to the prologue."""
     exprs = [e for _, e in prog.defs] + [e for _, _, e in prog.outputs]
+    # Powers b**(p/3) through one cube root per base, c = cbrt(b), then c**p as
+    # products: a single libm call where cbrt(b*b), cbrt(b*b*b*b), ... were several.
+    roots = {}
+
+    def _root(e):
+        b = e.base
+        if b not in roots:
+            roots[b] = sp.Symbol(f"cb{len(roots)}", real=True)
+        return roots[b] ** int(e.exp.p)
+
+    def _is_third(e):
+        return e.is_Pow and e.exp.is_Rational and e.exp.q == 3
+
+    exprs = [e.replace(_is_third, _root) if e.has(sp.Pow) else e for e in exprs]
+    root_defs = [(c, sp.Pow(b, sp.Rational(1, 3), evaluate=False)) for b, c in roots.items()]
+    exprs = [e for _, e in root_defs] + exprs
     repl, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("x", real=True), order="none")
+    nr = len(root_defs)
+    repl = [(c, reduced[k]) for k, (c, _) in enumerate(root_defs)] + list(repl)
+    reduced = reduced[nr:]
     nd = len(prog.defs)
     assign = {}                 # Symbol -> expr
     order_hint = {}

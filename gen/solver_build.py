@@ -7,13 +7,13 @@ the pair descriptors (runtime/bk_kernel.h).
 """
 import os
 import sys
+import threading
+from pathlib import Path
 
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
     from _sha256 import sha256
 except ImportError:                    # pragma: no cover
     from hashlib import sha256
-import threading
-from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 RUNTIME = ROOT / "runtime"
@@ -26,6 +26,9 @@ RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c
                    "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c",
                    "main.c", "amplitude.c", "loads.c", "forces.c")
 LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
+# The lane kernels' vector log, cbrt, pow (out/kernels/*_*.c, `declare simd`): glibc's libmvec.
+if os.uname().sysname == "Linux" and os.uname().machine == "x86_64":   # (os.uname: no platform import)
+    LIBS.insert(LIBS.index("-lm"), "-lmvec")
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP
 # (results are bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the
 # sanitizer build keeps OpenMP so that it checks the code that runs.
@@ -44,11 +47,14 @@ VARIANTS = {
 }
 # Generated kernels are long straight-line functions: debug info for them only
 # costs compile time, so the sanitizer build compiles them without -g.
+# -fopenmp-simd: the lane kernels' `#pragma omp simd` loops (no OpenMP runtime);
+# -ffp-contract=fast (release): fused multiply-adds (ISO C mode turns them off);
+# -fno-math-errno: sqrt as an instruction, vectorizable (kernels never read errno).
 KERNEL_FLAGS = {
-    "release": ["-O2", "-march=native", "-fPIC"],
+    "release": ["-O2", "-march=native", "-fopenmp-simd", "-ffp-contract=fast", "-fno-math-errno", "-fPIC"],
     "sanitize": ["-O1", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
-                 "-fno-sanitize-recover=all"],
-    "memcheck": ["-O2", MEMCHECK_ARCH, "-fPIC"],
+                 "-fno-sanitize-recover=all", "-fopenmp-simd"],
+    "memcheck": ["-O2", MEMCHECK_ARCH, "-fopenmp-simd", "-fno-math-errno", "-fPIC"],
 }
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
 INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse"]

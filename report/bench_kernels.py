@@ -9,6 +9,7 @@ from the kernel headers in out/kernels/.
 """
 import csv
 import io
+import math
 import re
 import subprocess
 from functools import lru_cache
@@ -149,9 +150,16 @@ def run(workdir, repeats=7, target=0.004, only=None, log=None):
                "ops_force": int(d["ops_force"]), "ops_force_tangent": int(d["ops_force_tangent"]),
                "hdr_force": h.get("force"), "hdr_force_tangent": h.get("ft"),
                "hdr_force_per_point": h.get("force_pt", ""), "hdr_force_tangent_per_point": h.get("ft_pt", "")}
-        for k in ("t_force_s", "t_force_tangent_s", "t_plain_force_s", "t_plain_force_tangent_s",
-                  "plain_rel_diff_f", "plain_rel_diff_K"):
+        for k in ("t_force_s", "t_force_tangent_s", "t_lanes_force_s", "t_lanes_force_tangent_s",
+                  "t_plain_force_s", "t_plain_force_tangent_s", "plain_rel_diff_f", "plain_rel_diff_K",
+                  "lanes_rel_diff"):
             row[k] = float(d[k])
+        # t_force_s, t_force_tangent_s: per element as the solvers call the kernels (the lane
+        # kernels where the pair has them); t_scalar_*: one element per call.
+        row["lanes"] = math.isfinite(row["t_lanes_force_tangent_s"])
+        row["t_scalar_force_s"], row["t_scalar_force_tangent_s"] = row["t_force_s"], row["t_force_tangent_s"]
+        if row["lanes"]:
+            row["t_force_s"], row["t_force_tangent_s"] = row["t_lanes_force_s"], row["t_lanes_force_tangent_s"]
         row["gflops_force"] = row["ops_force"] / row["t_force_s"] / 1e9
         row["gflops_force_tangent"] = row["ops_force_tangent"] / row["t_force_tangent_s"] / 1e9
         row["speedup_force"] = row["t_plain_force_s"] / row["t_force_s"]

@@ -43,7 +43,23 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 3
+#define BK_KERNEL_VERSION 4
+
+/* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
+ * elements of one pair per call, so that the compiler vectorizes across
+ * elements.  Every array is in structure-of-arrays order: entry k of lane l
+ * (the l-th element of the call) at [k * BK_LANES + l]:
+ *   q[ndof * BK_LANES]          in   element coordinates
+ *   tab[ntab * BK_LANES]        in   each lane's table from tabulate()
+ *   mat[nparam * BK_LANES]      in   each lane's material parameters
+ *   f[ndof * BK_LANES]          out  internal force (overwritten)
+ *   K[ndof * ndof * BK_LANES]   out  tangent, row-major per lane, full
+ *                                    (upper triangle computed, mirrored)
+ * Lane l gives the result of force() / force_tangent() on lane l's inputs to
+ * round-off (the vector code may round differently, so not bitwise).  Every
+ * lane is computed: a caller with fewer elements fills the unused lanes with
+ * valid inputs (a copy of a used lane) and ignores their outputs. */
+#define BK_LANES 8
 
 /* Slots of geom[]. */
 enum bk_geom_slot {
@@ -170,6 +186,13 @@ typedef struct bk_pair {
     void (*force_tangent)(const double *restrict q, const double *restrict tab,
                           const double *restrict mat, double *restrict f,
                           double *restrict K);
+    /* The same for BK_LANES elements per call (see "Lane kernels" above);
+     * NULL: not offered (call force() / force_tangent() per element). */
+    void (*force_lanes)(const double *restrict q, const double *restrict tab,
+                        const double *restrict mat, double *restrict f);
+    void (*force_tangent_lanes)(const double *restrict q, const double *restrict tab,
+                                const double *restrict mat, double *restrict f,
+                                double *restrict K);
     /* Kelvin-Voigt damping: viscous force f(q, qd) with parameters visc[nvisc]
      * (the viscous stiffnesses: retardation time x elastic constants), its
      * derivatives C = df/dqd and K ~ df/dq (the part from the viscous stress,

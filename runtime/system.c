@@ -8,6 +8,7 @@
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,6 +30,21 @@
  * barriers cost more than they save (and much more on a loaded machine, where
  * a descheduled thread holds up the barrier). */
 #define BK_PAR_MIN_ELEMS 32
+
+/* A pair whose elements are evaluated BK_LANES per call (bk_kernel.h, "Lane kernels"). */
+static int lane_pair(const bk_pair *p)
+{
+    return p->force_lanes && p->force_tangent_lanes && p->nparam <= BK_MAT_MAXPARAM;
+}
+
+/* n doubles aligned to 64 bytes (a cache line, one AVX-512 register): the lane
+ * kernels' vector loads and stores then never straddle two lines (every group
+ * slot is a multiple of BK_LANES = 8 doubles).  Freed with free(). */
+static double *alloc_lanes(size_t n)
+{
+    size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
+    return aligned_alloc(64, bytes ? bytes : 64);
+}
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -169,15 +185,31 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
     if (!s->eslot)
         goto oom;
+    s->edof_lo = malloc(((size_t)m->nelem + 1) * sizeof *s->edof_lo);
+    s->edof_hi = malloc(((size_t)m->nelem + 1) * sizeof *s->edof_hi);
+    s->eslot_lo = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_lo);
+    s->eslot_hi = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_hi);
+    if (!s->edof_lo || !s->edof_hi || !s->eslot_lo || !s->eslot_hi)
+        goto oom;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         int nd = m->pairs[el->pair]->element->ndof;
         int *sl = s->eslot + s->eslot_off[e];
-        for (int r = 0; r < nd; ++r)
+        int dlo = m->ndof, dhi = -1, slo = INT_MAX, shi = -1;
+        for (int r = 0; r < nd; ++r) {
+            dlo = el->dofs[r] < dlo ? el->dofs[r] : dlo;
+            dhi = el->dofs[r] > dhi ? el->dofs[r] : dhi;
             for (int c = 0; c < nd; ++c) {
                 int row = s->eq[el->dofs[r]], col = s->eq[el->dofs[c]];
-                sl[r * nd + c] = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
+                int k = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
+                sl[r * nd + c] = k;
+                if (k >= 0) {
+                    slo = k < slo ? k : slo;
+                    shi = k > shi ? k : shi;
+                }
             }
+        }
+        s->edof_lo[e] = dlo, s->edof_hi[e] = dhi, s->eslot_lo[e] = slo, s->eslot_hi[e] = shi;
     }
     s->cslot_off = malloc(((size_t)s->ncon + 1) * sizeof *s->cslot_off);
     if (!s->cslot_off)
@@ -210,17 +242,41 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     if (!s->fe || !s->Ke)
         goto oom;
     {
-        size_t md = (size_t)(s->maxdof ? s->maxdof : 1);
-        long blk = BK_EVAL_BLOCK_BYTES / (long)(md * md * sizeof(double));
+        /* Groups (see system.h) and the buffer sizes of one group slot. */
+        s->group = malloc(((size_t)m->nelem + 1) * sizeof *s->group);
+        if (!s->group)
+            goto oom;
+        size_t sq = 1, sK = 1, st = 1;
+        for (int e = 0; e < m->nelem;) {
+            const bk_pair *p = m->pairs[m->elems[e].pair];
+            int n = 1;
+            if (lane_pair(p))
+                while (n < BK_LANES && e + n < m->nelem && m->elems[e + n].pair == m->elems[e].pair)
+                    ++n;
+            size_t w = lane_pair(p) ? BK_LANES : 1, nd = (size_t)p->element->ndof;
+            if (w * nd > sq)
+                sq = w * nd;
+            if (w * nd * nd > sK)
+                sK = w * nd * nd;
+            if (w * (size_t)(p->ntab > 0 ? p->ntab : 1) > st)
+                st = w * (size_t)(p->ntab > 0 ? p->ntab : 1);
+            s->group[s->ngroup++] = e;
+            e += n;
+        }
+        s->group[s->ngroup] = m->nelem;
+        s->slot_q = sq, s->slot_K = sK, s->slot_tab = st;
+        long blk = BK_EVAL_BLOCK_BYTES / (long)(sK * sizeof(double));
         if (blk < BK_EVAL_BLOCK_MIN)
             blk = BK_EVAL_BLOCK_MIN;
-        if (blk > m->nelem)
-            blk = m->nelem > 0 ? m->nelem : 1;
+        if (blk > s->ngroup)
+            blk = s->ngroup > 0 ? s->ngroup : 1;
         s->eval_block = (int)blk;
-        s->bq = malloc((size_t)blk * md * sizeof *s->bq);
-        s->bf = malloc((size_t)blk * md * sizeof *s->bf);
-        s->bK = malloc((size_t)blk * md * md * sizeof *s->bK);
-        if (!s->bq || !s->bf || !s->bK)
+        s->bq = alloc_lanes((size_t)blk * sq);
+        s->bf = alloc_lanes((size_t)blk * sq);
+        s->bK = alloc_lanes((size_t)blk * sK);
+        s->btab = alloc_lanes((size_t)blk * st);
+        s->bmat = alloc_lanes((size_t)blk * BK_LANES * BK_MAT_MAXPARAM);
+        if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
             goto oom;
     }
     s->nthreads = 1;
@@ -253,34 +309,138 @@ void bk_system_free(bk_system *s)
     free(s->bq);
     free(s->bf);
     free(s->bK);
+    free(s->btab);
+    free(s->bmat);
+    free(s->group);
+    free(s->edof_lo);
+    free(s->edof_hi);
+    free(s->eslot_lo);
+    free(s->eslot_hi);
     free(s);
 }
 
-/* Element evaluation in blocks of s->eval_block elements: the kernels of a
- * block run in parallel (OpenMP) into per-element buffers, then the block is
- * scattered serially in element order.  Every sum into fint and Ax is thus
- * done in the same order whatever the number of threads, so the results are
+/* Element evaluation in blocks of s->eval_block groups: the kernels of a
+ * block run in parallel (OpenMP) into per-group buffers, then the block is
+ * scattered in element order, each thread into its own range of fint and Ax
+ * entries.  The groups and the lane of each element in its group depend on
+ * the model only, and every entry of fint and Ax receives its terms in
+ * element order whatever the number of threads, so the results are
  * bit-identical for any OMP_NUM_THREADS; the buffers are allocated once, in
  * bk_system_create. */
-static void eval_element(const bk_model *m, int e, const double *q, double *restrict qe,
-                         double *restrict fe, double *restrict Ke)
+/* Group g into its slot: f (and K when tangent) of each element, lane-ordered
+ * (entry k of lane l at [k * BK_LANES + l]) for a lane group, plain for a
+ * single element without lane kernels. */
+static void eval_group(const bk_system *s, int g, const double *q, double *restrict bq,
+                       double *restrict bf, double *restrict bK, double *restrict btab,
+                       double *restrict bmat, int tangent)
 {
-    const bk_elem *el = &m->elems[e];
-    const bk_pair *p = m->pairs[el->pair];
-    bk_gather(m, e, q, qe);
-    const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
-    if (Ke)
-        p->force_tangent(qe, tab, mat, fe, Ke);
+    const bk_model *m = s->m;
+    const int e0 = s->group[g], n = s->group[g + 1] - e0;
+    const bk_elem *el0 = &m->elems[e0];
+    const bk_pair *p = m->pairs[el0->pair];
+    if (!lane_pair(p)) {
+        bk_gather(m, e0, q, bq);
+        const double *tab = m->tabs[el0->geom], *mat = m->mats[el0->mat].params;
+        if (tangent)
+            p->force_tangent(bq, tab, mat, bf, bK);
+        else
+            p->force(bq, tab, mat, bf);
+        return;
+    }
+    const int nd = p->element->ndof, nt = p->ntab, np = p->nparam;
+    /* unused lanes repeat the last element (valid inputs; outputs ignored) */
+    for (int l = 0; l < BK_LANES; ++l) {
+        const bk_elem *el = &m->elems[e0 + (l < n ? l : n - 1)];
+        const int *d = el->dofs;
+        const double *tab = m->tabs[el->geom], *mat = m->mats[el->mat].params;
+        for (int k = 0; k < nd; ++k)
+            bq[k * BK_LANES + l] = q[d[k]];
+        for (int k = 0; k < nt; ++k)
+            btab[k * BK_LANES + l] = tab[k];
+        for (int k = 0; k < np; ++k)
+            bmat[k * BK_LANES + l] = mat[k];
+    }
+    if (tangent)
+        p->force_tangent_lanes(bq, btab, bmat, bf, bK);
     else
-        p->force(qe, tab, mat, fe);
+        p->force_lanes(bq, btab, bmat, bf);
 }
 
-static int scatter_element(const bk_system *s, int e, const double *fe, const double *Ke,
+/* Element e's f and K at stride `stride` (1: plain, BK_LANES: one lane of a
+ * lane group) into fint and Ax; 1 when f has a non-finite entry. */
+static int scatter_strided(const bk_system *s, int e, const double *fe, const double *Ke, int stride,
                            double *fint, double *Ax)
 {
-    int bad = bk_scatter(s->m, e, fe, 1.0, fint);
-    if (Ax)
-        bk_scatter_matrix(s, e, Ke, 1.0, Ax);
+    const bk_model *m = s->m;
+    const int *d = m->elems[e].dofs;
+    const int nd = bk_elem_type(m, e)->ndof;
+    int bad = 0;
+    for (int k = 0; k < nd; ++k) {
+        const double v = fe[(size_t)k * stride];
+        if (!isfinite(v))
+            bad = 1;
+        fint[d[k]] += v;
+    }
+    if (Ax) {
+        const int *sl = s->eslot + s->eslot_off[e];
+        for (int k = 0; k < nd * nd; ++k) {
+            const double v = Ke[(size_t)k * stride];
+            if (sl[k] >= 0 && v != 0.0)
+                Ax[sl[k]] += v;
+        }
+    }
+    return bad;
+}
+
+/* The same restricted to the DOFs [d0, d1) of fint and the slots [s0, s1) of Ax
+ * (one thread's share of the parallel scatter). */
+static int scatter_strided_range(const bk_system *s, int e, const double *fe, const double *Ke, int stride,
+                                 double *fint, double *Ax, int d0, int d1, long s0, long s1)
+{
+    int bad = 0;
+    if (s->edof_hi[e] >= d0 && s->edof_lo[e] < d1) {
+        const int *d = s->m->elems[e].dofs;
+        const int nd = bk_elem_type(s->m, e)->ndof;
+        for (int k = 0; k < nd; ++k)
+            if (d[k] >= d0 && d[k] < d1) {
+                const double v = fe[(size_t)k * stride];
+                if (!isfinite(v))
+                    bad = 1;
+                fint[d[k]] += v;
+            }
+    }
+    if (Ax && s->eslot_hi[e] >= s0 && s->eslot_lo[e] < s1) {
+        const int nd = bk_elem_type(s->m, e)->ndof;
+        const int *sl = s->eslot + s->eslot_off[e];
+        for (int k = 0; k < nd * nd; ++k) {
+            const double v = Ke[(size_t)k * stride];
+            if (sl[k] >= s0 && sl[k] < s1 && v != 0.0)
+                Ax[sl[k]] += v;
+        }
+    }
+    return bad;
+}
+
+static int scatter_group_range(const bk_system *s, int g, const double *bf, const double *bK, double *fint,
+                               double *Ax, int d0, int d1, long s0, long s1)
+{
+    const int e0 = s->group[g], n = s->group[g + 1] - e0;
+    if (!lane_pair(s->m->pairs[s->m->elems[e0].pair]))
+        return scatter_strided_range(s, e0, bf, bK, 1, fint, Ax, d0, d1, s0, s1);
+    int bad = 0;
+    for (int l = 0; l < n; ++l)
+        bad |= scatter_strided_range(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax, d0, d1, s0, s1);
+    return bad;
+}
+
+static int scatter_group(const bk_system *s, int g, const double *bf, const double *bK, double *fint, double *Ax)
+{
+    const int e0 = s->group[g], n = s->group[g + 1] - e0;
+    if (!lane_pair(s->m->pairs[s->m->elems[e0].pair]))
+        return scatter_strided(s, e0, bf, bK, 1, fint, Ax);
+    int bad = 0;
+    for (int l = 0; l < n; ++l)
+        bad |= scatter_strided(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax);
     return bad;
 }
 
@@ -344,31 +504,46 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
 {
     const bk_model *m = s->m;
     const int nelem = m->nelem;
-    const size_t md = (size_t)(s->maxdof ? s->maxdof : 1);
-    memset(fint, 0, (size_t)m->ndof * sizeof *fint);
-    if (Ax)
-        memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
     int bad = 0;
+    const int ng = s->ngroup, tangent = Ax != NULL;
+    const size_t sq = s->slot_q, sK = s->slot_K, st = s->slot_tab, sm = (size_t)BK_LANES * BK_MAT_MAXPARAM;
     if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) {
-        BK_OMP(omp parallel num_threads(s->nthreads))
-        for (int b0 = 0; b0 < nelem; b0 += s->eval_block) {
-            int nb = nelem - b0 < s->eval_block ? nelem - b0 : s->eval_block;
-            /* dynamic: a thread that is descheduled holds back only its chunk */
-            BK_OMP(omp for schedule(dynamic, 8))
-            for (int i = 0; i < nb; ++i)
-                eval_element(m, b0 + i, q, s->bq + (size_t)i * md, s->bf + (size_t)i * md,
-                             Ax ? s->bK + (size_t)i * md * md : NULL);
-            BK_OMP(omp single)
-            for (int i = 0; i < nb; ++i)
-                bad |= scatter_element(s, b0 + i, s->bf + (size_t)i * md,
-                                       Ax ? s->bK + (size_t)i * md * md : NULL, fint, Ax);
+        /* Each thread zeroes and then sums into its own range of fint and of Ax,
+         * element by element in element order: every entry gets its terms in the
+         * same order as in the serial loop, whatever the number of threads. */
+        BK_OMP(omp parallel num_threads(s->nthreads) reduction(|: bad))
+        {
+            int T = 1, t = 0;
+#ifdef _OPENMP
+            T = omp_get_num_threads(), t = omp_get_thread_num();
+#endif
+            const int d0 = (int)((long)m->ndof * t / T), d1 = (int)((long)m->ndof * (t + 1) / T);
+            const long s0 = s->nnz * t / T, s1 = s->nnz * (t + 1) / T;
+            memset(fint + d0, 0, (size_t)(d1 - d0) * sizeof *fint);
+            if (Ax)
+                memset(Ax + s0, 0, (size_t)(s1 - s0) * sizeof *Ax);
+            for (int b0 = 0; b0 < ng; b0 += s->eval_block) {
+                int nb = ng - b0 < s->eval_block ? ng - b0 : s->eval_block;
+                /* dynamic: a thread that is descheduled holds back only its chunk */
+                BK_OMP(omp for schedule(dynamic, 2))
+                for (int i = 0; i < nb; ++i)
+                    eval_group(s, b0 + i, q, s->bq + i * sq, s->bf + i * sq, s->bK + i * sK, s->btab + i * st,
+                               s->bmat + i * sm, tangent);
+                for (int i = 0; i < nb; ++i)
+                    bad |= scatter_group_range(s, b0 + i, s->bf + i * sq, s->bK + i * sK, fint, Ax, d0, d1, s0, s1);
+                /* the next block's evaluation overwrites the buffers */
+                BK_OMP(omp barrier)
+            }
         }
     } else {
         /* Serial: no OpenMP region at all (libgomp allocates a team even for
-         * a region whose if clause is false).  Same order of sums. */
-        for (int e = 0; e < nelem; ++e) {
-            eval_element(m, e, q, s->bq, s->bf, Ax ? s->bK : NULL);
-            bad |= scatter_element(s, e, s->bf, Ax ? s->bK : NULL, fint, Ax);
+         * a region whose if clause is false).  Same groups, same order of sums. */
+        memset(fint, 0, (size_t)m->ndof * sizeof *fint);
+        if (Ax)
+            memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
+        for (int g = 0; g < ng; ++g) {
+            eval_group(s, g, q, s->bq, s->bf, s->bK, s->btab, s->bmat, tangent);
+            bad |= scatter_group(s, g, s->bf, s->bK, fint, Ax);
         }
     }
     return bad ? -1 : 0;

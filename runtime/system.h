@@ -33,8 +33,20 @@ typedef struct bk_system {
     double cscale;
     int maxdof;              /* largest element DOF count                     */
     double *fe, *Ke;         /* element work buffers (owned)                  */
-    double *bq, *bf, *bK;    /* per-element buffers of one evaluation block   */
-    int eval_block;          /* elements per evaluation block (from the model only) */
+    /* Evaluation groups: runs of up to BK_LANES consecutive elements of one
+     * pair that has lane kernels (one call evaluates the run), or a single
+     * element.  They depend on the model only, never on the thread count. */
+    int ngroup;
+    int *group;              /* [ngroup+1] first element of each group        */
+    size_t slot_q, slot_K, slot_tab; /* doubles per group slot of bq/bf, bK, btab */
+    double *bq, *bf, *bK;    /* per-group buffers of one evaluation block     */
+    double *btab, *bmat;     /* lane-ordered tables and material parameters   */
+    int eval_block;          /* groups per evaluation block (from the model only) */
+    /* Parallel scatter: each thread adds into its own range of fint (DOFs) and
+     * Ax (slots), element by element in element order; per element the range
+     * of its DOFs and of its slots lets a thread skip what is not its own. */
+    int *edof_lo, *edof_hi;  /* [nelem] smallest, largest DOF of the element  */
+    int *eslot_lo, *eslot_hi; /* [nelem] smallest, largest slot (hi < lo: none) */
     int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
 } bk_system;
 

@@ -17,6 +17,13 @@
  * and at NSTATE random rigid motions of the reference element:
  *   rigid_energy  |U| / (energy of a unit strain)
  *   rigid_force   max|f| / (force of a unit strain)
+ * and, for pairs with lane kernels, one call of force_lanes and
+ * force_tangent_lanes on BK_LANES different deformed states (lanes alternate
+ * between the two geometries' tables, material parameters differ per lane)
+ * against force() / force_tangent() of each lane's element:
+ *   lanes_f     max |f_lane - f| / max|f|, force and force + tangent kernels
+ *   lanes_K     max |K_lane - K| / max|K|
+ * (both -1 when the pair has no lane kernels).
  * Output: one line per pair and geometry, "key=value" fields.
  */
 #include <math.h>
@@ -145,6 +152,58 @@ static double maxabs(const double *v, int n)
     for (int i = 0; i < n; ++i)
         m = fmax(m, fabs(v[i]));
     return m;
+}
+
+/* Lane kernels against the one-element kernels (see the header comment);
+ * returns 0 when out of memory. */
+static int lane_check(const bk_pair *p, const double *geom_a, const double *geom_b, const double *mat0,
+                      const double *sc, rng *r, double *e_f, double *e_K)
+{
+    enum { W = BK_LANES };
+    const bk_element *e = p->element;
+    const int n = e->ndof, nt = p->ntab > 0 ? p->ntab : 1, np = p->nparam;
+    double *tab[2] = {malloc((size_t)nt * sizeof(double)), malloc((size_t)nt * sizeof(double))};
+    double *q = malloc((size_t)n * W * sizeof(double)), *lt = malloc((size_t)nt * W * sizeof(double));
+    double *lm = malloc((size_t)(np + 1) * W * sizeof(double)), *lf = malloc((size_t)n * W * sizeof(double));
+    double *lf2 = malloc((size_t)n * W * sizeof(double)), *lK = malloc((size_t)n * n * W * sizeof(double));
+    double *qe = malloc((size_t)n * sizeof(double)), *f = malloc((size_t)n * sizeof(double));
+    double *K = malloc((size_t)n * n * sizeof(double)), *mat = malloc((size_t)(np + 1) * sizeof(double));
+    int ok = tab[0] && tab[1] && q && lt && lm && lf && lf2 && lK && qe && f && K && mat;
+    if (ok) {
+        const double *geoms[2] = {geom_a, geom_b};
+        for (int g = 0; g < 2; ++g) {
+            e->reference(geoms[g], qe);
+            p->tabulate(geoms[g], qe, tab[g]);
+        }
+        for (int l = 0; l < W; ++l) {
+            e->reference(geoms[l % 2], qe);
+            for (int k = 0; k < n; ++k)
+                q[k * W + l] = qe[k] + 0.08 * sc[k] * urand(r);
+            for (int k = 0; k < p->ntab; ++k)
+                lt[k * W + l] = tab[l % 2][k];
+            for (int k = 0; k < np; ++k)
+                lm[k * W + l] = mat0[k] * (1.0 + 0.05 * l);
+        }
+        p->force_lanes(q, lt, lm, lf2);
+        p->force_tangent_lanes(q, lt, lm, lf, lK);
+        double ef = 0.0, eK = 0.0;
+        for (int l = 0; l < W; ++l) {
+            for (int k = 0; k < n; ++k)
+                qe[k] = q[k * W + l];
+            for (int k = 0; k < np; ++k)
+                mat[k] = lm[k * W + l];
+            p->force_tangent(qe, tab[l % 2], mat, f, K);
+            double fm = maxabs(f, n), Km = maxabs(K, n * n);
+            for (int k = 0; k < n; ++k)
+                ef = fmax(ef, fmax(fabs(lf[k * W + l] - f[k]), fabs(lf2[k * W + l] - f[k])) / fm);
+            for (int k = 0; k < n * n; ++k)
+                eK = fmax(eK, fabs(lK[k * W + l] - K[k]) / Km);
+        }
+        *e_f = ef, *e_K = eK;
+    }
+    free(tab[0]), free(tab[1]), free(q), free(lt), free(lm), free(lf), free(lf2), free(lK);
+    free(qe), free(f), free(K), free(mat);
+    return ok;
 }
 
 int main(int argc, char **argv)
@@ -302,10 +361,14 @@ int main(int argc, char **argv)
                     }
                 }
             }
+            double e_lf = -1.0, e_lK = -1.0;
+            if (p->force_lanes && p->force_tangent_lanes && !lane_check(p, geoms[ig], geoms[1 - ig], mat, sc, &r, &e_lf, &e_lK))
+                return 3;
             printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
-                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_moment=%.3e fscale=%.3e\n",
+                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_moment=%.3e lanes_f=%.3e lanes_K=%.3e "
+                   "fscale=%.3e\n",
                    e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,
-                   e_rigU, e_rigf, e_visc, e_mom, fscale);
+                   e_rigU, e_rigf, e_visc, e_mom, e_lf, e_lK, fscale);
             if (!isfinite(e_force) || !isfinite(e_tan))
                 bad = 1;
             free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);

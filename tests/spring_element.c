@@ -4,8 +4,9 @@
 
 #include <math.h>
 
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 3"
+/* No lane kernels: force_lanes, force_tangent_lanes stay NULL (one element per call). */
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 4"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

@@ -69,6 +69,23 @@ def test_header_constants_as_the_generator_reads_them():
     assert all(v & (v - 1) == 0 for v in caps.values()) and len(set(caps.values())) == len(caps)
 
 
+def test_every_continuum_pair_has_lane_kernels():
+    """BK_LANES as the generator reads it, and every continuum element x material
+    pair descriptor offers force_lanes and force_tangent_lanes (bk_kernel.h,
+    "Lane kernels"); the rods do not (NULL: one element per call)."""
+    assert contract.lanes() == 8
+    idx = json.loads((KERNELS / "index.json").read_text())
+    n = 0
+    for p in idx["pairs"]:
+        text = (KERNELS / f"{p['element']}_{p['material']}.c").read_text()
+        sym = f"bk_pair_{p['element']}_{p['material']}_{p['integration']}"
+        body = re.search(r"^const bk_pair " + sym + r" = \{\n(.*?)^\};", text, re.M | re.S).group(1)
+        has = ".force_lanes = " in body and ".force_tangent_lanes = " in body
+        assert has == (p["material"] != "resultant"), f"{sym}: lane kernels {'missing' if not has else 'unexpected'}"
+        n += has
+    assert n >= 30, n
+
+
 def test_generated_files_state_the_header_version():
     """Every generated C file (elements, pairs, shared rod files) carries the
     version guard of the current header, index.json the version, and every

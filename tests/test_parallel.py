@@ -1,6 +1,7 @@
 """OpenMP element evaluation: results bit-identical for any thread count
-(runtime/system.c evaluates in fixed blocks and scatters serially in element
-order), and the KLU analysis done once per run.  No timings here."""
+(runtime/system.c evaluates fixed groups of up to 8 elements with the lane
+kernels, in fixed blocks, and every thread scatters into its own range of
+entries in element order), and the KLU analysis done once per run.  No timings here."""
 import json
 import os
 import subprocess
@@ -40,7 +41,7 @@ def same_results(scene, sets, threads=(1, 2, 3)):
 
 
 def test_static_bit_identical_for_1_2_3_threads():
-    # 100 elements: several evaluation blocks, parallel path taken
+    # 100 elements: 13 lane groups (the last one partly filled), parallel path and parallel scatter taken
     s = same_results("cantilever_bend_100N_nu03", ["beam.arm.elements=100"])
     assert s["converged"]
     assert s["symbolic_analyses"] == 1, "the KLU symbolic analysis must run once per run"
@@ -55,3 +56,12 @@ def test_dynamic_bit_identical_for_1_2_threads():
 def test_resultant_beam_bit_identical_for_1_2_threads():
     same_results("cantilever_rollup", ["beam.arm.element=gef", "material.alu.law=resultant",
                                        "beam.arm.elements=70", "static.load_steps=4"], threads=(1, 2))
+
+
+def test_mixed_pairs_bit_identical_for_1_2_3_threads():
+    """Two beams of different pairs (21 `sri` + 19 `full` elements): lane groups end at
+    the pair boundary, both last groups are partly filled."""
+    s = same_results("double_pendulum_soft_ancf", ["beam.rod1.elements=21", "beam.rod1.integration=sri",
+                                                   "beam.rod2.elements=19", "dynamic.t_end=0.004",
+                                                   "dynamic.dt=1e-3"])
+    assert s["converged"]

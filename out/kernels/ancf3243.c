@@ -2,8 +2,8 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
 #endif
 
 #if defined(__GNUC__)
@@ -1927,6 +1927,547 @@ void ancf3243_tangent_contract(const double *restrict A, const double *restrict 
     ancf3243_contract_row5(A, t, K);
     ancf3243_contract_row6(A, t, K);
     ancf3243_contract_row7(A, t, K);
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[8 + l]*t[8 + l]);
+        const double x1 = A[0 + l]*x0;
+        const double x2 = A[24 + l]*x0;
+        const double x3 = A[48 + l]*x0;
+        const double x4 = t[8 + l]*t[16 + l];
+        const double x5 = A[24 + l]*x4;
+        const double x6 = A[48 + l]*x4;
+        const double x7 = t[8 + l]*t[24 + l];
+        const double x8 = A[0 + l]*x7;
+        const double x9 = t[8 + l]*t[32 + l];
+        const double x10 = A[24 + l]*x7;
+        const double x11 = A[48 + l]*x7;
+        const double x12 = t[8 + l]*t[40 + l];
+        const double x13 = A[0 + l]*x12;
+        const double x14 = A[24 + l]*x12;
+        const double x15 = A[48 + l]*x12;
+        const double x16 = -x2;
+        const double x17 = -x3;
+        const double x18 = t[8 + l]*t[48 + l];
+        const double x19 = A[24 + l]*x18;
+        const double x20 = A[48 + l]*x18;
+        const double x21 = A[192 + l]*x0;
+        const double x22 = A[216 + l]*x0;
+        const double x23 = A[216 + l]*x4;
+        const double x24 = A[192 + l]*x7;
+        const double x25 = A[216 + l]*x7;
+        const double x26 = A[192 + l]*x12;
+        const double x27 = A[216 + l]*x12;
+        const double x28 = -x22;
+        const double x29 = A[216 + l]*x18;
+        const double x30 = t[8 + l]*t[56 + l];
+        const double x31 = A[312 + l]*x0;
+        const double x32 = A[312 + l]*x7;
+        const double x33 = A[312 + l]*x12;
+        K[0 + l] += x1;
+        K[8 + l] += x2;
+        K[16 + l] += x3;
+        K[24 + l] += A[0 + l]*x4;
+        K[32 + l] += x5;
+        K[40 + l] += x6;
+        K[48 + l] += A[8 + l]*x9 + x8;
+        K[56 + l] += A[32 + l]*x9 + x10;
+        K[64 + l] += A[56 + l]*x9 + x11;
+        K[72 + l] += A[16 + l]*x9 + x13;
+        K[80 + l] += A[40 + l]*x9 + x14;
+        K[88 + l] += A[64 + l]*x9 + x15;
+        K[96 + l] += -x1;
+        K[104 + l] += x16;
+        K[112 + l] += x17;
+        K[120 + l] += A[0 + l]*x18;
+        K[128 + l] += x19;
+        K[136 + l] += x20;
+        K[144 + l] += A[8 + l]*t[8 + l]*t[56 + l] - x8;
+        K[152 + l] += A[32 + l]*t[8 + l]*t[56 + l] - x10;
+        K[160 + l] += A[56 + l]*t[8 + l]*t[56 + l] - x11;
+        K[168 + l] += A[16 + l]*t[8 + l]*t[56 + l] - x13;
+        K[176 + l] += A[40 + l]*t[8 + l]*t[56 + l] - x14;
+        K[184 + l] += A[64 + l]*t[8 + l]*t[56 + l] - x15;
+        K[200 + l] += x21;
+        K[208 + l] += x22;
+        K[216 + l] += x5;
+        K[224 + l] += A[192 + l]*x4;
+        K[232 + l] += x23;
+        K[240 + l] += A[88 + l]*x9 + x10;
+        K[248 + l] += A[200 + l]*x9 + x24;
+        K[256 + l] += A[224 + l]*x9 + x25;
+        K[264 + l] += A[144 + l]*x9 + x14;
+        K[272 + l] += A[208 + l]*x9 + x26;
+        K[280 + l] += A[232 + l]*x9 + x27;
+        K[288 + l] += x16;
+        K[296 + l] += -x21;
+        K[304 + l] += x28;
+        K[312 + l] += x19;
+        K[320 + l] += A[192 + l]*x18;
+        K[328 + l] += x29;
+        K[336 + l] += A[88 + l]*x30 - x10;
+        K[344 + l] += A[200 + l]*t[8 + l]*t[56 + l] - x24;
+        K[352 + l] += A[224 + l]*t[8 + l]*t[56 + l] - x25;
+        K[360 + l] += A[144 + l]*x30 - x14;
+        K[368 + l] += A[208 + l]*t[8 + l]*t[56 + l] - x26;
+        K[376 + l] += A[232 + l]*t[8 + l]*t[56 + l] - x27;
+        K[400 + l] += x31;
+        K[408 + l] += x6;
+        K[416 + l] += x23;
+        K[424 + l] += A[312 + l]*x4;
+        K[432 + l] += A[112 + l]*x9 + x11;
+        K[440 + l] += A[256 + l]*x9 + x25;
+        K[448 + l] += A[320 + l]*x9 + x32;
+        K[456 + l] += A[168 + l]*x9 + x15;
+        K[464 + l] += A[288 + l]*x9 + x27;
+        K[472 + l] += A[328 + l]*x9 + x33;
+        K[480 + l] += x17;
+        K[488 + l] += x28;
+        K[496 + l] += -x31;
+        K[504 + l] += x20;
+        K[512 + l] += x29;
+        K[520 + l] += A[312 + l]*x18;
+        K[528 + l] += A[112 + l]*x30 - x11;
+        K[536 + l] += A[256 + l]*t[8 + l]*t[56 + l] - x25;
+        K[544 + l] += A[320 + l]*t[8 + l]*t[56 + l] - x32;
+        K[552 + l] += A[168 + l]*x30 - x15;
+        K[560 + l] += A[288 + l]*t[8 + l]*t[56 + l] - x27;
+        K[568 + l] += A[328 + l]*t[8 + l]*t[56 + l] - x33;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[16 + l]*t[16 + l]);
+        const double x1 = t[16 + l]*t[24 + l];
+        const double x2 = A[0 + l]*x1;
+        const double x3 = t[16 + l]*t[32 + l];
+        const double x4 = A[24 + l]*x1;
+        const double x5 = A[48 + l]*x1;
+        const double x6 = t[16 + l]*t[40 + l];
+        const double x7 = A[0 + l]*x6;
+        const double x8 = A[24 + l]*x6;
+        const double x9 = A[48 + l]*x6;
+        const double x10 = t[8 + l]*t[16 + l];
+        const double x11 = -A[24 + l]*x10;
+        const double x12 = -A[48 + l]*x10;
+        const double x13 = t[16 + l]*t[48 + l];
+        const double x14 = A[24 + l]*x13;
+        const double x15 = A[48 + l]*x13;
+        const double x16 = A[192 + l]*x1;
+        const double x17 = A[216 + l]*x1;
+        const double x18 = A[192 + l]*x6;
+        const double x19 = A[216 + l]*x6;
+        const double x20 = -A[216 + l]*x10;
+        const double x21 = A[216 + l]*x13;
+        const double x22 = t[16 + l]*t[56 + l];
+        const double x23 = A[312 + l]*x1;
+        const double x24 = A[312 + l]*x6;
+        K[600 + l] += A[0 + l]*x0;
+        K[608 + l] += A[24 + l]*x0;
+        K[616 + l] += A[48 + l]*x0;
+        K[624 + l] += A[8 + l]*x3 + x2;
+        K[632 + l] += A[32 + l]*x3 + x4;
+        K[640 + l] += A[56 + l]*x3 + x5;
+        K[648 + l] += A[16 + l]*x3 + x7;
+        K[656 + l] += A[40 + l]*x3 + x8;
+        K[664 + l] += A[64 + l]*x3 + x9;
+        K[672 + l] += -A[0 + l]*x10;
+        K[680 + l] += x11;
+        K[688 + l] += x12;
+        K[696 + l] += A[0 + l]*x13;
+        K[704 + l] += x14;
+        K[712 + l] += x15;
+        K[720 + l] += A[8 + l]*t[16 + l]*t[56 + l] - x2;
+        K[728 + l] += A[32 + l]*t[16 + l]*t[56 + l] - x4;
+        K[736 + l] += A[56 + l]*t[16 + l]*t[56 + l] - x5;
+        K[744 + l] += A[16 + l]*t[16 + l]*t[56 + l] - x7;
+        K[752 + l] += A[40 + l]*t[16 + l]*t[56 + l] - x8;
+        K[760 + l] += A[64 + l]*t[16 + l]*t[56 + l] - x9;
+        K[800 + l] += A[192 + l]*x0;
+        K[808 + l] += A[216 + l]*x0;
+        K[816 + l] += A[88 + l]*x3 + x4;
+        K[824 + l] += A[200 + l]*x3 + x16;
+        K[832 + l] += A[224 + l]*x3 + x17;
+        K[840 + l] += A[144 + l]*x3 + x8;
+        K[848 + l] += A[208 + l]*x3 + x18;
+        K[856 + l] += A[232 + l]*x3 + x19;
+        K[864 + l] += x11;
+        K[872 + l] += -A[192 + l]*x10;
+        K[880 + l] += x20;
+        K[888 + l] += x14;
+        K[896 + l] += A[192 + l]*x13;
+        K[904 + l] += x21;
+        K[912 + l] += A[88 + l]*x22 - x4;
+        K[920 + l] += A[200 + l]*t[16 + l]*t[56 + l] - x16;
+        K[928 + l] += A[224 + l]*t[16 + l]*t[56 + l] - x17;
+        K[936 + l] += A[144 + l]*x22 - x8;
+        K[944 + l] += A[208 + l]*t[16 + l]*t[56 + l] - x18;
+        K[952 + l] += A[232 + l]*t[16 + l]*t[56 + l] - x19;
+        K[1000 + l] += A[312 + l]*x0;
+        K[1008 + l] += A[112 + l]*x3 + x5;
+        K[1016 + l] += A[256 + l]*x3 + x17;
+        K[1024 + l] += A[320 + l]*x3 + x23;
+        K[1032 + l] += A[168 + l]*x3 + x9;
+        K[1040 + l] += A[288 + l]*x3 + x19;
+        K[1048 + l] += A[328 + l]*x3 + x24;
+        K[1056 + l] += x12;
+        K[1064 + l] += x20;
+        K[1072 + l] += -A[312 + l]*x10;
+        K[1080 + l] += x15;
+        K[1088 + l] += x21;
+        K[1096 + l] += A[312 + l]*x13;
+        K[1104 + l] += A[112 + l]*x22 - x5;
+        K[1112 + l] += A[256 + l]*t[16 + l]*t[56 + l] - x17;
+        K[1120 + l] += A[320 + l]*t[16 + l]*t[56 + l] - x23;
+        K[1128 + l] += A[168 + l]*x22 - x9;
+        K[1136 + l] += A[288 + l]*t[16 + l]*t[56 + l] - x19;
+        K[1144 + l] += A[328 + l]*t[16 + l]*t[56 + l] - x24;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[24 + l]*t[24 + l]);
+        const double x1 = A[0 + l]*x0;
+        const double x2 = (t[32 + l]*t[32 + l]);
+        const double x3 = t[24 + l]*t[32 + l];
+        const double x4 = A[8 + l]*x3;
+        const double x5 = A[32 + l]*x3;
+        const double x6 = A[24 + l]*x0;
+        const double x7 = A[88 + l]*x3 + x6;
+        const double x8 = A[56 + l]*x3;
+        const double x9 = A[48 + l]*x0;
+        const double x10 = A[112 + l]*x3 + x9;
+        const double x11 = t[24 + l]*t[40 + l];
+        const double x12 = t[32 + l]*t[40 + l];
+        const double x13 = A[0 + l]*x11 + A[8 + l]*x12;
+        const double x14 = A[24 + l]*x11;
+        const double x15 = A[88 + l]*x12 + x14;
+        const double x16 = A[48 + l]*x11;
+        const double x17 = A[112 + l]*x12 + x16;
+        const double x18 = t[8 + l]*t[24 + l];
+        const double x19 = t[8 + l]*t[32 + l];
+        const double x20 = A[24 + l]*x18;
+        const double x21 = A[48 + l]*x18;
+        const double x22 = t[24 + l]*t[48 + l];
+        const double x23 = t[32 + l]*t[48 + l];
+        const double x24 = A[24 + l]*x22;
+        const double x25 = A[48 + l]*x22;
+        const double x26 = A[192 + l]*x0;
+        const double x27 = A[200 + l]*x3;
+        const double x28 = A[224 + l]*x3;
+        const double x29 = A[216 + l]*x0;
+        const double x30 = A[256 + l]*x3 + x29;
+        const double x31 = A[32 + l]*x12;
+        const double x32 = A[192 + l]*x11 + A[200 + l]*x12;
+        const double x33 = A[216 + l]*x11;
+        const double x34 = A[256 + l]*x12 + x33;
+        const double x35 = A[216 + l]*x18;
+        const double x36 = A[216 + l]*x22;
+        const double x37 = t[24 + l]*t[56 + l];
+        const double x38 = t[32 + l]*t[56 + l];
+        const double x39 = -A[264 + l]*t[32 + l]*t[56 + l];
+        const double x40 = A[312 + l]*x0;
+        const double x41 = A[320 + l]*x3;
+        const double x42 = A[56 + l]*x12;
+        const double x43 = A[224 + l]*x12 + x33;
+        const double x44 = A[312 + l]*x11 + A[320 + l]*x12;
+        K[1200 + l] += A[72 + l]*x2 + x1 + 2.0*x4;
+        K[1208 + l] += A[96 + l]*x2 + x5 + x7;
+        K[1216 + l] += A[120 + l]*x2 + x10 + x8;
+        K[1224 + l] += A[80 + l]*x2 + A[16 + l]*x3 + x13;
+        K[1232 + l] += A[104 + l]*x2 + A[40 + l]*x3 + x15;
+        K[1240 + l] += A[128 + l]*x2 + A[64 + l]*x3 + x17;
+        K[1248 + l] += -A[0 + l]*x18 - A[8 + l]*x19;
+        K[1256 + l] += -A[88 + l]*x19 - x20;
+        K[1264 + l] += -A[112 + l]*x19 - x21;
+        K[1272 + l] += A[0 + l]*x22 + A[8 + l]*x23;
+        K[1280 + l] += A[88 + l]*x23 + x24;
+        K[1288 + l] += A[112 + l]*x23 + x25;
+        K[1296 + l] += A[8 + l]*t[24 + l]*t[56 + l] + A[72 + l]*t[32 + l]*t[56 + l] - x1 - x4;
+        K[1304 + l] += A[96 + l]*t[32 + l]*t[56 + l] + A[32 + l]*t[24 + l]*t[56 + l] - x7;
+        K[1312 + l] += A[120 + l]*t[32 + l]*t[56 + l] + A[56 + l]*t[24 + l]*t[56 + l] - x10;
+        K[1320 + l] += A[80 + l]*t[32 + l]*t[56 + l] + A[16 + l]*t[24 + l]*t[56 + l] - x13;
+        K[1328 + l] += A[104 + l]*t[32 + l]*t[56 + l] + A[40 + l]*t[24 + l]*t[56 + l] - x15;
+        K[1336 + l] += A[128 + l]*t[32 + l]*t[56 + l] + A[64 + l]*t[24 + l]*t[56 + l] - x17;
+        K[1400 + l] += A[240 + l]*x2 + x26 + 2.0*x27;
+        K[1408 + l] += A[264 + l]*x2 + x28 + x30;
+        K[1416 + l] += A[144 + l]*x3 + A[152 + l]*x2 + x14 + x31;
+        K[1424 + l] += A[208 + l]*x3 + A[248 + l]*x2 + x32;
+        K[1432 + l] += A[232 + l]*x3 + A[272 + l]*x2 + x34;
+        K[1440 + l] += -A[32 + l]*x19 - x20;
+        K[1448 + l] += -A[192 + l]*x18 - A[200 + l]*x19;
+        K[1456 + l] += -A[256 + l]*x19 - x35;
+        K[1464 + l] += A[32 + l]*x23 + x24;
+        K[1472 + l] += A[192 + l]*x22 + A[200 + l]*x23;
+        K[1480 + l] += A[256 + l]*x23 + x36;
+        K[1488 + l] += A[88 + l]*x37 + A[96 + l]*x38 - x5 - x6;
+        K[1496 + l] += A[200 + l]*t[24 + l]*t[56 + l] + A[240 + l]*t[32 + l]*t[56 + l] - x26 - x27;
+        K[1504 + l] += A[224 + l]*t[24 + l]*t[56 + l] - x30 - x39;
+        K[1512 + l] += A[144 + l]*x37 + A[152 + l]*x38 - x14 - x31;
+        K[1520 + l] += A[208 + l]*t[24 + l]*t[56 + l] + A[248 + l]*t[32 + l]*t[56 + l] - x32;
+        K[1528 + l] += A[232 + l]*t[24 + l]*t[56 + l] + A[272 + l]*t[32 + l]*t[56 + l] - x34;
+        K[1600 + l] += A[336 + l]*x2 + x40 + 2.0*x41;
+        K[1608 + l] += A[168 + l]*x3 + A[176 + l]*x2 + x16 + x42;
+        K[1616 + l] += A[288 + l]*x3 + A[296 + l]*x2 + x43;
+        K[1624 + l] += A[328 + l]*x3 + A[344 + l]*x2 + x44;
+        K[1632 + l] += -A[56 + l]*x19 - x21;
+        K[1640 + l] += -A[224 + l]*x19 - x35;
+        K[1648 + l] += -A[312 + l]*x18 - A[320 + l]*x19;
+        K[1656 + l] += A[56 + l]*x23 + x25;
+        K[1664 + l] += A[224 + l]*x23 + x36;
+        K[1672 + l] += A[312 + l]*x22 + A[320 + l]*x23;
+        K[1680 + l] += A[112 + l]*x37 + A[120 + l]*x38 - x8 - x9;
+        K[1688 + l] += A[256 + l]*t[24 + l]*t[56 + l] - x28 - x29 - x39;
+        K[1696 + l] += A[320 + l]*t[24 + l]*t[56 + l] + A[336 + l]*t[32 + l]*t[56 + l] - x40 - x41;
+        K[1704 + l] += A[168 + l]*x37 + A[176 + l]*x38 - x16 - x42;
+        K[1712 + l] += A[288 + l]*t[24 + l]*t[56 + l] + A[296 + l]*t[32 + l]*t[56 + l] - x43;
+        K[1720 + l] += A[328 + l]*t[24 + l]*t[56 + l] + A[344 + l]*t[32 + l]*t[56 + l] - x44;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[40 + l]*t[40 + l]);
+        const double x1 = A[0 + l]*x0;
+        const double x2 = (t[32 + l]*t[32 + l]);
+        const double x3 = t[32 + l]*t[40 + l];
+        const double x4 = A[16 + l]*x3;
+        const double x5 = A[40 + l]*x3;
+        const double x6 = A[24 + l]*x0;
+        const double x7 = A[144 + l]*x3 + x6;
+        const double x8 = A[64 + l]*x3;
+        const double x9 = A[48 + l]*x0;
+        const double x10 = A[168 + l]*x3 + x9;
+        const double x11 = t[8 + l]*t[40 + l];
+        const double x12 = t[8 + l]*t[32 + l];
+        const double x13 = A[24 + l]*x11;
+        const double x14 = A[48 + l]*x11;
+        const double x15 = t[40 + l]*t[48 + l];
+        const double x16 = t[32 + l]*t[48 + l];
+        const double x17 = A[24 + l]*x15;
+        const double x18 = A[48 + l]*x15;
+        const double x19 = t[24 + l]*t[40 + l];
+        const double x20 = t[24 + l]*t[32 + l];
+        const double x21 = A[24 + l]*x19;
+        const double x22 = A[48 + l]*x19;
+        const double x23 = A[192 + l]*x0;
+        const double x24 = A[208 + l]*x3;
+        const double x25 = A[232 + l]*x3;
+        const double x26 = A[216 + l]*x0;
+        const double x27 = A[288 + l]*x3 + x26;
+        const double x28 = A[216 + l]*x11;
+        const double x29 = A[216 + l]*x15;
+        const double x30 = t[40 + l]*t[56 + l];
+        const double x31 = t[32 + l]*t[56 + l];
+        const double x32 = A[216 + l]*x19;
+        const double x33 = -A[304 + l]*t[32 + l]*t[56 + l];
+        const double x34 = A[312 + l]*x0;
+        const double x35 = A[328 + l]*x3;
+        K[1800 + l] += A[136 + l]*x2 + x1 + 2.0*x4;
+        K[1808 + l] += A[160 + l]*x2 + x5 + x7;
+        K[1816 + l] += A[184 + l]*x2 + x10 + x8;
+        K[1824 + l] += -A[0 + l]*x11 - A[16 + l]*x12;
+        K[1832 + l] += -A[144 + l]*x12 - x13;
+        K[1840 + l] += -A[168 + l]*x12 - x14;
+        K[1848 + l] += A[0 + l]*x15 + A[16 + l]*x16;
+        K[1856 + l] += A[144 + l]*x16 + x17;
+        K[1864 + l] += A[168 + l]*x16 + x18;
+        K[1872 + l] += -A[0 + l]*x19 + A[80 + l]*t[32 + l]*t[56 + l] + A[8 + l]*t[40 + l]*t[56 + l] - A[16 + l]*x20;
+        K[1880 + l] += -A[144 + l]*x20 + A[152 + l]*t[32 + l]*t[56 + l] + A[32 + l]*t[40 + l]*t[56 + l] - x21;
+        K[1888 + l] += -A[168 + l]*x20 + A[176 + l]*t[32 + l]*t[56 + l] + A[56 + l]*t[40 + l]*t[56 + l] - x22;
+        K[1896 + l] += A[136 + l]*t[32 + l]*t[56 + l] + A[16 + l]*t[40 + l]*t[56 + l] - x1 - x4;
+        K[1904 + l] += A[160 + l]*t[32 + l]*t[56 + l] + A[40 + l]*t[40 + l]*t[56 + l] - x7;
+        K[1912 + l] += A[184 + l]*t[32 + l]*t[56 + l] + A[64 + l]*t[40 + l]*t[56 + l] - x10;
+        K[2000 + l] += A[280 + l]*x2 + x23 + 2.0*x24;
+        K[2008 + l] += A[304 + l]*x2 + x25 + x27;
+        K[2016 + l] += -A[40 + l]*x12 - x13;
+        K[2024 + l] += -A[192 + l]*x11 - A[208 + l]*x12;
+        K[2032 + l] += -A[288 + l]*x12 - x28;
+        K[2040 + l] += A[40 + l]*x16 + x17;
+        K[2048 + l] += A[192 + l]*x15 + A[208 + l]*x16;
+        K[2056 + l] += A[288 + l]*x16 + x29;
+        K[2064 + l] += A[88 + l]*x30 + A[104 + l]*x31 - A[40 + l]*x20 - x21;
+        K[2072 + l] += -A[192 + l]*x19 + A[200 + l]*t[40 + l]*t[56 + l] - A[208 + l]*x20 + A[248 + l]*t[32 + l]*t[56 + l];
+        K[2080 + l] += A[224 + l]*t[40 + l]*t[56 + l] - A[288 + l]*x20 + A[296 + l]*t[32 + l]*t[56 + l] - x32;
+        K[2088 + l] += A[144 + l]*x30 + A[160 + l]*x31 - x5 - x6;
+        K[2096 + l] += A[208 + l]*t[40 + l]*t[56 + l] + A[280 + l]*t[32 + l]*t[56 + l] - x23 - x24;
+        K[2104 + l] += A[232 + l]*t[40 + l]*t[56 + l] - x27 - x33;
+        K[2200 + l] += A[352 + l]*x2 + x34 + 2.0*x35;
+        K[2208 + l] += -A[64 + l]*x12 - x14;
+        K[2216 + l] += -A[232 + l]*x12 - x28;
+        K[2224 + l] += -A[312 + l]*x11 - A[328 + l]*x12;
+        K[2232 + l] += A[64 + l]*x16 + x18;
+        K[2240 + l] += A[232 + l]*x16 + x29;
+        K[2248 + l] += A[312 + l]*x15 + A[328 + l]*x16;
+        K[2256 + l] += A[112 + l]*x30 + A[128 + l]*x31 - A[64 + l]*x20 - x22;
+        K[2264 + l] += -A[232 + l]*x20 + A[256 + l]*t[40 + l]*t[56 + l] + A[272 + l]*t[32 + l]*t[56 + l] - x32;
+        K[2272 + l] += -A[312 + l]*x19 + A[320 + l]*t[40 + l]*t[56 + l] - A[328 + l]*x20 + A[344 + l]*t[32 + l]*t[56 + l];
+        K[2280 + l] += A[168 + l]*x30 + A[184 + l]*x31 - x8 - x9;
+        K[2288 + l] += A[288 + l]*t[40 + l]*t[56 + l] - x25 - x26 - x33;
+        K[2296 + l] += A[328 + l]*t[40 + l]*t[56 + l] + A[352 + l]*t[32 + l]*t[56 + l] - x34 - x35;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[8 + l]*t[8 + l]);
+        const double x1 = t[8 + l]*t[48 + l];
+        const double x2 = -A[24 + l]*x1;
+        const double x3 = -A[48 + l]*x1;
+        const double x4 = t[8 + l]*t[24 + l];
+        const double x5 = t[8 + l]*t[56 + l];
+        const double x6 = t[8 + l]*t[40 + l];
+        const double x7 = -A[216 + l]*x1;
+        const double x8 = A[216 + l]*x4;
+        const double x9 = A[216 + l]*x6;
+        K[2400 + l] += A[0 + l]*x0;
+        K[2408 + l] += A[24 + l]*x0;
+        K[2416 + l] += A[48 + l]*x0;
+        K[2424 + l] += -A[0 + l]*x1;
+        K[2432 + l] += x2;
+        K[2440 + l] += x3;
+        K[2448 + l] += A[0 + l]*x4 - A[8 + l]*x5;
+        K[2456 + l] += A[24 + l]*x4 - A[32 + l]*x5;
+        K[2464 + l] += A[48 + l]*x4 - A[56 + l]*x5;
+        K[2472 + l] += A[0 + l]*x6 - A[16 + l]*x5;
+        K[2480 + l] += A[24 + l]*x6 - A[40 + l]*x5;
+        K[2488 + l] += A[48 + l]*x6 - A[64 + l]*x5;
+        K[2600 + l] += A[192 + l]*x0;
+        K[2608 + l] += A[216 + l]*x0;
+        K[2616 + l] += x2;
+        K[2624 + l] += -A[192 + l]*x1;
+        K[2632 + l] += x7;
+        K[2640 + l] += -A[88 + l]*x5 + A[24 + l]*t[8 + l]*t[24 + l];
+        K[2648 + l] += A[192 + l]*x4 - A[200 + l]*x5;
+        K[2656 + l] += -A[224 + l]*x5 + x8;
+        K[2664 + l] += -A[144 + l]*x5 + A[24 + l]*t[8 + l]*t[40 + l];
+        K[2672 + l] += A[192 + l]*x6 - A[208 + l]*x5;
+        K[2680 + l] += -A[232 + l]*x5 + x9;
+        K[2800 + l] += A[312 + l]*x0;
+        K[2808 + l] += x3;
+        K[2816 + l] += x7;
+        K[2824 + l] += -A[312 + l]*x1;
+        K[2832 + l] += -A[112 + l]*x5 + A[48 + l]*t[8 + l]*t[24 + l];
+        K[2840 + l] += -A[256 + l]*x5 + x8;
+        K[2848 + l] += A[312 + l]*x4 - A[320 + l]*x5;
+        K[2856 + l] += -A[168 + l]*x5 + A[48 + l]*t[8 + l]*t[40 + l];
+        K[2864 + l] += -A[288 + l]*x5 + x9;
+        K[2872 + l] += A[312 + l]*x6 - A[328 + l]*x5;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[48 + l]*t[48 + l]);
+        const double x1 = t[24 + l]*t[48 + l];
+        const double x2 = A[24 + l]*x1;
+        const double x3 = A[48 + l]*x1;
+        const double x4 = t[40 + l]*t[48 + l];
+        const double x5 = A[24 + l]*x4;
+        const double x6 = A[48 + l]*x4;
+        const double x7 = t[48 + l]*t[56 + l];
+        const double x8 = A[216 + l]*x1;
+        const double x9 = A[216 + l]*x4;
+        K[3000 + l] += A[0 + l]*x0;
+        K[3008 + l] += A[24 + l]*x0;
+        K[3016 + l] += A[48 + l]*x0;
+        K[3024 + l] += -A[0 + l]*x1 + A[8 + l]*t[48 + l]*t[56 + l];
+        K[3032 + l] += A[32 + l]*t[48 + l]*t[56 + l] - x2;
+        K[3040 + l] += A[56 + l]*t[48 + l]*t[56 + l] - x3;
+        K[3048 + l] += -A[0 + l]*x4 + A[16 + l]*t[48 + l]*t[56 + l];
+        K[3056 + l] += A[40 + l]*t[48 + l]*t[56 + l] - x5;
+        K[3064 + l] += A[64 + l]*t[48 + l]*t[56 + l] - x6;
+        K[3200 + l] += A[192 + l]*x0;
+        K[3208 + l] += A[216 + l]*x0;
+        K[3216 + l] += A[88 + l]*x7 - x2;
+        K[3224 + l] += -A[192 + l]*x1 + A[200 + l]*t[48 + l]*t[56 + l];
+        K[3232 + l] += A[224 + l]*t[48 + l]*t[56 + l] - x8;
+        K[3240 + l] += A[144 + l]*x7 - x5;
+        K[3248 + l] += -A[192 + l]*x4 + A[208 + l]*t[48 + l]*t[56 + l];
+        K[3256 + l] += A[232 + l]*t[48 + l]*t[56 + l] - x9;
+        K[3400 + l] += A[312 + l]*x0;
+        K[3408 + l] += A[112 + l]*x7 - x3;
+        K[3416 + l] += A[256 + l]*t[48 + l]*t[56 + l] - x8;
+        K[3424 + l] += -A[312 + l]*x1 + A[320 + l]*t[48 + l]*t[56 + l];
+        K[3432 + l] += A[168 + l]*x7 - x6;
+        K[3440 + l] += A[288 + l]*t[48 + l]*t[56 + l] - x9;
+        K[3448 + l] += -A[312 + l]*x4 + A[328 + l]*t[48 + l]*t[56 + l];
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[24 + l]*t[24 + l]);
+        const double x1 = (t[56 + l]*t[56 + l]);
+        const double x2 = t[24 + l]*t[56 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[24 + l]*t[40 + l];
+        const double x5 = t[40 + l]*t[56 + l];
+        const double x6 = -A[24 + l]*t[24 + l]*t[40 + l];
+        const double x7 = -A[48 + l]*t[24 + l]*t[40 + l];
+        const double x8 = A[216 + l]*x4;
+        K[3600 + l] += A[0 + l]*x0 - A[8 + l]*x3 + A[72 + l]*x1;
+        K[3608 + l] += -A[88 + l]*x2 + A[96 + l]*x1 + A[24 + l]*x0 - A[32 + l]*x2;
+        K[3616 + l] += -A[112 + l]*x2 + A[120 + l]*x1 + A[48 + l]*x0 - A[56 + l]*x2;
+        K[3624 + l] += A[0 + l]*x4 + A[80 + l]*x1 - A[8 + l]*x5 - A[16 + l]*x2;
+        K[3632 + l] += -A[88 + l]*x5 + A[104 + l]*x1 - A[40 + l]*x2 - x6;
+        K[3640 + l] += -A[112 + l]*x5 + A[128 + l]*x1 - A[64 + l]*x2 - x7;
+        K[3800 + l] += A[192 + l]*x0 - A[200 + l]*x3 + A[240 + l]*x1;
+        K[3808 + l] += A[216 + l]*x0 - A[224 + l]*x2 - A[256 + l]*x2 + A[264 + l]*x1;
+        K[3816 + l] += -A[144 + l]*x2 + A[152 + l]*x1 - A[32 + l]*x5 - x6;
+        K[3824 + l] += A[192 + l]*x4 - A[200 + l]*x5 - A[208 + l]*x2 + A[248 + l]*x1;
+        K[3832 + l] += -A[232 + l]*x2 - A[256 + l]*x5 + A[272 + l]*x1 + x8;
+        K[4000 + l] += A[312 + l]*x0 - A[320 + l]*x3 + A[336 + l]*x1;
+        K[4008 + l] += -A[168 + l]*x2 + A[176 + l]*x1 - A[56 + l]*x5 - x7;
+        K[4016 + l] += -A[224 + l]*x5 - A[288 + l]*x2 + A[296 + l]*x1 + x8;
+        K[4024 + l] += A[312 + l]*x4 - A[320 + l]*x5 - A[328 + l]*x2 + A[344 + l]*x1;
+    }
+}
+
+static BK_NOINLINE void ancf3243_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[40 + l]*t[40 + l]);
+        const double x1 = (t[56 + l]*t[56 + l]);
+        const double x2 = t[40 + l]*t[56 + l];
+        const double x3 = 2.0*x2;
+        K[4200 + l] += A[0 + l]*x0 + A[136 + l]*x1 - A[16 + l]*x3;
+        K[4208 + l] += -A[144 + l]*x2 + A[160 + l]*x1 + A[24 + l]*x0 - A[40 + l]*x2;
+        K[4216 + l] += -A[168 + l]*x2 + A[184 + l]*x1 + A[48 + l]*x0 - A[64 + l]*x2;
+        K[4400 + l] += A[192 + l]*x0 - A[208 + l]*x3 + A[280 + l]*x1;
+        K[4408 + l] += A[216 + l]*x0 - A[232 + l]*x2 - A[288 + l]*x2 + A[304 + l]*x1;
+        K[4600 + l] += A[312 + l]*x0 - A[328 + l]*x3 + A[352 + l]*x1;
+    }
+}
+
+void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    ancf3243_contract_lanes_row0(A, t, K);
+    ancf3243_contract_lanes_row1(A, t, K);
+    ancf3243_contract_lanes_row2(A, t, K);
+    ancf3243_contract_lanes_row3(A, t, K);
+    ancf3243_contract_lanes_row4(A, t, K);
+    ancf3243_contract_lanes_row5(A, t, K);
+    ancf3243_contract_lanes_row6(A, t, K);
+    ancf3243_contract_lanes_row7(A, t, K);
 }
 
 static const double node_xi[2] = {0.0, 1.0};

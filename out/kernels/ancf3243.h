@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:3bddf7124d21c8652068e6432cc4ba3b2237b377e2c23b051e38ea44784de8d0
+ * input hash: sha256:c70e31e30c8222e2b20401c5b2e8050cca8be09d2a638547664b0fddadc745c5
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -38,5 +38,7 @@ void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, c
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 1347 (653 add, 694 mul, 0 div, 0 call) operations. */
 void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
+/* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
+void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

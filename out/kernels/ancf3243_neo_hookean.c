@@ -3,8 +3,16 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#endif
+
+/* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
+#if defined(__GLIBC__) && defined(__x86_64__)
+#pragma omp declare simd notinbranch
+double log(double);
+#pragma omp declare simd notinbranch
+double pow(double, double);
 #endif
 
 double ancf3243_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -117,6 +125,84 @@ void ancf3243_neo_hookean_full_force(const double *restrict q, const double *res
             f[21] += P02*t[7] - x17;
             f[22] += P12*t[7] - x18;
             f[23] += P22*t[7] - x19;
+        }
+    }
+}
+
+void ancf3243_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 192; ++i) f[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 8 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double cof00 = F11*F22 - F12*F21;
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x9 = (1.0/J);
+                const double W_J = t[0 + l]*(mat[0 + l]*x9*log(J) - mat[8 + l]*x9);
+                const double W_I1 = 0.5*mat[8 + l]*t[0 + l];
+                const double x10 = 2.0*W_I1;
+                const double P00 = F00*x10 + W_J*cof00;
+                const double x11 = P00*t[8 + l];
+                const double P10 = F10*x10 + W_J*cof10;
+                const double x12 = P10*t[8 + l];
+                const double P20 = F20*x10 + W_J*cof20;
+                const double x13 = P20*t[8 + l];
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x10 + W_J*cof01;
+                const double x14 = P00*t[24 + l];
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x10 + W_J*cof11;
+                const double x15 = P10*t[24 + l];
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x10 + W_J*cof21;
+                const double x16 = P20*t[24 + l];
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x10 + W_J*cof02;
+                const double x17 = P00*t[40 + l];
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x10 + W_J*cof12;
+                const double x18 = P10*t[40 + l];
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x10 + W_J*cof22;
+                const double x19 = P20*t[40 + l];
+                f[0 + l] += x11;
+                f[8 + l] += x12;
+                f[16 + l] += x13;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x14;
+                f[56 + l] += P11*t[32 + l] + x15;
+                f[64 + l] += P21*t[32 + l] + x16;
+                f[72 + l] += P02*t[32 + l] + x17;
+                f[80 + l] += P12*t[32 + l] + x18;
+                f[88 + l] += P22*t[32 + l] + x19;
+                f[96 + l] += -x11;
+                f[104 + l] += -x12;
+                f[112 + l] += -x13;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x14;
+                f[152 + l] += P11*t[56 + l] - x15;
+                f[160 + l] += P21*t[56 + l] - x16;
+                f[168 + l] += P02*t[56 + l] - x17;
+                f[176 + l] += P12*t[56 + l] - x18;
+                f[184 + l] += P22*t[56 + l] - x19;
+            }
         }
     }
 }
@@ -262,6 +348,154 @@ void ancf3243_neo_hookean_full_force_tangent(const double *restrict q, const dou
     }
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
+}
+
+void ancf3243_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 192; ++i) f[i] = 0.0;
+    for (int r = 0; r < 24; ++r)
+        for (int i = r * 25 * 8; i < (r + 1) * 24 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 8 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double cof00 = F11*F22 - F12*F21;
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x9 = (1.0/J);
+                const double x10 = mat[0 + l]*log(J);
+                const double W_J = t[0 + l]*(-mat[8 + l]*x9 + x10*x9);
+                const double W_I1 = 0.5*mat[8 + l]*t[0 + l];
+                const double x11 = 2.0*W_I1;
+                const double P00 = F00*x11 + W_J*cof00;
+                const double x12 = P00*t[8 + l];
+                const double P10 = F10*x11 + W_J*cof10;
+                const double x13 = P10*t[8 + l];
+                const double P20 = F20*x11 + W_J*cof20;
+                const double x14 = P20*t[8 + l];
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x11 + W_J*cof01;
+                const double x15 = P00*t[24 + l];
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x11 + W_J*cof11;
+                const double x16 = P10*t[24 + l];
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x11 + W_J*cof21;
+                const double x17 = P20*t[24 + l];
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x11 + W_J*cof02;
+                const double x18 = P00*t[40 + l];
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x11 + W_J*cof12;
+                const double x19 = P10*t[40 + l];
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x11 + W_J*cof22;
+                const double x20 = P20*t[40 + l];
+                const double W_J_J = (t[0 + l]*(mat[0 + l] + mat[8 + l] - x10)/((J*J)));
+                const double x21 = W_J_J*cof00;
+                const double x22 = F22*W_J;
+                const double x23 = F21*W_J;
+                const double x24 = F12*W_J;
+                const double x25 = F11*W_J;
+                const double x26 = W_J_J*cof01;
+                const double x27 = F20*W_J;
+                const double x28 = F10*W_J;
+                const double x29 = W_J_J*cof02;
+                const double x30 = W_J_J*cof10;
+                const double x31 = F02*W_J;
+                const double x32 = F01*W_J;
+                const double x33 = W_J_J*cof11;
+                const double x34 = F00*W_J;
+                const double x35 = W_J_J*cof12;
+                const double x36 = W_J_J*cof20;
+                f[0 + l] += x12;
+                f[8 + l] += x13;
+                f[16 + l] += x14;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x15;
+                f[56 + l] += P11*t[32 + l] + x16;
+                f[64 + l] += P21*t[32 + l] + x17;
+                f[72 + l] += P02*t[32 + l] + x18;
+                f[80 + l] += P12*t[32 + l] + x19;
+                f[88 + l] += P22*t[32 + l] + x20;
+                f[96 + l] += -x12;
+                f[104 + l] += -x13;
+                f[112 + l] += -x14;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x15;
+                f[152 + l] += P11*t[56 + l] - x16;
+                f[160 + l] += P21*t[56 + l] - x17;
+                f[168 + l] += P02*t[56 + l] - x18;
+                f[176 + l] += P12*t[56 + l] - x19;
+                f[184 + l] += P22*t[56 + l] - x20;
+                A[0 + l] = W_J_J*(cof00*cof00) + x11;
+                A[8 + l] = cof01*x21;
+                A[16 + l] = cof02*x21;
+                A[24 + l] = cof10*x21;
+                A[32 + l] = cof11*x21 + x22;
+                A[40 + l] = W_J_J*cof00*cof12 - x23;
+                A[48 + l] = cof20*x21;
+                A[56 + l] = W_J_J*cof00*cof21 - x24;
+                A[64 + l] = cof22*x21 + x25;
+                A[72 + l] = W_J_J*(cof01*cof01) + x11;
+                A[80 + l] = cof02*x26;
+                A[88 + l] = W_J_J*cof01*cof10 - x22;
+                A[96 + l] = cof11*x26;
+                A[104 + l] = cof12*x26 + x27;
+                A[112 + l] = cof20*x26 + x24;
+                A[120 + l] = cof21*x26;
+                A[128 + l] = W_J_J*cof01*cof22 - x28;
+                A[136 + l] = W_J_J*(cof02*cof02) + x11;
+                A[144 + l] = cof10*x29 + x23;
+                A[152 + l] = W_J_J*cof02*cof11 - x27;
+                A[160 + l] = cof12*x29;
+                A[168 + l] = W_J_J*cof02*cof20 - x25;
+                A[176 + l] = cof21*x29 + x28;
+                A[184 + l] = cof22*x29;
+                A[192 + l] = W_J_J*(cof10*cof10) + x11;
+                A[200 + l] = cof11*x30;
+                A[208 + l] = cof12*x30;
+                A[216 + l] = cof20*x30;
+                A[224 + l] = cof21*x30 + x31;
+                A[232 + l] = W_J_J*cof10*cof22 - x32;
+                A[240 + l] = W_J_J*(cof11*cof11) + x11;
+                A[248 + l] = cof12*x33;
+                A[256 + l] = W_J_J*cof11*cof20 - x31;
+                A[264 + l] = cof21*x33;
+                A[272 + l] = cof22*x33 + x34;
+                A[280 + l] = W_J_J*(cof12*cof12) + x11;
+                A[288 + l] = cof20*x35 + x32;
+                A[296 + l] = W_J_J*cof12*cof21 - x34;
+                A[304 + l] = cof22*x35;
+                A[312 + l] = W_J_J*(cof20*cof20) + x11;
+                A[320 + l] = cof21*x36;
+                A[328 + l] = cof22*x36;
+                A[336 + l] = W_J_J*(cof21*cof21) + x11;
+                A[344 + l] = W_J_J*cof21*cof22;
+                A[352 + l] = W_J_J*(cof22*cof22) + x11;
+            }
+            ancf3243_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 24; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
 }
 
 double ancf3243_neo_hookean_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -572,6 +806,214 @@ void ancf3243_neo_hookean_sri_force(const double *restrict q, const double *rest
             f[21] += P02*t[7] - x38;
             f[22] += P12*t[7] - x39;
             f[23] += P22*t[7] - x40;
+        }
+    }
+}
+
+void ancf3243_neo_hookean_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 192; ++i) f[i] = 0.0;
+    {   /* energy part "full_order": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 8 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x23 = 0.5*mat[8 + l];
+                const double x9 = mat[0 + l] + mat[8 + l];
+                const double x10 = 0.5*mat[0 + l];
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double C01 = F00*F01 + F10*F11 + F20*F21;
+                const double x27 = mat[8 + l]*t[0 + l];
+                const double W_C01 = C01*x27;
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double C02 = F00*F02 + F10*F12 + F20*F22;
+                const double W_C02 = C02*x27;
+                const double x0 = (F00*F00);
+                const double x1 = (F10*F10);
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double x24 = (1.0/C00);
+                const double ulat0 = pow(C00, -(x10/x9));
+                const double x11 = (sqrt(C00));
+                const double x12 = mat[0 + l]*log(ulat0*x11);
+                const double x13 = (1.0/ulat0);
+                const double ulat1 = -((ulat0*ulat0)*(-mat[8 + l]*x13 + mat[8 + l] + x12*x13)/(-x12 + x9)) + ulat0;
+                const double x14 = mat[0 + l]*log(ulat1*x11);
+                const double x15 = (1.0/ulat1);
+                const double ulat2 = -((ulat1*ulat1)*(-mat[8 + l]*x15 + mat[8 + l] + x14*x15)/(-x14 + x9)) + ulat1;
+                const double x16 = mat[0 + l]*log(ulat2*x11);
+                const double x17 = (1.0/ulat2);
+                const double ulat3 = -((ulat2*ulat2)*(-mat[8 + l]*x17 + mat[8 + l] + x16*x17)/(-x16 + x9)) + ulat2;
+                const double x18 = mat[0 + l]*log(ulat3*x11);
+                const double x19 = (1.0/ulat3);
+                const double ulat4 = -((ulat3*ulat3)*(-mat[8 + l]*x19 + mat[8 + l] + x18*x19)/(-x18 + x9)) + ulat3;
+                const double x20 = mat[0 + l]*log(ulat4*x11);
+                const double x21 = (1.0/ulat4);
+                const double ulat5 = -((ulat4*ulat4)*(-mat[8 + l]*x21 + mat[8 + l] + x20*x21)/(-x20 + x9)) + ulat4;
+                const double x22 = log(ulat5*x11);
+                const double x25 = mat[0 + l]*x22;
+                const double Uax1 = -x23*x24 + x23 + 0.5*x24*x25;
+                const double W_C00 = Uax1*t[0 + l];
+                const double x28 = 2.0*W_C00;
+                const double P00 = F00*x28 + F01*W_C01 + F02*W_C02;
+                const double x29 = P00*t[8 + l];
+                const double P10 = F10*x28 + F11*W_C01 + F12*W_C02;
+                const double x30 = P10*t[8 + l];
+                const double P20 = F20*x28 + F21*W_C01 + F22*W_C02;
+                const double x31 = P20*t[8 + l];
+                const double P01 = F00*W_C01;
+                const double x32 = P00*t[24 + l];
+                const double P11 = F10*W_C01;
+                const double x33 = P10*t[24 + l];
+                const double P21 = F20*W_C01;
+                const double x34 = P20*t[24 + l];
+                const double P02 = F00*W_C02;
+                const double x35 = P00*t[40 + l];
+                const double P12 = F10*W_C02;
+                const double x36 = P10*t[40 + l];
+                const double P22 = F20*W_C02;
+                const double x37 = P20*t[40 + l];
+                f[0 + l] += x29;
+                f[8 + l] += x30;
+                f[16 + l] += x31;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x32;
+                f[56 + l] += P11*t[32 + l] + x33;
+                f[64 + l] += P21*t[32 + l] + x34;
+                f[72 + l] += P02*t[32 + l] + x35;
+                f[80 + l] += P12*t[32 + l] + x36;
+                f[88 + l] += P22*t[32 + l] + x37;
+                f[96 + l] += -x29;
+                f[104 + l] += -x30;
+                f[112 + l] += -x31;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x32;
+                f[152 + l] += P11*t[56 + l] - x33;
+                f[160 + l] += P21*t[56 + l] - x34;
+                f[168 + l] += P02*t[56 + l] - x35;
+                f[176 + l] += P12*t[56 + l] - x36;
+                f[184 + l] += P22*t[56 + l] - x37;
+            }
+        }
+    }
+    {   /* energy part "centreline": 3 quadrature points */
+        for (int p = 0; p < 3; ++p) {
+            const double *restrict t = tab + (96 + 8 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x23 = 0.5*mat[8 + l];
+                const double x9 = mat[0 + l] + mat[8 + l];
+                const double x10 = 0.5*mat[0 + l];
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double x0 = (F00*F00);
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double x1 = (F10*F10);
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double x24 = (1.0/C00);
+                const double ulat0 = pow(C00, -(x10/x9));
+                const double x11 = (sqrt(C00));
+                const double x12 = mat[0 + l]*log(ulat0*x11);
+                const double x13 = (1.0/ulat0);
+                const double ulat1 = -((ulat0*ulat0)*(-mat[8 + l]*x13 + mat[8 + l] + x12*x13)/(-x12 + x9)) + ulat0;
+                const double x14 = mat[0 + l]*log(ulat1*x11);
+                const double x15 = (1.0/ulat1);
+                const double ulat2 = -((ulat1*ulat1)*(-mat[8 + l]*x15 + mat[8 + l] + x14*x15)/(-x14 + x9)) + ulat1;
+                const double x16 = mat[0 + l]*log(ulat2*x11);
+                const double x17 = (1.0/ulat2);
+                const double ulat3 = -((ulat2*ulat2)*(-mat[8 + l]*x17 + mat[8 + l] + x16*x17)/(-x16 + x9)) + ulat2;
+                const double x18 = mat[0 + l]*log(ulat3*x11);
+                const double x19 = (1.0/ulat3);
+                const double ulat4 = -((ulat3*ulat3)*(-mat[8 + l]*x19 + mat[8 + l] + x18*x19)/(-x18 + x9)) + ulat3;
+                const double x20 = mat[0 + l]*log(ulat4*x11);
+                const double x21 = (1.0/ulat4);
+                const double ulat5 = -((ulat4*ulat4)*(-mat[8 + l]*x21 + mat[8 + l] + x20*x21)/(-x20 + x9)) + ulat4;
+                const double x22 = log(ulat5*x11);
+                const double x25 = mat[0 + l]*x22;
+                const double Uax1 = -x23*x24 + x23 + 0.5*x24*x25;
+                const double W_C00 = -Uax1*t[0 + l];
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double C01 = F00*F01 + F10*F11 + F20*F21;
+                const double x28 = mat[8 + l]*t[0 + l];
+                const double W_C01 = -C01*x28;
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double C02 = F00*F02 + F10*F12 + F20*F22;
+                const double W_C02 = -C02*x28;
+                const double W_I1 = t[0 + l]*x23;
+                const double cof00 = F11*F22 - F12*F21;
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x27 = (1.0/J);
+                const double W_J = t[0 + l]*(mat[0 + l]*x27*log(J) - mat[8 + l]*x27);
+                const double x29 = 2.0*F00;
+                const double P00 = F01*W_C01 + F02*W_C02 + W_C00*x29 + W_I1*x29 + W_J*cof00;
+                const double x32 = P00*t[8 + l];
+                const double x30 = 2.0*W_I1;
+                const double x31 = 2.0*W_C00;
+                const double P10 = F10*x30 + F10*x31 + F11*W_C01 + F12*W_C02 + W_J*cof10;
+                const double x33 = P10*t[8 + l];
+                const double P20 = F20*x30 + F20*x31 + F21*W_C01 + F22*W_C02 + W_J*cof20;
+                const double x34 = P20*t[8 + l];
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F00*W_C01 + F01*x30 + W_J*cof01;
+                const double x35 = P00*t[24 + l];
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F10*W_C01 + F11*x30 + W_J*cof11;
+                const double x36 = P10*t[24 + l];
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F20*W_C01 + F21*x30 + W_J*cof21;
+                const double x37 = P20*t[24 + l];
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F00*W_C02 + F02*x30 + W_J*cof02;
+                const double x38 = P00*t[40 + l];
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F10*W_C02 + F12*x30 + W_J*cof12;
+                const double x39 = P10*t[40 + l];
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F20*W_C02 + F22*x30 + W_J*cof22;
+                const double x40 = P20*t[40 + l];
+                f[0 + l] += x32;
+                f[8 + l] += x33;
+                f[16 + l] += x34;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x35;
+                f[56 + l] += P11*t[32 + l] + x36;
+                f[64 + l] += P21*t[32 + l] + x37;
+                f[72 + l] += P02*t[32 + l] + x38;
+                f[80 + l] += P12*t[32 + l] + x39;
+                f[88 + l] += P22*t[32 + l] + x40;
+                f[96 + l] += -x32;
+                f[104 + l] += -x33;
+                f[112 + l] += -x34;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x35;
+                f[152 + l] += P11*t[56 + l] - x36;
+                f[160 + l] += P21*t[56 + l] - x37;
+                f[168 + l] += P02*t[56 + l] - x38;
+                f[176 + l] += P12*t[56 + l] - x39;
+                f[184 + l] += P22*t[56 + l] - x40;
+            }
         }
     }
 }
@@ -966,6 +1408,404 @@ void ancf3243_neo_hookean_sri_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
+void ancf3243_neo_hookean_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 192; ++i) f[i] = 0.0;
+    for (int r = 0; r < 24; ++r)
+        for (int i = r * 25 * 8; i < (r + 1) * 24 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "full_order": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 8 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x47 = 0.5*mat[8 + l];
+                const double x33 = mat[0 + l] + mat[8 + l];
+                const double x34 = 0.5*mat[0 + l];
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double x5 = F00*F01;
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double x6 = F10*F11;
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double x7 = F20*F21;
+                const double C01 = x5 + x6 + x7;
+                const double x51 = mat[8 + l]*t[0 + l];
+                const double W_C01 = C01*x51;
+                const double x11 = F00*F02;
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double x12 = F10*F12;
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double x13 = F20*F22;
+                const double C02 = x11 + x12 + x13;
+                const double W_C02 = C02*x51;
+                const double x0 = (F00*F00);
+                const double x1 = (F10*F10);
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double x48 = (1.0/C00);
+                const double ulat0 = pow(C00, -(x34/x33));
+                const double x35 = (sqrt(C00));
+                const double x36 = mat[0 + l]*log(ulat0*x35);
+                const double x37 = (1.0/ulat0);
+                const double ulat1 = -((ulat0*ulat0)*(-mat[8 + l]*x37 + mat[8 + l] + x36*x37)/(x33 - x36)) + ulat0;
+                const double x38 = mat[0 + l]*log(ulat1*x35);
+                const double x39 = (1.0/ulat1);
+                const double ulat2 = -((ulat1*ulat1)*(-mat[8 + l]*x39 + mat[8 + l] + x38*x39)/(x33 - x38)) + ulat1;
+                const double x40 = mat[0 + l]*log(ulat2*x35);
+                const double x41 = (1.0/ulat2);
+                const double ulat3 = -((ulat2*ulat2)*(-mat[8 + l]*x41 + mat[8 + l] + x40*x41)/(x33 - x40)) + ulat2;
+                const double x42 = mat[0 + l]*log(ulat3*x35);
+                const double x43 = (1.0/ulat3);
+                const double ulat4 = -((ulat3*ulat3)*(-mat[8 + l]*x43 + mat[8 + l] + x42*x43)/(x33 - x42)) + ulat3;
+                const double x44 = mat[0 + l]*log(ulat4*x35);
+                const double x45 = (1.0/ulat4);
+                const double ulat5 = -((ulat4*ulat4)*(-mat[8 + l]*x45 + mat[8 + l] + x44*x45)/(x33 - x44)) + ulat4;
+                const double x46 = log(ulat5*x35);
+                const double x49 = mat[0 + l]*x46;
+                const double Uax1 = -x47*x48 + x47 + 0.5*x48*x49;
+                const double W_C00 = Uax1*t[0 + l];
+                const double x52 = 2.0*W_C00;
+                const double P00 = F00*x52 + F01*W_C01 + F02*W_C02;
+                const double x53 = P00*t[8 + l];
+                const double P10 = F10*x52 + F11*W_C01 + F12*W_C02;
+                const double x54 = P10*t[8 + l];
+                const double P20 = F20*x52 + F21*W_C01 + F22*W_C02;
+                const double x55 = P20*t[8 + l];
+                const double P01 = F00*W_C01;
+                const double x56 = P00*t[24 + l];
+                const double P11 = F10*W_C01;
+                const double x57 = P10*t[24 + l];
+                const double P21 = F20*W_C01;
+                const double x58 = P20*t[24 + l];
+                const double P02 = F00*W_C02;
+                const double x59 = P00*t[40 + l];
+                const double P12 = F10*W_C02;
+                const double x60 = P10*t[40 + l];
+                const double P22 = F20*W_C02;
+                const double x61 = P20*t[40 + l];
+                const double W_C01_C01 = x51;
+                const double W_C02_C02 = x51;
+                const double x3 = (F01*F01);
+                const double x4 = (F02*F02);
+                const double x50 = (1.0/(C00*C00));
+                const double Uax2 = -(0.25*x50*(mat[0 + l]*mat[0 + l])/(x33 - x49)) + 0.25*x50*(mat[0 + l] + 2.0*mat[8 + l] - 2.0*x49);
+                const double W_C00_C00 = Uax2*t[0 + l];
+                const double x62 = 4.0*W_C00_C00;
+                const double x8 = F00*F10;
+                const double x9 = F01*F11;
+                const double x10 = F02*F12;
+                const double x32 = F01*F10;
+                const double x14 = F00*F20;
+                const double x15 = F01*F21;
+                const double x16 = F02*F22;
+                const double x28 = F02*F20;
+                const double x31 = F00*F11;
+                const double x29 = F00*F21;
+                const double x30 = F00*F12;
+                const double x27 = F00*F22;
+                const double x17 = (F11*F11);
+                const double x19 = (F12*F12);
+                const double x20 = F10*F20;
+                const double x21 = F11*F21;
+                const double x22 = F12*F22;
+                const double x26 = F11*F20;
+                const double x25 = F10*F21;
+                const double x24 = F10*F22;
+                const double x18 = (F21*F21);
+                const double x23 = (F22*F22);
+                f[0 + l] += x53;
+                f[8 + l] += x54;
+                f[16 + l] += x55;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x56;
+                f[56 + l] += P11*t[32 + l] + x57;
+                f[64 + l] += P21*t[32 + l] + x58;
+                f[72 + l] += P02*t[32 + l] + x59;
+                f[80 + l] += P12*t[32 + l] + x60;
+                f[88 + l] += P22*t[32 + l] + x61;
+                f[96 + l] += -x53;
+                f[104 + l] += -x54;
+                f[112 + l] += -x55;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x56;
+                f[152 + l] += P11*t[56 + l] - x57;
+                f[160 + l] += P21*t[56 + l] - x58;
+                f[168 + l] += P02*t[56 + l] - x59;
+                f[176 + l] += P12*t[56 + l] - x60;
+                f[184 + l] += P22*t[56 + l] - x61;
+                A[0 + l] = W_C01_C01*x3 + W_C02_C02*x4 + x0*x62 + x52;
+                A[8 + l] = W_C01 + W_C01_C01*x5;
+                A[16 + l] = W_C02 + W_C02_C02*x11;
+                A[24 + l] = W_C01_C01*x9 + W_C02_C02*x10 + x62*x8;
+                A[32 + l] = W_C01_C01*x32;
+                A[40 + l] = F02*F10*W_C02_C02;
+                A[48 + l] = W_C01_C01*x15 + W_C02_C02*x16 + x14*x62;
+                A[56 + l] = F01*F20*W_C01_C01;
+                A[64 + l] = W_C02_C02*x28;
+                A[72 + l] = W_C01_C01*x0;
+                A[80 + l] = 0;
+                A[88 + l] = W_C01_C01*x31;
+                A[96 + l] = W_C01_C01*x8;
+                A[104 + l] = 0;
+                A[112 + l] = W_C01_C01*x29;
+                A[120 + l] = W_C01_C01*x14;
+                A[128 + l] = 0;
+                A[136 + l] = W_C02_C02*x0;
+                A[144 + l] = W_C02_C02*x30;
+                A[152 + l] = 0;
+                A[160 + l] = W_C02_C02*x8;
+                A[168 + l] = W_C02_C02*x27;
+                A[176 + l] = 0;
+                A[184 + l] = W_C02_C02*x14;
+                A[192 + l] = W_C01_C01*x17 + W_C02_C02*x19 + x1*x62 + x52;
+                A[200 + l] = W_C01 + W_C01_C01*x6;
+                A[208 + l] = W_C02 + W_C02_C02*x12;
+                A[216 + l] = W_C01_C01*x21 + W_C02_C02*x22 + x20*x62;
+                A[224 + l] = W_C01_C01*x26;
+                A[232 + l] = F12*F20*W_C02_C02;
+                A[240 + l] = W_C01_C01*x1;
+                A[248 + l] = 0;
+                A[256 + l] = W_C01_C01*x25;
+                A[264 + l] = W_C01_C01*x20;
+                A[272 + l] = 0;
+                A[280 + l] = W_C02_C02*x1;
+                A[288 + l] = W_C02_C02*x24;
+                A[296 + l] = 0;
+                A[304 + l] = W_C02_C02*x20;
+                A[312 + l] = W_C01_C01*x18 + W_C02_C02*x23 + x2*x62 + x52;
+                A[320 + l] = W_C01 + W_C01_C01*x7;
+                A[328 + l] = W_C02 + W_C02_C02*x13;
+                A[336 + l] = W_C01_C01*x2;
+                A[344 + l] = 0;
+                A[352 + l] = W_C02_C02*x2;
+            }
+            ancf3243_tangent_contract_lanes(A, t, K);
+        }
+    }
+    {   /* energy part "centreline": 3 quadrature points */
+        for (int p = 0; p < 3; ++p) {
+            const double *restrict t = tab + (96 + 8 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x47 = 0.5*mat[8 + l];
+                const double x33 = mat[0 + l] + mat[8 + l];
+                const double x34 = 0.5*mat[0 + l];
+                const double F00 = q[120 + l]*t[48 + l] + q[24 + l]*t[16 + l] + t[8 + l]*(q[0 + l] - q[96 + l]) + t[24 + l]*(-q[144 + l] + q[48 + l]) + t[40 + l]*(-q[168 + l] + q[72 + l]);
+                const double F01 = q[144 + l]*t[56 + l] + q[48 + l]*t[32 + l];
+                const double F02 = q[168 + l]*t[56 + l] + q[72 + l]*t[32 + l];
+                const double x5 = F00*F01;
+                const double F10 = q[128 + l]*t[48 + l] + q[32 + l]*t[16 + l] + t[8 + l]*(-q[104 + l] + q[8 + l]) + t[24 + l]*(-q[152 + l] + q[56 + l]) + t[40 + l]*(q[80 + l] - q[176 + l]);
+                const double F11 = q[152 + l]*t[56 + l] + q[56 + l]*t[32 + l];
+                const double x6 = F10*F11;
+                const double F20 = q[136 + l]*t[48 + l] + q[40 + l]*t[16 + l] + t[8 + l]*(-q[112 + l] + q[16 + l]) + t[24 + l]*(-q[160 + l] + q[64 + l]) + t[40 + l]*(q[88 + l] - q[184 + l]);
+                const double F21 = q[160 + l]*t[56 + l] + q[64 + l]*t[32 + l];
+                const double x7 = F20*F21;
+                const double C01 = x5 + x6 + x7;
+                const double x53 = mat[8 + l]*t[0 + l];
+                const double W_C01 = -C01*x53;
+                const double x11 = F00*F02;
+                const double F12 = q[80 + l]*t[32 + l] + q[176 + l]*t[56 + l];
+                const double x12 = F10*F12;
+                const double F22 = q[88 + l]*t[32 + l] + q[184 + l]*t[56 + l];
+                const double x13 = F20*F22;
+                const double C02 = x11 + x12 + x13;
+                const double W_C02 = -C02*x53;
+                const double cof00 = F11*F22 - F12*F21;
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x51 = (1.0/J);
+                const double x52 = mat[0 + l]*log(J);
+                const double W_J = t[0 + l]*(-mat[8 + l]*x51 + x51*x52);
+                const double x0 = (F00*F00);
+                const double x1 = (F10*F10);
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double x48 = (1.0/C00);
+                const double ulat0 = pow(C00, -(x34/x33));
+                const double x35 = (sqrt(C00));
+                const double x36 = mat[0 + l]*log(ulat0*x35);
+                const double x37 = (1.0/ulat0);
+                const double ulat1 = -((ulat0*ulat0)*(-mat[8 + l]*x37 + mat[8 + l] + x36*x37)/(x33 - x36)) + ulat0;
+                const double x38 = mat[0 + l]*log(ulat1*x35);
+                const double x39 = (1.0/ulat1);
+                const double ulat2 = -((ulat1*ulat1)*(-mat[8 + l]*x39 + mat[8 + l] + x38*x39)/(x33 - x38)) + ulat1;
+                const double x40 = mat[0 + l]*log(ulat2*x35);
+                const double x41 = (1.0/ulat2);
+                const double ulat3 = -((ulat2*ulat2)*(-mat[8 + l]*x41 + mat[8 + l] + x40*x41)/(x33 - x40)) + ulat2;
+                const double x42 = mat[0 + l]*log(ulat3*x35);
+                const double x43 = (1.0/ulat3);
+                const double ulat4 = -((ulat3*ulat3)*(-mat[8 + l]*x43 + mat[8 + l] + x42*x43)/(x33 - x42)) + ulat3;
+                const double x44 = mat[0 + l]*log(ulat4*x35);
+                const double x45 = (1.0/ulat4);
+                const double ulat5 = -((ulat4*ulat4)*(-mat[8 + l]*x45 + mat[8 + l] + x44*x45)/(x33 - x44)) + ulat4;
+                const double x46 = log(ulat5*x35);
+                const double x49 = mat[0 + l]*x46;
+                const double Uax1 = -x47*x48 + x47 + 0.5*x48*x49;
+                const double W_C00 = -Uax1*t[0 + l];
+                const double x55 = 2.0*W_C00;
+                const double W_I1 = t[0 + l]*x47;
+                const double x56 = 2.0*W_I1;
+                const double P00 = F00*x55 + F00*x56 + F01*W_C01 + F02*W_C02 + W_J*cof00;
+                const double x57 = P00*t[8 + l];
+                const double P10 = F10*x55 + F10*x56 + F11*W_C01 + F12*W_C02 + W_J*cof10;
+                const double x58 = P10*t[8 + l];
+                const double P20 = F20*x55 + F20*x56 + F21*W_C01 + F22*W_C02 + W_J*cof20;
+                const double x59 = P20*t[8 + l];
+                const double x24 = F10*F22;
+                const double cof01 = F12*F20 - x24;
+                const double P01 = F00*W_C01 + F01*x56 + W_J*cof01;
+                const double x60 = P00*t[24 + l];
+                const double x27 = F00*F22;
+                const double x28 = F02*F20;
+                const double cof11 = x27 - x28;
+                const double P11 = F10*W_C01 + F11*x56 + W_J*cof11;
+                const double x61 = P10*t[24 + l];
+                const double x30 = F00*F12;
+                const double cof21 = F02*F10 - x30;
+                const double P21 = F20*W_C01 + F21*x56 + W_J*cof21;
+                const double x62 = P20*t[24 + l];
+                const double x25 = F10*F21;
+                const double x26 = F11*F20;
+                const double cof02 = x25 - x26;
+                const double P02 = F00*W_C02 + F02*x56 + W_J*cof02;
+                const double x63 = P00*t[40 + l];
+                const double x29 = F00*F21;
+                const double cof12 = F01*F20 - x29;
+                const double P12 = F10*W_C02 + F12*x56 + W_J*cof12;
+                const double x64 = P10*t[40 + l];
+                const double x31 = F00*F11;
+                const double x32 = F01*F10;
+                const double cof22 = x31 - x32;
+                const double P22 = F20*W_C02 + F22*x56 + W_J*cof22;
+                const double x65 = P20*t[40 + l];
+                const double x54 = -x53;
+                const double W_C01_C01 = x54;
+                const double W_C02_C02 = x54;
+                const double W_J_J = (t[0 + l]*(x33 - x52)/((J*J)));
+                const double x3 = (F01*F01);
+                const double x4 = (F02*F02);
+                const double x50 = (1.0/(C00*C00));
+                const double Uax2 = -(0.25*x50*(mat[0 + l]*mat[0 + l])/(x33 - x49)) + 0.25*x50*(mat[0 + l] + 2.0*mat[8 + l] - 2.0*x49);
+                const double W_C00_C00 = -Uax2*t[0 + l];
+                const double x66 = 4.0*W_C00_C00;
+                const double x67 = x55 + x56;
+                const double x68 = W_J_J*cof00;
+                const double x8 = F00*F10;
+                const double x9 = F01*F11;
+                const double x10 = F02*F12;
+                const double x69 = F22*W_J;
+                const double x70 = F21*W_J;
+                const double x14 = F00*F20;
+                const double x15 = F01*F21;
+                const double x16 = F02*F22;
+                const double x71 = F12*W_J;
+                const double x72 = F11*W_J;
+                const double x73 = W_J_J*cof01;
+                const double x74 = F20*W_J;
+                const double x75 = F10*W_J;
+                const double x76 = W_J_J*cof02;
+                const double x17 = (F11*F11);
+                const double x19 = (F12*F12);
+                const double x77 = W_J_J*cof10;
+                const double x20 = F10*F20;
+                const double x21 = F11*F21;
+                const double x22 = F12*F22;
+                const double x78 = F02*W_J;
+                const double x79 = F01*W_J;
+                const double x80 = W_J_J*cof11;
+                const double x81 = F00*W_J;
+                const double x82 = W_J_J*cof12;
+                const double x18 = (F21*F21);
+                const double x23 = (F22*F22);
+                const double x83 = W_J_J*cof20;
+                f[0 + l] += x57;
+                f[8 + l] += x58;
+                f[16 + l] += x59;
+                f[24 + l] += P00*t[16 + l];
+                f[32 + l] += P10*t[16 + l];
+                f[40 + l] += P20*t[16 + l];
+                f[48 + l] += P01*t[32 + l] + x60;
+                f[56 + l] += P11*t[32 + l] + x61;
+                f[64 + l] += P21*t[32 + l] + x62;
+                f[72 + l] += P02*t[32 + l] + x63;
+                f[80 + l] += P12*t[32 + l] + x64;
+                f[88 + l] += P22*t[32 + l] + x65;
+                f[96 + l] += -x57;
+                f[104 + l] += -x58;
+                f[112 + l] += -x59;
+                f[120 + l] += P00*t[48 + l];
+                f[128 + l] += P10*t[48 + l];
+                f[136 + l] += P20*t[48 + l];
+                f[144 + l] += P01*t[56 + l] - x60;
+                f[152 + l] += P11*t[56 + l] - x61;
+                f[160 + l] += P21*t[56 + l] - x62;
+                f[168 + l] += P02*t[56 + l] - x63;
+                f[176 + l] += P12*t[56 + l] - x64;
+                f[184 + l] += P22*t[56 + l] - x65;
+                A[0 + l] = W_C01_C01*x3 + W_C02_C02*x4 + W_J_J*(cof00*cof00) + x0*x66 + x67;
+                A[8 + l] = W_C01 + W_C01_C01*x5 + cof01*x68;
+                A[16 + l] = W_C02 + W_C02_C02*x11 + cof02*x68;
+                A[24 + l] = W_C01_C01*x9 + W_C02_C02*x10 + cof10*x68 + x66*x8;
+                A[32 + l] = W_C01_C01*x32 + cof11*x68 + x69;
+                A[40 + l] = F02*F10*W_C02_C02 + cof12*x68 - x70;
+                A[48 + l] = W_C01_C01*x15 + W_C02_C02*x16 + cof20*x68 + x14*x66;
+                A[56 + l] = F01*F20*W_C01_C01 + cof21*x68 - x71;
+                A[64 + l] = W_C02_C02*x28 + cof22*x68 + x72;
+                A[72 + l] = W_C01_C01*x0 + W_J_J*(cof01*cof01) + x56;
+                A[80 + l] = cof02*x73;
+                A[88 + l] = W_C01_C01*x31 + cof10*x73 - x69;
+                A[96 + l] = W_C01_C01*x8 + cof11*x73;
+                A[104 + l] = cof12*x73 + x74;
+                A[112 + l] = W_C01_C01*x29 + cof20*x73 + x71;
+                A[120 + l] = W_C01_C01*x14 + cof21*x73;
+                A[128 + l] = W_J_J*cof01*cof22 - x75;
+                A[136 + l] = W_C02_C02*x0 + W_J_J*(cof02*cof02) + x56;
+                A[144 + l] = W_C02_C02*x30 + cof10*x76 + x70;
+                A[152 + l] = W_J_J*cof02*cof11 - x74;
+                A[160 + l] = W_C02_C02*x8 + cof12*x76;
+                A[168 + l] = W_C02_C02*x27 + cof20*x76 - x72;
+                A[176 + l] = cof21*x76 + x75;
+                A[184 + l] = W_C02_C02*x14 + cof22*x76;
+                A[192 + l] = W_C01_C01*x17 + W_C02_C02*x19 + W_J_J*(cof10*cof10) + x1*x66 + x67;
+                A[200 + l] = W_C01 + W_C01_C01*x6 + cof11*x77;
+                A[208 + l] = W_C02 + W_C02_C02*x12 + cof12*x77;
+                A[216 + l] = W_C01_C01*x21 + W_C02_C02*x22 + cof20*x77 + x20*x66;
+                A[224 + l] = W_C01_C01*x26 + cof21*x77 + x78;
+                A[232 + l] = F12*F20*W_C02_C02 + cof22*x77 - x79;
+                A[240 + l] = W_C01_C01*x1 + W_J_J*(cof11*cof11) + x56;
+                A[248 + l] = cof12*x80;
+                A[256 + l] = W_C01_C01*x25 + cof20*x80 - x78;
+                A[264 + l] = W_C01_C01*x20 + cof21*x80;
+                A[272 + l] = cof22*x80 + x81;
+                A[280 + l] = W_C02_C02*x1 + W_J_J*(cof12*cof12) + x56;
+                A[288 + l] = W_C02_C02*x24 + cof20*x82 + x79;
+                A[296 + l] = W_J_J*cof12*cof21 - x81;
+                A[304 + l] = W_C02_C02*x20 + cof22*x82;
+                A[312 + l] = W_C01_C01*x18 + W_C02_C02*x23 + W_J_J*(cof20*cof20) + x2*x66 + x67;
+                A[320 + l] = W_C01 + W_C01_C01*x7 + cof21*x83;
+                A[328 + l] = W_C02 + W_C02_C02*x13 + cof22*x83;
+                A[336 + l] = W_C01_C01*x2 + W_J_J*(cof21*cof21) + x56;
+                A[344 + l] = W_J_J*cof21*cof22;
+                A[352 + l] = W_C02_C02*x2 + W_J_J*(cof22*cof22) + x56;
+            }
+            ancf3243_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 24; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
 
 const bk_pair bk_pair_ancf3243_neo_hookean_full = {
@@ -982,6 +1822,8 @@ const bk_pair bk_pair_ancf3243_neo_hookean_full = {
     .energy = ancf3243_neo_hookean_full_energy,
     .force = ancf3243_neo_hookean_full_force,
     .force_tangent = ancf3243_neo_hookean_full_force_tangent,
+    .force_lanes = ancf3243_neo_hookean_full_force_lanes,
+    .force_tangent_lanes = ancf3243_neo_hookean_full_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3243_full_viscous,
     .invariants = ancf3243_full_invariants,
@@ -1001,6 +1843,8 @@ const bk_pair bk_pair_ancf3243_neo_hookean_sri = {
     .energy = ancf3243_neo_hookean_sri_energy,
     .force = ancf3243_neo_hookean_sri_force,
     .force_tangent = ancf3243_neo_hookean_sri_force_tangent,
+    .force_lanes = ancf3243_neo_hookean_sri_force_lanes,
+    .force_tangent_lanes = ancf3243_neo_hookean_sri_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3243_sri_viscous,
     .invariants = ancf3243_sri_invariants,

@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:9be978c8be8374a3e4c97914c431cdf39dd3f0cefe8a7901c930298124861ea3
+ * input hash: sha256:88bca6163dbe717e9c7bb9de09c146c3acc08df8405999a2931a2bdcdac7a3b6
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -49,5 +49,7 @@ void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, c
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */
 void ancf3273_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
+/* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
+void ancf3273_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

@@ -2,8 +2,8 @@
 #include "ancf3333.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
 #endif
 
 #if defined(__GNUC__)
@@ -1979,6 +1979,670 @@ void ancf3333_tangent_contract(const double *restrict A, const double *restrict 
     ancf3333_contract_row6(A, t, K);
     ancf3333_contract_row7(A, t, K);
     ancf3333_contract_row8(A, t, K);
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[8 + l]*t[8 + l]);
+        const double x1 = t[8 + l]*t[16 + l];
+        const double x2 = t[8 + l]*t[24 + l];
+        const double x3 = A[24 + l]*x1;
+        const double x4 = A[48 + l]*x1;
+        const double x5 = t[8 + l]*t[32 + l];
+        const double x6 = A[24 + l]*x5;
+        const double x7 = A[48 + l]*x5;
+        const double x8 = t[8 + l]*t[40 + l];
+        const double x9 = A[24 + l]*x8;
+        const double x10 = A[48 + l]*x8;
+        const double x11 = t[8 + l]*t[48 + l];
+        const double x12 = t[8 + l]*t[56 + l];
+        const double x13 = A[24 + l]*x11;
+        const double x14 = A[48 + l]*x11;
+        const double x15 = t[8 + l]*t[64 + l];
+        const double x16 = A[24 + l]*x15;
+        const double x17 = A[48 + l]*x15;
+        const double x18 = t[8 + l]*t[72 + l];
+        const double x19 = A[24 + l]*x18;
+        const double x20 = A[48 + l]*x18;
+        const double x21 = t[80 + l]*t[8 + l];
+        const double x22 = t[88 + l]*t[8 + l];
+        const double x23 = A[24 + l]*x21;
+        const double x24 = A[48 + l]*x21;
+        const double x25 = t[96 + l]*t[8 + l];
+        const double x26 = A[24 + l]*x25;
+        const double x27 = A[48 + l]*x25;
+        const double x28 = A[216 + l]*x1;
+        const double x29 = A[216 + l]*x5;
+        const double x30 = A[216 + l]*x8;
+        const double x31 = A[216 + l]*x11;
+        const double x32 = A[216 + l]*x15;
+        const double x33 = A[216 + l]*x18;
+        const double x34 = A[216 + l]*x21;
+        const double x35 = A[216 + l]*x25;
+        K[0 + l] += A[0 + l]*x0;
+        K[8 + l] += A[24 + l]*x0;
+        K[16 + l] += A[48 + l]*x0;
+        K[24 + l] += A[0 + l]*x1 + A[8 + l]*x2;
+        K[32 + l] += A[32 + l]*x2 + x3;
+        K[40 + l] += A[56 + l]*x2 + x4;
+        K[48 + l] += A[0 + l]*x5 + A[16 + l]*x2;
+        K[56 + l] += A[40 + l]*x2 + x6;
+        K[64 + l] += A[64 + l]*x2 + x7;
+        K[72 + l] += A[0 + l]*x8;
+        K[80 + l] += x9;
+        K[88 + l] += x10;
+        K[96 + l] += A[0 + l]*x11 + A[8 + l]*x12;
+        K[104 + l] += A[32 + l]*x12 + x13;
+        K[112 + l] += A[56 + l]*x12 + x14;
+        K[120 + l] += A[0 + l]*x15 + A[16 + l]*x12;
+        K[128 + l] += A[40 + l]*x12 + x16;
+        K[136 + l] += A[64 + l]*x12 + x17;
+        K[144 + l] += A[0 + l]*x18;
+        K[152 + l] += x19;
+        K[160 + l] += x20;
+        K[168 + l] += A[0 + l]*x21 + A[8 + l]*x22;
+        K[176 + l] += A[32 + l]*x22 + x23;
+        K[184 + l] += A[56 + l]*x22 + x24;
+        K[192 + l] += A[0 + l]*x25 + A[16 + l]*x22;
+        K[200 + l] += A[40 + l]*x22 + x26;
+        K[208 + l] += A[64 + l]*x22 + x27;
+        K[224 + l] += A[192 + l]*x0;
+        K[232 + l] += A[216 + l]*x0;
+        K[240 + l] += A[88 + l]*x2 + x3;
+        K[248 + l] += A[192 + l]*x1 + A[200 + l]*x2;
+        K[256 + l] += A[224 + l]*x2 + x28;
+        K[264 + l] += A[144 + l]*x2 + x6;
+        K[272 + l] += A[192 + l]*x5 + A[208 + l]*x2;
+        K[280 + l] += A[232 + l]*x2 + x29;
+        K[288 + l] += x9;
+        K[296 + l] += A[192 + l]*x8;
+        K[304 + l] += x30;
+        K[312 + l] += A[88 + l]*x12 + x13;
+        K[320 + l] += A[192 + l]*x11 + A[200 + l]*x12;
+        K[328 + l] += A[224 + l]*x12 + x31;
+        K[336 + l] += A[144 + l]*x12 + x16;
+        K[344 + l] += A[192 + l]*x15 + A[208 + l]*x12;
+        K[352 + l] += A[232 + l]*x12 + x32;
+        K[360 + l] += x19;
+        K[368 + l] += A[192 + l]*x18;
+        K[376 + l] += x33;
+        K[384 + l] += A[88 + l]*x22 + x23;
+        K[392 + l] += A[192 + l]*x21 + A[200 + l]*x22;
+        K[400 + l] += A[224 + l]*x22 + x34;
+        K[408 + l] += A[144 + l]*x22 + x26;
+        K[416 + l] += A[192 + l]*x25 + A[208 + l]*x22;
+        K[424 + l] += A[232 + l]*x22 + x35;
+        K[448 + l] += A[312 + l]*x0;
+        K[456 + l] += A[112 + l]*x2 + x4;
+        K[464 + l] += A[256 + l]*x2 + x28;
+        K[472 + l] += A[312 + l]*x1 + A[320 + l]*x2;
+        K[480 + l] += A[168 + l]*x2 + x7;
+        K[488 + l] += A[288 + l]*x2 + x29;
+        K[496 + l] += A[312 + l]*x5 + A[328 + l]*x2;
+        K[504 + l] += x10;
+        K[512 + l] += x30;
+        K[520 + l] += A[312 + l]*x8;
+        K[528 + l] += A[112 + l]*x12 + x14;
+        K[536 + l] += A[256 + l]*x12 + x31;
+        K[544 + l] += A[312 + l]*x11 + A[320 + l]*x12;
+        K[552 + l] += A[168 + l]*x12 + x17;
+        K[560 + l] += A[288 + l]*x12 + x32;
+        K[568 + l] += A[312 + l]*x15 + A[328 + l]*x12;
+        K[576 + l] += x20;
+        K[584 + l] += x33;
+        K[592 + l] += A[312 + l]*x18;
+        K[600 + l] += A[112 + l]*x22 + x24;
+        K[608 + l] += A[256 + l]*x22 + x34;
+        K[616 + l] += A[312 + l]*x21 + A[320 + l]*x22;
+        K[624 + l] += A[168 + l]*x22 + x27;
+        K[632 + l] += A[288 + l]*x22 + x35;
+        K[640 + l] += A[312 + l]*x25 + A[328 + l]*x22;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[16 + l]*t[16 + l]);
+        const double x1 = (t[24 + l]*t[24 + l]);
+        const double x2 = t[16 + l]*t[24 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[16 + l]*t[32 + l];
+        const double x5 = t[24 + l]*t[32 + l];
+        const double x6 = A[24 + l]*x4;
+        const double x7 = A[48 + l]*x4;
+        const double x8 = t[16 + l]*t[40 + l];
+        const double x9 = t[24 + l]*t[40 + l];
+        const double x10 = A[24 + l]*x8;
+        const double x11 = A[48 + l]*x8;
+        const double x12 = t[16 + l]*t[48 + l];
+        const double x13 = t[16 + l]*t[56 + l];
+        const double x14 = t[24 + l]*t[48 + l];
+        const double x15 = t[24 + l]*t[56 + l];
+        const double x16 = A[96 + l]*x15 + A[24 + l]*x12;
+        const double x17 = A[120 + l]*x15 + A[48 + l]*x12;
+        const double x18 = t[16 + l]*t[64 + l];
+        const double x19 = t[24 + l]*t[64 + l];
+        const double x20 = A[24 + l]*x18;
+        const double x21 = A[48 + l]*x18;
+        const double x22 = t[16 + l]*t[72 + l];
+        const double x23 = t[24 + l]*t[72 + l];
+        const double x24 = A[24 + l]*x22;
+        const double x25 = A[48 + l]*x22;
+        const double x26 = t[80 + l]*t[16 + l];
+        const double x27 = t[80 + l]*t[24 + l];
+        const double x28 = t[88 + l]*t[16 + l];
+        const double x29 = t[88 + l]*t[24 + l];
+        const double x30 = A[96 + l]*x29 + A[24 + l]*x26;
+        const double x31 = A[120 + l]*x29 + A[48 + l]*x26;
+        const double x32 = t[96 + l]*t[16 + l];
+        const double x33 = t[96 + l]*t[24 + l];
+        const double x34 = A[24 + l]*x32;
+        const double x35 = A[48 + l]*x32;
+        const double x36 = A[216 + l]*x4;
+        const double x37 = A[216 + l]*x8;
+        const double x38 = A[216 + l]*x12 + A[264 + l]*x15;
+        const double x39 = A[216 + l]*x18;
+        const double x40 = A[216 + l]*x22;
+        const double x41 = A[216 + l]*x26 + A[264 + l]*x29;
+        const double x42 = A[216 + l]*x32;
+        K[672 + l] += A[0 + l]*x0 + A[8 + l]*x3 + A[72 + l]*x1;
+        K[680 + l] += A[88 + l]*x2 + A[96 + l]*x1 + A[24 + l]*x0 + A[32 + l]*x2;
+        K[688 + l] += A[112 + l]*x2 + A[120 + l]*x1 + A[48 + l]*x0 + A[56 + l]*x2;
+        K[696 + l] += A[0 + l]*x4 + A[80 + l]*x1 + A[8 + l]*x5 + A[16 + l]*x2;
+        K[704 + l] += A[88 + l]*x5 + A[104 + l]*x1 + A[40 + l]*x2 + x6;
+        K[712 + l] += A[112 + l]*x5 + A[128 + l]*x1 + A[64 + l]*x2 + x7;
+        K[720 + l] += A[0 + l]*x8 + A[8 + l]*x9;
+        K[728 + l] += A[88 + l]*x9 + x10;
+        K[736 + l] += A[112 + l]*x9 + x11;
+        K[744 + l] += A[0 + l]*x12 + A[8 + l]*x13 + A[8 + l]*x14 + A[72 + l]*x15;
+        K[752 + l] += A[88 + l]*x14 + A[32 + l]*x13 + x16;
+        K[760 + l] += A[112 + l]*x14 + A[56 + l]*x13 + x17;
+        K[768 + l] += A[0 + l]*x18 + A[80 + l]*x15 + A[8 + l]*x19 + A[16 + l]*x13;
+        K[776 + l] += A[88 + l]*x19 + A[104 + l]*x15 + A[40 + l]*x13 + x20;
+        K[784 + l] += A[112 + l]*x19 + A[128 + l]*x15 + A[64 + l]*x13 + x21;
+        K[792 + l] += A[0 + l]*x22 + A[8 + l]*x23;
+        K[800 + l] += A[88 + l]*x23 + x24;
+        K[808 + l] += A[112 + l]*x23 + x25;
+        K[816 + l] += A[0 + l]*x26 + A[8 + l]*x27 + A[8 + l]*x28 + A[72 + l]*x29;
+        K[824 + l] += A[88 + l]*x27 + A[32 + l]*x28 + x30;
+        K[832 + l] += A[112 + l]*x27 + A[56 + l]*x28 + x31;
+        K[840 + l] += A[0 + l]*x32 + A[80 + l]*x29 + A[8 + l]*x33 + A[16 + l]*x28;
+        K[848 + l] += A[88 + l]*x33 + A[104 + l]*x29 + A[40 + l]*x28 + x34;
+        K[856 + l] += A[112 + l]*x33 + A[128 + l]*x29 + A[64 + l]*x28 + x35;
+        K[896 + l] += A[192 + l]*x0 + A[200 + l]*x3 + A[240 + l]*x1;
+        K[904 + l] += A[216 + l]*x0 + A[224 + l]*x2 + A[256 + l]*x2 + A[264 + l]*x1;
+        K[912 + l] += A[144 + l]*x2 + A[152 + l]*x1 + A[32 + l]*x5 + x6;
+        K[920 + l] += A[192 + l]*x4 + A[200 + l]*x5 + A[208 + l]*x2 + A[248 + l]*x1;
+        K[928 + l] += A[232 + l]*x2 + A[256 + l]*x5 + A[272 + l]*x1 + x36;
+        K[936 + l] += A[32 + l]*x9 + x10;
+        K[944 + l] += A[192 + l]*x8 + A[200 + l]*x9;
+        K[952 + l] += A[256 + l]*x9 + x37;
+        K[960 + l] += A[88 + l]*x13 + A[32 + l]*x14 + x16;
+        K[968 + l] += A[192 + l]*x12 + A[200 + l]*x13 + A[200 + l]*x14 + A[240 + l]*x15;
+        K[976 + l] += A[224 + l]*x13 + A[256 + l]*x14 + x38;
+        K[984 + l] += A[144 + l]*x13 + A[152 + l]*x15 + A[32 + l]*x19 + x20;
+        K[992 + l] += A[192 + l]*x18 + A[200 + l]*x19 + A[208 + l]*x13 + A[248 + l]*x15;
+        K[1000 + l] += A[232 + l]*x13 + A[256 + l]*x19 + A[272 + l]*x15 + x39;
+        K[1008 + l] += A[32 + l]*x23 + x24;
+        K[1016 + l] += A[192 + l]*x22 + A[200 + l]*x23;
+        K[1024 + l] += A[256 + l]*x23 + x40;
+        K[1032 + l] += A[88 + l]*x28 + A[32 + l]*x27 + x30;
+        K[1040 + l] += A[192 + l]*x26 + A[200 + l]*x27 + A[200 + l]*x28 + A[240 + l]*x29;
+        K[1048 + l] += A[224 + l]*x28 + A[256 + l]*x27 + x41;
+        K[1056 + l] += A[144 + l]*x28 + A[152 + l]*x29 + A[32 + l]*x33 + x34;
+        K[1064 + l] += A[192 + l]*x32 + A[200 + l]*x33 + A[208 + l]*x28 + A[248 + l]*x29;
+        K[1072 + l] += A[232 + l]*x28 + A[256 + l]*x33 + A[272 + l]*x29 + x42;
+        K[1120 + l] += A[312 + l]*x0 + A[320 + l]*x3 + A[336 + l]*x1;
+        K[1128 + l] += A[168 + l]*x2 + A[176 + l]*x1 + A[56 + l]*x5 + x7;
+        K[1136 + l] += A[224 + l]*x5 + A[288 + l]*x2 + A[296 + l]*x1 + x36;
+        K[1144 + l] += A[312 + l]*x4 + A[320 + l]*x5 + A[328 + l]*x2 + A[344 + l]*x1;
+        K[1152 + l] += A[56 + l]*x9 + x11;
+        K[1160 + l] += A[224 + l]*x9 + x37;
+        K[1168 + l] += A[312 + l]*x8 + A[320 + l]*x9;
+        K[1176 + l] += A[112 + l]*x13 + A[56 + l]*x14 + x17;
+        K[1184 + l] += A[224 + l]*x14 + A[256 + l]*x13 + x38;
+        K[1192 + l] += A[312 + l]*x12 + A[320 + l]*x13 + A[320 + l]*x14 + A[336 + l]*x15;
+        K[1200 + l] += A[168 + l]*x13 + A[176 + l]*x15 + A[56 + l]*x19 + x21;
+        K[1208 + l] += A[224 + l]*x19 + A[288 + l]*x13 + A[296 + l]*x15 + x39;
+        K[1216 + l] += A[312 + l]*x18 + A[320 + l]*x19 + A[328 + l]*x13 + A[344 + l]*x15;
+        K[1224 + l] += A[56 + l]*x23 + x25;
+        K[1232 + l] += A[224 + l]*x23 + x40;
+        K[1240 + l] += A[312 + l]*x22 + A[320 + l]*x23;
+        K[1248 + l] += A[112 + l]*x28 + A[56 + l]*x27 + x31;
+        K[1256 + l] += A[224 + l]*x27 + A[256 + l]*x28 + x41;
+        K[1264 + l] += A[312 + l]*x26 + A[320 + l]*x27 + A[320 + l]*x28 + A[336 + l]*x29;
+        K[1272 + l] += A[168 + l]*x28 + A[176 + l]*x29 + A[56 + l]*x33 + x35;
+        K[1280 + l] += A[224 + l]*x33 + A[288 + l]*x28 + A[296 + l]*x29 + x42;
+        K[1288 + l] += A[312 + l]*x32 + A[320 + l]*x33 + A[328 + l]*x28 + A[344 + l]*x29;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[32 + l]*t[32 + l]);
+        const double x1 = (t[24 + l]*t[24 + l]);
+        const double x2 = t[24 + l]*t[32 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[32 + l]*t[40 + l];
+        const double x5 = t[24 + l]*t[40 + l];
+        const double x6 = A[24 + l]*x4;
+        const double x7 = A[48 + l]*x4;
+        const double x8 = t[32 + l]*t[48 + l];
+        const double x9 = t[24 + l]*t[56 + l];
+        const double x10 = t[32 + l]*t[56 + l];
+        const double x11 = t[24 + l]*t[48 + l];
+        const double x12 = A[24 + l]*x8;
+        const double x13 = A[48 + l]*x8;
+        const double x14 = t[32 + l]*t[64 + l];
+        const double x15 = t[24 + l]*t[64 + l];
+        const double x16 = A[160 + l]*x9 + A[24 + l]*x14;
+        const double x17 = A[184 + l]*x9 + A[48 + l]*x14;
+        const double x18 = t[32 + l]*t[72 + l];
+        const double x19 = t[24 + l]*t[72 + l];
+        const double x20 = A[24 + l]*x18;
+        const double x21 = A[48 + l]*x18;
+        const double x22 = t[80 + l]*t[32 + l];
+        const double x23 = t[88 + l]*t[24 + l];
+        const double x24 = t[88 + l]*t[32 + l];
+        const double x25 = t[80 + l]*t[24 + l];
+        const double x26 = A[24 + l]*x22;
+        const double x27 = A[48 + l]*x22;
+        const double x28 = t[96 + l]*t[32 + l];
+        const double x29 = t[96 + l]*t[24 + l];
+        const double x30 = A[160 + l]*x23 + A[24 + l]*x28;
+        const double x31 = A[184 + l]*x23 + A[48 + l]*x28;
+        const double x32 = A[216 + l]*x4;
+        const double x33 = A[216 + l]*x8;
+        const double x34 = A[216 + l]*x14 + A[304 + l]*x9;
+        const double x35 = A[216 + l]*x18;
+        const double x36 = A[216 + l]*x22;
+        const double x37 = A[216 + l]*x28 + A[304 + l]*x23;
+        K[1344 + l] += A[0 + l]*x0 + A[136 + l]*x1 + A[16 + l]*x3;
+        K[1352 + l] += A[144 + l]*x2 + A[160 + l]*x1 + A[24 + l]*x0 + A[40 + l]*x2;
+        K[1360 + l] += A[168 + l]*x2 + A[184 + l]*x1 + A[48 + l]*x0 + A[64 + l]*x2;
+        K[1368 + l] += A[0 + l]*x4 + A[16 + l]*x5;
+        K[1376 + l] += A[144 + l]*x5 + x6;
+        K[1384 + l] += A[168 + l]*x5 + x7;
+        K[1392 + l] += A[0 + l]*x8 + A[80 + l]*x9 + A[8 + l]*x10 + A[16 + l]*x11;
+        K[1400 + l] += A[144 + l]*x11 + A[152 + l]*x9 + A[32 + l]*x10 + x12;
+        K[1408 + l] += A[168 + l]*x11 + A[176 + l]*x9 + A[56 + l]*x10 + x13;
+        K[1416 + l] += A[0 + l]*x14 + A[136 + l]*x9 + A[16 + l]*x10 + A[16 + l]*x15;
+        K[1424 + l] += A[144 + l]*x15 + A[40 + l]*x10 + x16;
+        K[1432 + l] += A[168 + l]*x15 + A[64 + l]*x10 + x17;
+        K[1440 + l] += A[0 + l]*x18 + A[16 + l]*x19;
+        K[1448 + l] += A[144 + l]*x19 + x20;
+        K[1456 + l] += A[168 + l]*x19 + x21;
+        K[1464 + l] += A[0 + l]*x22 + A[80 + l]*x23 + A[8 + l]*x24 + A[16 + l]*x25;
+        K[1472 + l] += A[144 + l]*x25 + A[152 + l]*x23 + A[32 + l]*x24 + x26;
+        K[1480 + l] += A[168 + l]*x25 + A[176 + l]*x23 + A[56 + l]*x24 + x27;
+        K[1488 + l] += A[0 + l]*x28 + A[136 + l]*x23 + A[16 + l]*x24 + A[16 + l]*x29;
+        K[1496 + l] += A[144 + l]*x29 + A[40 + l]*x24 + x30;
+        K[1504 + l] += A[168 + l]*x29 + A[64 + l]*x24 + x31;
+        K[1568 + l] += A[192 + l]*x0 + A[208 + l]*x3 + A[280 + l]*x1;
+        K[1576 + l] += A[216 + l]*x0 + A[232 + l]*x2 + A[288 + l]*x2 + A[304 + l]*x1;
+        K[1584 + l] += A[40 + l]*x5 + x6;
+        K[1592 + l] += A[192 + l]*x4 + A[208 + l]*x5;
+        K[1600 + l] += A[288 + l]*x5 + x32;
+        K[1608 + l] += A[88 + l]*x10 + A[104 + l]*x9 + A[40 + l]*x11 + x12;
+        K[1616 + l] += A[192 + l]*x8 + A[200 + l]*x10 + A[208 + l]*x11 + A[248 + l]*x9;
+        K[1624 + l] += A[224 + l]*x10 + A[288 + l]*x11 + A[296 + l]*x9 + x33;
+        K[1632 + l] += A[144 + l]*x10 + A[40 + l]*x15 + x16;
+        K[1640 + l] += A[192 + l]*x14 + A[208 + l]*x10 + A[208 + l]*x15 + A[280 + l]*x9;
+        K[1648 + l] += A[232 + l]*x10 + A[288 + l]*x15 + x34;
+        K[1656 + l] += A[40 + l]*x19 + x20;
+        K[1664 + l] += A[192 + l]*x18 + A[208 + l]*x19;
+        K[1672 + l] += A[288 + l]*x19 + x35;
+        K[1680 + l] += A[88 + l]*x24 + A[104 + l]*x23 + A[40 + l]*x25 + x26;
+        K[1688 + l] += A[192 + l]*x22 + A[200 + l]*x24 + A[208 + l]*x25 + A[248 + l]*x23;
+        K[1696 + l] += A[224 + l]*x24 + A[288 + l]*x25 + A[296 + l]*x23 + x36;
+        K[1704 + l] += A[144 + l]*x24 + A[40 + l]*x29 + x30;
+        K[1712 + l] += A[192 + l]*x28 + A[208 + l]*x24 + A[208 + l]*x29 + A[280 + l]*x23;
+        K[1720 + l] += A[232 + l]*x24 + A[288 + l]*x29 + x37;
+        K[1792 + l] += A[312 + l]*x0 + A[328 + l]*x3 + A[352 + l]*x1;
+        K[1800 + l] += A[64 + l]*x5 + x7;
+        K[1808 + l] += A[232 + l]*x5 + x32;
+        K[1816 + l] += A[312 + l]*x4 + A[328 + l]*x5;
+        K[1824 + l] += A[112 + l]*x10 + A[128 + l]*x9 + A[64 + l]*x11 + x13;
+        K[1832 + l] += A[232 + l]*x11 + A[256 + l]*x10 + A[272 + l]*x9 + x33;
+        K[1840 + l] += A[312 + l]*x8 + A[320 + l]*x10 + A[328 + l]*x11 + A[344 + l]*x9;
+        K[1848 + l] += A[168 + l]*x10 + A[64 + l]*x15 + x17;
+        K[1856 + l] += A[232 + l]*x15 + A[288 + l]*x10 + x34;
+        K[1864 + l] += A[312 + l]*x14 + A[328 + l]*x10 + A[328 + l]*x15 + A[352 + l]*x9;
+        K[1872 + l] += A[64 + l]*x19 + x21;
+        K[1880 + l] += A[232 + l]*x19 + x35;
+        K[1888 + l] += A[312 + l]*x18 + A[328 + l]*x19;
+        K[1896 + l] += A[112 + l]*x24 + A[128 + l]*x23 + A[64 + l]*x25 + x27;
+        K[1904 + l] += A[232 + l]*x25 + A[256 + l]*x24 + A[272 + l]*x23 + x36;
+        K[1912 + l] += A[312 + l]*x22 + A[320 + l]*x24 + A[328 + l]*x25 + A[344 + l]*x23;
+        K[1920 + l] += A[168 + l]*x24 + A[64 + l]*x29 + x31;
+        K[1928 + l] += A[232 + l]*x29 + A[288 + l]*x24 + x37;
+        K[1936 + l] += A[312 + l]*x28 + A[328 + l]*x24 + A[328 + l]*x29 + A[352 + l]*x23;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[40 + l]*t[40 + l]);
+        const double x1 = t[40 + l]*t[48 + l];
+        const double x2 = t[40 + l]*t[56 + l];
+        const double x3 = A[24 + l]*x1;
+        const double x4 = A[48 + l]*x1;
+        const double x5 = t[40 + l]*t[64 + l];
+        const double x6 = A[24 + l]*x5;
+        const double x7 = A[48 + l]*x5;
+        const double x8 = t[40 + l]*t[72 + l];
+        const double x9 = A[24 + l]*x8;
+        const double x10 = A[48 + l]*x8;
+        const double x11 = t[80 + l]*t[40 + l];
+        const double x12 = t[88 + l]*t[40 + l];
+        const double x13 = A[24 + l]*x11;
+        const double x14 = A[48 + l]*x11;
+        const double x15 = t[96 + l]*t[40 + l];
+        const double x16 = A[24 + l]*x15;
+        const double x17 = A[48 + l]*x15;
+        const double x18 = A[216 + l]*x1;
+        const double x19 = A[216 + l]*x5;
+        const double x20 = A[216 + l]*x8;
+        const double x21 = A[216 + l]*x11;
+        const double x22 = A[216 + l]*x15;
+        K[2016 + l] += A[0 + l]*x0;
+        K[2024 + l] += A[24 + l]*x0;
+        K[2032 + l] += A[48 + l]*x0;
+        K[2040 + l] += A[0 + l]*x1 + A[8 + l]*x2;
+        K[2048 + l] += A[32 + l]*x2 + x3;
+        K[2056 + l] += A[56 + l]*x2 + x4;
+        K[2064 + l] += A[0 + l]*x5 + A[16 + l]*x2;
+        K[2072 + l] += A[40 + l]*x2 + x6;
+        K[2080 + l] += A[64 + l]*x2 + x7;
+        K[2088 + l] += A[0 + l]*x8;
+        K[2096 + l] += x9;
+        K[2104 + l] += x10;
+        K[2112 + l] += A[0 + l]*x11 + A[8 + l]*x12;
+        K[2120 + l] += A[32 + l]*x12 + x13;
+        K[2128 + l] += A[56 + l]*x12 + x14;
+        K[2136 + l] += A[0 + l]*x15 + A[16 + l]*x12;
+        K[2144 + l] += A[40 + l]*x12 + x16;
+        K[2152 + l] += A[64 + l]*x12 + x17;
+        K[2240 + l] += A[192 + l]*x0;
+        K[2248 + l] += A[216 + l]*x0;
+        K[2256 + l] += A[88 + l]*x2 + x3;
+        K[2264 + l] += A[192 + l]*x1 + A[200 + l]*x2;
+        K[2272 + l] += A[224 + l]*x2 + x18;
+        K[2280 + l] += A[144 + l]*x2 + x6;
+        K[2288 + l] += A[192 + l]*x5 + A[208 + l]*x2;
+        K[2296 + l] += A[232 + l]*x2 + x19;
+        K[2304 + l] += x9;
+        K[2312 + l] += A[192 + l]*x8;
+        K[2320 + l] += x20;
+        K[2328 + l] += A[88 + l]*x12 + x13;
+        K[2336 + l] += A[192 + l]*x11 + A[200 + l]*x12;
+        K[2344 + l] += A[224 + l]*x12 + x21;
+        K[2352 + l] += A[144 + l]*x12 + x16;
+        K[2360 + l] += A[192 + l]*x15 + A[208 + l]*x12;
+        K[2368 + l] += A[232 + l]*x12 + x22;
+        K[2464 + l] += A[312 + l]*x0;
+        K[2472 + l] += A[112 + l]*x2 + x4;
+        K[2480 + l] += A[256 + l]*x2 + x18;
+        K[2488 + l] += A[312 + l]*x1 + A[320 + l]*x2;
+        K[2496 + l] += A[168 + l]*x2 + x7;
+        K[2504 + l] += A[288 + l]*x2 + x19;
+        K[2512 + l] += A[312 + l]*x5 + A[328 + l]*x2;
+        K[2520 + l] += x10;
+        K[2528 + l] += x20;
+        K[2536 + l] += A[312 + l]*x8;
+        K[2544 + l] += A[112 + l]*x12 + x14;
+        K[2552 + l] += A[256 + l]*x12 + x21;
+        K[2560 + l] += A[312 + l]*x11 + A[320 + l]*x12;
+        K[2568 + l] += A[168 + l]*x12 + x17;
+        K[2576 + l] += A[288 + l]*x12 + x22;
+        K[2584 + l] += A[312 + l]*x15 + A[328 + l]*x12;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[48 + l]*t[48 + l]);
+        const double x1 = (t[56 + l]*t[56 + l]);
+        const double x2 = t[48 + l]*t[56 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[48 + l]*t[64 + l];
+        const double x5 = t[56 + l]*t[64 + l];
+        const double x6 = A[24 + l]*x4;
+        const double x7 = A[48 + l]*x4;
+        const double x8 = t[48 + l]*t[72 + l];
+        const double x9 = t[56 + l]*t[72 + l];
+        const double x10 = A[24 + l]*x8;
+        const double x11 = A[48 + l]*x8;
+        const double x12 = t[80 + l]*t[48 + l];
+        const double x13 = t[80 + l]*t[56 + l];
+        const double x14 = t[88 + l]*t[48 + l];
+        const double x15 = t[88 + l]*t[56 + l];
+        const double x16 = A[96 + l]*x15 + A[24 + l]*x12;
+        const double x17 = A[120 + l]*x15 + A[48 + l]*x12;
+        const double x18 = t[96 + l]*t[48 + l];
+        const double x19 = t[96 + l]*t[56 + l];
+        const double x20 = A[24 + l]*x18;
+        const double x21 = A[48 + l]*x18;
+        const double x22 = A[216 + l]*x4;
+        const double x23 = A[216 + l]*x8;
+        const double x24 = A[216 + l]*x12 + A[264 + l]*x15;
+        const double x25 = A[216 + l]*x18;
+        K[2688 + l] += A[0 + l]*x0 + A[8 + l]*x3 + A[72 + l]*x1;
+        K[2696 + l] += A[88 + l]*x2 + A[96 + l]*x1 + A[24 + l]*x0 + A[32 + l]*x2;
+        K[2704 + l] += A[112 + l]*x2 + A[120 + l]*x1 + A[48 + l]*x0 + A[56 + l]*x2;
+        K[2712 + l] += A[0 + l]*x4 + A[80 + l]*x1 + A[8 + l]*x5 + A[16 + l]*x2;
+        K[2720 + l] += A[88 + l]*x5 + A[104 + l]*x1 + A[40 + l]*x2 + x6;
+        K[2728 + l] += A[112 + l]*x5 + A[128 + l]*x1 + A[64 + l]*x2 + x7;
+        K[2736 + l] += A[0 + l]*x8 + A[8 + l]*x9;
+        K[2744 + l] += A[88 + l]*x9 + x10;
+        K[2752 + l] += A[112 + l]*x9 + x11;
+        K[2760 + l] += A[0 + l]*x12 + A[8 + l]*x13 + A[8 + l]*x14 + A[72 + l]*x15;
+        K[2768 + l] += A[88 + l]*x13 + A[32 + l]*x14 + x16;
+        K[2776 + l] += A[112 + l]*x13 + A[56 + l]*x14 + x17;
+        K[2784 + l] += A[0 + l]*x18 + A[80 + l]*x15 + A[8 + l]*x19 + A[16 + l]*x14;
+        K[2792 + l] += A[88 + l]*x19 + A[104 + l]*x15 + A[40 + l]*x14 + x20;
+        K[2800 + l] += A[112 + l]*x19 + A[128 + l]*x15 + A[64 + l]*x14 + x21;
+        K[2912 + l] += A[192 + l]*x0 + A[200 + l]*x3 + A[240 + l]*x1;
+        K[2920 + l] += A[216 + l]*x0 + A[224 + l]*x2 + A[256 + l]*x2 + A[264 + l]*x1;
+        K[2928 + l] += A[144 + l]*x2 + A[152 + l]*x1 + A[32 + l]*x5 + x6;
+        K[2936 + l] += A[192 + l]*x4 + A[200 + l]*x5 + A[208 + l]*x2 + A[248 + l]*x1;
+        K[2944 + l] += A[232 + l]*x2 + A[256 + l]*x5 + A[272 + l]*x1 + x22;
+        K[2952 + l] += A[32 + l]*x9 + x10;
+        K[2960 + l] += A[192 + l]*x8 + A[200 + l]*x9;
+        K[2968 + l] += A[256 + l]*x9 + x23;
+        K[2976 + l] += A[88 + l]*x14 + A[32 + l]*x13 + x16;
+        K[2984 + l] += A[192 + l]*x12 + A[200 + l]*x13 + A[200 + l]*x14 + A[240 + l]*x15;
+        K[2992 + l] += A[224 + l]*x14 + A[256 + l]*x13 + x24;
+        K[3000 + l] += A[144 + l]*x14 + A[152 + l]*x15 + A[32 + l]*x19 + x20;
+        K[3008 + l] += A[192 + l]*x18 + A[200 + l]*x19 + A[208 + l]*x14 + A[248 + l]*x15;
+        K[3016 + l] += A[232 + l]*x14 + A[256 + l]*x19 + A[272 + l]*x15 + x25;
+        K[3136 + l] += A[312 + l]*x0 + A[320 + l]*x3 + A[336 + l]*x1;
+        K[3144 + l] += A[168 + l]*x2 + A[176 + l]*x1 + A[56 + l]*x5 + x7;
+        K[3152 + l] += A[224 + l]*x5 + A[288 + l]*x2 + A[296 + l]*x1 + x22;
+        K[3160 + l] += A[312 + l]*x4 + A[320 + l]*x5 + A[328 + l]*x2 + A[344 + l]*x1;
+        K[3168 + l] += A[56 + l]*x9 + x11;
+        K[3176 + l] += A[224 + l]*x9 + x23;
+        K[3184 + l] += A[312 + l]*x8 + A[320 + l]*x9;
+        K[3192 + l] += A[112 + l]*x14 + A[56 + l]*x13 + x17;
+        K[3200 + l] += A[224 + l]*x13 + A[256 + l]*x14 + x24;
+        K[3208 + l] += A[312 + l]*x12 + A[320 + l]*x13 + A[320 + l]*x14 + A[336 + l]*x15;
+        K[3216 + l] += A[168 + l]*x14 + A[176 + l]*x15 + A[56 + l]*x19 + x21;
+        K[3224 + l] += A[224 + l]*x19 + A[288 + l]*x14 + A[296 + l]*x15 + x25;
+        K[3232 + l] += A[312 + l]*x18 + A[320 + l]*x19 + A[328 + l]*x14 + A[344 + l]*x15;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[64 + l]*t[64 + l]);
+        const double x1 = (t[56 + l]*t[56 + l]);
+        const double x2 = t[56 + l]*t[64 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[64 + l]*t[72 + l];
+        const double x5 = t[56 + l]*t[72 + l];
+        const double x6 = A[24 + l]*x4;
+        const double x7 = A[48 + l]*x4;
+        const double x8 = t[80 + l]*t[64 + l];
+        const double x9 = t[88 + l]*t[56 + l];
+        const double x10 = t[88 + l]*t[64 + l];
+        const double x11 = t[80 + l]*t[56 + l];
+        const double x12 = A[24 + l]*x8;
+        const double x13 = A[48 + l]*x8;
+        const double x14 = t[96 + l]*t[64 + l];
+        const double x15 = t[96 + l]*t[56 + l];
+        const double x16 = A[160 + l]*x9 + A[24 + l]*x14;
+        const double x17 = A[184 + l]*x9 + A[48 + l]*x14;
+        const double x18 = A[216 + l]*x4;
+        const double x19 = A[216 + l]*x8;
+        const double x20 = A[216 + l]*x14 + A[304 + l]*x9;
+        K[3360 + l] += A[0 + l]*x0 + A[136 + l]*x1 + A[16 + l]*x3;
+        K[3368 + l] += A[144 + l]*x2 + A[160 + l]*x1 + A[24 + l]*x0 + A[40 + l]*x2;
+        K[3376 + l] += A[168 + l]*x2 + A[184 + l]*x1 + A[48 + l]*x0 + A[64 + l]*x2;
+        K[3384 + l] += A[0 + l]*x4 + A[16 + l]*x5;
+        K[3392 + l] += A[144 + l]*x5 + x6;
+        K[3400 + l] += A[168 + l]*x5 + x7;
+        K[3408 + l] += A[0 + l]*x8 + A[80 + l]*x9 + A[8 + l]*x10 + A[16 + l]*x11;
+        K[3416 + l] += A[144 + l]*x11 + A[152 + l]*x9 + A[32 + l]*x10 + x12;
+        K[3424 + l] += A[168 + l]*x11 + A[176 + l]*x9 + A[56 + l]*x10 + x13;
+        K[3432 + l] += A[0 + l]*x14 + A[136 + l]*x9 + A[16 + l]*x10 + A[16 + l]*x15;
+        K[3440 + l] += A[144 + l]*x15 + A[40 + l]*x10 + x16;
+        K[3448 + l] += A[168 + l]*x15 + A[64 + l]*x10 + x17;
+        K[3584 + l] += A[192 + l]*x0 + A[208 + l]*x3 + A[280 + l]*x1;
+        K[3592 + l] += A[216 + l]*x0 + A[232 + l]*x2 + A[288 + l]*x2 + A[304 + l]*x1;
+        K[3600 + l] += A[40 + l]*x5 + x6;
+        K[3608 + l] += A[192 + l]*x4 + A[208 + l]*x5;
+        K[3616 + l] += A[288 + l]*x5 + x18;
+        K[3624 + l] += A[88 + l]*x10 + A[104 + l]*x9 + A[40 + l]*x11 + x12;
+        K[3632 + l] += A[192 + l]*x8 + A[200 + l]*x10 + A[208 + l]*x11 + A[248 + l]*x9;
+        K[3640 + l] += A[224 + l]*x10 + A[288 + l]*x11 + A[296 + l]*x9 + x19;
+        K[3648 + l] += A[144 + l]*x10 + A[40 + l]*x15 + x16;
+        K[3656 + l] += A[192 + l]*x14 + A[208 + l]*x10 + A[208 + l]*x15 + A[280 + l]*x9;
+        K[3664 + l] += A[232 + l]*x10 + A[288 + l]*x15 + x20;
+        K[3808 + l] += A[312 + l]*x0 + A[328 + l]*x3 + A[352 + l]*x1;
+        K[3816 + l] += A[64 + l]*x5 + x7;
+        K[3824 + l] += A[232 + l]*x5 + x18;
+        K[3832 + l] += A[312 + l]*x4 + A[328 + l]*x5;
+        K[3840 + l] += A[112 + l]*x10 + A[128 + l]*x9 + A[64 + l]*x11 + x13;
+        K[3848 + l] += A[232 + l]*x11 + A[256 + l]*x10 + A[272 + l]*x9 + x19;
+        K[3856 + l] += A[312 + l]*x8 + A[320 + l]*x10 + A[328 + l]*x11 + A[344 + l]*x9;
+        K[3864 + l] += A[168 + l]*x10 + A[64 + l]*x15 + x17;
+        K[3872 + l] += A[232 + l]*x15 + A[288 + l]*x10 + x20;
+        K[3880 + l] += A[312 + l]*x14 + A[328 + l]*x10 + A[328 + l]*x15 + A[352 + l]*x9;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[72 + l]*t[72 + l]);
+        const double x1 = t[80 + l]*t[72 + l];
+        const double x2 = t[88 + l]*t[72 + l];
+        const double x3 = A[24 + l]*x1;
+        const double x4 = A[48 + l]*x1;
+        const double x5 = t[96 + l]*t[72 + l];
+        const double x6 = A[24 + l]*x5;
+        const double x7 = A[48 + l]*x5;
+        const double x8 = A[216 + l]*x1;
+        const double x9 = A[216 + l]*x5;
+        K[4032 + l] += A[0 + l]*x0;
+        K[4040 + l] += A[24 + l]*x0;
+        K[4048 + l] += A[48 + l]*x0;
+        K[4056 + l] += A[0 + l]*x1 + A[8 + l]*x2;
+        K[4064 + l] += A[32 + l]*x2 + x3;
+        K[4072 + l] += A[56 + l]*x2 + x4;
+        K[4080 + l] += A[0 + l]*x5 + A[16 + l]*x2;
+        K[4088 + l] += A[40 + l]*x2 + x6;
+        K[4096 + l] += A[64 + l]*x2 + x7;
+        K[4256 + l] += A[192 + l]*x0;
+        K[4264 + l] += A[216 + l]*x0;
+        K[4272 + l] += A[88 + l]*x2 + x3;
+        K[4280 + l] += A[192 + l]*x1 + A[200 + l]*x2;
+        K[4288 + l] += A[224 + l]*x2 + x8;
+        K[4296 + l] += A[144 + l]*x2 + x6;
+        K[4304 + l] += A[192 + l]*x5 + A[208 + l]*x2;
+        K[4312 + l] += A[232 + l]*x2 + x9;
+        K[4480 + l] += A[312 + l]*x0;
+        K[4488 + l] += A[112 + l]*x2 + x4;
+        K[4496 + l] += A[256 + l]*x2 + x8;
+        K[4504 + l] += A[312 + l]*x1 + A[320 + l]*x2;
+        K[4512 + l] += A[168 + l]*x2 + x7;
+        K[4520 + l] += A[288 + l]*x2 + x9;
+        K[4528 + l] += A[312 + l]*x5 + A[328 + l]*x2;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[80 + l]*t[80 + l]);
+        const double x1 = (t[88 + l]*t[88 + l]);
+        const double x2 = t[80 + l]*t[88 + l];
+        const double x3 = 2.0*x2;
+        const double x4 = t[80 + l]*t[96 + l];
+        const double x5 = t[88 + l]*t[96 + l];
+        const double x6 = A[24 + l]*x4;
+        const double x7 = A[48 + l]*x4;
+        const double x8 = A[216 + l]*x4;
+        K[4704 + l] += A[0 + l]*x0 + A[8 + l]*x3 + A[72 + l]*x1;
+        K[4712 + l] += A[88 + l]*x2 + A[96 + l]*x1 + A[24 + l]*x0 + A[32 + l]*x2;
+        K[4720 + l] += A[112 + l]*x2 + A[120 + l]*x1 + A[48 + l]*x0 + A[56 + l]*x2;
+        K[4728 + l] += A[0 + l]*x4 + A[80 + l]*x1 + A[8 + l]*x5 + A[16 + l]*x2;
+        K[4736 + l] += A[88 + l]*x5 + A[104 + l]*x1 + A[40 + l]*x2 + x6;
+        K[4744 + l] += A[112 + l]*x5 + A[128 + l]*x1 + A[64 + l]*x2 + x7;
+        K[4928 + l] += A[192 + l]*x0 + A[200 + l]*x3 + A[240 + l]*x1;
+        K[4936 + l] += A[216 + l]*x0 + A[224 + l]*x2 + A[256 + l]*x2 + A[264 + l]*x1;
+        K[4944 + l] += A[144 + l]*x2 + A[152 + l]*x1 + A[32 + l]*x5 + x6;
+        K[4952 + l] += A[192 + l]*x4 + A[200 + l]*x5 + A[208 + l]*x2 + A[248 + l]*x1;
+        K[4960 + l] += A[232 + l]*x2 + A[256 + l]*x5 + A[272 + l]*x1 + x8;
+        K[5152 + l] += A[312 + l]*x0 + A[320 + l]*x3 + A[336 + l]*x1;
+        K[5160 + l] += A[168 + l]*x2 + A[176 + l]*x1 + A[56 + l]*x5 + x7;
+        K[5168 + l] += A[224 + l]*x5 + A[288 + l]*x2 + A[296 + l]*x1 + x8;
+        K[5176 + l] += A[312 + l]*x4 + A[320 + l]*x5 + A[328 + l]*x2 + A[344 + l]*x1;
+    }
+}
+
+static BK_NOINLINE void ancf3333_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    #pragma omp simd
+    for (int l = 0; l < 8; ++l) {
+        const double x0 = (t[96 + l]*t[96 + l]);
+        const double x1 = (t[88 + l]*t[88 + l]);
+        const double x2 = t[88 + l]*t[96 + l];
+        const double x3 = 2.0*x2;
+        K[5376 + l] += A[0 + l]*x0 + A[136 + l]*x1 + A[16 + l]*x3;
+        K[5384 + l] += A[144 + l]*x2 + A[160 + l]*x1 + A[24 + l]*x0 + A[40 + l]*x2;
+        K[5392 + l] += A[168 + l]*x2 + A[184 + l]*x1 + A[48 + l]*x0 + A[64 + l]*x2;
+        K[5600 + l] += A[192 + l]*x0 + A[208 + l]*x3 + A[280 + l]*x1;
+        K[5608 + l] += A[216 + l]*x0 + A[232 + l]*x2 + A[288 + l]*x2 + A[304 + l]*x1;
+        K[5824 + l] += A[312 + l]*x0 + A[328 + l]*x3 + A[352 + l]*x1;
+    }
+}
+
+void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+{
+    ancf3333_contract_lanes_row0(A, t, K);
+    ancf3333_contract_lanes_row1(A, t, K);
+    ancf3333_contract_lanes_row2(A, t, K);
+    ancf3333_contract_lanes_row3(A, t, K);
+    ancf3333_contract_lanes_row4(A, t, K);
+    ancf3333_contract_lanes_row5(A, t, K);
+    ancf3333_contract_lanes_row6(A, t, K);
+    ancf3333_contract_lanes_row7(A, t, K);
+    ancf3333_contract_lanes_row8(A, t, K);
 }
 
 static const double node_xi[3] = {0.0, 0.5, 1.0};

@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:61435383a5a9256fb9c8f9fcb21a548afebee405d37e16b466e0533152e5167e
+ * input hash: sha256:a2f2aa1519b1892a67bd189b1863e2469932d2f9cf302faf649ce1f241a88c27
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -34,5 +34,7 @@ void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, 
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 2028 (1017 add, 1011 mul, 0 div, 0 call) operations. */
 void ancf3333_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
+/* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
+void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

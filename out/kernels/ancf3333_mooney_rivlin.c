@@ -3,8 +3,14 @@
 #include "ancf3333.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#endif
+
+/* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
+#if defined(__GLIBC__) && defined(__x86_64__)
+#pragma omp declare simd notinbranch
+double cbrt(double);
 #endif
 
 double ancf3333_mooney_rivlin_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -43,7 +49,8 @@ double ancf3333_mooney_rivlin_full_energy(const double *restrict q, const double
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
-            e += t[0]*(mat[0]*((I1/((cbrt(J*J)))) - 3.0) + mat[1]*((I2/((cbrt(J*J*J*J)))) - 3.0) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
+            const double cb0 = (cbrt(J));
+            e += t[0]*(mat[0]*((I1/((cb0*cb0))) - 3.0) + mat[1]*((I2/((cb0*cb0*cb0*cb0))) - 3.0) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
         }
     }
     return e;
@@ -83,11 +90,12 @@ void ancf3333_mooney_rivlin_full_force(const double *restrict q, const double *r
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
-            const double W_I1 = (mat[0]*t[0]/((cbrt(J*J))));
-            const double W_I2 = (mat[1]*t[0]/((cbrt(J*J*J*J))));
+            const double cb0 = (cbrt(J));
+            const double W_I1 = (mat[0]*t[0]/((cb0*cb0)));
+            const double W_I2 = (mat[1]*t[0]/((cb0*cb0*cb0*cb0)));
             const double C12 = F01*F02 + F11*F12 + F21*F22;
             const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
-            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cbrt(J*J*J*J*J)))) - (1.3333333333333333*I2*mat[1]/((cbrt(J*J*J*J*J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[1]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[2]*(2.0*J - 2.0));
             const double x9 = 2.0*F00;
             const double x10 = 2.0*F01;
             const double x11 = 2.0*F02;
@@ -143,6 +151,104 @@ void ancf3333_mooney_rivlin_full_force(const double *restrict q, const double *r
     }
 }
 
+void ancf3333_mooney_rivlin_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double C01 = F00*F01 + F10*F11 + F20*F21;
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double C02 = F00*F02 + F10*F12 + F20*F22;
+                const double x3 = (F01*F01);
+                const double x5 = (F11*F11);
+                const double x6 = (F21*F21);
+                const double C11 = x3 + x5 + x6;
+                const double x4 = (F02*F02);
+                const double x7 = (F12*F12);
+                const double x8 = (F22*F22);
+                const double C22 = x4 + x7 + x8;
+                const double I1 = C00 + C11 + C22;
+                const double cof00 = F11*F22 - F12*F21;
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double cb0 = (cbrt(J));
+                const double W_I1 = (mat[0 + l]*t[0 + l]/((cb0*cb0)));
+                const double W_I2 = (mat[8 + l]*t[0 + l]/((cb0*cb0*cb0*cb0)));
+                const double C12 = F01*F02 + F11*F12 + F21*F22;
+                const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+                const double W_J = t[0 + l]*(-(0.6666666666666666*I1*mat[0 + l]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[8 + l]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double x9 = 2.0*F00;
+                const double x10 = 2.0*F01;
+                const double x11 = 2.0*F02;
+                const double P00 = W_I1*x9 + W_I2*(-C00*x9 - C01*x10 - C02*x11 + 2.0*F00*I1) + W_J*cof00;
+                const double x12 = 2.0*F10;
+                const double x13 = 2.0*F11;
+                const double x14 = 2.0*F12;
+                const double P10 = W_I1*x12 + W_I2*(-C00*x12 - C01*x13 - C02*x14 + 2.0*F10*I1) + W_J*cof10;
+                const double x15 = 2.0*F20;
+                const double x16 = 2.0*F21;
+                const double x17 = 2.0*F22;
+                const double P20 = W_I1*x15 + W_I2*(-C00*x15 - C01*x16 - C02*x17 + 2.0*F20*I1) + W_J*cof20;
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = W_I1*x10 + W_I2*(-C01*x9 - C11*x10 - C12*x11 + 2.0*F01*I1) + W_J*cof01;
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = W_I1*x13 + W_I2*(-C01*x12 - C11*x13 - C12*x14 + 2.0*F11*I1) + W_J*cof11;
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = W_I1*x16 + W_I2*(-C01*x15 - C11*x16 - C12*x17 + 2.0*F21*I1) + W_J*cof21;
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = W_I1*x11 + W_I2*(-C02*x9 - C12*x10 - C22*x11 + 2.0*F02*I1) + W_J*cof02;
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = W_I1*x14 + W_I2*(-C02*x12 - C12*x13 - C22*x14 + 2.0*F12*I1) + W_J*cof12;
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = W_I1*x17 + W_I2*(-C02*x15 - C12*x16 - C22*x17 + 2.0*F22*I1) + W_J*cof22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+            }
+        }
+    }
+}
+
 void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 27; ++i) f[i] = 0.0;
@@ -185,11 +291,12 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double cof20 = x18 - x19;
             const double x25 = F20*cof20;
             const double J = x23 + x24 + x25;
+            const double cb0 = (cbrt(J));
             const double x27 = mat[1]*t[0];
-            const double W_I2 = (x27/((cbrt(J*J*J*J))));
-            const double x28 = (0.6666666666666666/((cbrt(J*J*J*J*J))));
+            const double W_I2 = (x27/((cb0*cb0*cb0*cb0)));
+            const double x28 = (0.6666666666666666/((cb0*cb0*cb0*cb0*cb0)));
             const double x29 = I1*mat[0];
-            const double x30 = (1.3333333333333333/((cbrt(J*J*J*J*J*J*J))));
+            const double x30 = (1.3333333333333333/((cb0*cb0*cb0*cb0*cb0*cb0*cb0)));
             const double C01 = F00*F01 + F10*F11 + F20*F21;
             const double C02 = F00*F02 + F10*F12 + F20*F22;
             const double C12 = F01*F02 + F11*F12 + F21*F22;
@@ -203,7 +310,7 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double x36 = 2.0*F02;
             const double x37 = C02*x36;
             const double x26 = mat[0]*t[0];
-            const double W_I1 = (x26/((cbrt(J*J))));
+            const double W_I1 = (x26/((cb0*cb0)));
             const double x38 = 2.0*W_I1;
             const double P00 = F00*x38 + W_I2*(2.0*F00*I1 - x33 - x35 - x37) + W_J*cof00;
             const double x45 = 2.0*F10;
@@ -259,7 +366,7 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double x67 = C12*x59;
             const double x68 = C22*x61;
             const double P22 = F22*x38 + W_I2*(2.0*F22*I1 - x66 - x67 - x68) + W_J*cof22;
-            const double W_J_J = t[0]*(mat[2] + (1.1111111111111112*x29/((cbrt(J*J*J*J*J*J*J*J)))) + (3.111111111111111*x31/((cbrt(J*J*J*J*J*J*J*J*J*J)))));
+            const double W_J_J = t[0]*(mat[2] + (1.1111111111111112*x29/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (3.111111111111111*x31/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))));
             const double x69 = 2.0*W_I2;
             const double x70 = -C00*x69;
             const double W_I1_J = -x26*x28;
@@ -409,6 +516,278 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+void ancf3333_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    for (int r = 0; r < 27; ++r)
+        for (int i = r * 28 * 8; i < (r + 1) * 27 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double x3 = (F01*F01);
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double x5 = (F11*F11);
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double x6 = (F21*F21);
+                const double C11 = x3 + x5 + x6;
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double x4 = (F02*F02);
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double x7 = (F12*F12);
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double x8 = (F22*F22);
+                const double C22 = x4 + x7 + x8;
+                const double I1 = C00 + C11 + C22;
+                const double x9 = F11*F22;
+                const double x10 = F12*F21;
+                const double cof00 = -x10 + x9;
+                const double x23 = F00*cof00;
+                const double x14 = F01*F22;
+                const double cof10 = F02*F21 - x14;
+                const double x24 = F10*cof10;
+                const double x18 = F01*F12;
+                const double x19 = F02*F11;
+                const double cof20 = x18 - x19;
+                const double x25 = F20*cof20;
+                const double J = x23 + x24 + x25;
+                const double cb0 = (cbrt(J));
+                const double x27 = mat[8 + l]*t[0 + l];
+                const double W_I2 = (x27/((cb0*cb0*cb0*cb0)));
+                const double x28 = (0.6666666666666666/((cb0*cb0*cb0*cb0*cb0)));
+                const double x29 = I1*mat[0 + l];
+                const double x30 = (1.3333333333333333/((cb0*cb0*cb0*cb0*cb0*cb0*cb0)));
+                const double C01 = F00*F01 + F10*F11 + F20*F21;
+                const double C02 = F00*F02 + F10*F12 + F20*F22;
+                const double C12 = F01*F02 + F11*F12 + F21*F22;
+                const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+                const double x31 = I2*mat[8 + l];
+                const double W_J = t[0 + l]*(0.5*mat[16 + l]*(2.0*J - 2.0) - x28*x29 - x30*x31);
+                const double x32 = 2.0*F00;
+                const double x33 = C00*x32;
+                const double x34 = 2.0*F01;
+                const double x35 = C01*x34;
+                const double x36 = 2.0*F02;
+                const double x37 = C02*x36;
+                const double x26 = mat[0 + l]*t[0 + l];
+                const double W_I1 = (x26/((cb0*cb0)));
+                const double x38 = 2.0*W_I1;
+                const double P00 = F00*x38 + W_I2*(2.0*F00*I1 - x33 - x35 - x37) + W_J*cof00;
+                const double x45 = 2.0*F10;
+                const double x46 = C00*x45;
+                const double x47 = 2.0*F11;
+                const double x48 = C01*x47;
+                const double x49 = 2.0*F12;
+                const double x50 = C02*x49;
+                const double P10 = F10*x38 + W_I2*(2.0*F10*I1 - x46 - x48 - x50) + W_J*cof10;
+                const double x57 = 2.0*F20;
+                const double x58 = C00*x57;
+                const double x59 = 2.0*F21;
+                const double x60 = C01*x59;
+                const double x61 = 2.0*F22;
+                const double x62 = C02*x61;
+                const double P20 = F20*x38 + W_I2*(2.0*F20*I1 - x58 - x60 - x62) + W_J*cof20;
+                const double x11 = F10*F22;
+                const double cof01 = F12*F20 - x11;
+                const double x39 = C01*x32;
+                const double x40 = C11*x34;
+                const double x41 = C12*x36;
+                const double P01 = F01*x38 + W_I2*(2.0*F01*I1 - x39 - x40 - x41) + W_J*cof01;
+                const double x15 = F00*F22;
+                const double x16 = F02*F20;
+                const double cof11 = x15 - x16;
+                const double x51 = C01*x45;
+                const double x52 = C11*x47;
+                const double x53 = C12*x49;
+                const double P11 = F11*x38 + W_I2*(2.0*F11*I1 - x51 - x52 - x53) + W_J*cof11;
+                const double x20 = F00*F12;
+                const double cof21 = F02*F10 - x20;
+                const double x63 = C01*x57;
+                const double x64 = C11*x59;
+                const double x65 = C12*x61;
+                const double P21 = F21*x38 + W_I2*(2.0*F21*I1 - x63 - x64 - x65) + W_J*cof21;
+                const double x12 = F10*F21;
+                const double x13 = F11*F20;
+                const double cof02 = x12 - x13;
+                const double x42 = C02*x32;
+                const double x43 = C12*x34;
+                const double x44 = C22*x36;
+                const double P02 = F02*x38 + W_I2*(2.0*F02*I1 - x42 - x43 - x44) + W_J*cof02;
+                const double x17 = F00*F21;
+                const double cof12 = F01*F20 - x17;
+                const double x54 = C02*x45;
+                const double x55 = C12*x47;
+                const double x56 = C22*x49;
+                const double P12 = F12*x38 + W_I2*(2.0*F12*I1 - x54 - x55 - x56) + W_J*cof12;
+                const double x21 = F00*F11;
+                const double x22 = F01*F10;
+                const double cof22 = x21 - x22;
+                const double x66 = C02*x57;
+                const double x67 = C12*x59;
+                const double x68 = C22*x61;
+                const double P22 = F22*x38 + W_I2*(2.0*F22*I1 - x66 - x67 - x68) + W_J*cof22;
+                const double W_J_J = t[0 + l]*(mat[16 + l] + (1.1111111111111112*x29/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (3.111111111111111*x31/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))));
+                const double x69 = 2.0*W_I2;
+                const double x70 = -C00*x69;
+                const double W_I1_J = -x26*x28;
+                const double x71 = 4.0*W_I1_J;
+                const double W_I2_J = -x27*x30;
+                const double x72 = 4.0*W_I2_J;
+                const double x73 = x23*x72;
+                const double x74 = cof00*x72;
+                const double b00 = x0 + x3 + x4;
+                const double x75 = I1*x69 + x38;
+                const double x76 = -b00*x69 + x75;
+                const double x77 = C01*x69;
+                const double x78 = W_I2_J*cof01;
+                const double x79 = 2.0*W_I2_J;
+                const double x80 = x23*x79;
+                const double x81 = W_I2_J*cof00;
+                const double x82 = C02*x69;
+                const double x83 = W_I2_J*cof02;
+                const double b01 = F00*F10 + F01*F11 + F02*F12;
+                const double x84 = b01*x69;
+                const double x85 = W_I2_J*cof10;
+                const double x86 = F22*W_J;
+                const double x87 = W_I2_J*cof11;
+                const double x88 = F21*W_J;
+                const double x89 = W_I2_J*cof12;
+                const double b02 = F00*F20 + F01*F21 + F02*F22;
+                const double x90 = b02*x69;
+                const double x91 = W_I2_J*cof20;
+                const double x92 = F12*W_J;
+                const double x93 = W_I2_J*cof21;
+                const double x94 = F11*W_J;
+                const double x95 = W_I2_J*cof22;
+                const double x96 = -C11*x69;
+                const double x97 = F01*cof01;
+                const double x98 = cof01*x72;
+                const double x99 = x72*x97;
+                const double x100 = C12*x69;
+                const double x101 = F20*W_J;
+                const double x102 = F10*W_J;
+                const double x103 = -C22*x69;
+                const double x104 = F02*cof02;
+                const double x105 = cof02*x72;
+                const double x106 = x104*x72;
+                const double x107 = x24*x72;
+                const double x108 = cof10*x72;
+                const double b11 = x1 + x5 + x7;
+                const double x109 = -b11*x69 + x75;
+                const double x110 = x24*x79;
+                const double b12 = F10*F20 + F11*F21 + F12*F22;
+                const double x111 = b12*x69;
+                const double x112 = F02*W_J;
+                const double x113 = F01*W_J;
+                const double x114 = F11*cof11;
+                const double x115 = cof11*x72;
+                const double x116 = x114*x72;
+                const double x117 = F00*W_J;
+                const double x118 = F12*cof12;
+                const double x119 = cof12*x72;
+                const double x120 = x118*x72;
+                const double x121 = x25*x72;
+                const double x122 = cof20*x72;
+                const double b22 = x2 + x6 + x8;
+                const double x123 = -b22*x69 + x75;
+                const double x124 = x25*x79;
+                const double x125 = F21*cof21;
+                const double x126 = cof21*x72;
+                const double x127 = x125*x72;
+                const double x128 = F22*cof22;
+                const double x129 = cof22*x72;
+                const double x130 = x128*x72;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+                A[0 + l] = -C00*x73 - C01*F01*x74 - C02*F02*x74 + I1*x73 + W_J_J*(cof00*cof00) + x0*x69 + x23*x71 + x70 + x76;
+                A[8 + l] = -C01*x80 + 2.0*F00*F01*W_I2 + 2.0*F00*I1*W_I2_J*cof01 + 2.0*F00*W_I1_J*cof01 + 2.0*F01*I1*W_I2_J*cof00 + 2.0*F01*W_I1_J*cof00 + W_J_J*cof00*cof01 - x33*x78 - x35*x78 - x37*x78 - x40*x81 - x41*x81 - x77;
+                A[16 + l] = -C02*x80 + 2.0*F00*F02*W_I2 + 2.0*F00*I1*W_I2_J*cof02 + 2.0*F00*W_I1_J*cof02 + 2.0*F02*I1*W_I2_J*cof00 + 2.0*F02*W_I1_J*cof00 + W_J_J*cof00*cof02 - x33*x83 - x35*x83 - x37*x83 - x43*x81 - x44*x81 - x82;
+                A[24 + l] = 2.0*F00*F10*W_I2 + 2.0*F00*I1*W_I2_J*cof10 + 2.0*F00*W_I1_J*cof10 + 2.0*F10*I1*W_I2_J*cof00 + 2.0*F10*W_I1_J*cof00 + W_J_J*cof00*cof10 - x33*x85 - x35*x85 - x37*x85 - x46*x81 - x48*x81 - x50*x81 - x84;
+                A[32 + l] = 4.0*F00*F11*W_I2 + 2.0*F00*I1*W_I2_J*cof11 + 2.0*F00*W_I1_J*cof11 + 2.0*F11*I1*W_I2_J*cof00 + 2.0*F11*W_I1_J*cof00 + W_J_J*cof00*cof11 - x22*x69 - x33*x87 - x35*x87 - x37*x87 - x51*x81 - x52*x81 - x53*x81 + x86;
+                A[40 + l] = 4.0*F00*F12*W_I2 + 2.0*F00*I1*W_I2_J*cof12 + 2.0*F00*W_I1_J*cof12 - F02*F10*x69 + 2.0*F12*I1*W_I2_J*cof00 + 2.0*F12*W_I1_J*cof00 + W_J_J*cof00*cof12 - x33*x89 - x35*x89 - x37*x89 - x54*x81 - x55*x81 - x56*x81 - x88;
+                A[48 + l] = 2.0*F00*F20*W_I2 + 2.0*F00*I1*W_I2_J*cof20 + 2.0*F00*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof00 + 2.0*F20*W_I1_J*cof00 + W_J_J*cof00*cof20 - x33*x91 - x35*x91 - x37*x91 - x58*x81 - x60*x81 - x62*x81 - x90;
+                A[56 + l] = 4.0*F00*F21*W_I2 + 2.0*F00*I1*W_I2_J*cof21 + 2.0*F00*W_I1_J*cof21 - F01*F20*x69 + 2.0*F21*I1*W_I2_J*cof00 + 2.0*F21*W_I1_J*cof00 + W_J_J*cof00*cof21 - x33*x93 - x35*x93 - x37*x93 - x63*x81 - x64*x81 - x65*x81 - x92;
+                A[64 + l] = 4.0*F00*F22*W_I2 + 2.0*F00*I1*W_I2_J*cof22 + 2.0*F00*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof00 + 2.0*F22*W_I1_J*cof00 + W_J_J*cof00*cof22 - x16*x69 - x33*x95 - x35*x95 - x37*x95 - x66*x81 - x67*x81 - x68*x81 + x94;
+                A[72 + l] = -C01*F00*x98 - C11*x99 - C12*F02*x98 + I1*x99 + W_J_J*(cof01*cof01) + x3*x69 + x71*x97 + x76 + x96;
+                A[80 + l] = 2.0*F01*F02*W_I2 + 2.0*F01*I1*W_I2_J*cof02 + 2.0*F01*W_I1_J*cof02 + 2.0*F02*I1*W_I2_J*cof01 + 2.0*F02*W_I1_J*cof01 + W_J_J*cof01*cof02 - x100 - x39*x83 - x40*x83 - x41*x83 - x42*x78 - x43*x78 - x44*x78;
+                A[88 + l] = 4.0*F01*F10*W_I2 + 2.0*F01*I1*W_I2_J*cof10 + 2.0*F01*W_I1_J*cof10 + 2.0*F10*I1*W_I2_J*cof01 + 2.0*F10*W_I1_J*cof01 + W_J_J*cof01*cof10 - x21*x69 - x39*x85 - x40*x85 - x41*x85 - x46*x78 - x48*x78 - x50*x78 - x86;
+                A[96 + l] = 2.0*F01*F11*W_I2 + 2.0*F01*I1*W_I2_J*cof11 + 2.0*F01*W_I1_J*cof11 + 2.0*F11*I1*W_I2_J*cof01 + 2.0*F11*W_I1_J*cof01 + W_J_J*cof01*cof11 - x39*x87 - x40*x87 - x41*x87 - x51*x78 - x52*x78 - x53*x78 - x84;
+                A[104 + l] = 4.0*F01*F12*W_I2 + 2.0*F01*I1*W_I2_J*cof12 + 2.0*F01*W_I1_J*cof12 + 2.0*F12*I1*W_I2_J*cof01 + 2.0*F12*W_I1_J*cof01 + W_J_J*cof01*cof12 + x101 - x19*x69 - x39*x89 - x40*x89 - x41*x89 - x54*x78 - x55*x78 - x56*x78;
+                A[112 + l] = 4.0*F01*F20*W_I2 + 2.0*F01*I1*W_I2_J*cof20 + 2.0*F01*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof01 + 2.0*F20*W_I1_J*cof01 + W_J_J*cof01*cof20 - x17*x69 - x39*x91 - x40*x91 - x41*x91 - x58*x78 - x60*x78 - x62*x78 + x92;
+                A[120 + l] = 2.0*F01*F21*W_I2 + 2.0*F01*I1*W_I2_J*cof21 + 2.0*F01*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof01 + 2.0*F21*W_I1_J*cof01 + W_J_J*cof01*cof21 - x39*x93 - x40*x93 - x41*x93 - x63*x78 - x64*x78 - x65*x78 - x90;
+                A[128 + l] = 4.0*F01*F22*W_I2 + 2.0*F01*I1*W_I2_J*cof22 + 2.0*F01*W_I1_J*cof22 - F02*F21*x69 + 2.0*F22*I1*W_I2_J*cof01 + 2.0*F22*W_I1_J*cof01 + W_J_J*cof01*cof22 - x102 - x39*x95 - x40*x95 - x41*x95 - x66*x78 - x67*x78 - x68*x78;
+                A[136 + l] = -C02*F00*x105 - C12*F01*x105 - C22*x106 + I1*x106 + W_J_J*(cof02*cof02) + x103 + x104*x71 + x4*x69 + x76;
+                A[144 + l] = 4.0*F02*F10*W_I2 + 2.0*F02*I1*W_I2_J*cof10 + 2.0*F02*W_I1_J*cof10 + 2.0*F10*I1*W_I2_J*cof02 + 2.0*F10*W_I1_J*cof02 + W_J_J*cof02*cof10 - x20*x69 - x42*x85 - x43*x85 - x44*x85 - x46*x83 - x48*x83 - x50*x83 + x88;
+                A[152 + l] = 4.0*F02*F11*W_I2 + 2.0*F02*I1*W_I2_J*cof11 + 2.0*F02*W_I1_J*cof11 + 2.0*F11*I1*W_I2_J*cof02 + 2.0*F11*W_I1_J*cof02 + W_J_J*cof02*cof11 - x101 - x18*x69 - x42*x87 - x43*x87 - x44*x87 - x51*x83 - x52*x83 - x53*x83;
+                A[160 + l] = 2.0*F02*F12*W_I2 + 2.0*F02*I1*W_I2_J*cof12 + 2.0*F02*W_I1_J*cof12 + 2.0*F12*I1*W_I2_J*cof02 + 2.0*F12*W_I1_J*cof02 + W_J_J*cof02*cof12 - x42*x89 - x43*x89 - x44*x89 - x54*x83 - x55*x83 - x56*x83 - x84;
+                A[168 + l] = 4.0*F02*F20*W_I2 + 2.0*F02*I1*W_I2_J*cof20 + 2.0*F02*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof02 + 2.0*F20*W_I1_J*cof02 + W_J_J*cof02*cof20 - x15*x69 - x42*x91 - x43*x91 - x44*x91 - x58*x83 - x60*x83 - x62*x83 - x94;
+                A[176 + l] = 4.0*F02*F21*W_I2 + 2.0*F02*I1*W_I2_J*cof21 + 2.0*F02*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof02 + 2.0*F21*W_I1_J*cof02 + W_J_J*cof02*cof21 + x102 - x14*x69 - x42*x93 - x43*x93 - x44*x93 - x63*x83 - x64*x83 - x65*x83;
+                A[184 + l] = 2.0*F02*F22*W_I2 + 2.0*F02*I1*W_I2_J*cof22 + 2.0*F02*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof02 + 2.0*F22*W_I1_J*cof02 + W_J_J*cof02*cof22 - x42*x95 - x43*x95 - x44*x95 - x66*x83 - x67*x83 - x68*x83 - x90;
+                A[192 + l] = -C00*x107 - C01*F11*x108 - C02*F12*x108 + I1*x107 + W_J_J*(cof10*cof10) + x1*x69 + x109 + x24*x71 + x70;
+                A[200 + l] = -C01*x110 + 2.0*F10*F11*W_I2 + 2.0*F10*I1*W_I2_J*cof11 + 2.0*F10*W_I1_J*cof11 + 2.0*F11*I1*W_I2_J*cof10 + 2.0*F11*W_I1_J*cof10 + W_J_J*cof10*cof11 - x46*x87 - x48*x87 - x50*x87 - x52*x85 - x53*x85 - x77;
+                A[208 + l] = -C02*x110 + 2.0*F10*F12*W_I2 + 2.0*F10*I1*W_I2_J*cof12 + 2.0*F10*W_I1_J*cof12 + 2.0*F12*I1*W_I2_J*cof10 + 2.0*F12*W_I1_J*cof10 + W_J_J*cof10*cof12 - x46*x89 - x48*x89 - x50*x89 - x55*x85 - x56*x85 - x82;
+                A[216 + l] = 2.0*F10*F20*W_I2 + 2.0*F10*I1*W_I2_J*cof20 + 2.0*F10*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof10 + 2.0*F20*W_I1_J*cof10 + W_J_J*cof10*cof20 - x111 - x46*x91 - x48*x91 - x50*x91 - x58*x85 - x60*x85 - x62*x85;
+                A[224 + l] = 4.0*F10*F21*W_I2 + 2.0*F10*I1*W_I2_J*cof21 + 2.0*F10*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof10 + 2.0*F21*W_I1_J*cof10 + W_J_J*cof10*cof21 + x112 - x13*x69 - x46*x93 - x48*x93 - x50*x93 - x63*x85 - x64*x85 - x65*x85;
+                A[232 + l] = 4.0*F10*F22*W_I2 + 2.0*F10*I1*W_I2_J*cof22 + 2.0*F10*W_I1_J*cof22 - F12*F20*x69 + 2.0*F22*I1*W_I2_J*cof10 + 2.0*F22*W_I1_J*cof10 + W_J_J*cof10*cof22 - x113 - x46*x95 - x48*x95 - x50*x95 - x66*x85 - x67*x85 - x68*x85;
+                A[240 + l] = -C01*F10*x115 - C11*x116 - C12*F12*x115 + I1*x116 + W_J_J*(cof11*cof11) + x109 + x114*x71 + x5*x69 + x96;
+                A[248 + l] = 2.0*F11*F12*W_I2 + 2.0*F11*I1*W_I2_J*cof12 + 2.0*F11*W_I1_J*cof12 + 2.0*F12*I1*W_I2_J*cof11 + 2.0*F12*W_I1_J*cof11 + W_J_J*cof11*cof12 - x100 - x51*x89 - x52*x89 - x53*x89 - x54*x87 - x55*x87 - x56*x87;
+                A[256 + l] = 4.0*F11*F20*W_I2 + 2.0*F11*I1*W_I2_J*cof20 + 2.0*F11*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof11 + 2.0*F20*W_I1_J*cof11 + W_J_J*cof11*cof20 - x112 - x12*x69 - x51*x91 - x52*x91 - x53*x91 - x58*x87 - x60*x87 - x62*x87;
+                A[264 + l] = 2.0*F11*F21*W_I2 + 2.0*F11*I1*W_I2_J*cof21 + 2.0*F11*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof11 + 2.0*F21*W_I1_J*cof11 + W_J_J*cof11*cof21 - x111 - x51*x93 - x52*x93 - x53*x93 - x63*x87 - x64*x87 - x65*x87;
+                A[272 + l] = 4.0*F11*F22*W_I2 + 2.0*F11*I1*W_I2_J*cof22 + 2.0*F11*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof11 + 2.0*F22*W_I1_J*cof11 + W_J_J*cof11*cof22 - x10*x69 + x117 - x51*x95 - x52*x95 - x53*x95 - x66*x87 - x67*x87 - x68*x87;
+                A[280 + l] = -C02*F10*x119 - C12*F11*x119 - C22*x120 + I1*x120 + W_J_J*(cof12*cof12) + x103 + x109 + x118*x71 + x69*x7;
+                A[288 + l] = 4.0*F12*F20*W_I2 + 2.0*F12*I1*W_I2_J*cof20 + 2.0*F12*W_I1_J*cof20 + 2.0*F20*I1*W_I2_J*cof12 + 2.0*F20*W_I1_J*cof12 + W_J_J*cof12*cof20 - x11*x69 + x113 - x54*x91 - x55*x91 - x56*x91 - x58*x89 - x60*x89 - x62*x89;
+                A[296 + l] = 4.0*F12*F21*W_I2 + 2.0*F12*I1*W_I2_J*cof21 + 2.0*F12*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof12 + 2.0*F21*W_I1_J*cof12 + W_J_J*cof12*cof21 - x117 - x54*x93 - x55*x93 - x56*x93 - x63*x89 - x64*x89 - x65*x89 - x69*x9;
+                A[304 + l] = 2.0*F12*F22*W_I2 + 2.0*F12*I1*W_I2_J*cof22 + 2.0*F12*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof12 + 2.0*F22*W_I1_J*cof12 + W_J_J*cof12*cof22 - x111 - x54*x95 - x55*x95 - x56*x95 - x66*x89 - x67*x89 - x68*x89;
+                A[312 + l] = -C00*x121 - C01*F21*x122 - C02*F22*x122 + I1*x121 + W_J_J*(cof20*cof20) + x123 + x2*x69 + x25*x71 + x70;
+                A[320 + l] = -C01*x124 + 2.0*F20*F21*W_I2 + 2.0*F20*I1*W_I2_J*cof21 + 2.0*F20*W_I1_J*cof21 + 2.0*F21*I1*W_I2_J*cof20 + 2.0*F21*W_I1_J*cof20 + W_J_J*cof20*cof21 - x58*x93 - x60*x93 - x62*x93 - x64*x91 - x65*x91 - x77;
+                A[328 + l] = -C02*x124 + 2.0*F20*F22*W_I2 + 2.0*F20*I1*W_I2_J*cof22 + 2.0*F20*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof20 + 2.0*F22*W_I1_J*cof20 + W_J_J*cof20*cof22 - x58*x95 - x60*x95 - x62*x95 - x67*x91 - x68*x91 - x82;
+                A[336 + l] = -C01*F20*x126 - C11*x127 - C12*F22*x126 + I1*x127 + W_J_J*(cof21*cof21) + x123 + x125*x71 + x6*x69 + x96;
+                A[344 + l] = 2.0*F21*F22*W_I2 + 2.0*F21*I1*W_I2_J*cof22 + 2.0*F21*W_I1_J*cof22 + 2.0*F22*I1*W_I2_J*cof21 + 2.0*F22*W_I1_J*cof21 + W_J_J*cof21*cof22 - x100 - x63*x95 - x64*x95 - x65*x95 - x66*x93 - x67*x93 - x68*x93;
+                A[352 + l] = -C02*F20*x129 - C12*F21*x129 - C22*x130 + I1*x130 + W_J_J*(cof22*cof22) + x103 + x123 + x128*x71 + x69*x8;
+            }
+            ancf3333_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 27; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 27 + c) * 8 + l] = K[(c * 27 + r) * 8 + l];
+}
+
 static const char *const param_names[3] = {"c10", "c01", "kappa"};
 
 const bk_pair bk_pair_ancf3333_mooney_rivlin_full = {
@@ -419,12 +798,14 @@ const bk_pair bk_pair_ancf3333_mooney_rivlin_full = {
     .param_names = param_names,
     .ntab = 156,
     .nqp = 12,
-    .ops_force = 4932L,
-    .ops_force_tangent = 49140L,
+    .ops_force = 4848L,
+    .ops_force_tangent = 49008L,
     .tabulate = ancf3333_full_tabulate,
     .energy = ancf3333_mooney_rivlin_full_energy,
     .force = ancf3333_mooney_rivlin_full_force,
     .force_tangent = ancf3333_mooney_rivlin_full_force_tangent,
+    .force_lanes = ancf3333_mooney_rivlin_full_force_lanes,
+    .force_tangent_lanes = ancf3333_mooney_rivlin_full_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3333_full_viscous,
     .invariants = ancf3333_full_invariants,

@@ -3,8 +3,14 @@
 #include "ancf3333.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#endif
+
+/* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
+#if defined(__GLIBC__) && defined(__x86_64__)
+#pragma omp declare simd notinbranch
+double log(double);
 #endif
 
 double ancf3333_neo_hookean_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -111,6 +117,78 @@ void ancf3333_neo_hookean_full_force(const double *restrict q, const double *res
             f[24] += P00*t[12] + P02*t[11];
             f[25] += P10*t[12] + P12*t[11];
             f[26] += P20*t[12] + P22*t[11];
+        }
+    }
+}
+
+void ancf3333_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double cof00 = F11*F22 - F12*F21;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x9 = (1.0/J);
+                const double W_J = t[0 + l]*(mat[0 + l]*x9*log(J) - mat[8 + l]*x9);
+                const double W_I1 = 0.5*mat[8 + l]*t[0 + l];
+                const double x10 = 2.0*W_I1;
+                const double P00 = F00*x10 + W_J*cof00;
+                const double P10 = F10*x10 + W_J*cof10;
+                const double P20 = F20*x10 + W_J*cof20;
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x10 + W_J*cof01;
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x10 + W_J*cof11;
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x10 + W_J*cof21;
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x10 + W_J*cof02;
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x10 + W_J*cof12;
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x10 + W_J*cof22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+            }
         }
     }
 }
@@ -252,6 +330,148 @@ void ancf3333_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+void ancf3333_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    for (int r = 0; r < 27; ++r)
+        for (int i = r * 28 * 8; i < (r + 1) * 27 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double cof00 = F11*F22 - F12*F21;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double x9 = (1.0/J);
+                const double x10 = mat[0 + l]*log(J);
+                const double W_J = t[0 + l]*(-mat[8 + l]*x9 + x10*x9);
+                const double W_I1 = 0.5*mat[8 + l]*t[0 + l];
+                const double x11 = 2.0*W_I1;
+                const double P00 = F00*x11 + W_J*cof00;
+                const double P10 = F10*x11 + W_J*cof10;
+                const double P20 = F20*x11 + W_J*cof20;
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x11 + W_J*cof01;
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x11 + W_J*cof11;
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x11 + W_J*cof21;
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x11 + W_J*cof02;
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x11 + W_J*cof12;
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x11 + W_J*cof22;
+                const double W_J_J = (t[0 + l]*(mat[0 + l] + mat[8 + l] - x10)/((J*J)));
+                const double x12 = W_J_J*cof00;
+                const double x13 = F22*W_J;
+                const double x14 = F21*W_J;
+                const double x15 = F12*W_J;
+                const double x16 = F11*W_J;
+                const double x17 = W_J_J*cof01;
+                const double x18 = F20*W_J;
+                const double x19 = F10*W_J;
+                const double x20 = W_J_J*cof02;
+                const double x21 = W_J_J*cof10;
+                const double x22 = F02*W_J;
+                const double x23 = F01*W_J;
+                const double x24 = W_J_J*cof11;
+                const double x25 = F00*W_J;
+                const double x26 = W_J_J*cof12;
+                const double x27 = W_J_J*cof20;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+                A[0 + l] = W_J_J*(cof00*cof00) + x11;
+                A[8 + l] = cof01*x12;
+                A[16 + l] = cof02*x12;
+                A[24 + l] = cof10*x12;
+                A[32 + l] = cof11*x12 + x13;
+                A[40 + l] = W_J_J*cof00*cof12 - x14;
+                A[48 + l] = cof20*x12;
+                A[56 + l] = W_J_J*cof00*cof21 - x15;
+                A[64 + l] = cof22*x12 + x16;
+                A[72 + l] = W_J_J*(cof01*cof01) + x11;
+                A[80 + l] = cof02*x17;
+                A[88 + l] = W_J_J*cof01*cof10 - x13;
+                A[96 + l] = cof11*x17;
+                A[104 + l] = cof12*x17 + x18;
+                A[112 + l] = cof20*x17 + x15;
+                A[120 + l] = cof21*x17;
+                A[128 + l] = W_J_J*cof01*cof22 - x19;
+                A[136 + l] = W_J_J*(cof02*cof02) + x11;
+                A[144 + l] = cof10*x20 + x14;
+                A[152 + l] = W_J_J*cof02*cof11 - x18;
+                A[160 + l] = cof12*x20;
+                A[168 + l] = W_J_J*cof02*cof20 - x16;
+                A[176 + l] = cof21*x20 + x19;
+                A[184 + l] = cof22*x20;
+                A[192 + l] = W_J_J*(cof10*cof10) + x11;
+                A[200 + l] = cof11*x21;
+                A[208 + l] = cof12*x21;
+                A[216 + l] = cof20*x21;
+                A[224 + l] = cof21*x21 + x22;
+                A[232 + l] = W_J_J*cof10*cof22 - x23;
+                A[240 + l] = W_J_J*(cof11*cof11) + x11;
+                A[248 + l] = cof12*x24;
+                A[256 + l] = W_J_J*cof11*cof20 - x22;
+                A[264 + l] = cof21*x24;
+                A[272 + l] = cof22*x24 + x25;
+                A[280 + l] = W_J_J*(cof12*cof12) + x11;
+                A[288 + l] = cof20*x26 + x23;
+                A[296 + l] = W_J_J*cof12*cof21 - x25;
+                A[304 + l] = cof22*x26;
+                A[312 + l] = W_J_J*(cof20*cof20) + x11;
+                A[320 + l] = cof21*x27;
+                A[328 + l] = cof22*x27;
+                A[336 + l] = W_J_J*(cof21*cof21) + x11;
+                A[344 + l] = W_J_J*cof21*cof22;
+                A[352 + l] = W_J_J*(cof22*cof22) + x11;
+            }
+            ancf3333_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 27; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 27 + c) * 8 + l] = K[(c * 27 + r) * 8 + l];
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
 
 const bk_pair bk_pair_ancf3333_neo_hookean_full = {
@@ -268,6 +488,8 @@ const bk_pair bk_pair_ancf3333_neo_hookean_full = {
     .energy = ancf3333_neo_hookean_full_energy,
     .force = ancf3333_neo_hookean_full_force,
     .force_tangent = ancf3333_neo_hookean_full_force_tangent,
+    .force_lanes = ancf3333_neo_hookean_full_force_lanes,
+    .force_tangent_lanes = ancf3333_neo_hookean_full_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3333_full_viscous,
     .invariants = ancf3333_full_invariants,

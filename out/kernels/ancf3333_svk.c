@@ -3,8 +3,8 @@
 #include "ancf3333.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3333_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -125,6 +125,92 @@ void ancf3333_svk_full_force(const double *restrict q, const double *restrict ta
             f[24] += P00*t[12] + P02*t[11];
             f[25] += P10*t[12] + P12*t[11];
             f[26] += P20*t[12] + P22*t[11];
+        }
+    }
+}
+
+void ancf3333_svk_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double C01 = F00*F01 + F10*F11 + F20*F21;
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double C02 = F00*F02 + F10*F12 + F20*F22;
+                const double x3 = (F01*F01);
+                const double x5 = (F11*F11);
+                const double x6 = (F21*F21);
+                const double C11 = x3 + x5 + x6;
+                const double x4 = (F02*F02);
+                const double x7 = (F12*F12);
+                const double x8 = (F22*F22);
+                const double C22 = x4 + x7 + x8;
+                const double I1 = C00 + C11 + C22;
+                const double x9 = 0.5*I1;
+                const double W_I1 = t[0 + l]*(0.5*mat[0 + l]*(x9 - 1.5) + mat[8 + l]*(x9 - 0.5));
+                const double W_I2 = -0.5*mat[8 + l]*t[0 + l];
+                const double x10 = 2.0*F00;
+                const double x11 = 2.0*F01;
+                const double x12 = 2.0*F02;
+                const double P00 = W_I1*x10 + W_I2*(-C00*x10 - C01*x11 - C02*x12 + 2.0*F00*I1);
+                const double x13 = 2.0*F10;
+                const double x14 = 2.0*F11;
+                const double x15 = 2.0*F12;
+                const double P10 = W_I1*x13 + W_I2*(-C00*x13 - C01*x14 - C02*x15 + 2.0*F10*I1);
+                const double x16 = 2.0*F20;
+                const double x17 = 2.0*F21;
+                const double x18 = 2.0*F22;
+                const double P20 = W_I1*x16 + W_I2*(-C00*x16 - C01*x17 - C02*x18 + 2.0*F20*I1);
+                const double C12 = F01*F02 + F11*F12 + F21*F22;
+                const double P01 = W_I1*x11 + W_I2*(-C01*x10 - C11*x11 - C12*x12 + 2.0*F01*I1);
+                const double P11 = W_I1*x14 + W_I2*(-C01*x13 - C11*x14 - C12*x15 + 2.0*F11*I1);
+                const double P21 = W_I1*x17 + W_I2*(-C01*x16 - C11*x17 - C12*x18 + 2.0*F21*I1);
+                const double P02 = W_I1*x12 + W_I2*(-C02*x10 - C12*x11 - C22*x12 + 2.0*F02*I1);
+                const double P12 = W_I1*x15 + W_I2*(-C02*x13 - C12*x14 - C22*x15 + 2.0*F12*I1);
+                const double P22 = W_I1*x18 + W_I2*(-C02*x16 - C12*x17 - C22*x18 + 2.0*F22*I1);
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+            }
         }
     }
 }
@@ -322,6 +408,204 @@ void ancf3333_svk_full_force_tangent(const double *restrict q, const double *res
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
+void ancf3333_svk_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 216; ++i) f[i] = 0.0;
+    for (int r = 0; r < 27; ++r)
+        for (int i = r * 28 * 8; i < (r + 1) * 27 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 13 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[160 + l]*t[72 + l] + q[184 + l]*t[80 + l] + q[208 + l]*t[96 + l] + q[16 + l]*t[8 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[56 + l] + q[168 + l]*t[88 + l] + q[24 + l]*t[24 + l];
+                const double x5 = F00*F01;
+                const double F11 = q[104 + l]*t[56 + l] + q[176 + l]*t[88 + l] + q[32 + l]*t[24 + l];
+                const double x6 = F10*F11;
+                const double F21 = q[112 + l]*t[56 + l] + q[184 + l]*t[88 + l] + q[40 + l]*t[24 + l];
+                const double x7 = F20*F21;
+                const double C01 = x5 + x6 + x7;
+                const double F02 = q[120 + l]*t[56 + l] + q[192 + l]*t[88 + l] + q[48 + l]*t[24 + l];
+                const double x11 = F00*F02;
+                const double F12 = q[128 + l]*t[56 + l] + q[200 + l]*t[88 + l] + q[56 + l]*t[24 + l];
+                const double x12 = F10*F12;
+                const double F22 = q[136 + l]*t[56 + l] + q[208 + l]*t[88 + l] + q[64 + l]*t[24 + l];
+                const double x13 = F20*F22;
+                const double C02 = x11 + x12 + x13;
+                const double x3 = (F01*F01);
+                const double x17 = (F11*F11);
+                const double x18 = (F21*F21);
+                const double C11 = x17 + x18 + x3;
+                const double x4 = (F02*F02);
+                const double x19 = (F12*F12);
+                const double x26 = (F22*F22);
+                const double C22 = x19 + x26 + x4;
+                const double I1 = C00 + C11 + C22;
+                const double W_I2 = -0.5*mat[8 + l]*t[0 + l];
+                const double x42 = 2.0*F00;
+                const double x43 = 2.0*F01;
+                const double x44 = 2.0*F02;
+                const double x41 = 0.5*I1;
+                const double W_I1 = t[0 + l]*(0.5*mat[0 + l]*(x41 - 1.5) + mat[8 + l]*(x41 - 0.5));
+                const double x45 = 2.0*W_I1;
+                const double P00 = F00*x45 + W_I2*(-C00*x42 - C01*x43 - C02*x44 + 2.0*F00*I1);
+                const double x46 = 2.0*F10;
+                const double x47 = 2.0*F11;
+                const double x48 = 2.0*F12;
+                const double P10 = F10*x45 + W_I2*(-C00*x46 - C01*x47 - C02*x48 + 2.0*F10*I1);
+                const double x49 = 2.0*F20;
+                const double x50 = 2.0*F21;
+                const double x51 = 2.0*F22;
+                const double P20 = F20*x45 + W_I2*(-C00*x49 - C01*x50 - C02*x51 + 2.0*F20*I1);
+                const double x20 = F01*F02;
+                const double x21 = F11*F12;
+                const double x22 = F21*F22;
+                const double C12 = x20 + x21 + x22;
+                const double P01 = F01*x45 + W_I2*(-C01*x42 - C11*x43 - C12*x44 + 2.0*F01*I1);
+                const double P11 = F11*x45 + W_I2*(-C01*x46 - C11*x47 - C12*x48 + 2.0*F11*I1);
+                const double P21 = F21*x45 + W_I2*(-C01*x49 - C11*x50 - C12*x51 + 2.0*F21*I1);
+                const double P02 = F02*x45 + W_I2*(-C02*x42 - C12*x43 - C22*x44 + 2.0*F02*I1);
+                const double P12 = F12*x45 + W_I2*(-C02*x46 - C12*x47 - C22*x48 + 2.0*F12*I1);
+                const double P22 = F22*x45 + W_I2*(-C02*x49 - C12*x50 - C22*x51 + 2.0*F22*I1);
+                const double x52 = 2.0*W_I2;
+                const double x53 = -C00*x52;
+                const double W_I1_I1 = 0.25*t[0 + l]*(mat[0 + l] + 2.0*mat[8 + l]);
+                const double x54 = 4.0*W_I1_I1;
+                const double b00 = x0 + x3 + x4;
+                const double x55 = I1*x52 + x45;
+                const double x56 = -b00*x52 + x55;
+                const double x57 = -C01*x52;
+                const double x58 = -C02*x52;
+                const double x8 = F00*F10;
+                const double x9 = F01*F11;
+                const double x10 = F02*F12;
+                const double b01 = x10 + x8 + x9;
+                const double x59 = -b01*x52;
+                const double x39 = F00*F11;
+                const double x40 = F01*F10;
+                const double x60 = 4.0*W_I2;
+                const double x38 = F00*F12;
+                const double x61 = F02*F10;
+                const double x14 = F00*F20;
+                const double x15 = F01*F21;
+                const double x16 = F02*F22;
+                const double b02 = x14 + x15 + x16;
+                const double x62 = -b02*x52;
+                const double x35 = F00*F21;
+                const double x63 = F01*F20;
+                const double x33 = F00*F22;
+                const double x34 = F02*F20;
+                const double x64 = -C11*x52;
+                const double x65 = -C12*x52;
+                const double x36 = F01*F12;
+                const double x37 = F02*F11;
+                const double x32 = F01*F22;
+                const double x66 = F02*F21;
+                const double x67 = -C22*x52;
+                const double b11 = x1 + x17 + x19;
+                const double x68 = -b11*x52 + x55;
+                const double x23 = F10*F20;
+                const double x24 = F11*F21;
+                const double x25 = F12*F22;
+                const double b12 = x23 + x24 + x25;
+                const double x69 = -b12*x52;
+                const double x30 = F10*F21;
+                const double x31 = F11*F20;
+                const double x29 = F10*F22;
+                const double x70 = F12*F20;
+                const double x27 = F11*F22;
+                const double x28 = F12*F21;
+                const double b22 = x18 + x2 + x26;
+                const double x71 = -b22*x52 + x55;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l];
+                f[80 + l] += P10*t[40 + l];
+                f[88 + l] += P20*t[40 + l];
+                f[96 + l] += P00*t[48 + l] + P01*t[56 + l];
+                f[104 + l] += P10*t[48 + l] + P11*t[56 + l];
+                f[112 + l] += P20*t[48 + l] + P21*t[56 + l];
+                f[120 + l] += P00*t[64 + l] + P02*t[56 + l];
+                f[128 + l] += P10*t[64 + l] + P12*t[56 + l];
+                f[136 + l] += P20*t[64 + l] + P22*t[56 + l];
+                f[144 + l] += P00*t[72 + l];
+                f[152 + l] += P10*t[72 + l];
+                f[160 + l] += P20*t[72 + l];
+                f[168 + l] += P00*t[80 + l] + P01*t[88 + l];
+                f[176 + l] += P10*t[80 + l] + P11*t[88 + l];
+                f[184 + l] += P20*t[80 + l] + P21*t[88 + l];
+                f[192 + l] += P00*t[96 + l] + P02*t[88 + l];
+                f[200 + l] += P10*t[96 + l] + P12*t[88 + l];
+                f[208 + l] += P20*t[96 + l] + P22*t[88 + l];
+                A[0 + l] = x0*x52 + x0*x54 + x53 + x56;
+                A[8 + l] = x5*x52 + x5*x54 + x57;
+                A[16 + l] = x11*x52 + x11*x54 + x58;
+                A[24 + l] = x52*x8 + x54*x8 + x59;
+                A[32 + l] = x39*x54 + x39*x60 - x40*x52;
+                A[40 + l] = x38*x54 + x38*x60 - x52*x61;
+                A[48 + l] = x14*x52 + x14*x54 + x62;
+                A[56 + l] = x35*x54 + x35*x60 - x52*x63;
+                A[64 + l] = x33*x54 + x33*x60 - x34*x52;
+                A[72 + l] = x3*x52 + x3*x54 + x56 + x64;
+                A[80 + l] = x20*x52 + x20*x54 + x65;
+                A[88 + l] = -x39*x52 + x40*x54 + x40*x60;
+                A[96 + l] = x52*x9 + x54*x9 + x59;
+                A[104 + l] = x36*x54 + x36*x60 - x37*x52;
+                A[112 + l] = -x35*x52 + x54*x63 + x60*x63;
+                A[120 + l] = x15*x52 + x15*x54 + x62;
+                A[128 + l] = x32*x54 + x32*x60 - x52*x66;
+                A[136 + l] = x4*x52 + x4*x54 + x56 + x67;
+                A[144 + l] = -x38*x52 + x54*x61 + x60*x61;
+                A[152 + l] = -x36*x52 + x37*x54 + x37*x60;
+                A[160 + l] = x10*x52 + x10*x54 + x59;
+                A[168 + l] = -x33*x52 + x34*x54 + x34*x60;
+                A[176 + l] = -x32*x52 + x54*x66 + x60*x66;
+                A[184 + l] = x16*x52 + x16*x54 + x62;
+                A[192 + l] = x1*x52 + x1*x54 + x53 + x68;
+                A[200 + l] = x52*x6 + x54*x6 + x57;
+                A[208 + l] = x12*x52 + x12*x54 + x58;
+                A[216 + l] = x23*x52 + x23*x54 + x69;
+                A[224 + l] = x30*x54 + x30*x60 - x31*x52;
+                A[232 + l] = x29*x54 + x29*x60 - x52*x70;
+                A[240 + l] = x17*x52 + x17*x54 + x64 + x68;
+                A[248 + l] = x21*x52 + x21*x54 + x65;
+                A[256 + l] = -x30*x52 + x31*x54 + x31*x60;
+                A[264 + l] = x24*x52 + x24*x54 + x69;
+                A[272 + l] = x27*x54 + x27*x60 - x28*x52;
+                A[280 + l] = x19*x52 + x19*x54 + x67 + x68;
+                A[288 + l] = -x29*x52 + x54*x70 + x60*x70;
+                A[296 + l] = -x27*x52 + x28*x54 + x28*x60;
+                A[304 + l] = x25*x52 + x25*x54 + x69;
+                A[312 + l] = x2*x52 + x2*x54 + x53 + x71;
+                A[320 + l] = x52*x7 + x54*x7 + x57;
+                A[328 + l] = x13*x52 + x13*x54 + x58;
+                A[336 + l] = x18*x52 + x18*x54 + x64 + x71;
+                A[344 + l] = x22*x52 + x22*x54 + x65;
+                A[352 + l] = x26*x52 + x26*x54 + x67 + x71;
+            }
+            ancf3333_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 27; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 27 + c) * 8 + l] = K[(c * 27 + r) * 8 + l];
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
 
 const bk_pair bk_pair_ancf3333_svk_full = {
@@ -338,6 +622,8 @@ const bk_pair bk_pair_ancf3333_svk_full = {
     .energy = ancf3333_svk_full_energy,
     .force = ancf3333_svk_full_force,
     .force_tangent = ancf3333_svk_full_force_tangent,
+    .force_lanes = ancf3333_svk_full_force_lanes,
+    .force_tangent_lanes = ancf3333_svk_full_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3333_full_viscous,
     .invariants = ancf3333_full_invariants,

@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:821a48d825528eea86ef177e329f052e6edf921e5a2cabff290fdfaad8b67709
+ * input hash: sha256:59bafe781027c5aa8de5e9c442542d4b34ca2a7b0b2678b59e6cbedca2da9cde
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -48,5 +48,7 @@ void ancf3363_reduced_viscous(const double *restrict q, const double *restrict q
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 11400 (5670 add, 5730 mul, 0 div, 0 call) operations. */
 void ancf3363_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
+/* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
+void ancf3363_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
 
 #endif

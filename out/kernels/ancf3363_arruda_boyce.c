@@ -3,8 +3,14 @@
 #include "ancf3363.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 3
-#error "generated for runtime/bk_kernel.h version 3: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
+#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#endif
+
+/* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
+#if defined(__GLIBC__) && defined(__x86_64__)
+#pragma omp declare simd notinbranch
+double cbrt(double);
 #endif
 
 double ancf3363_arruda_boyce_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -39,7 +45,8 @@ double ancf3363_arruda_boyce_full_energy(const double *restrict q, const double 
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
-            e += t[0]*(mat[0]*((0.5*I1/((cbrt(J*J)))) - 1.5 + (0.05*(((I1*I1)/((cbrt(J*J*J*J)))) - 9.0)/((mat[1]*mat[1]))) + (0.010476190476190476*(((I1*I1*I1)/((J*J))) - 27.0)/((mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0027142857142857142*(((I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J)))) - 81.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0007703153988868275*(((I1*I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J*J*J)))) - 243.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1])))) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
+            const double cb0 = (cbrt(J));
+            e += t[0]*(mat[0]*((0.5*I1/((cb0*cb0))) - 1.5 + (0.05*(((I1*I1)/((cb0*cb0*cb0*cb0))) - 9.0)/((mat[1]*mat[1]))) + (0.010476190476190476*(((I1*I1*I1)/((J*J))) - 27.0)/((mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0027142857142857142*(((I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 81.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0007703153988868275*(((I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 243.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1])))) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
         }
     }
     return e;
@@ -81,11 +88,12 @@ void ancf3363_arruda_boyce_full_force(const double *restrict q, const double *re
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb0 = (cbrt(J));
             const double x10 = (I1*I1);
             const double x12 = (I1*I1*I1);
             const double x14 = (I1*I1*I1*I1);
-            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J)))) - (0.3333333333333333*I1/((cbrt(J*J*J*J*J)))) - (0.02095238095238095*x11*x12/((J*J*J))) - (0.06666666666666667*x10*x9/((cbrt(J*J*J*J*J*J*J)))) - (0.007238095238095238*x13*x14/((cbrt(J*J*J*J*J*J*J*J*J*J*J))))) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cbrt(J*J*J*J)))) + (0.03142857142857143*x10*x11/((J*J))) + (0.5/((cbrt(J*J)))) + (0.010857142857142857*x12*x13/((cbrt(J*J*J*J*J*J*J*J)))) + (0.0038515769944341373*x14*x15/((cbrt(J*J*J*J*J*J*J*J*J*J)))));
+            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
             const double x16 = 2.0*W_I1;
             const double P00 = F00*x16 + W_J*cof00;
             const double P10 = F10*x16 + W_J*cof10;
@@ -156,6 +164,125 @@ void ancf3363_arruda_boyce_full_force(const double *restrict q, const double *re
             f[51] += P00*t[27] + P02*t[26];
             f[52] += P10*t[27] + P12*t[26];
             f[53] += P20*t[27] + P22*t[26];
+        }
+    }
+}
+
+void ancf3363_arruda_boyce_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 432; ++i) f[i] = 0.0;
+    {   /* energy part "all": 27 quadrature points */
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + (0 + 28 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x9 = (1.0/(mat[8 + l]*mat[8 + l]));
+                const double x11 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x13 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x15 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[56 + l] + q[120 + l]*t[72 + l] + q[144 + l]*t[80 + l] + q[168 + l]*t[88 + l] + q[192 + l]*t[104 + l] + q[216 + l]*t[112 + l] + q[240 + l]*t[128 + l] + q[264 + l]*t[144 + l] + q[288 + l]*t[152 + l] + q[312 + l]*t[160 + l] + q[24 + l]*t[16 + l] + q[336 + l]*t[176 + l] + q[360 + l]*t[184 + l] + q[384 + l]*t[200 + l] + q[408 + l]*t[216 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[56 + l] + q[128 + l]*t[72 + l] + q[152 + l]*t[80 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[88 + l] + q[200 + l]*t[104 + l] + q[224 + l]*t[112 + l] + q[248 + l]*t[128 + l] + q[272 + l]*t[144 + l] + q[296 + l]*t[152 + l] + q[320 + l]*t[160 + l] + q[344 + l]*t[176 + l] + q[368 + l]*t[184 + l] + q[392 + l]*t[200 + l] + q[32 + l]*t[16 + l] + q[416 + l]*t[216 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[56 + l] + q[136 + l]*t[72 + l] + q[160 + l]*t[80 + l] + q[184 + l]*t[88 + l] + q[208 + l]*t[104 + l] + q[232 + l]*t[112 + l] + q[16 + l]*t[8 + l] + q[256 + l]*t[128 + l] + q[280 + l]*t[144 + l] + q[304 + l]*t[152 + l] + q[328 + l]*t[160 + l] + q[352 + l]*t[176 + l] + q[376 + l]*t[184 + l] + q[400 + l]*t[200 + l] + q[424 + l]*t[216 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[64 + l] + q[168 + l]*t[96 + l] + q[216 + l]*t[120 + l] + q[240 + l]*t[136 + l] + q[312 + l]*t[168 + l] + q[24 + l]*t[24 + l] + q[360 + l]*t[192 + l] + q[384 + l]*t[208 + l] + q[72 + l]*t[48 + l];
+                const double x3 = (F01*F01);
+                const double F11 = q[80 + l]*t[48 + l] + q[104 + l]*t[64 + l] + q[176 + l]*t[96 + l] + q[224 + l]*t[120 + l] + q[248 + l]*t[136 + l] + q[320 + l]*t[168 + l] + q[368 + l]*t[192 + l] + q[392 + l]*t[208 + l] + q[32 + l]*t[24 + l];
+                const double x5 = (F11*F11);
+                const double F21 = q[88 + l]*t[48 + l] + q[112 + l]*t[64 + l] + q[184 + l]*t[96 + l] + q[232 + l]*t[120 + l] + q[256 + l]*t[136 + l] + q[328 + l]*t[168 + l] + q[376 + l]*t[192 + l] + q[400 + l]*t[208 + l] + q[40 + l]*t[24 + l];
+                const double x6 = (F21*F21);
+                const double C11 = x3 + x5 + x6;
+                const double F02 = q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[192 + l]*t[96 + l] + q[240 + l]*t[120 + l] + q[264 + l]*t[136 + l] + q[336 + l]*t[168 + l] + q[384 + l]*t[192 + l] + q[408 + l]*t[208 + l] + q[48 + l]*t[24 + l];
+                const double x4 = (F02*F02);
+                const double F12 = q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[200 + l]*t[96 + l] + q[248 + l]*t[120 + l] + q[272 + l]*t[136 + l] + q[344 + l]*t[168 + l] + q[392 + l]*t[192 + l] + q[416 + l]*t[208 + l] + q[56 + l]*t[24 + l];
+                const double x7 = (F12*F12);
+                const double F22 = q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[208 + l]*t[96 + l] + q[256 + l]*t[120 + l] + q[280 + l]*t[136 + l] + q[352 + l]*t[168 + l] + q[400 + l]*t[192 + l] + q[424 + l]*t[208 + l] + q[64 + l]*t[24 + l];
+                const double x8 = (F22*F22);
+                const double C22 = x4 + x7 + x8;
+                const double I1 = C00 + C11 + C22;
+                const double cof00 = F11*F22 - F12*F21;
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double cb0 = (cbrt(J));
+                const double x10 = (I1*I1);
+                const double x12 = (I1*I1*I1);
+                const double x14 = (I1*I1*I1*I1);
+                const double W_J = t[0 + l]*(mat[0 + l]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double W_I1 = mat[0 + l]*t[0 + l]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+                const double x16 = 2.0*W_I1;
+                const double P00 = F00*x16 + W_J*cof00;
+                const double P10 = F10*x16 + W_J*cof10;
+                const double P20 = F20*x16 + W_J*cof20;
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x16 + W_J*cof01;
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x16 + W_J*cof11;
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x16 + W_J*cof21;
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x16 + W_J*cof02;
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x16 + W_J*cof12;
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x16 + W_J*cof22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l] + P01*t[48 + l];
+                f[80 + l] += P10*t[40 + l] + P11*t[48 + l];
+                f[88 + l] += P20*t[40 + l] + P21*t[48 + l];
+                f[96 + l] += P00*t[56 + l] + P01*t[64 + l] + P02*t[48 + l];
+                f[104 + l] += P10*t[56 + l] + P11*t[64 + l] + P12*t[48 + l];
+                f[112 + l] += P20*t[56 + l] + P21*t[64 + l] + P22*t[48 + l];
+                f[120 + l] += P00*t[72 + l] + P02*t[64 + l];
+                f[128 + l] += P10*t[72 + l] + P12*t[64 + l];
+                f[136 + l] += P20*t[72 + l] + P22*t[64 + l];
+                f[144 + l] += P00*t[80 + l];
+                f[152 + l] += P10*t[80 + l];
+                f[160 + l] += P20*t[80 + l];
+                f[168 + l] += P00*t[88 + l] + P01*t[96 + l];
+                f[176 + l] += P10*t[88 + l] + P11*t[96 + l];
+                f[184 + l] += P20*t[88 + l] + P21*t[96 + l];
+                f[192 + l] += P00*t[104 + l] + P02*t[96 + l];
+                f[200 + l] += P10*t[104 + l] + P12*t[96 + l];
+                f[208 + l] += P20*t[104 + l] + P22*t[96 + l];
+                f[216 + l] += P00*t[112 + l] + P01*t[120 + l];
+                f[224 + l] += P10*t[112 + l] + P11*t[120 + l];
+                f[232 + l] += P20*t[112 + l] + P21*t[120 + l];
+                f[240 + l] += P00*t[128 + l] + P01*t[136 + l] + P02*t[120 + l];
+                f[248 + l] += P10*t[128 + l] + P11*t[136 + l] + P12*t[120 + l];
+                f[256 + l] += P20*t[128 + l] + P21*t[136 + l] + P22*t[120 + l];
+                f[264 + l] += P00*t[144 + l] + P02*t[136 + l];
+                f[272 + l] += P10*t[144 + l] + P12*t[136 + l];
+                f[280 + l] += P20*t[144 + l] + P22*t[136 + l];
+                f[288 + l] += P00*t[152 + l];
+                f[296 + l] += P10*t[152 + l];
+                f[304 + l] += P20*t[152 + l];
+                f[312 + l] += P00*t[160 + l] + P01*t[168 + l];
+                f[320 + l] += P10*t[160 + l] + P11*t[168 + l];
+                f[328 + l] += P20*t[160 + l] + P21*t[168 + l];
+                f[336 + l] += P00*t[176 + l] + P02*t[168 + l];
+                f[344 + l] += P10*t[176 + l] + P12*t[168 + l];
+                f[352 + l] += P20*t[176 + l] + P22*t[168 + l];
+                f[360 + l] += P00*t[184 + l] + P01*t[192 + l];
+                f[368 + l] += P10*t[184 + l] + P11*t[192 + l];
+                f[376 + l] += P20*t[184 + l] + P21*t[192 + l];
+                f[384 + l] += P00*t[200 + l] + P01*t[208 + l] + P02*t[192 + l];
+                f[392 + l] += P10*t[200 + l] + P11*t[208 + l] + P12*t[192 + l];
+                f[400 + l] += P20*t[200 + l] + P21*t[208 + l] + P22*t[192 + l];
+                f[408 + l] += P00*t[216 + l] + P02*t[208 + l];
+                f[416 + l] += P10*t[216 + l] + P12*t[208 + l];
+                f[424 + l] += P20*t[216 + l] + P22*t[208 + l];
+            }
         }
     }
 }
@@ -209,22 +336,23 @@ void ancf3363_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x48 = (I1*I1);
             const double x52 = (I1*I1*I1);
             const double x56 = (I1*I1*I1*I1);
-            const double x60 = (1.0/(cbrt(J*J*J*J*J)));
-            const double x61 = (1.0/(cbrt(J*J*J*J*J*J*J)));
+            const double cb0 = (cbrt(J));
+            const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x62 = (1.0/(J*J*J));
-            const double x63 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J*J)));
-            const double x64 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J)));
+            const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double W_J = t[0]*(mat[0]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double x44 = (1.0/(cbrt(J*J*J*J)));
+            const double x44 = (1.0/(cb0*cb0*cb0*cb0));
             const double x46 = I1*x45;
             const double x47 = (1.0/(J*J));
             const double x50 = x48*x49;
-            const double x51 = (1.0/(cbrt(J*J*J*J*J*J*J*J)));
+            const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x54 = x52*x53;
-            const double x55 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J)));
+            const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x58 = x56*x57;
             const double x59 = mat[0]*t[0];
-            const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cbrt(J*J)))));
+            const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
             const double x65 = 2.0*W_I1;
             const double P00 = F00*x65 + W_J*cof00;
             const double P10 = F10*x65 + W_J*cof10;
@@ -250,7 +378,7 @@ void ancf3363_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x40 = F01*F10;
             const double cof22 = x39 - x40;
             const double P22 = F22*x65 + W_J*cof22;
-            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (38115.0*x50/((J*J*J*J))) + (16093.0*x54/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J)))) + (6747.0*x58/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J*J*J))))) + mat[2]);
+            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[2]);
             const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
             const double x66 = 4.0*W_I1_I1;
             const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
@@ -410,6 +538,262 @@ void ancf3363_arruda_boyce_full_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+void ancf3363_arruda_boyce_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 432; ++i) f[i] = 0.0;
+    for (int r = 0; r < 54; ++r)
+        for (int i = r * 55 * 8; i < (r + 1) * 54 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 27 quadrature points */
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + (0 + 28 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x45 = (1.0/(mat[8 + l]*mat[8 + l]));
+                const double x49 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x53 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x57 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[56 + l] + q[120 + l]*t[72 + l] + q[144 + l]*t[80 + l] + q[168 + l]*t[88 + l] + q[192 + l]*t[104 + l] + q[216 + l]*t[112 + l] + q[240 + l]*t[128 + l] + q[264 + l]*t[144 + l] + q[288 + l]*t[152 + l] + q[312 + l]*t[160 + l] + q[24 + l]*t[16 + l] + q[336 + l]*t[176 + l] + q[360 + l]*t[184 + l] + q[384 + l]*t[200 + l] + q[408 + l]*t[216 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[56 + l] + q[128 + l]*t[72 + l] + q[152 + l]*t[80 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[88 + l] + q[200 + l]*t[104 + l] + q[224 + l]*t[112 + l] + q[248 + l]*t[128 + l] + q[272 + l]*t[144 + l] + q[296 + l]*t[152 + l] + q[320 + l]*t[160 + l] + q[344 + l]*t[176 + l] + q[368 + l]*t[184 + l] + q[392 + l]*t[200 + l] + q[32 + l]*t[16 + l] + q[416 + l]*t[216 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[56 + l] + q[136 + l]*t[72 + l] + q[160 + l]*t[80 + l] + q[184 + l]*t[88 + l] + q[208 + l]*t[104 + l] + q[232 + l]*t[112 + l] + q[16 + l]*t[8 + l] + q[256 + l]*t[128 + l] + q[280 + l]*t[144 + l] + q[304 + l]*t[152 + l] + q[328 + l]*t[160 + l] + q[352 + l]*t[176 + l] + q[376 + l]*t[184 + l] + q[400 + l]*t[200 + l] + q[424 + l]*t[216 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[64 + l] + q[168 + l]*t[96 + l] + q[216 + l]*t[120 + l] + q[240 + l]*t[136 + l] + q[312 + l]*t[168 + l] + q[24 + l]*t[24 + l] + q[360 + l]*t[192 + l] + q[384 + l]*t[208 + l] + q[72 + l]*t[48 + l];
+                const double x3 = (F01*F01);
+                const double F11 = q[80 + l]*t[48 + l] + q[104 + l]*t[64 + l] + q[176 + l]*t[96 + l] + q[224 + l]*t[120 + l] + q[248 + l]*t[136 + l] + q[320 + l]*t[168 + l] + q[368 + l]*t[192 + l] + q[392 + l]*t[208 + l] + q[32 + l]*t[24 + l];
+                const double x17 = (F11*F11);
+                const double F21 = q[88 + l]*t[48 + l] + q[112 + l]*t[64 + l] + q[184 + l]*t[96 + l] + q[232 + l]*t[120 + l] + q[256 + l]*t[136 + l] + q[328 + l]*t[168 + l] + q[376 + l]*t[192 + l] + q[400 + l]*t[208 + l] + q[40 + l]*t[24 + l];
+                const double x18 = (F21*F21);
+                const double C11 = x17 + x18 + x3;
+                const double F02 = q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[192 + l]*t[96 + l] + q[240 + l]*t[120 + l] + q[264 + l]*t[136 + l] + q[336 + l]*t[168 + l] + q[384 + l]*t[192 + l] + q[408 + l]*t[208 + l] + q[48 + l]*t[24 + l];
+                const double x4 = (F02*F02);
+                const double F12 = q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[200 + l]*t[96 + l] + q[248 + l]*t[120 + l] + q[272 + l]*t[136 + l] + q[344 + l]*t[168 + l] + q[392 + l]*t[192 + l] + q[416 + l]*t[208 + l] + q[56 + l]*t[24 + l];
+                const double x19 = (F12*F12);
+                const double F22 = q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[208 + l]*t[96 + l] + q[256 + l]*t[120 + l] + q[280 + l]*t[136 + l] + q[352 + l]*t[168 + l] + q[400 + l]*t[192 + l] + q[424 + l]*t[208 + l] + q[64 + l]*t[24 + l];
+                const double x26 = (F22*F22);
+                const double C22 = x19 + x26 + x4;
+                const double I1 = C00 + C11 + C22;
+                const double x27 = F11*F22;
+                const double x28 = F12*F21;
+                const double cof00 = x27 - x28;
+                const double x41 = F00*cof00;
+                const double x32 = F01*F22;
+                const double cof10 = F02*F21 - x32;
+                const double x42 = F10*cof10;
+                const double x36 = F01*F12;
+                const double x37 = F02*F11;
+                const double cof20 = x36 - x37;
+                const double x43 = F20*cof20;
+                const double J = x41 + x42 + x43;
+                const double x48 = (I1*I1);
+                const double x52 = (I1*I1*I1);
+                const double x56 = (I1*I1*I1*I1);
+                const double cb0 = (cbrt(J));
+                const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+                const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x62 = (1.0/(J*J*J));
+                const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double W_J = t[0 + l]*(mat[0 + l]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double x44 = (1.0/(cb0*cb0*cb0*cb0));
+                const double x46 = I1*x45;
+                const double x47 = (1.0/(J*J));
+                const double x50 = x48*x49;
+                const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x54 = x52*x53;
+                const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x58 = x56*x57;
+                const double x59 = mat[0 + l]*t[0 + l];
+                const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
+                const double x65 = 2.0*W_I1;
+                const double P00 = F00*x65 + W_J*cof00;
+                const double P10 = F10*x65 + W_J*cof10;
+                const double P20 = F20*x65 + W_J*cof20;
+                const double x29 = F10*F22;
+                const double cof01 = F12*F20 - x29;
+                const double P01 = F01*x65 + W_J*cof01;
+                const double x33 = F00*F22;
+                const double x34 = F02*F20;
+                const double cof11 = x33 - x34;
+                const double P11 = F11*x65 + W_J*cof11;
+                const double x38 = F00*F12;
+                const double cof21 = F02*F10 - x38;
+                const double P21 = F21*x65 + W_J*cof21;
+                const double x30 = F10*F21;
+                const double x31 = F11*F20;
+                const double cof02 = x30 - x31;
+                const double P02 = F02*x65 + W_J*cof02;
+                const double x35 = F00*F21;
+                const double cof12 = F01*F20 - x35;
+                const double P12 = F12*x65 + W_J*cof12;
+                const double x39 = F00*F11;
+                const double x40 = F01*F10;
+                const double cof22 = x39 - x40;
+                const double P22 = F22*x65 + W_J*cof22;
+                const double W_J_J = t[0 + l]*(1.6491445062873634e-06*I1*mat[0 + l]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[16 + l]);
+                const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
+                const double x66 = 4.0*W_I1_I1;
+                const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
+                const double x67 = 4.0*W_I1_J;
+                const double x5 = F00*F01;
+                const double x68 = W_J_J*cof00;
+                const double x69 = 2.0*W_I1_J;
+                const double x70 = F00*x69;
+                const double x71 = cof00*x69;
+                const double x11 = F00*F02;
+                const double x8 = F00*F10;
+                const double x72 = F22*W_J;
+                const double x73 = F21*W_J;
+                const double x14 = F00*F20;
+                const double x74 = F12*W_J;
+                const double x75 = F11*W_J;
+                const double x20 = F01*F02;
+                const double x76 = W_J_J*cof01;
+                const double x77 = F01*x69;
+                const double x78 = cof01*x69;
+                const double x9 = F01*F11;
+                const double x79 = F20*W_J;
+                const double x15 = F01*F21;
+                const double x80 = F10*W_J;
+                const double x81 = W_J_J*cof02;
+                const double x82 = F02*x69;
+                const double x83 = cof02*x69;
+                const double x10 = F02*F12;
+                const double x16 = F02*F22;
+                const double x6 = F10*F11;
+                const double x84 = W_J_J*cof10;
+                const double x85 = F10*x69;
+                const double x86 = cof10*x69;
+                const double x12 = F10*F12;
+                const double x23 = F10*F20;
+                const double x87 = F02*W_J;
+                const double x88 = F01*W_J;
+                const double x21 = F11*F12;
+                const double x89 = W_J_J*cof11;
+                const double x90 = F11*x69;
+                const double x91 = cof11*x69;
+                const double x24 = F11*F21;
+                const double x92 = F00*W_J;
+                const double x93 = W_J_J*cof12;
+                const double x94 = F12*x69;
+                const double x95 = cof12*x69;
+                const double x25 = F12*F22;
+                const double x7 = F20*F21;
+                const double x96 = W_J_J*cof20;
+                const double x97 = F20*x69;
+                const double x98 = cof20*x69;
+                const double x13 = F20*F22;
+                const double x22 = F21*F22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l] + P01*t[48 + l];
+                f[80 + l] += P10*t[40 + l] + P11*t[48 + l];
+                f[88 + l] += P20*t[40 + l] + P21*t[48 + l];
+                f[96 + l] += P00*t[56 + l] + P01*t[64 + l] + P02*t[48 + l];
+                f[104 + l] += P10*t[56 + l] + P11*t[64 + l] + P12*t[48 + l];
+                f[112 + l] += P20*t[56 + l] + P21*t[64 + l] + P22*t[48 + l];
+                f[120 + l] += P00*t[72 + l] + P02*t[64 + l];
+                f[128 + l] += P10*t[72 + l] + P12*t[64 + l];
+                f[136 + l] += P20*t[72 + l] + P22*t[64 + l];
+                f[144 + l] += P00*t[80 + l];
+                f[152 + l] += P10*t[80 + l];
+                f[160 + l] += P20*t[80 + l];
+                f[168 + l] += P00*t[88 + l] + P01*t[96 + l];
+                f[176 + l] += P10*t[88 + l] + P11*t[96 + l];
+                f[184 + l] += P20*t[88 + l] + P21*t[96 + l];
+                f[192 + l] += P00*t[104 + l] + P02*t[96 + l];
+                f[200 + l] += P10*t[104 + l] + P12*t[96 + l];
+                f[208 + l] += P20*t[104 + l] + P22*t[96 + l];
+                f[216 + l] += P00*t[112 + l] + P01*t[120 + l];
+                f[224 + l] += P10*t[112 + l] + P11*t[120 + l];
+                f[232 + l] += P20*t[112 + l] + P21*t[120 + l];
+                f[240 + l] += P00*t[128 + l] + P01*t[136 + l] + P02*t[120 + l];
+                f[248 + l] += P10*t[128 + l] + P11*t[136 + l] + P12*t[120 + l];
+                f[256 + l] += P20*t[128 + l] + P21*t[136 + l] + P22*t[120 + l];
+                f[264 + l] += P00*t[144 + l] + P02*t[136 + l];
+                f[272 + l] += P10*t[144 + l] + P12*t[136 + l];
+                f[280 + l] += P20*t[144 + l] + P22*t[136 + l];
+                f[288 + l] += P00*t[152 + l];
+                f[296 + l] += P10*t[152 + l];
+                f[304 + l] += P20*t[152 + l];
+                f[312 + l] += P00*t[160 + l] + P01*t[168 + l];
+                f[320 + l] += P10*t[160 + l] + P11*t[168 + l];
+                f[328 + l] += P20*t[160 + l] + P21*t[168 + l];
+                f[336 + l] += P00*t[176 + l] + P02*t[168 + l];
+                f[344 + l] += P10*t[176 + l] + P12*t[168 + l];
+                f[352 + l] += P20*t[176 + l] + P22*t[168 + l];
+                f[360 + l] += P00*t[184 + l] + P01*t[192 + l];
+                f[368 + l] += P10*t[184 + l] + P11*t[192 + l];
+                f[376 + l] += P20*t[184 + l] + P21*t[192 + l];
+                f[384 + l] += P00*t[200 + l] + P01*t[208 + l] + P02*t[192 + l];
+                f[392 + l] += P10*t[200 + l] + P11*t[208 + l] + P12*t[192 + l];
+                f[400 + l] += P20*t[200 + l] + P21*t[208 + l] + P22*t[192 + l];
+                f[408 + l] += P00*t[216 + l] + P02*t[208 + l];
+                f[416 + l] += P10*t[216 + l] + P12*t[208 + l];
+                f[424 + l] += P20*t[216 + l] + P22*t[208 + l];
+                A[0 + l] = W_J_J*(cof00*cof00) + x0*x66 + x41*x67 + x65;
+                A[8 + l] = F01*x71 + cof01*x68 + cof01*x70 + x5*x66;
+                A[16 + l] = F02*x71 + cof02*x68 + cof02*x70 + x11*x66;
+                A[24 + l] = F10*x71 + cof10*x68 + cof10*x70 + x66*x8;
+                A[32 + l] = F11*x71 + cof11*x68 + cof11*x70 + x39*x66 + x72;
+                A[40 + l] = F12*x71 + cof12*x68 + cof12*x70 + x38*x66 - x73;
+                A[48 + l] = F20*x71 + cof20*x68 + cof20*x70 + x14*x66;
+                A[56 + l] = F21*x71 + cof21*x68 + cof21*x70 + x35*x66 - x74;
+                A[64 + l] = F22*x71 + cof22*x68 + cof22*x70 + x33*x66 + x75;
+                A[72 + l] = F01*cof01*x67 + W_J_J*(cof01*cof01) + x3*x66 + x65;
+                A[80 + l] = F02*x78 + cof02*x76 + cof02*x77 + x20*x66;
+                A[88 + l] = F10*x78 + cof10*x76 + cof10*x77 + x40*x66 - x72;
+                A[96 + l] = F11*x78 + cof11*x76 + cof11*x77 + x66*x9;
+                A[104 + l] = F12*x78 + cof12*x76 + cof12*x77 + x36*x66 + x79;
+                A[112 + l] = F01*F20*x66 + F20*x78 + cof20*x76 + cof20*x77 + x74;
+                A[120 + l] = F21*x78 + cof21*x76 + cof21*x77 + x15*x66;
+                A[128 + l] = F22*x78 + cof22*x76 + cof22*x77 + x32*x66 - x80;
+                A[136 + l] = F02*cof02*x67 + W_J_J*(cof02*cof02) + x4*x66 + x65;
+                A[144 + l] = F02*F10*x66 + F10*x83 + cof10*x81 + cof10*x82 + x73;
+                A[152 + l] = F11*x83 + cof11*x81 + cof11*x82 + x37*x66 - x79;
+                A[160 + l] = F12*x83 + cof12*x81 + cof12*x82 + x10*x66;
+                A[168 + l] = F20*x83 + cof20*x81 + cof20*x82 + x34*x66 - x75;
+                A[176 + l] = F02*F21*x66 + F21*x83 + cof21*x81 + cof21*x82 + x80;
+                A[184 + l] = F22*x83 + cof22*x81 + cof22*x82 + x16*x66;
+                A[192 + l] = W_J_J*(cof10*cof10) + x1*x66 + x42*x67 + x65;
+                A[200 + l] = F11*x86 + cof11*x84 + cof11*x85 + x6*x66;
+                A[208 + l] = F12*x86 + cof12*x84 + cof12*x85 + x12*x66;
+                A[216 + l] = F20*x86 + cof20*x84 + cof20*x85 + x23*x66;
+                A[224 + l] = F21*x86 + cof21*x84 + cof21*x85 + x30*x66 + x87;
+                A[232 + l] = F22*x86 + cof22*x84 + cof22*x85 + x29*x66 - x88;
+                A[240 + l] = F11*cof11*x67 + W_J_J*(cof11*cof11) + x17*x66 + x65;
+                A[248 + l] = F12*x91 + cof12*x89 + cof12*x90 + x21*x66;
+                A[256 + l] = F20*x91 + cof20*x89 + cof20*x90 + x31*x66 - x87;
+                A[264 + l] = F21*x91 + cof21*x89 + cof21*x90 + x24*x66;
+                A[272 + l] = F22*x91 + cof22*x89 + cof22*x90 + x27*x66 + x92;
+                A[280 + l] = F12*cof12*x67 + W_J_J*(cof12*cof12) + x19*x66 + x65;
+                A[288 + l] = F12*F20*x66 + F20*x95 + cof20*x93 + cof20*x94 + x88;
+                A[296 + l] = F21*x95 + cof21*x93 + cof21*x94 + x28*x66 - x92;
+                A[304 + l] = F22*x95 + cof22*x93 + cof22*x94 + x25*x66;
+                A[312 + l] = W_J_J*(cof20*cof20) + x2*x66 + x43*x67 + x65;
+                A[320 + l] = F21*x98 + cof21*x96 + cof21*x97 + x66*x7;
+                A[328 + l] = F22*x98 + cof22*x96 + cof22*x97 + x13*x66;
+                A[336 + l] = F21*cof21*x67 + W_J_J*(cof21*cof21) + x18*x66 + x65;
+                A[344 + l] = F21*cof22*x69 + F22*cof21*x69 + W_J_J*cof21*cof22 + x22*x66;
+                A[352 + l] = F22*cof22*x67 + W_J_J*(cof22*cof22) + x26*x66 + x65;
+            }
+            ancf3363_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 54; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 54 + c) * 8 + l] = K[(c * 54 + r) * 8 + l];
+}
+
 double ancf3363_arruda_boyce_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -442,7 +826,8 @@ double ancf3363_arruda_boyce_reduced_energy(const double *restrict q, const doub
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
-            e += t[0]*(mat[0]*((0.5*I1/((cbrt(J*J)))) - 1.5 + (0.05*(((I1*I1)/((cbrt(J*J*J*J)))) - 9.0)/((mat[1]*mat[1]))) + (0.010476190476190476*(((I1*I1*I1)/((J*J))) - 27.0)/((mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0027142857142857142*(((I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J)))) - 81.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0007703153988868275*(((I1*I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J*J*J)))) - 243.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1])))) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
+            const double cb0 = (cbrt(J));
+            e += t[0]*(mat[0]*((0.5*I1/((cb0*cb0))) - 1.5 + (0.05*(((I1*I1)/((cb0*cb0*cb0*cb0))) - 9.0)/((mat[1]*mat[1]))) + (0.010476190476190476*(((I1*I1*I1)/((J*J))) - 27.0)/((mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0027142857142857142*(((I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 81.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0007703153988868275*(((I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 243.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1])))) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
         }
     }
     return e;
@@ -484,11 +869,12 @@ void ancf3363_arruda_boyce_reduced_force(const double *restrict q, const double 
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb0 = (cbrt(J));
             const double x10 = (I1*I1);
             const double x12 = (I1*I1*I1);
             const double x14 = (I1*I1*I1*I1);
-            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J)))) - (0.3333333333333333*I1/((cbrt(J*J*J*J*J)))) - (0.02095238095238095*x11*x12/((J*J*J))) - (0.06666666666666667*x10*x9/((cbrt(J*J*J*J*J*J*J)))) - (0.007238095238095238*x13*x14/((cbrt(J*J*J*J*J*J*J*J*J*J*J))))) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cbrt(J*J*J*J)))) + (0.03142857142857143*x10*x11/((J*J))) + (0.5/((cbrt(J*J)))) + (0.010857142857142857*x12*x13/((cbrt(J*J*J*J*J*J*J*J)))) + (0.0038515769944341373*x14*x15/((cbrt(J*J*J*J*J*J*J*J*J*J)))));
+            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
             const double x16 = 2.0*W_I1;
             const double P00 = F00*x16 + W_J*cof00;
             const double P10 = F10*x16 + W_J*cof10;
@@ -563,6 +949,125 @@ void ancf3363_arruda_boyce_reduced_force(const double *restrict q, const double 
     }
 }
 
+void ancf3363_arruda_boyce_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+{
+    for (int i = 0; i < 432; ++i) f[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 28 * p) * 8;
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x9 = (1.0/(mat[8 + l]*mat[8 + l]));
+                const double x11 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x13 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x15 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[56 + l] + q[120 + l]*t[72 + l] + q[144 + l]*t[80 + l] + q[168 + l]*t[88 + l] + q[192 + l]*t[104 + l] + q[216 + l]*t[112 + l] + q[240 + l]*t[128 + l] + q[264 + l]*t[144 + l] + q[288 + l]*t[152 + l] + q[312 + l]*t[160 + l] + q[24 + l]*t[16 + l] + q[336 + l]*t[176 + l] + q[360 + l]*t[184 + l] + q[384 + l]*t[200 + l] + q[408 + l]*t[216 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[56 + l] + q[128 + l]*t[72 + l] + q[152 + l]*t[80 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[88 + l] + q[200 + l]*t[104 + l] + q[224 + l]*t[112 + l] + q[248 + l]*t[128 + l] + q[272 + l]*t[144 + l] + q[296 + l]*t[152 + l] + q[320 + l]*t[160 + l] + q[344 + l]*t[176 + l] + q[368 + l]*t[184 + l] + q[392 + l]*t[200 + l] + q[32 + l]*t[16 + l] + q[416 + l]*t[216 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[56 + l] + q[136 + l]*t[72 + l] + q[160 + l]*t[80 + l] + q[184 + l]*t[88 + l] + q[208 + l]*t[104 + l] + q[232 + l]*t[112 + l] + q[16 + l]*t[8 + l] + q[256 + l]*t[128 + l] + q[280 + l]*t[144 + l] + q[304 + l]*t[152 + l] + q[328 + l]*t[160 + l] + q[352 + l]*t[176 + l] + q[376 + l]*t[184 + l] + q[400 + l]*t[200 + l] + q[424 + l]*t[216 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[64 + l] + q[168 + l]*t[96 + l] + q[216 + l]*t[120 + l] + q[240 + l]*t[136 + l] + q[312 + l]*t[168 + l] + q[24 + l]*t[24 + l] + q[360 + l]*t[192 + l] + q[384 + l]*t[208 + l] + q[72 + l]*t[48 + l];
+                const double x3 = (F01*F01);
+                const double F11 = q[80 + l]*t[48 + l] + q[104 + l]*t[64 + l] + q[176 + l]*t[96 + l] + q[224 + l]*t[120 + l] + q[248 + l]*t[136 + l] + q[320 + l]*t[168 + l] + q[368 + l]*t[192 + l] + q[392 + l]*t[208 + l] + q[32 + l]*t[24 + l];
+                const double x5 = (F11*F11);
+                const double F21 = q[88 + l]*t[48 + l] + q[112 + l]*t[64 + l] + q[184 + l]*t[96 + l] + q[232 + l]*t[120 + l] + q[256 + l]*t[136 + l] + q[328 + l]*t[168 + l] + q[376 + l]*t[192 + l] + q[400 + l]*t[208 + l] + q[40 + l]*t[24 + l];
+                const double x6 = (F21*F21);
+                const double C11 = x3 + x5 + x6;
+                const double F02 = q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[192 + l]*t[96 + l] + q[240 + l]*t[120 + l] + q[264 + l]*t[136 + l] + q[336 + l]*t[168 + l] + q[384 + l]*t[192 + l] + q[408 + l]*t[208 + l] + q[48 + l]*t[24 + l];
+                const double x4 = (F02*F02);
+                const double F12 = q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[200 + l]*t[96 + l] + q[248 + l]*t[120 + l] + q[272 + l]*t[136 + l] + q[344 + l]*t[168 + l] + q[392 + l]*t[192 + l] + q[416 + l]*t[208 + l] + q[56 + l]*t[24 + l];
+                const double x7 = (F12*F12);
+                const double F22 = q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[208 + l]*t[96 + l] + q[256 + l]*t[120 + l] + q[280 + l]*t[136 + l] + q[352 + l]*t[168 + l] + q[400 + l]*t[192 + l] + q[424 + l]*t[208 + l] + q[64 + l]*t[24 + l];
+                const double x8 = (F22*F22);
+                const double C22 = x4 + x7 + x8;
+                const double I1 = C00 + C11 + C22;
+                const double cof00 = F11*F22 - F12*F21;
+                const double cof10 = -F01*F22 + F02*F21;
+                const double cof20 = F01*F12 - F02*F11;
+                const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double cb0 = (cbrt(J));
+                const double x10 = (I1*I1);
+                const double x12 = (I1*I1*I1);
+                const double x14 = (I1*I1*I1*I1);
+                const double W_J = t[0 + l]*(mat[0 + l]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double W_I1 = mat[0 + l]*t[0 + l]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+                const double x16 = 2.0*W_I1;
+                const double P00 = F00*x16 + W_J*cof00;
+                const double P10 = F10*x16 + W_J*cof10;
+                const double P20 = F20*x16 + W_J*cof20;
+                const double cof01 = -F10*F22 + F12*F20;
+                const double P01 = F01*x16 + W_J*cof01;
+                const double cof11 = F00*F22 - F02*F20;
+                const double P11 = F11*x16 + W_J*cof11;
+                const double cof21 = -F00*F12 + F02*F10;
+                const double P21 = F21*x16 + W_J*cof21;
+                const double cof02 = F10*F21 - F11*F20;
+                const double P02 = F02*x16 + W_J*cof02;
+                const double cof12 = -F00*F21 + F01*F20;
+                const double P12 = F12*x16 + W_J*cof12;
+                const double cof22 = F00*F11 - F01*F10;
+                const double P22 = F22*x16 + W_J*cof22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l] + P01*t[48 + l];
+                f[80 + l] += P10*t[40 + l] + P11*t[48 + l];
+                f[88 + l] += P20*t[40 + l] + P21*t[48 + l];
+                f[96 + l] += P00*t[56 + l] + P01*t[64 + l] + P02*t[48 + l];
+                f[104 + l] += P10*t[56 + l] + P11*t[64 + l] + P12*t[48 + l];
+                f[112 + l] += P20*t[56 + l] + P21*t[64 + l] + P22*t[48 + l];
+                f[120 + l] += P00*t[72 + l] + P02*t[64 + l];
+                f[128 + l] += P10*t[72 + l] + P12*t[64 + l];
+                f[136 + l] += P20*t[72 + l] + P22*t[64 + l];
+                f[144 + l] += P00*t[80 + l];
+                f[152 + l] += P10*t[80 + l];
+                f[160 + l] += P20*t[80 + l];
+                f[168 + l] += P00*t[88 + l] + P01*t[96 + l];
+                f[176 + l] += P10*t[88 + l] + P11*t[96 + l];
+                f[184 + l] += P20*t[88 + l] + P21*t[96 + l];
+                f[192 + l] += P00*t[104 + l] + P02*t[96 + l];
+                f[200 + l] += P10*t[104 + l] + P12*t[96 + l];
+                f[208 + l] += P20*t[104 + l] + P22*t[96 + l];
+                f[216 + l] += P00*t[112 + l] + P01*t[120 + l];
+                f[224 + l] += P10*t[112 + l] + P11*t[120 + l];
+                f[232 + l] += P20*t[112 + l] + P21*t[120 + l];
+                f[240 + l] += P00*t[128 + l] + P01*t[136 + l] + P02*t[120 + l];
+                f[248 + l] += P10*t[128 + l] + P11*t[136 + l] + P12*t[120 + l];
+                f[256 + l] += P20*t[128 + l] + P21*t[136 + l] + P22*t[120 + l];
+                f[264 + l] += P00*t[144 + l] + P02*t[136 + l];
+                f[272 + l] += P10*t[144 + l] + P12*t[136 + l];
+                f[280 + l] += P20*t[144 + l] + P22*t[136 + l];
+                f[288 + l] += P00*t[152 + l];
+                f[296 + l] += P10*t[152 + l];
+                f[304 + l] += P20*t[152 + l];
+                f[312 + l] += P00*t[160 + l] + P01*t[168 + l];
+                f[320 + l] += P10*t[160 + l] + P11*t[168 + l];
+                f[328 + l] += P20*t[160 + l] + P21*t[168 + l];
+                f[336 + l] += P00*t[176 + l] + P02*t[168 + l];
+                f[344 + l] += P10*t[176 + l] + P12*t[168 + l];
+                f[352 + l] += P20*t[176 + l] + P22*t[168 + l];
+                f[360 + l] += P00*t[184 + l] + P01*t[192 + l];
+                f[368 + l] += P10*t[184 + l] + P11*t[192 + l];
+                f[376 + l] += P20*t[184 + l] + P21*t[192 + l];
+                f[384 + l] += P00*t[200 + l] + P01*t[208 + l] + P02*t[192 + l];
+                f[392 + l] += P10*t[200 + l] + P11*t[208 + l] + P12*t[192 + l];
+                f[400 + l] += P20*t[200 + l] + P21*t[208 + l] + P22*t[192 + l];
+                f[408 + l] += P00*t[216 + l] + P02*t[208 + l];
+                f[416 + l] += P10*t[216 + l] + P12*t[208 + l];
+                f[424 + l] += P20*t[216 + l] + P22*t[208 + l];
+            }
+        }
+    }
+}
+
 void ancf3363_arruda_boyce_reduced_force_tangent(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 54; ++i) f[i] = 0.0;
@@ -612,22 +1117,23 @@ void ancf3363_arruda_boyce_reduced_force_tangent(const double *restrict q, const
             const double x48 = (I1*I1);
             const double x52 = (I1*I1*I1);
             const double x56 = (I1*I1*I1*I1);
-            const double x60 = (1.0/(cbrt(J*J*J*J*J)));
-            const double x61 = (1.0/(cbrt(J*J*J*J*J*J*J)));
+            const double cb0 = (cbrt(J));
+            const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x62 = (1.0/(J*J*J));
-            const double x63 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J*J)));
-            const double x64 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J)));
+            const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double W_J = t[0]*(mat[0]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double x44 = (1.0/(cbrt(J*J*J*J)));
+            const double x44 = (1.0/(cb0*cb0*cb0*cb0));
             const double x46 = I1*x45;
             const double x47 = (1.0/(J*J));
             const double x50 = x48*x49;
-            const double x51 = (1.0/(cbrt(J*J*J*J*J*J*J*J)));
+            const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x54 = x52*x53;
-            const double x55 = (1.0/(cbrt(J*J*J*J*J*J*J*J*J*J)));
+            const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
             const double x58 = x56*x57;
             const double x59 = mat[0]*t[0];
-            const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cbrt(J*J)))));
+            const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
             const double x65 = 2.0*W_I1;
             const double P00 = F00*x65 + W_J*cof00;
             const double P10 = F10*x65 + W_J*cof10;
@@ -653,7 +1159,7 @@ void ancf3363_arruda_boyce_reduced_force_tangent(const double *restrict q, const
             const double x40 = F01*F10;
             const double cof22 = x39 - x40;
             const double P22 = F22*x65 + W_J*cof22;
-            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (38115.0*x50/((J*J*J*J))) + (16093.0*x54/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J)))) + (6747.0*x58/((cbrt(J*J*J*J*J*J*J*J*J*J*J*J*J*J*J*J))))) + mat[2]);
+            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[2]);
             const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
             const double x66 = 4.0*W_I1_I1;
             const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
@@ -813,6 +1319,262 @@ void ancf3363_arruda_boyce_reduced_force_tangent(const double *restrict q, const
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
+void ancf3363_arruda_boyce_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+{
+    for (int i = 0; i < 432; ++i) f[i] = 0.0;
+    for (int r = 0; r < 54; ++r)
+        for (int i = r * 55 * 8; i < (r + 1) * 54 * 8; ++i) K[i] = 0.0;
+    {   /* energy part "all": 12 quadrature points */
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + (0 + 28 * p) * 8;
+            double A[360];
+            #pragma omp simd
+            for (int l = 0; l < 8; ++l) {
+                const double x45 = (1.0/(mat[8 + l]*mat[8 + l]));
+                const double x49 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x53 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double x57 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[56 + l] + q[120 + l]*t[72 + l] + q[144 + l]*t[80 + l] + q[168 + l]*t[88 + l] + q[192 + l]*t[104 + l] + q[216 + l]*t[112 + l] + q[240 + l]*t[128 + l] + q[264 + l]*t[144 + l] + q[288 + l]*t[152 + l] + q[312 + l]*t[160 + l] + q[24 + l]*t[16 + l] + q[336 + l]*t[176 + l] + q[360 + l]*t[184 + l] + q[384 + l]*t[200 + l] + q[408 + l]*t[216 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
+                const double x0 = (F00*F00);
+                const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[56 + l] + q[128 + l]*t[72 + l] + q[152 + l]*t[80 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[88 + l] + q[200 + l]*t[104 + l] + q[224 + l]*t[112 + l] + q[248 + l]*t[128 + l] + q[272 + l]*t[144 + l] + q[296 + l]*t[152 + l] + q[320 + l]*t[160 + l] + q[344 + l]*t[176 + l] + q[368 + l]*t[184 + l] + q[392 + l]*t[200 + l] + q[32 + l]*t[16 + l] + q[416 + l]*t[216 + l] + q[56 + l]*t[32 + l];
+                const double x1 = (F10*F10);
+                const double F20 = q[88 + l]*t[40 + l] + q[112 + l]*t[56 + l] + q[136 + l]*t[72 + l] + q[160 + l]*t[80 + l] + q[184 + l]*t[88 + l] + q[208 + l]*t[104 + l] + q[232 + l]*t[112 + l] + q[16 + l]*t[8 + l] + q[256 + l]*t[128 + l] + q[280 + l]*t[144 + l] + q[304 + l]*t[152 + l] + q[328 + l]*t[160 + l] + q[352 + l]*t[176 + l] + q[376 + l]*t[184 + l] + q[400 + l]*t[200 + l] + q[424 + l]*t[216 + l] + q[40 + l]*t[16 + l] + q[64 + l]*t[32 + l];
+                const double x2 = (F20*F20);
+                const double C00 = x0 + x1 + x2;
+                const double F01 = q[96 + l]*t[64 + l] + q[168 + l]*t[96 + l] + q[216 + l]*t[120 + l] + q[240 + l]*t[136 + l] + q[312 + l]*t[168 + l] + q[24 + l]*t[24 + l] + q[360 + l]*t[192 + l] + q[384 + l]*t[208 + l] + q[72 + l]*t[48 + l];
+                const double x3 = (F01*F01);
+                const double F11 = q[80 + l]*t[48 + l] + q[104 + l]*t[64 + l] + q[176 + l]*t[96 + l] + q[224 + l]*t[120 + l] + q[248 + l]*t[136 + l] + q[320 + l]*t[168 + l] + q[368 + l]*t[192 + l] + q[392 + l]*t[208 + l] + q[32 + l]*t[24 + l];
+                const double x17 = (F11*F11);
+                const double F21 = q[88 + l]*t[48 + l] + q[112 + l]*t[64 + l] + q[184 + l]*t[96 + l] + q[232 + l]*t[120 + l] + q[256 + l]*t[136 + l] + q[328 + l]*t[168 + l] + q[376 + l]*t[192 + l] + q[400 + l]*t[208 + l] + q[40 + l]*t[24 + l];
+                const double x18 = (F21*F21);
+                const double C11 = x17 + x18 + x3;
+                const double F02 = q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[192 + l]*t[96 + l] + q[240 + l]*t[120 + l] + q[264 + l]*t[136 + l] + q[336 + l]*t[168 + l] + q[384 + l]*t[192 + l] + q[408 + l]*t[208 + l] + q[48 + l]*t[24 + l];
+                const double x4 = (F02*F02);
+                const double F12 = q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[200 + l]*t[96 + l] + q[248 + l]*t[120 + l] + q[272 + l]*t[136 + l] + q[344 + l]*t[168 + l] + q[392 + l]*t[192 + l] + q[416 + l]*t[208 + l] + q[56 + l]*t[24 + l];
+                const double x19 = (F12*F12);
+                const double F22 = q[112 + l]*t[48 + l] + q[136 + l]*t[64 + l] + q[208 + l]*t[96 + l] + q[256 + l]*t[120 + l] + q[280 + l]*t[136 + l] + q[352 + l]*t[168 + l] + q[400 + l]*t[192 + l] + q[424 + l]*t[208 + l] + q[64 + l]*t[24 + l];
+                const double x26 = (F22*F22);
+                const double C22 = x19 + x26 + x4;
+                const double I1 = C00 + C11 + C22;
+                const double x27 = F11*F22;
+                const double x28 = F12*F21;
+                const double cof00 = x27 - x28;
+                const double x41 = F00*cof00;
+                const double x32 = F01*F22;
+                const double cof10 = F02*F21 - x32;
+                const double x42 = F10*cof10;
+                const double x36 = F01*F12;
+                const double x37 = F02*F11;
+                const double cof20 = x36 - x37;
+                const double x43 = F20*cof20;
+                const double J = x41 + x42 + x43;
+                const double x48 = (I1*I1);
+                const double x52 = (I1*I1*I1);
+                const double x56 = (I1*I1*I1*I1);
+                const double cb0 = (cbrt(J));
+                const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+                const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x62 = (1.0/(J*J*J));
+                const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double W_J = t[0 + l]*(mat[0 + l]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double x44 = (1.0/(cb0*cb0*cb0*cb0));
+                const double x46 = I1*x45;
+                const double x47 = (1.0/(J*J));
+                const double x50 = x48*x49;
+                const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x54 = x52*x53;
+                const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x58 = x56*x57;
+                const double x59 = mat[0 + l]*t[0 + l];
+                const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
+                const double x65 = 2.0*W_I1;
+                const double P00 = F00*x65 + W_J*cof00;
+                const double P10 = F10*x65 + W_J*cof10;
+                const double P20 = F20*x65 + W_J*cof20;
+                const double x29 = F10*F22;
+                const double cof01 = F12*F20 - x29;
+                const double P01 = F01*x65 + W_J*cof01;
+                const double x33 = F00*F22;
+                const double x34 = F02*F20;
+                const double cof11 = x33 - x34;
+                const double P11 = F11*x65 + W_J*cof11;
+                const double x38 = F00*F12;
+                const double cof21 = F02*F10 - x38;
+                const double P21 = F21*x65 + W_J*cof21;
+                const double x30 = F10*F21;
+                const double x31 = F11*F20;
+                const double cof02 = x30 - x31;
+                const double P02 = F02*x65 + W_J*cof02;
+                const double x35 = F00*F21;
+                const double cof12 = F01*F20 - x35;
+                const double P12 = F12*x65 + W_J*cof12;
+                const double x39 = F00*F11;
+                const double x40 = F01*F10;
+                const double cof22 = x39 - x40;
+                const double P22 = F22*x65 + W_J*cof22;
+                const double W_J_J = t[0 + l]*(1.6491445062873634e-06*I1*mat[0 + l]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[16 + l]);
+                const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
+                const double x66 = 4.0*W_I1_I1;
+                const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
+                const double x67 = 4.0*W_I1_J;
+                const double x5 = F00*F01;
+                const double x68 = W_J_J*cof00;
+                const double x69 = 2.0*W_I1_J;
+                const double x70 = F00*x69;
+                const double x71 = cof00*x69;
+                const double x11 = F00*F02;
+                const double x8 = F00*F10;
+                const double x72 = F22*W_J;
+                const double x73 = F21*W_J;
+                const double x14 = F00*F20;
+                const double x74 = F12*W_J;
+                const double x75 = F11*W_J;
+                const double x20 = F01*F02;
+                const double x76 = W_J_J*cof01;
+                const double x77 = F01*x69;
+                const double x78 = cof01*x69;
+                const double x9 = F01*F11;
+                const double x79 = F20*W_J;
+                const double x15 = F01*F21;
+                const double x80 = F10*W_J;
+                const double x81 = W_J_J*cof02;
+                const double x82 = F02*x69;
+                const double x83 = cof02*x69;
+                const double x10 = F02*F12;
+                const double x16 = F02*F22;
+                const double x6 = F10*F11;
+                const double x84 = W_J_J*cof10;
+                const double x85 = F10*x69;
+                const double x86 = cof10*x69;
+                const double x12 = F10*F12;
+                const double x23 = F10*F20;
+                const double x87 = F02*W_J;
+                const double x88 = F01*W_J;
+                const double x21 = F11*F12;
+                const double x89 = W_J_J*cof11;
+                const double x90 = F11*x69;
+                const double x91 = cof11*x69;
+                const double x24 = F11*F21;
+                const double x92 = F00*W_J;
+                const double x93 = W_J_J*cof12;
+                const double x94 = F12*x69;
+                const double x95 = cof12*x69;
+                const double x25 = F12*F22;
+                const double x7 = F20*F21;
+                const double x96 = W_J_J*cof20;
+                const double x97 = F20*x69;
+                const double x98 = cof20*x69;
+                const double x13 = F20*F22;
+                const double x22 = F21*F22;
+                f[0 + l] += P00*t[8 + l];
+                f[8 + l] += P10*t[8 + l];
+                f[16 + l] += P20*t[8 + l];
+                f[24 + l] += P00*t[16 + l] + P01*t[24 + l];
+                f[32 + l] += P10*t[16 + l] + P11*t[24 + l];
+                f[40 + l] += P20*t[16 + l] + P21*t[24 + l];
+                f[48 + l] += P00*t[32 + l] + P02*t[24 + l];
+                f[56 + l] += P10*t[32 + l] + P12*t[24 + l];
+                f[64 + l] += P20*t[32 + l] + P22*t[24 + l];
+                f[72 + l] += P00*t[40 + l] + P01*t[48 + l];
+                f[80 + l] += P10*t[40 + l] + P11*t[48 + l];
+                f[88 + l] += P20*t[40 + l] + P21*t[48 + l];
+                f[96 + l] += P00*t[56 + l] + P01*t[64 + l] + P02*t[48 + l];
+                f[104 + l] += P10*t[56 + l] + P11*t[64 + l] + P12*t[48 + l];
+                f[112 + l] += P20*t[56 + l] + P21*t[64 + l] + P22*t[48 + l];
+                f[120 + l] += P00*t[72 + l] + P02*t[64 + l];
+                f[128 + l] += P10*t[72 + l] + P12*t[64 + l];
+                f[136 + l] += P20*t[72 + l] + P22*t[64 + l];
+                f[144 + l] += P00*t[80 + l];
+                f[152 + l] += P10*t[80 + l];
+                f[160 + l] += P20*t[80 + l];
+                f[168 + l] += P00*t[88 + l] + P01*t[96 + l];
+                f[176 + l] += P10*t[88 + l] + P11*t[96 + l];
+                f[184 + l] += P20*t[88 + l] + P21*t[96 + l];
+                f[192 + l] += P00*t[104 + l] + P02*t[96 + l];
+                f[200 + l] += P10*t[104 + l] + P12*t[96 + l];
+                f[208 + l] += P20*t[104 + l] + P22*t[96 + l];
+                f[216 + l] += P00*t[112 + l] + P01*t[120 + l];
+                f[224 + l] += P10*t[112 + l] + P11*t[120 + l];
+                f[232 + l] += P20*t[112 + l] + P21*t[120 + l];
+                f[240 + l] += P00*t[128 + l] + P01*t[136 + l] + P02*t[120 + l];
+                f[248 + l] += P10*t[128 + l] + P11*t[136 + l] + P12*t[120 + l];
+                f[256 + l] += P20*t[128 + l] + P21*t[136 + l] + P22*t[120 + l];
+                f[264 + l] += P00*t[144 + l] + P02*t[136 + l];
+                f[272 + l] += P10*t[144 + l] + P12*t[136 + l];
+                f[280 + l] += P20*t[144 + l] + P22*t[136 + l];
+                f[288 + l] += P00*t[152 + l];
+                f[296 + l] += P10*t[152 + l];
+                f[304 + l] += P20*t[152 + l];
+                f[312 + l] += P00*t[160 + l] + P01*t[168 + l];
+                f[320 + l] += P10*t[160 + l] + P11*t[168 + l];
+                f[328 + l] += P20*t[160 + l] + P21*t[168 + l];
+                f[336 + l] += P00*t[176 + l] + P02*t[168 + l];
+                f[344 + l] += P10*t[176 + l] + P12*t[168 + l];
+                f[352 + l] += P20*t[176 + l] + P22*t[168 + l];
+                f[360 + l] += P00*t[184 + l] + P01*t[192 + l];
+                f[368 + l] += P10*t[184 + l] + P11*t[192 + l];
+                f[376 + l] += P20*t[184 + l] + P21*t[192 + l];
+                f[384 + l] += P00*t[200 + l] + P01*t[208 + l] + P02*t[192 + l];
+                f[392 + l] += P10*t[200 + l] + P11*t[208 + l] + P12*t[192 + l];
+                f[400 + l] += P20*t[200 + l] + P21*t[208 + l] + P22*t[192 + l];
+                f[408 + l] += P00*t[216 + l] + P02*t[208 + l];
+                f[416 + l] += P10*t[216 + l] + P12*t[208 + l];
+                f[424 + l] += P20*t[216 + l] + P22*t[208 + l];
+                A[0 + l] = W_J_J*(cof00*cof00) + x0*x66 + x41*x67 + x65;
+                A[8 + l] = F01*x71 + cof01*x68 + cof01*x70 + x5*x66;
+                A[16 + l] = F02*x71 + cof02*x68 + cof02*x70 + x11*x66;
+                A[24 + l] = F10*x71 + cof10*x68 + cof10*x70 + x66*x8;
+                A[32 + l] = F11*x71 + cof11*x68 + cof11*x70 + x39*x66 + x72;
+                A[40 + l] = F12*x71 + cof12*x68 + cof12*x70 + x38*x66 - x73;
+                A[48 + l] = F20*x71 + cof20*x68 + cof20*x70 + x14*x66;
+                A[56 + l] = F21*x71 + cof21*x68 + cof21*x70 + x35*x66 - x74;
+                A[64 + l] = F22*x71 + cof22*x68 + cof22*x70 + x33*x66 + x75;
+                A[72 + l] = F01*cof01*x67 + W_J_J*(cof01*cof01) + x3*x66 + x65;
+                A[80 + l] = F02*x78 + cof02*x76 + cof02*x77 + x20*x66;
+                A[88 + l] = F10*x78 + cof10*x76 + cof10*x77 + x40*x66 - x72;
+                A[96 + l] = F11*x78 + cof11*x76 + cof11*x77 + x66*x9;
+                A[104 + l] = F12*x78 + cof12*x76 + cof12*x77 + x36*x66 + x79;
+                A[112 + l] = F01*F20*x66 + F20*x78 + cof20*x76 + cof20*x77 + x74;
+                A[120 + l] = F21*x78 + cof21*x76 + cof21*x77 + x15*x66;
+                A[128 + l] = F22*x78 + cof22*x76 + cof22*x77 + x32*x66 - x80;
+                A[136 + l] = F02*cof02*x67 + W_J_J*(cof02*cof02) + x4*x66 + x65;
+                A[144 + l] = F02*F10*x66 + F10*x83 + cof10*x81 + cof10*x82 + x73;
+                A[152 + l] = F11*x83 + cof11*x81 + cof11*x82 + x37*x66 - x79;
+                A[160 + l] = F12*x83 + cof12*x81 + cof12*x82 + x10*x66;
+                A[168 + l] = F20*x83 + cof20*x81 + cof20*x82 + x34*x66 - x75;
+                A[176 + l] = F02*F21*x66 + F21*x83 + cof21*x81 + cof21*x82 + x80;
+                A[184 + l] = F22*x83 + cof22*x81 + cof22*x82 + x16*x66;
+                A[192 + l] = W_J_J*(cof10*cof10) + x1*x66 + x42*x67 + x65;
+                A[200 + l] = F11*x86 + cof11*x84 + cof11*x85 + x6*x66;
+                A[208 + l] = F12*x86 + cof12*x84 + cof12*x85 + x12*x66;
+                A[216 + l] = F20*x86 + cof20*x84 + cof20*x85 + x23*x66;
+                A[224 + l] = F21*x86 + cof21*x84 + cof21*x85 + x30*x66 + x87;
+                A[232 + l] = F22*x86 + cof22*x84 + cof22*x85 + x29*x66 - x88;
+                A[240 + l] = F11*cof11*x67 + W_J_J*(cof11*cof11) + x17*x66 + x65;
+                A[248 + l] = F12*x91 + cof12*x89 + cof12*x90 + x21*x66;
+                A[256 + l] = F20*x91 + cof20*x89 + cof20*x90 + x31*x66 - x87;
+                A[264 + l] = F21*x91 + cof21*x89 + cof21*x90 + x24*x66;
+                A[272 + l] = F22*x91 + cof22*x89 + cof22*x90 + x27*x66 + x92;
+                A[280 + l] = F12*cof12*x67 + W_J_J*(cof12*cof12) + x19*x66 + x65;
+                A[288 + l] = F12*F20*x66 + F20*x95 + cof20*x93 + cof20*x94 + x88;
+                A[296 + l] = F21*x95 + cof21*x93 + cof21*x94 + x28*x66 - x92;
+                A[304 + l] = F22*x95 + cof22*x93 + cof22*x94 + x25*x66;
+                A[312 + l] = W_J_J*(cof20*cof20) + x2*x66 + x43*x67 + x65;
+                A[320 + l] = F21*x98 + cof21*x96 + cof21*x97 + x66*x7;
+                A[328 + l] = F22*x98 + cof22*x96 + cof22*x97 + x13*x66;
+                A[336 + l] = F21*cof21*x67 + W_J_J*(cof21*cof21) + x18*x66 + x65;
+                A[344 + l] = F21*cof22*x69 + F22*cof21*x69 + W_J_J*cof21*cof22 + x22*x66;
+                A[352 + l] = F22*cof22*x67 + W_J_J*(cof22*cof22) + x26*x66 + x65;
+            }
+            ancf3363_tangent_contract_lanes(A, t, K);
+        }
+    }
+    for (int r = 1; r < 54; ++r)
+        for (int c = 0; c < r; ++c)
+            for (int l = 0; l < 8; ++l) K[(r * 54 + c) * 8 + l] = K[(c * 54 + r) * 8 + l];
+}
+
 static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
 
 const bk_pair bk_pair_ancf3363_arruda_boyce_full = {
@@ -823,12 +1585,14 @@ const bk_pair bk_pair_ancf3363_arruda_boyce_full = {
     .param_names = param_names,
     .ntab = 756,
     .nqp = 27,
-    .ops_force = 16895L,
-    .ops_force_tangent = 337655L,
+    .ops_force = 16490L,
+    .ops_force_tangent = 337331L,
     .tabulate = ancf3363_full_tabulate,
     .energy = ancf3363_arruda_boyce_full_energy,
     .force = ancf3363_arruda_boyce_full_force,
     .force_tangent = ancf3363_arruda_boyce_full_force_tangent,
+    .force_lanes = ancf3363_arruda_boyce_full_force_lanes,
+    .force_tangent_lanes = ancf3363_arruda_boyce_full_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3363_full_viscous,
     .invariants = ancf3363_full_invariants,
@@ -842,12 +1606,14 @@ const bk_pair bk_pair_ancf3363_arruda_boyce_reduced = {
     .param_names = param_names,
     .ntab = 336,
     .nqp = 12,
-    .ops_force = 7520L,
-    .ops_force_tangent = 150080L,
+    .ops_force = 7340L,
+    .ops_force_tangent = 149936L,
     .tabulate = ancf3363_reduced_tabulate,
     .energy = ancf3363_arruda_boyce_reduced_energy,
     .force = ancf3363_arruda_boyce_reduced_force,
     .force_tangent = ancf3363_arruda_boyce_reduced_force_tangent,
+    .force_lanes = ancf3363_arruda_boyce_reduced_force_lanes,
+    .force_tangent_lanes = ancf3363_arruda_boyce_reduced_force_tangent_lanes,
     .nvisc = 2,
     .viscous = ancf3363_reduced_viscous,
     .invariants = ancf3363_reduced_invariants,
