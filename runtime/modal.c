@@ -51,6 +51,18 @@ static void add_element_block(const bk_system *s, int e, const double *Ke, doubl
     }
 }
 
+/* Column c of G^T (the Jacobian row of constraint c), by bk_constraint_jacobian_row. */
+typedef struct gt_col {
+    gsl_matrix *GT;
+    int c;
+} gt_col;
+
+static void gt_add(void *ctx, int eq, double v)
+{
+    gt_col *g = ctx;
+    *gsl_matrix_ptr(g->GT, (size_t)eq, (size_t)g->c) += v;
+}
+
 int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
@@ -142,13 +154,8 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
     if (nc > 0) {
         GT = gsl_matrix_calloc((size_t)n, (size_t)nc);
         for (int c = 0; c < nc; ++c) {
-            const bk_lincon *lc = &m->lincons[c];
-            for (int k = 0; k < lc->nterm; ++k) {
-                int i = s->eq[lc->dof[k]];
-                double C = cos(lc->kappa * 0.0), S = sin(lc->kappa * 0.0);
-                if (i >= 0)
-                    *gsl_matrix_ptr(GT, (size_t)i, (size_t)c) += lc->c0[k] + lc->cc[k] * C + lc->cs[k] * S;
-            }
+            gt_col col = {GT, c};
+            bk_constraint_jacobian_row(s, q, 0.0, c, gt_add, &col);
         }
         int mn = n < nc ? n : nc;
         tau = gsl_vector_alloc((size_t)mn);

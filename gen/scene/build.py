@@ -6,6 +6,7 @@ and sensors (options.py); the model file (model_file.py)."""
 from pathlib import Path
 
 import gen.scene_keys as K
+from gen.scene.bodies import mesh_bodies
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -55,6 +56,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         ctx.fail("beam", "missing; expected at least one [[beam]]")
     cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
+    mesh_bodies(ctx, doc, mesh, index)
     rows = constraints(ctx, doc, mesh)          # none is allowed: the solver reports the singular tangent
     forces, moments, gravity = loads(ctx, doc, mesh.beams)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
@@ -63,7 +65,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
         "length_scale": max(b["length"] for b in mesh.beams.values()),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
-        "fixed": sorted(rows.fixed), "lincons": rows.lincons, "forces": forces, "moments": moments,
-        "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams), "static": stat, "beams": mesh.beams,
+        "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
+        "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
     }
