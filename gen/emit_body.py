@@ -153,7 +153,6 @@ def index_entries():
     d = describe()
     return ({"element": NAME, "material": MATERIAL, "ndof": d.ndof, "title": TITLE,
              "nodes": [{"xi": "1/2", "fields": [[f.name, f.dim] for f in d.fields]}],
-             "pair": f"{NAME}_{MATERIAL}_full", "params": ["cg"]},
-            {"files": ["joints.c"], "types": {n: {"rows": body.joint_nrow(n)} for n in body.JOINT_TYPES}},
-            {"element": NAME, "material": MATERIAL, "integration": "full",
-             "symbol": f"bk_pair_{NAME}_{MATERIAL}_full", "files": [f"{NAME}.c"]})
+             "pair": f"{NAME}_{MATERIAL}_full", "params": ["cg"], "integration": "full",
+             "symbol": f"bk_pair_{NAME}_{MATERIAL}_full", "files": [f"{NAME}.c"]},
+            {"files": ["joints.c"], "types": {n: {"rows": body.joint_nrow(n)} for n in body.JOINT_TYPES}})

@@ -137,8 +137,7 @@ def index_data(elements=None, materials=None):
     for mname, (mat, mpath) in materials.items():
         out["materials"][mname] = material_data(mat, mpath)
     from gen.emit_body import index_entries
-    out["body"], out["joints"], body_pair = index_entries()
-    out["pairs"].append(body_pair)
+    out["body"], out["joints"] = index_entries()
     return out
 
 

@@ -185,7 +185,8 @@ def _kernel_objects(pairs, index, variant, log):
     flags = KERNEL_FLAGS[variant]
     files = []
     for p in pairs:
-        match = [x for x in index["pairs"] if f"{x['element']}_{x['material']}_{x['integration']}" == p]
+        cands = index["pairs"] + ([index["body"]] if "body" in index else [])     # rigid bodies: index "body"
+        match = [x for x in cands if f"{x['element']}_{x['material']}_{x['integration']}" == p]
         if not match:
             raise BuildError(f"no generated kernel {p}")
         for f in match[0]["files"]:

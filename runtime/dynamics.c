@@ -568,12 +568,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         }
         cuts = 0;
         full_retry = 0;
-        /* Quaternions back to unit length, their rates without the gauge
-         * component: the rotations and angular velocities are unchanged,
+        /* Quaternions back to unit length, their velocities without the gauge
+         * component, their accelerations with that of a unit quaternion: the
+         * rotations and angular velocities are unchanged,
          * and the massless gauge direction cannot drift over long runs. */
         {
-            double *rates[3] = {w.qd, w.qdd, w.a};
-            bk_quat_normalize(quat, nquat, q, rates, 3);
+            double *acc[2] = {w.qdd, w.a};
+            bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
         }
         t = tn;
         step++;
