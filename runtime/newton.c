@@ -133,6 +133,11 @@ static int newton(bk_system *s, bk_linsolver *ls, work *w, double *q, double lam
             return NEWTON_INTERRUPTED;
         if (residual(s, w, q, w->nu, lam, 1) != 0)
             return NEWTON_NONFINITE;
+        /* joints nonlinear in q: start from the multipliers that balance the loads
+         * (their geometric stiffness holds mechanisms like a hanging pendulum) */
+        if (it == 0 && m->nnlcon > 0 && bk_constraint_multipliers(s, q, lam, w->r, w->nu) == 0 &&
+            residual(s, w, q, w->nu, lam, 1) != 0)
+            return NEWTON_NONFINITE;
         double rnorm = bk_norm2(w->r, s->neq);
         double ref = fmax(fabs(lam) * bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
         /* Every measure is invariant under a rigid rotation of the scene:

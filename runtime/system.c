@@ -1,6 +1,8 @@
 /* system.c -- equation numbering, sparse pattern, assembly. */
 #include "system.h"
 
+#include "linsolve.h"
+
 #include <math.h>
 
 #ifndef M_PI
@@ -657,6 +659,55 @@ void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, i
     for (int k = 0; k < BK_JOINT_NX; ++k)
         if (joint_eq(s, jc, k) >= 0)
             add(ctx, joint_eq(s, jc, k), G[BK_JOINT_NX * (c - s->jrow[j]) + k]);
+}
+
+int bk_constraint_multipliers(bk_system *s, const double *q, double t, const double *r, double *nu)
+{
+    if (s->ncon == 0)
+        return 0;
+    double *Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof *Ax);
+    double *b = calloc((size_t)s->neq, sizeof *b);
+    bk_linsolver ls = {0};
+    int rc = -1;
+    if (!Ax || !b)
+        goto out;
+    /* [c I  s G^T; s G  0] [x; dnu] = [-r; 0]: x = -(r + s G^T dnu)/c with G x = 0 */
+    for (int j = 0; j < s->nfree; ++j)
+        if (s->diag[j] >= 0)
+            Ax[s->diag[j]] = s->cscale;
+    bk_assemble_constraints(s, q, NULL, t, NULL, Ax);
+    for (int j = 0; j < s->nfree; ++j)
+        b[j] = -r[j];
+    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK || bk_lin_factor(&ls, Ax) != BK_LIN_OK ||
+        ls.rcond < 1e-12 || bk_lin_solve(&ls, b) != BK_LIN_OK)
+        goto out;
+    for (int c = 0; c < s->ncon; ++c)
+        if (!isfinite(b[s->nfree + c]))
+            goto out;
+    for (int c = 0; c < s->ncon; ++c)
+        nu[c] += b[s->nfree + c];
+    rc = 0;
+out:
+    bk_lin_free(&ls);
+    free(Ax);
+    free(b);
+    return rc;
+}
+
+void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+                           void (*add)(void *ctx, int i, int j, double v), void *ctx)
+{
+    const int nx = BK_JOINT_NX;
+    double x[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX];
+    for (int j = 0; j < s->m->nnlcon; ++j) {
+        const bk_nlcon *c = &s->m->nlcons[j];
+        joint_x(c, q, 0, x);
+        c->kind->hessian(x, c->prm, lam + s->jrow[j], H);
+        for (int a = 0; a < nx; ++a)
+            for (int b = 0; b < nx; ++b)
+                if (joint_eq(s, c, a) >= 0 && joint_eq(s, c, b) >= 0 && H[nx * a + b] != 0.0)
+                    add(ctx, joint_eq(s, c, a), joint_eq(s, c, b), H[nx * a + b]);
+    }
 }
 
 void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,

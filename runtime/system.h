@@ -82,6 +82,20 @@ void bk_constraint_accel_rhs(const bk_system *s, const double *q, const double *
 void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, int c,
                                 void (*add)(void *ctx, int eq, double v), void *ctx);
 
+/* Multipliers for a start: adds to nu[ncon] the correction dnu that minimizes
+ * |r + s G^T dnu| over the free rows (r: a residual over the equations at q,
+ * nu), i.e. the constraint forces that best balance the other forces; a
+ * mechanism held only by its loads (a pendulum under gravity) then has the
+ * joints' geometric stiffness from the first Newton iteration on.  Returns 0,
+ * or -1 (nu unchanged) when the constraints are dependent or memory ran out. */
+int bk_constraint_multipliers(bk_system *s, const double *q, double t, const double *r, double *nu);
+
+/* The joints' Hessian term sum_k lam_k d2 g_k/dq2 at q for unscaled
+ * multipliers lam[ncon] (the constraint force is G^T lam; the linear rows have
+ * none): calls add(ctx, equation i, equation j, value) for each free pair. */
+void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+                           void (*add)(void *ctx, int i, int j, double v), void *ctx);
+
 /* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
  * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */
 double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs);

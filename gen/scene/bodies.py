@@ -103,5 +103,5 @@ def mesh_bodies(ctx, doc, mesh, index):
         mesh.elements.append((pidx, len(mesh.geoms) - 1, midx, list(range(base, base + 7))))
         R = [[E[k][i] for k in range(3)] for i in range(3)]
         mesh.bodies[name] = {"name": name, "gid": gid, "elem": len(mesh.elements) - 1, "X": X, "R": R,
-                             "mass": M}
+                             "mass": M, "geom_edge": edge}
     return mesh

@@ -52,8 +52,8 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
     sections = parse_sections(ctx, doc)
 
     beams_doc = get_array_of_tables(ctx, doc, "beam")
-    if not beams_doc:
-        ctx.fail("beam", "missing; expected at least one [[beam]]")
+    if not beams_doc and not get_array_of_tables(ctx, doc, "body"):
+        ctx.fail("beam", "missing; expected at least one [[beam]] or [[body]]")
     cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
     mesh_bodies(ctx, doc, mesh, index)
@@ -63,7 +63,8 @@ def build(path, sets=(), name=None, log=None, out_dir=None):
     qd0 = initial_velocities(ctx, doc, mesh)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
-        "length_scale": max(b["length"] for b in mesh.beams.values()),
+        "length_scale": max([b["length"] for b in mesh.beams.values()] +
+                            [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()]),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
