@@ -226,3 +226,34 @@ def test_universal_joint_pendulum_frequencies():
     M, g, d = 2.0, 9.81, 0.3
     ref = sorted(math.sqrt(M * g * d / (J + M * d * d)) / (2 * math.pi) for J in (0.01, 0.02))
     assert np.allclose(s["frequencies_hz"][:2], ref, rtol=1e-6), (s["frequencies_hz"], ref)
+
+
+def test_prismatic_block_slides_down_the_incline():
+    """Dynamics: a block on a frictionless prismatic joint inclined 30 degrees slides
+    s = g sin(30 deg) t^2/2 along it (to 1e-6 of s; generalized-alpha is exact for
+    constant acceleration up to the Newton tolerance) and does not turn."""
+    s, rows = run_scene("prismatic_slide")
+    t, X = _xz(rows, "block", ("x", "y", "z"))
+    _, D = _xz(rows, "block", ("d1x", "d1y", "d1z", "d3x", "d3y", "d3z"))
+    sl = 0.5 * 9.81 * 0.5 * t**2
+    ref = np.c_[sl * math.cos(math.pi / 6), 0 * sl, -sl * 0.5]
+    assert np.abs(X - ref).max() < 1e-6 * sl.max() + 1e-12, np.abs(X - ref).max()
+    assert np.abs(D - np.array([1, 0, 0, 0, 0, 1])).max() < 1e-10
+
+
+def test_cart_pendulum_frequency():
+    """Dynamics: a rigid bob hung from a cart by a revolute joint between two bodies,
+    the cart on a horizontal prismatic joint: the swing frequency (zero crossings of
+    the bob's axis) against omega^2 = (M + m) m g l / ((M + m)(J + m l^2) - m^2 l^2)
+    (measured 1.6e-5 apart), the cart staying on its line."""
+    s, rows = run_scene("cart_pendulum")
+    t, Z = _xz(rows, "bob", ("d1z",))
+    z = Z[:, 0]
+    up = [t[i] - z[i] * (t[i + 1] - t[i]) / (z[i + 1] - z[i]) for i in range(1, len(z) - 1) if z[i] <= 0.0 < z[i + 1]]
+    assert len(up) >= 2
+    f = (len(up) - 1) / (up[-1] - up[0])
+    M, m, g, l, J = 1.0, 0.5, 9.81, 0.4, 0.004
+    ref = math.sqrt((M + m) * m * g * l / ((M + m) * (J + m * l * l) - m * m * l * l)) / (2 * math.pi)
+    assert abs(f - ref) / ref < 2e-4, (f, ref)
+    _, C = _xz(rows, "cart", ("y", "z"))
+    assert np.abs(C).max() < 1e-12
