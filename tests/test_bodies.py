@@ -306,3 +306,32 @@ def test_slider_crank_flexible_rod_shortens_by_its_axial_force():
         (np.abs(dev[late] - est[late]).max(), np.abs(est).max())
     assert np.abs(est).max() > 5e-5                  # the effect is well above the solver's errors
     assert abs(phi).max() < 0.31
+
+
+# ----------------------------------------------------------------------------
+# Fixed joint (weld) between two beams (models/l_frame_weld.toml)
+
+def test_l_frame_welded_at_right_angle_vs_beam_theory():
+    """Statics: two beams welded at 90 degrees by a fixed joint, 1 N out of plane at
+    the free end: bending of both legs, torsion of the first and shear (Timoshenko,
+    Cowper's k; GJ with J = 0.1406 b^4) from linear theory, to 3e-4 (measured
+    6.7e-5); the weld keeps the corner's two nodes together and at right angles."""
+    s, rows = run_scene("l_frame_weld")
+    E, nu, b, P, L, a = 2.1e11, 0.3, 0.01, 1.0, 1.0, 0.5
+    G, A, I, J = E / (2 * (1 + nu)), b * b, b**4 / 12, 0.1406 * b**4
+    k = 10 * (1 + nu) / (12 + 11 * nu)
+    w = P * L**3 / (3 * E * I) + P * a**3 / (3 * E * I) + P * a * a * L / (G * J) + P * (L + a) / (k * G * A)
+    uz = s["sensors"]["tip"]["displacement"][2]
+    assert abs(-uz - w) / w < 3e-4, (uz, w)
+    assert s["converged"]
+
+
+def test_weld_of_two_colinear_beams_vibrates_as_one_beam():
+    """Modal: the second leg turned to continue the first (a 1.5 m cantilever made of
+    two beams and a fixed joint): the first two bending frequencies against
+    Euler-Bernoulli's (beta L = 1.8751, 4.6941; to 5e-4: shear and rotary inertia)."""
+    s, _ = run_scene("l_frame_weld", ["scene.analysis=modal", "beam.b.end.0=1.5", "beam.b.end.1=0.0"])
+    E, b, L = 2.1e11, 0.01, 1.5
+    ref = [bl**2 / (2 * math.pi * L * L) * math.sqrt(E * b**4 / 12 / (7850 * b * b)) for bl in (1.8751041, 4.6940911)]
+    f = s["frequencies_hz"]
+    assert abs(f[0] - ref[0]) / ref[0] < 5e-4 and abs(f[2] - ref[1]) / ref[1] < 5e-4, (f, ref)
