@@ -335,3 +335,38 @@ def test_weld_of_two_colinear_beams_vibrates_as_one_beam():
     ref = [bl**2 / (2 * math.pi * L * L) * math.sqrt(E * b**4 / 12 / (7850 * b * b)) for bl in (1.8751041, 4.6940911)]
     f = s["frequencies_hz"]
     assert abs(f[0] - ref[0]) / ref[0] < 5e-4 and abs(f[2] - ref[1]) / ref[1] < 5e-4, (f, ref)
+
+
+# ----------------------------------------------------------------------------
+# Bad input: one line naming the file and the key
+
+TIP = (ROOT / "models" / "tip_mass_cantilever.toml").read_text()
+UNI = (ROOT / "models" / "universal_pendulum.toml").read_text()
+
+
+def test_bad_bodies_and_joints():
+    check_error(TIP.replace('a = "arm:end"\nb = "tip"', 'a = "tip"\nb = "tip"'), "constraint[1].b",
+                "and itself")
+    check_error(TIP.replace('a = "arm:end"\nb = "tip"', 'a = "arm:end"\nb = "arm:end"'), "constraint[1].b",
+                "and itself")
+    check_error(TIP.replace("inertia = [1.23e-4, 1.23e-4, 1.23e-4]", "inertia = [1e-4, 1e-4, -1e-4]"),
+                "body.tip.inertia", "positive definite")
+    check_error(TIP.replace("inertia = [1.23e-4, 1.23e-4, 1.23e-4]", "inertia = [1e-4, 1e-4, 3e-4]"),
+                "body.tip.inertia", "triangle inequality")
+    check_error(TIP.replace("inertia = [1.23e-4, 1.23e-4, 1.23e-4]", "inertia = [1e-4, 1e-4, 1e-4, 2e-4, 0, 0]"),
+                "body.tip.inertia", "positive definite")
+    check_error(TIP.replace('inertia = [1.23e-4, 1.23e-4, 1.23e-4]', 'inertia = "heavy"'),
+                "body.tip.inertia", "expected")
+    check_error(TIP.replace("mass = 0.5", "mass = 0.0"), "body.tip.mass", "positive")
+    check_error(TIP.replace('name = "tip"\nmass', 'name = "arm"\nmass'), "body.arm.name", "duplicate name")
+    check_error(TIP.replace('type = "fixed"\na = "arm:end"\nb = "tip"',
+                            'type = "revolute"\na = "arm:end"\nb = "tip"\naxis = [0.0, 0.0, 0.0]'),
+                "constraint[1].axis", "nonzero")
+    check_error(TIP.replace('type = "fixed"\na = "arm:end"\nb = "tip"', 'type = "fixed"\na = "tip"'),
+                "constraint[1].at", "needs the joint point")
+    check_error(TIP.replace('element = "gef"', 'element = "ancf3243"').replace('law = "resultant"', 'law = "svk"'),
+                "constraint[1].a", "needs a rotation on both sides")
+    check_error(UNI.replace("axis_b = [0.0, 1.0, 0.0]", "axis_b = [1.0, 1.0, 0.0]"), "constraint[0].axis_b",
+                "perpendicular")
+    check_error(UNI.replace('a = "bob"', 'a = "rob"'), "constraint[0].a", "a body name")
+    check_error(UNI.replace("[[body]]", "[[body]]\ncolour = 1"), "body[0].colour", "unknown key")
