@@ -123,7 +123,7 @@ extern const int bk_njoint_kinds;
 
 #endif
 """
-    c = [f"/* {BANNER} (see joints.h) */", '#include "joints.h"',
+    c = [f"/* {BANNER} (see joints.h) */", '#include "joints.h"'] + version_guard() + [
          f"#if !defined(BK_JOINT_VERSION) || BK_JOINT_VERSION != 1",
          '#error "generated for runtime/bk_joint.h version 1: regenerate out/kernels with ./build.sh gen"',
          "#endif", ""]
