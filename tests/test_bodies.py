@@ -132,12 +132,13 @@ def test_tip_mass_with_offset_sags_as_beam_theory_says():
     """Statics: the body's centre of mass 0.1 m beyond the end (the weld carries the
     force M g and the moment 0.1 M g), plus the beam's own weight: tip deflection
     M g L^3/(3 EI) + 0.1 M g L^2/(2 EI) + q L^4/(8 EI) (linear theory; the load is
-    small, 1.8 % of L) to 2e-4, and the body turned rigidly with the end section."""
+    small, 1.8 % of L) to 5e-4 (measured 1.8e-4: the geometric nonlinearity), and the
+    body turned rigidly with the end section."""
     s, rows = run_scene("tip_mass_cantilever", ["scene.analysis=static", "body.0.center.0=1.1"])
     g, e = 9.81, 0.1
     w = M_TIP * g * LEN**3 / (3 * EI) + e * M_TIP * g * LEN**2 / (2 * EI) + M_BEAM * g * LEN**3 / (8 * EI)
     uz = s["sensors"]["end"]["displacement"][2]
-    assert abs(-uz - w) / w < 2e-4, (uz, w)
+    assert abs(-uz - w) / w < 5e-4, (uz, w)
     end, body = s["sensors"]["end"], s["sensors"]["mass"]
     d3 = np.array(end["d3"])
     assert np.allclose(np.array(body["position"]), np.array(end["position"]) + e * d3, atol=1e-9)
@@ -147,7 +148,7 @@ def test_tip_mass_with_offset_sags_as_beam_theory_says():
 def test_tip_mass_free_vibration_period():
     """Dynamics: a free vibration from a small rigid rotation velocity; the period
     between upward zero crossings of the tip deflection against the frequency
-    equation (to 0.5 %), the tip mass and the beam end together throughout."""
+    equation (to 0.5 %; measured 8e-6), the tip mass and the beam end together throughout."""
     s, rows = run_scene("tip_mass_cantilever", ["scene.analysis=dynamic", "load.0.value.2=0.0",
                                                 "dynamic.t_end=0.7"])
     t = np.array([float(r["time"]) for r in rows if r["sensor"] == "mass"])
@@ -329,7 +330,8 @@ def test_l_frame_welded_at_right_angle_vs_beam_theory():
 def test_weld_of_two_colinear_beams_vibrates_as_one_beam():
     """Modal: the second leg turned to continue the first (a 1.5 m cantilever made of
     two beams and a fixed joint): the first two bending frequencies against
-    Euler-Bernoulli's (beta L = 1.8751, 4.6941; to 5e-4: shear and rotary inertia)."""
+    Euler-Bernoulli's (beta L = 1.8751, 4.6941; to 5e-4, measured 3.5e-5 and 2.3e-4:
+    shear and rotary inertia)."""
     s, _ = run_scene("l_frame_weld", ["scene.analysis=modal", "beam.b.end.0=1.5", "beam.b.end.1=0.0"])
     E, b, L = 2.1e11, 0.01, 1.5
     ref = [bl**2 / (2 * math.pi * L * L) * math.sqrt(E * b**4 / 12 / (7850 * b * b)) for bl in (1.8751041, 4.6940911)]
