@@ -346,6 +346,8 @@ def constraints(ctx, doc, mesh, amps=None):
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         if not _is_linear(ct, mesh, ctype):
             rows.nlcons.append(nonlinear_joint(ctx, ct, where, mesh, ctype))
+            mesh.warnings.append(f"{where}: the reaction of a {ctype} joint with a body, a second frame or a "
+                                 "joint point (nonlinear in q) is not written to reactions.csv yet")
             continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
         fixed0, nlin0 = set(rows.fixed), len(rows.lincons)
