@@ -37,6 +37,8 @@ def plan(elements=None, materials=None):
     if any(e.kind == "rod" for e, _ in elements.values()):
         from gen.emit_rod import SHARED_UNITS, shared_paths
         units += [("shared", u, shared_paths()) for u in SHARED_UNITS]
+    from gen.emit_body import UNITS as BODY_UNITS, paths as body_paths
+    units += [("body", u, body_paths()) for u in BODY_UNITS]
     for ename, (elem, epath) in elements.items():
         fam = family_paths(elem)
         units.append(("element", ename, [epath] + fam))
@@ -84,6 +86,9 @@ def produce(unit):
     elif kind == "shared":
         from gen.emit_rod import shared_source
         h, c = shared_source(name)
+    elif kind == "body":
+        from gen.emit_body import unit_source
+        h, c = unit_source(name)
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = _emitter(elem).element_source(elem, epath)[:2]
@@ -131,6 +136,8 @@ def index_data(elements=None, materials=None):
                                      "files": kernel_files(elem) + [f"{ename}.c", f"{ename}_{mname}.c"]})
     for mname, (mat, mpath) in materials.items():
         out["materials"][mname] = material_data(mat, mpath)
+    from gen.emit_body import index_entries
+    out["body"], out["joints"] = index_entries()
     return out
 
 

@@ -6,7 +6,7 @@ INPUTS); tests/test_docs.py checks that the README's scene reference lists
 the same keys.
 """
 
-TOP = ("scene", "material", "section", "beam", "constraint", "load", "static", "dynamic", "modal",
+TOP = ("scene", "material", "section", "beam", "body", "constraint", "load", "static", "dynamic", "modal",
        "initial_velocity", "sensor", "output", "amplitude")
 
 SCENE = ("analysis", "description", "name")
@@ -14,9 +14,13 @@ MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
 BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
         "arc_center", "arc_axis", "arc_angle", "grading", "element_lengths")
+BODY = ("name", "mass", "center", "inertia", "axes")
 CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
-              "spherical": ("type", "a", "b"),
-              "revolute": ("type", "a", "axis"),
+              "spherical": ("type", "a", "b", "at"),
+              "revolute": ("type", "a", "b", "axis", "at"),
+              "fixed": ("type", "a", "b", "at"),
+              "universal": ("type", "a", "b", "axis", "axis_b", "at"),
+              "prismatic": ("type", "a", "b", "axis", "at"),
               "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency", "angle",
                                       "angle_amplitude"),
               "point_on_line": ("type", "a", "axis")}
@@ -36,7 +40,7 @@ DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cut
            "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
 MODAL = ("modes", "about")
 OUTPUT = ("vtk_every",)
-INITIAL_VELOCITY = ("beam", "velocity", "angular_velocity", "center")
+INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
 
 
@@ -49,7 +53,7 @@ def union(by_type):
 
 def all_keys():
     """{table: keys} for every table but the law parameters of [material.NAME]."""
-    return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM,
+    return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
             "amplitude": union(AMPLITUDE)}

@@ -175,7 +175,7 @@ def _runtime_objects(variant, log, extra_sources):
 def _kernel_headers(src):
     """Headers a generated kernel file includes with "..." (its own, its element's,
     rod_common.h, rod_math.h, bk_kernel.h): an object is stale when one is newer."""
-    deps = [src.with_suffix(".h"), RUNTIME / "bk_kernel.h"]
+    deps = [src.with_suffix(".h"), RUNTIME / "bk_kernel.h", RUNTIME / "bk_joint.h"]
     for line in src.read_text(encoding="utf-8").splitlines()[:20]:
         if line.startswith('#include "'):
             h = KERNELS / line.split('"')[1]
@@ -195,12 +195,16 @@ def _kernel_objects(pairs, index, variant, log):
     flags = KERNEL_FLAGS[variant]
     files = []
     for p in pairs:
-        match = [x for x in index["pairs"] if f"{x['element']}_{x['material']}_{x['integration']}" == p]
+        cands = index["pairs"] + ([index["body"]] if "body" in index else [])     # rigid bodies: index "body"
+        match = [x for x in cands if f"{x['element']}_{x['material']}_{x['integration']}" == p]
         if not match:
             raise BuildError(f"no generated kernel {p}")
         for f in match[0]["files"]:
             if f not in files:
                 files.append(f)
+    for f in index.get("joints", {}).get("files", []):     # every solver binds the joint kernels
+        if f not in files:
+            files.append(f)
     jobs = []
     for f in files:
         src = KERNELS / f

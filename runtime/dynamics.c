@@ -394,11 +394,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             if (s->eq[i] >= 0)
                 w.r[s->eq[i]] = w.fext[i] - w.fint[i] - ra * w.tmp[i];
         bk_assemble_constraints(s, q, w.nu, t, NULL, w.Ax);
-        for (int c = 0; c < s->ncon; ++c) {      /* G q'' = -(2 G' q' + G'' q - g'') */
-            const bk_lincon *lc = &m->lincons[c];
-            w.r[s->nfree + c] = -s->cscale * (2.0 * bk_constraint_row(lc, w.qd, t, 1, 0)
-                                            + bk_constraint_row(lc, q, t, 2, 1));
-        }
+        bk_constraint_accel_rhs(s, q, w.qd, t, w.r);   /* G q'' = -(d/dt G) q' - ... */
         if (bk_lin_factor(ls, w.Ax) != BK_LIN_OK || bk_lin_solve(ls, w.r) != BK_LIN_OK) {
             snprintf(info->message, sizeof info->message,
                      "initial accelerations: singular mass/constraint system (is every DOF given mass or held?)");
@@ -502,12 +498,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         }
         cuts = 0;
         full_retry = 0;
-        /* Quaternions back to unit length, their rates without the gauge
-         * component: the rotations and angular velocities are unchanged,
+        /* Quaternions back to unit length, their velocities without the gauge
+         * component, their accelerations with that of a unit quaternion: the
+         * rotations and angular velocities are unchanged,
          * and the massless gauge direction cannot drift over long runs. */
         {
-            double *rates[3] = {w.qd, w.qdd, w.a};
-            bk_quat_normalize(quat, nquat, q, rates, 3);
+            double *acc[2] = {w.qdd, w.a};
+            bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
         }
         t = tn;
         step++;

@@ -21,6 +21,9 @@
 /* Defined by the per-scene kernel table generated at build time. */
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;
+/* Defined by the generated joint kernels (out/kernels/joints.c). */
+extern const bk_joint_kind *const bk_joint_kinds[];
+extern const int bk_njoint_kinds;
 
 static double now(void)
 {
@@ -59,6 +62,10 @@ int main(int argc, char **argv)
     bk_model *m = bk_model_read(model_path, bk_linked_pairs, bk_nlinked_pairs, stderr);
     if (!m)
         return 1;
+    if (bk_model_bind_joints(m, bk_joint_kinds, bk_njoint_kinds, stderr) != 0) {
+        bk_model_free(m);
+        return 1;
+    }
     if (!quiet && m->nelem > 100000)
         fprintf(stderr, "setting up %d elements, %d DOFs (sparse pattern, KLU analysis)...\n", m->nelem, m->ndof);
     bk_system *s = bk_system_create(m, stderr);

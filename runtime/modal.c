@@ -51,6 +51,23 @@ static void add_element_block(const bk_system *s, int e, const double *Ke, doubl
     }
 }
 
+/* Column c of G^T (the Jacobian row of constraint c), by bk_constraint_jacobian_row. */
+typedef struct gt_col {
+    gsl_matrix *GT;
+    int c;
+} gt_col;
+
+static void gt_add(void *ctx, int eq, double v)
+{
+    gt_col *g = ctx;
+    *gsl_matrix_ptr(g->GT, (size_t)eq, (size_t)g->c) += v;
+}
+
+static void k_add(void *ctx, int i, int j, double v)
+{
+    *gsl_matrix_ptr((gsl_matrix *)ctx, (size_t)i, (size_t)j) += v;
+}
+
 int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
@@ -142,13 +159,8 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
     if (nc > 0) {
         GT = gsl_matrix_calloc((size_t)n, (size_t)nc);
         for (int c = 0; c < nc; ++c) {
-            const bk_lincon *lc = &m->lincons[c];
-            for (int k = 0; k < lc->nterm; ++k) {
-                int i = s->eq[lc->dof[k]];
-                double C = cos(lc->kappa * 0.0), S = sin(lc->kappa * 0.0);
-                if (i >= 0)
-                    *gsl_matrix_ptr(GT, (size_t)i, (size_t)c) += lc->c0[k] + lc->cc[k] * C + lc->cs[k] * S;
-            }
+            gt_col col = {GT, c};
+            bk_constraint_jacobian_row(s, q, 0.0, c, gt_add, &col);
         }
         int mn = n < nc ? n : nc;
         tau = gsl_vector_alloc((size_t)mn);
@@ -168,6 +180,29 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
                 gsl_matrix_set(Z, i, j, gsl_matrix_get(Q, i, r + j));
         gsl_matrix_free(Q);
         gsl_matrix_free(R);
+        /* Joints nonlinear in q carry a geometric stiffness sum_k lam_k d2 g_k/dq2
+         * in a loaded state: the multipliers from G^T lam = f_ext - f_int at the
+         * static equilibrium (least squares on the QR above; independent rows). */
+        if (m->nnlcon > 0 && m->modal.about_static && r == nc && nc <= n) {
+            gsl_vector *b = gsl_vector_calloc((size_t)n), *lam = gsl_vector_alloc((size_t)nc);
+            gsl_vector *res = gsl_vector_alloc((size_t)n);
+            double *fext = calloc((size_t)m->ndof, sizeof *fext);
+            if (!b || !lam || !res || !fext) {
+                gsl_vector_free(b), gsl_vector_free(lam), gsl_vector_free(res), free(fext);
+                snprintf(info->message, sizeof info->message, "out of memory");
+                goto done;
+            }
+            bk_assemble_internal(s, q, fint, NULL);
+            bk_assemble_follower(s, q, 1.0, fint, NULL);
+            bk_external_load(s, fext);
+            for (int i = 0; i < m->ndof; ++i)
+                if (s->eq[i] >= 0)
+                    gsl_vector_set(b, (size_t)s->eq[i], fext[i] - fint[i]);
+            gsl_set_error_handler_off();
+            if (gsl_linalg_QR_lssolve(GT, tau, b, lam, res) == 0)
+                bk_constraint_hessian(s, q, lam->data, k_add, K);
+            gsl_vector_free(b), gsl_vector_free(lam), gsl_vector_free(res), free(fext);
+        }
     }
     if (nz <= 0) {
         snprintf(info->message, sizeof info->message, "the constraints leave no free motion");

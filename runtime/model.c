@@ -508,6 +508,25 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         c->ampid = (int)num(r, "constraint angle amplitude index");
     }
 
+    expect(r, "nlcons");
+    m->nnlcon = inum(r, "nlcons", 0, MAXN);
+    m->nlcons = xcalloc(r, (size_t)m->nnlcon, sizeof *m->nlcons);
+    for (int i = 0; i < m->nnlcon && !r->failed; ++i) {
+        bk_nlcon *c = &m->nlcons[i];
+        expect(r, "nlcon");
+        t = next(r, "joint type");
+        if (t && strlen(t) >= sizeof c->type)
+            fail(r, "joint type '%s' too long", t);
+        else if (t)
+            memcpy(c->type, t, strlen(t) + 1);
+        for (int k = 0; k < BK_JOINT_NX; ++k)
+            c->dof[k] = inum(r, "joint DOF", -1, m->ndof - 1);
+        for (int k = 0; k < BK_JOINT_NX; ++k)
+            c->x0[k] = num(r, "joint coordinate");
+        for (int k = 0; k < BK_JOINT_NPARAM; ++k)
+            c->prm[k] = num(r, "joint parameter");
+    }
+
     expect(r, "forces");
     m->nforce = inum(r, "forces", 0, MAXN);
     m->forces = xcalloc(r, (size_t)m->nforce, sizeof *m->forces);
@@ -600,6 +619,7 @@ void bk_model_free(bk_model *m)
             free(m->lincons[i].cs);
         }
     free(m->lincons);
+    free(m->nlcons);
     free(m->forces);
     free(m->moments);
     free(m->sensors);
@@ -621,4 +641,20 @@ void bk_model_free(bk_model *m)
     free(m->reactions);
     free(m->sections);
     free(m);
+}
+
+int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nkinds, FILE *err)
+{
+    for (int i = 0; i < m->nnlcon; ++i) {
+        bk_nlcon *c = &m->nlcons[i];
+        c->kind = NULL;
+        for (int k = 0; k < nkinds && !c->kind; ++k)
+            if (strcmp(kinds[k]->name, c->type) == 0)
+                c->kind = kinds[k];
+        if (!c->kind) {
+            fprintf(err, "error: %s: joint type '%s' has no kernel linked into this solver\n", m->name, c->type);
+            return -1;
+        }
+    }
+    return 0;
 }

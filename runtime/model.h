@@ -9,6 +9,7 @@
 
 #include <stdio.h>
 
+#include "bk_joint.h"
 #include "bk_kernel.h"
 
 enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2 };
@@ -20,7 +21,7 @@ typedef struct bk_elem {
     int *dofs;         /* [ndof of the element] global DOF of each local DOF */
 } bk_elem;
 
-#define BK_MODEL_VERSION 3       /* model file format (gen/scene/model_file.py VERSION) */
+#define BK_MODEL_VERSION 4       /* model file format (gen/scene/model_file.py VERSION) */
 #define BK_MAT_MAXPARAM 8
 
 typedef struct bk_mat {
@@ -120,6 +121,18 @@ typedef struct bk_lincon {
     const bk_amplitude *ampl;
 } bk_lincon;
 
+/* A joint between two frames (beam nodes with a rotation, rigid bodies, the
+ * ground), nonlinear in q: g(x) = 0 with x = (r_a, p_a, r_b, p_b) gathered
+ * from q (dof >= 0) or constant (dof = -1: the ground, x0), the generated
+ * kernel `kind` (runtime/bk_joint.h) bound by bk_model_bind_joints. */
+typedef struct bk_nlcon {
+    char type[24];
+    const bk_joint_kind *kind;
+    int dof[BK_JOINT_NX];
+    double x0[BK_JOINT_NX];
+    double prm[BK_JOINT_NPARAM];
+} bk_nlcon;
+
 typedef struct bk_static_opts {
     int load_steps;
     int max_iter;
@@ -176,6 +189,8 @@ typedef struct bk_model {
     int *fixed;                  /* DOFs held at their reference value   */
     int nlincon;
     bk_lincon *lincons;
+    int nnlcon;
+    bk_nlcon *nlcons;            /* joints nonlinear in q (rows after the linear ones) */
     int nforce;
     bk_force_load *forces;
     int nmoment;
@@ -208,5 +223,9 @@ typedef struct bk_model {
  * and what was expected. */
 bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navail, FILE *err);
 void bk_model_free(bk_model *m);
+
+/* Binds every joint of the model to its generated kernel in kinds[nkinds] by
+ * type name.  Returns 0, or -1 after one line to err. */
+int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nkinds, FILE *err);
 
 #endif

@@ -202,6 +202,10 @@ static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, doubl
     bk_nl_opts no = static_nl_opts(o);
     bk_nl_row row = {.attempt = a->id, .step = step, .lam = lam};
     bk_nl_result res;
+    /* joints nonlinear in q: start from the multipliers that balance the loads
+     * (their geometric stiffness holds mechanisms like a hanging pendulum) */
+    if (s->m->nnlcon > 0 && residual(s, w, q, w->nu, lam, 0) == 0)
+        bk_constraint_multipliers(s, q, lam, w->r, w->nu);
     bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
     a->iters = res.iters;
     a->rnorm = res.rnorm;

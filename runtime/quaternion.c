@@ -56,3 +56,18 @@ void bk_quat_normalize(const int *list, int n, double *q, double *const *v, int 
         }
     }
 }
+
+void bk_quat_normalize_motion(const int *list, int n, double *q, double *qd, double *const *acc, int nacc)
+{
+    bk_quat_normalize(list, n, q, &qd, 1);
+    for (int k = 0; k < n; ++k) {
+        const double *p = q + list[k], *v = qd + list[k];
+        double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3];
+        for (int j = 0; j < nacc; ++j) {
+            double *r = acc[j] + list[k];
+            double c = r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3] * p[3] + vv;
+            for (int i = 0; i < 4; ++i)
+                r[i] -= c * p[i];
+        }
+    }
+}

@@ -19,4 +19,11 @@ int *bk_quat_list(const bk_system *s, int *n);
  * acceleration) its component along the quaternion (the gauge direction). */
 void bk_quat_normalize(const int *list, int n, double *q, double *const *v, int nv);
 
+/* As bk_quat_normalize for a motion: q to unit length, the velocity qd without
+ * its gauge component, and each of the nacc accelerations acc[k] given the
+ * gauge component a unit quaternion's second derivative has, p . p'' = -|p'|^2
+ * (removing it instead makes the rotation of bodies whose inertia sits in the
+ * quaternions, rigid bodies, first-order accurate in time). */
+void bk_quat_normalize_motion(const int *list, int n, double *q, double *qd, double *const *acc, int nacc);
+
 #endif

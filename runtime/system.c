@@ -1,6 +1,8 @@
 /* system.c -- equation numbering, sparse pattern, assembly. */
 #include "system.h"
 
+#include "linsolve.h"
+
 #include <math.h>
 
 #include "amplitude.h"
@@ -52,6 +54,20 @@ static int cmp_int(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Equation of joint coordinate k (-1: constant or fixed). */
+static int joint_eq(const bk_system *s, const bk_nlcon *c, int k)
+{
+    return c->dof[k] >= 0 ? s->eq[c->dof[k]] : -1;
+}
+
+/* Joint coordinates x[BK_JOINT_NX] from q (constants where dof < 0; with
+ * rates, 0 there). */
+static void joint_x(const bk_nlcon *c, const double *q, int rates, double *x)
+{
+    for (int k = 0; k < BK_JOINT_NX; ++k)
+        x[k] = c->dof[k] >= 0 ? q[c->dof[k]] : rates ? 0.0 : c->x0[k];
+}
+
 static int find_slot(const bk_system *s, int row, int col)
 {
     const int *lo = s->Ai + s->Ap[col], *hi = s->Ai + s->Ap[col + 1];
@@ -75,6 +91,19 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     for (int i = 0; i < m->ndof; ++i)
         s->eq[i] = s->eq[i] < 0 ? -1 : s->nfree++;
     s->ncon = m->nlincon;
+    s->jrow = malloc(((size_t)m->nnlcon + 1) * sizeof *s->jrow);
+    if (!s->jrow)
+        goto oom;
+    for (int j = 0; j < m->nnlcon; ++j) {
+        if (!m->nlcons[j].kind) {
+            fprintf(err, "error: %s: joint %d (%s) has no kernel bound\n", m->name, j, m->nlcons[j].type);
+            bk_system_free(s);
+            return NULL;
+        }
+        s->jrow[j] = s->ncon;
+        s->ncon += m->nlcons[j].kind->nrow;
+    }
+    s->jrow[m->nnlcon] = s->ncon;
     s->neq = s->nfree + s->ncon;
     s->cscale = 1.0;
 
@@ -94,7 +123,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             if (s->eq[el->dofs[k]] >= 0)
                 cnt[s->eq[el->dofs[k]]] += nf;
     }
-    for (int c = 0; c < s->ncon; ++c) {
+    for (int c = 0; c < m->nlincon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         for (int k = 0; k < lc->nterm; ++k) {
             int q = s->eq[lc->dof[k]];
@@ -103,6 +132,17 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
                 cnt[s->nfree + c] += 1;
             }
         }
+    }
+    for (int j = 0; j < m->nnlcon; ++j) {
+        const bk_nlcon *jc = &m->nlcons[j];
+        int nr = s->jrow[j + 1] - s->jrow[j], nf = 0;
+        for (int k = 0; k < BK_JOINT_NX; ++k)
+            nf += joint_eq(s, jc, k) >= 0;
+        for (int k = 0; k < BK_JOINT_NX; ++k)
+            if (joint_eq(s, jc, k) >= 0)
+                cnt[joint_eq(s, jc, k)] += nf + nr;
+        for (int r = 0; r < nr; ++r)
+            cnt[s->nfree + s->jrow[j] + r] += nf;
     }
     /* Fill buckets, then sort and deduplicate each column. */
     long *off = calloc((size_t)s->neq + 1, sizeof *off);
@@ -133,7 +173,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             }
         }
     }
-    for (int c = 0; c < s->ncon; ++c) {
+    for (int c = 0; c < m->nlincon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         int cc = s->nfree + c;
         for (int k = 0; k < lc->nterm; ++k) {
@@ -141,6 +181,23 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             if (q >= 0) {
                 rows[off[q] + cnt[q]++] = cc;
                 rows[off[cc] + cnt[cc]++] = q;
+            }
+        }
+    }
+    for (int j = 0; j < m->nnlcon; ++j) {
+        const bk_nlcon *jc = &m->nlcons[j];
+        int nr = s->jrow[j + 1] - s->jrow[j];
+        for (int b = 0; b < BK_JOINT_NX; ++b) {
+            int col = joint_eq(s, jc, b);
+            if (col < 0)
+                continue;
+            for (int a = 0; a < BK_JOINT_NX; ++a)
+                if (joint_eq(s, jc, a) >= 0)
+                    rows[off[col] + cnt[col]++] = joint_eq(s, jc, a);
+            for (int r = 0; r < nr; ++r) {
+                int cc = s->nfree + s->jrow[j] + r;
+                rows[off[col] + cnt[col]++] = cc;
+                rows[off[cc] + cnt[cc]++] = col;
             }
         }
     }
@@ -211,19 +268,19 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         }
         s->edof_lo[e] = dlo, s->edof_hi[e] = dhi, s->eslot_lo[e] = slo, s->eslot_hi[e] = shi;
     }
-    s->cslot_off = malloc(((size_t)s->ncon + 1) * sizeof *s->cslot_off);
+    s->cslot_off = malloc(((size_t)m->nlincon + 1) * sizeof *s->cslot_off);
     if (!s->cslot_off)
         goto oom;
     tot = 0;
-    for (int c = 0; c < s->ncon; ++c) {
+    for (int c = 0; c < m->nlincon; ++c) {
         s->cslot_off[c] = (int)tot;
         tot += 2L * m->lincons[c].nterm;
     }
-    s->cslot_off[s->ncon] = (int)tot;
+    s->cslot_off[m->nlincon] = (int)tot;
     s->cslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->cslot);
     if (!s->cslot)
         goto oom;
-    for (int c = 0; c < s->ncon; ++c) {
+    for (int c = 0; c < m->nlincon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         int *sl = s->cslot + s->cslot_off[c];
         for (int k = 0; k < lc->nterm; ++k) {
@@ -231,6 +288,34 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             sl[2 * k] = q >= 0 ? find_slot(s, s->nfree + c, q) : -1;
             sl[2 * k + 1] = q >= 0 ? find_slot(s, q, s->nfree + c) : -1;
         }
+    }
+    s->jslot_off = malloc(((size_t)m->nnlcon + 1) * sizeof *s->jslot_off);
+    if (!s->jslot_off)
+        goto oom;
+    tot = 0;
+    for (int j = 0; j < m->nnlcon; ++j) {
+        s->jslot_off[j] = (int)tot;
+        tot += BK_JOINT_NX * BK_JOINT_NX + 2L * BK_JOINT_NX * (s->jrow[j + 1] - s->jrow[j]);
+    }
+    s->jslot_off[m->nnlcon] = (int)tot;
+    s->jslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->jslot);
+    if (!s->jslot)
+        goto oom;
+    for (int j = 0; j < m->nnlcon; ++j) {
+        const bk_nlcon *jc = &m->nlcons[j];
+        const int nx = BK_JOINT_NX, nr = s->jrow[j + 1] - s->jrow[j];
+        int *sl = s->jslot + s->jslot_off[j];
+        for (int a = 0; a < nx; ++a)
+            for (int b = 0; b < nx; ++b) {
+                int ra = joint_eq(s, jc, a), cb = joint_eq(s, jc, b);
+                sl[nx * a + b] = ra >= 0 && cb >= 0 ? find_slot(s, ra, cb) : -1;
+            }
+        for (int r = 0; r < nr; ++r)
+            for (int k = 0; k < nx; ++k) {
+                int qk = joint_eq(s, jc, k), cc = s->nfree + s->jrow[j] + r;
+                sl[nx * nx + nx * r + k] = qk >= 0 ? find_slot(s, cc, qk) : -1;
+                sl[nx * nx + nx * nr + nx * r + k] = qk >= 0 ? find_slot(s, qk, cc) : -1;
+            }
     }
     s->diag = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *s->diag);
     if (!s->diag)
@@ -304,6 +389,9 @@ void bk_system_free(bk_system *s)
     free(s->cslot);
     free(s->cslot_off);
     free(s->diag);
+    free(s->jrow);
+    free(s->jslot);
+    free(s->jslot_off);
     free(s->fe);
     free(s->Ke);
     free(s->bq);
@@ -671,11 +759,148 @@ double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, i
     return sum;
 }
 
+/* The joints' part of bk_assemble_constraints: rows s g, s G^T nu into the
+ * free rows, s G, s G^T and the Hessian term s sum_k nu_k d2 g_k/dq2. */
+static void assemble_joints(const bk_system *s, const double *q, const double *nu, double *r, double *Ax)
+{
+    const bk_model *m = s->m;
+    const int nx = BK_JOINT_NX;
+    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX];
+    for (int j = 0; j < m->nnlcon; ++j) {
+        const bk_nlcon *c = &m->nlcons[j];
+        const int nr = s->jrow[j + 1] - s->jrow[j], row0 = s->jrow[j];
+        const int *sl = s->jslot + s->jslot_off[j];
+        joint_x(c, q, 0, x);
+        c->kind->eval(x, c->prm, g, G);
+        for (int i = 0; i < nr; ++i) {
+            if (r)
+                r[s->nfree + row0 + i] = s->cscale * g[i];
+            for (int k = 0; k < nx; ++k) {
+                int e = joint_eq(s, c, k);
+                if (e < 0)
+                    continue;
+                if (r && nu)
+                    r[e] += s->cscale * G[nx * i + k] * nu[row0 + i];
+                if (Ax && sl[nx * nx + nx * i + k] >= 0) {
+                    Ax[sl[nx * nx + nx * i + k]] += s->cscale * G[nx * i + k];
+                    Ax[sl[nx * nx + nx * nr + nx * i + k]] += s->cscale * G[nx * i + k];
+                }
+            }
+        }
+        if (Ax && nu) {
+            c->kind->hessian(x, c->prm, nu + row0, H);
+            for (int k = 0; k < nx * nx; ++k)
+                if (sl[k] >= 0)
+                    Ax[sl[k]] += s->cscale * H[k];
+        }
+    }
+}
+
+void bk_constraint_accel_rhs(const bk_system *s, const double *q, const double *qd, double t, double *r)
+{
+    const bk_model *m = s->m;
+    const int nx = BK_JOINT_NX;
+    for (int c = 0; c < m->nlincon; ++c)
+        r[s->nfree + c] = -s->cscale * (2.0 * bk_constraint_row(&m->lincons[c], qd, t, 1, 0)
+                                        + bk_constraint_row(&m->lincons[c], q, t, 2, 1));
+    double x[BK_JOINT_NX], xd[BK_JOINT_NX], nu[BK_JOINT_MAXROW], H[BK_JOINT_NX * BK_JOINT_NX];
+    for (int j = 0; j < m->nnlcon; ++j) {
+        const bk_nlcon *c = &m->nlcons[j];
+        const int nr = s->jrow[j + 1] - s->jrow[j];
+        joint_x(c, q, 0, x);
+        joint_x(c, qd, 1, xd);
+        for (int i = 0; i < nr; ++i) {
+            for (int k = 0; k < nr; ++k)
+                nu[k] = k == i;
+            c->kind->hessian(x, c->prm, nu, H);
+            double v = 0.0;
+            for (int a = 0; a < nx; ++a)
+                for (int b = 0; b < nx; ++b)
+                    v += xd[a] * H[nx * a + b] * xd[b];
+            r[s->nfree + s->jrow[j] + i] = -s->cscale * v;
+        }
+    }
+}
+
+void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, int c,
+                                void (*add)(void *ctx, int eq, double v), void *ctx)
+{
+    const bk_model *m = s->m;
+    if (c < m->nlincon) {
+        const bk_lincon *lc = &m->lincons[c];
+        double C, S;
+        angle_factors(lc, t, 0, &C, &S);
+        for (int k = 0; k < lc->nterm; ++k)
+            if (s->eq[lc->dof[k]] >= 0)
+                add(ctx, s->eq[lc->dof[k]], lc->c0[k] + lc->cc[k] * C + lc->cs[k] * S);
+        return;
+    }
+    int j = 0;
+    while (j + 1 < m->nnlcon && s->jrow[j + 1] <= c)
+        ++j;
+    const bk_nlcon *jc = &m->nlcons[j];
+    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+    joint_x(jc, q, 0, x);
+    jc->kind->eval(x, jc->prm, g, G);
+    for (int k = 0; k < BK_JOINT_NX; ++k)
+        if (joint_eq(s, jc, k) >= 0)
+            add(ctx, joint_eq(s, jc, k), G[BK_JOINT_NX * (c - s->jrow[j]) + k]);
+}
+
+int bk_constraint_multipliers(bk_system *s, const double *q, double t, const double *r, double *nu)
+{
+    if (s->ncon == 0)
+        return 0;
+    double *Ax = calloc((size_t)(s->nnz ? s->nnz : 1), sizeof *Ax);
+    double *b = calloc((size_t)s->neq, sizeof *b);
+    bk_linsolver ls = {0};
+    int rc = -1;
+    if (!Ax || !b)
+        goto out;
+    /* [c I  s G^T; s G  0] [x; dnu] = [-r; 0]: x = -(r + s G^T dnu)/c with G x = 0 */
+    for (int j = 0; j < s->nfree; ++j)
+        if (s->diag[j] >= 0)
+            Ax[s->diag[j]] = s->cscale;
+    bk_assemble_constraints(s, q, NULL, t, NULL, Ax);
+    for (int j = 0; j < s->nfree; ++j)
+        b[j] = -r[j];
+    if (bk_lin_init(&ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK || bk_lin_factor(&ls, Ax) != BK_LIN_OK ||
+        ls.rcond < 1e-12 || bk_lin_solve(&ls, b) != BK_LIN_OK)
+        goto out;
+    for (int c = 0; c < s->ncon; ++c)
+        if (!isfinite(b[s->nfree + c]))
+            goto out;
+    for (int c = 0; c < s->ncon; ++c)
+        nu[c] += b[s->nfree + c];
+    rc = 0;
+out:
+    bk_lin_free(&ls);
+    free(Ax);
+    free(b);
+    return rc;
+}
+
+void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+                           void (*add)(void *ctx, int i, int j, double v), void *ctx)
+{
+    const int nx = BK_JOINT_NX;
+    double x[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX];
+    for (int j = 0; j < s->m->nnlcon; ++j) {
+        const bk_nlcon *c = &s->m->nlcons[j];
+        joint_x(c, q, 0, x);
+        c->kind->hessian(x, c->prm, lam + s->jrow[j], H);
+        for (int a = 0; a < nx; ++a)
+            for (int b = 0; b < nx; ++b)
+                if (joint_eq(s, c, a) >= 0 && joint_eq(s, c, b) >= 0 && H[nx * a + b] != 0.0)
+                    add(ctx, joint_eq(s, c, a), joint_eq(s, c, b), H[nx * a + b]);
+    }
+}
+
 void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,
                              double *r, double *Ax)
 {
     const bk_model *m = s->m;
-    for (int c = 0; c < s->ncon; ++c) {
+    for (int c = 0; c < m->nlincon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         const int *sl = s->cslot + s->cslot_off[c];
         double C, S;
@@ -695,6 +920,7 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
         if (r)
             r[s->nfree + c] = s->cscale * g;
     }
+    assemble_joints(s, q, nu, r, Ax);
 }
 
 double bk_constraint_coef(const bk_lincon *c, int k, double t)
@@ -707,8 +933,16 @@ double bk_constraint_coef(const bk_lincon *c, int k, double t)
 double bk_constraint_residual(const bk_system *s, const double *q, double t)
 {
     double worst = 0.0;
-    for (int c = 0; c < s->ncon; ++c)
+    for (int c = 0; c < s->m->nlincon; ++c)
         worst = fmax(worst, fabs(bk_constraint_row(&s->m->lincons[c], q, t, 0, 1)));
+    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+    for (int j = 0; j < s->m->nnlcon; ++j) {
+        const bk_nlcon *c = &s->m->nlcons[j];
+        joint_x(c, q, 0, x);
+        c->kind->eval(x, c->prm, g, G);
+        for (int i = 0; i < c->kind->nrow; ++i)
+            worst = fmax(worst, fabs(g[i]));
+    }
     return worst;
 }
 

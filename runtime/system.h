@@ -30,6 +30,11 @@ typedef struct bk_system {
     int *cslot;              /* per constraint term: CSC index of s G, s G^T  */
     int *cslot_off;          /* [ncon+1]                                      */
     int *diag;               /* [nfree] CSC index of each free DOF's diagonal  */
+    /* joints nonlinear in q (model->nlcons): constraint rows nlincon.., one
+     * block per joint: its first row jrow[j] (jrow[nnlcon] = ncon) and CSC
+     * slots jslot[jslot_off[j]..]: NX x NX of the Hessian term, then nrow x NX
+     * of s G and of s G^T (-1 where a coordinate is fixed or constant) */
+    int *jrow, *jslot, *jslot_off;
     double cscale;
     int maxdof;              /* largest element DOF count                     */
     double *fe, *Ke;         /* element work buffers (owned)                  */
@@ -79,6 +84,30 @@ void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fin
  * Ax is not NULL, s G and s G^T. */
 void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,
                              double *r, double *Ax);
+
+/* Right-hand side of the constraint rows of the consistent initial
+ * accelerations: r[nfree + c] = -s (d^2/dt^2 of row c at fixed q'') given q,
+ * qd (linear rows: 2 G' q' + G'' q - g''; joints: q'^T d2 g_c/dq2 q'). */
+void bk_constraint_accel_rhs(const bk_system *s, const double *q, const double *qd, double t, double *r);
+
+/* The Jacobian row c of every constraint at (q, t), unscaled, on the free
+ * DOFs: calls add(ctx, equation, value) for each term. */
+void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, int c,
+                                void (*add)(void *ctx, int eq, double v), void *ctx);
+
+/* Multipliers for a start: adds to nu[ncon] the correction dnu that minimizes
+ * |r + s G^T dnu| over the free rows (r: a residual over the equations at q,
+ * nu), i.e. the constraint forces that best balance the other forces; a
+ * mechanism held only by its loads (a pendulum under gravity) then has the
+ * joints' geometric stiffness from the first Newton iteration on.  Returns 0,
+ * or -1 (nu unchanged) when the constraints are dependent or memory ran out. */
+int bk_constraint_multipliers(bk_system *s, const double *q, double t, const double *r, double *nu);
+
+/* The joints' Hessian term sum_k lam_k d2 g_k/dq2 at q for unscaled
+ * multipliers lam[ncon] (the constraint force is G^T lam; the linear rows have
+ * none): calls add(ctx, equation i, equation j, value) for each free pair. */
+void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+                           void (*add)(void *ctx, int i, int j, double v), void *ctx);
 
 /* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
  * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import gen.scene_keys as K
 from gen.scene.amplitude import Amplitudes
+from gen.scene.bodies import mesh_bodies
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -55,10 +56,11 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     sections = parse_sections(ctx, doc)
 
     beams_doc = get_array_of_tables(ctx, doc, "beam")
-    if not beams_doc:
-        ctx.fail("beam", "missing; expected at least one [[beam]]")
+    if not beams_doc and not get_array_of_tables(ctx, doc, "body"):
+        ctx.fail("beam", "missing; expected at least one [[beam]] or [[body]]")
     cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log)
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
+    mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
     rows = constraints(ctx, doc, mesh, amps)    # none is allowed: the solver reports the singular tangent
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
@@ -76,10 +78,11 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
                              "tendons")
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
-        "length_scale": max(b["length"] for b in mesh.beams.values()),
+        "length_scale": max([b["length"] for b in mesh.beams.values()] +
+                            [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()]),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
-        "fixed": sorted(rows.fixed), "lincons": rows.lincons, "forces": forces, "moments": moments,
-        "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams), "static": stat, "beams": mesh.beams,
+        "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
+        "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])

@@ -6,6 +6,8 @@ rows with rows.row(...) or holds DOFs with rows.fixed; JOINTS maps each
 `type` (gen/scene_keys.py CONSTRAINT) to its function.  Adding a joint: a
 function here, its keys in scene_keys.CONSTRAINT, a test.
 """
+import math
+
 import gen.scene_keys as K
 from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
                               get_number, get_str, get_vec3)
@@ -211,17 +213,142 @@ JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescri
           "point_on_line": point_on_line}
 
 
+# ----------------------------------------------------------------------------
+# Joints between two frames, nonlinear in q (generated: gen/body.py, out/kernels/joints.c)
+
+NONLINEAR = ("spherical", "revolute", "universal", "fixed", "prismatic")
+_ROTATIONAL = ("revolute", "universal", "fixed", "prismatic")
+
+
+def _quat_rotation(p):
+    s0, x, y, z = p
+    n = s0 * s0 + x * x + y * y + z * z
+    s0, x, y, z = (c / math.sqrt(n) for c in p)
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - s0 * z), 2 * (x * z + s0 * y)],
+            [2 * (x * y + s0 * z), 1 - 2 * (x * x + z * z), 2 * (y * z - s0 * x)],
+            [2 * (x * z - s0 * y), 2 * (y * z + s0 * x), 1 - 2 * (x * x + y * y)]]
+
+
+def _endpoint(ctx, key, spec, mesh, ctype):
+    """A frame of a joint: {what, X, R, dofs (7 or None for the ground), rot}."""
+    if spec is None:
+        return {"what": "the ground", "X": None, "R": None, "dofs": None, "rot": True, "id": "ground"}
+    if isinstance(spec, str) and ":" not in spec and spec in mesh.bodies:
+        b = mesh.bodies[spec]
+        base = mesh.dof_of_node[b["gid"]]
+        return {"what": f"body {spec!r}", "X": b["X"], "R": b["R"], "dofs": list(range(base, base + 7)),
+                "rot": True, "id": ("node", b["gid"])}
+    if isinstance(spec, str) and ":" not in spec:
+        ctx.fail(key, f"expected BEAM:start, BEAM:end, BEAM:<arc length in m> or a body name, found {spec!r} "
+                 f"(bodies: {', '.join(mesh.bodies) or 'none'})")
+    beam, s_, gid = mesh.node_of(ctx, key, spec, f"{ctype} joint")
+    fd = mesh.field_dofs(gid)
+    X = mesh.nodes[gid][0]
+    if "p" in fd:
+        p = [mesh.q0[d] for d in fd["p"]]
+        return {"what": f"beam point {spec!r}", "X": X, "R": _quat_rotation(p), "dofs": fd["r"] + fd["p"],
+                "rot": True, "id": ("node", gid)}
+    return {"what": f"beam point {spec!r} (element {beam['element']}, no nodal rotation)", "X": X,
+            "R": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "dofs": fd["r"] + [-1] * 4,
+            "rot": False, "id": ("node", gid)}
+
+
+def _mtv(R, v):
+    return [sum(R[i][k] * v[i] for i in range(3)) for k in range(3)]
+
+
+def _joint_axes(ctx, ct, where, ctype):
+    """Columns E1, E2, E3 (global) of the joint frame; the joint axis is E3."""
+    if ctype in ("spherical", "fixed"):
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    if ctype == "universal":
+        a1 = get_vec3(ctx, ct, "axis", where, nonzero=True)
+        a2 = get_vec3(ctx, ct, "axis_b", where, nonzero=True)
+        a1, a2 = _scale(a1, 1 / _norm(a1)), _scale(a2, 1 / _norm(a2))
+        if abs(_dot(a1, a2)) > 1e-9:
+            ctx.fail(f"{where}.axis_b", f"the arms of a universal joint must be perpendicular, found axis {a1!r} "
+                     f"and axis_b {a2!r}")
+        return [a1, a2, _cross(a1, a2)]
+    axis, n1, n2 = _axis_frame(ctx, ct, where)
+    return [n1, n2, axis]
+
+
+def nonlinear_joint(ctx, ct, where, mesh, ctype):
+    """(type, dofs[14], x0[14], prm[24]) of a joint between a and b (b omitted: the ground)."""
+    if "a" not in ct:
+        ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start' or a body name")
+    a = _endpoint(ctx, f"{where}.a", ct["a"], mesh, ctype)
+    b = _endpoint(ctx, f"{where}.b", ct.get("b"), mesh, ctype)
+    if a["id"] == "ground":
+        ctx.fail(f"{where}.a", "a must be a beam point or a body; omit b for a joint to the ground")
+    if a["id"] == b["id"]:
+        ctx.fail(f"{where}.b", f"a joint between {a['what']} and itself: a and b must be different bodies or nodes")
+    if ctype in _ROTATIONAL:
+        for side, e in (("a", a), ("b", b)):
+            if not e["rot"]:
+                ctx.fail(f"{where}.{side}", f"a {ctype} joint needs a rotation on both sides; {e['what']} has "
+                         f"none (use gef, euler_bernoulli, kirchhoff beams or a body)")
+    if "at" in ct:
+        X = get_vec3(ctx, ct, "at", where, bound=1e9)
+    else:
+        nodes = [e for e in (a, b) if e["what"].startswith("beam point")]
+        if not nodes:
+            ctx.fail(f"{where}.at", f"missing; a joint between {a['what']} and {b['what']} needs the joint "
+                     "point `at` = [x, y, z]")
+        X = nodes[0]["X"]
+    for side, e in (("a", a), ("b", b)):
+        if not e["rot"] and _norm(_sub(X, e["X"])) > 1e-9 * max(1.0, _norm(X)):
+            ctx.fail(f"{where}.at", f"the joint point must be {e['what']}'s node at {e['X']} (it has no "
+                     f"rotation to carry an offset), found {X}")
+    E = _joint_axes(ctx, ct, where, ctype)
+    dofs, x0, prm_c, prm_A = [], [], [], []
+    for e in (a, b):
+        if e["dofs"] is None:                       # the ground: constants
+            dofs += [-1] * 7
+            x0 += list(X) + [1.0, 0.0, 0.0, 0.0]
+            prm_c += [0.0, 0.0, 0.0]
+            prm_A += [c for col in E for c in col]
+        else:
+            dofs += e["dofs"]
+            x0 += [mesh.q0[d] if d >= 0 else (1.0 if k == 3 else 0.0) for k, d in enumerate(e["dofs"])]
+            prm_c += _mtv(e["R"], _sub(X, e["X"]))
+            prm_A += [c for col in E for c in _mtv(e["R"], col)]
+    return (ctype, dofs, x0, prm_c + prm_A)
+
+
+def _is_linear(ct, mesh, ctype):
+    """The joints the linear rows above express exactly: every type at a beam node
+    with no body and (but spherical beam-to-beam) no second point."""
+    if ctype not in NONLINEAR:
+        return True
+    names = [ct.get(k) for k in ("a", "b")]
+    if any(isinstance(n, str) and ":" not in n and n in mesh.bodies for n in names) or "at" in ct:
+        return False
+    if ctype == "spherical":
+        return True
+    if ctype == "revolute":
+        return "b" not in ct
+    return False
+
+
 def constraints(ctx, doc, mesh, amps=None):
     """Rows of every [[constraint]] table, and which rows each one added (its
-    reaction: rows.reactions)."""
+    reaction: rows.reactions); joints nonlinear in q in rows.nlcons (no
+    reaction rows yet)."""
     from gen.scene.mesh import locate
     rows = Rows(mesh.q0, amps)
+    rows.nlcons = []
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
-        ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS))
+        ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS) + ("fixed", "universal", "prismatic"))
         check_keys(ctx, ct, set(K.CONSTRAINT[ctype]), where)
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
+        if not _is_linear(ct, mesh, ctype):
+            rows.nlcons.append(nonlinear_joint(ctx, ct, where, mesh, ctype))
+            mesh.warnings.append(f"{where}: the reaction of a {ctype} joint with a body, a second frame or a "
+                                 "joint point (nonlinear in q) is not written to reactions.csv yet")
+            continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
         fixed0, nlin0 = set(rows.fixed), len(rows.lincons)
         rows.side = None

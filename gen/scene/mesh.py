@@ -18,6 +18,7 @@ class Mesh:
 
     def __init__(self):
         self.beams = {}
+        self.bodies = {}        # rigid bodies (gen/scene/bodies.py)
         self.warnings = []      # likely wrong results (printed, and in summary.json "warnings")
         self.nodes = []         # (position, t, d1, d2, fields) per global node
         self.dof_of_node = []

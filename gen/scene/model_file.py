@@ -8,7 +8,7 @@ def _f(x):
 # Model file format: versioned; scalar records are named fields `key=value` in
 # this order, which runtime/model.c reads by name (a model file of another
 # version, or with a field renamed, is refused naming the record and field).
-VERSION = 3
+VERSION = 4
 RECORDS = {
     "scene": ("name", "analysis", "length_scale"),
     "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
@@ -84,6 +84,11 @@ def write_model(model, path):
     for terms, rhs, tf in model["lincons"]:
         out.append(f"lincon {len(terms)} " + " ".join(f"{d} {_f(a)} {_f(b)} {_f(c)}" for d, a, b, c in terms)
                    + " " + " ".join(_f(x) for x in rhs) + " " + " ".join(_f(x) for x in tf))
+    nl = model.get("nlcons", [])
+    out.append(f"nlcons {len(nl)}")
+    for jtype, dofs, x0, prm in nl:
+        out.append(f"nlcon {jtype} " + " ".join(map(str, dofs)) + " " + " ".join(_f(x) for x in x0)
+                   + " " + " ".join(_f(x) for x in prm))
     out.append(f"forces {len(model['forces'])}")
     for e, xi, y, z, dist, v, amp, fol in model["forces"]:
         out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v) + f" {amp} {fol}")

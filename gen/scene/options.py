@@ -125,7 +125,14 @@ def initial_velocities(ctx, doc, mesh):
         v = get_vec3(ctx, iv, "velocity", where, default=[0.0, 0.0, 0.0])
         w = get_vec3(ctx, iv, "angular_velocity", where, default=[0.0, 0.0, 0.0])
         c = get_vec3(ctx, iv, "center", where, default=[0.0, 0.0, 0.0])
-        if "beam" in iv:
+        if "body" in iv:
+            if "beam" in iv:
+                ctx.fail(f"{where}.body", "give either beam or body, not both")
+            bn = get_str(ctx, iv, "body", where)
+            if bn not in mesh.bodies:
+                ctx.fail(f"{where}.body", f"no body named {bn!r} (bodies: {', '.join(mesh.bodies) or 'none'})")
+            gids = [mesh.bodies[bn]["gid"]]
+        elif "beam" in iv:
             bn = get_str(ctx, iv, "beam", where)
             if bn not in beams:
                 ctx.fail(f"{where}.beam", f"no beam named {bn!r} (beams: {', '.join(beams)})")
@@ -153,8 +160,8 @@ def initial_velocities(ctx, doc, mesh):
     return qd0
 
 
-def sensors(ctx, doc, beams):
-    """[(name, element, xi)] of the [[sensor]] tables."""
+def sensors(ctx, doc, beams, bodies=None):
+    """[(name, element, xi)] of the [[sensor]] tables (a body: its centre of mass, xi = 1/2)."""
     sensors = []
     seen = set()
     for si, sd in enumerate(get_array_of_tables(ctx, doc, "sensor")):
@@ -166,6 +173,9 @@ def sensors(ctx, doc, beams):
         seen.add(sn)
         if "at" not in sd:
             ctx.fail(f"sensor.{sn}.at", "missing; expected a point like 'arm:end'")
+        if bodies and isinstance(sd["at"], str) and sd["at"] in bodies:
+            sensors.append((sn, bodies[sd["at"]]["elem"], 0.5))
+            continue
         beam, s = parse_point(ctx, sd["at"], f"sensor.{sn}.at", beams)
         e, xi = locate(beam, s)
         sensors.append((sn, e, xi))
