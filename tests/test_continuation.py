@@ -313,3 +313,54 @@ def test_lee_frame_follower_limit_load_against_a_fine_euler_bernoulli_mesh():
         diffs.append(diff)
     # tangent at the origin: the difference grows at least as the square of the load
     assert diffs[1] / diffs[0] > 3.5, diffs
+
+
+# --- a closed equilibrium path (models/lever_loop.toml) -----------------------
+# A rigid lever of length a pinned at the origin, turned by the dead moment
+# lambda M0, held by a bar EA from its tip to the anchor (a, -h), unstressed
+# at theta = 0.  Bar length l(theta)^2 = 2 a^2 (1 - cos theta) + 2 a h sin theta
+# + h^2, tension N = EA (l / h - 1) (the gef resultant's axial force of a
+# straight bar, as for the truss above); the moment balance about the pivot
+#     lambda M0 = N dl/dtheta = EA (l / h - 1) a (a sin theta + h cos theta) / l
+# is periodic in theta: the path is a closed loop through the start.
+LEVER_A, LEVER_H, LEVER_EA, LEVER_M0 = 1.0, 2.0, 1.0, 0.1
+
+
+def lever_load_factor(th):
+    a, h = LEVER_A, LEVER_H
+    ell = math.sqrt(2 * a * a * (1 - math.cos(th)) + 2 * a * h * math.sin(th) + h * h)
+    return LEVER_EA * (ell / h - 1) * a * (a * math.sin(th) + h * math.cos(th)) / ell / LEVER_M0
+
+
+def test_closed_loop_is_reported_where_the_path_comes_back():
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+    out = Path(tempfile.mkdtemp(prefix="bk-arc-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "lever_loop", "--quiet", "--out", str(out)])
+    assert r.returncode != 0, r.stderr
+    assert "a closed loop" in r.stderr and "came back to where it was between steps" in r.stderr, r.stderr
+    s, rows = load_run(out)
+    assert not s["converged"] and "closed loop" in s["error"]
+    # every equilibrium on the closed form, the lever angle unwrapped
+    th = np.unwrap([math.atan2(float(q["y"]), float(q["x"])) for q in rows])
+    for q, t in zip(rows, th):
+        assert abs(float(q["time"]) - lever_load_factor(t)) < 2e-4 * 2.94, (q["step"], t)
+    # stopped after one turn (the lever's quaternions are then the negatives of
+    # the start's: the same rotation), back on the path's first steps
+    assert 2 * math.pi < th[-1] < 2 * math.pi + 0.2, th[-1]
+    k = int(s["error"].split("between steps ")[1].split(" ")[0])
+    assert k <= 5, s["error"]
+    # the four limit points of one turn against the closed-form extremes
+    grid = np.linspace(0.0, 2 * math.pi, 721)
+    lam = [lever_load_factor(t) for t in grid]
+    ext = []
+    for i in range(1, len(grid) - 1):
+        if (lam[i] - lam[i - 1]) * (lam[i + 1] - lam[i]) < 0:
+            sg = 1.0 if lam[i] > lam[i - 1] else -1.0
+            res = minimize_scalar(lambda t: -sg * lever_load_factor(t), bracket=(grid[i - 1], grid[i], grid[i + 1]),
+                                  tol=1e-12)
+            ext.append(lever_load_factor(res.x))
+    crit = s["critical_points"]
+    assert [c["type"] for c in crit] == ["limit_point"] * 4, crit
+    for c, e in zip(crit, ext):
+        assert rel(c["load_factor"], e) < 2e-4, (c, e)
