@@ -582,7 +582,8 @@ static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx
  * Every accepted equilibrium is kept: its load factor, the displacements of
  * the first sensors and, while the kept states fit in ARC_PATH_BUDGET doubles,
  * the full state q.  After each step the new point is compared with every
- * kept segment [k, k+1] of the path that ends at least two steps before it.
+ * kept segment [k, k+1] of the path that ends at least two steps and four
+ * tolerances (below) of arc length before it.
  * First cheaply: the load factor and each sensor's displacement inside the
  * segment's range widened by a quarter of the change over the last step and
  * over the segment.  Then, for those candidates, the full state: the distance
@@ -594,7 +595,7 @@ static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx
 #define ARC_PATH_BUDGET (1L << 24)
 typedef struct arc_path {
     int n, cap, ns, nd, nquat;       /* points, capacity, sensors, DOFs, quaternion nodes */
-    double *lam, *u, *q;             /* [cap], [cap][3 ns], [cap][nd] (the first nq points) */
+    double *lam, *arc, *u, *q;       /* [cap], [cap] (arc length from the start), [cap][3 ns], [cap][nd] (the first nq) */
     int nq;                          /* points whose state is kept */
     int *quat;                       /* [nquat][4] DOFs of each quaternion node */
     char *isq;                       /* [nd] 1: a DOF of a quaternion */
@@ -602,11 +603,11 @@ typedef struct arc_path {
 
 static void arc_path_free(arc_path *p)
 {
-    free(p->lam), free(p->u), free(p->q), free(p->quat), free(p->isq);
+    free(p->lam), free(p->arc), free(p->u), free(p->q), free(p->quat), free(p->isq);
 }
 
-/* Keep the point (q, lam); 0, or -1 when out of memory. */
-static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double lam)
+/* Keep the point (q, lam) at the arc length arc from the start; 0, or -1 when out of memory. */
+static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double lam, double arc)
 {
     if (p->n == p->cap) {
         int cap = p->cap ? 2 * p->cap : 64;
@@ -614,6 +615,10 @@ static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double
         if (!l)
             return -1;
         p->lam = l;
+        double *ar = realloc(p->arc, (size_t)cap * sizeof *ar);
+        if (!ar)
+            return -1;
+        p->arc = ar;
         double *u = realloc(p->u, (size_t)cap * 3 * (size_t)(p->ns > 0 ? p->ns : 1) * sizeof *u);
         if (!u)
             return -1;
@@ -633,6 +638,7 @@ static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double
     for (int k = 0; k < p->ns; ++k)
         for (int i = 0; i < 3; ++i)
             p->u[(size_t)p->n * 3 * p->ns + 3 * k + i] = cp.u[k][i];
+    p->arc[p->n] = arc;
     p->lam[p->n++] = lam;
     return 0;
 }
@@ -746,7 +752,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             }
         }
     }
-    if (arc_path_push(&path, m, q, 0.0) != 0) {
+    if (arc_path_push(&path, m, q, 0.0, 0.0) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -754,6 +760,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     double prev_lam = 0.0;
     int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
     int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
+    int switch_mult = 0;                                 /* eigenvalues crossing at the switched bifurcation */
     attempt a = {0};
     bk_stability_result sres;
     if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
@@ -848,8 +855,16 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                             "along the null vector of the tangent\n", m->name, info->steps, lam);
             }
             if (switching && st != BK_NL_OK && st != BK_NL_INTERRUPTED) {
-                bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
-                        "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
+                if (switch_mult > 1)
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                            "the path goes on along the primary branch; the bifurcation is multiple (%d eigenvalues "
+                            "crossed zero together, e.g. a section symmetric in both bending planes), so its "
+                            "secondary branches form a family and the switch has no single branch to follow: break "
+                            "the symmetry (e.g. a rectangle with b != h)", info->steps, lam, bk_nl_why(st),
+                            switch_mult);
+                else
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                            "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
                 switching = 0;
                 if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
                     snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
@@ -945,8 +960,10 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
             cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
             claimed = info->steps;
-            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before)
+            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before) {
                 switching = 1;          /* the next step switches branch */
+                switch_mult = ev->neg_after - ev->neg_before;
+            }
         }
         bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
         if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
@@ -974,7 +991,8 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 if (k + 1 >= path.nq || !arc_path_near(&path, k, pu, lam, pdu, lam - path.lam[path.n - 1]))
                     continue;
                 arc_path_distance(&path, s, &c, m->length_scale * m->length_scale, k, q, lam, &dist, &len);
-                if (dist < 0.25 * fmax(dl, len) && dist < db)
+                double tol = 0.25 * fmax(dl, len), went = path.arc[path.n - 1] + dl - path.arc[k + 1];
+                if (dist < tol && went > 4.0 * tol && dist < db)
                     kb = k, db = dist;
             }
             if (kb >= 0) {
@@ -991,7 +1009,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                              "; distance %.3e, arc length %.3e); the target %.6g is not on this path", db, dl, target);
                 goto done;
             }
-            if (arc_path_push(&path, m, q, lam) != 0) {
+            if (arc_path_push(&path, m, q, lam, path.arc[path.n - 1] + dl) != 0) {
                 snprintf(info->message, sizeof info->message, "out of memory");
                 goto done;
             }
