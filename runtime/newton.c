@@ -596,7 +596,7 @@ static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx
 typedef struct arc_path {
     int n, cap, ns, nd, nquat;       /* points, capacity, sensors, DOFs, quaternion nodes */
     double *lam, *arc, *u, *q;       /* [cap], [cap] (arc length from the start), [cap][3 ns], [cap][nd] (the first nq) */
-    int nq;                          /* points whose state is kept */
+    int nq, qcap;                    /* points whose state is kept, room for them */
     int *quat;                       /* [nquat][4] DOFs of each quaternion node */
     char *isq;                       /* [nd] 1: a DOF of a quaternion */
 } arc_path;
@@ -626,9 +626,15 @@ static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double
         p->cap = cap;
     }
     if (p->nq == p->n && (long)(p->nq + 1) * p->nd <= ARC_PATH_BUDGET) {
-        double *s = realloc(p->q, (size_t)(p->nq + 1) * (size_t)p->nd * sizeof *s);
-        if (s) {
-            p->q = s;
+        if (p->nq == p->qcap) {      /* doubling, within the budget; out of memory: no more states kept */
+            long cap = p->qcap ? 2L * p->qcap : 64;
+            if (cap * p->nd > ARC_PATH_BUDGET)
+                cap = ARC_PATH_BUDGET / (p->nd > 0 ? p->nd : 1);
+            double *s = realloc(p->q, (size_t)cap * (size_t)p->nd * sizeof *s);
+            if (s)
+                p->q = s, p->qcap = (int)cap;
+        }
+        if (p->nq < p->qcap) {
             memcpy(p->q + (size_t)p->nq * p->nd, q, (size_t)p->nd * sizeof *q);
             p->nq++;
         }
