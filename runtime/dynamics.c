@@ -525,6 +525,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
                 Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
             }
+            bk_load_potentials(s, q, t, &Vg, &Vf);
             bk_output_energy(out, step, t, T, U, Vg, Vf, cr);
         }
         if (log)

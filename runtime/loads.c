@@ -317,6 +317,88 @@ void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, do
     scratch_free(&w);
 }
 
+/* Length of a tendon piece with coordinates qe: the quadrature of |p_xi| of
+ * tendon_piece (whose Q is -T times its derivative). */
+static double tendon_piece_length(const bk_model *m, const bk_tendon_piece *tp, const double *qe)
+{
+    const bk_element *et = bk_elem_type(m, tp->elem);
+    const double *g = m->geoms[m->elems[tp->elem].geom];
+    const int ns = et->nshape;
+    const double half = 0.5 * (tp->xi1 - tp->xi0), hs = 1e-2;
+    static const double off[4] = {-2.0, -1.0, 1.0, 2.0}, cf[4] = {1.0, -8.0, 8.0, -1.0};
+    double Nt[BK_MAX_SHAPE], len = 0.0;
+    for (int p = 0; p < 5; ++p) {
+        double xi = tp->xi0 + half * (1.0 + GX[p]), px[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < 4; ++k) {
+            et->shape(g, xi + off[k] * hs, tp->dy, tp->dz, Nt);
+            for (int a = 0; a < ns; ++a)
+                for (int l = 0; l < 3; ++l)
+                    px[l] += cf[k] * Nt[a] / (12.0 * hs) * qe[et->shape_dof[a] + l];
+        }
+        len += GW[p] * half * sqrt(px[0] * px[0] + px[1] * px[1] + px[2] * px[2]);
+    }
+    return len;
+}
+
+/* -v . (p(q) - p(q0)) at the point with shape functions N; qe, qe0 gathered. */
+static double dead_work(const bk_element *et, const double *N, const double *v, const double *qe,
+                        const double *qe0)
+{
+    double V = 0.0;
+    for (int a = 0; a < et->nshape; ++a)
+        for (int k = 0; k < 3; ++k)
+            V -= N[a] * v[k] * (qe[et->shape_dof[a] + k] - qe0[et->shape_dof[a] + k]);
+    return V;
+}
+
+void bk_load_potentials(const bk_system *s, const double *q, double x, double *Vg, double *Vf)
+{
+    const bk_model *m = s->m;
+    double qe[BK_MAX_ELEMENT_DOF], qe0[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE];
+    for (int i = 0; i < m->nforce; ++i) {
+        const bk_force_load *f = &m->forces[i];
+        if (f->amp < 0 || f->follower)
+            continue;                       /* constant: in bk_external_load; follower: no potential */
+        bk_gather(m, f->elem, q, qe);
+        bk_gather(m, f->elem, m->q0, qe0);
+        force_shape(m, f, N);
+        *Vf += bk_load_factor(m, f->amp, x) * dead_work(bk_elem_type(m, f->elem), N, f->value, qe, qe0);
+    }
+    for (int i = 0; i < m->ndload; ++i) {
+        const bk_dist_load *d = &m->dloads[i];
+        if (d->follower)
+            continue;
+        const bk_element *et = bk_elem_type(m, d->elem);
+        const double *g = m->geoms[m->elems[d->elem].geom];
+        const double half = 0.5 * (d->xi1 - d->xi0), fac = bk_load_factor(m, d->amp, x);
+        bk_gather(m, d->elem, q, qe);
+        bk_gather(m, d->elem, m->q0, qe0);
+        for (int p = 0; p < 5; ++p) {
+            et->shape(g, d->xi0 + half * (1.0 + GX[p]), 0.0, 0.0, N);
+            *Vf += fac * GW[p] * half * g[BK_GEOM_L] * dead_work(et, N, d->value, qe, qe0);
+        }
+    }
+    if (m->has_gravity && m->gravity_amp) {
+        double gf = bk_amp_eval(m->gravity_amp, x, 0);
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_element *et = bk_elem_type(m, e);
+            bk_gather(m, e, q, qe);
+            bk_gather(m, e, m->q0, qe0);
+            et->volume(m->geoms[m->elems[e].geom], N);
+            *Vg += gf * m->mats[m->elems[e].mat].rho * dead_work(et, N, m->gravity, qe, qe0);
+        }
+    }
+    for (int i = 0; i < m->ntendon; ++i) {
+        const bk_tendon *t = &m->tendons[i];
+        double T = t->tension * bk_load_factor(m, t->amp, x);
+        for (int k = 0; k < t->npiece; ++k) {
+            bk_gather(m, t->pieces[k].elem, q, qe);
+            bk_gather(m, t->pieces[k].elem, m->q0, qe0);
+            *Vf += T * (tendon_piece_length(m, &t->pieces[k], qe) - tendon_piece_length(m, &t->pieces[k], qe0));
+        }
+    }
+}
+
 static int inside(double xi)
 {
     return xi > 1e-12 && xi < 1.0 - 1e-12;

@@ -24,6 +24,14 @@ void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, do
  * nodal forces. */
 void bk_element_loads(const bk_system *s, const double *q, double x, int e, double *Qe);
 
+/* The potentials at x of the loads of bk_assemble_loads that have one,
+ * relative to the reference state m->q0: added to *Vg, gravity with an
+ * amplitude (-a(x) rho g . displacement over the volume); to *Vf, dead point
+ * and distributed forces (-a(x) f . displacement of their points) and tendons
+ * (T(x) times the change of the tendon's length).  Followers and moments have
+ * none and are left out. */
+void bk_load_potentials(const bk_system *s, const double *q, double x, double *Vg, double *Vf);
+
 /* Orthonormal section frame at xi of element e with coordinates qe: R[9] =
  * e1, e2, e3 (e3 along the element's axis-like d3, e1 the part of d1 normal
  * to it).  Returns -1 where the element defines no section axes (the cable). */

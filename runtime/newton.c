@@ -582,6 +582,133 @@ static void branch_direction(const bk_system *s, const bk_stability *st, arc_ctx
     *tWt = ss;
 }
 
+/* ---- Closed loops: a return to a visited point of the path ----
+ * Every accepted equilibrium is kept: its load factor, the displacements of
+ * the first sensors and, while the kept states fit in ARC_PATH_BUDGET doubles,
+ * the full state q.  After each step the new point is compared with every
+ * kept segment [k, k+1] of the path that ends at least two steps and four
+ * tolerances (below) of arc length before it.
+ * First cheaply: the load factor and each sensor's displacement inside the
+ * segment's range widened by a quarter of the change over the last step and
+ * over the segment.  Then, for those candidates, the full state: the distance
+ * from the new point to the segment in the metric of the arc-length
+ * constraint (W, psi), quaternions compared as the rotations they stand for
+ * (normalised, p and -p alike).  Below a quarter of the larger of the last
+ * arc and the segment's length, the path is back where it was: a closed
+ * loop, reported with the segment and stopped. */
+#define ARC_PATH_BUDGET (1L << 24)
+typedef struct arc_path {
+    int n, cap, ns, nd, nquat;       /* points, capacity, sensors, DOFs, quaternion nodes */
+    double *lam, *arc, *u, *q;       /* [cap], [cap] (arc length from the start), [cap][3 ns], [cap][nd] (the first nq) */
+    int nq, qcap;                    /* points whose state is kept, room for them */
+    int *quat;                       /* [nquat][4] DOFs of each quaternion node */
+    char *isq;                       /* [nd] 1: a DOF of a quaternion */
+} arc_path;
+
+static void arc_path_free(arc_path *p)
+{
+    free(p->lam), free(p->arc), free(p->u), free(p->q), free(p->quat), free(p->isq);
+}
+
+/* Keep the point (q, lam) at the arc length arc from the start; 0, or -1 when out of memory. */
+static int arc_path_push(arc_path *p, const bk_model *m, const double *q, double lam, double arc)
+{
+    if (p->n == p->cap) {
+        int cap = p->cap ? 2 * p->cap : 64;
+        double *l = realloc(p->lam, (size_t)cap * sizeof *l);
+        if (!l)
+            return -1;
+        p->lam = l;
+        double *ar = realloc(p->arc, (size_t)cap * sizeof *ar);
+        if (!ar)
+            return -1;
+        p->arc = ar;
+        double *u = realloc(p->u, (size_t)cap * 3 * (size_t)(p->ns > 0 ? p->ns : 1) * sizeof *u);
+        if (!u)
+            return -1;
+        p->u = u;
+        p->cap = cap;
+    }
+    if (p->nq == p->n && (long)(p->nq + 1) * p->nd <= ARC_PATH_BUDGET) {
+        if (p->nq == p->qcap) {      /* doubling, within the budget; out of memory: no more states kept */
+            long cap = p->qcap ? 2L * p->qcap : 64;
+            if (cap * p->nd > ARC_PATH_BUDGET)
+                cap = ARC_PATH_BUDGET / (p->nd > 0 ? p->nd : 1);
+            double *s = realloc(p->q, (size_t)cap * (size_t)p->nd * sizeof *s);
+            if (s)
+                p->q = s, p->qcap = (int)cap;
+        }
+        if (p->nq < p->qcap) {
+            memcpy(p->q + (size_t)p->nq * p->nd, q, (size_t)p->nd * sizeof *q);
+            p->nq++;
+        }
+    }
+    bk_critical_point cp;
+    sensor_displacements(m, q, &cp);
+    for (int k = 0; k < p->ns; ++k)
+        for (int i = 0; i < 3; ++i)
+            p->u[(size_t)p->n * 3 * p->ns + 3 * k + i] = cp.u[k][i];
+    p->arc[p->n] = arc;
+    p->lam[p->n++] = lam;
+    return 0;
+}
+
+/* The cheap test of the point (u: its sensor displacements, lam) against the
+ * segment [k, k+1]; du, dlam: the change over the last step. */
+static int arc_path_near(const arc_path *p, int k, const double *u, double lam, const double *du, double dlam)
+{
+    double l0 = p->lam[k], l1 = p->lam[k + 1], tl = 0.25 * (fabs(dlam) + fabs(l1 - l0)) + 1e-12 * fabs(lam);
+    if (lam < fmin(l0, l1) - tl || lam > fmax(l0, l1) + tl)
+        return 0;
+    const double *u0 = p->u + (size_t)k * 3 * p->ns, *u1 = u0 + 3 * p->ns;
+    for (int s = 0; s < p->ns; ++s) {
+        double dn = 0.0, ds = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            double d = u1[3 * s + i] - u0[3 * s + i];
+            dn += du[3 * s + i] * du[3 * s + i], ds += d * d;
+        }
+        double tu = 0.25 * (sqrt(dn) + sqrt(ds)) + 1e-12;
+        for (int i = 0; i < 3; ++i) {
+            double a = u0[3 * s + i], b = u1[3 * s + i], x = u[3 * s + i];
+            if (x < fmin(a, b) - tu || x > fmax(a, b) + tu)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* The full test: the weighted distance of (q, lam) from the segment [k, k+1]
+ * of kept states (k + 1 < p->nq) into *dist, the segment's length into *len. */
+static void arc_path_distance(const arc_path *p, const bk_system *s, const arc_ctx *c, double L2, int k,
+                              const double *q, double lam, double *dist, double *len)
+{
+    const double *a = p->q + (size_t)k * p->nd, *b = a + p->nd;
+    double xa = c->psi2 * (lam - p->lam[k]) * (lam - p->lam[k]);
+    double ba = c->psi2 * (p->lam[k + 1] - p->lam[k]) * (p->lam[k + 1] - p->lam[k]);
+    double xb = c->psi2 * (lam - p->lam[k]) * (p->lam[k + 1] - p->lam[k]);
+    for (int j = 0; j < s->nfree; ++j) {
+        int i = c->fdof[j];
+        if (p->isq[i] || c->W[j] == 0.0)
+            continue;
+        double dx = q[i] - a[i], db = b[i] - a[i];
+        xa += c->W[j] * dx * dx, ba += c->W[j] * db * db, xb += c->W[j] * dx * db;
+    }
+    for (int g = 0; g < p->nquat; ++g) {
+        const int *d = p->quat + 4 * g;
+        double nx = 0.0, na = 0.0, nb = 0.0, sa = 0.0;
+        for (int i = 0; i < 4; ++i)
+            nx += q[d[i]] * q[d[i]], na += a[d[i]] * a[d[i]], nb += b[d[i]] * b[d[i]], sa += q[d[i]] * a[d[i]];
+        nx = 1.0 / sqrt(nx), na = (sa < 0.0 ? -1.0 : 1.0) / sqrt(na), nb = (sa < 0.0 ? -1.0 : 1.0) / sqrt(nb);
+        for (int i = 0; i < 4; ++i) {
+            double dx = q[d[i]] * nx - a[d[i]] * na, db = b[d[i]] * nb - a[d[i]] * na;
+            xa += L2 * dx * dx, ba += L2 * db * db, xb += L2 * dx * db;
+        }
+    }
+    double t = ba > 0.0 ? fmin(fmax(xb / ba, 0.0), 1.0) : 0.0;
+    *dist = sqrt(fmax(xa - 2.0 * t * xb + t * t * ba, 0.0));
+    *len = sqrt(ba);
+}
+
 static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *out, bk_run_info *info, FILE *log,
                       bk_stability *stab, int have_stab, bk_checks *chk)
 {
@@ -598,10 +725,13 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     arc_point A = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
     arc_point B = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
     arc_point best = {calloc((size_t)nd, sizeof(double)), calloc((size_t)nc, sizeof(double)), 0.0};
-    double *qstart = calloc((size_t)nd, sizeof(double)), *tprim = calloc((size_t)ne, sizeof(double));
+    double *tprim = calloc((size_t)ne, sizeof(double));
+    arc_path path = {.ns = m->nsensor < BK_CRIT_SENSORS ? m->nsensor : BK_CRIT_SENSORS, .nd = nd};
+    path.isq = calloc((size_t)nd, 1), path.quat = malloc((size_t)(nd / 4 + 1) * 4 * sizeof *path.quat);
+    double pu[3 * BK_CRIT_SENSORS], pdu[3 * BK_CRIT_SENSORS];
     info->continuation = 1;
     if (!W || !fdof || !c.rl || !c.t || !c.tmp || !c.fol || !A.q || !A.nu || !B.q || !B.nu || !best.q ||
-        !best.nu || !qstart || !tprim) {
+        !best.nu || !tprim || !path.isq || !path.quat) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -623,14 +753,24 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     if (eqn >= 0 && eqn < s->nfree)
                         W[eqn] = wt;
                 }
+                const int *d = el->dofs + et->field_dof[f];
+                if (role == BK_FIELD_QUATERNION && et->field_dim[f] == 4 && !path.isq[d[0]]) {
+                    for (int i = 0; i < 4; ++i)
+                        path.isq[d[i]] = 1, path.quat[4 * path.nquat + i] = d[i];
+                    path.nquat++;
+                }
             }
         }
     }
-    memcpy(qstart, q, (size_t)nd * sizeof *q);
-    double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, dlam_prev = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
-    double travelled = 0.0, prev_lam = 0.0;
+    if (arc_path_push(&path, m, q, 0.0, 0.0) != 0) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
+    double prev_lam = 0.0;
     int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
     int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
+    int switch_mult = 0;                                 /* eigenvalues crossing at the switched bifurcation */
     attempt a = {0};
     bk_stability_result sres;
     if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
@@ -725,8 +865,16 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                             "along the null vector of the tangent\n", m->name, info->steps, lam);
             }
             if (switching && st != BK_NL_OK && st != BK_NL_INTERRUPTED) {
-                bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
-                        "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
+                if (switch_mult > 1)
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                            "the path goes on along the primary branch; the bifurcation is multiple (%d eigenvalues "
+                            "crossed zero together, e.g. a section symmetric in both bending planes), so its "
+                            "secondary branches form a family and the switch has no single branch to follow: break "
+                            "the symmetry (e.g. a rectangle with b != h)", info->steps, lam, bk_nl_why(st),
+                            switch_mult);
+                else
+                    bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
+                            "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
                 switching = 0;
                 if ((st = arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
                     snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
@@ -784,9 +932,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             else
                 arc_restore(s, w, q, &lam_new, &B);
         }
-        dlam_prev = lam_new - lam;
         dl_prev = dl;
-        travelled += dl;
         sigma_prev = sigma;
         have_dir = 1;
         lam = lam_new;
@@ -824,8 +970,10 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
             cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
             claimed = info->steps;
-            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before)
+            if (o->branch_switch && !switched && ev->neg_after > ev->neg_before) {
                 switching = 1;          /* the next step switches branch */
+                switch_mult = ev->neg_after - ev->neg_before;
+            }
         }
         bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
         if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
@@ -839,18 +987,40 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             rc = 0;
             goto done;
         }
-        /* a closed loop: back at the start after going around */
-        if (travelled > 4.0 * dl0 && info->steps > 4) {
-            double d2 = c.psi2 * lam * lam;
-            for (int j = 0; j < s->nfree; ++j) {
-                double dj = q[fdof[j]] - qstart[fdof[j]];
-                d2 += W[j] * dj * dj;
+        /* a closed loop: back at a visited point of the path (arc_path) */
+        {
+            bk_critical_point cp;
+            sensor_displacements(m, q, &cp);
+            const double *ul = path.u + (size_t)(path.n - 1) * 3 * path.ns;
+            for (int k = 0; k < 3 * path.ns; ++k)
+                pu[k] = cp.u[k / 3][k % 3], pdu[k] = pu[k] - ul[k];
+            int kb = -1;
+            double db = INFINITY;
+            for (int k = 0; k + 1 < path.n - 1; ++k) {
+                double dist, len;
+                if (k + 1 >= path.nq || !arc_path_near(&path, k, pu, lam, pdu, lam - path.lam[path.n - 1]))
+                    continue;
+                arc_path_distance(&path, s, &c, m->length_scale * m->length_scale, k, q, lam, &dist, &len);
+                double tol = 0.25 * fmax(dl, len), went = path.arc[path.n - 1] + dl - path.arc[k + 1];
+                if (dist < tol && went > 4.0 * tol && dist < db)
+                    kb = k, db = dist;
             }
-            if (sqrt(d2) < 0.5 * dl && fabs(lam) < 0.5 * fabs(dlam_prev) + 1e-12) {
-                snprintf(info->message, sizeof info->message,
-                         "arc-length: the path returned to its start at step %d (a closed loop: load factor %.6g, "
-                         "distance %.3e from the start, arc length %.3e); the target %.6g is not on this path",
-                         info->steps, lam, sqrt(d2), dl, target);
+            if (kb >= 0) {
+                int o2 = snprintf(info->message, sizeof info->message,
+                                  "arc-length: a closed loop: at step %d (load factor %.6g) the path came back to "
+                                  "where it was between steps %d and %d (load factor %.6g to %.6g",
+                                  info->steps, lam, kb, kb + 1, path.lam[kb], path.lam[kb + 1]);
+                if (path.ns > 0 && o2 > 0 && (size_t)o2 < sizeof info->message)
+                    o2 += snprintf(info->message + o2, sizeof info->message - (size_t)o2,
+                                   ", sensor %s displacement [%.6g, %.6g, %.6g] m", m->sensors[0].name, pu[0], pu[1],
+                                   pu[2]);
+                if (o2 > 0 && (size_t)o2 < sizeof info->message)
+                    snprintf(info->message + o2, sizeof info->message - (size_t)o2,
+                             "; distance %.3e, arc length %.3e); the target %.6g is not on this path", db, dl, target);
+                goto done;
+            }
+            if (arc_path_push(&path, m, q, lam, path.arc[path.n - 1] + dl) != 0) {
+                snprintf(info->message, sizeof info->message, "out of memory");
                 goto done;
             }
         }
@@ -890,7 +1060,8 @@ done:
                     "eigenvalues %d -> %d)\n", m->name, cand[k].lam, cand[k].step - 1, cand[k].step, cand_neg[k][0],
                     cand_neg[k][1]);
     }
-    free(W), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(qstart), free(tprim);
+    free(W), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(tprim);
+    arc_path_free(&path);
     free(A.q), free(A.nu), free(B.q), free(B.nu), free(best.q), free(best.nu);
     return rc;
 }
