@@ -85,12 +85,13 @@ def convergence_rate(out):
     return ps[len(ps) // 2] if ps else float("nan")
 
 
-def elastica_compressed(P):
+def elastica_compressed(P, pcr=None):
     """Inextensible elastica of the cantilever under a dead axial end load P > Pcr
-    (first mode): tip position (x, z) / L, from K(k) = pi/2 sqrt(P / Pcr),
-    x = 2 E(k) / K(k) - 1, z = 2 k / K(k)."""
+    (first mode; pcr: the Euler load, default the seed's square section): tip
+    position (x, z) / L, from K(k) = pi/2 sqrt(P / Pcr), x = 2 E(k) / K(k) - 1,
+    z = 2 k / K(k)."""
     import mpmath as mp
-    kt = mp.pi / 2 * mp.sqrt(P / PCR)
+    kt = mp.pi / 2 * mp.sqrt(P / (pcr or PCR))
     lo, hi = mp.mpf(0), mp.mpf(1)
     for _ in range(200):
         mid = (lo + hi) / 2
@@ -486,9 +487,10 @@ def case_continuation(quick):
                              iterations=s["newton_iterations"], critical=val, reference=ref))
             paths.append((title, element, s))
     # branch switch onto the post-buckled elastica (P = 200 N): tip vs the inextensible elastica
-    ex, ez = elastica_compressed(200.0)
+    # the scene's section is 10 x 10.1 mm (a simple bifurcation, in the weaker plane)
+    ex, ez = elastica_compressed(200.0, math.pi ** 2 * 7.2e10 * 0.0101 * 0.01 ** 3 / 12 / 4)
     lines += ["", "Branch switch (`static.branch_switch`, models/cantilever_postbuckling.toml): 200 N on the seed "
-              "cantilever without imperfection; tip at the full load against the inextensible elastica "
+              "cantilever (10 x 10.1 mm) without imperfection; tip at the full load against the inextensible elastica "
               f"(x = {ex:.5f} L, deflection {ez:.5f} L).", "",
               "| element | converged | steps | iterations | tip x (m) | deflection (m) | tip error / L | warnings |",
               "|---|---|---|---|---|---|---|---|"]
