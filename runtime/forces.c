@@ -254,6 +254,23 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
                 map_dof(f, q, d, r, x0, F, M);
             }
         }
+        if (rc->nlcon >= 0) {             /* a joint nonlinear in q: -s G^T nu on frame a's (r, p) */
+            const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+            for (int i = 0; i < BK_JOINT_NX; ++i)
+                xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
+            jc->kind->eval(xj, jc->prm, g, G);
+            const int row0 = s->jrow[rc->nlcon];
+            for (int i = 0; i < 7; ++i) {
+                const int d = jc->dof[i];
+                if (d < 0)
+                    continue;
+                double r = 0.0;
+                for (int k = 0; k < jc->kind->nrow; ++k)
+                    r += G[k * BK_JOINT_NX + i] * (nu ? nu[row0 + k] : NAN);
+                map_dof(f, q, d, -s->cscale * r, x0, F, M);
+            }
+        }
         double *L = f->last[c];
         for (int i = 0; i < 3; ++i)
             L[i] = F[i], L[3 + i] = M[i], L[6 + i] = x0[i];

@@ -265,6 +265,7 @@ static void read_extras(reader *r, bk_model *m)
         c->side = xcalloc(r, (size_t)c->nside, sizeof *c->side);
         for (int k = 0; k < c->nside && !r->failed; ++k)
             c->side[k] = inum(r, "reaction side DOF", 0, m->ndof - 1);
+        c->nlcon = inum(r, "reaction joint", -1, m->nnlcon - 1);
     }
 
     expect(r, "sections");

@@ -90,6 +90,7 @@ typedef struct bk_reaction {
     int nfixed, nlin, nside;
     int *fixed, *lin;
     int *side;         /* DOFs of body a when the joint is between bodies (nside 0: all) */
+    int nlcon;         /* its joint nonlinear in q (model->nlcons), -1: none */
 } bk_reaction;
 
 typedef struct bk_section_rec {  /* an element of a beam, for sections.csv */

@@ -143,6 +143,19 @@ def test_tip_mass_with_offset_sags_as_beam_theory_says():
     d3 = np.array(end["d3"])
     assert np.allclose(np.array(body["position"]), np.array(end["position"]) + e * d3, atol=1e-9)
     assert np.allclose(body["d1"], end["d3"], atol=1e-9)          # body axes welded to the section
+    # reactions (reactions.csv / summary.json): the weld (a joint nonlinear in q,
+    # -s G^T nu on the beam end) exerts the body's weight and its moment about
+    # the end node on the beam; the clamp carries the body's and the beam's weight
+    # and their moment about the root, both from the deformed positions (sensors)
+    re = {r["type"]: r for r in s["reactions"]}
+    W = M_TIP * g
+    weld, clamp = re["fixed"], re["clamp"]
+    assert np.allclose(weld["force"], [0.0, 0.0, -W], atol=1e-9 * W), weld
+    lever = np.array(body["position"]) - np.array(weld["point"])
+    assert np.allclose(weld["moment"], np.cross(lever, [0.0, 0.0, -W]), atol=1e-9 * W), weld
+    assert np.allclose(clamp["force"], [0.0, 0.0, W + M_BEAM * g], atol=1e-8 * W), clamp
+    my = clamp["moment"][1]
+    assert W * body["position"][0] < -my < W * body["position"][0] + M_BEAM * g * 0.5 + 1e-9, clamp
 
 
 def test_tip_mass_free_vibration_period():

@@ -237,20 +237,22 @@ def _endpoint(ctx, key, spec, mesh, ctype):
         b = mesh.bodies[spec]
         base = mesh.dof_of_node[b["gid"]]
         return {"what": f"body {spec!r}", "X": b["X"], "R": b["R"], "dofs": list(range(base, base + 7)),
-                "rot": True, "id": ("node", b["gid"])}
+                "rot": True, "id": ("node", b["gid"]), "where": (b["elem"], 0.0)}
     if isinstance(spec, str) and ":" not in spec:
         ctx.fail(key, f"expected BEAM:start, BEAM:end, BEAM:<arc length in m> or a body name, found {spec!r} "
                  f"(bodies: {', '.join(mesh.bodies) or 'none'})")
     beam, s_, gid = mesh.node_of(ctx, key, spec, f"{ctype} joint")
+    from gen.scene.mesh import locate
+    where = locate(beam, s_)
     fd = mesh.field_dofs(gid)
     X = mesh.nodes[gid][0]
     if "p" in fd:
         p = [mesh.q0[d] for d in fd["p"]]
         return {"what": f"beam point {spec!r}", "X": X, "R": _quat_rotation(p), "dofs": fd["r"] + fd["p"],
-                "rot": True, "id": ("node", gid)}
+                "rot": True, "id": ("node", gid), "where": where}
     return {"what": f"beam point {spec!r} (element {beam['element']}, no nodal rotation)", "X": X,
             "R": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "dofs": fd["r"] + [-1] * 4,
-            "rot": False, "id": ("node", gid)}
+            "rot": False, "id": ("node", gid), "where": where}
 
 
 def _mtv(R, v):
@@ -313,7 +315,7 @@ def nonlinear_joint(ctx, ct, where, mesh, ctype):
             x0 += [mesh.q0[d] if d >= 0 else (1.0 if k == 3 else 0.0) for k, d in enumerate(e["dofs"])]
             prm_c += _mtv(e["R"], _sub(X, e["X"]))
             prm_A += [c for col in E for c in _mtv(e["R"], col)]
-    return (ctype, dofs, x0, prm_c + prm_A)
+    return (ctype, dofs, x0, prm_c + prm_A), a["where"]
 
 
 def _is_linear(ct, mesh, ctype):
@@ -333,8 +335,8 @@ def _is_linear(ct, mesh, ctype):
 
 def constraints(ctx, doc, mesh, amps=None):
     """Rows of every [[constraint]] table, and which rows each one added (its
-    reaction: rows.reactions); joints nonlinear in q in rows.nlcons (no
-    reaction rows yet)."""
+    reaction: rows.reactions, the last field the index of its joint nonlinear
+    in q in rows.nlcons, -1 for the linear rows)."""
     from gen.scene.mesh import locate
     rows = Rows(mesh.q0, amps)
     rows.nlcons = []
@@ -345,9 +347,9 @@ def constraints(ctx, doc, mesh, amps=None):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         if not _is_linear(ct, mesh, ctype):
-            rows.nlcons.append(nonlinear_joint(ctx, ct, where, mesh, ctype))
-            mesh.warnings.append(f"{where}: the reaction of a {ctype} joint with a body, a second frame or a "
-                                 "joint point (nonlinear in q) is not written to reactions.csv yet")
+            joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype)
+            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons)))
+            rows.nlcons.append(joint)
             continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
         fixed0, nlin0 = set(rows.fixed), len(rows.lincons)
@@ -355,5 +357,5 @@ def constraints(ctx, doc, mesh, amps=None):
         JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
         e, xi = locate(beam, s)
         rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
-                               list(range(nlin0, len(rows.lincons))), rows.side))
+                               list(range(nlin0, len(rows.lincons))), rows.side, -1))
     return rows
