@@ -30,8 +30,9 @@
 #define BK_EVAL_BLOCK_BYTES (8L << 20)
 /* Smaller models are evaluated by one thread: for them the fork/join and the
  * barriers cost more than they save (and much more on a loaded machine, where
- * a descheduled thread holds up the barrier). */
-#define BK_PAR_MIN_ELEMS 32
+ * a descheduled thread holds up the barrier: a 32-element gef pendulum spent
+ * half its time spinning in libgomp with 2 threads on 2 busy cores). */
+#define BK_PAR_MIN_ELEMS 256
 
 /* A pair whose elements are evaluated BK_LANES per call (bk_kernel.h, "Lane kernels"). */
 static int lane_pair(const bk_pair *p)

@@ -41,27 +41,29 @@ def same_results(scene, sets, threads=(1, 2, 3)):
 
 
 def test_static_bit_identical_for_1_2_3_threads():
-    # 100 elements: 13 lane groups (the last one partly filled), parallel path and parallel scatter taken
-    s = same_results("cantilever_bend_100N_nu03", ["beam.arm.elements=100"])
+    # 260 elements (above the runtime's serial limit of 256): 33 lane groups (the last one partly
+    # filled), parallel path and parallel scatter taken
+    s = same_results("cantilever_bend_100N_nu03", ["beam.arm.elements=260"])
     assert s["converged"]
     assert s["symbolic_analyses"] == 1, "the KLU symbolic analysis must run once per run"
 
 
 def test_dynamic_bit_identical_for_1_2_threads():
-    s = same_results("silicone_fall", ["beam.strip.elements=40", "dynamic.t_end=0.01"], threads=(1, 2))
+    s = same_results("silicone_fall", ["beam.strip.elements=260", "dynamic.t_end=0.005"], threads=(1, 2))
     assert s["converged"]
     assert s["symbolic_analyses"] == 1
 
 
 def test_resultant_beam_bit_identical_for_1_2_threads():
     same_results("cantilever_rollup", ["beam.arm.element=gef", "material.alu.law=resultant",
-                                       "beam.arm.elements=70", "static.load_steps=4"], threads=(1, 2))
+                                       "beam.arm.elements=260", "static.load_steps=4"], threads=(1, 2))
 
 
 def test_mixed_pairs_bit_identical_for_1_2_3_threads():
-    """Two beams of different pairs (21 `sri` + 19 `full` elements): lane groups end at
-    the pair boundary, both last groups are partly filled."""
-    s = same_results("double_pendulum_soft_ancf", ["beam.rod1.elements=21", "beam.rod1.integration=sri",
-                                                   "beam.rod2.elements=19", "dynamic.t_end=0.004",
+    """Two beams of different pairs (133 `sri` + 131 `full` elements, above the serial
+    limit of 256): lane groups end at the pair boundary, both last groups are partly
+    filled."""
+    s = same_results("double_pendulum_soft_ancf", ["beam.rod1.elements=133", "beam.rod1.integration=sri",
+                                                   "beam.rod2.elements=131", "dynamic.t_end=0.004",
                                                    "dynamic.dt=1e-3"])
     assert s["converged"]
