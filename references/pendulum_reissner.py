@@ -293,6 +293,11 @@ def load(path=DATA):
     return {round(r[0], 10): ((r[1], 0.0, r[2]), math.hypot(r[3], r[4])) for r in d["rows"]}
 
 
+def meshes(path=DATA):
+    """The element counts of the committed mesh study."""
+    return json.loads(Path(path).read_text(encoding="utf-8"))["meshes"]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python3 -m references.pendulum_reissner",
                                  description="Soft seed pendulum by a planar Reissner beam (scipy).")
