@@ -80,12 +80,12 @@ def _track(rows, times):
 def test_pendulum_reissner_against_gef():
     """Soft seed pendulum tip B at t = 0.3, 0.4, 0.5 s: beamkit's gef (8 and 16
     elements, dt = 5e-4 and 1e-3 s) against the planar Reissner beam of
-    references/pendulum_reissner.py (committed data, estimated error <= 2e-5 m
+    references/pendulum_reissner.py (committed data, estimated error <= 2.1e-6 m
     at these times).  gef's own error is estimated by its mesh (8 -> 16) and step
     (1e-3 -> 5e-4 s) differences; the distance must be within that plus the
-    Reissner estimate at every time (measured: distances 1.7e-5 ... 6.0e-5 m,
-    allowances 1.3e-4 ... 3.1e-4 m).  Sensitivity: E raised by 1 % moves gef's
-    tip 4.7e-4 ... 5.9e-4 m from the reference at these times (1.5 ... 4.6 x the
+    Reissner estimate at every time (measured: distances 2.0e-5 ... 4.3e-5 m,
+    allowances 1.1e-4 ... 3.1e-4 m).  Sensitivity: E raised by 1 % moves gef's
+    tip 4.7e-4 ... 5.8e-4 m from the reference at these times (1.5 ... 5.3 x the
     allowance), so a 1 % error in E fails this test (at every one of the times)."""
     ref = pendulum_reissner.load()
     runs = {}
