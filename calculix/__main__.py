@@ -5,7 +5,8 @@ iterations, then the Richardson-extrapolated values with the observed order and
 the error estimate, and the checks (--check-mesh, --check-dt) with the error
 they add.  Dynamic scenes also write the sensor histories (per mesh and
 extrapolated) as CSV, by default out/calculix/SCENE_SENSOR.csv.  --record NAME
-stores the study in references/data/calculix_silicone.json (calculix.data).
+stores the study in references/data/calculix_silicone.json (or --data PATH,
+e.g. references/data/calculix_cantilever.json; calculix.data).
 """
 import argparse
 import json
@@ -50,6 +51,9 @@ def main(argv=None):
     ap.add_argument("--record", metavar="NAME",
                     help="store the study, its checks and this command in references/data/calculix_silicone.json")
     ap.add_argument("--note", default="", help="with --record: a remark stored with the entry")
+    ap.add_argument("--data", metavar="PATH",
+                    help="with --record: the data file (default references/data/calculix_silicone.json; "
+                    "the seed cantilever's: references/data/calculix_cantilever.json)")
     ap.add_argument("--csv", help="history CSV path (dynamic; one sensor) ")
     ap.add_argument("--json", action="store_true", help="print the study as JSON")
     a = ap.parse_args(argv)
@@ -110,7 +114,8 @@ def main(argv=None):
     if a.record:
         from calculix.data import entry, record
         sensor = p.sensors[0][0]
-        path = record(a.record, entry(st, sensor, command_line(argv), checks, note=a.note))
+        kw = {"path": a.data} if a.data else {}
+        path = record(a.record, entry(st, sensor, command_line(argv), checks, note=a.note), **kw)
         print(f"recorded {a.record} in {path}", file=sys.stderr)
     return 0
 

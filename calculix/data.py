@@ -1,4 +1,6 @@
-"""Committed CalculiX references: references/data/calculix_silicone.json.
+"""Committed CalculiX references: references/data/calculix_silicone.json (the
+silicone strips) and references/data/calculix_cantilever.json (the seed
+cantilever of Table 3, the bench's reference: reference_data(NAME, CANTILEVER)).
 
 Each entry is one mesh study (calculix.study) of a scene with its overrides,
 written by `python3 -m calculix ... --record NAME` (the command is stored in the
@@ -31,6 +33,8 @@ from pathlib import Path
 from gen.scene import ROOT
 
 DATA = ROOT / "references" / "data" / "calculix_silicone.json"
+# the seed cantilever (Table 3, models/cantilever_bend_100N_nu03.toml): the bench's reference
+CANTILEVER = ROOT / "references" / "data" / "calculix_cantilever.json"
 
 
 @dataclass
@@ -144,7 +148,9 @@ def record(name, entry_dict, path=DATA):
     """Write (or replace) one entry of the data file, keeping the others."""
     path = Path(path)
     doc = _load(path) if path.exists() else {}
-    doc.setdefault("about", "CalculiX (ccx, C3D20R) references for the silicone strip scenes, one mesh study "
+    what = ("the seed cantilever (Table 3)" if Path(path).resolve() == CANTILEVER.resolve()
+            else "the silicone strip scenes")
+    doc.setdefault("about", f"CalculiX (ccx, C3D20R) references for {what}, one mesh study "
                    "each; written by `python3 -m calculix ... --record NAME`, read by "
                    "calculix.reference_data(NAME); see calculix/data.py for the fields.")
     doc.setdefault("references", {})[name] = entry_dict

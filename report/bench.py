@@ -136,30 +136,43 @@ def statics(quick, log):
     else:
         variants = allv
 
-    # Seed Table 3, -100 N, nu = 0.3: converged reference of the continuum model.
+    # Seed Table 3, -100 N, nu = 0.3: CalculiX C3D20R (NLGEOM), mesh-extrapolated
+    # (references/data/calculix_cantilever.json; calculix/ regenerates it, the command is in the entry).
     scene = "cantilever_bend_100N_nu03"
-    ref_mesh = (32, 64) if quick else (64, 128)
-    ref = {}
-    for n in ref_mesh:
-        s, err = run(scene, allv[5][1] + [f"beam.arm.elements={n}"], f"t3-ref-{n}")
-        if s is None or not s["converged"]:
-            raise RuntimeError(f"Table 3 reference run ({n} elements) failed: {err or s.get('error')}")
-        ref[n] = tip_xyz(s, "tip")
-    u_ref = ref[ref_mesh[1]]
+    from calculix.data import CANTILEVER, reference_data
+    ccx = reference_data("table3_rigid", CANTILEVER)
+    ccx_free = reference_data("table3_free", CANTILEVER)
+    u_ref = [1.0 + ccx.value[0], ccx.value[1], ccx.value[2]]
     L = 1.0
-    ref_unc = dist(ref[ref_mesh[0]], u_ref) / L
+    ref_unc = math.hypot(ccx.error[0], ccx.error[2]) / L
+    free_d = math.hypot(ccx_free.value[0] - ccx.value[0], ccx_free.value[2] - ccx.value[2]) / L
+    # our own converged element, for the statement of how far it is from the reference
+    s, err = run(scene, allv[5][1] + ["beam.arm.elements=128"], "t3-ref-128")
+    if s is None or not s["converged"]:
+        raise RuntimeError(f"Table 3 ancf3363 run (128 elements) failed: {err or s.get('error')}")
+    own_d = dist(tip_xyz(s, "tip"), u_ref) / L
     from references.elastica import tip_load_cantilever
     eu, ew = tip_load_cantilever(1.0, 100.0, 7.2e10 * 0.01**4 / 12, n=2000)
     el = (1.0 + eu, -ew)
-    notes.append(("table3", f"Reference: `ancf3363` `reduced` (3 x 2 x 2 points, the locking-free higher-order "
-                  f"continuum element), {ref_mesh[1]} elements, the scene's load steps and tolerances; tip at "
-                  f"({u_ref[0]:.9f}, {u_ref[1]:.3g}, {u_ref[2]:.9f}) m.  The same element with {ref_mesh[0]} "
-                  f"elements differs by {ref_unc:.1e} L, an upper bound of the reference's discretization error "
-                  f"(its convergence is at least quadratic).  For comparison the inextensible Euler-Bernoulli "
-                  f"elastica (GSL shooting, references/elastica.py) gives a tip at ({el[0]:.9f}, {el[1]:.9f}) m "
-                  f"(x, z): {dist((u_ref[0], u_ref[2]), el) / L:.1e} L from the continuum reference, the "
-                  f"size of the shear, extension and Poisson effects that the resultant beams and the "
-                  f"continuum elements model differently.  Error = |tip - reference| / L."))
+    notes.append(("table3", f"Reference: CalculiX (ccx, {ccx.ccx.split(',')[0].replace('CalculiX Version', 'version')}) "
+                  f"C3D20R solid, NLGEOM, St. Venant-Kirchhoff with the scene's E and nu, every node of the "
+                  f"clamped face fixed (the scene's clamp), the -100 N tip force as a uniform traction on the end "
+                  f"face; meshes {', '.join(ccx.meshes)} graded towards the clamp ({ccx.grading}), "
+                  f"Richardson-extrapolated (observed order {ccx.order[2]:.2f}), the section's 2 x 2 elements "
+                  f"checked against 4 x 4 (references/data/calculix_cantilever.json, entry table3_rigid, with "
+                  f"the command that regenerates it).  Tip at ({u_ref[0]:.7f}, {u_ref[2]:.7f}) m (x, z), "
+                  f"estimated error {ref_unc:.1e} L (the section check's difference {ccx.checks[0]['final_diff'][2]:.1e} m "
+                  f"dominates; with a section order of 1 it would be twice that).  `ancf3363` `reduced` with "
+                  f"128 elements is {own_d:.1e} L from it (still converging, order ~1.4; extrapolated over "
+                  f"32/64/128 elements it is within 1.3e-5 m, tests/test_independent_references.py).  The solid's "
+                  f"clamp and the beam's: a solid whose clamped face may contract in its plane and only stays "
+                  f"plane (entry table3_free) has its tip {free_d:.1e} L from the fully fixed face, the size of "
+                  f"the clamp's modelling choice; beamkit's default clamp (cross_section = rigid, every nodal "
+                  f"coordinate fixed) matches the fully fixed face.  For comparison the inextensible "
+                  f"Euler-Bernoulli elastica (GSL shooting, references/elastica.py) gives a tip at "
+                  f"({el[0]:.9f}, {el[1]:.9f}) m: {dist((u_ref[0], u_ref[2]), el) / L:.1e} L from the solid, the "
+                  f"size of the shear, extension and Poisson effects.  Error = |tip - reference| / L; errors "
+                  f"below {ref_unc:.0e} are within the reference's own uncertainty."))
     for label, sets in variants:
         for n in meshes:
             s, err = run(scene, sets + [f"beam.arm.elements={n}"], f"t3-{label.replace(' ', '_')}-{n}")
@@ -231,26 +244,38 @@ def dynamics(quick, log):
     variants = pick(allv, ("ancf3243 full", "gef")) if quick else \
         [v for v in allv if v[0] not in ("ancf3273 full", "ancf3363 full")]
     base = [f"dynamic.t_end={t_end}"]
-    # gef converges fastest here (no locking, shear and extension in the resultant model); for this
-    # slender rod (h/L = 1/100) the continuum and resultant models differ by ~(h/L)^2.
+    # Reference: the planar Reissner beam of references/pendulum_reissner.py (numpy/scipy, an
+    # implementation sharing nothing with ours), committed as references/data/pendulum_reissner.json.
+    from references import pendulum_reissner
+    reiss = pendulum_reissner.load()
+    ref = [reiss[round(t, 10)][0] for t in times]
+    ref_unc = max(reiss[round(t, 10)][1] for t in times)
+    # our gef, Richardson-extrapolated in dt, as the stated check of that reference
     rmesh, rdts = (8, (1e-3, 5e-4)) if quick else (32, (5e-4, 2.5e-4))
     rsets = allv[8][1] + base
-    ref, unc_dt, _ = richardson_reference(scene, rsets + [f"beam.rod.elements={rmesh}"], rdts, "B", times,
-                                          f"pend-ref-{rmesh}")
+    gref, unc_dt, _ = richardson_reference(scene, rsets + [f"beam.rod.elements={rmesh}"], rdts, "B", times,
+                                           f"pend-ref-{rmesh}")
     s, err = run(scene, rsets + [f"beam.rod.elements={rmesh // 2}", f"dynamic.dt={rdts[1]}"], "pend-ref-mesh")
     unc_mesh = math.nan
     if s is not None and s["converged"]:
         pos = at_times(track(s["_rows"], "B"), times)
-        unc_mesh = max(dist(a, b) for a, b in zip(pos, ref)) if pos else math.nan
-    notes.append(("pendulum", f"Reference: `gef` (resultant beam, E and nu of the scene, Cowper shear factor), "
-                  f"{rmesh} elements, generalized-alpha (rho_inf = 0.8) with dt = {rdts[0]} and {rdts[1]} s, "
-                  f"Richardson-extrapolated for the scheme's second order; estimated error of the reference "
-                  f"{unc_dt:.1e} m from the step and {unc_mesh:.1e} m between {rmesh // 2} and {rmesh} elements "
-                  f"(an upper bound of the mesh part).  gef converges fastest on this problem; the continuum ANCF "
-                  f"elements converge towards it slowly (at 10 elements they are 1e-2 ... 6e-2 away, see the "
-                  f"table), the difference of the continuum and resultant models of this slender rod being of "
-                  f"order (h/L)^2 = 1e-4.  Error = max over t = 0.1, 0.2, ... {t_end} s of "
-                  f"|r_B(t) - r_B,ref(t)| / L, L = 1 m."))
+        unc_mesh = max(dist(a, b) for a, b in zip(pos, gref)) if pos else math.nan
+    gef_d = max(dist(a, b) for a, b in zip(gref, ref))
+    notes.append(("pendulum", f"Reference: a planar geometrically exact (Reissner/Simo) beam written "
+                  f"independently in numpy/scipy (references/pendulum_reissner.py: x, z, theta per node, "
+                  f"quadratic elements, reduced integration, E and nu of the scene, Cowper shear factor, "
+                  f"consistent translational and rotary inertia, pinned, released from the horizontal; "
+                  f"solve_ivp Radau, rtol 1e-10), meshes of {', '.join(map(str, pendulum_reissner.meshes()))} "
+                  f"elements Richardson-extrapolated point by point; "
+                  f"committed as references/data/pendulum_reissner.json (regenerate: /usr/bin/python3 -m "
+                  f"references.pendulum_reissner --write).  Its estimated error is at most {ref_unc:.1e} m at "
+                  f"these times.  Check: our `gef` (resultant beam), {rmesh} elements, generalized-alpha "
+                  f"(rho_inf = 0.8), dt = {rdts[0]} and {rdts[1]} s Richardson-extrapolated (its own estimates "
+                  f"{unc_dt:.1e} m from the step, {unc_mesh:.1e} m between {rmesh // 2} and {rmesh} elements) is "
+                  f"at most {gef_d:.1e} m from it.  The continuum ANCF elements converge towards the resultant "
+                  f"model slowly (at 10 elements they are 1e-2 ... 6e-2 away, see the table); continuum and "
+                  f"resultant models of this slender rod differ by order (h/L)^2 = 1e-4.  Error = max over "
+                  f"t = 0.1, 0.2, ... {t_end} s of |r_B(t) - r_B,ref(t)| / L, L = 1 m."))
     meshes = (10,) if quick else (4, 16)
     dts = (1e-2, 2e-3) if quick else (1e-2, 5e-3, 2e-3, 1e-3)
     for label, sets in variants:
