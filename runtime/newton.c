@@ -29,7 +29,7 @@ typedef struct attempt {
     int iters;
     double rnorm, dnorm, ref;
     double rtol_abs;                 /* the residual tolerance of the last iteration */
-    double rcond;                    /* KLU's pivot ratio of the last factorization  */
+    double rcond;                    /* pivot ratio (min/max |u_jj|) of the last factorization */
     int residual_met;                /* the residual met its tolerance at some iteration */
     int singular_at_start;           /* NEWTON_SINGULAR at iteration 0               */
     int signo;                       /* NEWTON_INTERRUPTED: the signal */
@@ -64,7 +64,7 @@ static void diagnose(char *buf, size_t n, int code, const attempt *a, int steps,
 {
     if (code == NEWTON_SINGULAR || (isfinite(a->rcond) && a->rcond < ILL_RCOND)) {
         int exact = code == NEWTON_SINGULAR;
-        int len = snprintf(buf, n, "%ssingular tangent (KLU pivot ratio %.1e)%s", exact ? "" : "numerically ",
+        int len = snprintf(buf, n, "%ssingular tangent (pivot ratio %.1e)%s", exact ? "" : "numerically ",
                            a->rcond,
                            a->residual_met ? ": the residual met its tolerance but the increments did not settle"
                                            : "");
@@ -1196,8 +1196,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             if (st == NEWTON_OK) {
                 if (isfinite(a.rcond) && a.rcond < ILL_RCOND && !warned_singular++)
                     bk_warn(info, out->console, m->name,
-                            "numerically singular tangent at the equilibrium of load factor %.6g (KLU "
-                            "pivot ratio %.1e): the solution is not unique; likely cause: a rigid motion or "
+                            "numerically singular tangent at the equilibrium of load factor %.6g (pivot "
+                            "ratio %.1e): the solution is not unique; likely cause: a rigid motion or "
                             "mechanism the constraints leave free (e.g. the rotation of a beam about its own "
                             "axis at a spherical joint), or a bifurcation point", target, a.rcond);
                 memcpy(w.qprev, w.qsave, (size_t)nd * sizeof *q);

@@ -34,7 +34,7 @@ int bk_nl_init(bk_nl *nl, bk_system *s, bk_output *out, char *msg, size_t nmsg)
         return -1;
     }
     if (s->neq > 0 && bk_lin_init(&nl->ls, s->neq, s->Ap, s->Ai) != BK_LIN_OK) {
-        snprintf(msg, nmsg, "sparse analysis (KLU) failed");
+        snprintf(msg, nmsg, "linear-solver set-up (ordering, band plan or KLU analysis) failed");
         return -1;
     }
     return 0;
