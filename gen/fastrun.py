@@ -41,6 +41,18 @@ MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
 EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
+_MEMO = {}                             # the fingerprint this process computed (see main)
+
+
+def fingerprint_once():
+    """fingerprint() of the repository, computed once per process: a run changes
+    none of its files (a kernel regenerated meanwhile only makes the entry it
+    records miss later)."""
+    if "fp" not in _MEMO:
+        _MEMO["fp"] = fingerprint()
+    return _MEMO["fp"]
+
+
 def fingerprint(root=ROOT, sources=SOURCES):
     """Names, sizes and modification times of the files the model and the solver
     are made from (sorted): any edit, regeneration or checkout changes it."""
@@ -114,7 +126,7 @@ def lookup(scene, sets):
             text = fh.read()
     except OSError:
         return None
-    k = key(scene, text, sets, fingerprint())
+    k = key(scene, text, sets, fingerprint_once())
     try:
         with open(os.path.join(CACHE, k + ".run"), encoding="utf-8") as fh:
             entry = read_entry(fh.read())
@@ -161,7 +173,7 @@ def record(scene, sets, model_path, solver, name, analysis, warnings):
         with open(scene, "rb") as fh:
             text = fh.read()
         scene = os.path.realpath(scene)
-        k = key(scene, text, list(sets), fingerprint())
+        k = key(scene, text, list(sets), fingerprint_once())
         os.makedirs(CACHE, exist_ok=True)
         st = os.stat(solver)
         entry = {"version": "1", "scene": scene, "solver": os.path.abspath(solver), "solver_size": st.st_size,
@@ -303,6 +315,8 @@ def main(argv):
             return rc
     if sys.flags.no_site:              # build.sh starts this with -S (15 ms less): the
         sys.meta_path.append(SiteOnDemand)   # site packages come when an import needs them
+    import gen.fastrun                 # this script's module is __main__: hand its fingerprint
+    gen.fastrun._MEMO.update(_MEMO)    # on to the module gen/cli.py records with
     from gen.cli import main as cli_main
     return cli_main(argv)
 
