@@ -82,28 +82,6 @@ static void add_force(const bk_element *et, const double *N, const double *v, co
         }
 }
 
-/* Shape functions of a point force (at y, z, or averaged over the section). */
-static void force_shape(const bk_model *m, const bk_force_load *f, double *N)
-{
-    const bk_element *et = bk_elem_type(m, f->elem);
-    const double *g = m->geoms[m->elems[f->elem].geom];
-    if (!f->section) {
-        et->shape(g, f->xi, f->y, f->z, N);
-        return;
-    }
-    static const double gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-    double Na[BK_MAX_SHAPE];
-    for (int a = 0; a < et->nshape; ++a)
-        N[a] = 0.0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            et->shape(g, f->xi, 0.5 * g[BK_GEOM_B] * gp[i], 0.5 * g[BK_GEOM_H] * gp[j], Na);
-            for (int a = 0; a < et->nshape; ++a)
-                N[a] += gw[i] * gw[j] * Na[a];
-        }
-}
-
 typedef struct scratch {
     double qe[BK_MAX_ELEMENT_DOF];
     double N[BK_MAX_SHAPE];
@@ -115,7 +93,7 @@ static void point_force(const bk_model *m, const bk_force_load *f, double fac, s
 {
     const bk_element *et = bk_elem_type(m, f->elem);
     double v[3];
-    force_shape(m, f, w->N);
+    bk_force_shape(m, f, w->N);
     if (f->follower) {
         follower_vector(m, f->elem, w->qe, f->xi, f->value, v, K ? w->dv : NULL);
         add_force(et, w->N, v, w->dv, fac, Q, K);
@@ -361,7 +339,7 @@ void bk_load_potentials(const bk_system *s, const double *q, double x, double *V
             continue;                       /* constant: in bk_external_load; follower: no potential */
         bk_gather(m, f->elem, q, qe);
         bk_gather(m, f->elem, m->q0, qe0);
-        force_shape(m, f, N);
+        bk_force_shape(m, f, N);
         *Vf += bk_load_factor(m, f->amp, x) * dead_work(bk_elem_type(m, f->elem), N, f->value, qe, qe0);
     }
     for (int i = 0; i < m->ndload; ++i) {

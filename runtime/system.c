@@ -651,6 +651,29 @@ double bk_strain_energy(const bk_system *s, const double *q)
     return U;
 }
 
+void bk_force_shape(const bk_model *m, const bk_force_load *f, double *N)
+{
+    const bk_element *et = bk_elem_type(m, f->elem);
+    const double *g = m->geoms[m->elems[f->elem].geom];
+    if (!f->section) {
+        et->shape(g, f->xi, f->y, f->z, N);
+        return;
+    }
+    /* uniform over the rectangle b x h: 3 x 3 Gauss points, exact for shape
+     * functions up to degree 5 across the section */
+    static const double gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+    static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    double Na[BK_MAX_SHAPE];
+    for (int a = 0; a < et->nshape; ++a)
+        N[a] = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            et->shape(g, f->xi, 0.5 * g[BK_GEOM_B] * gp[i], 0.5 * g[BK_GEOM_H] * gp[j], Na);
+            for (int a = 0; a < et->nshape; ++a)
+                N[a] += gw[i] * gw[j] * Na[a];
+        }
+}
+
 void bk_external_load(const bk_system *s, double *fext)
 {
     const bk_model *m = s->m;
@@ -660,26 +683,7 @@ void bk_external_load(const bk_system *s, double *fext)
         const bk_force_load *f = &m->forces[i];
         if (f->amp >= 0 || f->follower)
             continue;                  /* bk_assemble_loads (loads.h) */
-        const bk_elem *el = &m->elems[f->elem];
-        const bk_element *et = m->pairs[el->pair]->element;
-        const double *g = m->geoms[el->geom];
-        if (f->section) {
-            /* uniform over the rectangle b x h: 3 x 3 Gauss points, exact for
-             * shape functions up to degree 5 across the section */
-            static const double gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-            static const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-            double Na[BK_MAX_SHAPE];
-            for (int a = 0; a < et->nshape; ++a)
-                N[a] = 0.0;
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) {
-                    et->shape(g, f->xi, 0.5 * g[BK_GEOM_B] * gp[i], 0.5 * g[BK_GEOM_H] * gp[j], Na);
-                    for (int a = 0; a < et->nshape; ++a)
-                        N[a] += gw[i] * gw[j] * Na[a];
-                }
-        } else {
-            et->shape(g, f->xi, f->y, f->z, N);
-        }
+        bk_force_shape(m, f, N);
         scatter_shape(m, f->elem, N, f->value, 1.0, fext);
     }
     if (m->has_gravity) {

@@ -70,6 +70,10 @@ double bk_strain_energy(const bk_system *s, const double *q);
  * point forces and gravity. */
 void bk_external_load(const bk_system *s, double *fext);
 
+/* Shape functions N[nshape] of the point force f: at its point (xi, y, z) of
+ * the element, or averaged over the rectangular section at xi (f->section). */
+void bk_force_shape(const bk_model *m, const bk_force_load *f, double *N);
+
 /* The gravity part alone, into fg[ndof] (zeroed here; zero when gravity has an
  * amplitude: bk_assemble_loads applies it then). */
 void bk_gravity_load(const bk_system *s, double *fg);
