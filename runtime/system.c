@@ -21,18 +21,13 @@
 #define BK_OMP(...)
 #endif
 
-/* Elements evaluated per parallel block: as many as fit in about 8 MB of
- * element tangents, at least 64 (it depends on the model only, never on the
- * thread count: the assembly order must not).  Few blocks mean few barriers,
- * which matters on a loaded machine where a descheduled thread holds up a
- * barrier for a whole time slice. */
-#define BK_EVAL_BLOCK_MIN 64
-#define BK_EVAL_BLOCK_BYTES (8L << 20)
 /* Smaller models are evaluated by one thread: for them the fork/join and the
- * barriers cost more than they save (and much more on a loaded machine, where
+ * barrier cost more than they save (and much more on a loaded machine, where
  * a descheduled thread holds up the barrier: a 32-element gef pendulum spent
  * half its time spinning in libgomp with 2 threads on 2 busy cores). */
 #define BK_PAR_MIN_ELEMS 256
+/* Most parts of the parallel assembly (one per thread; owner codes of a byte). */
+#define BK_MAX_PARTS 250
 
 /* A pair whose elements are evaluated BK_LANES per call (bk_kernel.h, "Lane kernels"). */
 static int lane_pair(const bk_pair *p)
@@ -74,6 +69,159 @@ static int find_slot(const bk_system *s, int row, int col)
     const int *lo = s->Ai + s->Ap[col], *hi = s->Ai + s->Ap[col + 1];
     const int *p = bsearch(&row, lo, (size_t)(hi - lo), sizeof *lo, cmp_int);
     return p ? (int)(p - s->Ai) : -1;
+}
+
+/* Owner code of a matrix slot or DOF while the parts are made: 0 untouched,
+ * p + 1 touched by part p only, 255 touched by two parts or more. */
+static void mark_owner(unsigned char *o, int p)
+{
+    if (*o == 0)
+        *o = (unsigned char)(p + 1);
+    else if (*o != p + 1)
+        *o = 255;
+}
+
+typedef struct {
+    long to;                           /* DOF or slot */
+    int idx;                           /* stage index (element order) */
+} stage_ref;
+
+static int cmp_stage_ref(const void *a, const void *b)
+{
+    const stage_ref *x = a, *y = b;
+    if (x->to != y->to)
+        return (x->to > y->to) - (x->to < y->to);
+    return (x->idx > y->idx) - (x->idx < y->idx);
+}
+
+/* The parts of the parallel assembly (system.h): contiguous runs of groups of
+ * about equal cost, one per thread; the slots and DOFs that elements of two
+ * parts add into, and the stage entries that keep those elements' terms. */
+static int make_parts(bk_system *s)
+{
+    const bk_model *m = s->m;
+    s->npart = 1;
+    int np = s->nthreads < BK_MAX_PARTS ? s->nthreads : BK_MAX_PARTS;
+    if (np > s->ngroup)
+        np = s->ngroup;
+    if (np < 2 || m->nelem < BK_PAR_MIN_ELEMS)
+        return 0;
+    s->part = malloc(((size_t)np + 1) * sizeof *s->part);
+    if (!s->part)
+        return -1;
+    /* cost of a group ~ its scatter: nd^2 + nd per element, plus a call */
+    double total = 0.0, acc = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const double nd = bk_elem_type(m, e)->ndof;
+        total += nd * nd + nd;
+    }
+    total += 64.0 * s->ngroup;
+    int t = 1;
+    s->part[0] = 0;
+    for (int g = 0; g < s->ngroup; ++g) {
+        for (int e = s->group[g]; e < s->group[g + 1]; ++e) {
+            const double nd = bk_elem_type(m, e)->ndof;
+            acc += nd * nd + nd;
+        }
+        acc += 64.0;
+        while (t < np && acc >= total * t / np)
+            s->part[t++] = g + 1;
+    }
+    while (t < np)
+        s->part[t++] = s->ngroup;
+    s->part[np] = s->ngroup;
+    s->npart = np;
+
+    unsigned char *sown = calloc((size_t)(s->nnz ? s->nnz : 1), 1), *down = calloc((size_t)m->ndof + 1, 1);
+    if (!sown || !down) {
+        free(sown);
+        free(down);
+        return -1;
+    }
+    for (int p = 0; p < np; ++p)
+        for (int e = s->group[s->part[p]]; e < s->group[s->part[p + 1]]; ++e) {
+            const int nd = bk_elem_type(m, e)->ndof, *sl = s->eslot + s->eslot_off[e], *d = m->elems[e].dofs;
+            for (int k = 0; k < nd * nd; ++k)
+                if (sl[k] >= 0)
+                    mark_owner(&sown[sl[k]], p);
+            for (int k = 0; k < nd; ++k)
+                mark_owner(&down[d[k]], p);
+        }
+    /* elements with a shared slot or DOF get a scatter map with stage codes */
+    long nmap = 0, nstage = 0;
+    s->pel = malloc(((size_t)m->nelem + 1) * sizeof *s->pel);
+    if (!s->pel)
+        goto fail;
+    for (int e = 0; e < m->nelem; ++e) {
+        const int nd = bk_elem_type(m, e)->ndof, *sl = s->eslot + s->eslot_off[e], *d = m->elems[e].dofs;
+        long ns = 0;
+        for (int k = 0; k < nd * nd; ++k)
+            ns += sl[k] >= 0 && sown[sl[k]] == 255;
+        for (int k = 0; k < nd; ++k)
+            ns += down[d[k]] == 255;
+        s->pel[e] = ns ? nmap : -1;
+        nmap += ns ? (long)nd * nd + nd : 0;
+        nstage += ns;
+    }
+    s->pmap = malloc((size_t)(nmap ? nmap : 1) * sizeof *s->pmap);
+    s->stage = malloc((size_t)(nstage ? nstage : 1) * sizeof *s->stage);
+    stage_ref *fr = malloc((size_t)(nstage ? nstage : 1) * sizeof *fr);
+    stage_ref *kr = malloc((size_t)(nstage ? nstage : 1) * sizeof *kr);
+    s->sh_ptr = malloc((size_t)(nstage + 1) * sizeof *s->sh_ptr);
+    s->sh_to = malloc((size_t)(nstage ? nstage : 1) * sizeof *s->sh_to);
+    s->sh_idx = malloc((size_t)(nstage ? nstage : 1) * sizeof *s->sh_idx);
+    if (!s->pmap || !s->stage || !fr || !kr || !s->sh_ptr || !s->sh_to || !s->sh_idx) {
+        free(fr);
+        free(kr);
+        goto fail;
+    }
+    int idx = 0, nf = 0, nk = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        if (s->pel[e] < 0)
+            continue;
+        const int nd = bk_elem_type(m, e)->ndof, *sl = s->eslot + s->eslot_off[e], *d = m->elems[e].dofs;
+        int *code = s->pmap + s->pel[e];
+        /* stage indices in the serial scatter's order: fint entries, then Ax */
+        for (int k = 0; k < nd; ++k)
+            if (down[d[k]] == 255) {
+                fr[nf++] = (stage_ref){d[k], idx};
+                code[nd * nd + k] = -2 - idx++;
+            } else
+                code[nd * nd + k] = d[k];
+        for (int k = 0; k < nd * nd; ++k)
+            if (sl[k] >= 0 && sown[sl[k]] == 255) {
+                kr[nk++] = (stage_ref){sl[k], idx};
+                code[k] = -2 - idx++;
+            } else
+                code[k] = sl[k];
+    }
+    qsort(fr, (size_t)nf, sizeof *fr, cmp_stage_ref);
+    qsort(kr, (size_t)nk, sizeof *kr, cmp_stage_ref);
+    /* one list per shared DOF (first), then per shared slot, in element order */
+    int nt = 0;
+    s->nshared_dof = 0;
+    for (int i = 0; i < nf + nk; ++i) {
+        const stage_ref *r = i < nf ? &fr[i] : &kr[i - nf];
+        const int first = i == 0 || i == nf || r->to != (i < nf ? fr[i - 1].to : kr[i - nf - 1].to);
+        if (first) {
+            s->sh_ptr[nt] = i;
+            s->sh_to[nt++] = r->to;
+            if (i < nf)
+                s->nshared_dof = nt;
+        }
+        s->sh_idx[i] = r->idx;
+    }
+    s->sh_ptr[nt] = nf + nk;
+    s->nshared = nt;
+    free(fr);
+    free(kr);
+    free(sown);
+    free(down);
+    return 0;
+fail:
+    free(sown);
+    free(down);
+    return -1;
 }
 
 bk_system *bk_system_create(const bk_model *m, FILE *err)
@@ -243,31 +391,15 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
     if (!s->eslot)
         goto oom;
-    s->edof_lo = malloc(((size_t)m->nelem + 1) * sizeof *s->edof_lo);
-    s->edof_hi = malloc(((size_t)m->nelem + 1) * sizeof *s->edof_hi);
-    s->eslot_lo = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_lo);
-    s->eslot_hi = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_hi);
-    if (!s->edof_lo || !s->edof_hi || !s->eslot_lo || !s->eslot_hi)
-        goto oom;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         int nd = m->pairs[el->pair]->element->ndof;
         int *sl = s->eslot + s->eslot_off[e];
-        int dlo = m->ndof, dhi = -1, slo = INT_MAX, shi = -1;
-        for (int r = 0; r < nd; ++r) {
-            dlo = el->dofs[r] < dlo ? el->dofs[r] : dlo;
-            dhi = el->dofs[r] > dhi ? el->dofs[r] : dhi;
+        for (int r = 0; r < nd; ++r)
             for (int c = 0; c < nd; ++c) {
                 int row = s->eq[el->dofs[r]], col = s->eq[el->dofs[c]];
-                int k = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
-                sl[r * nd + c] = k;
-                if (k >= 0) {
-                    slo = k < slo ? k : slo;
-                    shi = k > shi ? k : shi;
-                }
+                sl[r * nd + c] = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
             }
-        }
-        s->edof_lo[e] = dlo, s->edof_hi[e] = dhi, s->eslot_lo[e] = slo, s->eslot_hi[e] = shi;
     }
     s->cslot_off = malloc(((size_t)m->nlincon + 1) * sizeof *s->cslot_off);
     if (!s->cslot_off)
@@ -351,19 +483,6 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         }
         s->group[s->ngroup] = m->nelem;
         s->slot_q = sq, s->slot_K = sK, s->slot_tab = st;
-        long blk = BK_EVAL_BLOCK_BYTES / (long)(sK * sizeof(double));
-        if (blk < BK_EVAL_BLOCK_MIN)
-            blk = BK_EVAL_BLOCK_MIN;
-        if (blk > s->ngroup)
-            blk = s->ngroup > 0 ? s->ngroup : 1;
-        s->eval_block = (int)blk;
-        s->bq = alloc_lanes((size_t)blk * sq);
-        s->bf = alloc_lanes((size_t)blk * sq);
-        s->bK = alloc_lanes((size_t)blk * sK);
-        s->btab = alloc_lanes((size_t)blk * st);
-        s->bmat = alloc_lanes((size_t)blk * BK_LANES * BK_MAT_MAXPARAM);
-        if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
-            goto oom;
     }
     s->nthreads = 1;
 #ifdef _OPENMP
@@ -371,6 +490,19 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     if (s->nthreads < 1)
         s->nthreads = 1;
 #endif
+    if (make_parts(s) != 0)
+        goto oom;
+    {
+        /* one evaluation slot per part (one when serial) */
+        const size_t np = (size_t)(s->npart > 1 ? s->npart : 1);
+        s->bq = alloc_lanes(np * s->slot_q);
+        s->bf = alloc_lanes(np * s->slot_q);
+        s->bK = alloc_lanes(np * s->slot_K);
+        s->btab = alloc_lanes(np * s->slot_tab);
+        s->bmat = alloc_lanes(np * BK_LANES * BK_MAT_MAXPARAM);
+        if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
+            goto oom;
+    }
     return s;
 oom:
     fprintf(err, "error: out of memory while building the system of '%s'\n", m->name);
@@ -401,21 +533,24 @@ void bk_system_free(bk_system *s)
     free(s->btab);
     free(s->bmat);
     free(s->group);
-    free(s->edof_lo);
-    free(s->edof_hi);
-    free(s->eslot_lo);
-    free(s->eslot_hi);
+    free(s->part);
+    free(s->pel);
+    free(s->pmap);
+    free(s->stage);
+    free(s->sh_ptr);
+    free(s->sh_idx);
+    free(s->sh_to);
     free(s);
 }
 
-/* Element evaluation in blocks of s->eval_block groups: the kernels of a
- * block run in parallel (OpenMP) into per-group buffers, then the block is
- * scattered in element order, each thread into its own range of fint and Ax
- * entries.  The groups and the lane of each element in its group depend on
- * the model only, and every entry of fint and Ax receives its terms in
- * element order whatever the number of threads, so the results are
- * bit-identical for any OMP_NUM_THREADS; the buffers are allocated once, in
- * bk_system_create. */
+/* Element evaluation by groups (system.h).  Serially, each group is
+ * evaluated and scattered in element order.  In parallel, each thread takes
+ * its part (a run of groups of about equal cost) and scatters its elements
+ * directly into the slots of fint and Ax that only its part adds into; terms
+ * for slots shared with another part go to stage entries, summed after the
+ * parallel region in element order.  Every entry therefore receives its terms
+ * in element order, whatever the number of threads: results are
+ * bit-identical for any OMP_NUM_THREADS. */
 /* Group g into its slot: f (and K when tangent) of each element, lane-ordered
  * (entry k of lane l at [k * BK_LANES + l]) for a lane group, plain for a
  * single element without lane kernels. */
@@ -481,44 +616,48 @@ static int scatter_strided(const bk_system *s, int e, const double *fe, const do
     return bad;
 }
 
-/* The same restricted to the DOFs [d0, d1) of fint and the slots [s0, s1) of Ax
- * (one thread's share of the parallel scatter). */
-static int scatter_strided_range(const bk_system *s, int e, const double *fe, const double *Ke, int stride,
-                                 double *fint, double *Ax, int d0, int d1, long s0, long s1)
+/* The same for an element of a part (parallel assembly): terms for shared
+ * slots and DOFs go to their stage entries. */
+static int scatter_strided_part(const bk_system *s, int e, const double *fe, const double *Ke, int stride,
+                                double *fint, double *Ax)
 {
+    if (s->pel[e] < 0)
+        return scatter_strided(s, e, fe, Ke, stride, fint, Ax);
+    const int nd = bk_elem_type(s->m, e)->ndof, *code = s->pmap + s->pel[e];
+    double *stage = s->stage;
     int bad = 0;
-    if (s->edof_hi[e] >= d0 && s->edof_lo[e] < d1) {
-        const int *d = s->m->elems[e].dofs;
-        const int nd = bk_elem_type(s->m, e)->ndof;
-        for (int k = 0; k < nd; ++k)
-            if (d[k] >= d0 && d[k] < d1) {
-                const double v = fe[(size_t)k * stride];
-                if (!isfinite(v))
-                    bad = 1;
-                fint[d[k]] += v;
-            }
+    for (int k = 0; k < nd; ++k) {
+        const double v = fe[(size_t)k * stride];
+        const int c = code[nd * nd + k];
+        if (!isfinite(v))
+            bad = 1;
+        if (c >= 0)
+            fint[c] += v;
+        else
+            stage[-2 - c] = v;
     }
-    if (Ax && s->eslot_hi[e] >= s0 && s->eslot_lo[e] < s1) {
-        const int nd = bk_elem_type(s->m, e)->ndof;
-        const int *sl = s->eslot + s->eslot_off[e];
+    if (Ax)
         for (int k = 0; k < nd * nd; ++k) {
             const double v = Ke[(size_t)k * stride];
-            if (sl[k] >= s0 && sl[k] < s1 && v != 0.0)
-                Ax[sl[k]] += v;
+            const int c = code[k];
+            if (c >= 0) {
+                if (v != 0.0)
+                    Ax[c] += v;
+            } else if (c <= -2)
+                stage[-2 - c] = v;
         }
-    }
     return bad;
 }
 
-static int scatter_group_range(const bk_system *s, int g, const double *bf, const double *bK, double *fint,
-                               double *Ax, int d0, int d1, long s0, long s1)
+static int scatter_group_part(const bk_system *s, int g, const double *bf, const double *bK, double *fint,
+                              double *Ax)
 {
     const int e0 = s->group[g], n = s->group[g + 1] - e0;
     if (!lane_pair(s->m->pairs[s->m->elems[e0].pair]))
-        return scatter_strided_range(s, e0, bf, bK, 1, fint, Ax, d0, d1, s0, s1);
+        return scatter_strided_part(s, e0, bf, bK, 1, fint, Ax);
     int bad = 0;
     for (int l = 0; l < n; ++l)
-        bad |= scatter_strided_range(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax, d0, d1, s0, s1);
+        bad |= scatter_strided_part(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax);
     return bad;
 }
 
@@ -592,15 +731,11 @@ static void scatter_shape(const bk_model *m, int e, const double *N, const doubl
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
-    const int nelem = m->nelem;
     int bad = 0;
     const int ng = s->ngroup, tangent = Ax != NULL;
     const size_t sq = s->slot_q, sK = s->slot_K, st = s->slot_tab, sm = (size_t)BK_LANES * BK_MAT_MAXPARAM;
-    if (s->nthreads > 1 && nelem >= BK_PAR_MIN_ELEMS) {
-        /* Each thread zeroes and then sums into its own range of fint and of Ax,
-         * element by element in element order: every entry gets its terms in the
-         * same order as in the serial loop, whatever the number of threads. */
-        BK_OMP(omp parallel num_threads(s->nthreads) reduction(|: bad))
+    if (s->npart > 1) {
+        BK_OMP(omp parallel num_threads(s->npart) reduction(|: bad))
         {
             int T = 1, t = 0;
 #ifdef _OPENMP
@@ -611,17 +746,27 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
             memset(fint + d0, 0, (size_t)(d1 - d0) * sizeof *fint);
             if (Ax)
                 memset(Ax + s0, 0, (size_t)(s1 - s0) * sizeof *Ax);
-            for (int b0 = 0; b0 < ng; b0 += s->eval_block) {
-                int nb = ng - b0 < s->eval_block ? ng - b0 : s->eval_block;
-                /* dynamic: a thread that is descheduled holds back only its chunk */
-                BK_OMP(omp for schedule(dynamic, 2))
-                for (int i = 0; i < nb; ++i)
-                    eval_group(s, b0 + i, q, s->bq + i * sq, s->bf + i * sq, s->bK + i * sK, s->btab + i * st,
-                               s->bmat + i * sm, tangent);
-                for (int i = 0; i < nb; ++i)
-                    bad |= scatter_group_range(s, b0 + i, s->bf + i * sq, s->bK + i * sK, fint, Ax, d0, d1, s0, s1);
-                /* the next block's evaluation overwrites the buffers */
-                BK_OMP(omp barrier)
+            BK_OMP(omp barrier)
+            /* a smaller team than asked for: each part still by one thread */
+            for (int p = t; p < s->npart; p += T)
+                for (int g = s->part[p]; g < s->part[p + 1]; ++g) {
+                    eval_group(s, g, q, s->bq + p * sq, s->bf + p * sq, s->bK + p * sK, s->btab + p * st,
+                               s->bmat + p * sm, tangent);
+                    bad |= scatter_group_part(s, g, s->bf + p * sq, s->bK + p * sK, fint, Ax);
+                }
+        }
+        /* the shared slots and DOFs, their terms in element order */
+        for (int i = 0; i < s->nshared; ++i) {
+            const long to = s->sh_to[i];
+            if (i < s->nshared_dof) {
+                for (int j = s->sh_ptr[i]; j < s->sh_ptr[i + 1]; ++j)
+                    fint[to] += s->stage[s->sh_idx[j]];
+            } else if (Ax) {
+                for (int j = s->sh_ptr[i]; j < s->sh_ptr[i + 1]; ++j) {
+                    const double v = s->stage[s->sh_idx[j]];
+                    if (v != 0.0)
+                        Ax[to] += v;
+                }
             }
         }
     } else {

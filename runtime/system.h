@@ -8,9 +8,9 @@
  * with s = cscale, a stiffness-sized factor that keeps the constraint rows on
  * the scale of the stiffness rows.  The pattern and each element's scatter map
  * into it are computed once; assembly does no allocation.  Element kernels
- * run in parallel (OpenMP, when compiled with it) in fixed-size blocks, each
- * block scattered serially in element order: results are bit-identical for
- * any thread count.
+ * run in parallel (OpenMP, when compiled with it), one contiguous part of the
+ * elements per thread, each entry summed in element order: results are
+ * bit-identical for any thread count.
  */
 #ifndef BK_SYSTEM_H
 #define BK_SYSTEM_H
@@ -44,14 +44,27 @@ typedef struct bk_system {
     int ngroup;
     int *group;              /* [ngroup+1] first element of each group        */
     size_t slot_q, slot_K, slot_tab; /* doubles per group slot of bq/bf, bK, btab */
-    double *bq, *bf, *bK;    /* per-group buffers of one evaluation block     */
+    double *bq, *bf, *bK;    /* per-part evaluation buffers (one slot each)    */
     double *btab, *bmat;     /* lane-ordered tables and material parameters   */
-    int eval_block;          /* groups per evaluation block (from the model only) */
-    /* Parallel scatter: each thread adds into its own range of fint (DOFs) and
-     * Ax (slots), element by element in element order; per element the range
-     * of its DOFs and of its slots lets a thread skip what is not its own. */
-    int *edof_lo, *edof_hi;  /* [nelem] smallest, largest DOF of the element  */
-    int *eslot_lo, *eslot_hi; /* [nelem] smallest, largest slot (hi < lo: none) */
+    /* Parallel assembly (nthreads > 1 and enough elements): npart contiguous
+     * runs of groups of about equal cost, part[npart+1] their first groups,
+     * one per thread.  A thread adds its elements' terms directly into the
+     * slots of fint and Ax that only its part touches; terms for a slot or
+     * DOF that two parts touch go to stage[]: an element with such entries
+     * has a map pmap[pel[e]..] (nd*nd slot codes, then nd DOF codes: >= 0
+     * target, -1 none, <= -2 stage entry -2-code; pel[e] = -1: use eslot).
+     * Shared target i (DOFs first, nshared_dof of them, then slots) sums
+     * stage[sh_idx[sh_ptr[i]..sh_ptr[i+1]]] in element order into
+     * sh_to[i] after the parallel region.  Parts depend on the thread count;
+     * the order of every sum does not. */
+    int npart;               /* 1: serial                                       */
+    int *part;
+    long *pel;
+    int *pmap;
+    double *stage;
+    int nshared, nshared_dof;
+    int *sh_ptr, *sh_idx;
+    long *sh_to;
     int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
 } bk_system;
 
