@@ -142,35 +142,67 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
     return 0;
 }
 
+/* 2 when an entry of Ax in the CSC columns of new columns c >= from is not
+ * finite, else `st` (the result of a factorization that stopped early: a
+ * non-finite value is reported as such wherever it is). */
+static int nonfinite_after(const bk_band *b, const double *Ax, int from, int st)
+{
+    for (int c = from; c < b->n; ++c) {
+        const int j = b->perm[c];
+        for (int p = b->Ap[j]; p < b->Ap[j + 1]; ++p)
+            if (!(fabs(Ax[p]) <= INFINITY))
+                return 2;
+    }
+    return st;
+}
+
+/* The factorization streams the band once: three cursors move along the new
+ * columns, the row-scale scan ahead of the fill by kl + ku columns (row i
+ * has its last entry in column i + ku, the fill of column c needs rows up to
+ * c + kl), the fill (zero the band column, scaled CSC entries into it) ahead
+ * of the elimination by kl + ku (step j updates columns up to j + kl + ku).
+ * The window between the cursors stays in cache: each value is read from
+ * memory once and the band written once, whatever n.  Each band entry gets
+ * the same operations in the same order as with separate passes. */
 int bk_band_factor(bk_band *b, const double *Ax)
 {
-    const int n = b->n, kl = b->kl, kv = b->kl + b->ku, ldab = b->ldab;
+    const int n = b->n, kl = b->kl, ku = b->ku, kv = b->kl + b->ku, ldab = b->ldab;
     double *ab = b->ab, *rs = b->rs;
-    memset(ab, 0, (size_t)ldab * (size_t)n * sizeof *ab);
+    const int *Ap = b->Ap, *Ai = b->Ai, *perm = b->perm, *iperm = b->iperm;
     for (int i = 0; i < n; ++i)
         rs[i] = 0.0;
-    for (int j = 0; j < n; ++j)
-        for (int p = b->Ap[j]; p < b->Ap[j + 1]; ++p) {
-            double a = fabs(Ax[p]);
-            int i = b->iperm[b->Ai[p]];
-            if (!(a <= INFINITY))
-                return 2;
-            if (a > rs[i])
-                rs[i] = a;
-        }
-    for (int i = 0; i < n; ++i) {
-        if (!(rs[i] > 0.0))
-            return 1;                                /* an empty row */
-        rs[i] = 1.0 / rs[i];
-    }
-    for (int j = 0; j < n; ++j)
-        for (int p = b->Ap[j]; p < b->Ap[j + 1]; ++p)
-            ab[b->map[p]] += Ax[p] * rs[b->iperm[b->Ai[p]]];
-
+    int scanned = 0, scaled = 0, filled = 0;       /* columns scanned, rows scaled, columns filled */
     double umin = INFINITY, umax = 0.0;
     int ju = 0;                                      /* last column of U touched so far */
     int kvu = 0;                                     /* superdiagonals U has (ku without interchanges) */
     for (int j = 0; j < n; ++j) {
+        const int fill_to = j + kv + 1 < n ? j + kv + 1 : n;
+        for (; filled < fill_to; ++filled) {
+            const int c = filled, scan_to = c + kv + 1 < n ? c + kv + 1 : n;
+            for (; scanned < scan_to; ++scanned) {
+                const int jo = perm[scanned];
+                for (int p = Ap[jo]; p < Ap[jo + 1]; ++p) {
+                    const double a = fabs(Ax[p]);
+                    const int i = iperm[Ai[p]];
+                    if (!(a <= INFINITY))
+                        return 2;
+                    if (a > rs[i])
+                        rs[i] = a;
+                }
+            }
+            /* rows whose last column is scanned: their scale is final */
+            const int scale_to = scanned == n ? n : scanned - ku;
+            for (; scaled < scale_to; ++scaled) {
+                if (!(rs[scaled] > 0.0))
+                    return nonfinite_after(b, Ax, scanned, 1);   /* an empty row */
+                rs[scaled] = 1.0 / rs[scaled];
+            }
+            double *bc = ab + (long)c * ldab;
+            memset(bc, 0, (size_t)ldab * sizeof *bc);
+            const int jo = perm[c];
+            for (int p = Ap[jo]; p < Ap[jo + 1]; ++p)
+                ab[b->map[p]] += Ax[p] * rs[iperm[Ai[p]]];
+        }
         const int km = kl < n - 1 - j ? kl : n - 1 - j;
         double *col = ab + kv + (long)j * ldab;      /* col[r] = A(j + r, j) */
         double amax = 0.0;
@@ -180,7 +212,7 @@ int bk_band_factor(bk_band *b, const double *Ax)
             amax = a > amax ? a : amax;
         }
         if (!(amax > 0.0))
-            return 1;
+            return nonfinite_after(b, Ax, scanned, 1);
         int piv = 0;
         if (!(fabs(col[0]) >= BK_BAND_PIVOT_TOL * amax))   /* the diagonal is too small: the largest */
             for (int r = 1; r <= km; ++r)
