@@ -9,7 +9,6 @@ Exit status (also in ./build.sh --help and the README):
   130 interrupted by SIGINT (Ctrl-C), 143 by SIGTERM: results so far are kept and
       summary.json says "interrupted": true
 """
-import json
 import os
 import signal
 import sys
@@ -92,6 +91,7 @@ def write_interrupted_summary(out, name, analysis, signo):
     path = Path(out) / "summary.json"
     if path.exists():
         return
+    import json
     sig = signal.Signals(signo).name
     path.write_text(json.dumps({
         "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
@@ -242,6 +242,7 @@ def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck):
         return EXIT_INPUT
     summ = out / "summary.json"
     if not quiet and summ.exists():
+        import json
         print_summary(json.loads(summ.read_text()), out)
     return rc
 

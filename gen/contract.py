@@ -5,9 +5,10 @@ geom[], the section shapes, the field roles and the element capabilities.
 The header is the one definition; this module only parses it, so a slot, role
 or capability added there is known here without a second list.
 """
-import re
 from functools import lru_cache
 from pathlib import Path
+
+from gen.derived import derived
 
 HEADER = Path(__file__).resolve().parent.parent / "runtime" / "bk_kernel.h"
 
@@ -17,53 +18,63 @@ _ROLE_OF_NAME = {"r": "BK_FIELD_POSITION", "r_x": "BK_FIELD_R_X", "r_y": "BK_FIE
                  "r_zz": "BK_FIELD_R_ZZ", "p": "BK_FIELD_QUATERNION", "lambda": "BK_FIELD_MULTIPLIER"}
 
 
+def _parse(data):
+    """{"define:NAME": int} of every `#define NAME <integer>` and
+    {"enum:NAME": ((constant, value), ...)} of every `enum NAME { ... }`, values
+    as C gives them (explicit, shifted, or previous + 1)."""
+    import re
+    text = data.decode("utf-8")
+    out = {f"define:{m.group(1)}": int(m.group(2))
+           for m in re.finditer(r"^#define\s+(\w+)\s+(\d+)\s*$", text, re.M)}
+    src = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+    for m in re.finditer(r"enum\s+(\w+)\s*\{(.*?)\}", src, re.S):
+        items, nxt = [], 0
+        for item in m.group(2).split(","):
+            item = item.strip()
+            if not item:
+                continue
+            if "=" in item:
+                k, v = (x.strip() for x in item.split("=", 1))
+                sh = re.fullmatch(r"(\d+)\s*<<\s*(\d+)", v)
+                val = int(sh.group(1)) << int(sh.group(2)) if sh else int(v)
+            else:
+                k, val = item, nxt
+            items.append((k, val))
+            nxt = val + 1
+        out.setdefault(f"enum:{m.group(1)}", tuple(items))
+    return out
+
+
 @lru_cache(maxsize=None)
-def _text():
-    return HEADER.read_text(encoding="utf-8")
+def _parsed():
+    """What _parse finds in the header, through gen/derived.py (a run does not
+    parse an unchanged header again)."""
+    return derived("contract", HEADER.read_bytes(), _parse)
 
 
-def _strip_comments(s):
-    return re.sub(r"/\*.*?\*/", "", s, flags=re.S)
+def _define(name):
+    try:
+        return _parsed()[f"define:{name}"]
+    except KeyError:
+        raise RuntimeError(f"{HEADER}: no '#define {name} <n>'") from None
 
 
 def version():
     """BK_KERNEL_VERSION of the header."""
-    m = re.search(r"^#define\s+BK_KERNEL_VERSION\s+(\d+)\s*$", _text(), re.M)
-    if not m:
-        raise RuntimeError(f"{HEADER}: no '#define BK_KERNEL_VERSION <n>'")
-    return int(m.group(1))
+    return _define("BK_KERNEL_VERSION")
 
 
 def lanes():
     """BK_LANES of the header: elements per call of a lane kernel."""
-    m = re.search(r"^#define\s+BK_LANES\s+(\d+)\s*$", _text(), re.M)
-    if not m:
-        raise RuntimeError(f"{HEADER}: no '#define BK_LANES <n>'")
-    return int(m.group(1))
+    return _define("BK_LANES")
 
 
-@lru_cache(maxsize=None)
 def _enum(name):
-    """[(constant, value)] of `enum name { ... }` or `typedef enum name { ... }`,
-    values as C gives them (explicit, shifted, or previous + 1)."""
-    src = _strip_comments(_text())
-    m = re.search(r"enum\s+" + re.escape(name) + r"\s*\{(.*?)\}", src, re.S)
-    if not m:
-        raise RuntimeError(f"{HEADER}: no enum {name}")
-    out, nxt = [], 0
-    for item in m.group(1).split(","):
-        item = item.strip()
-        if not item:
-            continue
-        if "=" in item:
-            k, v = (x.strip() for x in item.split("=", 1))
-            sh = re.fullmatch(r"(\d+)\s*<<\s*(\d+)", v)
-            val = int(sh.group(1)) << int(sh.group(2)) if sh else int(v)
-        else:
-            k, val = item, nxt
-        out.append((k, val))
-        nxt = val + 1
-    return tuple(out)
+    """[(constant, value)] of `enum name { ... }` or `typedef enum name { ... }`."""
+    try:
+        return _parsed()[f"enum:{name}"]
+    except KeyError:
+        raise RuntimeError(f"{HEADER}: no enum {name}") from None
 
 
 def geom_slots():
@@ -121,6 +132,4 @@ def role_of(field_name):
 
 def max_sizes():
     """(BK_MAX_ELEMENT_DOF, BK_MAX_SHAPE)."""
-    t = _text()
-    get = lambda n: int(re.search(r"^#define\s+" + n + r"\s+(\d+)", t, re.M).group(1))
-    return get("BK_MAX_ELEMENT_DOF"), get("BK_MAX_SHAPE")
+    return _define("BK_MAX_ELEMENT_DOF"), _define("BK_MAX_SHAPE")

@@ -11,7 +11,6 @@ about 3.5 kB per continuum element (section rings) and 0.5 kB per rod element;
 a Newton iteration about 40 ns per tangent entry.
 """
 import os
-import shutil
 
 SOLVER_BYTES_PER_ENTRY = 30.0
 SOLVER_BYTES_PER_ELEMENT = 2000.0
@@ -63,7 +62,8 @@ def check(est, beams, out_dir, fail, log=None):
                   f"{_gb(avail)} available; expected fewer elements (at most about "
                   f"{int(biggest[2] * 0.8 * avail / est['memory'])} here)")
     try:
-        free = shutil.disk_usage(out_dir if os.path.isdir(out_dir) else os.path.dirname(out_dir) or ".").free
+        st = os.statvfs(out_dir if os.path.isdir(out_dir) else os.path.dirname(out_dir) or ".")
+        free = st.f_bavail * st.f_frsize              # as shutil.disk_usage (not imported: ~1.5 ms)
     except OSError:
         free = None
     if free is not None and est["disk"] > 0.9 * free:

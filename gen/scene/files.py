@@ -1,9 +1,7 @@
 """Scene files: reading the TOML, `--set` overrides, the kernel index."""
-import json
-import re
-import tomllib
 from pathlib import Path
 
+from gen.derived import derived
 from gen.scene.values import SceneError, _typename
 
 ROOT = Path(__file__).resolve().parent.parent.parent
@@ -18,7 +16,9 @@ def apply_overrides(doc, sets, path):
         key, val = item.split("=", 1)
         parts = key.split(".")
         try:
-            num = int(val) if re.fullmatch(r"[+-]?\d+", val.strip()) else float(val)
+            digits = val.strip()
+            digits = digits[1:] if digits[:1] in "+-" else digits
+            num = int(val) if digits.isdigit() and digits.isascii() else float(val)
         except ValueError:
             num = None
         node = doc
@@ -66,18 +66,21 @@ def apply_overrides(doc, sets, path):
     return doc
 
 
+def _parse_json(data):
+    import json
+    return json.loads(data.decode("utf-8"))
+
+
 def load_index():
     try:
-        return json.loads(KERNEL_INDEX.read_text(encoding="utf-8"))
+        data = KERNEL_INDEX.read_bytes()
     except OSError:
         raise SceneError(f"error: {KERNEL_INDEX}: missing; run ./build.sh gen")
+    return derived("index", data, _parse_json)
 
 
-def read_toml(path):
-    try:
-        data = Path(path).read_bytes()
-    except OSError as e:
-        raise SceneError(f"error: {path}: cannot read: {e.strerror}")
+def _parse_toml(data, path):
+    import tomllib
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as e:
@@ -87,3 +90,11 @@ def read_toml(path):
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"error: {path}: TOML syntax: {e}")
 
+
+def read_toml(path):
+    """The parsed scene file (through gen/derived.py: a file parsed before is not parsed again)."""
+    try:
+        data = Path(path).read_bytes()
+    except OSError as e:
+        raise SceneError(f"error: {path}: cannot read: {e.strerror}")
+    return derived("toml", data, lambda d: _parse_toml(d, path))
