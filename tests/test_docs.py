@@ -50,5 +50,5 @@ def test_readme_scene_reference_matches_the_reader():
 def test_readme_mentions_outputs_and_limits():
     text = (ROOT / "README.md").read_text()
     for needle in ("results.pvd", "step_NNNNNN.vtu", "vtk_every", "[[initial_velocity]]", "1,000,000",
-                   "about 100 frames"):
+                   "about 50 frames"):
         assert needle in text, needle

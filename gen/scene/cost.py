@@ -2,6 +2,7 @@
 from gen import estimate as est_mod
 from gen.scene.files import ROOT
 from gen.scene.mesh import MAX_ELEMENTS
+from gen.scene.options import DYNAMIC_FRAMES
 
 
 def cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log):
@@ -23,7 +24,7 @@ def cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log):
     if every == 0:
         frames = 0
     elif analysis == "dynamic":
-        frames = 101
+        frames = DYNAMIC_FRAMES + 1
     elif analysis == "modal":
         md = doc.get("modal", {}) if isinstance(doc.get("modal"), dict) else {}
         frames = (md.get("modes", 10) if isinstance(md.get("modes", 10), int) else 10) + 2

@@ -7,6 +7,11 @@ from gen.scene.mesh import locate, parse_point
 from gen.scene.values import (_cross, _dot, _sub, check_keys, get_array_of_tables, get_bool, get_int, get_name,
                               get_number, get_str, get_table, get_vec3)
 
+# ParaView frames of a dynamic run by default (every ceil(output steps / this)-th
+# output step, and the last): enough to play the motion, few enough that writing
+# them stays a small part of the run (the speed issue's output target).
+DYNAMIC_FRAMES = 50
+
 STATIC_DEFAULTS = {"load_steps": 1, "max_iterations": 25, "max_cutbacks": 12,
                    "rtol": 1e-8, "utol": 1e-10, "cycles": 0, "predictor": "secant", "stability": True,
                    "eigenvalues": False, "stable_path": False, "step_control": "adaptive", "method": "load_control",
@@ -101,7 +106,7 @@ def options(ctx, doc, analysis):
     check_keys(ctx, ot, set(K.OUTPUT), "output")
     if analysis == "dynamic":
         n_out = dyn["t_end"] / (dyn["dt"] * dyn["output_every"])
-        default_vtk = max(1, math.ceil(n_out / 100))
+        default_vtk = max(1, math.ceil(n_out / DYNAMIC_FRAMES))
     else:
         default_vtk = 1
     vtk_every = get_int(ctx, ot, "vtk_every", "output", default=default_vtk, lo=0, hi=10**9)
