@@ -164,10 +164,17 @@ static int nonfinite_after(const bk_band *b, const double *Ax, int from, int st)
  * The window between the cursors stays in cache: each value is read from
  * memory once and the band written once, whatever n.  Each band entry gets
  * the same operations in the same order as with separate passes. */
-int bk_band_factor(bk_band *b, const double *Ax)
+static void band_back_solve(bk_band *b, double *x);
+
+/* The factorization (x == NULL) or the factorization and the solve of A x = b
+ * with b in x: the forward substitution then runs inside the elimination,
+ * step j right after column j of L is made (while it is in cache), and only
+ * the back substitution reads the factors again.  The operations on x are
+ * those of bk_band_solve in the same order: the same bits. */
+static int band_factor(bk_band *b, const double *Ax, double *x)
 {
     const int n = b->n, kl = b->kl, ku = b->ku, kv = b->kl + b->ku, ldab = b->ldab;
-    double *ab = b->ab, *rs = b->rs;
+    double *ab = b->ab, *rs = b->rs, *w = b->w;
     const int *Ap = b->Ap, *Ai = b->Ai, *perm = b->perm, *iperm = b->iperm;
     for (int i = 0; i < n; ++i)
         rs[i] = 0.0;
@@ -196,6 +203,8 @@ int bk_band_factor(bk_band *b, const double *Ax)
                 if (!(rs[scaled] > 0.0))
                     return nonfinite_after(b, Ax, scanned, 1);   /* an empty row */
                 rs[scaled] = 1.0 / rs[scaled];
+                if (x)
+                    w[scaled] = x[perm[scaled]] * rs[scaled];
             }
             double *bc = ab + (long)c * ldab;
             memset(bc, 0, (size_t)ldab * sizeof *bc);
@@ -236,6 +245,16 @@ int bk_band_factor(bk_band *b, const double *Ax)
         const double d = col[0], inv = 1.0 / d;
         for (int r = 1; r <= km; ++r)
             col[r] *= inv;
+        if (x) {                                     /* forward substitution, step j */
+            if (piv != 0) {
+                const double tw = w[j];
+                w[j] = w[j + piv];
+                w[j + piv] = tw;
+            }
+            const double tw = w[j];
+            if (tw != 0.0)
+                axpy_sub(km, tw, col + 1, w + j + 1);
+        }
         if (ju - j > kvu)
             kvu = ju - j;
         const int kp = km == kl ? b->klp : km;          /* whole vectors inside the band */
@@ -253,12 +272,42 @@ int bk_band_factor(bk_band *b, const double *Ax)
     }
     b->rcond = n > 0 ? umin / umax : 1.0;
     b->kvu = kvu;
+    if (x)
+        band_back_solve(b, x);
     return 0;
+}
+
+int bk_band_factor(bk_band *b, const double *Ax)
+{
+    return band_factor(b, Ax, NULL);
+}
+
+int bk_band_factor_solve(bk_band *b, const double *Ax, double *x)
+{
+    return band_factor(b, Ax, x);
+}
+
+/* U x = w (kvu superdiagonals), then x back in the old order. */
+static void band_back_solve(bk_band *b, double *x)
+{
+    const int n = b->n, kv = b->kl + b->ku, kvu = b->kvu, ldab = b->ldab;
+    const double *ab = b->ab;
+    double *w = b->w;
+    for (int j = n - 1; j >= 0; --j) {
+        const double *col = ab + kv + (long)j * ldab;   /* col[i - j] = U(i, j) */
+        w[j] /= col[0];
+        const double t = w[j];
+        const int i0 = j - kvu > 0 ? j - kvu : 0;
+        if (t != 0.0)
+            axpy_sub(j - i0, t, col - (j - i0), w + i0);
+    }
+    for (int i = 0; i < n; ++i)
+        x[b->perm[i]] = w[i];
 }
 
 void bk_band_solve(bk_band *b, double *x)
 {
-    const int n = b->n, kl = b->kl, kv = b->kl + b->ku, kvu = b->kvu, ldab = b->ldab;
+    const int n = b->n, kl = b->kl, kv = b->kl + b->ku, ldab = b->ldab;
     const double *ab = b->ab;
     double *w = b->w;
     for (int i = 0; i < n; ++i)
@@ -275,16 +324,7 @@ void bk_band_solve(bk_band *b, double *x)
         if (t != 0.0)
             axpy_sub(km, t, col + 1, w + j + 1);
     }
-    for (int j = n - 1; j >= 0; --j) {               /* U: kvu superdiagonals */
-        const double *col = ab + kv + (long)j * ldab;   /* col[i - j] = U(i, j) */
-        w[j] /= col[0];
-        const double t = w[j];
-        const int i0 = j - kvu > 0 ? j - kvu : 0;
-        if (t != 0.0)
-            axpy_sub(j - i0, t, col - (j - i0), w + i0);
-    }
-    for (int i = 0; i < n; ++i)
-        x[b->perm[i]] = w[i];
+    band_back_solve(b, x);
 }
 
 void bk_band_free(bk_band *b)

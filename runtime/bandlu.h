@@ -54,6 +54,10 @@ typedef struct bk_band {
 int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_storage);
 int bk_band_factor(bk_band *b, const double *Ax);
 void bk_band_solve(bk_band *b, double *x);
+/* bk_band_factor, then bk_band_solve of x[n] (in: b, out: the solution), the
+ * forward substitution done during the elimination: the same bits as the two
+ * calls.  On a non-zero return x is unspecified. */
+int bk_band_factor_solve(bk_band *b, const double *Ax, double *x);
 void bk_band_free(bk_band *b);
 
 

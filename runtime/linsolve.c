@@ -61,19 +61,23 @@ static int full_factor(bk_linsolver *s, double *Ax)
     return BK_LIN_OK;
 }
 
+/* Counters and status after a band factorization that returned rc. */
+static int band_status(bk_linsolver *s, int rc)
+{
+    s->nfactor++;
+    if (s->nfactor == 1)
+        s->nfull = 1;                    /* the only one that sets up storage (in bk_lin_init) */
+    s->rcond = rc == 0 ? s->band.rcond : 0.0;
+    s->rcond_factor = s->rcond;
+    if (rc == 2)
+        return BK_LIN_ERROR;
+    return rc == 1 || !(s->rcond > 1e-300) ? BK_LIN_SINGULAR : BK_LIN_OK;
+}
+
 int bk_lin_factor(bk_linsolver *s, double *Ax)
 {
-    if (s->use_band) {
-        int rc = bk_band_factor(&s->band, Ax);
-        s->nfactor++;
-        if (s->nfactor == 1)
-            s->nfull = 1;                /* the only one that sets up storage (in bk_lin_init) */
-        s->rcond = rc == 0 ? s->band.rcond : 0.0;
-        s->rcond_factor = s->rcond;
-        if (rc == 2)
-            return BK_LIN_ERROR;
-        return rc == 1 || !(s->rcond > 1e-300) ? BK_LIN_SINGULAR : BK_LIN_OK;
-    }
+    if (s->use_band)
+        return band_status(s, bk_band_factor(&s->band, Ax));
     if (s->num) {
         /* Reuse the pivot order and the factor storage: no allocation. */
         if (klu_refactor((int *)s->Ap, (int *)s->Ai, Ax, s->sym, s->num, &s->common) &&
@@ -98,6 +102,14 @@ int bk_lin_solve(bk_linsolver *s, double *b)
     if (!s->num)
         return BK_LIN_ERROR;
     return klu_solve(s->sym, s->num, s->n, 1, b, &s->common) ? BK_LIN_OK : BK_LIN_ERROR;
+}
+
+int bk_lin_factor_solve(bk_linsolver *s, double *Ax, double *b)
+{
+    if (s->use_band)
+        return band_status(s, bk_band_factor_solve(&s->band, Ax, b));
+    int st = bk_lin_factor(s, Ax);
+    return st != BK_LIN_OK ? st : bk_lin_solve(s, b);
 }
 
 void bk_lin_free(bk_linsolver *s)

@@ -44,6 +44,10 @@ int bk_lin_init(bk_linsolver *s, int n, const int *Ap, const int *Ai);
 int bk_lin_factor(bk_linsolver *s, double *Ax);
 /* Solves A x = b in place (b has n entries). */
 int bk_lin_solve(bk_linsolver *s, double *b);
+/* bk_lin_factor then bk_lin_solve (the same results): the band solver does the
+ * forward substitution during the elimination.  b is unspecified unless
+ * BK_LIN_OK is returned. */
+int bk_lin_factor_solve(bk_linsolver *s, double *Ax, double *b);
 void bk_lin_free(bk_linsolver *s);
 
 #endif

@@ -170,8 +170,10 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
             res->rnorm = ev2.rnorm;
             nl->fl = bk_round_off_floors(&nl->norms, s, p->q, Ax);
         }
+        for (int i = 0; i < neq; ++i)
+            dx[i] = -r[i];
         if (fresh) {
-            int fs = bk_lin_factor(&nl->ls, Ax);
+            int fs = bk_lin_factor_solve(&nl->ls, Ax, dx);
             nl->have_factors = fs == BK_LIN_OK;
             nl->factors_key = key;
             nl->krate = 0.0;                     /* rate of the new factors: not yet measured */
@@ -185,17 +187,14 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
                 code = BK_NL_LINERR;
                 break;
             }
+        } else if (bk_lin_solve(&nl->ls, dx) != BK_LIN_OK) {
+            code = BK_NL_LINERR;
+            break;
         }
         prev_reused = !fresh;
         res->reused |= !fresh;
         rprev_all = rall;
         dnorm_prev = dnorm, enorm_prev = enorm;
-        for (int i = 0; i < neq; ++i)
-            dx[i] = -r[i];
-        if (bk_lin_solve(&nl->ls, dx) != BK_LIN_OK) {
-            code = BK_NL_LINERR;
-            break;
-        }
         if (p->augment && p->augment(p->ctx, &nl->ls, dx) != 0) {
             code = BK_NL_LINERR;
             break;

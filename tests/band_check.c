@@ -211,8 +211,13 @@ static void run(const char *name, int kind)
     int plan = bk_band_plan(&band, n, Ap, Ai, 1L << 24);
     int fac = plan == 0 ? bk_band_factor(&band, Ax) : -9;
     double err = NAN;
+    int fused_same = -1;                 /* factor + solve in one pass: the same bits as the two calls */
     if (fac == 0) {
+        double *bf = malloc((size_t)n * sizeof *bf);
+        memcpy(bf, b, (size_t)n * sizeof *bf);
         bk_band_solve(&band, b);
+        fused_same = bk_band_factor_solve(&band, Ax, bf) == 0 && memcmp(bf, b, (size_t)n * sizeof *b) == 0;
+        free(bf);
         double *A = malloc((size_t)n * n * sizeof *A);
         memcpy(A, D, (size_t)n * n * sizeof *A);
         int dr = dense_solve(n, A, bd, xr);
@@ -275,9 +280,9 @@ static void run(const char *name, int kind)
         free(A);
     }
     printf("case=%s n=%d kl=%d ku=%d plan=%d factor=%d err=%.3e rcond=%.3e lin_band=%d lin_factor=%d lin_err=%.3e "
-           "sym_factor=%d sym_negative=%d jacobi_negative=%d sym_err=%.3e\n",
+           "sym_factor=%d sym_negative=%d jacobi_negative=%d sym_err=%.3e fused_same=%d\n",
            name, n, band.kl, band.ku, plan, fac, err, band.rcond, ls.use_band, lf, lerr, sym_fac, sym_neg, jac_neg,
-           sym_err);
+           sym_err, fused_same);
     bk_lin_free(&ls);
     bk_band_free(&band);
     free(D), free(mask), free(scr), free(Ap), free(Ai), free(Ax), free(Ax2), free(xt), free(b), free(xr), free(bd),

@@ -28,13 +28,17 @@ def test_band_lu_matches_dense_elimination():
     """Every solvable case agrees with the dense solve to 1e-10 (relative, max
     norm), through bk_band_* and through the linear-solver object, which picks
     the band; the scrambled chain is recovered as a band of width 2 x 12 - 1
-    each side (node blocks of 12 coupled to their neighbours)."""
+    each side (node blocks of 12 coupled to their neighbours).  bk_band_factor_solve
+    (the nonlinear solver's call with a new matrix) gives bit for bit what
+    bk_band_factor then bk_band_solve give."""
     r = results()
     for case in ("chain", "kkt", "indefinite", "scaled"):
         d = r[case]
         assert d["plan"] == "0" and d["factor"] == "0", (case, d)
         assert float(d["err"]) <= 1e-10, (case, d)
         assert d["lin_band"] == "1" and d["lin_factor"] == "0" and float(d["lin_err"]) <= 1e-9, (case, d)
+        # the one-pass factorization with the forward substitution inside gives the same bits
+        assert d["fused_same"] == "1", (case, d)
     assert int(r["chain"]["kl"]) == 23 and int(r["chain"]["ku"]) == 23, r["chain"]
     # the closed loop of the saddle-point case widens the band but keeps it a band
     assert int(r["kkt"]["kl"]) <= 60, r["kkt"]
