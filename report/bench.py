@@ -679,8 +679,9 @@ def main(argv):
              f"set-up; the heap allocation count of a dynamic run (valgrind) does not grow with the number of "
              f"steps, serial and parallel (tests/test_bench_alloc.py) | {met(one_an and no_full)} |")
     L.append(f"| assembly of 10,000 elements with 2 threads ≥ 1.7x one thread, bit-identical for any thread "
-             f"count (deterministic parallel scatter) | OpenMP over lane groups, each thread scatters into its own "
-             f"range of entries in element order; bit-identical results for 1, 2, 3 threads "
+             f"count (deterministic parallel scatter) | OpenMP: each thread evaluates one contiguous part of the lane "
+             f"groups and adds directly into the entries only its part touches; entries shared by two parts are "
+             f"staged and summed in element order after the region; bit-identical results for 1, 2, 3 threads "
              f"(tests/test_parallel.py); assembly at {nbig:,} elements "
              f"{par:.2f}x as fast with 2 threads as with 1 (machine load average {load[0]:.1f} on "
              f"{os.cpu_count()} cores during the run; target ≥ 1.7x) | {met(par >= 1.7 and nbig >= 10000)} |")
@@ -775,8 +776,8 @@ def main(argv):
           f"distort it), least squares on log-log from 100 to {min(big['elements'], 10000):,} elements: **{expo:.3f}**" + (f", from 1,000 to {big['elements']:,}: **{expo_big:.3f}**" if not quick else "") + ".  "
           f"Assembly at {nbig:,} elements with 2 threads: {par:.2f}x the speed of 1 thread (load average "
           f"{load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} on {os.cpu_count()} cores when the report was written: "
-          f"with other processes on the cores the second thread mostly waits for CPU time, and each barrier can "
-          f"stall for a scheduler time slice).", ""]
+          f"with other processes on the cores the second thread mostly waits for CPU time, and the parts are "
+          f"fixed: the thread that is descheduled holds up the end of the assembly).", ""]
 
     # ---- toolchain
     c = tc["compile"]
