@@ -37,7 +37,9 @@ the hyperplane normal to it; step adapted to the iteration count.  The limit
 load (the first maximum of lambda) is bracketed by the sign change of the
 tangent's lambda component and refined by maximising lambda over solutions on
 hyperplanes across the bracket (scipy minimize_scalar, bounded); the snap-back
-(the first minimum of the load point's vertical displacement uz) likewise.
+(the first minimum of the load point's vertical displacement uz) and the next
+minimum of lambda likewise.  The dead-load path is traced through both and back
+to lambda = 0, the follower path until lambda is back to half its limit.
 
 Tolerance check: the whole computation repeated with the ODE tolerances halved
 (rtol / 2); the differences of the limit loads and of the path (lambda at the
@@ -414,6 +416,8 @@ def main(argv=None):
               f"{r['limit'][2]:.6f} m); tolerance check {r['tolerance_check']}")
         if "snap_back" in r:
             print(f"{case}: snap-back at uz = {r['snap_back'][2]:.9f} m, lambda {r['snap_back'][0]:.6f}")
+        if "load_minimum" in r:
+            print(f"{case}: minimum load factor {r['load_minimum'][0]:.9f} at uz = {r['load_minimum'][2]:.6f} m")
     if a.write:
         DATA.write_text(json.dumps(d, indent=1) + "\n", encoding="utf-8")
         print(f"wrote {DATA}", file=sys.stderr)
