@@ -1,8 +1,9 @@
 """Arc-length continuation (static.method = "arc_length", runtime/newton.c) on
 benchmarks with independent references: the von Mises two-bar truss (closed
 form derived below), the clamped-hinged deep circular arch (DaDeppo and
-Schmidt 1975), the Euler bifurcation of the seed cantilever (closed form), and
-the bad-input and budget behaviour."""
+Schmidt 1975), Lee's frame under a dead and a follower load (a Reissner beam
+solved by shooting, references/lee_frame.py), the Euler bifurcation of the seed
+cantilever (closed form), and the bad-input and budget behaviour."""
 import json
 import math
 import tempfile
