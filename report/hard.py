@@ -29,6 +29,7 @@ from pathlib import Path
 from gen.cli import execute
 from gen.scene import ROOT
 
+from references import lee_frame as lee_frame_ref  # noqa: E402
 from references.rigid_pendulum import rigid_pendulum  # noqa: E402
 
 OUT = ROOT / "out" / "report"
@@ -446,7 +447,7 @@ def case_continuation(quick):
              "predictor oriented along the last increment, arc length from the iteration count, limit points "
              "refined by bisection on the arc length, bifurcations from the change of the negative-eigenvalue "
              "count (bisection on the inertia).  `gef` is the reference element.  Lee's frame with a follower "
-             "load is not here: follower forces do not exist in the scene language yet.  The ANCF continuum "
+             "load is not here (tests/test_continuation.py checks it with `gef`).  The ANCF continuum "
              "elements take no rigid beam-to-beam joint (Lee's frame) and no curved reference (the arch).", "",
              "| benchmark | element | converged | steps | iterations | critical points (load) | reference | error |",
              "|---|---|---|---|---|---|---|---|"]
@@ -461,7 +462,8 @@ def case_continuation(quick):
               ["gef", "euler_bernoulli", "ancf_cable"]),
              ("deep arch 215°, P_cr", "deep_arch_215", "arch", 1000.0, 897.0, "DaDeppo & Schmidt 1975",
               ["gef", "euler_bernoulli", "kirchhoff"]),
-             ("Lee's frame, P_max L²/EI", "lee_frame", ("column", "beam"), 1.0, 18.5, "literature value",
+             ("Lee's frame, P_max L²/EI", "lee_frame", ("column", "beam"), 1.0,
+              lee_frame_ref.load()["dead"]["limit"][0], "Reissner shooting, references/lee_frame.py",
               ["gef", "euler_bernoulli", "kirchhoff"]),
              ("seed cantilever, Euler load", "cantilever_euler_arc", "arm", 200.0, PCR, "π²EI/(4L²)",
               ["gef", "euler_bernoulli", "ancf3243", "ancf3363"])]
