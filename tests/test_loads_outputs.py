@@ -178,6 +178,170 @@ def test_cantilever_root_moment_small_and_large_deflection():
         assert abs(frame["section_force"][-1][0] - float(sec[-1]["N"])) < 1e-12 * P
 
 
+def stress_rows(out, step):
+    """The rows of the elements' own stress resultants (not the nodal-force rows)."""
+    return [r for r in rows(out, "sections.csv") if r["step"] == str(step) and r["source"] != "nodal"]
+
+
+def comps(r, *keys):
+    return np.array([float(r[k]) for k in keys])
+
+
+ROD_SOURCES = {"gef": "law", "euler_bernoulli": "law;multiplier:Q2 Q3", "kirchhoff": "law;multiplier:N Q2 Q3"}
+
+
+@pytest.mark.parametrize("element", ["gef", "euler_bernoulli", "kirchhoff"])
+def test_rod_stress_resultants_cantilever_small_and_large_deflection(element):
+    """Rods, tip force P down: the law's moment at the Gauss points against
+    the statics of the free part, M2(s) = P (L - s) at 1 N (beam theory) and
+    P (x_tip - x(s)) at 180 N (P L^2 / EI = 3, 54 degrees at the tip; the
+    lever arm from the rows' own positions), |n| = P (the shear from G A
+    Gamma, or the multipliers of Gamma_2 = Gamma_3 = 0), and the tip against
+    the inextensible elastica (references/elastica.py)."""
+    from references.elastica import tip_load_cantilever
+    for P, tol_m in ((1.0, 2e-5), (180.0, 2e-5)):
+        text = GEF_BEAM.format(element=element) + f"""
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 0.0, {-P}]
+[static]
+rtol = 1e-12
+load_steps = {1 if P == 1.0 else 6}
+[[sensor]]
+name = "tip"
+at = "arm:end"
+"""
+        summary, out = run(None, text=text)
+        tip = np.array(summary["sensors"]["tip"]["position"])
+        sec = stress_rows(out, summary["steps"])
+        assert len(sec) == 20 and {r["source"] for r in sec} == {ROD_SOURCES[element]}
+        for r in sec:
+            s, x = float(r["s"]), float(r["x"])
+            m_ref = P * (1.0 - s) if P == 1.0 else P * (tip[0] - x)
+            assert abs(float(r["M2"]) - m_ref) < tol_m * P, (P, s, r["M2"], m_ref)
+            assert abs(np.linalg.norm(comps(r, "N", "Q2", "Q3")) - P) < 1e-9 * P, (P, s)
+            assert abs(float(r["T"])) < 1e-9 * P and abs(float(r["M3"])) < 1e-9 * P
+        if P == 1.0:
+            assert all(abs(float(r["Q3"]) + P) < 1e-4 * P for r in sec)
+        else:
+            u, w = tip_load_cantilever(1.0, P, EI)
+            assert abs(tip[0] - (1 + u)) < 2e-4 and abs(tip[2] + w) < 2e-4, (tip, u, w)
+            root = min(sec, key=lambda r: float(r["s"]))
+            # the elastica's lever arm at the first Gauss point's own position
+            assert abs(float(root["M2"]) - P * (1 + u - float(root["x"]))) < 3e-4 * P
+
+
+@pytest.mark.parametrize("element", ["gef", "kirchhoff"])
+def test_rod_stress_resultants_axial_force_and_torsion(element):
+    """Tip force F along the axis and tip torque T0 about it: N = F (E A
+    Gamma_1 of the law, or the multiplier of the inextensible Kirchhoff beam)
+    and T = T0 (G J K_1) at every Gauss point, no bending."""
+    F, T0 = 1000.0, 5.0
+    text = GEF_BEAM.format(element=element) + f"""
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [{F}, 0.0, 0.0]
+[[load]]
+type = "moment"
+at = "arm:end"
+value = [{T0}, 0.0, 0.0]
+[static]
+rtol = 1e-12
+"""
+    summary, out = run(None, text=text)
+    sec = stress_rows(out, summary["steps"])
+    assert len(sec) == 20
+    for r in sec:
+        assert abs(float(r["N"]) - F) < 1e-9 * F and abs(float(r["T"]) - T0) < 1e-9 * T0, r
+        assert np.abs(comps(r, "Q2", "Q3")).max() < 1e-9 * F and np.abs(comps(r, "M2", "M3")).max() < 1e-9 * T0
+
+
+def test_l_frame_stress_resultants_by_hand():
+    """The welded L-frame (models/l_frame_weld.toml: leg a 1 m along x, leg b
+    0.5 m along y, 1 N down at b's end): on leg a bending P (1 - x) and torsion
+    P a (a = 0.5 m), on leg b bending P (a - s) and no torsion, shear P
+    (hand calculation, reference geometry: the deflection is 3e-3 of the
+    legs), and exactly |m| = |(r_tip - r) x P| (statics of the current state)."""
+    P, a = 1.0, 0.5
+    summary, out = run("l_frame_weld", ["static.rtol=1e-12"])
+    tip = np.array(summary["sensors"]["tip"]["position"])
+    sec = stress_rows(out, summary["steps"])
+    assert len(sec) == 2 * (10 + 6)
+    for r in sec:
+        s, x = float(r["s"]), comps(r, "x", "y", "z")
+        T, Mb = float(r["T"]), np.linalg.norm(comps(r, "M2", "M3"))
+        if r["beam"] == "a":
+            assert abs(abs(T) - P * a) < 3e-3 * P * a and abs(Mb - P * (1 - s)) < 3e-3 * P, (s, T, Mb)
+        else:
+            assert abs(T) < 3e-3 * P * a and abs(Mb - P * (a - s)) < 3e-3 * P, (s, T, Mb)
+        assert abs(np.linalg.norm(comps(r, "N", "Q2", "Q3")) - P) < 1e-9 * P
+        m_ref = np.cross(tip - x, [0, 0, -P])
+        assert abs(np.linalg.norm(comps(r, "T", "M2", "M3")) - np.linalg.norm(m_ref)) < 1e-6 * P, (r["beam"], s)
+
+
+@pytest.mark.parametrize("P", [1.0, 100.0])
+def test_continuum_integrated_stress_cantilever_and_balance(P):
+    """ANCF 3243 cantilever (the seed's Table 3 beam, 40 elements; 1 N small,
+    100 N large deflection) with a second force F = P/2 at x = 0.45 m: the
+    first Piola-Kirchhoff traction integrated over the reference section at
+    the axial Gauss stations against the statics of the free part (lever arms
+    from the rows' and the sensors' own positions), and the force and moment
+    balance between two stations on either side of F against the applied
+    loads.  The 3243's section slopes are linear along the element, so its
+    bending strain and the integrated moment are constant within an element:
+    beam theory is met at the middle station (xi = 1/2), where the shear force
+    is also accurate (at the outer stations it oscillates by about 3 % of P at
+    100 N: the element's own transverse shear stress).  Middle stations at
+    least 0.05 m (5 section heights, two elements) from the clamp and from F
+    (Saint-Venant zones of the 3-D stress)."""
+    F, xF = 0.5 * P, 0.45
+    text = (MODELS / "cantilever_bend_100N.toml").read_text().replace(
+        "value = [0.0, 0.0, -100.0]", f"value = [0.0, 0.0, {-P}]").replace("elements = 10", "elements = 40")
+    text += f"""
+[[load]]
+type = "force"
+at = "arm:{xF}"
+value = [0.0, 0.0, {-F}]
+[[sensor]]
+name = "mid"
+at = "arm:{xF}"
+"""
+    summary, out = run(None, sets=["static.rtol=1e-12"], text=text)
+    tip = np.array(summary["sensors"]["tip"]["position"])
+    xm = np.array(summary["sensors"]["mid"]["position"])
+    sec = stress_rows(out, summary["steps"])
+    assert len(sec) == 120 and {r["source"] for r in sec} == {"stress"}
+    if P == 100.0:
+        assert tip[2] < -0.4
+    worst = {"M": 0.0, "n": 0.0}
+    for r in sec:
+        s, x = float(r["s"]), float(r["x"])
+        assert abs(float(r["Q2"])) < 1e-9 * P and abs(float(r["T"])) < 1e-9 * P and abs(float(r["M3"])) < 1e-9 * P
+        if s < 0.05 or abs(s - xF) < 0.05 or r["point"] != "1":
+            continue
+        Pn = P + (F if s < xF else 0.0)
+        m_ref = P * (tip[0] - x) + (F * (xm[0] - x) if s < xF else 0.0)
+        worst["M"] = max(worst["M"], abs(float(r["M2"]) - m_ref) / (P + F))
+        worst["n"] = max(worst["n"], abs(np.linalg.norm(comps(r, "N", "Q3")) - Pn) / Pn)
+    print(P, worst)
+    assert worst["M"] < (1e-6 if P == 1.0 else 1e-3) and worst["n"] < 5e-3, worst
+    # balance between the middle stations of elements 14 and 21 (x = 0.3625, 0.5375 m), F between them:
+    # n_a = n_b + F (vertical forces), M_a = M_b + P (x_b - x_a) + F (x_F - x_a)
+    a = next(r for r in sec if r["element"] == "14" and r["point"] == "1")
+    b = next(r for r in sec if r["element"] == "21" and r["point"] == "1")
+    na, nb = np.linalg.norm(comps(a, "N", "Q3")), np.linalg.norm(comps(b, "N", "Q3"))
+    bal = float(a["M2"]) - float(b["M2"]) - P * (float(b["x"]) - float(a["x"])) - F * (xm[0] - float(a["x"]))
+    print(P, na - nb - F, bal)
+    assert abs(na - nb - F) < 2e-3 * P and abs(bal) < 2e-4 * (P + F), (na, nb, F, bal)
+
 def test_curved_frame_bending_and_torsion_by_hand():
     """Quarter-circle gef cantilever (R = 1 m, in the x-y plane) with an
     out-of-plane tip force P: at the section at angle phi, M = P R sin(a - phi)
