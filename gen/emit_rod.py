@@ -184,7 +184,15 @@ def pair_source(elem, elem_path, mat, mat_path):
             c[-2:-2] = [f"    for (int r = 1; r < {nd}; ++r)",
                         f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];"]
     nqp = cable.NGAUSS
-    c += pair_descriptors(mat.PARAMS, [_full_pair(elem, mat, ntab, nqp, ops)])
+    sprog, sparams = cable.section_program(elem, mat)
+    sig["sections"] = (f"void {name}_full_sections(const double *restrict geom, const double *restrict q, "
+                       "const double *restrict tab, const double *restrict mat, double *restrict sec)")
+    c += _function(sig["sections"], lower(sprog, sparams.values()), ["(void)geom;"])
+    from dataclasses import replace
+    pd = _full_pair(elem, mat, ntab, nqp, ops)
+    pd = replace(pd, functions={**pd.functions, "sections": f"{name}_full_sections"}, sample_xi=cable.sample_xi(),
+                 sample_source="law+dM/ds")
+    c += pair_descriptors(mat.PARAMS, [pd])
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",
@@ -195,7 +203,9 @@ def pair_source(elem, elem_path, mat, mat_path):
            f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
            f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
            f" * Operations per element call ({nqp} Gauss points): energy {ops['energy']}; force {ops['force']};",
-           f" *   force + upper tangent {ops['tangent']}", " */"]
+           f" *   force + upper tangent {ops['tangent']}",
+           " * Section resultants (bk_pair.sections) at the Gauss points: n = W_a - d/dx W_b, m = r' x W_b",
+           " *   (a = r', b = r''; gen/cable.py section_program), global axes.", " */"]
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H
 #define BK_GEN_{name.upper()}_H
