@@ -342,6 +342,61 @@ at = "arm:{xF}"
     print(P, na - nb - F, bal)
     assert abs(na - nb - F) < 2e-3 * P and abs(bal) < 2e-4 * (P + F), (na, nb, F, bal)
 
+CONTINUUM_CASES = [("ancf3243", "sri", "svk", 0.3, 7e-3), ("ancf3273", "sri", "neo_hookean", 0.3, 2e-3),
+                   ("ancf3333", "full", "svk", 0.0, 1e-4), ("ancf3363", "reduced", "neo_hookean", 0.3, 1e-4)]
+
+
+@pytest.mark.parametrize("element,integration,law,nu,tol_t", CONTINUUM_CASES)
+def test_continuum_section_resultants_per_element(element, integration, law, nu, tol_t):
+    """Integrated first Piola-Kirchhoff traction of each continuum element
+    (10 elements, the seed's beam): under a tip force of 1 mN (linear regime)
+    the Gauss-weighted mean of M2 over an element's three stations against
+    beam theory P (L - s) at its middle; for the elements without an axial
+    slope unknown (3333, 3363) the Gauss-weighted mean of the shear force
+    equals the element's end force (the virtual work of the mode dr = X e_z,
+    an identity of the element, to the equilibrium residual), while the stations themselves
+    carry the element's oscillating transverse shear stress; under a tip
+    torque of 10 N m, T = 10 N m at the stations of the interior elements to
+    tol_t (the 3243 and 3273 carry part of the torque in their generalized
+    slope forces: 0.6 % and 0.2 %)."""
+    w = (5 / 18, 8 / 18, 5 / 18)
+    base = (MODELS / "cantilever_bend_100N.toml").read_text().replace(
+        'element = "ancf3243"', f'element = "{element}"\nintegration = "{integration}"').replace(
+        'law = "svk"', f'law = "{law}"').replace("nu = 0.0", f"nu = {nu}")
+    P = 1e-3
+    summary, out = run(None, sets=["static.rtol=1e-12", "static.load_steps=1"],
+                       text=base.replace("value = [0.0, 0.0, -100.0]", f"value = [0.0, 0.0, {-P}]"))
+    sec = [r for r in rows(out, "sections.csv") if r["step"] == str(summary["steps"])]
+    worst_m, worst_q = 0.0, 0.0
+    for e in range(10):
+        st = [r for r in sec if r["element"] == str(e) and r["source"] != "nodal"]
+        end = [r for r in sec if r["element"] == str(e) and r["source"] == "nodal"][1]
+        assert len(st) == 3 and abs(float(st[1]["xi"]) - 0.5) < 1e-15
+        for r in st:
+            assert max(abs(float(r[k])) for k in ("Q2", "T", "M3")) < 1e-7 * P
+        if 1 <= e <= 8:
+            m = sum(wk * float(r["M2"]) for wk, r in zip(w, st))
+            worst_m = max(worst_m, abs(m - P * (1.0 - float(st[1]["s"]))) / P)
+        if element in ("ancf3333", "ancf3363"):
+            q = sum(wk * float(r["Q3"]) for wk, r in zip(w, st))
+            worst_q = max(worst_q, abs(q - float(end["Q3"])) / P)
+    print(element, worst_m, worst_q)
+    # the nodal end forces themselves carry the equilibrium residual, about 5e-8 P at this load
+    assert worst_m < 2e-5 and worst_q < 2e-7, (worst_m, worst_q)
+    T0 = 10.0
+    summary, out = run(None, sets=["static.rtol=1e-12"], text=base.replace(
+        "value = [0.0, 0.0, -100.0]", "value = [0.0, 0.0, 0.0]") + f"""
+[[load]]
+type = "moment"
+at = "arm:end"
+value = [{T0}, 0.0, 0.0]
+""")
+    sec = stress_rows(out, summary["steps"])
+    err = max(abs(float(r["T"]) - T0) / T0 for r in sec if 1 <= int(r["element"]) <= 8)
+    print(element, "torsion", err)
+    assert err < tol_t, err
+
+
 def test_curved_frame_bending_and_torsion_by_hand():
     """Quarter-circle gef cantilever (R = 1 m, in the x-y plane) with an
     out-of-plane tip force P: at the section at angle phi, M = P R sin(a - phi)
