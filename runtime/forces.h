@@ -23,7 +23,11 @@
  * beyond is F, M), at the end node n = F, m = M, about the node; reported in
  * the orthonormal section frame there: N = n.e3, Q2 = n.e1, Q3 = n.e2,
  * T = m.e3, M2 = m.e1, M3 = m.e2 (n, m: the force and moment the part beyond
- * the section exerts on the part before it). */
+ * the section exerts on the part before it); sections.csv source "nodal".
+ * After them, per element, the rows of the element's own stress resultants at
+ * its sample points when its pair offers them (bk_pair.sections: generated,
+ * the law's resultants of the rods, the integrated stress of the continuum
+ * elements), in the same frame at each point, source the pair's label. */
 #ifndef BK_FORCES_H
 #define BK_FORCES_H
 
