@@ -35,8 +35,11 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
     for (int e = 0; e < m->nelem; ++e)
         if (m->pairs[m->elems[e].pair]->sections && m->pairs[m->elems[e].pair]->nsample > maxsample)
             maxsample = m->pairs[m->elems[e].pair]->nsample;
+    f->maxsample = maxsample;
     f->sres = malloc(9 * (size_t)maxsample * sizeof *f->sres);
-    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres) {
+    f->ssec = malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
+    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||
+        !f->ssec) {
         fprintf(err, "error: out of memory for the reactions and section forces\n");
         return -1;
     }
@@ -63,6 +66,8 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
         f->fld[i] = -1;
     for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
         f->sec[i] = NAN;
+    for (size_t i = 0; i < 6 * (size_t)maxsample * (size_t)m->nelem; ++i)
+        f->ssec[i] = NAN;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_element *et = bk_elem_type(m, e);
         for (int k = 0; k < et->nfield; ++k) {
@@ -117,6 +122,7 @@ void bk_forces_close(bk_forces *f)
     free(f->last);
     free(f->sec);
     free(f->sres);
+    free(f->ssec);
     free(f->relem);
     memset(f, 0, sizeof *f);
 }
@@ -360,6 +366,8 @@ static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_
         const double *o = f->sres + 9 * k, xi = p->sample_xi[k];
         double out[6];
         section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
+        for (int i = 0; i < 6; ++i)
+            f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
         fprintf(f->sections, "%d,%.17g,%s,%d,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
                 step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o[0], o[1], o[2],
                 out[0], out[1], out[2], out[3], out[4], out[5]);

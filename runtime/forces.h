@@ -48,7 +48,10 @@ typedef struct bk_forces {
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
                                    * element at output step sec_step (for the ParaView frames) */
     int sec_step;
-    double *sres;                 /* [9 max nsample] the output of a pair's sections() */
+    double *sres;                 /* [9 maxsample] the output of a pair's sections() */
+    int maxsample;                /* the most sample points of a pair's sections() (at least 1) */
+    double *ssec;                 /* [6 maxsample nelem] N, Q2, Q3, T, M2, M3 of the element's own stress
+                                   * resultants at its sample points, step sec_step (NaN: none) */
 } bk_forces;
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);

@@ -158,7 +158,8 @@ value = [0.0, 0.0, {-P}]
 def test_cantilever_root_moment_small_and_large_deflection():
     """Root section moment of a tip-loaded ANCF cantilever: P L at 1 N (small
     deflection) and P times the tip's horizontal offset at 100 N (seed Table 3);
-    along the beam M2(s) = P (x_tip - x(s)), the section's own point."""
+    along the beam M2(s) = P (x_tip - x(s)), the section's own point (the
+    nodal rows), and the ParaView frames' point data of both kinds."""
     for P, scene in ((1.0, "cantilever_bend_10N"), (100.0, "cantilever_bend_100N")):
         sets = ["static.rtol=1e-12"] + (["load.0.value.2=-1.0"] if P == 1.0 else [])
         summary, out = run(scene, sets)
@@ -168,6 +169,7 @@ def test_cantilever_root_moment_small_and_large_deflection():
         if P == 1.0:
             assert abs(float(root["M2"]) - P * 1.0) < 2e-4 * P
         assert abs(float(root["M2"]) - P * x_tip) < 1e-8 * P
+        stress = [r for r in sec if r["source"] == "stress"]
         sec = [r for r in sec if r["source"] == "nodal"]
         for r in sec:
             assert abs(float(r["M2"]) - P * (x_tip - float(r["x"]))) < 1e-7 * P
@@ -176,6 +178,9 @@ def test_cantilever_root_moment_small_and_large_deflection():
         frame = vtu.read(out / f"step_{summary['steps']:06d}.vtu")
         assert abs(frame["section_moment"][0][1] - float(root["M2"])) < 1e-12 * P
         assert abs(frame["section_force"][-1][0] - float(sec[-1]["N"])) < 1e-12 * P
+        # and the elements' own (integrated-stress) resultants, constant beyond the outer sample points
+        assert abs(frame["section_moment_stress"][0][1] - float(stress[0]["M2"])) < 1e-12 * P
+        assert abs(frame["section_force_stress"][-1][2] - float(stress[-1]["Q3"])) < 1e-12 * P
 
 
 def stress_rows(out, step):
