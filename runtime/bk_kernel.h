@@ -215,10 +215,12 @@ typedef struct bk_pair {
      * part beyond the section (larger xi) exerts on the part before it, global
      * axes.  Rod elements: n = R C Gamma, m = R D K of the law at the Gauss
      * points (components held at zero by multipliers: the multiplier force);
+     * the cable: n = W_a - d/dx W_b, m = r' x W_b of its energy W(r', r'');
      * continuum elements: the first Piola-Kirchhoff traction integrated over
      * the reference section, n = int P N0 dA0, m = int (r - r_c) x P N0 dA0.
      * sample_source: a label of where the components come from (sections.csv
-     * column `source`, no commas).  NULL: not offered. */
+     * column `source`, no commas).  NULL: not offered (sections.csv then has
+     * the element's nodal-force rows only). */
     int nsample;
     const double *sample_xi;
     const char *sample_source;
