@@ -199,12 +199,14 @@ ROD_SOURCES = {"gef": "law", "euler_bernoulli": "law;multiplier:Q2 Q3", "kirchho
 def test_rod_stress_resultants_cantilever_small_and_large_deflection(element):
     """Rods, tip force P down: the law's moment at the Gauss points against
     the statics of the free part, M2(s) = P (L - s) at 1 N (beam theory) and
-    P (x_tip - x(s)) at 180 N (P L^2 / EI = 3, 54 degrees at the tip; the
-    lever arm from the rows' own positions), |n| = P (the shear from G A
-    Gamma, or the multipliers of Gamma_2 = Gamma_3 = 0), and the tip against
-    the inextensible elastica (references/elastica.py)."""
+    P (x_tip - x(s)) at 180 N (P L^2 / EI = 3: the tip moves 0.25 L back and
+    0.6 L down; the lever arm from the rows' own positions), |n| = P (the shear
+    from G A Gamma, or the multipliers of Gamma_2 = Gamma_3 = 0), and the tip
+    and the moment at the first Gauss point against the inextensible elastica
+    (references/elastica.py).  At 1 N the difference to beam theory is the
+    deflection itself (u_x = 1.85e-5 L)."""
     from references.elastica import tip_load_cantilever
-    for P, tol_m in ((1.0, 2e-5), (180.0, 2e-5)):
+    for P, tol_m in ((1.0, 3e-5), (180.0, 1e-9)):
         text = GEF_BEAM.format(element=element) + f"""
 [[constraint]]
 type = "clamp"
@@ -273,8 +275,9 @@ def test_l_frame_stress_resultants_by_hand():
     """The welded L-frame (models/l_frame_weld.toml: leg a 1 m along x, leg b
     0.5 m along y, 1 N down at b's end): on leg a bending P (1 - x) and torsion
     P a (a = 0.5 m), on leg b bending P (a - s) and no torsion, shear P
-    (hand calculation, reference geometry: the deflection is 3e-3 of the
-    legs), and exactly |m| = |(r_tip - r) x P| (statics of the current state)."""
+    (hand calculation on the reference geometry; the tip deflection, 4.3 mm,
+    changes them by 4e-5), and |m| = |(r_tip - r) x P| (statics of the
+    current state) to round-off."""
     P, a = 1.0, 0.5
     summary, out = run("l_frame_weld", ["static.rtol=1e-12"])
     tip = np.array(summary["sensors"]["tip"]["position"])
@@ -284,12 +287,12 @@ def test_l_frame_stress_resultants_by_hand():
         s, x = float(r["s"]), comps(r, "x", "y", "z")
         T, Mb = float(r["T"]), np.linalg.norm(comps(r, "M2", "M3"))
         if r["beam"] == "a":
-            assert abs(abs(T) - P * a) < 3e-3 * P * a and abs(Mb - P * (1 - s)) < 3e-3 * P, (s, T, Mb)
+            assert abs(abs(T) - P * a) < 2e-4 * P * a and abs(Mb - P * (1 - s)) < 2e-4 * P, (s, T, Mb)
         else:
-            assert abs(T) < 3e-3 * P * a and abs(Mb - P * (a - s)) < 3e-3 * P, (s, T, Mb)
+            assert abs(T) < 2e-4 * P * a and abs(Mb - P * (a - s)) < 2e-4 * P, (s, T, Mb)
         assert abs(np.linalg.norm(comps(r, "N", "Q2", "Q3")) - P) < 1e-9 * P
         m_ref = np.cross(tip - x, [0, 0, -P])
-        assert abs(np.linalg.norm(comps(r, "T", "M2", "M3")) - np.linalg.norm(m_ref)) < 1e-6 * P, (r["beam"], s)
+        assert abs(np.linalg.norm(comps(r, "T", "M2", "M3")) - np.linalg.norm(m_ref)) < 1e-9 * P, (r["beam"], s)
 
 
 @pytest.mark.parametrize("P", [1.0, 100.0])
