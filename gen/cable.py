@@ -142,3 +142,52 @@ def body_program(elem, mat, want):
         for (i, j), v in sorted(K.items()):
             prog.output(f"K[{12 * i + j}]", v, op="=")
     return prog, params
+
+
+def section_program(elem, mat):
+    """Section resultants at the Gauss points, sec[9 g + 0..8] = (centreline
+    point, n, m), global axes, of W(a, b) (a = r', b = r''): the balance laws
+    of this energy, n' = -f and m' + r' x n = 0, hold with
+        n = W_a - d/dx W_b = W_a - W_ba r'' - W_bb r''',    m = r' x W_b
+    (the rotation invariance a x W_a + b x W_b = 0 gives the second), and a
+    free end carries n = the applied force, W_b = 0.  The force n thus holds
+    the derivative of the bending term along the axis (r''' of the cubic, a
+    constant of the element): the cable has no shear strain, its transverse
+    force is that derivative, not a law.  Returns (program, parameter symbols)."""
+    prog = Program()
+    q = [sp.Symbol(f"q[{i}]", real=True) for i in range(12)]
+    t = [sp.Symbol(f"tab[{i}]", real=True) for i in range(tab_layout())]
+    params = {name: sp.Symbol(f"mat[{k}]", real=True) for k, name in enumerate(mat.PARAMS)}
+    EA, EI = params["EA"], params["EI1"]
+    l = geom_symbol("L")
+    a_ = sp.Matrix(sp.symbols("a0:3", real=True))
+    b_ = sp.Matrix(sp.symbols("b0:3", real=True))
+    cr = a_.cross(b_)
+    na2 = a_.dot(a_)
+    W = EA / 2 * (sp.sqrt(na2) - 1)**2 + EI / 2 * cr.dot(cr) / na2**3
+    N, _, _ = hermite()
+    d3 = [sp.diff(n, XI, 3) / L**3 for n in N]
+    c_ = [prog.define(f"c{i}", sum(d3[n].subs({L: l}) * q[3 * n + i] for n in range(4))) for i in range(3)]
+    for g, (xg, _) in enumerate(gauss_unit(NGAUSS)):
+        d1 = t[9 * g + 1: 9 * g + 5]
+        d2 = t[9 * g + 5: 9 * g + 9]
+        ra = [prog.define(f"a{g}_{i}", sum(d1[n] * q[3 * n + i] for n in range(4))) for i in range(3)]
+        rb = [prog.define(f"b{g}_{i}", sum(d2[n] * q[3 * n + i] for n in range(4))) for i in range(3)]
+        sub = dict(zip(list(a_) + list(b_), ra + rb))
+        Wa = [sp.diff(W, a_[i]) for i in range(3)]
+        Wb = [sp.diff(W, b_[i]) for i in range(3)]
+        dWb = [sum(sp.diff(Wb[i], a_[j]) * b_[j] for j in range(3)) for i in range(3)]
+        Wb_s = [prog.define(f"Wb{g}_{i}", Wb[i].subs(sub)) for i in range(3)]
+        for i in range(3):
+            Ni = [n.subs({XI: sp.Float(xg), L: l}) for n in N]
+            prog.output(f"sec[{9 * g + i}]", sum(Ni[n] * q[3 * n + i] for n in range(4)), op="=")
+            nval = Wa[i].subs(sub) - dWb[i].subs(sub) - sum(sp.diff(Wb[i], b_[j]).subs(sub) * c_[j] for j in range(3))
+            prog.output(f"sec[{9 * g + 3 + i}]", nval, op="=")
+        m = sp.Matrix(ra).cross(sp.Matrix(Wb_s))
+        for i in range(3):
+            prog.output(f"sec[{9 * g + 6 + i}]", m[i], op="=")
+    return prog, params
+
+
+def sample_xi():
+    return tuple(x for x, _ in gauss_unit(NGAUSS))

@@ -126,7 +126,10 @@ def material_energy(mat, part, I1, I2, J, C, params):
 def body_program(elem, mat, part, want):
     """Per-quadrature-point program for one rule part.
 
-    want: "energy" (output e), "force" (f) or "tangent" (f and upper K)."""
+    want: "energy" (output e), "force" (f), "tangent" (f and upper K) or
+    "traction" (tr[3] = w P N0 with N0 = e_x, the reference section normal:
+    the point's weighted first Piola-Kirchhoff traction, for the section
+    resultants)."""
     slots = gradient_slots(elem)
     ndof, nsh = elem.ndof, elem.nshape
     prog = Program()
@@ -195,6 +198,10 @@ def body_program(elem, mat, part, want):
     dI = dvar
     P = sp.Matrix(3, 3, lambda i, J: prog.define(
         f"P{i}{J}", sum(Wm[m] * dI[m][i, J] for m in Wm)))
+    if want == "traction":          # the weighted traction P N0 on the reference section x = const
+        for i in range(3):
+            prog.output(f"tr[{i}]", P[i, 0], op="=")
+        return prog, params
     for a in range(nsh):
         for i in range(3):
             prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))

@@ -50,6 +50,8 @@ class PairDesc:
     functions: dict           # tabulate, energy, force, force_tangent, viscous, invariants
     nvisc: int = 0
     green_strain_range: tuple = (0.0, 0.0)
+    sample_xi: tuple = ()     # points of sections() along the axis (floats), () with no sections()
+    sample_source: str = ""   # what the section resultants come from (sections.csv `source`)
 
     @property
     def symbol(self):
@@ -58,7 +60,7 @@ class PairDesc:
 
 ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "moment", "rotary")
 PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "force_lanes", "force_tangent_lanes",
-                  "viscous", "invariants")
+                  "viscous", "invariants", "sections")
 
 
 def version_guard():
@@ -152,6 +154,15 @@ def pair_descriptors(params, pairs):
         lo, hi = p.green_strain_range
         if lo or hi:
             members += [("green_strain_min", _c_double(lo)), ("green_strain_max", _c_double(hi))]
+        if bool(p.sample_xi) != bool(p.functions.get("sections")):
+            raise ValueError(f"{p.symbol}: sample_xi and sections() go together")
+        if p.sample_xi:
+            if "," in p.sample_source or not p.sample_source:
+                raise ValueError(f"{p.symbol}: sample_source must be a label without commas")
+            arr = f"sample_xi_{p.integration}"
+            lines += [_array("double", arr, [_c_double(x) for x in p.sample_xi]), ""]
+            members += [("nsample", str(len(p.sample_xi))), ("sample_xi", arr),
+                        ("sample_source", _c_str(p.sample_source)), ("sections", p.functions["sections"])]
         lines.append(f"const bk_pair {p.symbol} = {{")
         lines += [f"    .{k} = {v}," for k, v in members]
         lines += ["};", ""]

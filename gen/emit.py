@@ -19,7 +19,7 @@ from gen.continuum import (A_INDEX, contraction_programs, invariants_program, lo
 from gen import contract
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
 from gen.element import B, H, L, XI, Y, Z, geom_subs, shape_functions, shape_gradients
-from gen.program import Program, count_lowered, lower, print_c, Ops
+from gen.program import Program, c_double, count_lowered, lower, print_c, Ops
 
 GEN_DIR = Path(__file__).resolve().parent
 CORE_FILES = ("element.py", "continuum.py", "invariants.py", "program.py", "quadrature.py", "emit.py",
@@ -391,6 +391,89 @@ def _lane_kernel_fn(signature, ndof, parts, lows, contract_fn=None):
     return lines
 
 
+# ----------------------------------------------------------------------------
+# Section resultants (bk_pair.sections)
+
+def sections_plan(elem, rname):
+    """(sample xi, [(part, [(point index, station or -1 for all, 1/wx)])]) of an
+    integration: the sample points are the axial Gauss stations of its first
+    rule part; a part with the same stations adds its section points to each
+    station, a part with one station along the axis (a centreline part of
+    selective reduced integration) holds a stress the element takes constant
+    along the axis and adds it to every station."""
+    from gen.quadrature import gauss_unit
+    _, parts, _ = rule_parts(elem, rname)
+    counts = [rp.points for rp in elem.rule(rname)]
+    nx0 = counts[0][0]
+    xs = tuple(x for x, _ in gauss_unit(nx0))
+    plan = []
+    for part, (nx, ny, nz) in zip(parts, counts):
+        if nx != nx0 and nx != 1:
+            raise ValueError(f"{elem.name} {rname}: rule part {part.energy} has {nx} axial stations, "
+                             f"the first part {nx0}: no common sample points")
+        wx = [w for _, w in gauss_unit(nx)]
+        pts = []
+        for p in range(len(part.rule)):
+            ix = p // (ny * nz)
+            pts.append((p, ix if nx == nx0 else -1, 1.0 / wx[ix]))
+        plan.append((part, pts))
+    return xs, plan
+
+
+def _sections_fn(elem, mat, rname, fname):
+    """C lines of <pair>_<rule>_sections: the first Piola-Kirchhoff traction
+    P N0 (N0 = e_x) of every point of the integration, weighted by the point's
+    weight over its axial Gauss weight and the length (the section weight
+    w_y w_z b h), summed per axial station into n = int P N0 dA0 and
+    m = int (r - r_c) x P N0 dA0, r from the element's shape functions."""
+    xs, plan = sections_plan(elem, rname)
+    nsh, ns = elem.nshape, len(xs)
+    sig = (f"void {fname}(const double *restrict geom, const double *restrict q, const double *restrict tab, "
+           "const double *restrict mat, double *restrict sec)")
+    shape = f"bk_element_{elem.name}.shape"
+    lines = [sig, "{", "    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];",
+             f"    static const double xs[{ns}] = {{{', '.join(c_double(x) for x in xs)}}};",
+             f"    double N0[{ns}][{nsh}];",
+             f"    for (int i = 0; i < {9 * ns}; ++i) sec[i] = 0.0;",
+             f"    for (int k = 0; k < {ns}; ++k) {{",
+             f"        {shape}(geom, xs[k], 0.0, 0.0, N0[k]);",
+             f"        for (int a = 0; a < {nsh}; ++a)",
+             "            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];",
+             "    }"]
+    for part, pts in plan:
+        low = lowered_body(elem, mat, part.energy, "traction")
+        n = len(pts)
+        sx = [part.rule[p][0][0] for p, _, _ in pts]
+        lines += [f"    {{   /* energy part \"{part.energy}\": {n} points */",
+                  f"        static const double px[{n}] = {{{', '.join(c_double(x) for x in sx)}}};",
+                  f"        static const double py[{n}] = {{{', '.join(c_double(part.rule[p][0][1] - 0.5) for p, _, _ in pts)}}};",
+                  f"        static const double pz[{n}] = {{{', '.join(c_double(part.rule[p][0][2] - 0.5) for p, _, _ in pts)}}};",
+                  f"        static const double cw[{n}] = {{{', '.join(c_double(c) for _, _, c in pts)}}};",
+                  f"        static const int st[{n}] = {{{', '.join(str(k) for _, k, _ in pts)}}};"]
+        lines += _prologue(low, "        ")
+        lines += [f"        for (int p = 0; p < {n}; ++p) {{",
+                  f"            const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
+                  f"            double tr[3], N[{nsh}], Nc[{nsh}], arm[3] = {{0.0, 0.0, 0.0}};"]
+        lines += _block(low, "            ")
+        lines += [f"            {shape}(geom, px[p], py[p] * b, pz[p] * h, N);",
+                  f"            {shape}(geom, px[p], 0.0, 0.0, Nc);",
+                  f"            for (int a = 0; a < {nsh}; ++a)",
+                  "                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];",
+                  "            const double c = cw[p] / l;",
+                  f"            for (int k = 0; k < {ns}; ++k) {{",
+                  "                if (st[p] >= 0 && st[p] != k)",
+                  "                    continue;",
+                  "                double *restrict o = sec + 9 * k;",
+                  "                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];",
+                  "                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);",
+                  "                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);",
+                  "                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);",
+                  "            }", "        }", "    }"]
+    lines += ["}", ""]
+    source = "stress" if len(plan) == 1 else "stress:" + "+".join(p.energy for p, _ in plan)
+    return lines, xs, source
+
+
 def pair_source(elem, elem_path, mat, mat_path):
     name = f"{elem.name}_{mat.NAME}"
     ndof = elem.ndof
@@ -446,14 +529,19 @@ def pair_source(elem, elem_path, mat, mat_path):
                 c += _lane_kernel_fn(s, ndof, parts, lows,
                                      contract_fn=f"{elem.name}_tangent_contract_lanes" if want == "tangent" else None)
                 fns[want + "_lanes"] = s.split("(")[0].split()[-1]
+        sname = f"{name}_{rname}_sections"
+        slines, sxi, ssrc = _sections_fn(elem, mat, rname, sname)
+        c += slines
+        decls.append(slines[0] + ";")
         descs.append(PairDesc(
             element=elem.name, material=mat.NAME, integration=rname, ntab=ntab, nqp=nqp,
             ops_force=counts["force"][1].total(), ops_force_tangent=counts["tangent"][1].total(),
             functions={"tabulate": f"{elem.name}_{rname}_tabulate", "energy": fns["energy"], "force": fns["force"],
                        "force_tangent": fns["tangent"], "force_lanes": fns["force_lanes"],
                        "force_tangent_lanes": fns["tangent_lanes"], "viscous": f"{elem.name}_{rname}_viscous",
-                       "invariants": f"{elem.name}_{rname}_invariants"},
-            nvisc=2, green_strain_range=tuple(getattr(mat, "GREEN_STRAIN_RANGE", (0.0, 0.0)))))
+                       "invariants": f"{elem.name}_{rname}_invariants", "sections": sname},
+            nvisc=2, green_strain_range=tuple(getattr(mat, "GREEN_STRAIN_RANGE", (0.0, 0.0))),
+            sample_xi=sxi, sample_source=ssrc))
         parts_txt = " + ".join(f"{len(p.rule)} pts ({p.energy}, {'x'.join(map(str, rp.points))})"
                                for p, rp in zip(parts, elem.rule(rname)))
         summary.append((rname, parts_txt, ntab, counts))
@@ -473,6 +561,10 @@ def pair_source(elem, elem_path, mat, mat_path):
            f" *          tab[] from {elem.name}_<integration>_tabulate(geom)",
            f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
            f" * Outputs: f[{ndof}] overwritten; K[{ndof}*{ndof}] row-major, upper triangle computed, mirrored.",
+           " * Section resultants (<pair>_<integration>_sections, bk_pair.sections): at the axial Gauss",
+           " * stations of the integration's first rule part, n = int P N0 dA0 and m = int (r - r_c) x P N0 dA0",
+           " * over the reference section (N0 = e_x), from the points of every rule part (a part with one",
+           " * axial station adds its section to every station), global axes.",
            " * Operations (add + mul + div + call; accumulation included):"]
     for rname, parts_txt, ntab, counts in summary:
         hdr.append(f" *   integration \"{rname}\": {parts_txt}; tab[{ntab}]")

@@ -184,7 +184,15 @@ def pair_source(elem, elem_path, mat, mat_path):
             c[-2:-2] = [f"    for (int r = 1; r < {nd}; ++r)",
                         f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];"]
     nqp = cable.NGAUSS
-    c += pair_descriptors(mat.PARAMS, [_full_pair(elem, mat, ntab, nqp, ops)])
+    sprog, sparams = cable.section_program(elem, mat)
+    sig["sections"] = (f"void {name}_full_sections(const double *restrict geom, const double *restrict q, "
+                       "const double *restrict tab, const double *restrict mat, double *restrict sec)")
+    c += _function(sig["sections"], lower(sprog, sparams.values()), ["(void)geom;"])
+    from dataclasses import replace
+    pd = _full_pair(elem, mat, ntab, nqp, ops)
+    pd = replace(pd, functions={**pd.functions, "sections": f"{name}_full_sections"}, sample_xi=cable.sample_xi(),
+                 sample_source="law+dM/ds")
+    c += pair_descriptors(mat.PARAMS, [pd])
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",
@@ -195,7 +203,9 @@ def pair_source(elem, elem_path, mat, mat_path):
            f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
            f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
            f" * Operations per element call ({nqp} Gauss points): energy {ops['energy']}; force {ops['force']};",
-           f" *   force + upper tangent {ops['tangent']}", " */"]
+           f" *   force + upper tangent {ops['tangent']}",
+           " * Section resultants (bk_pair.sections) at the Gauss points: n = W_a - d/dx W_b, m = r' x W_b",
+           " *   (a = r', b = r''; gen/cable.py section_program), global axes.", " */"]
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H
 #define BK_GEN_{name.upper()}_H
@@ -631,7 +641,32 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
           f"    bk_rod_gauge_tangent({nd}, q, cg, K);",
           f"    for (int r = 1; r < {nd}; ++r)",
           f"        for (int c = 0; c < r; ++c) K[r * {nd} + c] = K[c * {nd} + r];", "}", ""]
-    c += pair_descriptors(mat.PARAMS, [_full_pair(elem, mat, ntab, ng, ops)])
+    # section resultants at the Gauss points
+    sprog, _ = rod.section_program(elem, mat)
+    slow = lower(sprog, hoist)
+    sig["sections"] = (f"void {name}_full_sections(const double *restrict geom, const double *restrict q, "
+                       "const double *restrict tab, const double *restrict mat, double *restrict sec)")
+    xg = [float(x) for x, _ in rod.GAUSS]
+    c += [sig["sections"], "{", "    const double l = tab[0];",
+          f"    static const double xg[{ng}] = {{{', '.join(c_double(x) for x in xg)}}};", "    double psi[6];"]
+    c += _prologue(slow, "    ") + ["    bk_rod_psi(q, psi);", f"    for (int g = 0; g < {ng}; ++g) {{",
+                                    "        double c[5], v[13], s[6], rs[6], d[9];",
+                                    "        double *restrict o = sec + 9 * g;"]
+    if nc:
+        c.append(f"        const double *restrict lam = q + {nq} + {nc} * g;")
+    c += ["        (void)bk_rod_gauss_c(g, l, c);", "        bk_rod_v(c, q, psi, v);",
+          "        bk_rod_strain(v, tab + 1 + 6 * g, s);"]
+    c += _block(slow, "        ")
+    c += ["        bk_rod_frame(geom, xg[g], q, o, d);",
+          "        for (int i = 0; i < 3; ++i) {",
+          "            o[3 + i] = rs[0] * d[6 + i] + rs[1] * d[i] + rs[2] * d[3 + i];",
+          "            o[6 + i] = rs[3] * d[6 + i] + rs[4] * d[i] + rs[5] * d[3 + i];",
+          "        }", "    }", "}", ""]
+    pd = _full_pair(elem, mat, ntab, ng, ops)
+    from dataclasses import replace
+    pd = replace(pd, functions={**pd.functions, "sections": f"{name}_full_sections"}, sample_xi=tuple(xg),
+                 sample_source=rod.section_source_label(elem))
+    c += pair_descriptors(mat.PARAMS, [pd])
     hdr = [f"/* {BANNER}", f" * pair: {elem.name} x {mat.NAME} -- {elem.title}; {mat.TITLE}",
            f" * generator inputs: gen/elements/{Path(elem_path).name}, gen/materials/{Path(mat_path).name}, "
            f"{', '.join('gen/' + f for f in FAMILY_FILES[elem.kind])} + gen core",
@@ -643,7 +678,10 @@ def _rod_pair_source(elem, elem_path, mat, mat_path):
            f" *          mat[{len(mat.PARAMS)}] = {{{', '.join(mat.PARAMS)}}}",
            f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
            f" * Operations per element call ({ng} Gauss points): energy {ops['energy']}; force {ops['force']};",
-           f" *   force + upper tangent {ops['tangent']}", " */"]
+           f" *   force + upper tangent {ops['tangent']}",
+           " * Section resultants (bk_pair.sections): n = R C Gamma, m = R D K at the Gauss points",
+           f" *   ({rod.section_source_label(elem)}; components held at zero: EA times their multiplier), global axes.",
+           " */"]
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H
 #define BK_GEN_{name.upper()}_H

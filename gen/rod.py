@@ -555,6 +555,38 @@ def material_programs(elem, mat):
     return {"energy": pe, "force": pf, "tangent": pk}, params
 
 
+def section_program(elem, mat):
+    """The stress resultants at a Gauss point in the material frame, rs[6] =
+    (n1, n2, n3, m1, m2, m3) (components along d3, d1, d2: N, Q2, Q3, T, M2,
+    M3), from s[6], lam[nc] and mat[...]: dW/ds of the law for the free strain
+    components, EA lam_j (the force the multiplier of Gamma_j = 0 exerts, the
+    resultant conjugate to that component in the constrained energy) for the
+    components held at zero.  Returns (program, parameter symbols)."""
+    params = {name: _sym("mat", k) for k, name in enumerate(mat.PARAMS)}
+    s = _syms("s", NS)
+    lam = _syms("lam", len(elem.constrained))
+    gs = dict(zip(STRAIN_NAMES, s))
+    W = mat.energy([gs["g1"], gs["g2"], gs["g3"]], [gs["k1"], gs["k2"], gs["k3"]], params)
+    W = W.subs({gs[c]: 0 for c in elem.constrained})
+    prog = Program()
+    for k, name in enumerate(STRAIN_NAMES):
+        if name in elem.constrained:
+            e = params["EA"] * lam[elem.constrained.index(name)]
+        else:
+            e = sp.diff(W, s[k])
+        prog.output(f"rs[{k}]", e, op="=")
+    return prog, params
+
+
+def section_source_label(elem):
+    """What the rows of sections.csv from sections() hold: "law" (n = C Gamma,
+    m = D K), with the components held at zero by multipliers named."""
+    names = dict(zip(STRAIN_NAMES, ("N", "Q2", "Q3")))
+    if not elem.constrained:
+        return "law"
+    return "law;multiplier:" + " ".join(names[c] for c in elem.constrained)
+
+
 # ----------------------------------------------------------------------------
 # Element-level programs: frame, nodal moment, rotary inertia of a node
 

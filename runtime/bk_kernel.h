@@ -36,6 +36,9 @@
  *   f[ndof]      internal force dU/dq.
  *   K[ndof*ndof] tangent df/dq, row-major, full (kernels write the upper
  *                triangle and mirror it).
+ *   sec[9*nsample] section resultants (bk_pair.sections): per sample point
+ *                the centreline position, the force n and the moment m about
+ *                that point, global axes.
  *
  * Kernels are pure: no allocation, no global state, no calls into the runtime;
  * outputs are overwritten, never accumulated.
@@ -43,7 +46,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 4
+#define BK_KERNEL_VERSION 5
 
 /* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
  * elements of one pair per call, so that the compiler vectorizes across
@@ -206,6 +209,23 @@ typedef struct bk_pair {
      * of principal Green strains the law is meant for (both 0: no limit). */
     void (*invariants)(const double *restrict q, const double *restrict tab, double *restrict inv);
     double green_strain_min, green_strain_max;
+    /* Section resultants from the element's own stresses at nsample points
+     * xi = sample_xi[k] along the axis (0..1): sec[9 k + 0..2] the centreline
+     * point, 3..5 the force n and 6..8 the moment m about that point that the
+     * part beyond the section (larger xi) exerts on the part before it, global
+     * axes.  Rod elements: n = R C Gamma, m = R D K of the law at the Gauss
+     * points (components held at zero by multipliers: the multiplier force);
+     * the cable: n = W_a - d/dx W_b, m = r' x W_b of its energy W(r', r'');
+     * continuum elements: the first Piola-Kirchhoff traction integrated over
+     * the reference section, n = int P N0 dA0, m = int (r - r_c) x P N0 dA0.
+     * sample_source: a label of where the components come from (sections.csv
+     * column `source`, no commas).  NULL: not offered (sections.csv then has
+     * the element's nodal-force rows only). */
+    int nsample;
+    const double *sample_xi;
+    const char *sample_source;
+    void (*sections)(const double *restrict geom, const double *restrict q, const double *restrict tab,
+                     const double *restrict mat, double *restrict sec);
 } bk_pair;
 
 #endif

@@ -31,7 +31,15 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
     f->last = calloc((size_t)(m->nreaction ? m->nreaction : 1), sizeof *f->last);
     f->sec = malloc(12 * (size_t)m->nelem * sizeof *f->sec);
     f->sec_step = -1;
-    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec) {
+    int maxsample = 1;
+    for (int e = 0; e < m->nelem; ++e)
+        if (m->pairs[m->elems[e].pair]->sections && m->pairs[m->elems[e].pair]->nsample > maxsample)
+            maxsample = m->pairs[m->elems[e].pair]->nsample;
+    f->maxsample = maxsample;
+    f->sres = malloc(9 * (size_t)maxsample * sizeof *f->sres);
+    f->ssec = malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
+    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||
+        !f->ssec) {
         fprintf(err, "error: out of memory for the reactions and section forces\n");
         return -1;
     }
@@ -58,6 +66,8 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
         f->fld[i] = -1;
     for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
         f->sec[i] = NAN;
+    for (size_t i = 0; i < 6 * (size_t)maxsample * (size_t)m->nelem; ++i)
+        f->ssec[i] = NAN;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_element *et = bk_elem_type(m, e);
         for (int k = 0; k < et->nfield; ++k) {
@@ -91,7 +101,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
             fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
             return -1;
         }
-        fprintf(f->sections, "step,time,beam,element,end,s,x,y,z,N,Q2,Q3,T,M2,M3\n");
+        fprintf(f->sections, "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3\n");
         fflush(f->sections);
     }
     return 0;
@@ -111,6 +121,8 @@ void bk_forces_close(bk_forces *f)
     free(f->buf);
     free(f->last);
     free(f->sec);
+    free(f->sres);
+    free(f->ssec);
     free(f->relem);
     memset(f, 0, sizeof *f);
 }
@@ -314,6 +326,54 @@ static void node_action(const bk_forces *f, const bk_model *m, int e, int node, 
     }
 }
 
+/* N, Q2, Q3, T, M2, M3 of the force F and the moment M (global axes) on the
+ * section at xi of element e (state qe), sign sg: in the orthonormal section
+ * frame; without section axes (the cable) the axial force and the torque only. */
+static void section_components(const bk_model *m, int e, const double *qe, double xi, const double *F,
+                               const double *M, double sg, double *out)
+{
+    double R[9];
+    if (bk_section_frame(m, e, qe, xi, R) == 0) {
+        for (int i = 0; i < 3; ++i) {
+            const double *ax = R + 3 * ((i + 2) % 3);     /* e3, e1, e2 */
+            out[i] = sg * (F[0] * ax[0] + F[1] * ax[1] + F[2] * ax[2]);
+            out[3 + i] = sg * (M[0] * ax[0] + M[1] * ax[1] + M[2] * ax[2]);
+        }
+    } else {                            /* no section axes: the axial force and torque only */
+        const bk_element *et = bk_elem_type(m, e);
+        double pos[3], d[9];
+        et->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d);
+        double n3 = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+        for (int i = 0; i < 6; ++i)
+            out[i] = NAN;
+        out[0] = sg * (F[0] * d[6] + F[1] * d[7] + F[2] * d[8]) / n3;
+        out[3] = sg * (M[0] * d[6] + M[1] * d[7] + M[2] * d[8]) / n3;
+    }
+}
+
+/* The rows of the element's own stress resultants (bk_pair.sections) at its
+ * sample points: source = the pair's label. */
+static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_rec *sr, int step, double x,
+                              const double *qe)
+{
+    const int e = sr->elem;
+    const bk_elem *el = &m->elems[e];
+    const bk_pair *p = m->pairs[el->pair];
+    if (!p->sections)
+        return;
+    p->sections(m->geoms[el->geom], qe, m->tabs[el->geom], m->mats[el->mat].params, f->sres);
+    for (int k = 0; k < p->nsample; ++k) {
+        const double *o = f->sres + 9 * k, xi = p->sample_xi[k];
+        double out[6];
+        section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
+        for (int i = 0; i < 6; ++i)
+            f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
+        fprintf(f->sections, "%d,%.17g,%s,%d,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o[0], o[1], o[2],
+                out[0], out[1], out[2], out[3], out[4], out[5]);
+    }
+}
+
 static void write_sections(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
                            const double *qdd)
 {
@@ -362,32 +422,19 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
         for (int i = 0; i < ne; ++i)
             ge[i] -= Qe[i];
         for (int end = 0; end < 2; ++end) {
-            double xn[3] = {NAN, NAN, NAN}, F[3], M[3], R[9], out[6];
+            double xn[3] = {NAN, NAN, NAN}, F[3], M[3], out[6];
             node_action(f, m, e, end ? et->nnode - 1 : 0, q, ge, xn, F, M);
-            double sg = end ? 1.0 : -1.0;
             double xi = et->node_xi[end ? et->nnode - 1 : 0];
-            if (bk_section_frame(m, e, qe, xi, R) == 0) {
-                for (int i = 0; i < 3; ++i) {
-                    const double *ax = R + 3 * ((i + 2) % 3);     /* e3, e1, e2 */
-                    out[i] = sg * (F[0] * ax[0] + F[1] * ax[1] + F[2] * ax[2]);
-                    out[3 + i] = sg * (M[0] * ax[0] + M[1] * ax[1] + M[2] * ax[2]);
-                }
-            } else {                    /* no section axes: the axial force and torque only */
-                double pos[3], d[9];
-                et->frame(m->geoms[el->geom], xi, qe, pos, d);
-                double n3 = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
-                for (int i = 0; i < 6; ++i)
-                    out[i] = NAN;
-                out[0] = sg * (F[0] * d[6] + F[1] * d[7] + F[2] * d[8]) / n3;
-                out[3] = sg * (M[0] * d[6] + M[1] * d[7] + M[2] * d[8]) / n3;
-            }
+            section_components(m, e, qe, xi, F, M, end ? 1.0 : -1.0, out);
             for (int i = 0; i < 6; ++i)
                 f->sec[12 * (size_t)e + 6 * end + i] = out[i];
             if (f->sections)
-                fprintf(f->sections, "%d,%.17g,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                        step, x, sr->beam, e, end, end ? sr->s1 : sr->s0, xn[0], xn[1], xn[2], out[0], out[1],
-                        out[2], out[3], out[4], out[5]);
+                fprintf(f->sections, "%d,%.17g,%s,%d,nodal,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                        "%.17g,%.17g\n", step, x, sr->beam, e, end, xi, end ? sr->s1 : sr->s0, xn[0], xn[1], xn[2],
+                        out[0], out[1], out[2], out[3], out[4], out[5]);
         }
+        if (f->sections)
+            write_stress_rows(f, m, sr, step, x, qe);
     }
     f->sec_step = step;
 }

@@ -23,7 +23,11 @@
  * beyond is F, M), at the end node n = F, m = M, about the node; reported in
  * the orthonormal section frame there: N = n.e3, Q2 = n.e1, Q3 = n.e2,
  * T = m.e3, M2 = m.e1, M3 = m.e2 (n, m: the force and moment the part beyond
- * the section exerts on the part before it). */
+ * the section exerts on the part before it); sections.csv source "nodal".
+ * After them, per element, the rows of the element's own stress resultants at
+ * its sample points when its pair offers them (bk_pair.sections: generated,
+ * the law's resultants of the rods, the integrated stress of the continuum
+ * elements), in the same frame at each point, source the pair's label. */
 #ifndef BK_FORCES_H
 #define BK_FORCES_H
 
@@ -44,6 +48,10 @@ typedef struct bk_forces {
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
                                    * element at output step sec_step (for the ParaView frames) */
     int sec_step;
+    double *sres;                 /* [9 maxsample] the output of a pair's sections() */
+    int maxsample;                /* the most sample points of a pair's sections() (at least 1) */
+    double *ssec;                 /* [6 maxsample nelem] N, Q2, Q3, T, M2, M3 of the element's own stress
+                                   * resultants at its sample points, step sec_step (NaN: none) */
 } bk_forces;
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);

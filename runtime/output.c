@@ -64,6 +64,8 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
         return -1;
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
+    o->vtk.ssec = o->forces.ssec;
+    o->vtk.maxsample = o->forces.maxsample;
     /* section forces at the steps that get a ParaView frame; without frames at
      * the stride their default would have (gen/scene/options.py: about 100
      * frames in dynamics, every equilibrium in statics) */

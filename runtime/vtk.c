@@ -270,8 +270,30 @@ static void put_u64(FILE *fp, uint64_t n)
     fwrite(&n, sizeof n, 1, fp);
 }
 
+/* The element's own stress resultants (sections.csv rows not "nodal") at xi:
+ * piecewise linear between its sample points, constant beyond the outer ones;
+ * a = 0: the force (N, Q2, Q3), 1: the moment (T, M2, M3); NaN without them. */
+static void stress_value(const bk_model *m, const double *ssec, int maxsample, int e, int a, double xi, double *x)
+{
+    const bk_pair *p = m->pairs[m->elems[e].pair];
+    const double *v = ssec + 6 * (size_t)maxsample * (size_t)e + 3 * a;
+    if (!p->sections || p->nsample < 1) {
+        x[0] = x[1] = x[2] = NAN;
+        return;
+    }
+    const double *xs = p->sample_xi;
+    int j = 0;
+    while (j + 2 < p->nsample && xi > xs[j + 1])
+        ++j;
+    double t = p->nsample == 1 ? 0.0 : (xi - xs[j]) / (xs[j + 1] - xs[j]);
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    for (int i = 0; i < 3; ++i)
+        x[i] = p->nsample == 1 ? v[i] : (1.0 - t) * v[6 * j + i] + t * v[6 * (j + 1) + i];
+}
+
 static int write_vtu(const bk_model *m, const char *path, int nfield, const char *const *fname,
-                     const double *fval, const double *q, const mode_view *mv, const double *sec)
+                     const double *fval, const double *q, const mode_view *mv, const double *sec,
+                     const double *ssec, int maxsample)
 {
     FILE *fp = fopen(path, "wb");
     if (!fp)
@@ -311,6 +333,13 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     for (int a = 0; sec && a < 2; ++a) {
         fprintf(fp, "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
                     "format=\"appended\" offset=\"%llu\"/>\n", a ? "section_moment" : "section_force",
+                (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    /* the elements' own stress resultants at their sample points, piecewise linear between them */
+    for (int a = 0; sec && ssec && a < 2; ++a) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", a ? "section_moment_stress" : "section_force_stress",
                 (unsigned long long)off);
         off += 8 + sz_pts;
     }
@@ -360,6 +389,21 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
                 double xi = (double)k / (NX - 1), x[3];
                 for (int i = 0; i < 3; ++i)
                     x[i] = (1.0 - xi) * v0[i] + xi * v1[i];
+                for (int j = 0; j <= r; ++j, ++np)
+                    memcpy(vals + 3 * np, x, sizeof x);
+            }
+            fwrite(vals, sizeof(double), 3 * (size_t)np, fp);
+        }
+    }
+    for (int a = 0; sec && ssec && a < 2; ++a) {
+        put_u64(fp, sz_pts);
+        for (int e = 0; e < m->nelem; ++e) {
+            int r = ring_points(m, e);
+            double vals[3 * NX * (MAX_RING + 1)];
+            int np = 0;
+            for (int k = 0; k < NX; ++k) {
+                double x[3];
+                stress_value(m, ssec, maxsample, e, a, (double)k / (NX - 1), x);
                 for (int j = 0; j <= r; ++j, ++np)
                     memcpy(vals + 3 * np, x, sizeof x);
             }
@@ -451,7 +495,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     static const char *const names[] = {"TIME"};
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
-    if (write_vtu(v->m, path, 1, names, &t, q, NULL, sec) != 0)
+    if (write_vtu(v->m, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
@@ -479,7 +523,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, do
     static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
     const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
     mode_view mv = {qp, qm, eps, norm, scale};
-    if (write_vtu(v->m, path, 5, names, vals, q, &mv, NULL) != 0)
+    if (write_vtu(v->m, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;

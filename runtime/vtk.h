@@ -20,6 +20,9 @@ typedef struct bk_vtk {
     double t_pvd;            /* wall clock of that write (s) */
     const double *sec;       /* section forces per element end (forces.h bk_forces.sec), or NULL */
     const int *sec_step;     /* the output step they are of */
+    const double *ssec;      /* the elements' own stress resultants at their sample points
+                              * (forces.h bk_forces.ssec), of the same step, or NULL */
+    int maxsample;           /* sample points per element in ssec */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */

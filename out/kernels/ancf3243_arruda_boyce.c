@@ -3,8 +3,8 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -710,6 +710,87 @@ void ancf3243_arruda_boyce_full_force_tangent_lanes(const double *restrict q, co
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c)
             for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
+}
+
+void ancf3243_arruda_boyce_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][8];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3243.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        const double x9 = (1.0/(mat[1]*mat[1]));
+        const double x11 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
+        const double x13 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
+        const double x15 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double x0 = (F00*F00);
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double x1 = (F10*F10);
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double x3 = (F01*F01);
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double x5 = (F11*F11);
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double x4 = (F02*F02);
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double x7 = (F12*F12);
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb0 = (cbrt(J));
+            const double x10 = (I1*I1);
+            const double x12 = (I1*I1*I1);
+            const double x14 = (I1*I1*I1*I1);
+            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+            const double x16 = 2.0*W_I1;
+            const double P00 = F00*x16 + W_J*cof00;
+            const double P10 = F10*x16 + W_J*cof10;
+            const double P20 = F20*x16 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
 }
 
 double ancf3243_arruda_boyce_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -3302,7 +3383,413 @@ void ancf3243_arruda_boyce_sri_force_tangent_lanes(const double *restrict q, con
             for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
 }
 
+void ancf3243_arruda_boyce_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][8];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3243.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "full_order": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        const double x9 = (mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x10 = (mat[1]*mat[1]);
+        const double x11 = (mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x12 = (mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x13 = mat[0]*(39501.0*x10 + 40425.0*x11 + 67375.0*x12 + 38115.0*x9 + 42039.0);
+        const double x32 = (1.0/x12);
+        const double x27 = (1.0/x10);
+        const double x28 = 13475.0*x27;
+        const double x33 = 519.0*x32;
+        const double x36 = (1.0/x11);
+        const double x37 = 1463.0*x36;
+        const double x40 = (1.0/x9);
+        const double x41 = 38115.0*x40;
+        const double x43 = 1.6491445062873634e-06*mat[0];
+        const double x46 = 0.05*x27;
+        const double x49 = 0.010476190476190476*x40;
+        const double x53 = 0.0027142857142857142*x36;
+        const double x56 = 0.0007703153988868275*x32;
+        const double x120 = 0.5*mat[2];
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x146 = 1.4842300556586271e-05*t[0]*x13*x32;
+            const double W_C01 = C01*x146;
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = C02*x146;
+            const double x0 = (F00*F00);
+            const double x1 = (F10*F10);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double cb0 = (cbrt(C00));
+            const double ulat0 = pow(C00, -((101062.5*mat[2]*x12 - x13)/(202125.0*mat[2]*x12 + x13)));
+            const double cb1 = (cbrt(ulat0));
+            const double x14 = C00*mat[2];
+            const double x15 = (1.0/(cb1*cb1*cb1*cb1*cb1));
+            const double x16 = (1.0/cb0);
+            const double x17 = 808500.0*x16;
+            const double x18 = (1.0/(cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1));
+            const double x19 = C00 + 2.0*ulat0;
+            const double x20 = x16*x19;
+            const double x21 = (x19/ulat0);
+            const double x22 = (1.0/(ulat0*ulat0));
+            const double x23 = (x19*x19);
+            const double x24 = x22*x23;
+            const double x25 = (1.0/(cb0*cb0));
+            const double x26 = (x25/((cb1*cb1*cb1*cb1)));
+            const double x29 = (x19*x19*x19);
+            const double x30 = (1.0/(cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1));
+            const double x31 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x34 = x31*x33;
+            const double x35 = (1.0/(cb0*cb0*cb0*cb0));
+            const double x38 = x35*x37;
+            const double x39 = (1.0/C00);
+            const double x42 = x39*x41;
+            const double x44 = 4.0*C00;
+            const double x45 = 1.3333333333333333*x25;
+            const double x47 = 2.0*x39;
+            const double x48 = 6.0*x39;
+            const double x50 = 8.0*x35;
+            const double x51 = (x19*x19*x19*x19);
+            const double x52 = 2.6666666666666665*x35;
+            const double x54 = 10.0*x31;
+            const double x55 = 3.3333333333333335*x31;
+            const double x57 = (sqrt(C00));
+            const double x58 = mat[2]*x57;
+            const double ulat1 = ulat0 - ((mat[0]*(-0.3333333333333333*x15*x20 + x46*(x26*(8.0*ulat0 + x44) - (x23*x45/((cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x49*(x24*x48 - (x29*x47/((ulat0*ulat0*ulat0)))) + x53*(x18*x29*x50 - (x51*x52/((cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x56*(x30*x51*x54 - (x55*(x19*x19*x19*x19*x19)/((cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + (x16/((cb1*cb1)))) + x58*(ulat0*x57 - 1.0))/(x14 + x43*(-x15*x17 + 336875.0*x18*x20 + x18*x23*x38*(-48.0*x21 + 11.0*x24 + 54.0) + x19*x22*x42*(-4.0*x21 + x24 + 4.0) + x26*x28*(-24.0*x21 + 7.0*x24 + 18.0) + x29*x30*x34*(-60.0*x21 + 13.0*x24 + 72.0))));
+            const double cb2 = (cbrt(ulat1));
+            const double x59 = (1.0/(cb2*cb2*cb2*cb2*cb2));
+            const double x60 = (1.0/(cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2));
+            const double x61 = C00 + 2.0*ulat1;
+            const double x62 = x16*x61;
+            const double x63 = (x61/ulat1);
+            const double x64 = (1.0/(ulat1*ulat1));
+            const double x65 = (x61*x61);
+            const double x66 = x64*x65;
+            const double x67 = (x25/((cb2*cb2*cb2*cb2)));
+            const double x68 = (x61*x61*x61);
+            const double x69 = (1.0/(cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2));
+            const double x70 = (x61*x61*x61*x61);
+            const double ulat2 = ulat1 - ((mat[0]*(x46*(x67*(8.0*ulat1 + x44) - (x45*x65/((cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x49*(x48*x66 - (x47*x68/((ulat1*ulat1*ulat1)))) + x53*(x50*x60*x68 - (x52*x70/((cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x56*(x54*x69*x70 - (x55*(x61*x61*x61*x61*x61)/((cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) - 0.3333333333333333*x59*x62 + (x16/((cb2*cb2)))) + x58*(ulat1*x57 - 1.0))/(x14 + x43*(-x17*x59 + x28*x67*(-24.0*x63 + 7.0*x66 + 18.0) + x34*x68*x69*(-60.0*x63 + 13.0*x66 + 72.0) + x38*x60*x65*(-48.0*x63 + 11.0*x66 + 54.0) + x42*x61*x64*(-4.0*x63 + x66 + 4.0) + 336875.0*x60*x62)));
+            const double cb3 = (cbrt(ulat2));
+            const double x71 = (1.0/(cb3*cb3*cb3*cb3*cb3));
+            const double x72 = (1.0/(cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3));
+            const double x73 = C00 + 2.0*ulat2;
+            const double x74 = x16*x73;
+            const double x75 = (x73/ulat2);
+            const double x76 = (1.0/(ulat2*ulat2));
+            const double x77 = (x73*x73);
+            const double x78 = x76*x77;
+            const double x79 = (x25/((cb3*cb3*cb3*cb3)));
+            const double x80 = (x73*x73*x73);
+            const double x81 = (1.0/(cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3));
+            const double x82 = (x73*x73*x73*x73);
+            const double ulat3 = ulat2 - ((mat[0]*(x46*(x79*(8.0*ulat2 + x44) - (x45*x77/((cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x49*(x48*x78 - (x47*x80/((ulat2*ulat2*ulat2)))) + x53*(x50*x72*x80 - (x52*x82/((cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x56*(x54*x81*x82 - (x55*(x73*x73*x73*x73*x73)/((cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) - 0.3333333333333333*x71*x74 + (x16/((cb3*cb3)))) + x58*(ulat2*x57 - 1.0))/(x14 + x43*(-x17*x71 + x28*x79*(-24.0*x75 + 7.0*x78 + 18.0) + x34*x80*x81*(-60.0*x75 + 13.0*x78 + 72.0) + x38*x72*x77*(-48.0*x75 + 11.0*x78 + 54.0) + x42*x73*x76*(-4.0*x75 + x78 + 4.0) + 336875.0*x72*x74)));
+            const double cb4 = (cbrt(ulat3));
+            const double x83 = (1.0/(cb4*cb4*cb4*cb4*cb4));
+            const double x84 = (1.0/(cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4));
+            const double x85 = C00 + 2.0*ulat3;
+            const double x86 = x16*x85;
+            const double x87 = (x85/ulat3);
+            const double x88 = (1.0/(ulat3*ulat3));
+            const double x89 = (x85*x85);
+            const double x90 = x88*x89;
+            const double x91 = (x25/((cb4*cb4*cb4*cb4)));
+            const double x92 = (x85*x85*x85);
+            const double x93 = (1.0/(cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4));
+            const double x94 = (x85*x85*x85*x85);
+            const double ulat4 = ulat3 - ((mat[0]*(x46*(x91*(8.0*ulat3 + x44) - (x45*x89/((cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x49*(x48*x90 - (x47*x92/((ulat3*ulat3*ulat3)))) + x53*(x50*x84*x92 - (x52*x94/((cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x56*(x54*x93*x94 - (x55*(x85*x85*x85*x85*x85)/((cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) - 0.3333333333333333*x83*x86 + (x16/((cb4*cb4)))) + x58*(ulat3*x57 - 1.0))/(x14 + x43*(-x17*x83 + x28*x91*(-24.0*x87 + 7.0*x90 + 18.0) + x34*x92*x93*(-60.0*x87 + 13.0*x90 + 72.0) + x38*x84*x89*(-48.0*x87 + 11.0*x90 + 54.0) + x42*x85*x88*(-4.0*x87 + x90 + 4.0) + 336875.0*x84*x86)));
+            const double cb5 = (cbrt(ulat4));
+            const double x95 = (1.0/(cb5*cb5*cb5*cb5*cb5));
+            const double x96 = (1.0/(cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5));
+            const double x97 = C00 + 2.0*ulat4;
+            const double x98 = x16*x97;
+            const double x99 = (x97/ulat4);
+            const double x100 = (1.0/(ulat4*ulat4));
+            const double x101 = (x97*x97);
+            const double x102 = x100*x101;
+            const double x103 = (x25/((cb5*cb5*cb5*cb5)));
+            const double x104 = (x97*x97*x97);
+            const double x105 = (1.0/(cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5));
+            const double x106 = (x97*x97*x97*x97);
+            const double ulat5 = ulat4 - ((mat[0]*(x46*(x103*(8.0*ulat4 + x44) - (x101*x45/((cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x49*(x102*x48 - (x104*x47/((ulat4*ulat4*ulat4)))) + x53*(x104*x50*x96 - (x106*x52/((cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x56*(x105*x106*x54 - (x55*(x97*x97*x97*x97*x97)/((cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) - 0.3333333333333333*x95*x98 + (x16/((cb5*cb5)))) + x58*(ulat4*x57 - 1.0))/(x14 + x43*(x100*x42*x97*(x102 - 4.0*x99 + 4.0) + x101*x38*x96*(11.0*x102 - 48.0*x99 + 54.0) + x103*x28*(7.0*x102 - 24.0*x99 + 18.0) + x104*x105*x34*(13.0*x102 - 60.0*x99 + 72.0) - x17*x95 + 336875.0*x96*x98)));
+            const double cb6 = (cbrt(ulat5));
+            const double x107 = (1.0/(cb6*cb6*cb6*cb6));
+            const double x108 = C00 + 2.0*ulat5;
+            const double x109 = (x108*x108);
+            const double x110 = (ulat5*ulat5);
+            const double x111 = (1.0/x110);
+            const double x112 = (x108*x108*x108);
+            const double x113 = (1.0/(cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6));
+            const double x114 = (x108*x108*x108*x108);
+            const double x115 = (1.0/(cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6));
+            const double x116 = (x108*x108*x108*x108*x108);
+            const double x117 = (1.0/(cb6*cb6));
+            const double x118 = 0.5*x117*x16;
+            const double x121 = x107*x25;
+            const double x122 = (1.0/(C00*C00));
+            const double x123 = x109*x111;
+            const double x124 = x113*x35;
+            const double x125 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x126 = x115*x31;
+            const double x127 = x117*x35;
+            const double x119 = ulat5*x57 - 1.0;
+            const double x128 = (x119/x57);
+            const double Uax1 = mat[0]*(-0.16666666666666666*x108*x127 + x118 + x46*(-0.6666666666666666*x107*x109*x31 + x121*(2.0*C00 + 4.0*ulat5)) + x49*(-x111*x112*x122 + 3.0*x123*x39) + x53*(4.0*x112*x124 - 1.3333333333333333*x113*x114*x125) + x56*(5.0*x114*x126 - (1.6666666666666667*x115*x116/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))))) + ulat5*x120*x128;
+            const double W_C00 = Uax1*t[0];
+            const double x147 = 2.0*W_C00;
+            const double P00 = F00*x147 + F01*W_C01 + F02*W_C02;
+            const double P10 = F10*x147 + F11*W_C01 + F12*W_C02;
+            const double P20 = F20*x147 + F21*W_C01 + F22*W_C02;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+    {   /* energy part "centreline": 3 points */
+        static const double px[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+        static const double py[3] = {0.0, 0.0, 0.0};
+        static const double pz[3] = {0.0, 0.0, 0.0};
+        static const double cw[3] = {3.5999999999999996, 2.25, 3.5999999999999996};
+        static const int st[3] = {0, 1, 2};
+        const double x12 = (mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x9 = (mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x10 = (mat[1]*mat[1]);
+        const double x11 = (mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]);
+        const double x13 = mat[0]*(39501.0*x10 + 40425.0*x11 + 67375.0*x12 + 38115.0*x9 + 42039.0);
+        const double x27 = (1.0/x10);
+        const double x28 = 13475.0*x27;
+        const double x32 = (1.0/x12);
+        const double x33 = 519.0*x32;
+        const double x36 = (1.0/x11);
+        const double x37 = 1463.0*x36;
+        const double x40 = (1.0/x9);
+        const double x41 = 38115.0*x40;
+        const double x43 = 1.6491445062873634e-06*mat[0];
+        const double x46 = 0.05*x27;
+        const double x49 = 0.010476190476190476*x40;
+        const double x53 = 0.0027142857142857142*x36;
+        const double x56 = 0.0007703153988868275*x32;
+        const double x120 = 0.5*mat[2];
+        for (int p = 0; p < 3; ++p) {
+            const double *restrict t = tab + 96 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double x0 = (F00*F00);
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double x1 = (F10*F10);
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double cb0 = (cbrt(C00));
+            const double ulat0 = pow(C00, -((101062.5*mat[2]*x12 - x13)/(202125.0*mat[2]*x12 + x13)));
+            const double cb1 = (cbrt(ulat0));
+            const double x14 = C00*mat[2];
+            const double x15 = (1.0/(cb1*cb1*cb1*cb1*cb1));
+            const double x16 = (1.0/cb0);
+            const double x17 = 808500.0*x16;
+            const double x18 = (1.0/(cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1));
+            const double x19 = C00 + 2.0*ulat0;
+            const double x20 = x16*x19;
+            const double x21 = (x19/ulat0);
+            const double x22 = (1.0/(ulat0*ulat0));
+            const double x23 = (x19*x19);
+            const double x24 = x22*x23;
+            const double x25 = (1.0/(cb0*cb0));
+            const double x26 = (x25/((cb1*cb1*cb1*cb1)));
+            const double x29 = (x19*x19*x19);
+            const double x30 = (1.0/(cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1));
+            const double x31 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x34 = x31*x33;
+            const double x35 = (1.0/(cb0*cb0*cb0*cb0));
+            const double x38 = x35*x37;
+            const double x39 = (1.0/C00);
+            const double x42 = x39*x41;
+            const double x44 = 4.0*C00;
+            const double x45 = 1.3333333333333333*x25;
+            const double x47 = 2.0*x39;
+            const double x48 = 6.0*x39;
+            const double x50 = 8.0*x35;
+            const double x51 = (x19*x19*x19*x19);
+            const double x52 = 2.6666666666666665*x35;
+            const double x54 = 10.0*x31;
+            const double x55 = 3.3333333333333335*x31;
+            const double x57 = (sqrt(C00));
+            const double x58 = mat[2]*x57;
+            const double ulat1 = ulat0 - ((mat[0]*(-0.3333333333333333*x15*x20 + x46*(x26*(8.0*ulat0 + x44) - (x23*x45/((cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x49*(x24*x48 - (x29*x47/((ulat0*ulat0*ulat0)))) + x53*(x18*x29*x50 - (x51*x52/((cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x56*(x30*x51*x54 - (x55*(x19*x19*x19*x19*x19)/((cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + (x16/((cb1*cb1)))) + x58*(ulat0*x57 - 1.0))/(x14 + x43*(-x15*x17 + 336875.0*x18*x20 + x18*x23*x38*(-48.0*x21 + 11.0*x24 + 54.0) + x19*x22*x42*(-4.0*x21 + x24 + 4.0) + x26*x28*(-24.0*x21 + 7.0*x24 + 18.0) + x29*x30*x34*(-60.0*x21 + 13.0*x24 + 72.0))));
+            const double cb2 = (cbrt(ulat1));
+            const double x59 = (1.0/(cb2*cb2*cb2*cb2*cb2));
+            const double x60 = (1.0/(cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2));
+            const double x61 = C00 + 2.0*ulat1;
+            const double x62 = x16*x61;
+            const double x63 = (x61/ulat1);
+            const double x64 = (1.0/(ulat1*ulat1));
+            const double x65 = (x61*x61);
+            const double x66 = x64*x65;
+            const double x67 = (x25/((cb2*cb2*cb2*cb2)));
+            const double x68 = (x61*x61*x61);
+            const double x69 = (1.0/(cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2));
+            const double x70 = (x61*x61*x61*x61);
+            const double ulat2 = ulat1 - ((mat[0]*(x46*(x67*(8.0*ulat1 + x44) - (x45*x65/((cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x49*(x48*x66 - (x47*x68/((ulat1*ulat1*ulat1)))) + x53*(x50*x60*x68 - (x52*x70/((cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x56*(x54*x69*x70 - (x55*(x61*x61*x61*x61*x61)/((cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) - 0.3333333333333333*x59*x62 + (x16/((cb2*cb2)))) + x58*(ulat1*x57 - 1.0))/(x14 + x43*(-x17*x59 + x28*x67*(-24.0*x63 + 7.0*x66 + 18.0) + x34*x68*x69*(-60.0*x63 + 13.0*x66 + 72.0) + x38*x60*x65*(-48.0*x63 + 11.0*x66 + 54.0) + x42*x61*x64*(-4.0*x63 + x66 + 4.0) + 336875.0*x60*x62)));
+            const double cb3 = (cbrt(ulat2));
+            const double x71 = (1.0/(cb3*cb3*cb3*cb3*cb3));
+            const double x72 = (1.0/(cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3));
+            const double x73 = C00 + 2.0*ulat2;
+            const double x74 = x16*x73;
+            const double x75 = (x73/ulat2);
+            const double x76 = (1.0/(ulat2*ulat2));
+            const double x77 = (x73*x73);
+            const double x78 = x76*x77;
+            const double x79 = (x25/((cb3*cb3*cb3*cb3)));
+            const double x80 = (x73*x73*x73);
+            const double x81 = (1.0/(cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3));
+            const double x82 = (x73*x73*x73*x73);
+            const double ulat3 = ulat2 - ((mat[0]*(x46*(x79*(8.0*ulat2 + x44) - (x45*x77/((cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x49*(x48*x78 - (x47*x80/((ulat2*ulat2*ulat2)))) + x53*(x50*x72*x80 - (x52*x82/((cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x56*(x54*x81*x82 - (x55*(x73*x73*x73*x73*x73)/((cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) - 0.3333333333333333*x71*x74 + (x16/((cb3*cb3)))) + x58*(ulat2*x57 - 1.0))/(x14 + x43*(-x17*x71 + x28*x79*(-24.0*x75 + 7.0*x78 + 18.0) + x34*x80*x81*(-60.0*x75 + 13.0*x78 + 72.0) + x38*x72*x77*(-48.0*x75 + 11.0*x78 + 54.0) + x42*x73*x76*(-4.0*x75 + x78 + 4.0) + 336875.0*x72*x74)));
+            const double cb4 = (cbrt(ulat3));
+            const double x83 = (1.0/(cb4*cb4*cb4*cb4*cb4));
+            const double x84 = (1.0/(cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4));
+            const double x85 = C00 + 2.0*ulat3;
+            const double x86 = x16*x85;
+            const double x87 = (x85/ulat3);
+            const double x88 = (1.0/(ulat3*ulat3));
+            const double x89 = (x85*x85);
+            const double x90 = x88*x89;
+            const double x91 = (x25/((cb4*cb4*cb4*cb4)));
+            const double x92 = (x85*x85*x85);
+            const double x93 = (1.0/(cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4));
+            const double x94 = (x85*x85*x85*x85);
+            const double ulat4 = ulat3 - ((mat[0]*(x46*(x91*(8.0*ulat3 + x44) - (x45*x89/((cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x49*(x48*x90 - (x47*x92/((ulat3*ulat3*ulat3)))) + x53*(x50*x84*x92 - (x52*x94/((cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x56*(x54*x93*x94 - (x55*(x85*x85*x85*x85*x85)/((cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) - 0.3333333333333333*x83*x86 + (x16/((cb4*cb4)))) + x58*(ulat3*x57 - 1.0))/(x14 + x43*(-x17*x83 + x28*x91*(-24.0*x87 + 7.0*x90 + 18.0) + x34*x92*x93*(-60.0*x87 + 13.0*x90 + 72.0) + x38*x84*x89*(-48.0*x87 + 11.0*x90 + 54.0) + x42*x85*x88*(-4.0*x87 + x90 + 4.0) + 336875.0*x84*x86)));
+            const double cb5 = (cbrt(ulat4));
+            const double x95 = (1.0/(cb5*cb5*cb5*cb5*cb5));
+            const double x96 = (1.0/(cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5));
+            const double x97 = C00 + 2.0*ulat4;
+            const double x98 = x16*x97;
+            const double x99 = (x97/ulat4);
+            const double x100 = (1.0/(ulat4*ulat4));
+            const double x101 = (x97*x97);
+            const double x102 = x100*x101;
+            const double x103 = (x25/((cb5*cb5*cb5*cb5)));
+            const double x104 = (x97*x97*x97);
+            const double x105 = (1.0/(cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5));
+            const double x106 = (x97*x97*x97*x97);
+            const double ulat5 = ulat4 - ((mat[0]*(x46*(x103*(8.0*ulat4 + x44) - (x101*x45/((cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x49*(x102*x48 - (x104*x47/((ulat4*ulat4*ulat4)))) + x53*(x104*x50*x96 - (x106*x52/((cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x56*(x105*x106*x54 - (x55*(x97*x97*x97*x97*x97)/((cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) - 0.3333333333333333*x95*x98 + (x16/((cb5*cb5)))) + x58*(ulat4*x57 - 1.0))/(x14 + x43*(x100*x42*x97*(x102 - 4.0*x99 + 4.0) + x101*x38*x96*(11.0*x102 - 48.0*x99 + 54.0) + x103*x28*(7.0*x102 - 24.0*x99 + 18.0) + x104*x105*x34*(13.0*x102 - 60.0*x99 + 72.0) - x17*x95 + 336875.0*x96*x98)));
+            const double cb6 = (cbrt(ulat5));
+            const double x107 = (1.0/(cb6*cb6*cb6*cb6));
+            const double x108 = C00 + 2.0*ulat5;
+            const double x109 = (x108*x108);
+            const double x110 = (ulat5*ulat5);
+            const double x111 = (1.0/x110);
+            const double x112 = (x108*x108*x108);
+            const double x113 = (1.0/(cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6));
+            const double x114 = (x108*x108*x108*x108);
+            const double x115 = (1.0/(cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6*cb6));
+            const double x116 = (x108*x108*x108*x108*x108);
+            const double x117 = (1.0/(cb6*cb6));
+            const double x118 = 0.5*x117*x16;
+            const double x121 = x107*x25;
+            const double x122 = (1.0/(C00*C00));
+            const double x123 = x109*x111;
+            const double x124 = x113*x35;
+            const double x125 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x126 = x115*x31;
+            const double x127 = x117*x35;
+            const double x119 = ulat5*x57 - 1.0;
+            const double x128 = (x119/x57);
+            const double Uax1 = mat[0]*(-0.16666666666666666*x108*x127 + x118 + x46*(-0.6666666666666666*x107*x109*x31 + x121*(2.0*C00 + 4.0*ulat5)) + x49*(-x111*x112*x122 + 3.0*x123*x39) + x53*(4.0*x112*x124 - 1.3333333333333333*x113*x114*x125) + x56*(5.0*x114*x126 - (1.6666666666666667*x115*x116/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))))) + ulat5*x120*x128;
+            const double W_C00 = -Uax1*t[0];
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x149 = 1.4842300556586271e-05*t[0]*x13*x32;
+            const double W_C01 = -C01*x149;
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = -C02*x149;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb7 = (cbrt(J));
+            const double x146 = (I1*I1);
+            const double x147 = (I1*I1*I1);
+            const double x148 = (I1*I1*I1*I1);
+            const double W_I1 = mat[0]*t[0]*((0.1*I1*x27/((cb7*cb7*cb7*cb7))) + (0.5/((cb7*cb7))) + (0.010857142857142857*x147*x36/((cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7))) + (0.0038515769944341373*x148*x32/((cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7))) + (0.03142857142857143*x146*x40/((J*J))));
+            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x32*(I1*I1*I1*I1*I1)/((cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7))) - (0.3333333333333333*I1/((cb7*cb7*cb7*cb7*cb7))) - (0.06666666666666667*x146*x27/((cb7*cb7*cb7*cb7*cb7*cb7*cb7))) - (0.007238095238095238*x148*x36/((cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7*cb7))) - (0.02095238095238095*x147*x40/((J*J*J)))) + x120*(2.0*J - 2.0));
+            const double x150 = 2.0*F00;
+            const double P00 = F01*W_C01 + F02*W_C02 + W_C00*x150 + W_I1*x150 + W_J*cof00;
+            const double x151 = 2.0*W_I1;
+            const double x152 = 2.0*W_C00;
+            const double P10 = F10*x151 + F10*x152 + F11*W_C01 + F12*W_C02 + W_J*cof10;
+            const double P20 = F20*x151 + F20*x152 + F21*W_C01 + F22*W_C02 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[3] = {"mu", "lambda_m", "kappa"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
     .element = &bk_element_ancf3243,
@@ -3323,7 +3810,13 @@ const bk_pair bk_pair_ancf3243_arruda_boyce_full = {
     .nvisc = 2,
     .viscous = ancf3243_full_viscous,
     .invariants = ancf3243_full_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3243_arruda_boyce_full_sections,
 };
+
+static const double sample_xi_sri[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3243_arruda_boyce_sri = {
     .element = &bk_element_ancf3243,
@@ -3344,4 +3837,8 @@ const bk_pair bk_pair_ancf3243_arruda_boyce_sri = {
     .nvisc = 2,
     .viscous = ancf3243_sri_viscous,
     .invariants = ancf3243_sri_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_sri,
+    .sample_source = "stress:full_order+centreline",
+    .sections = ancf3243_arruda_boyce_sri_sections,
 };

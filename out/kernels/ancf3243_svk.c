@@ -3,8 +3,8 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3243_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -628,6 +628,86 @@ void ancf3243_svk_full_force_tangent_lanes(const double *restrict q, const doubl
     for (int r = 1; r < 24; ++r)
         for (int c = 0; c < r; ++c)
             for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
+}
+
+void ancf3243_svk_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][8];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3243.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double x0 = (F00*F00);
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double x1 = (F10*F10);
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double x9 = 0.5*I1;
+            const double W_I1 = t[0]*(0.5*mat[0]*(x9 - 1.5) + mat[1]*(x9 - 0.5));
+            const double W_I2 = -0.5*mat[1]*t[0];
+            const double x10 = 2.0*F00;
+            const double x11 = 2.0*F01;
+            const double x12 = 2.0*F02;
+            const double P00 = W_I1*x10 + W_I2*(-C00*x10 - C01*x11 - C02*x12 + 2.0*F00*I1);
+            const double x13 = 2.0*F10;
+            const double x14 = 2.0*F11;
+            const double x15 = 2.0*F12;
+            const double P10 = W_I1*x13 + W_I2*(-C00*x13 - C01*x14 - C02*x15 + 2.0*F10*I1);
+            const double x16 = 2.0*F20;
+            const double x17 = 2.0*F21;
+            const double x18 = 2.0*F22;
+            const double P20 = W_I1*x16 + W_I2*(-C00*x16 - C01*x17 - C02*x18 + 2.0*F20*I1);
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
 }
 
 double ancf3243_svk_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -1830,7 +1910,160 @@ void ancf3243_svk_sri_force_tangent_lanes(const double *restrict q, const double
             for (int l = 0; l < 8; ++l) K[(r * 24 + c) * 8 + l] = K[(c * 24 + r) * 8 + l];
 }
 
+void ancf3243_svk_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][8];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3243.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "full_order": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        const double x10 = 0.5*mat[0];
+        const double ulat0 = 1.0;
+        const double x9 = (1.0/(mat[0] + mat[1]));
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x14 = mat[1]*t[0];
+            const double W_C01 = C01*x14;
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = C02*x14;
+            const double x0 = (F00*F00);
+            const double x1 = (F10*F10);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double x11 = 0.5*C00;
+            const double ulat1 = ulat0 - x9*(mat[1]*(ulat0 - 1.0) + x10*(C00 + 2.0*ulat0 - 3.0));
+            const double x12 = ulat1 + x11;
+            const double x13 = x12 - 1.5;
+            const double Uax1 = mat[1]*(x11 - 0.5) + x10*x13;
+            const double W_C00 = Uax1*t[0];
+            const double x15 = 2.0*W_C00;
+            const double P00 = F00*x15 + F01*W_C01 + F02*W_C02;
+            const double P10 = F10*x15 + F11*W_C01 + F12*W_C02;
+            const double P20 = F20*x15 + F21*W_C01 + F22*W_C02;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+    {   /* energy part "centreline": 3 points */
+        static const double px[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+        static const double py[3] = {0.0, 0.0, 0.0};
+        static const double pz[3] = {0.0, 0.0, 0.0};
+        static const double cw[3] = {3.5999999999999996, 2.25, 3.5999999999999996};
+        static const int st[3] = {0, 1, 2};
+        const double x10 = 0.5*mat[0];
+        const double ulat0 = 1.0;
+        const double x9 = (1.0/(mat[0] + mat[1]));
+        for (int p = 0; p < 3; ++p) {
+            const double *restrict t = tab + 96 + 8 * p;
+            double tr[3], N[8], Nc[8], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[15]*t[6] + q[3]*t[2] + t[1]*(q[0] - q[12]) + t[3]*(-q[18] + q[6]) + t[5]*(-q[21] + q[9]);
+            const double x0 = (F00*F00);
+            const double F10 = q[16]*t[6] + q[4]*t[2] + t[1]*(-q[13] + q[1]) + t[3]*(-q[19] + q[7]) + t[5]*(q[10] - q[22]);
+            const double x1 = (F10*F10);
+            const double F20 = q[17]*t[6] + q[5]*t[2] + t[1]*(-q[14] + q[2]) + t[3]*(-q[20] + q[8]) + t[5]*(q[11] - q[23]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[18]*t[7] + q[6]*t[4];
+            const double F11 = q[19]*t[7] + q[7]*t[4];
+            const double F21 = q[20]*t[7] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double F02 = q[21]*t[7] + q[9]*t[4];
+            const double F12 = q[10]*t[4] + q[22]*t[7];
+            const double F22 = q[11]*t[4] + q[23]*t[7];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double x11 = 0.5*C00;
+            const double ulat1 = ulat0 - x9*(mat[1]*(ulat0 - 1.0) + x10*(C00 + 2.0*ulat0 - 3.0));
+            const double x12 = ulat1 + x11;
+            const double x13 = x12 - 1.5;
+            const double Uax1 = mat[1]*(x11 - 0.5) + x10*x13;
+            const double W_C00 = -Uax1*t[0];
+            const double x15 = mat[1]*t[0];
+            const double W_C01 = -C01*x15;
+            const double W_C02 = -C02*x15;
+            const double x14 = 0.5*I1;
+            const double W_I1 = t[0]*(mat[1]*(x14 - 0.5) + x10*(x14 - 1.5));
+            const double W_I2 = -0.5*x15;
+            const double x16 = 2.0*F00;
+            const double x17 = 2.0*F01;
+            const double x18 = 2.0*F02;
+            const double P00 = F01*W_C01 + F02*W_C02 + W_C00*x16 + W_I1*x16 + W_I2*(-C00*x16 - C01*x17 - C02*x18 + 2.0*F00*I1);
+            const double x19 = 2.0*F10;
+            const double x20 = 2.0*F11;
+            const double x21 = 2.0*F12;
+            const double P10 = F11*W_C01 + F12*W_C02 + W_C00*x19 + W_I1*x19 + W_I2*(-C00*x19 - C01*x20 - C02*x21 + 2.0*F10*I1);
+            const double x22 = 2.0*F20;
+            const double x23 = 2.0*F21;
+            const double x24 = 2.0*F22;
+            const double P20 = F21*W_C01 + F22*W_C02 + W_C00*x22 + W_I1*x22 + W_I2*(-C00*x22 - C01*x23 - C02*x24 + 2.0*F20*I1);
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3243_svk_full = {
     .element = &bk_element_ancf3243,
@@ -1853,7 +2086,13 @@ const bk_pair bk_pair_ancf3243_svk_full = {
     .invariants = ancf3243_full_invariants,
     .green_strain_min = -0.2,
     .green_strain_max = 0.5,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3243_svk_full_sections,
 };
+
+static const double sample_xi_sri[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3243_svk_sri = {
     .element = &bk_element_ancf3243,
@@ -1876,4 +2115,8 @@ const bk_pair bk_pair_ancf3243_svk_sri = {
     .invariants = ancf3243_sri_invariants,
     .green_strain_min = -0.2,
     .green_strain_max = 0.5,
+    .nsample = 3,
+    .sample_xi = sample_xi_sri,
+    .sample_source = "stress:full_order+centreline",
+    .sections = ancf3243_svk_sri_sections,
 };

@@ -3,8 +3,8 @@
 #include "ancf3273.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -922,6 +922,93 @@ void ancf3273_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, c
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
 }
 
+void ancf3273_mooney_rivlin_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 27 points */
+        static const double px[27] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[27] = {-0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417};
+        static const double pz[27] = {-0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417};
+        static const double cw[27] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[27] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double x0 = (F00*F00);
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double x1 = (F10*F10);
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb0 = (cbrt(J));
+            const double W_I1 = (mat[0]*t[0]/((cb0*cb0)));
+            const double W_I2 = (mat[1]*t[0]/((cb0*cb0*cb0*cb0)));
+            const double C12 = F01*F02 + F11*F12 + F21*F22;
+            const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[1]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double x9 = 2.0*F00;
+            const double x10 = 2.0*F01;
+            const double x11 = 2.0*F02;
+            const double P00 = W_I1*x9 + W_I2*(-C00*x9 - C01*x10 - C02*x11 + 2.0*F00*I1) + W_J*cof00;
+            const double x12 = 2.0*F10;
+            const double x13 = 2.0*F11;
+            const double x14 = 2.0*F12;
+            const double P10 = W_I1*x12 + W_I2*(-C00*x12 - C01*x13 - C02*x14 + 2.0*F10*I1) + W_J*cof10;
+            const double x15 = 2.0*F20;
+            const double x16 = 2.0*F21;
+            const double x17 = 2.0*F22;
+            const double P20 = W_I1*x15 + W_I2*(-C00*x15 - C01*x16 - C02*x17 + 2.0*F20*I1) + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 double ancf3273_mooney_rivlin_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -1827,6 +1914,93 @@ void ancf3273_mooney_rivlin_reduced_force_tangent_lanes(const double *restrict q
     for (int r = 1; r < 42; ++r)
         for (int c = 0; c < r; ++c)
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
+}
+
+void ancf3273_mooney_rivlin_reduced_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double x0 = (F00*F00);
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double x1 = (F10*F10);
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb0 = (cbrt(J));
+            const double W_I1 = (mat[0]*t[0]/((cb0*cb0)));
+            const double W_I2 = (mat[1]*t[0]/((cb0*cb0*cb0*cb0)));
+            const double C12 = F01*F02 + F11*F12 + F21*F22;
+            const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[1]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double x9 = 2.0*F00;
+            const double x10 = 2.0*F01;
+            const double x11 = 2.0*F02;
+            const double P00 = W_I1*x9 + W_I2*(-C00*x9 - C01*x10 - C02*x11 + 2.0*F00*I1) + W_J*cof00;
+            const double x12 = 2.0*F10;
+            const double x13 = 2.0*F11;
+            const double x14 = 2.0*F12;
+            const double P10 = W_I1*x12 + W_I2*(-C00*x12 - C01*x13 - C02*x14 + 2.0*F10*I1) + W_J*cof10;
+            const double x15 = 2.0*F20;
+            const double x16 = 2.0*F21;
+            const double x17 = 2.0*F22;
+            const double P20 = W_I1*x15 + W_I2*(-C00*x15 - C01*x16 - C02*x17 + 2.0*F20*I1) + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
 }
 
 double ancf3273_mooney_rivlin_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -4079,7 +4253,279 @@ void ancf3273_mooney_rivlin_sri_force_tangent_lanes(const double *restrict q, co
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
 }
 
+void ancf3273_mooney_rivlin_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "full_order": 27 points */
+        static const double px[27] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[27] = {-0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417};
+        static const double pz[27] = {-0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417};
+        static const double cw[27] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[27] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+        const double x9 = 4.0*mat[0];
+        const double x10 = 4.0*mat[1];
+        const double x17 = 0.2222222222222222*mat[0];
+        const double x22 = 0.2222222222222222*mat[1];
+        const double x54 = 0.5*mat[2];
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x68 = 2.0*t[0]*(mat[0] + mat[1]);
+            const double W_C01 = C01*x68;
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = C02*x68;
+            const double x0 = (F00*F00);
+            const double x1 = (F10*F10);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double ulat0 = pow(C00, -(0.5*(3.0*mat[2] - x10 - x9)/(2.0*mat[0] + 2.0*mat[1] + 3.0*mat[2])));
+            const double cb1 = (cbrt(ulat0));
+            const double x11 = C00*mat[2];
+            const double x12 = (1.0/(cb1*cb1*cb1*cb1*cb1));
+            const double x13 = (1.0/ulat0);
+            const double x14 = 2.0*ulat0;
+            const double x15 = C00 + x14;
+            const double cb0 = (cbrt(C00));
+            const double x16 = (1.0/cb0);
+            const double x18 = x16*x17;
+            const double x19 = 2.0*C00;
+            const double x20 = (1.0/(cb0*cb0));
+            const double x21 = (x20/((cb1*cb1*cb1*cb1)));
+            const double x23 = 2.0*x16;
+            const double x24 = 0.6666666666666666*x16;
+            const double x25 = 1.3333333333333333*x20;
+            const double x26 = (sqrt(C00));
+            const double x27 = mat[2]*x26;
+            const double ulat1 = ulat0 - ((mat[0]*(-x12*x15*x24 + (x23/((cb1*cb1)))) + mat[1]*(x21*(x14 + x19) - (x25*(C00*x14 + (ulat0*ulat0))/((cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x27*(ulat0*x26 - 1.0))/(x11 - x12*x18*(-5.0*x13*x15 + 12.0) + x21*x22*(-24.0*x13*(C00 + ulat0) + 14.0*x13*(ulat0 + x19) + 9.0)));
+            const double cb2 = (cbrt(ulat1));
+            const double x28 = (1.0/(cb2*cb2*cb2*cb2*cb2));
+            const double x29 = (1.0/ulat1);
+            const double x30 = 2.0*ulat1;
+            const double x31 = C00 + x30;
+            const double x32 = (x20/((cb2*cb2*cb2*cb2)));
+            const double ulat2 = ulat1 - ((mat[0]*(-x24*x28*x31 + (x23/((cb2*cb2)))) + mat[1]*(x32*(x19 + x30) - (x25*((ulat1*ulat1) + ulat1*x19)/((cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x27*(ulat1*x26 - 1.0))/(x11 - x18*x28*(-5.0*x29*x31 + 12.0) + x22*x32*(-24.0*x29*(C00 + ulat1) + 14.0*x29*(ulat1 + x19) + 9.0)));
+            const double cb3 = (cbrt(ulat2));
+            const double x33 = (1.0/(cb3*cb3*cb3*cb3*cb3));
+            const double x34 = (1.0/ulat2);
+            const double x35 = 2.0*ulat2;
+            const double x36 = C00 + x35;
+            const double x37 = (x20/((cb3*cb3*cb3*cb3)));
+            const double ulat3 = ulat2 - ((mat[0]*(-x24*x33*x36 + (x23/((cb3*cb3)))) + mat[1]*(x37*(x19 + x35) - (x25*((ulat2*ulat2) + ulat2*x19)/((cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x27*(ulat2*x26 - 1.0))/(x11 - x18*x33*(-5.0*x34*x36 + 12.0) + x22*x37*(-24.0*x34*(C00 + ulat2) + 14.0*x34*(ulat2 + x19) + 9.0)));
+            const double cb4 = (cbrt(ulat3));
+            const double x38 = (1.0/(cb4*cb4*cb4*cb4*cb4));
+            const double x39 = (1.0/ulat3);
+            const double x40 = 2.0*ulat3;
+            const double x41 = C00 + x40;
+            const double x42 = (x20/((cb4*cb4*cb4*cb4)));
+            const double ulat4 = ulat3 - ((mat[0]*(-x24*x38*x41 + (x23/((cb4*cb4)))) + mat[1]*(x42*(x19 + x40) - (x25*((ulat3*ulat3) + ulat3*x19)/((cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x27*(ulat3*x26 - 1.0))/(x11 - x18*x38*(-5.0*x39*x41 + 12.0) + x22*x42*(-24.0*x39*(C00 + ulat3) + 14.0*x39*(ulat3 + x19) + 9.0)));
+            const double cb5 = (cbrt(ulat4));
+            const double x43 = (1.0/(cb5*cb5*cb5*cb5*cb5));
+            const double x44 = (1.0/ulat4);
+            const double x45 = 2.0*ulat4;
+            const double x46 = C00 + x45;
+            const double x47 = (x20/((cb5*cb5*cb5*cb5)));
+            const double ulat5 = ulat4 - ((mat[0]*(-x24*x43*x46 + (x23/((cb5*cb5)))) + mat[1]*(x47*(x19 + x45) - (x25*((ulat4*ulat4) + ulat4*x19)/((cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x27*(ulat4*x26 - 1.0))/(x11 - x18*x43*(-5.0*x44*x46 + 12.0) + x22*x47*(-24.0*x44*(C00 + ulat4) + 14.0*x44*(ulat4 + x19) + 9.0)));
+            const double x49 = C00 + 2.0*ulat5;
+            const double cb6 = (cbrt(ulat5));
+            const double x50 = (1.0/(cb6*cb6*cb6*cb6));
+            const double x51 = (ulat5*ulat5);
+            const double x52 = ulat5*x19 + x51;
+            const double x48 = (1.0/(cb6*cb6));
+            const double x55 = x16*x48;
+            const double x56 = (x48/((cb0*cb0*cb0*cb0)));
+            const double x57 = (1.0/cb6);
+            const double x58 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x53 = ulat5*x26 - 1.0;
+            const double x59 = (x53/x26);
+            const double Uax1 = mat[0]*(-0.3333333333333333*x49*x56 + x55) + mat[1]*(2.0*x20*x57 - 0.6666666666666666*x50*x52*x58) + ulat5*x54*x59;
+            const double W_C00 = Uax1*t[0];
+            const double x69 = 2.0*W_C00;
+            const double P00 = F00*x69 + F01*W_C01 + F02*W_C02;
+            const double P10 = F10*x69 + F11*W_C01 + F12*W_C02;
+            const double P20 = F20*x69 + F21*W_C01 + F22*W_C02;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+    {   /* energy part "centreline": 4 points */
+        static const double px[4] = {0.5, 0.5, 0.5, 0.5};
+        static const double py[4] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[4] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[4] = {1.0, 1.0, 1.0, 1.0};
+        static const int st[4] = {-1, -1, -1, -1};
+        const double x9 = 4.0*mat[0];
+        const double x10 = 4.0*mat[1];
+        const double x17 = 0.2222222222222222*mat[0];
+        const double x22 = 0.2222222222222222*mat[1];
+        const double x54 = 0.5*mat[2];
+        for (int p = 0; p < 4; ++p) {
+            const double *restrict t = tab + 405 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double x0 = (F00*F00);
+            const double x1 = (F10*F10);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double x3 = (F01*F01);
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double x5 = (F11*F11);
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double ulat0 = pow(C00, -(0.5*(3.0*mat[2] - x10 - x9)/(2.0*mat[0] + 2.0*mat[1] + 3.0*mat[2])));
+            const double cb1 = (cbrt(ulat0));
+            const double x11 = C00*mat[2];
+            const double x12 = (1.0/(cb1*cb1*cb1*cb1*cb1));
+            const double x13 = (1.0/ulat0);
+            const double x14 = 2.0*ulat0;
+            const double x15 = C00 + x14;
+            const double cb0 = (cbrt(C00));
+            const double x16 = (1.0/cb0);
+            const double x18 = x16*x17;
+            const double x19 = 2.0*C00;
+            const double x20 = (1.0/(cb0*cb0));
+            const double x21 = (x20/((cb1*cb1*cb1*cb1)));
+            const double x23 = 2.0*x16;
+            const double x24 = 0.6666666666666666*x16;
+            const double x25 = 1.3333333333333333*x20;
+            const double x26 = (sqrt(C00));
+            const double x27 = mat[2]*x26;
+            const double ulat1 = ulat0 - ((mat[0]*(-x12*x15*x24 + (x23/((cb1*cb1)))) + mat[1]*(x21*(x14 + x19) - (x25*(C00*x14 + (ulat0*ulat0))/((cb1*cb1*cb1*cb1*cb1*cb1*cb1)))) + x27*(ulat0*x26 - 1.0))/(x11 - x12*x18*(-5.0*x13*x15 + 12.0) + x21*x22*(-24.0*x13*(C00 + ulat0) + 14.0*x13*(ulat0 + x19) + 9.0)));
+            const double cb2 = (cbrt(ulat1));
+            const double x28 = (1.0/(cb2*cb2*cb2*cb2*cb2));
+            const double x29 = (1.0/ulat1);
+            const double x30 = 2.0*ulat1;
+            const double x31 = C00 + x30;
+            const double x32 = (x20/((cb2*cb2*cb2*cb2)));
+            const double ulat2 = ulat1 - ((mat[0]*(-x24*x28*x31 + (x23/((cb2*cb2)))) + mat[1]*(x32*(x19 + x30) - (x25*((ulat1*ulat1) + ulat1*x19)/((cb2*cb2*cb2*cb2*cb2*cb2*cb2)))) + x27*(ulat1*x26 - 1.0))/(x11 - x18*x28*(-5.0*x29*x31 + 12.0) + x22*x32*(-24.0*x29*(C00 + ulat1) + 14.0*x29*(ulat1 + x19) + 9.0)));
+            const double cb3 = (cbrt(ulat2));
+            const double x33 = (1.0/(cb3*cb3*cb3*cb3*cb3));
+            const double x34 = (1.0/ulat2);
+            const double x35 = 2.0*ulat2;
+            const double x36 = C00 + x35;
+            const double x37 = (x20/((cb3*cb3*cb3*cb3)));
+            const double ulat3 = ulat2 - ((mat[0]*(-x24*x33*x36 + (x23/((cb3*cb3)))) + mat[1]*(x37*(x19 + x35) - (x25*((ulat2*ulat2) + ulat2*x19)/((cb3*cb3*cb3*cb3*cb3*cb3*cb3)))) + x27*(ulat2*x26 - 1.0))/(x11 - x18*x33*(-5.0*x34*x36 + 12.0) + x22*x37*(-24.0*x34*(C00 + ulat2) + 14.0*x34*(ulat2 + x19) + 9.0)));
+            const double cb4 = (cbrt(ulat3));
+            const double x38 = (1.0/(cb4*cb4*cb4*cb4*cb4));
+            const double x39 = (1.0/ulat3);
+            const double x40 = 2.0*ulat3;
+            const double x41 = C00 + x40;
+            const double x42 = (x20/((cb4*cb4*cb4*cb4)));
+            const double ulat4 = ulat3 - ((mat[0]*(-x24*x38*x41 + (x23/((cb4*cb4)))) + mat[1]*(x42*(x19 + x40) - (x25*((ulat3*ulat3) + ulat3*x19)/((cb4*cb4*cb4*cb4*cb4*cb4*cb4)))) + x27*(ulat3*x26 - 1.0))/(x11 - x18*x38*(-5.0*x39*x41 + 12.0) + x22*x42*(-24.0*x39*(C00 + ulat3) + 14.0*x39*(ulat3 + x19) + 9.0)));
+            const double cb5 = (cbrt(ulat4));
+            const double x43 = (1.0/(cb5*cb5*cb5*cb5*cb5));
+            const double x44 = (1.0/ulat4);
+            const double x45 = 2.0*ulat4;
+            const double x46 = C00 + x45;
+            const double x47 = (x20/((cb5*cb5*cb5*cb5)));
+            const double ulat5 = ulat4 - ((mat[0]*(-x24*x43*x46 + (x23/((cb5*cb5)))) + mat[1]*(x47*(x19 + x45) - (x25*((ulat4*ulat4) + ulat4*x19)/((cb5*cb5*cb5*cb5*cb5*cb5*cb5)))) + x27*(ulat4*x26 - 1.0))/(x11 - x18*x43*(-5.0*x44*x46 + 12.0) + x22*x47*(-24.0*x44*(C00 + ulat4) + 14.0*x44*(ulat4 + x19) + 9.0)));
+            const double x49 = C00 + 2.0*ulat5;
+            const double cb6 = (cbrt(ulat5));
+            const double x50 = (1.0/(cb6*cb6*cb6*cb6));
+            const double x51 = (ulat5*ulat5);
+            const double x52 = ulat5*x19 + x51;
+            const double x48 = (1.0/(cb6*cb6));
+            const double x55 = x16*x48;
+            const double x56 = (x48/((cb0*cb0*cb0*cb0)));
+            const double x57 = (1.0/cb6);
+            const double x58 = (1.0/(cb0*cb0*cb0*cb0*cb0));
+            const double x53 = ulat5*x26 - 1.0;
+            const double x59 = (x53/x26);
+            const double Uax1 = mat[0]*(-0.3333333333333333*x49*x56 + x55) + mat[1]*(2.0*x20*x57 - 0.6666666666666666*x50*x52*x58) + ulat5*x54*x59;
+            const double W_C00 = -Uax1*t[0];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x68 = 2.0*C01;
+            const double x69 = t[0]*(mat[0] + mat[1]);
+            const double W_C01 = -x68*x69;
+            const double W_C02 = -2.0*C02*x69;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double cb7 = (cbrt(J));
+            const double W_I1 = (mat[0]*t[0]/((cb7*cb7)));
+            const double W_I2 = (mat[1]*t[0]/((cb7*cb7*cb7*cb7)));
+            const double C12 = F01*F02 + F11*F12 + F21*F22;
+            const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
+            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb7*cb7*cb7*cb7*cb7))) - (1.3333333333333333*I2*mat[1]/((cb7*cb7*cb7*cb7*cb7*cb7*cb7))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double x70 = 2.0*F02;
+            const double x71 = 2.0*F00;
+            const double P00 = F01*W_C01 + F02*W_C02 + W_C00*x71 + W_I1*x71 + W_I2*(-C02*x70 + 2.0*F00*I1 - F00*x19 - F01*x68) + W_J*cof00;
+            const double x73 = 2.0*F12;
+            const double x74 = 2.0*F10;
+            const double P10 = F11*W_C01 + F12*W_C02 + W_C00*x74 + W_I1*x74 + W_I2*(-C02*x73 + 2.0*F10*I1 - F10*x19 - F11*x68) + W_J*cof10;
+            const double x76 = 2.0*F22;
+            const double x77 = 2.0*F20;
+            const double P20 = F21*W_C01 + F22*W_C02 + W_C00*x77 + W_I1*x77 + W_I2*(-C02*x76 + 2.0*F20*I1 - F20*x19 - F21*x68) + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[3] = {"c10", "c01", "kappa"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
     .element = &bk_element_ancf3273,
@@ -4100,7 +4546,13 @@ const bk_pair bk_pair_ancf3273_mooney_rivlin_full = {
     .nvisc = 2,
     .viscous = ancf3273_full_viscous,
     .invariants = ancf3273_full_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3273_mooney_rivlin_full_sections,
 };
+
+static const double sample_xi_reduced[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
     .element = &bk_element_ancf3273,
@@ -4121,7 +4573,13 @@ const bk_pair bk_pair_ancf3273_mooney_rivlin_reduced = {
     .nvisc = 2,
     .viscous = ancf3273_reduced_viscous,
     .invariants = ancf3273_reduced_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_reduced,
+    .sample_source = "stress",
+    .sections = ancf3273_mooney_rivlin_reduced_sections,
 };
+
+static const double sample_xi_sri[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_mooney_rivlin_sri = {
     .element = &bk_element_ancf3273,
@@ -4142,4 +4600,8 @@ const bk_pair bk_pair_ancf3273_mooney_rivlin_sri = {
     .nvisc = 2,
     .viscous = ancf3273_sri_viscous,
     .invariants = ancf3273_sri_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_sri,
+    .sample_source = "stress:full_order+centreline",
+    .sections = ancf3273_mooney_rivlin_sri_sections,
 };

@@ -3,8 +3,8 @@
 #include "ancf3273.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -606,6 +606,67 @@ void ancf3273_neo_hookean_full_force_tangent_lanes(const double *restrict q, con
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
 }
 
+void ancf3273_neo_hookean_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 27 points */
+        static const double px[27] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[27] = {-0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417};
+        static const double pz[27] = {-0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417};
+        static const double cw[27] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[27] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double cof00 = F11*F22 - F12*F21;
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double x9 = (1.0/J);
+            const double W_J = t[0]*(mat[0]*x9*log(J) - mat[1]*x9);
+            const double W_I1 = 0.5*mat[1]*t[0];
+            const double x10 = 2.0*W_I1;
+            const double P00 = F00*x10 + W_J*cof00;
+            const double P10 = F10*x10 + W_J*cof10;
+            const double P20 = F20*x10 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 double ancf3273_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -1195,6 +1256,67 @@ void ancf3273_neo_hookean_reduced_force_tangent_lanes(const double *restrict q, 
     for (int r = 1; r < 42; ++r)
         for (int c = 0; c < r; ++c)
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
+}
+
+void ancf3273_neo_hookean_reduced_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double cof00 = F11*F22 - F12*F21;
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double x9 = (1.0/J);
+            const double W_J = t[0]*(mat[0]*x9*log(J) - mat[1]*x9);
+            const double W_I1 = 0.5*mat[1]*t[0];
+            const double x10 = 2.0*W_I1;
+            const double P00 = F00*x10 + W_J*cof00;
+            const double P10 = F10*x10 + W_J*cof10;
+            const double P20 = F20*x10 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
 }
 
 double ancf3273_neo_hookean_sri_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -2721,7 +2843,181 @@ void ancf3273_neo_hookean_sri_force_tangent_lanes(const double *restrict q, cons
             for (int l = 0; l < 8; ++l) K[(r * 42 + c) * 8 + l] = K[(c * 42 + r) * 8 + l];
 }
 
+void ancf3273_neo_hookean_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][14];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3273.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 14; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "full_order": 27 points */
+        static const double px[27] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[27] = {-0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417};
+        static const double pz[27] = {-0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417};
+        static const double cw[27] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[27] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+        const double x23 = 0.5*mat[1];
+        const double x9 = mat[0] + mat[1];
+        const double x10 = 0.5*mat[0];
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + 0 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x27 = mat[1]*t[0];
+            const double W_C01 = C01*x27;
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = C02*x27;
+            const double x0 = (F00*F00);
+            const double x1 = (F10*F10);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double x24 = (1.0/C00);
+            const double ulat0 = pow(C00, -(x10/x9));
+            const double x11 = (sqrt(C00));
+            const double x12 = mat[0]*log(ulat0*x11);
+            const double x13 = (1.0/ulat0);
+            const double ulat1 = -((ulat0*ulat0)*(-mat[1]*x13 + mat[1] + x12*x13)/(-x12 + x9)) + ulat0;
+            const double x14 = mat[0]*log(ulat1*x11);
+            const double x15 = (1.0/ulat1);
+            const double ulat2 = -((ulat1*ulat1)*(-mat[1]*x15 + mat[1] + x14*x15)/(-x14 + x9)) + ulat1;
+            const double x16 = mat[0]*log(ulat2*x11);
+            const double x17 = (1.0/ulat2);
+            const double ulat3 = -((ulat2*ulat2)*(-mat[1]*x17 + mat[1] + x16*x17)/(-x16 + x9)) + ulat2;
+            const double x18 = mat[0]*log(ulat3*x11);
+            const double x19 = (1.0/ulat3);
+            const double ulat4 = -((ulat3*ulat3)*(-mat[1]*x19 + mat[1] + x18*x19)/(-x18 + x9)) + ulat3;
+            const double x20 = mat[0]*log(ulat4*x11);
+            const double x21 = (1.0/ulat4);
+            const double ulat5 = -((ulat4*ulat4)*(-mat[1]*x21 + mat[1] + x20*x21)/(-x20 + x9)) + ulat4;
+            const double x22 = log(ulat5*x11);
+            const double x25 = mat[0]*x22;
+            const double Uax1 = -x23*x24 + x23 + 0.5*x24*x25;
+            const double W_C00 = Uax1*t[0];
+            const double x28 = 2.0*W_C00;
+            const double P00 = F00*x28 + F01*W_C01 + F02*W_C02;
+            const double P10 = F10*x28 + F11*W_C01 + F12*W_C02;
+            const double P20 = F20*x28 + F21*W_C01 + F22*W_C02;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+    {   /* energy part "centreline": 4 points */
+        static const double px[4] = {0.5, 0.5, 0.5, 0.5};
+        static const double py[4] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[4] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[4] = {1.0, 1.0, 1.0, 1.0};
+        static const int st[4] = {-1, -1, -1, -1};
+        const double x23 = 0.5*mat[1];
+        const double x9 = mat[0] + mat[1];
+        const double x10 = 0.5*mat[0];
+        for (int p = 0; p < 4; ++p) {
+            const double *restrict t = tab + 405 + 15 * p;
+            double tr[3], N[14], Nc[14], arm[3] = {0.0, 0.0, 0.0};
+            const double F01 = q[12]*t[7] + q[15]*t[9] + q[27]*t[12] + q[33]*t[13] + q[36]*t[14] + q[6]*t[4];
+            const double F02 = q[15]*t[7] + q[18]*t[9] + q[30]*t[12] + q[36]*t[13] + q[39]*t[14] + q[9]*t[4];
+            const double F00 = q[24]*t[11] + q[3]*t[2] + t[10]*(q[18] - q[39]) + t[1]*(q[0] - q[21]) + t[3]*(-q[27] + q[6]) + t[5]*(-q[30] + q[9]) + t[6]*(q[12] - q[33]) + t[8]*(q[15] - q[36]);
+            const double x0 = (F00*F00);
+            const double F10 = q[25]*t[11] + q[4]*t[2] + t[10]*(q[19] - q[40]) + t[1]*(q[1] - q[22]) + t[3]*(-q[28] + q[7]) + t[5]*(q[10] - q[31]) + t[6]*(q[13] - q[34]) + t[8]*(q[16] - q[37]);
+            const double x1 = (F10*F10);
+            const double F20 = q[26]*t[11] + q[5]*t[2] + t[10]*(q[20] - q[41]) + t[1]*(-q[23] + q[2]) + t[3]*(-q[29] + q[8]) + t[5]*(q[11] - q[32]) + t[6]*(q[14] - q[35]) + t[8]*(q[17] - q[38]);
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double x24 = (1.0/C00);
+            const double ulat0 = pow(C00, -(x10/x9));
+            const double x11 = (sqrt(C00));
+            const double x12 = mat[0]*log(ulat0*x11);
+            const double x13 = (1.0/ulat0);
+            const double ulat1 = -((ulat0*ulat0)*(-mat[1]*x13 + mat[1] + x12*x13)/(-x12 + x9)) + ulat0;
+            const double x14 = mat[0]*log(ulat1*x11);
+            const double x15 = (1.0/ulat1);
+            const double ulat2 = -((ulat1*ulat1)*(-mat[1]*x15 + mat[1] + x14*x15)/(-x14 + x9)) + ulat1;
+            const double x16 = mat[0]*log(ulat2*x11);
+            const double x17 = (1.0/ulat2);
+            const double ulat3 = -((ulat2*ulat2)*(-mat[1]*x17 + mat[1] + x16*x17)/(-x16 + x9)) + ulat2;
+            const double x18 = mat[0]*log(ulat3*x11);
+            const double x19 = (1.0/ulat3);
+            const double ulat4 = -((ulat3*ulat3)*(-mat[1]*x19 + mat[1] + x18*x19)/(-x18 + x9)) + ulat3;
+            const double x20 = mat[0]*log(ulat4*x11);
+            const double x21 = (1.0/ulat4);
+            const double ulat5 = -((ulat4*ulat4)*(-mat[1]*x21 + mat[1] + x20*x21)/(-x20 + x9)) + ulat4;
+            const double x22 = log(ulat5*x11);
+            const double x25 = mat[0]*x22;
+            const double Uax1 = -x23*x24 + x23 + 0.5*x24*x25;
+            const double W_C00 = -Uax1*t[0];
+            const double F11 = q[13]*t[7] + q[16]*t[9] + q[28]*t[12] + q[34]*t[13] + q[37]*t[14] + q[7]*t[4];
+            const double F21 = q[14]*t[7] + q[17]*t[9] + q[29]*t[12] + q[35]*t[13] + q[38]*t[14] + q[8]*t[4];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double x28 = mat[1]*t[0];
+            const double W_C01 = -C01*x28;
+            const double F12 = q[10]*t[4] + q[16]*t[7] + q[19]*t[9] + q[31]*t[12] + q[37]*t[13] + q[40]*t[14];
+            const double F22 = q[11]*t[4] + q[17]*t[7] + q[20]*t[9] + q[32]*t[12] + q[38]*t[13] + q[41]*t[14];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double W_C02 = -C02*x28;
+            const double W_I1 = t[0]*x23;
+            const double cof00 = F11*F22 - F12*F21;
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double x27 = (1.0/J);
+            const double W_J = t[0]*(mat[0]*x27*log(J) - mat[1]*x27);
+            const double x29 = 2.0*F00;
+            const double P00 = F01*W_C01 + F02*W_C02 + W_C00*x29 + W_I1*x29 + W_J*cof00;
+            const double x30 = 2.0*W_I1;
+            const double x31 = 2.0*W_C00;
+            const double P10 = F10*x30 + F10*x31 + F11*W_C01 + F12*W_C02 + W_J*cof10;
+            const double P20 = F20*x30 + F20*x31 + F21*W_C01 + F22*W_C02 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 14; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_neo_hookean_full = {
     .element = &bk_element_ancf3273,
@@ -2742,7 +3038,13 @@ const bk_pair bk_pair_ancf3273_neo_hookean_full = {
     .nvisc = 2,
     .viscous = ancf3273_full_viscous,
     .invariants = ancf3273_full_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3273_neo_hookean_full_sections,
 };
+
+static const double sample_xi_reduced[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
     .element = &bk_element_ancf3273,
@@ -2763,7 +3065,13 @@ const bk_pair bk_pair_ancf3273_neo_hookean_reduced = {
     .nvisc = 2,
     .viscous = ancf3273_reduced_viscous,
     .invariants = ancf3273_reduced_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_reduced,
+    .sample_source = "stress",
+    .sections = ancf3273_neo_hookean_reduced_sections,
 };
+
+static const double sample_xi_sri[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3273_neo_hookean_sri = {
     .element = &bk_element_ancf3273,
@@ -2784,4 +3092,8 @@ const bk_pair bk_pair_ancf3273_neo_hookean_sri = {
     .nvisc = 2,
     .viscous = ancf3273_sri_viscous,
     .invariants = ancf3273_sri_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_sri,
+    .sample_source = "stress:full_order+centreline",
+    .sections = ancf3273_neo_hookean_sri_sections,
 };

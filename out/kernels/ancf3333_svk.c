@@ -3,8 +3,8 @@
 #include "ancf3333.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3333_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -606,7 +606,89 @@ void ancf3333_svk_full_force_tangent_lanes(const double *restrict q, const doubl
             for (int l = 0; l < 8; ++l) K[(r * 27 + c) * 8 + l] = K[(c * 27 + r) * 8 + l];
 }
 
+void ancf3333_svk_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][9];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3333.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 9; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 13 * p;
+            double tr[3], N[9], Nc[9], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[0]*t[1] + q[12]*t[6] + q[15]*t[8] + q[18]*t[9] + q[21]*t[10] + q[24]*t[12] + q[3]*t[2] + q[6]*t[4] + q[9]*t[5];
+            const double x0 = (F00*F00);
+            const double F10 = q[10]*t[5] + q[13]*t[6] + q[16]*t[8] + q[19]*t[9] + q[1]*t[1] + q[22]*t[10] + q[25]*t[12] + q[4]*t[2] + q[7]*t[4];
+            const double x1 = (F10*F10);
+            const double F20 = q[11]*t[5] + q[14]*t[6] + q[17]*t[8] + q[20]*t[9] + q[23]*t[10] + q[26]*t[12] + q[2]*t[1] + q[5]*t[2] + q[8]*t[4];
+            const double x2 = (F20*F20);
+            const double C00 = x0 + x1 + x2;
+            const double F01 = q[12]*t[7] + q[21]*t[11] + q[3]*t[3];
+            const double F11 = q[13]*t[7] + q[22]*t[11] + q[4]*t[3];
+            const double F21 = q[14]*t[7] + q[23]*t[11] + q[5]*t[3];
+            const double C01 = F00*F01 + F10*F11 + F20*F21;
+            const double F02 = q[15]*t[7] + q[24]*t[11] + q[6]*t[3];
+            const double F12 = q[16]*t[7] + q[25]*t[11] + q[7]*t[3];
+            const double F22 = q[17]*t[7] + q[26]*t[11] + q[8]*t[3];
+            const double C02 = F00*F02 + F10*F12 + F20*F22;
+            const double x3 = (F01*F01);
+            const double x5 = (F11*F11);
+            const double x6 = (F21*F21);
+            const double C11 = x3 + x5 + x6;
+            const double x4 = (F02*F02);
+            const double x7 = (F12*F12);
+            const double x8 = (F22*F22);
+            const double C22 = x4 + x7 + x8;
+            const double I1 = C00 + C11 + C22;
+            const double x9 = 0.5*I1;
+            const double W_I1 = t[0]*(0.5*mat[0]*(x9 - 1.5) + mat[1]*(x9 - 0.5));
+            const double W_I2 = -0.5*mat[1]*t[0];
+            const double x10 = 2.0*F00;
+            const double x11 = 2.0*F01;
+            const double x12 = 2.0*F02;
+            const double P00 = W_I1*x10 + W_I2*(-C00*x10 - C01*x11 - C02*x12 + 2.0*F00*I1);
+            const double x13 = 2.0*F10;
+            const double x14 = 2.0*F11;
+            const double x15 = 2.0*F12;
+            const double P10 = W_I1*x13 + W_I2*(-C00*x13 - C01*x14 - C02*x15 + 2.0*F10*I1);
+            const double x16 = 2.0*F20;
+            const double x17 = 2.0*F21;
+            const double x18 = 2.0*F22;
+            const double P20 = W_I1*x16 + W_I2*(-C00*x16 - C01*x17 - C02*x18 + 2.0*F20*I1);
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3333.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3333.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 9; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3333_svk_full = {
     .element = &bk_element_ancf3333,
@@ -629,4 +711,8 @@ const bk_pair bk_pair_ancf3333_svk_full = {
     .invariants = ancf3333_full_invariants,
     .green_strain_min = -0.2,
     .green_strain_max = 0.5,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3333_svk_full_sections,
 };

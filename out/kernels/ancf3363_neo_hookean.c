@@ -3,8 +3,8 @@
 #include "ancf3363.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -580,6 +580,67 @@ void ancf3363_neo_hookean_full_force_tangent_lanes(const double *restrict q, con
             for (int l = 0; l < 8; ++l) K[(r * 54 + c) * 8 + l] = K[(c * 54 + r) * 8 + l];
 }
 
+void ancf3363_neo_hookean_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][18];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3363.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 18; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 27 points */
+        static const double px[27] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[27] = {-0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417, -0.3872983346207417, -0.3872983346207417, -0.3872983346207417, 0.0, 0.0, 0.0, 0.3872983346207417, 0.3872983346207417, 0.3872983346207417};
+        static const double pz[27] = {-0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417, -0.3872983346207417, 0.0, 0.3872983346207417};
+        static const double cw[27] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[27] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2};
+        for (int p = 0; p < 27; ++p) {
+            const double *restrict t = tab + 0 + 28 * p;
+            double tr[3], N[18], Nc[18], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[0]*t[1] + q[12]*t[7] + q[15]*t[9] + q[18]*t[10] + q[21]*t[11] + q[24]*t[13] + q[27]*t[14] + q[30]*t[16] + q[33]*t[18] + q[36]*t[19] + q[39]*t[20] + q[3]*t[2] + q[42]*t[22] + q[45]*t[23] + q[48]*t[25] + q[51]*t[27] + q[6]*t[4] + q[9]*t[5];
+            const double F10 = q[10]*t[5] + q[13]*t[7] + q[16]*t[9] + q[19]*t[10] + q[1]*t[1] + q[22]*t[11] + q[25]*t[13] + q[28]*t[14] + q[31]*t[16] + q[34]*t[18] + q[37]*t[19] + q[40]*t[20] + q[43]*t[22] + q[46]*t[23] + q[49]*t[25] + q[4]*t[2] + q[52]*t[27] + q[7]*t[4];
+            const double F20 = q[11]*t[5] + q[14]*t[7] + q[17]*t[9] + q[20]*t[10] + q[23]*t[11] + q[26]*t[13] + q[29]*t[14] + q[2]*t[1] + q[32]*t[16] + q[35]*t[18] + q[38]*t[19] + q[41]*t[20] + q[44]*t[22] + q[47]*t[23] + q[50]*t[25] + q[53]*t[27] + q[5]*t[2] + q[8]*t[4];
+            const double F11 = q[10]*t[6] + q[13]*t[8] + q[22]*t[12] + q[28]*t[15] + q[31]*t[17] + q[40]*t[21] + q[46]*t[24] + q[49]*t[26] + q[4]*t[3];
+            const double F12 = q[13]*t[6] + q[16]*t[8] + q[25]*t[12] + q[31]*t[15] + q[34]*t[17] + q[43]*t[21] + q[49]*t[24] + q[52]*t[26] + q[7]*t[3];
+            const double F21 = q[11]*t[6] + q[14]*t[8] + q[23]*t[12] + q[29]*t[15] + q[32]*t[17] + q[41]*t[21] + q[47]*t[24] + q[50]*t[26] + q[5]*t[3];
+            const double F22 = q[14]*t[6] + q[17]*t[8] + q[26]*t[12] + q[32]*t[15] + q[35]*t[17] + q[44]*t[21] + q[50]*t[24] + q[53]*t[26] + q[8]*t[3];
+            const double cof00 = F11*F22 - F12*F21;
+            const double F01 = q[12]*t[8] + q[21]*t[12] + q[27]*t[15] + q[30]*t[17] + q[39]*t[21] + q[3]*t[3] + q[45]*t[24] + q[48]*t[26] + q[9]*t[6];
+            const double F02 = q[12]*t[6] + q[15]*t[8] + q[24]*t[12] + q[30]*t[15] + q[33]*t[17] + q[42]*t[21] + q[48]*t[24] + q[51]*t[26] + q[6]*t[3];
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double x9 = (1.0/J);
+            const double W_J = t[0]*(mat[0]*x9*log(J) - mat[1]*x9);
+            const double W_I1 = 0.5*mat[1]*t[0];
+            const double x10 = 2.0*W_I1;
+            const double P00 = F00*x10 + W_J*cof00;
+            const double P10 = F10*x10 + W_J*cof10;
+            const double P20 = F20*x10 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3363.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3363.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 18; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 double ancf3363_neo_hookean_reduced_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
 {
     double e = 0.0;
@@ -1147,7 +1208,70 @@ void ancf3363_neo_hookean_reduced_force_tangent_lanes(const double *restrict q, 
             for (int l = 0; l < 8; ++l) K[(r * 54 + c) * 8 + l] = K[(c * 54 + r) * 8 + l];
 }
 
+void ancf3363_neo_hookean_reduced_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
+    double N0[3][18];
+    for (int i = 0; i < 27; ++i) sec[i] = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        bk_element_ancf3363.shape(geom, xs[k], 0.0, 0.0, N0[k]);
+        for (int a = 0; a < 18; ++a)
+            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];
+    }
+    {   /* energy part "all": 12 points */
+        static const double px[12] = {0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.11270166537925831, 0.5, 0.5, 0.5, 0.5, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417, 0.8872983346207417};
+        static const double py[12] = {-0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287, -0.28867513459481287, -0.28867513459481287, 0.28867513459481287, 0.28867513459481287};
+        static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
+        static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
+        static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+        for (int p = 0; p < 12; ++p) {
+            const double *restrict t = tab + 0 + 28 * p;
+            double tr[3], N[18], Nc[18], arm[3] = {0.0, 0.0, 0.0};
+            const double F00 = q[0]*t[1] + q[12]*t[7] + q[15]*t[9] + q[18]*t[10] + q[21]*t[11] + q[24]*t[13] + q[27]*t[14] + q[30]*t[16] + q[33]*t[18] + q[36]*t[19] + q[39]*t[20] + q[3]*t[2] + q[42]*t[22] + q[45]*t[23] + q[48]*t[25] + q[51]*t[27] + q[6]*t[4] + q[9]*t[5];
+            const double F10 = q[10]*t[5] + q[13]*t[7] + q[16]*t[9] + q[19]*t[10] + q[1]*t[1] + q[22]*t[11] + q[25]*t[13] + q[28]*t[14] + q[31]*t[16] + q[34]*t[18] + q[37]*t[19] + q[40]*t[20] + q[43]*t[22] + q[46]*t[23] + q[49]*t[25] + q[4]*t[2] + q[52]*t[27] + q[7]*t[4];
+            const double F20 = q[11]*t[5] + q[14]*t[7] + q[17]*t[9] + q[20]*t[10] + q[23]*t[11] + q[26]*t[13] + q[29]*t[14] + q[2]*t[1] + q[32]*t[16] + q[35]*t[18] + q[38]*t[19] + q[41]*t[20] + q[44]*t[22] + q[47]*t[23] + q[50]*t[25] + q[53]*t[27] + q[5]*t[2] + q[8]*t[4];
+            const double F11 = q[10]*t[6] + q[13]*t[8] + q[22]*t[12] + q[28]*t[15] + q[31]*t[17] + q[40]*t[21] + q[46]*t[24] + q[49]*t[26] + q[4]*t[3];
+            const double F12 = q[13]*t[6] + q[16]*t[8] + q[25]*t[12] + q[31]*t[15] + q[34]*t[17] + q[43]*t[21] + q[49]*t[24] + q[52]*t[26] + q[7]*t[3];
+            const double F21 = q[11]*t[6] + q[14]*t[8] + q[23]*t[12] + q[29]*t[15] + q[32]*t[17] + q[41]*t[21] + q[47]*t[24] + q[50]*t[26] + q[5]*t[3];
+            const double F22 = q[14]*t[6] + q[17]*t[8] + q[26]*t[12] + q[32]*t[15] + q[35]*t[17] + q[44]*t[21] + q[50]*t[24] + q[53]*t[26] + q[8]*t[3];
+            const double cof00 = F11*F22 - F12*F21;
+            const double F01 = q[12]*t[8] + q[21]*t[12] + q[27]*t[15] + q[30]*t[17] + q[39]*t[21] + q[3]*t[3] + q[45]*t[24] + q[48]*t[26] + q[9]*t[6];
+            const double F02 = q[12]*t[6] + q[15]*t[8] + q[24]*t[12] + q[30]*t[15] + q[33]*t[17] + q[42]*t[21] + q[48]*t[24] + q[51]*t[26] + q[6]*t[3];
+            const double cof10 = -F01*F22 + F02*F21;
+            const double cof20 = F01*F12 - F02*F11;
+            const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double x9 = (1.0/J);
+            const double W_J = t[0]*(mat[0]*x9*log(J) - mat[1]*x9);
+            const double W_I1 = 0.5*mat[1]*t[0];
+            const double x10 = 2.0*W_I1;
+            const double P00 = F00*x10 + W_J*cof00;
+            const double P10 = F10*x10 + W_J*cof10;
+            const double P20 = F20*x10 + W_J*cof20;
+            tr[0] = P00;
+            tr[1] = P10;
+            tr[2] = P20;
+            bk_element_ancf3363.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            bk_element_ancf3363.shape(geom, px[p], 0.0, 0.0, Nc);
+            for (int a = 0; a < 18; ++a)
+                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
+            const double c = cw[p] / l;
+            for (int k = 0; k < 3; ++k) {
+                if (st[p] >= 0 && st[p] != k)
+                    continue;
+                double *restrict o = sec + 9 * k;
+                for (int i = 0; i < 3; ++i) o[3 + i] += c * tr[i];
+                o[6] += c * (arm[1] * tr[2] - arm[2] * tr[1]);
+                o[7] += c * (arm[2] * tr[0] - arm[0] * tr[2]);
+                o[8] += c * (arm[0] * tr[1] - arm[1] * tr[0]);
+            }
+        }
+    }
+}
+
 static const char *const param_names[2] = {"lambda", "mu"};
+
+static const double sample_xi_full[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3363_neo_hookean_full = {
     .element = &bk_element_ancf3363,
@@ -1168,7 +1292,13 @@ const bk_pair bk_pair_ancf3363_neo_hookean_full = {
     .nvisc = 2,
     .viscous = ancf3363_full_viscous,
     .invariants = ancf3363_full_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_full,
+    .sample_source = "stress",
+    .sections = ancf3363_neo_hookean_full_sections,
 };
+
+static const double sample_xi_reduced[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
 
 const bk_pair bk_pair_ancf3363_neo_hookean_reduced = {
     .element = &bk_element_ancf3363,
@@ -1189,4 +1319,8 @@ const bk_pair bk_pair_ancf3363_neo_hookean_reduced = {
     .nvisc = 2,
     .viscous = ancf3363_reduced_viscous,
     .invariants = ancf3363_reduced_invariants,
+    .nsample = 3,
+    .sample_xi = sample_xi_reduced,
+    .sample_source = "stress",
+    .sections = ancf3363_neo_hookean_reduced_sections,
 };

@@ -3,8 +3,8 @@
 #include "euler_bernoulli.h"
 #include "rod_common.h"
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "generated for runtime/bk_kernel.h version 4: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double euler_bernoulli_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -247,7 +247,36 @@ void euler_bernoulli_resultant_full_force_tangent(const double *restrict q, cons
         for (int c = 0; c < r; ++c) K[r * 25 + c] = K[c * 25 + r];
 }
 
+void euler_bernoulli_resultant_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
+{
+    const double l = tab[0];
+    static const double xg[2] = {0.2113248654051871, 0.7886751345948129};
+    double psi[6];
+    bk_rod_psi(q, psi);
+    for (int g = 0; g < 2; ++g) {
+        double c[5], v[13], s[6], rs[6], d[9];
+        double *restrict o = sec + 9 * g;
+        const double *restrict lam = q + 21 + 2 * g;
+        (void)bk_rod_gauss_c(g, l, c);
+        bk_rod_v(c, q, psi, v);
+        bk_rod_strain(v, tab + 1 + 6 * g, s);
+        rs[0] = mat[0]*s[0];
+        rs[1] = lam[0]*mat[0];
+        rs[2] = lam[1]*mat[0];
+        rs[3] = mat[3]*s[3];
+        rs[4] = mat[4]*s[4];
+        rs[5] = mat[5]*s[5];
+        bk_rod_frame(geom, xg[g], q, o, d);
+        for (int i = 0; i < 3; ++i) {
+            o[3 + i] = rs[0] * d[6 + i] + rs[1] * d[i] + rs[2] * d[3 + i];
+            o[6 + i] = rs[3] * d[6 + i] + rs[4] * d[i] + rs[5] * d[3 + i];
+        }
+    }
+}
+
 static const char *const param_names[6] = {"EA", "GA1", "GA2", "GJ", "EI1", "EI2"};
+
+static const double sample_xi_full[2] = {0.2113248654051871, 0.7886751345948129};
 
 const bk_pair bk_pair_euler_bernoulli_resultant_full = {
     .element = &bk_element_euler_bernoulli,
@@ -263,4 +292,8 @@ const bk_pair bk_pair_euler_bernoulli_resultant_full = {
     .energy = euler_bernoulli_resultant_full_energy,
     .force = euler_bernoulli_resultant_full_force,
     .force_tangent = euler_bernoulli_resultant_full_force_tangent,
+    .nsample = 2,
+    .sample_xi = sample_xi_full,
+    .sample_source = "law;multiplier:Q2 Q3",
+    .sections = euler_bernoulli_resultant_full_sections,
 };
