@@ -56,7 +56,7 @@ class PairDesc:
         return f"bk_pair_{self.element}_{self.material}_{self.integration}"
 
 
-ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "moment", "rotary")
+ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "section_frame", "moment", "rotary")
 PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "force_lanes", "force_tangent_lanes",
                   "viscous", "invariants")
 

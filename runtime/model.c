@@ -203,6 +203,13 @@ static void read_extras(reader *r, bk_model *m)
     for (int i = 0; i < m->nmoment && !r->failed; ++i)
         if (m->moments[i].amp >= m->namp)
             fail(r, "moment %d: amplitude %d of %d", i, m->moments[i].amp, m->namp);
+    for (int i = 0; i < m->nforce && !r->failed; ++i)
+        if (m->forces[i].follower && !m->pairs[m->elems[m->forces[i].elem].pair]->element->section_frame)
+            fail(r, "force %d: follower load on element %d, whose kernel has no section frame", i, m->forces[i].elem);
+    for (int i = 0; i < m->nmoment && !r->failed; ++i)
+        if (m->moments[i].follower && !m->pairs[m->elems[m->moments[i].elem].pair]->element->section_frame)
+            fail(r, "moment %d: follower load on element %d, whose kernel has no section frame", i,
+                 m->moments[i].elem);
 
     expect(r, "dloads");
     m->ndload = inum(r, "dloads", 0, MAXN);
@@ -217,6 +224,8 @@ static void read_extras(reader *r, bk_model *m)
         d->amp = inum(r, "distributed load amplitude", -1, m->namp - 1);
         for (int k = 0; k < 3; ++k)
             d->value[k] = num(r, "distributed load value");
+        if (!r->failed && d->follower && !m->pairs[m->elems[d->elem].pair]->element->section_frame)
+            fail(r, "distributed load %d: follower load on element %d, whose kernel has no section frame", i, d->elem);
     }
 
     expect(r, "tendons");

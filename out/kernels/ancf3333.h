@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:a2f2aa1519b1892a67bd189b1863e2469932d2f9cf302faf649ce1f241a88c27
+ * input hash: sha256:ededa8ef68056937cb11cdf7ce8008bf038c7b37ff599abca85dc9d5c0b8099e
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -18,6 +18,8 @@
  *   N7 [r_y @ node 2] = 2*xi**2*y - xi*y
  *   N8 [r_z @ node 2] = 2*xi**2*z - xi*z
  * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).
+ * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,
+ *   and dR/dq (gen/loads.py, section_frame_programs).
  * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).
  */
 #ifndef BK_GEN_ANCF3333_H

@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:a19f942dac696d9f01a84f02ca97b1854ba8b57ed27d7dc88c3642796556cb10
+ * input hash: sha256:cac35255bd096862c9fdb766d31113267515e64ff1f3293c460806b4ec2038e4
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
