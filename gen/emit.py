@@ -117,7 +117,7 @@ def describe(elem):
     return ElementDesc(name=elem.name, title=elem.title, node_xi=tuple(str(n.xi) for n in elem.nodes),
                        ndof=elem.ndof, caps=CAPS, fields=fields, shape_dof=tuple(3 * a for a in range(elem.nshape)),
                        functions={k: k for k in ("reference", "shape", "mass", "volume", "frame", "section_frame",
-                                                           "moment")})
+                                                 "moment")})
 
 
 SECTION_FRAME_SIG = ("static void section_frame(const double *restrict geom, double xi, const double *restrict q, "

@@ -78,8 +78,7 @@ extern const bk_pair bk_pair_{NAME}_{MATERIAL}_full;
           "    for (int i = 0; i < 7; ++i) q0[i] = i == 3 ? 1.0 : 0.0;", "}", ""]
     c += _function(f"static void frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)",
                    lower(body.body_frame_program(), ()))
-    c += section_frame_function(*(lower(pr, ()) for pr in body.body_section_frame_programs()),
-                                pre=("(void)geom; (void)xi;",))
+    c += section_frame_function(*(lower(pr, ()) for pr in body.body_section_frame_programs()))
     c += _function(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
                    f"{_W} Cq, {_W} Kq, {_W} T)", lower(body.body_rotary_program(), ()))
     c += [f"static void rotary({_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, {_W} Cq, {_W} Kq, {_W} T)",

@@ -43,7 +43,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 4
+#define BK_KERNEL_VERSION 5
 
 /* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
  * elements of one pair per call, so that the compiler vectorizes across

@@ -5,8 +5,8 @@
 #include <math.h>
 
 /* No lane kernels: force_lanes, force_tangent_lanes stay NULL (one element per call). */
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 4
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 4"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 5"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

@@ -70,3 +70,30 @@ def test_section_frame_jacobian_against_central_differences():
             if not float(d[k]) <= tol:
                 bad.append(f"{d['element']}: {k} = {d[k]} > {tol:.0e}")
     assert not bad, "\n".join(bad) + "\n" + r.stdout
+
+
+def test_solver_refuses_a_follower_load_on_an_element_without_section_frame():
+    """The scene compiler refuses follower loads on the cable (tests/test_loads_outputs.py);
+    a model file that has one anyway stops the solver with one line naming the load."""
+    import re
+    import tempfile
+    from pathlib import Path
+    from util import run_cli
+    out = Path(tempfile.mkdtemp(prefix="bk-ff-", dir=ensure_dir(BUILD / "runs")))
+    text = (ROOT / "models" / "cantilever_follower.toml").read_text()
+    scene = out / "follower_cable_refused.toml"          # its own solver name: no other test relinks it
+    scene.write_text(text.replace('element = "gef"', 'element = "ancf_cable"').replace("follower = true",
+                                                                                       "follower = false"))
+    r = run_cli(["run", str(scene), "--quiet", "--out", str(out / "run")])
+    assert r.returncode == 0, r.stderr
+    model = (out / "run" / "model.dat").read_text()
+    for rec in ("force", "moment"):
+        bad = re.sub(rf"^({rec} .*) 0$", r"\1 1", model, count=1, flags=re.M)
+        assert bad != model
+        (out / "bad.dat").write_text(bad)
+        r = subprocess.run([str(ROOT / "out" / "bin" / "follower_cable_refused"), str(out / "bad.dat"),
+                            str(out / "w"), "--quiet"], capture_output=True, text=True)
+        assert r.returncode == 1, (r.returncode, r.stderr)
+        assert (f"{rec} 0: follower load on element 9 (ancf_cable): expected an element with a section frame"
+                in r.stderr), r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1, r.stderr
