@@ -18,6 +18,7 @@ def element_files(index):
 
 def build_frame_check(variant="release"):
     from gen.scene import load_index
+    from gen.solver_build import BUILD as SOLVER_BUILD
     from gen.solver_build import (CC, KERNEL_FLAGS, KERNELS, LIBS, RUNTIME, VARIANTS, _compile_many,
                                   _kernel_headers, build_lock, compile_object)
     index = load_index()
@@ -32,8 +33,9 @@ def build_frame_check(variant="release"):
         table.write_text(text)
     srcs = sorted({f for fs in files.values() for f in fs})
     with build_lock():
-        jobs = [(KERNELS / f, d / "kernels" / (f[:-2] + ".o"), KERNEL_FLAGS[variant], _kernel_headers(KERNELS / f))
-                for f in srcs]
+        # the kernel objects where the solvers' builds keep them (the same flags): compiled once for both
+        jobs = [(KERNELS / f, SOLVER_BUILD / variant / "kernels" / (f[:-2] + ".o"), KERNEL_FLAGS[variant],
+                 _kernel_headers(KERNELS / f)) for f in srcs]
         _compile_many(jobs, None)
         hdrs = [RUNTIME / "bk_kernel.h"]
         objs = [j[1] for j in jobs]
