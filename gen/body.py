@@ -137,3 +137,22 @@ def body_frame_program():
         for i in range(3):
             prog.output(f"d[{3 * k + i}]", R[i, k], op="=")
     return prog
+
+
+def body_section_frame_programs():
+    """(R only, R and dR[7 k + j] = dR_k/dq_j) of the body's section frame
+    (bk_element.section_frame): its own rotation's axes, rows e1, e2, e3 (the
+    d of body_frame_program: orthonormal, no Gram-Schmidt)."""
+    q = _syms("q", 7)
+    R = rotation(q[3], sp.Matrix(q[4:7]))
+    rows = [R[i, k] for k in range(3) for i in range(3)]
+    progs = []
+    for jac in (False, True):
+        prog = Program()
+        for k in range(9):
+            prog.output(f"R[{k}]", rows[k], op="=")
+            if jac:
+                for j in range(7):
+                    prog.output(f"dR[{7 * k + j}]", sp.diff(rows[k], q[j]), op="=")
+        progs.append(prog)
+    return progs

@@ -116,12 +116,25 @@ def describe(elem):
     fields = tuple(Field(vec, 3 * a, 3, node) for a, (node, vec) in enumerate(elem.shape_labels()))
     return ElementDesc(name=elem.name, title=elem.title, node_xi=tuple(str(n.xi) for n in elem.nodes),
                        ndof=elem.ndof, caps=CAPS, fields=fields, shape_dof=tuple(3 * a for a in range(elem.nshape)),
-                       functions={k: k for k in ("reference", "shape", "mass", "volume", "frame", "moment")})
+                       functions={k: k for k in ("reference", "shape", "mass", "volume", "frame", "section_frame",
+                                                 "moment")})
+
+
+SECTION_FRAME_SIG = ("static void section_frame(const double *restrict geom, double xi, const double *restrict q, "
+                     "double *restrict R, double *restrict dR)")
+
+
+def section_frame_function(r_low, j_low, sig=SECTION_FRAME_SIG, pre=("(void)geom; (void)xi;",)):
+    """C lines of a section_frame() (runtime/bk_kernel.h): R only when dR is NULL,
+    else R and dR, from the two lowered programs."""
+    out = [sig, "{"] + [f"    {x}" for x in pre] + ["    if (!dR) {"]
+    out += _prologue(r_low, "        ") + _block(r_low, "        ") + ["        return;", "    }"]
+    return out + _prologue(j_low, "    ") + _block(j_low, "    ") + ["}", ""]
 
 
 def element_source(elem, elem_path):
     """Element file of a continuum (ANCF) element."""
-    from gen.loads import section_moment
+    from gen.loads import section_frame_programs, section_moment
     name = elem.name
     nsh, ndof = elem.nshape, elem.ndof
     h = input_hash([elem_path] + core_paths())
@@ -166,6 +179,10 @@ def element_source(elem, elem_path):
         for i, e in enumerate(field(lambda a: grads[a][J].subs(line))):
             fr.output(f"d[{3 * k + i}]", e, op="=")
     fr_low = lower(fr, ())
+    # Orthonormal section frame of d1 = r_y, d3 = r_x and its Jacobian (follower loads).
+    sf_low = [lower(pr, ()) for pr in section_frame_programs(
+        sp.Matrix(field(lambda a: grads[a][1].subs(line))), sp.Matrix(field(lambda a: grads[a][0].subs(line))),
+        q, ndof)]
 
     # Moment through the section slopes r_y, r_z at (xi, 0, 0).
     mo = Program()
@@ -216,6 +233,8 @@ def element_source(elem, elem_path):
     for a, N in enumerate(Ns):
         hdr.append(f" *   N{a} [{labels[a][1]} @ node {labels[a][0]}] = {sp.sstr(N)}")
     hdr += [" * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).",
+            " * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,",
+            " *   and dR/dq (gen/loads.py, section_frame_programs).",
             " * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).", " */"]
 
     htxt = "\n".join(hdr) + f"""
@@ -258,6 +277,7 @@ extern const bk_element bk_element_{name};
     c += _function("static void volume(const double *restrict geom, double *restrict v)", vol_low)
     c += _function("static void frame(const double *restrict geom, double xi, const double *restrict q, "
                    "double *restrict pos, double *restrict d)", fr_low, ["(void)geom; (void)xi;"])
+    c += section_frame_function(*sf_low)
     c += _function("static void moment(const double *restrict geom, double xi, const double *restrict q, "
                    "const double *restrict M, double *restrict Q, double *restrict dQ)", mo_low,
                    ["(void)geom; (void)xi;", f"for (int i = 0; i < {ndof}; ++i) Q[i] = 0.0;",

@@ -5,7 +5,7 @@ from pathlib import Path
 
 from gen import body
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
-from gen.emit import BANNER, CORE_FILES, _function, core_paths, input_hash
+from gen.emit import BANNER, CORE_FILES, _function, core_paths, input_hash, section_frame_function
 from gen.program import Program, count_lowered, lower
 
 GEN_DIR = Path(__file__).resolve().parent
@@ -27,7 +27,7 @@ def describe():
     fields = (Field("r", 0, 3, 0), Field("p", 3, 4, 0))
     return ElementDesc(name=NAME, title=TITLE, node_xi=("1/2",), ndof=7, caps=CAPS, fields=fields,
                        shape_dof=(0,), functions={k: k for k in ("reference", "shape", "mass", "volume",
-                                                                 "frame", "rotary")})
+                                                                 "frame", "section_frame", "rotary")})
 
 
 def _ops(low):
@@ -78,6 +78,7 @@ extern const bk_pair bk_pair_{NAME}_{MATERIAL}_full;
           "    for (int i = 0; i < 7; ++i) q0[i] = i == 3 ? 1.0 : 0.0;", "}", ""]
     c += _function(f"static void frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)",
                    lower(body.body_frame_program(), ()))
+    c += section_frame_function(*(lower(pr, ()) for pr in body.body_section_frame_programs()))
     c += _function(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
                    f"{_W} Cq, {_W} Kq, {_W} T)", lower(body.body_rotary_program(), ()))
     c += [f"static void rotary({_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, {_W} Cq, {_W} Kq, {_W} T)",

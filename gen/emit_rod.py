@@ -43,7 +43,8 @@ def describe(elem):
                            ndof=elem.ndof, caps=ROD_CAPS, fields=_fields(elem, 2),
                            shape_dof=tuple(rod.NODE_DOF * n for n in range(3)),
                            functions={"reference": "reference", "shape": "shape", "mass": "mass",
-                                      "volume": "volume", "frame": "bk_rod_frame", "moment": "moment",
+                                      "volume": "volume", "frame": "bk_rod_frame",
+                                      "section_frame": "section_frame", "moment": "moment",
                                       "rotary": "rotary"})
     return ElementDesc(name=elem.name, title=elem.title, node_xi=("0", "1"), ndof=elem.ndof, caps=CABLE_CAPS,
                        fields=_fields(elem, 2), shape_dof=(0, 3, 6, 9),
@@ -376,6 +377,9 @@ def shared_source(unit=SHARED):
                 f"void bk_rod_tabulate({_D} geom, {_D} q0, {_W} tab);",
                 "/* Centreline position pos[3] and section frame d[9] = (d1, d2, d3) at xi */",
                 f"void bk_rod_frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d);",
+                "/* Section frame R[9] = (d1, d2, d3) of bk_rod_frame at xi and, when dR is not NULL, its",
+                " * Jacobian dR[9*nd], dR[nd k + j] = dR_k/dq_j (bk_element.section_frame) */",
+                f"void bk_rod_section_frame(int nd, {_D} geom, double xi, {_D} q, {_W} R, {_W} dR);",
                 "/* Moment M[3] fixed in space on the quaternion of the node nearest xi: Q[nd], dQ[nd*nd] */",
                 f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ);"]
     hdr += ["", "#endif", ""]
@@ -403,6 +407,12 @@ def shared_source(unit=SHARED):
     fr, mom = lower(rod.frame_program(), ()), lower(rod.moment_node_program(), ())
     c += _gen_fn(f"void bk_rod_frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)", fr,
                  ["(void)geom;", "double psi[6];", "bk_rod_psi(q, psi);"])
+    sf_r, sf_j = (lower(rod.section_frame_program(j), ()) for j in (False, True))
+    c += [f"void bk_rod_section_frame(int nd, {_D} geom, double xi, {_D} q, {_W} R, {_W} dR)", "{",
+          "    (void)geom;", "    double psi[6], J[48];", "    if (!dR) {", "        bk_rod_psi(q, psi);"]
+    c += _prologue(sf_r, "        ") + _block(sf_r, "        ") + ["        return;", "    }"]
+    c += ["    bk_rod_psi_j(q, psi, J);", "    for (int i = 0; i < 9 * nd; ++i) dR[i] = 0.0;"]
+    c += _prologue(sf_j, "    ") + _block(sf_j, "    ") + ["}", ""]
     c += _gen_fn(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", mom)
     c += [f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)", "{",
           "    double Qn[4], dQn[16];",
@@ -501,6 +511,9 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
                    lower(shp, ()), ["(void)geom; (void)y; (void)z;"])
     c += _function("static void mass(const double *restrict geom, double *restrict m)", mass_low)
     c += _function("static void volume(const double *restrict geom, double *restrict v)", vol_low)
+    c += ["static void section_frame(const double *restrict geom, double xi, const double *restrict q, "
+          "double *restrict R, double *restrict dR)", "{",
+          f"    bk_rod_section_frame({nd}, geom, xi, q, R, dR);", "}", ""]
     c += ["static void moment(const double *restrict geom, double xi, const double *restrict q, "
           "const double *restrict M, double *restrict Q, double *restrict dQ)", "{",
           "    (void)geom;", f"    bk_rod_moment({nd}, xi, q, M, Q, dQ);", "}", ""]

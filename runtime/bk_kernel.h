@@ -155,6 +155,15 @@ typedef struct bk_element {
      * define are NaN. */
     void (*frame)(const double *restrict geom, double xi, const double *restrict q,
                   double *restrict pos, double *restrict d);
+    /* Orthonormal section frame at xi, R[9] = e1, e2, e3 (rows): the element's
+     * own rotation where it has one (nodal quaternions), else that of frame()'s
+     * d: e3 = d3/|d3|, e1 = d1 - (d1 . e3) e3 normalised, e2 = e3 x e1.  When
+     * dR is not NULL also its Jacobian dR[9*ndof], dR[k*ndof + j] = dR_k/dq_j
+     * (the coordinates as the solver increments them: each one on its own,
+     * quaternion components included).  Used by follower loads.  NULL: the
+     * element defines no section axes (the cable). */
+    void (*section_frame)(const double *restrict geom, double xi, const double *restrict q,
+                          double *restrict R, double *restrict dR);
     /* Moment M (N m, fixed in space) on the section at xi: generalized force
      * Q[ndof] and its Jacobian dQ[ndof*ndof] (row-major).  NULL: the element
      * carries no moments. */

@@ -15,55 +15,34 @@ static const double GW[5] = {0.2369268850561891, 0.4786286704993665, 0.568888888
 
 int bk_section_frame(const bk_model *m, int e, const double *qe, double xi, double *R)
 {
-    double pos[3], d[9];
-    bk_elem_type(m, e)->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d);
-    double *e1 = R, *e2 = R + 3, *e3 = R + 6;
-    double n3 = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
-    if (!isfinite(d[0]) || !isfinite(n3) || n3 == 0.0)
+    const bk_element *et = bk_elem_type(m, e);
+    if (!et->section_frame)
         return -1;
-    for (int i = 0; i < 3; ++i)
-        e3[i] = d[6 + i] / n3;
-    double c = d[0] * e3[0] + d[1] * e3[1] + d[2] * e3[2];
-    for (int i = 0; i < 3; ++i)
-        e1[i] = d[i] - c * e3[i];
-    double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    if (!(n1 > 0.0))
-        return -1;
-    for (int i = 0; i < 3; ++i)
-        e1[i] /= n1;
-    e2[0] = e3[1] * e1[2] - e3[2] * e1[1];
-    e2[1] = e3[2] * e1[0] - e3[0] * e1[2];
-    e2[2] = e3[0] * e1[1] - e3[1] * e1[0];
+    et->section_frame(m->geoms[m->elems[e].geom], xi, qe, R, NULL);
+    for (int k = 0; k < 9; ++k)
+        if (!isfinite(R[k]))
+            return -1;
     return 0;
 }
 
 /* A follower vector at xi: v = c1 e1 + c2 e2 + c3 e3 in the section frame of
- * qe, and with dv != NULL dv[3 ndof] = dv/dqe by central differences; qe is
- * perturbed and restored. */
-static void follower_vector(const bk_model *m, int e, double *qe, double xi, const double *c, double *v,
-                            double *dv)
+ * qe and, with dv != NULL, dv[3 ndof] = dv/dqe from the frame's generated
+ * Jacobian (dR[9 ndof] scratch).  The scene compiler and the model reader
+ * admit follower loads only on elements with a section_frame(). */
+static void follower_vector(const bk_model *m, int e, const double *qe, double xi, const double *c, double *v,
+                            double *dv, double *dR)
 {
     double R[9];
-    const int nd = bk_elem_type(m, e)->ndof;
-    bk_section_frame(m, e, qe, xi, R);
+    const bk_element *et = bk_elem_type(m, e);
+    const int nd = et->ndof;
+    et->section_frame(m->geoms[m->elems[e].geom], xi, qe, R, dv ? dR : NULL);
     for (int k = 0; k < 3; ++k)
         v[k] = c[0] * R[k] + c[1] * R[3 + k] + c[2] * R[6 + k];
     if (!dv)
         return;
-    for (int j = 0; j < nd; ++j) {
-        double save = qe[j], h = 1e-6 * fmax(1.0, fabs(save)), vp[3], vm[3];
-        qe[j] = save + h;
-        bk_section_frame(m, e, qe, xi, R);
-        for (int k = 0; k < 3; ++k)
-            vp[k] = c[0] * R[k] + c[1] * R[3 + k] + c[2] * R[6 + k];
-        qe[j] = save - h;
-        bk_section_frame(m, e, qe, xi, R);
-        for (int k = 0; k < 3; ++k)
-            vm[k] = c[0] * R[k] + c[1] * R[3 + k] + c[2] * R[6 + k];
-        qe[j] = save;
-        for (int k = 0; k < 3; ++k)
-            dv[k * nd + j] = (vp[k] - vm[k]) / (2.0 * h);
-    }
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < nd; ++j)
+            dv[k * nd + j] = c[0] * dR[k * nd + j] + c[1] * dR[(3 + k) * nd + j] + c[2] * dR[(6 + k) * nd + j];
 }
 
 /* Q += fac N^T v and K += fac N^T dv (a force v at the point with shape
@@ -86,6 +65,7 @@ typedef struct scratch {
     double qe[BK_MAX_ELEMENT_DOF];
     double N[BK_MAX_SHAPE];
     double *dv;                  /* [3 ndof] */
+    double *dR;                  /* [9 ndof]: the section frame's Jacobian */
     double *Qk, *Kk;             /* moment kernel: [ndof], [ndof^2] */
 } scratch;
 
@@ -95,7 +75,7 @@ static void point_force(const bk_model *m, const bk_force_load *f, double fac, s
     double v[3];
     bk_force_shape(m, f, w->N);
     if (f->follower) {
-        follower_vector(m, f->elem, w->qe, f->xi, f->value, v, K ? w->dv : NULL);
+        follower_vector(m, f->elem, w->qe, f->xi, f->value, v, K ? w->dv : NULL, w->dR);
         add_force(et, w->N, v, w->dv, fac, Q, K);
     } else {
         add_force(et, w->N, f->value, NULL, fac, Q, NULL);
@@ -118,7 +98,7 @@ static void point_moment(const bk_model *m, const bk_moment_load *mo, double fac
     }
     /* Q = B(q) M(q), B[:, k] = Q(q, e_k): dQ = sum_k M_k dQ(e_k) + B dM/dq */
     double M[3];
-    follower_vector(m, mo->elem, w->qe, mo->xi, mo->value, M, K ? w->dv : NULL);
+    follower_vector(m, mo->elem, w->qe, mo->xi, mo->value, M, K ? w->dv : NULL, w->dR);
     for (int k = 0; k < 3; ++k) {
         double ek[3] = {0.0, 0.0, 0.0};
         ek[k] = 1.0;
@@ -141,7 +121,7 @@ static void dist_load(const bk_model *m, const bk_dist_load *d, double fac, scra
         double xi = d->xi0 + half * (1.0 + GX[p]), wt = fac * GW[p] * half * g[BK_GEOM_L], v[3];
         et->shape(g, xi, 0.0, 0.0, w->N);
         if (d->follower) {
-            follower_vector(m, d->elem, w->qe, xi, d->value, v, K ? w->dv : NULL);
+            follower_vector(m, d->elem, w->qe, xi, d->value, v, K ? w->dv : NULL, w->dR);
             add_force(et, w->N, v, w->dv, wt, Q, K);
         } else {
             add_force(et, w->N, d->value, NULL, wt, Q, NULL);
@@ -194,14 +174,16 @@ static int scratch_init(scratch *w, int maxdof)
 {
     size_t md = (size_t)(maxdof > 0 ? maxdof : 1);
     w->dv = malloc(3 * md * sizeof *w->dv);
+    w->dR = malloc(9 * md * sizeof *w->dR);
     w->Qk = malloc(md * sizeof *w->Qk);
     w->Kk = malloc(md * md * sizeof *w->Kk);
-    return w->dv && w->Qk && w->Kk ? 0 : -1;
+    return w->dv && w->dR && w->Qk && w->Kk ? 0 : -1;
 }
 
 static void scratch_free(scratch *w)
 {
     free(w->dv);
+    free(w->dR);
     free(w->Qk);
     free(w->Kk);
 }

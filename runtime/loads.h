@@ -2,12 +2,11 @@
  * load with an amplitude (amplitude.h), follower forces and moments (they turn
  * with the section frame), distributed loads per unit length (dead or
  * follower) and tendons.  The runtime knows no element formula: positions come
- * from the element's shape(), section frames from frame(), moments from
- * moment(); the Jacobian of a follower load's direction is the central
- * difference of frame() over the element's coordinates (the frame kernel has
- * no derivative), the tendon's from the shape functions' xi-derivative by a
- * five-point stencil (exact for the polynomial shape functions of degree <= 4
- * of the continuum elements). */
+ * from the element's shape(), section frames and the Jacobian of a follower
+ * load's direction from section_frame() (generated with its derivative),
+ * moments from moment(); the tendon's from the shape functions' xi-derivative
+ * by a five-point stencil (exact for the polynomial shape functions of degree
+ * <= 4 of the continuum elements). */
 #ifndef BK_LOADS_H
 #define BK_LOADS_H
 
@@ -33,8 +32,9 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
 void bk_load_potentials(const bk_system *s, const double *q, double x, double *Vg, double *Vf);
 
 /* Orthonormal section frame at xi of element e with coordinates qe: R[9] =
- * e1, e2, e3 (e3 along the element's axis-like d3, e1 the part of d1 normal
- * to it).  Returns -1 where the element defines no section axes (the cable). */
+ * e1, e2, e3 (the element's section_frame(): e3 along the element's axis-like
+ * d3, e1 the part of d1 normal to it).  Returns -1 where the element defines
+ * no section axes (the cable) or the frame is degenerate (not finite). */
 int bk_section_frame(const bk_model *m, int e, const double *qe, double xi, double *R);
 
 #endif

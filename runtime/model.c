@@ -158,6 +158,15 @@ static void copy_token(reader *r, char *dst, size_t n, const char *what)
         memcpy(dst, t, strlen(t) + 1);
 }
 
+/* A follower load turns with the section frame of its element's kernel. */
+static void need_section_frame(reader *r, const bk_model *m, const char *what, int i, int e)
+{
+    const bk_element *et = m->pairs[m->elems[e].pair]->element;
+    if (!et->section_frame)
+        fail(r, "%s %d: follower load on element %d (%s): expected an element with a section frame", what, i, e,
+             et->name);
+}
+
 /* Amplitudes, distributed loads, tendons, reactions and the beams' elements
  * (for sections.csv), after the sensors. */
 static void read_extras(reader *r, bk_model *m)
@@ -203,6 +212,12 @@ static void read_extras(reader *r, bk_model *m)
     for (int i = 0; i < m->nmoment && !r->failed; ++i)
         if (m->moments[i].amp >= m->namp)
             fail(r, "moment %d: amplitude %d of %d", i, m->moments[i].amp, m->namp);
+    for (int i = 0; i < m->nforce && !r->failed; ++i)
+        if (m->forces[i].follower)
+            need_section_frame(r, m, "force", i, m->forces[i].elem);
+    for (int i = 0; i < m->nmoment && !r->failed; ++i)
+        if (m->moments[i].follower)
+            need_section_frame(r, m, "moment", i, m->moments[i].elem);
 
     expect(r, "dloads");
     m->ndload = inum(r, "dloads", 0, MAXN);
@@ -217,6 +232,8 @@ static void read_extras(reader *r, bk_model *m)
         d->amp = inum(r, "distributed load amplitude", -1, m->namp - 1);
         for (int k = 0; k < 3; ++k)
             d->value[k] = num(r, "distributed load value");
+        if (!r->failed && d->follower)
+            need_section_frame(r, m, "distributed load", i, d->elem);
     }
 
     expect(r, "tendons");

@@ -489,11 +489,14 @@ def test_follower_pressure_on_a_ring_is_pure_hoop_compression():
 
 def test_load_jacobians_against_central_differences():
     """dQ/dq of follower forces, moments, distributed follower loads and
-    tendons (runtime/loads.c) against central differences of Q itself."""
+    tendons (runtime/loads.c) against central differences of Q itself; the
+    follower tip loads also on a continuum element (its section frame is the
+    Gram-Schmidt frame of its slopes)."""
     exe = build_loads_check()
-    for scene, x, el in (("cantilever_follower", 0.7, "arm"), ("ring_pressure", 1.0, "ring"),
-                         ("tendon_ancf", 1.0, "arm")):
-        _, out = run(scene, [f"beam.{el}.elements=4"])
+    ancf = ["beam.arm.element=ancf3243", "material.alu.law=svk"]
+    for scene, x, el, more in (("cantilever_follower", 0.7, "arm", []), ("ring_pressure", 1.0, "ring", []),
+                               ("tendon_ancf", 1.0, "arm", []), ("cantilever_follower", 0.7, "arm", ancf)):
+        _, out = run(scene, [f"beam.{el}.elements=4"] + more)
         r = subprocess.run([str(exe), str(out / "model.dat"), str(x)], capture_output=True, text=True)
         assert r.returncode == 0, r.stderr
         err, big = map(float, r.stdout.split())

@@ -39,7 +39,7 @@ def _span(ctx, lt, where, beams):
 
 def _follower(ctx, lt, where, beam):
     fol = get_bool(ctx, lt, "follower", where, False)
-    if fol and beam["kind"] == "cable":
+    if fol and not beam["section_frame"]:
         ctx.fail(f"{where}.follower", f"element {beam['element']} has no section frame for a follower load to "
                  "turn with")
     return int(fol)

@@ -255,7 +255,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
                         "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
                         "node_at": node_ids_of_beam,
-                        "kind": einfo["kind"], "moments": einfo["moments"], "section": sec}
+                        "kind": einfo["kind"], "moments": einfo["moments"], "section": sec,
+                        "section_frame": einfo["section_frame"]}
 
     m.ndof = ndof
     return m

@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:8fbad6cb7b2d0faed38be244edf23d4494db6fbc2e4a22b85bf7423fb96c163f
+ * input hash: sha256:a7e13137fc048f736bf6f55e280b381e85a0f383b5ca2fde92c51ab92b002287
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -17,6 +17,8 @@
  *   N6 [r_y @ node 1] = xi*y
  *   N7 [r_z @ node 1] = xi*z
  * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).
+ * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,
+ *   and dR/dq (gen/loads.py, section_frame_programs).
  * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).
  */
 #ifndef BK_GEN_ANCF3243_H

@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:1b1ae0234ea5fdc024de02fcd64c2cb7739521983da715910dae97838784097c
+ * input hash: sha256:17f8115f1e0e2dbf8086e9cacbb1c664663f95acdb5a6079afff850cf1079771
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -23,6 +23,8 @@
  *   N12 [r_yz @ node 1] = xi*y*z
  *   N13 [r_zz @ node 1] = xi*z**2/2
  * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).
+ * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,
+ *   and dR/dq (gen/loads.py, section_frame_programs).
  * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).
  */
 #ifndef BK_GEN_ANCF3273_H

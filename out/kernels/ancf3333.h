@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:4dd140706b496021109bdc80f00bd69ea681e14f37cf8ae67855fdf1d64ca7a2
+ * input hash: sha256:bd36e47a3ca86f9586338ba5b37daf2b4377aeb856a6531fdeea30c709b3870f
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -18,6 +18,8 @@
  *   N7 [r_y @ node 2] = 2*xi**2*y - xi*y
  *   N8 [r_z @ node 2] = 2*xi**2*z - xi*z
  * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).
+ * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,
+ *   and dR/dq (gen/loads.py, section_frame_programs).
  * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).
  */
 #ifndef BK_GEN_ANCF3333_H

@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:6222e5dc2dc2010782fc1c9728759bc9b682af03195a9bc1874bdecf6c8b5753
+ * input hash: sha256:86a02def4db1fd331106afeb7d4e858b44d56d6ab33e1ae9abe01d166460461c
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -27,6 +27,8 @@
  *   N16 [r_yz @ node 2] = 2*xi**2*y*z - xi*y*z
  *   N17 [r_zz @ node 2] = xi**2*z**2 - xi*z**2/2
  * frame(): d1 = r_y, d2 = r_z, d3 = r_x at (xi, 0, 0).
+ * section_frame(): e3 = r_x/|r_x|, e1 = the part of r_y normal to it, normalised, e2 = e3 x e1,
+ *   and dR/dq (gen/loads.py, section_frame_programs).
  * moment(): through the section slopes r_y, r_z (gen/loads.py, section_moment).
  */
 #ifndef BK_GEN_ANCF3363_H

@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py)
- * input hash: sha256:efe3030c526d3723c698badd8bb5ae6f9bc5b4673c38e7243fbd8abd700b06cf
+ * input hash: sha256:d907a7921a108a952e2832037bdd73978ea000b6f12111c9cf7c02dfb7a20f46
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -42,6 +42,11 @@ static void volume(const double *restrict geom, double *restrict v)
     v[2] = x1;
 }
 
+static void section_frame(const double *restrict geom, double xi, const double *restrict q, double *restrict R, double *restrict dR)
+{
+    bk_rod_section_frame(27, geom, xi, q, R, dR);
+}
+
 static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
 {
     (void)geom;
@@ -116,6 +121,7 @@ const bk_element bk_element_kirchhoff = {
     .mass = mass,
     .volume = volume,
     .frame = bk_rod_frame,
+    .section_frame = section_frame,
     .moment = moment,
     .rotary = rotary,
 };
