@@ -38,6 +38,7 @@ CACHE = os.path.join(ROOT, "out", "cache", "run")
 SOURCES = (("gen", True), ("runtime", False), (os.path.join("out", "kernels"), False))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
 MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
+PRUNE_SLACK = 40                   # ... when there are this many more
 EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
@@ -194,10 +195,19 @@ def record(scene, sets, model_path, solver, name, analysis, warnings):
         pass                           # no cache: the next run takes the full path
 
 
-def prune(limit=MAX_ENTRIES):
-    """Remove the least recently written entries beyond `limit`."""
-    with os.scandir(CACHE) as it:
-        runs = [(e.stat().st_mtime_ns, e.name[:-4]) for e in it if e.name.endswith(".run")]
+def prune(limit=MAX_ENTRIES, slack=PRUNE_SLACK):
+    """Remove the least recently written entries beyond `limit`, once there are
+    `slack` more than that (the names are listed on every record, the entries'
+    times read only then: stat-ing all of them on every run cost ~2 ms)."""
+    names = [n for n in os.listdir(CACHE) if n.endswith(".run")]
+    if len(names) <= limit + slack:
+        return
+    runs = []
+    for n in names:
+        try:
+            runs.append((os.stat(os.path.join(CACHE, n)).st_mtime_ns, n[:-4]))
+        except FileNotFoundError:
+            pass
     runs.sort()
     for _, k in runs[:max(0, len(runs) - limit)]:
         for ext in (".run", ".dat"):

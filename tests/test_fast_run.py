@@ -130,5 +130,7 @@ def test_cache_keeps_the_newest_entries_only(monkeypatch):
         for ext in (".run", ".dat"):
             (d / f"k{i}{ext}").write_text("x")
         os.utime(d / f"k{i}.run", ns=(i + 1, (i + 1) * 10**9))
-    fr.prune(limit=2)
+    fr.prune(limit=2, slack=3)                    # 5 entries: not more than 2 + 3, all kept
+    assert len(list(d.iterdir())) == 10
+    fr.prune(limit=2, slack=2)                    # more than 2 + 2: down to the newest 2
     assert sorted(p.name for p in d.iterdir()) == ["k3.dat", "k3.run", "k4.dat", "k4.run"]
