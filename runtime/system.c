@@ -401,6 +401,31 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
                 sl[r * nd + c] = (row >= 0 && col >= 0) ? find_slot(s, row, col) : -1;
             }
     }
+    /* The first term of every slot in element order is stored, not added
+     * (assembly zeroes only the slots no element touches): efirst marks it. */
+    s->efirst = calloc((size_t)(tot ? tot : 1), 1);
+    {
+        unsigned char *seen = calloc((size_t)(s->nnz ? s->nnz : 1), 1);
+        if (!s->efirst || !seen) {
+            free(seen);
+            goto oom;
+        }
+        long nz = 0;
+        for (long k = 0; k < tot; ++k)
+            if (s->eslot[k] >= 0 && !seen[s->eslot[k]])
+                seen[s->eslot[k]] = 1, s->efirst[k] = 1;
+        for (long k = 0; k < s->nnz; ++k)
+            nz += !seen[k];
+        s->zslot = malloc((size_t)(nz ? nz : 1) * sizeof *s->zslot);
+        if (!s->zslot) {
+            free(seen);
+            goto oom;
+        }
+        for (long k = 0; k < s->nnz; ++k)
+            if (!seen[k])
+                s->zslot[s->nzslot++] = k;
+        free(seen);
+    }
     s->cslot_off = malloc(((size_t)m->nlincon + 1) * sizeof *s->cslot_off);
     if (!s->cslot_off)
         goto oom;
@@ -533,6 +558,8 @@ void bk_system_free(bk_system *s)
     free(s->btab);
     free(s->bmat);
     free(s->group);
+    free(s->efirst);
+    free(s->zslot);
     free(s->part);
     free(s->pel);
     free(s->pmap);
@@ -607,9 +634,14 @@ static int scatter_strided(const bk_system *s, int e, const double *fe, const do
     }
     if (Ax) {
         const int *sl = s->eslot + s->eslot_off[e];
+        const unsigned char *first = s->efirst + s->eslot_off[e];
         for (int k = 0; k < nd * nd; ++k) {
             const double v = Ke[(size_t)k * stride];
-            if (sl[k] >= 0 && v != 0.0)
+            if (sl[k] < 0)
+                continue;
+            if (first[k])
+                Ax[sl[k]] = 0.0 + v;   /* as adding v to a zeroed slot: -0.0 gives +0.0 */
+            else if (v != 0.0)
                 Ax[sl[k]] += v;
         }
     }
@@ -636,16 +668,20 @@ static int scatter_strided_part(const bk_system *s, int e, const double *fe, con
         else
             stage[-2 - c] = v;
     }
-    if (Ax)
+    if (Ax) {
+        const unsigned char *first = s->efirst + s->eslot_off[e];
         for (int k = 0; k < nd * nd; ++k) {
             const double v = Ke[(size_t)k * stride];
             const int c = code[k];
             if (c >= 0) {
-                if (v != 0.0)
+                if (first[k])
+                    Ax[c] = 0.0 + v;
+                else if (v != 0.0)
                     Ax[c] += v;
             } else if (c <= -2)
                 stage[-2 - c] = v;
         }
+    }
     return bad;
 }
 
@@ -734,6 +770,9 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
     int bad = 0;
     const int ng = s->ngroup, tangent = Ax != NULL;
     const size_t sq = s->slot_q, sK = s->slot_K, st = s->slot_tab, sm = (size_t)BK_LANES * BK_MAT_MAXPARAM;
+    if (Ax)                            /* slots no element writes (constraint rows) */
+        for (long k = 0; k < s->nzslot; ++k)
+            Ax[s->zslot[k]] = 0.0;
     if (s->npart > 1) {
         BK_OMP(omp parallel num_threads(s->npart) reduction(|: bad))
         {
@@ -742,10 +781,7 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
             T = omp_get_num_threads(), t = omp_get_thread_num();
 #endif
             const int d0 = (int)((long)m->ndof * t / T), d1 = (int)((long)m->ndof * (t + 1) / T);
-            const long s0 = s->nnz * t / T, s1 = s->nnz * (t + 1) / T;
             memset(fint + d0, 0, (size_t)(d1 - d0) * sizeof *fint);
-            if (Ax)
-                memset(Ax + s0, 0, (size_t)(s1 - s0) * sizeof *Ax);
             BK_OMP(omp barrier)
             /* a smaller team than asked for: each part still by one thread */
             for (int p = t; p < s->npart; p += T)
@@ -762,19 +798,19 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
                 for (int j = s->sh_ptr[i]; j < s->sh_ptr[i + 1]; ++j)
                     fint[to] += s->stage[s->sh_idx[j]];
             } else if (Ax) {
+                double a = 0.0;                /* a shared slot's first term is staged too */
                 for (int j = s->sh_ptr[i]; j < s->sh_ptr[i + 1]; ++j) {
                     const double v = s->stage[s->sh_idx[j]];
                     if (v != 0.0)
-                        Ax[to] += v;
+                        a += v;
                 }
+                Ax[to] = a;
             }
         }
     } else {
         /* Serial: no OpenMP region at all (libgomp allocates a team even for
          * a region whose if clause is false).  Same groups, same order of sums. */
         memset(fint, 0, (size_t)m->ndof * sizeof *fint);
-        if (Ax)
-            memset(Ax, 0, (size_t)s->nnz * sizeof *Ax);
         for (int g = 0; g < ng; ++g) {
             eval_group(s, g, q, s->bq, s->bf, s->bK, s->btab, s->bmat, tangent);
             bad |= scatter_group(s, g, s->bf, s->bK, fint, Ax);

@@ -27,6 +27,9 @@ typedef struct bk_system {
     long nnz;
     int *eslot_off;          /* [nelem+1] offsets into eslot                  */
     int *eslot;              /* CSC index of element entry (r, c), -1 if fixed */
+    unsigned char *efirst;   /* per eslot entry: the slot's first term in element
+                              * order (stored, not added: Ax is not zeroed first) */
+    long *zslot, nzslot;     /* slots no element entry writes (zeroed by assembly) */
     int *cslot;              /* per constraint term: CSC index of s G, s G^T  */
     int *cslot_off;          /* [ncon+1]                                      */
     int *diag;               /* [nfree] CSC index of each free DOF's diagonal  */
