@@ -1,22 +1,52 @@
 """What `./build.sh run` prints after a solve, and the scene warnings it adds to
-summary.json; standard library only (os, json), so that the fast path of a
-repeated run (gen/fastrun.py) can use it without the scene compiler."""
+summary.json; standard library os only, so that the fast path of a repeated
+run (gen/fastrun.py) can use it without the scene compiler."""
 import os
+
+
+def _json_string(s):
+    """s as the solver writes a JSON string (runtime/output.c json_string)."""
+    out = ['"']
+    for c in s:
+        if c in '"\\':
+            out.append("\\" + c)
+        elif ord(c) < 0x20:
+            out.append(f"\\u{ord(c):04x}")
+        else:
+            out.append(c)
+    out.append('"')
+    return "".join(out)
+
+
+_WARNINGS = '\n  "warnings": ['
 
 
 def add_scene_warnings(out, warnings):
     """The scene reader's warnings (likely locking element choices, ...) go first
-    into summary.json "warnings", beside the solver's."""
+    into summary.json "warnings", beside the solver's.  The solver writes that
+    array one string a line (its strings have no raw newline), so it is edited as
+    text: no json import on the run path, the solver's layout kept."""
     path = os.path.join(str(out), "summary.json")
     if not warnings or not os.path.exists(path):
         return
-    import json
     with open(path, encoding="utf-8") as fh:
-        s = json.load(fh)
-    s["warnings"] = list(warnings) + [w for w in s.get("warnings", []) if w not in warnings]
+        text = fh.read()
+    i = text.find(_WARNINGS)
+    end = text.find("],\n", i) if i >= 0 else -1
+    if end < 0:                        # not the solver's layout: through json
+        import json
+        s = json.loads(text)
+        s["warnings"] = list(warnings) + [w for w in s.get("warnings", []) if w not in warnings]
+        text = json.dumps(s, indent=1) + "\n"
+    else:
+        j = i + len(_WARNINGS)
+        ours = [_json_string(w) for w in warnings]
+        theirs = [ln.strip().rstrip(",") for ln in text[j:end].split("\n") if ln.strip()]
+        items = ours + [e for e in theirs if e not in ours]
+        text = text[:j] + ",".join("\n    " + e for e in items) + "\n  " + text[end:]
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as fh:
-        fh.write(json.dumps(s, indent=1) + "\n")
+        fh.write(text)
     os.replace(tmp, path)
 
 

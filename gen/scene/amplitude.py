@@ -12,7 +12,6 @@ Types (gen/scene_keys.py AMPLITUDE), x the time or the load factor:
          constant beyond the first and last point
 Model-file form: (type, [parameters]) -- runtime/amplitude.c evaluates it.
 """
-import csv
 import math
 from pathlib import Path
 
@@ -103,6 +102,7 @@ class Amplitudes:
             except OSError as e:
                 ctx.fail(key, f"cannot read {str(path)!r}: {e.strerror}")
             rows = []
+            import csv                 # only for table amplitudes from a file
             for ln, rec in enumerate(csv.reader(text.splitlines()), 1):
                 rec = [c.strip() for c in rec]
                 if not rec or not any(rec) or rec[0].startswith("#"):
