@@ -10,21 +10,26 @@ Exit status (also in ./build.sh --help and the README):
       summary.json says "interrupted": true
 """
 import os
-import signal
 import sys
-from pathlib import Path
 
-from gen.paths import prepare_run_dir, scene_location, user_path
+try:                                   # the signal module's enum wrappers cost ~5 ms to import
+    import _signal as signal
+except ImportError:                    # pragma: no cover
+    import signal
+
+from gen.paths import caller_path, prepare_run_dir, scene_location
 from gen.run_summary import add_scene_warnings, print_summary
-from gen.scene import ROOT, SceneError, build, load_index, write_model
+from gen.scene import ROOT_DIR, SceneError, build, load_index, write_model
 
-MODELS = ROOT / "models"
-RUNS = ROOT / "out" / "runs"
+# Paths are str on the run path (a run of a built scene imports no pathlib).
+MODELS = os.path.join(ROOT_DIR, "models")
+RUNS = os.path.join(ROOT_DIR, "out", "runs")
 RESULT_FILES = ("summary.json", "sensors.csv", "energy.csv", "modes.csv", "model.dat", "results.pvd")
 
 
 EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED, EXIT_USAGE, EXIT_MEMCHECK = 0, 1, 2, 64, 99
 EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
+SIGNAL_NAME = {signal.SIGINT: "SIGINT", signal.SIGTERM: "SIGTERM"}
 
 
 class UsageError(Exception):
@@ -46,14 +51,17 @@ def Parser(**kw):
     return _Parser(**kw)
 
 
+def scene_names():
+    return sorted(n[:-5] for n in os.listdir(MODELS) if n.endswith(".toml") and not n.startswith("."))
+
+
 def scene_path(spec):
+    """The scene file (a str) of a scene argument, or SceneError."""
     p, named = scene_location(spec, MODELS)
-    p = Path(p)
-    if not p.is_file():
+    if not os.path.isfile(p):
         if not named:
             raise SceneError(f"error: {spec}: no such scene file (looked for {p})")
-        names = sorted(x.stem for x in MODELS.glob("*.toml"))
-        raise SceneError(f"error: scene {str(spec)!r}: no models/{spec}.toml (scenes: {', '.join(names)})")
+        raise SceneError(f"error: scene {str(spec)!r}: no models/{spec}.toml (scenes: {', '.join(scene_names())})")
     return p
 
 
@@ -62,17 +70,23 @@ def prepare_out_dir(out, default):
     why = prepare_run_dir(out)
     if why:
         raise SceneError(why)
-    return Path(out)
+    return str(out)
 
 
 def solver_for(model, index, variant="release", log=None):
-    from gen.solver_build import build_solver
+    """The solver binary (a str) for the model: reused as it is when linked after
+    all its sources (gen/solver_fresh.py), else built (gen/solver_build.py)."""
+    from gen.solver_fresh import linked_after_sources
     name = model["name"]
     suffix = "" if variant == "release" else f"-{variant}"
-    return build_solver(model["pairs"], ROOT / "out" / "bin" / f"{name}{suffix}", index, variant, log)
+    exe = os.path.join(ROOT_DIR, "out", "bin", f"{name}{suffix}")
+    if linked_after_sources(sorted(model["pairs"]), exe, index, variant):
+        return exe
+    from gen.solver_build import build_solver
+    return str(build_solver(model["pairs"], exe, index, variant, log))
 
 
-VALGRIND_SUPPRESSIONS = ROOT / "runtime" / "valgrind.supp"
+VALGRIND_SUPPRESSIONS = os.path.join(ROOT_DIR, "runtime", "valgrind.supp")
 
 
 def memcheck_command(solver_cmd):
@@ -88,15 +102,16 @@ def memcheck_command(solver_cmd):
 def write_interrupted_summary(out, name, analysis, signo):
     """summary.json of a run interrupted before the solver wrote one (during
     meshing or the build): no step was taken."""
-    path = Path(out) / "summary.json"
-    if path.exists():
+    path = os.path.join(str(out), "summary.json")
+    if os.path.exists(path):
         return
     import json
-    sig = signal.Signals(signo).name
-    path.write_text(json.dumps({
-        "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
-        "steps": 0, "newton_iterations": 0, "cutbacks": 0, "wall_s": 0.0, "sensors": {},
-        "warnings": [], "error": f"interrupted by {sig} before the solve started"}, indent=1) + "\n")
+    sig = SIGNAL_NAME.get(signo, str(signo))
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(json.dumps({
+            "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
+            "steps": 0, "newton_iterations": 0, "cutbacks": 0, "wall_s": 0.0, "sensors": {},
+            "warnings": [], "error": f"interrupted by {sig} before the solve started"}, indent=1) + "\n")
 
 
 def _scene_name(path):
@@ -106,7 +121,8 @@ def _scene_name(path):
         sc = read_toml(path).get("scene", {})
     except SceneError:
         sc = {}
-    name = sc.get("name") if isinstance(sc.get("name"), str) and NAME_RE.match(sc["name"]) else Path(path).stem
+    name = (sc.get("name") if isinstance(sc.get("name"), str) and NAME_RE.match(sc["name"])
+            else os.path.splitext(os.path.basename(str(path)))[0])
     an = sc.get("analysis") if isinstance(sc.get("analysis"), str) else "static"
     return name, an
 
@@ -152,11 +168,18 @@ class _Signals:
 
 
 def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=True, memcheck=False):
-    """Validate, mesh, build and run one scene.  Returns (exit status, out dir).
-    Raises SceneError for bad input.  out: a directory (relative paths are the
-    caller's, see user_path)."""
+    """Validate, mesh, build and run one scene.  Returns (exit status, out dir as
+    a pathlib.Path).  Raises SceneError for bad input.  out: a directory
+    (relative paths are the caller's, see gen/paths.py)."""
+    from pathlib import Path
+    rc, out = _execute(scene, sets, out, variant, verbose, quiet, memcheck)
+    return rc, Path(out)
+
+
+def _execute(scene, sets, out, variant, verbose, quiet, memcheck):
+    """execute() with the out dir as a str (the command line's path: no pathlib)."""
     path = scene_path(str(scene))
-    want = user_path(out) if out else None
+    want = caller_path(out) if out else None
     out = None
     with _Signals() as sig:
         model = None
@@ -167,8 +190,9 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
                 for w in model.get("warnings", []):
                     print(f"warning: {model['name']}: {w}", file=sys.stderr)
             index = load_index()
-            out = prepare_out_dir(want or RUNS / model["name"], RUNS)
-            write_model(model, out / "model.dat")
+            out = prepare_out_dir(want or os.path.join(RUNS, model["name"]), RUNS)
+            model_file = os.path.join(out, "model.dat")
+            write_model(model, model_file)
             log = None if quiet else (lambda s: print(s, file=sys.stderr))
             try:
                 solver = solver_for(model, index, "memcheck" if memcheck else variant, log)
@@ -178,17 +202,17 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
                 raise SceneError(f"error: building the solver for {path}: {e}")
             if variant == "release" and not memcheck:
                 from gen.fastrun import record
-                record(str(path), list(sets), out / "model.dat", solver, model["name"], model["analysis"],
+                record(str(path), list(sets), model_file, solver, model["name"], model["analysis"],
                        model.get("warnings", []))
         except _Interrupt as e:
             name, analysis = (model["name"], model["analysis"]) if model else _scene_name(path)
             if out is None:                    # interrupted while meshing
-                out = prepare_out_dir(want or RUNS / name, RUNS)
+                out = prepare_out_dir(want or os.path.join(RUNS, name), RUNS)
             write_interrupted_summary(out, name, analysis, e.signo)
-            print(f"interrupted by {signal.Signals(e.signo).name} before the solve started "
+            print(f"interrupted by {SIGNAL_NAME.get(e.signo, e.signo)} before the solve started "
                   f"(summary in {out}/)", file=sys.stderr)
             return EXIT_SIGNAL[e.signo], out
-        cmd = [str(solver), str(out / "model.dat"), str(out)]
+        cmd = [str(solver), os.path.join(out, "model.dat"), out]
         if verbose:
             cmd.append("--verbose")
         elif quiet:
@@ -236,20 +260,21 @@ def cmd_run(argv):
 def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck):
     """execute() and the summary on the console; the exit status."""
     try:
-        rc, out = execute(scene, sets, out, variant, verbose, quiet, memcheck)
+        rc, out = _execute(scene, sets, out, variant, verbose, quiet, memcheck)
     except SceneError as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT
-    summ = out / "summary.json"
-    if not quiet and summ.exists():
+    summ = os.path.join(out, "summary.json")
+    if not quiet and os.path.exists(summ):
         import json
-        print_summary(json.loads(summ.read_text()), out)
+        with open(summ, encoding="utf-8") as fh:
+            print_summary(json.load(fh), out)
     return rc
 
 
 def cmd_scenes(argv):
-    for p in sorted(MODELS.glob("*.toml")):
-        print(p.stem)
+    for n in scene_names():
+        print(n)
     return 0
 
 

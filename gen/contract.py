@@ -5,12 +5,12 @@ geom[], the section shapes, the field roles and the element capabilities.
 The header is the one definition; this module only parses it, so a slot, role
 or capability added there is known here without a second list.
 """
+import os
 from functools import lru_cache
-from pathlib import Path
 
 from gen.derived import derived
 
-HEADER = Path(__file__).resolve().parent.parent / "runtime" / "bk_kernel.h"
+HEADER = os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(__file__))), "runtime", "bk_kernel.h")
 
 # Nodal vector names of the generator (gen/element.py, gen/rod.py) -> field role.
 _ROLE_OF_NAME = {"r": "BK_FIELD_POSITION", "r_x": "BK_FIELD_R_X", "r_y": "BK_FIELD_R_Y",
@@ -49,7 +49,8 @@ def _parse(data):
 def _parsed():
     """What _parse finds in the header, through gen/derived.py (a run does not
     parse an unchanged header again)."""
-    return derived("contract", HEADER.read_bytes(), _parse)
+    with open(HEADER, "rb") as fh:
+        return derived("contract", fh.read(), _parse)
 
 
 def _define(name):
@@ -123,7 +124,7 @@ def role_of(field_name):
     try:
         role = _ROLE_OF_NAME[field_name]
     except KeyError:
-        raise ValueError(f"field {field_name!r} has no role in {HEADER.name} (bk_field_role): "
+        raise ValueError(f"field {field_name!r} has no role in {os.path.basename(HEADER)} (bk_field_role): "
                          "add one there and here") from None
     if role not in field_roles():
         raise RuntimeError(f"{HEADER}: bk_field_role lacks {role}")

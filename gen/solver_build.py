@@ -10,6 +10,8 @@ import sys
 import threading
 from pathlib import Path
 
+from gen.solver_fresh import BuildError, kernel_files as _kernel_files, kernel_headers, linked_after_sources
+
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
     from _sha256 import sha256
 except ImportError:                    # pragma: no cover
@@ -58,10 +60,6 @@ KERNEL_FLAGS = {
 }
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
 INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse"]
-
-
-class BuildError(Exception):
-    pass
 
 
 class _BuildLock:
@@ -173,17 +171,8 @@ def _runtime_objects(variant, log, extra_sources):
 
 
 def _kernel_headers(src):
-    """Headers a generated kernel file includes with "..." (its own, its element's,
-    rod_common.h, rod_math.h, bk_kernel.h): an object is stale when one is newer."""
-    deps = [src.with_suffix(".h"), RUNTIME / "bk_kernel.h", RUNTIME / "bk_joint.h"]
-    with open(src, encoding="utf-8") as fh:             # the includes are at the top (files are MBs)
-        head = fh.read(8192)
-    for line in head.splitlines()[:20]:
-        if line.startswith('#include "'):
-            h = KERNELS / line.split('"')[1]
-            if h.exists() and h not in deps:
-                deps.append(h)
-    return deps
+    """gen/solver_fresh.kernel_headers as Paths."""
+    return [Path(h) for h in kernel_headers(str(src))]
 
 
 def kernel_objects(pairs, index, variant="release", log=None):
@@ -191,24 +180,6 @@ def kernel_objects(pairs, index, variant="release", log=None):
     (e.g. 'ancf3243_svk_full')."""
     with _BuildLock():
         return _kernel_objects(pairs, index, variant, log)
-
-
-def _kernel_files(pairs, index):
-    """The generated files (names in out/kernels) behind the given pair symbols,
-    and the joint kernels every solver binds."""
-    files = []
-    for p in pairs:
-        cands = index["pairs"] + ([index["body"]] if "body" in index else [])     # rigid bodies: index "body"
-        match = [x for x in cands if f"{x['element']}_{x['material']}_{x['integration']}" == p]
-        if not match:
-            raise BuildError(f"no generated kernel {p}")
-        for f in match[0]["files"]:
-            if f not in files:
-                files.append(f)
-    for f in index.get("joints", {}).get("files", []):     # every solver binds the joint kernels
-        if f not in files:
-            files.append(f)
-    return files
 
 
 def _kernel_objects(pairs, index, variant, log):
@@ -250,28 +221,9 @@ def build_solver(pairs, out_path, index, variant="release", log=None, main_objs=
         return _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags)
 
 
-def _linked_after_sources(pairs, out_path, index, variant):
-    """The solver at out_path was linked for these pairs and this build variant
-    after the last change of every file it is made from (the runtime, the pairs'
-    kernels and their headers, the kernel index, these build rules): then no
-    object needs checking (what make would conclude, without the ~5 ms of
-    checking each object).  Any doubt: False, and the full check runs."""
-    try:
-        stamp = out_path.with_name(out_path.name + ".pairs")
-        if stamp.read_text() != variant + "\n" + "\n".join(pairs) + "\n":
-            return False
-        t = out_path.stat().st_mtime
-        srcs = list(RUNTIME.glob("*.[ch]")) + [Path(__file__), KERNELS / "index.json"]
-        for f in _kernel_files(pairs, index):
-            srcs += [KERNELS / f] + _kernel_headers(KERNELS / f)
-        return all(f.stat().st_mtime <= t for f in srcs)
-    except (OSError, BuildError):
-        return False
-
-
 def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
     pairs = sorted(pairs)
-    if main_objs is None and not extra_flags and _linked_after_sources(pairs, Path(out_path), index, variant):
+    if main_objs is None and not extra_flags and linked_after_sources(pairs, str(out_path), index, variant):
         return Path(out_path)
     key = sha256((variant + "\n" + "\n".join(pairs)).encode()).hexdigest()[:16]
     tdir = BUILD / variant / "tables"

@@ -13,7 +13,6 @@ Types (gen/scene_keys.py AMPLITUDE), x the time or the load factor:
 Model-file form: (type, [parameters]) -- runtime/amplitude.c evaluates it.
 """
 import math
-from pathlib import Path
 
 import gen.scene_keys as K
 from gen.scene.values import _typename, check_keys, get_number, get_str
@@ -94,6 +93,7 @@ class Amplitudes:
             fname = tbl["file"]
             if not isinstance(fname, str):
                 ctx.fail(key, f"expected a path to a CSV file, found {_typename(fname)}")
+            from pathlib import Path           # only for tables from a file
             path = Path(fname)
             if not path.is_absolute():
                 path = Path(ctx.path).resolve().parent / path

@@ -4,7 +4,7 @@ materials and sections (materials.py), cost (cost.py), meshing and numbering
 (mesh.py), joints (joints.py), loads (loads.py), options, initial velocities
 and sensors (options.py); the model file (model_file.py)."""
 import copy
-from pathlib import Path
+import os
 
 import gen.scene_keys as K
 from gen.scene.amplitude import Amplitudes
@@ -42,7 +42,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         ctx.fail("scene.analysis", f"{analysis!r} analysis is not implemented yet; expected static")
     if "description" in scene:
         get_str(ctx, scene, "description", "scene")
-    sname = name or (get_name(ctx, scene, "name", "scene") if "name" in scene else Path(path).stem)
+    sname = name or (get_name(ctx, scene, "name", "scene") if "name" in scene else os.path.splitext(os.path.basename(str(path)))[0])
     if not NAME_RE.match(sname):
         ctx.fail("scene.name", f"scene name {sname!r} must be letters, digits, '_', '.', '-'")
 

@@ -1,6 +1,8 @@
 """The run's cost before meshing (gen/estimate.py) from the raw scene tables."""
+import os
+
 from gen import estimate as est_mod
-from gen.scene.files import ROOT
+from gen.scene.files import ROOT_DIR
 from gen.scene.mesh import MAX_ELEMENTS
 from gen.scene.options import DYNAMIC_FRAMES
 
@@ -33,4 +35,4 @@ def cost_check(ctx, doc, index, analysis, beams_doc, out_dir, log):
         ls = ls if isinstance(ls, int) and not isinstance(ls, bool) and ls > 0 else 10
         frames = ls // every + 2
     e = est_mod.estimate(beams, index, frames)
-    est_mod.check(e, beams, str(out_dir) if out_dir else str(ROOT / "out"), ctx.fail, log)
+    est_mod.check(e, beams, str(out_dir) if out_dir else os.path.join(ROOT_DIR, "out"), ctx.fail, log)

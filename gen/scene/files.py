@@ -1,11 +1,20 @@
 """Scene files: reading the TOML, `--set` overrides, the kernel index."""
-from pathlib import Path
+import os
 
 from gen.derived import derived
 from gen.scene.values import SceneError, _typename
 
-ROOT = Path(__file__).resolve().parent.parent.parent
-KERNEL_INDEX = ROOT / "out" / "kernels" / "index.json"
+# The repository and the kernel index as str (the run of a built scene imports
+# no pathlib); ROOT and KERNEL_INDEX, as pathlib.Path, for the other modules.
+ROOT_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+KERNEL_INDEX_FILE = os.path.join(ROOT_DIR, "out", "kernels", "index.json")
+
+
+def __getattr__(name):
+    if name in ("ROOT", "KERNEL_INDEX"):
+        from pathlib import Path
+        return Path(ROOT_DIR if name == "ROOT" else KERNEL_INDEX_FILE)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def apply_overrides(doc, sets, path):
@@ -73,9 +82,10 @@ def _parse_json(data):
 
 def load_index():
     try:
-        data = KERNEL_INDEX.read_bytes()
+        with open(KERNEL_INDEX_FILE, "rb") as fh:
+            data = fh.read()
     except OSError:
-        raise SceneError(f"error: {KERNEL_INDEX}: missing; run ./build.sh gen")
+        raise SceneError(f"error: {KERNEL_INDEX_FILE}: missing; run ./build.sh gen")
     return derived("index", data, _parse_json)
 
 
@@ -94,7 +104,8 @@ def _parse_toml(data, path):
 def read_toml(path):
     """The parsed scene file (through gen/derived.py: a file parsed before is not parsed again)."""
     try:
-        data = Path(path).read_bytes()
+        with open(path, "rb") as fh:
+            data = fh.read()
     except OSError as e:
         raise SceneError(f"error: {path}: cannot read: {e.strerror}")
     return derived("toml", data, lambda d: _parse_toml(d, path))

@@ -1,5 +1,4 @@
 """The model file the C solver reads (runtime/model.c)."""
-from pathlib import Path
 
 def _f(x):
     return repr(float(x))
@@ -120,4 +119,5 @@ def write_model(model, path):
     for bname, e, s0, s1 in model["sections"]:
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
     out.append("end")
-    Path(path).write_text("\n".join(out) + "\n", encoding="utf-8")
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write("\n".join(out) + "\n")

@@ -1,0 +1,71 @@
+"""Whether a built solver is current, in os.path only: the run of a built scene
+imports this module, not the build rules of gen/solver_build.py (and so not
+pathlib, threading and what they import: ~10 ms of a run's start-up).  The
+same test gen/solver_build.py makes before it checks each object."""
+import os
+
+GEN = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(GEN)
+RUNTIME = os.path.join(ROOT, "runtime")
+KERNELS = os.path.join(ROOT, "out", "kernels")
+
+
+class BuildError(Exception):
+    pass
+
+
+def kernel_files(pairs, index):
+    """The generated files (names in out/kernels) behind the given pair symbols,
+    and the joint kernels every solver binds."""
+    files = []
+    for p in pairs:
+        cands = index["pairs"] + ([index["body"]] if "body" in index else [])     # rigid bodies: index "body"
+        match = [x for x in cands if f"{x['element']}_{x['material']}_{x['integration']}" == p]
+        if not match:
+            raise BuildError(f"no generated kernel {p}")
+        for f in match[0]["files"]:
+            if f not in files:
+                files.append(f)
+    for f in index.get("joints", {}).get("files", []):     # every solver binds the joint kernels
+        if f not in files:
+            files.append(f)
+    return files
+
+
+def kernel_headers(src):
+    """Headers (paths) a generated kernel file `src` includes with "..." (its own,
+    its element's, rod_common.h, rod_math.h, bk_kernel.h): an object is stale
+    when one is newer."""
+    deps = [os.path.splitext(src)[0] + ".h", os.path.join(RUNTIME, "bk_kernel.h"),
+            os.path.join(RUNTIME, "bk_joint.h")]
+    with open(src, encoding="utf-8") as fh:             # the includes are at the top (files are MBs)
+        head = fh.read(8192)
+    for line in head.splitlines()[:20]:
+        if line.startswith('#include "'):
+            h = os.path.join(KERNELS, line.split('"')[1])
+            if os.path.exists(h) and h not in deps:
+                deps.append(h)
+    return deps
+
+
+def linked_after_sources(pairs, out_path, index, variant):
+    """The solver at out_path (a str) was linked for these pairs (sorted) and this
+    build variant after the last change of every file it is made from (the
+    runtime, the pairs' kernels and their headers, the kernel index, the build
+    rules): then no object needs checking (what make would conclude, without
+    the ~5 ms of checking each object).  Any doubt: False, and the full check
+    runs."""
+    try:
+        with open(out_path + ".pairs", encoding="utf-8") as fh:
+            if fh.read() != variant + "\n" + "\n".join(pairs) + "\n":
+                return False
+        t = os.stat(out_path).st_mtime
+        srcs = [os.path.join(RUNTIME, n) for n in os.listdir(RUNTIME)
+                if n.endswith((".c", ".h")) and not n.startswith(".")]
+        srcs += [os.path.join(GEN, "solver_build.py"), os.path.join(KERNELS, "index.json")]
+        for f in kernel_files(pairs, index):
+            src = os.path.join(KERNELS, f)
+            srcs += [src] + kernel_headers(src)
+        return all(os.stat(f).st_mtime <= t for f in srcs)
+    except (OSError, BuildError):
+        return False
