@@ -223,7 +223,7 @@ def build_solver(pairs, out_path, index, variant="release", log=None, main_objs=
 
 def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
     pairs = sorted(pairs)
-    if main_objs is None and not extra_flags and linked_after_sources(pairs, str(out_path), index, variant):
+    if main_objs is None and not extra_flags and linked_after_sources(pairs, str(out_path), index, variant, lock=False):
         return Path(out_path)
     key = sha256((variant + "\n" + "\n".join(pairs)).encode()).hexdigest()[:16]
     tdir = BUILD / variant / "tables"

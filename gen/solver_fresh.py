@@ -48,13 +48,26 @@ def kernel_headers(src):
     return deps
 
 
-def linked_after_sources(pairs, out_path, index, variant):
+LOCK = os.path.join(ROOT, "out", "build", ".lock")
+
+
+def linked_after_sources(pairs, out_path, index, variant, lock=True):
     """The solver at out_path (a str) was linked for these pairs (sorted) and this
     build variant after the last change of every file it is made from (the
     runtime, the pairs' kernels and their headers, the kernel index, the build
     rules): then no object needs checking (what make would conclude, without
     the ~5 ms of checking each object).  Any doubt: False, and the full check
-    runs."""
+    runs.  lock: hold out/build/.lock shared meanwhile, so that a solver being
+    linked by another process (gen/solver_build.py holds it exclusively) is
+    not taken for a built one; False from within that lock."""
+    if lock:
+        import fcntl
+        try:
+            with open(LOCK, "a") as fh:
+                fcntl.flock(fh, fcntl.LOCK_SH)
+                return linked_after_sources(pairs, out_path, index, variant, lock=False)
+        except OSError:
+            return False
     try:
         with open(out_path + ".pairs", encoding="utf-8") as fh:
             if fh.read() != variant + "\n" + "\n".join(pairs) + "\n":
