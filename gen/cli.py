@@ -273,8 +273,10 @@ def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck):
 
 
 def cmd_scenes(argv):
-    for n in scene_names():
-        print(n)
+    try:
+        print("\n".join(scene_names()), flush=True)
+    except BrokenPipeError:            # `./build.sh scenes | head`: the reader has enough
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
 
 

@@ -648,12 +648,12 @@ static int scatter_strided(const bk_system *s, int e, const double *fe, const do
     return bad;
 }
 
-/* The same for an element of a part (parallel assembly): terms for shared
- * slots and DOFs go to their stage entries. */
+/* The same, where the parallel assembly stages an element's terms for shared
+ * slots and DOFs (s->pel, system.h); serially (no pel) scatter_strided. */
 static int scatter_strided_part(const bk_system *s, int e, const double *fe, const double *Ke, int stride,
                                 double *fint, double *Ax)
 {
-    if (s->pel[e] < 0)
+    if (!s->pel || s->pel[e] < 0)                /* serial, or nothing shared */
         return scatter_strided(s, e, fe, Ke, stride, fint, Ax);
     const int nd = bk_elem_type(s->m, e)->ndof, *code = s->pmap + s->pel[e];
     double *stage = s->stage;
@@ -685,8 +685,7 @@ static int scatter_strided_part(const bk_system *s, int e, const double *fe, con
     return bad;
 }
 
-static int scatter_group_part(const bk_system *s, int g, const double *bf, const double *bK, double *fint,
-                              double *Ax)
+static int scatter_group(const bk_system *s, int g, const double *bf, const double *bK, double *fint, double *Ax)
 {
     const int e0 = s->group[g], n = s->group[g + 1] - e0;
     if (!lane_pair(s->m->pairs[s->m->elems[e0].pair]))
@@ -694,17 +693,6 @@ static int scatter_group_part(const bk_system *s, int g, const double *bf, const
     int bad = 0;
     for (int l = 0; l < n; ++l)
         bad |= scatter_strided_part(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax);
-    return bad;
-}
-
-static int scatter_group(const bk_system *s, int g, const double *bf, const double *bK, double *fint, double *Ax)
-{
-    const int e0 = s->group[g], n = s->group[g + 1] - e0;
-    if (!lane_pair(s->m->pairs[s->m->elems[e0].pair]))
-        return scatter_strided(s, e0, bf, bK, 1, fint, Ax);
-    int bad = 0;
-    for (int l = 0; l < n; ++l)
-        bad |= scatter_strided(s, e0 + l, bf + l, Ax ? bK + l : NULL, BK_LANES, fint, Ax);
     return bad;
 }
 
@@ -788,7 +776,7 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
                 for (int g = s->part[p]; g < s->part[p + 1]; ++g) {
                     eval_group(s, g, q, s->bq + p * sq, s->bf + p * sq, s->bK + p * sK, s->btab + p * st,
                                s->bmat + p * sm, tangent);
-                    bad |= scatter_group_part(s, g, s->bf + p * sq, s->bK + p * sK, fint, Ax);
+                    bad |= scatter_group(s, g, s->bf + p * sq, s->bK + p * sK, fint, Ax);
                 }
         }
         /* the shared slots and DOFs, their terms in element order */
