@@ -122,6 +122,9 @@ static void section_point(const bk_model *m, const double *q, int e, double xi, 
         x[i] += y * u[i] + z * w[i];
 }
 
+static void frame_points(const bk_model *m, const double *q, double *x);
+static size_t topology(const bk_model *m, unsigned char *buf);
+
 int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity)
 {
     memset(v, 0, sizeof *v);
@@ -130,18 +133,33 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     snprintf(v->dir, sizeof v->dir, "%s", dir);
     if (every <= 0)
         return 0;
+    v->t_pvd = wall_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
     v->cap = capacity > 16 ? capacity : 16;
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);
-    return v->times && v->frames ? 0 : -1;
+    size_t np = (size_t)bk_vtk_npoints(m);
+    v->ref = malloc((3 * np + 1) * sizeof *v->ref);
+    v->pts = malloc((3 * np + 1) * sizeof *v->pts);
+    v->ntopo = topology(m, NULL);
+    v->topo = malloc(v->ntopo);
+    if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
+        return -1;
+    frame_points(m, m->q0, v->ref);
+    topology(m, v->topo);
+    return 0;
 }
 
 void bk_vtk_close(bk_vtk *v)
 {
     free(v->times);
     free(v->frames);
+    free(v->ref);
+    free(v->pts);
+    free(v->topo);
     v->times = NULL;
     v->frames = NULL;
+    v->ref = v->pts = NULL;
+    v->topo = NULL;
 }
 
 /* A ParaView collection DIR/NAME of n files: entry k is file_fmt with id[k] (k + 1
@@ -190,21 +208,12 @@ typedef struct mode_view {
     double eps, norm, scale;
 } mode_view;
 
+/* A mode frame's point (y, z) at station xi of element e: pass 0 the displaced
+ * point, 1 the scaled shape (displacement), 2 the shape. */
 static void point_value(const bk_model *m, const double *q, const mode_view *mv, int pass, int e, double xi,
                         double y, double z, double *out)
 {
-    double x[3], a[3];
-    if (!mv) {
-        section_point(m, q, e, xi, y, z, x);
-        if (pass == 1) {
-            section_point(m, m->q0, e, xi, y, z, a);
-            for (int i = 0; i < 3; ++i)
-                x[i] -= a[i];
-        }
-        memcpy(out, x, sizeof x);
-        return;
-    }
-    double sh[3];
+    double x[3], a[3], sh[3];
     section_point(m, mv->qp, e, xi, y, z, x);
     section_point(m, mv->qm, e, xi, y, z, a);
     for (int i = 0; i < 3; ++i)
@@ -291,10 +300,96 @@ static void stress_value(const bk_model *m, const double *ssec, int maxsample, i
         x[i] = p->nsample == 1 ? v[i] : (1.0 - t) * v[6 * j + i] + t * v[6 * (j + 1) + i];
 }
 
-static int write_vtu(const bk_model *m, const char *path, int nfield, const char *const *fname,
+/* The points of a step frame for coordinates q, in frame order (element,
+ * station, ring point; the centreline point last in each ring): 3 bk_vtk_npoints
+ * doubles into x. */
+static void frame_points(const bk_model *m, const double *q, double *x)
+{
+    long np = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const double *g = m->geoms[m->elems[e].geom];
+        int r = ring_points(m, e);
+        for (int k = 0; k < NX; ++k) {
+            double xi = (double)k / (NX - 1);
+            for (int j = 0; j <= r; ++j) {
+                double y = 0.0, z = 0.0;
+                if (j < r)
+                    ring_yz(g, r, j, &y, &z);
+                section_point(m, q, e, xi, y, z, x + 3 * np++);
+            }
+        }
+    }
+}
+
+/* The cells block of every frame, as it is appended (byte count, connectivity;
+ * byte count, offsets; byte count, types), into buf; its size in bytes (buf
+ * NULL: the size only).  Point index of (element e, station k, ring point j) =
+ * base_e + k (r + 1) + j; j = r is the centreline point. */
+static size_t topology(const bk_model *m, unsigned char *buf)
+{
+    long ncell = 0, nconn = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        ncell += (long)(NX - 1) * r + 1;
+        nconn += 4L * (NX - 1) * r + NX;
+    }
+    const uint64_t sz_conn = (uint64_t)nconn * sizeof(int64_t), sz_off = (uint64_t)ncell * sizeof(int64_t);
+    const size_t size = 3 * sizeof(uint64_t) + sz_conn + sz_off + (size_t)ncell;
+    if (!buf)
+        return size;
+    unsigned char *b = buf;
+    memcpy(b, &sz_conn, sizeof sz_conn);
+    b += sizeof sz_conn;
+    int64_t base = 0, nv;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e), w = r + 1;
+        int64_t conn[4 * (NX - 1) * MAX_RING + NX];
+        nv = 0;
+        for (int k = 0; k + 1 < NX; ++k)
+            for (int j = 0; j < r; ++j) {
+                int j2 = (j + 1) % r;
+                conn[nv++] = base + k * w + j;
+                conn[nv++] = base + k * w + j2;
+                conn[nv++] = base + (k + 1) * w + j2;
+                conn[nv++] = base + (k + 1) * w + j;
+            }
+        for (int k = 0; k < NX; ++k)
+            conn[nv++] = base + k * w + r;
+        memcpy(b, conn, (size_t)nv * sizeof *conn);
+        b += (size_t)nv * sizeof *conn;
+        base += (int64_t)NX * w;
+    }
+    memcpy(b, &sz_off, sizeof sz_off);
+    b += sizeof sz_off;
+    int64_t o = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        for (int c = 0; c < (NX - 1) * r; ++c) {
+            o += 4;
+            memcpy(b, &o, sizeof o);
+            b += sizeof o;
+        }
+        o += NX;
+        memcpy(b, &o, sizeof o);
+        b += sizeof o;
+    }
+    const uint64_t nc = (uint64_t)ncell;
+    memcpy(b, &nc, sizeof nc);
+    b += sizeof nc;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        memset(b, 9, (size_t)(NX - 1) * r);              /* VTK_QUAD */
+        b += (size_t)(NX - 1) * r;
+        *b++ = 4;                                        /* VTK_POLY_LINE */
+    }
+    return size;
+}
+
+static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *const *fname,
                      const double *fval, const double *q, const mode_view *mv, const double *sec,
                      const double *ssec, int maxsample)
 {
+    const bk_model *m = v->m;
     FILE *fp = fopen(path, "wb");
     if (!fp)
         return -1;
@@ -359,9 +454,21 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
     fprintf(fp, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"%llu\"/>\n"
                 "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _",
             (unsigned long long)off);
-    /* points, displacements (and mode shapes): the same traversal each time */
+    /* points, displacements (and mode shapes): the same traversal each time; a
+     * step frame's points once, its displacements from the reference points of
+     * bk_vtk_open */
     for (int pass = 0; pass < npass; ++pass) {
         put_u64(fp, sz_pts);
+        if (!mv) {
+            size_t n3 = 3 * (size_t)npts;
+            if (pass == 0)
+                frame_points(m, q, v->pts);
+            else
+                for (size_t i = 0; i < n3; ++i)
+                    v->pts[i] -= v->ref[i];
+            fwrite(v->pts, sizeof(double), n3, fp);
+            continue;
+        }
         for (int e = 0; e < m->nelem; ++e) {
             const double *g = m->geoms[m->elems[e].geom];
             int r = ring_points(m, e), np = 0;
@@ -426,47 +533,7 @@ static int write_vtu(const bk_model *m, const char *path, int nfield, const char
             fwrite(vals, sizeof dens, (size_t)nc, fp);
         }
     }
-    /* cells: point index of (element e, station k, ring point j) = base_e + k (r + 1) + j;
-     * j = r is the centreline point */
-    put_u64(fp, sz_conn);
-    int64_t base = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e), w = r + 1, nv = 0;
-        int64_t conn[4 * (NX - 1) * MAX_RING + NX];
-        for (int k = 0; k + 1 < NX; ++k)
-            for (int j = 0; j < r; ++j) {
-                int j2 = (j + 1) % r;
-                conn[nv++] = base + k * w + j;
-                conn[nv++] = base + k * w + j2;
-                conn[nv++] = base + (k + 1) * w + j2;
-                conn[nv++] = base + (k + 1) * w + j;
-            }
-        for (int k = 0; k < NX; ++k)
-            conn[nv++] = base + k * w + r;
-        fwrite(conn, sizeof *conn, (size_t)nv, fp);
-        base += (int64_t)NX * w;
-    }
-    put_u64(fp, sz_off);
-    int64_t o = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e), nv = 0;
-        int64_t offs[(NX - 1) * MAX_RING + 1];
-        for (int c = 0; c < (NX - 1) * r; ++c) {
-            o += 4;
-            offs[nv++] = o;
-        }
-        o += NX;
-        offs[nv++] = o;
-        fwrite(offs, sizeof o, (size_t)nv, fp);
-    }
-    put_u64(fp, (uint64_t)ncell);
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        unsigned char types[(NX - 1) * MAX_RING + 1];
-        memset(types, 9, (size_t)(NX - 1) * r);         /* VTK_QUAD */
-        types[(NX - 1) * r] = 4;                         /* VTK_POLY_LINE */
-        fwrite(types, 1, (size_t)(NX - 1) * r + 1, fp);
-    }
+    fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (topology) */
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
     return fclose(fp) != 0 ? -1 : 0;              /* (flushes iobuf before it goes out of scope) */
 }
@@ -495,7 +562,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     static const char *const names[] = {"TIME"};
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
-    if (write_vtu(v->m, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
+    if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
@@ -523,7 +590,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, do
     static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
     const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
     mode_view mv = {qp, qm, eps, norm, scale};
-    if (write_vtu(v->m, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
+    if (write_vtu(v, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;

@@ -23,6 +23,10 @@ typedef struct bk_vtk {
     const double *ssec;      /* the elements' own stress resultants at their sample points
                               * (forces.h bk_forces.ssec), of the same step, or NULL */
     int maxsample;           /* sample points per element in ssec */
+    double *ref;             /* owned: the frame points of the reference state m->q0 (3 per point) */
+    double *pts;             /* owned: a frame's points (scratch, 3 per point) */
+    unsigned char *topo;     /* owned: the cells block every frame appends (topology, in bk_vtk_open) */
+    size_t ntopo;            /* its size in bytes */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
