@@ -339,7 +339,7 @@ void bk_band_free(bk_band *b)
     memset(b, 0, sizeof *b);
 }
 
-int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, long max_storage)
+int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, long max_storage)
 {
     memset(b, 0, sizeof *b);
     b->n = n;
@@ -348,10 +348,12 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, long max
     size_t N = (size_t)(n > 0 ? n : 1);
     b->perm = malloc(N * sizeof *b->perm);
     b->iperm = malloc(N * sizeof *b->iperm);
-    if (!b->perm || !b->iperm || rcm(n, Ap, Ai, b->perm) != 0) {
+    if (!b->perm || !b->iperm || (!order && rcm(n, Ap, Ai, b->perm) != 0)) {
         bk_bandsym_free(b);
         return -1;
     }
+    if (order)
+        memcpy(b->perm, order, (size_t)n * sizeof *b->perm);
     for (int i = 0; i < n; ++i)
         b->iperm[b->perm[i]] = i;
     int kd = 0;

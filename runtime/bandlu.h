@@ -67,7 +67,9 @@ void bk_band_free(bk_band *b);
  * the negative eigenvalues) and solves with it.  Same sizes and directions as
  * above; the values are read from the entries (i, j) with i at or below j in
  * the new order (the matrix must be symmetric).
- *   bk_bandsym_plan   0, 1 (band larger than allowed), -1 (out of memory);
+ *   bk_bandsym_plan   order[n]: a symmetric order to use instead (new -> old; e.g.
+ *                     the band LU's of the same pattern), or NULL;
+ *                     0, 1 (band larger than allowed), -1 (out of memory);
  *   bk_bandsym_factor 0, or -1 on a zero or non-finite pivot (D[j], new order,
  *                     holds the pivots); no allocation;
  *   bk_bandsym_solve  x[n] overwritten with A^-1 x (w[n] of the plan as scratch). */
@@ -79,7 +81,7 @@ typedef struct bk_bandsym {
     double *ab, *D, *w;
 } bk_bandsym;
 
-int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, long max_storage);
+int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, long max_storage);
 int bk_bandsym_factor(bk_bandsym *b, const double *Ax);
 void bk_bandsym_solve(bk_bandsym *b, double *x);
 void bk_bandsym_free(bk_bandsym *b);

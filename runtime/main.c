@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "dynamics.h"
 #include "interrupt.h"
 #include "modal.h"
@@ -25,12 +25,6 @@ extern const int bk_nlinked_pairs;
 extern const bk_joint_kind *const bk_joint_kinds[];
 extern const int bk_njoint_kinds;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 int main(int argc, char **argv)
 {
@@ -54,7 +48,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: %s MODEL_FILE OUT_DIR [--verbose | --quiet]\n", argv[0]);
         return 1;
     }
-    double t0 = now();
+    double t0 = bk_clock_s();
     if (bk_interrupt_block() != 0) {
         fprintf(stderr, "error: cannot block SIGINT/SIGTERM for a clean interruption\n");
         return 1;
@@ -99,7 +93,8 @@ int main(int argc, char **argv)
         rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
     bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
-    info.wall_s = now() - t0;
+    info.wall_s = bk_clock_s() - t0;
+    info.output_s = out.t_output;
     int wrc = bk_output_summary(&out, &info, q, stderr);   /* before the close: it reports the reactions */
     bk_output_close(&out);
     if (rc != 0)

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "checks.h"
+#include "clock.h"
 #include "interrupt.h"
 #include "linsolve.h"
 #include "nonlinear.h"
@@ -226,7 +227,10 @@ static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, doubl
 static int probe_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
                            int assembled, bk_stability_result *res)
 {
-    if (!assembled && residual(s, w, q, w->nu, lam, 1) != 0) {
+    double t0 = bk_clock_s();
+    int bad = !assembled && residual(s, w, q, w->nu, lam, 1) != 0;
+    st->t_spent += bk_clock_s() - t0;
+    if (bad) {
         memset(res, 0, sizeof *res);
         return -1;
     }
@@ -1102,7 +1106,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         goto done;
     }
     if (o->stability) {
-        if (bk_stability_init(&stab, s) != 0) {
+        if (bk_stability_init(&stab, s, nl.ls.use_band ? nl.ls.band.perm : NULL) != 0) {
             snprintf(info->message, sizeof info->message, "out of memory (stability analysis)");
             goto done;
         }
@@ -1287,8 +1291,10 @@ done:
     info->stability_checked = have_stab;
     if (have_nl)
         bk_nl_free(&nl);
-    if (have_stab)
+    if (have_stab) {
+        info->stability_s = stab.t_spent;
         bk_stability_free(&stab);
+    }
     free(w.fint);
     free(w.fext);
     free(w.qsave);

@@ -6,17 +6,18 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "interrupt.h"
 #include "system.h"
 
-static double wall(void)
+static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err);
+
+/* Adds the time since t0 to the run's output time (summary.json output_s). */
+static void spent(bk_output *o, double t0)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    o->t_output += bk_clock_s() - t0;
 }
 
 /* The result tables are flushed at most every BK_FLUSH_INTERVAL seconds of wall
@@ -27,7 +28,7 @@ static double wall(void)
 
 static void flush_due(bk_output *o)
 {
-    double now = wall();
+    double now = bk_clock_s();
     if (now - o->t_flush < BK_FLUSH_INTERVAL)
         return;
     o->t_flush = now;
@@ -41,7 +42,14 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
 {
     memset(o, 0, sizeof *o);
     o->progress = progress && isatty(2);
-    o->t_start = o->t_last = wall();
+    o->t_start = o->t_last = bk_clock_s();
+    int rc = output_open(o, m, dir, err);
+    spent(o, o->t_start);
+    return rc;
+}
+
+static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
+{
     int frames = m->analysis == BK_DYNAMIC
                      ? (int)(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / (m->vtk_every > 0 ? m->vtk_every : 1)) + 4
                      : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
@@ -121,7 +129,7 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, int iters
 {
     if (!o->progress)
         return;
-    double now = wall();
+    double now = bk_clock_s();
     if (now - o->t_start < 1.0 || now - o->t_last < 0.25)
         return;
     o->t_last = now;
@@ -134,24 +142,31 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, int iters
 
 void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 {
+    double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, NULL, -step, t, q);
+    spent(o, t0);
 }
 
 void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
     if (o->m->analysis != BK_MODAL)
         bk_output_last_frame(o, step, t, q);
+    double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
-    if (o->progress && wall() - o->t_start >= 1.0)
+    spent(o, t0);
+    if (o->progress && bk_clock_s() - o->t_start >= 1.0)
         fprintf(stderr, "\n");
 }
 
 void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
+    double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, NULL, step, t, q);
-    if (!o->sensors)
+    if (!o->sensors) {
+        spent(o, t0);
         return;
+    }
     for (int k = 0; k < o->m->nsensor; ++k) {
         const bk_sensor *s = &o->m->sensors[k];
         double pos[3], disp[3], g[9];
@@ -163,13 +178,16 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
                 g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
     }
     flush_due(o);
+    spent(o, t0);
 }
 
 void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
                       const double *qdd, const double *nu)
 {
+    double t0 = bk_clock_s();
     int with_sections = o->forces_calls++ % o->sections_every == 0;
     bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu, with_sections);
+    spent(o, t0);
 }
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
@@ -197,6 +215,7 @@ int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
 
 double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi)
 {
+    double t0 = bk_clock_s();
     const bk_model *m = o->m;
     int n = m->ndof;
     double *qp = o->mode_q, *qm = o->mode_q + n, pmax = 0.0;
@@ -241,6 +260,7 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
         fflush(o->mode_sensors);
     }
     bk_vtk_mode(&o->vtk, mode, f_hz, omega, scale, norm, q, qp, qm, eps);
+    spent(o, t0);
     return scale;
 }
 
@@ -249,16 +269,20 @@ void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int it
 {
     if (!o->newton)
         return;
+    double t0 = bk_clock_s();
     fprintf(o->newton, "%d,%d,%.17g,%d,%.6e,%.6e,%.6e,%.6g,%.3e\n", attempt, step, lam, iter, residual, ref,
             increment, alpha, rcond);
+    spent(o, t0);
 }
 
 void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max)
 {
     if (!o->stability)
         return;
+    double t0 = bk_clock_s();
     fprintf(o->stability, "%d,%.17g,%d,%.9e,%.6e\n", step, lam, negative, eig_min, eig_max);
     flush_due(o);
+    spent(o, t0);
 }
 
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
@@ -266,9 +290,11 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
 {
     if (!o->energy)
         return;
+    double t0 = bk_clock_s();
     fprintf(o->energy, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3e\n", step, t, T, U, Vg, Vf,
             T + U + Vg + Vf, cres);
     flush_due(o);
+    spent(o, t0);
 }
 
 static void json_string(FILE *fp, const char *s)
@@ -334,6 +360,9 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     if (info->warnings_dropped)
         fprintf(fp, "  \"warnings_dropped\": %d,\n", info->warnings_dropped);
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
+    fprintf(fp, "  \"output_s\": %.6f,\n", info->output_s);
+    if (o->m->analysis == BK_STATIC && o->m->stat.stability)
+        fprintf(fp, "  \"stability_s\": %.6f,\n", info->stability_s);
     fprintf(fp, "  \"steps\": %d,\n", info->steps);
     fprintf(fp, "  \"newton_iterations\": %d,\n", info->newton_iterations);
     fprintf(fp, "  \"cutbacks\": %d,\n", info->cutbacks);

@@ -28,6 +28,7 @@ typedef struct bk_output {
     FILE *console;           /* warnings are printed here (NULL: --quiet) */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
     double t_flush;          /* wall clock of the last flush of the result tables */
+    double t_output;         /* wall time spent in the bk_output_* calls so far (s) */
     bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
     int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
 } bk_output;
@@ -60,7 +61,9 @@ typedef struct bk_critical_point {
 
 typedef struct bk_run_info {
     int converged;
-    double wall_s;
+    double wall_s;           /* model read to results written, less the summary (s) */
+    double output_s;         /* of it, writing results: files, frames, the section forces (s) */
+    double stability_s;      /* of it, the static stability checks (s) */
     int steps;
     int newton_iterations;
     int cutbacks;

@@ -8,18 +8,22 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
+
 #define INV_ITERS 30
 #define POW_ITERS 40
 
-static long slot(const bk_system *s, int row, int col)
+static int stability_init(bk_stability *st, const bk_system *s, const int *order);
+
+int bk_stability_init(bk_stability *st, const bk_system *s, const int *order)
 {
-    for (int k = s->Ap[col]; k < s->Ap[col + 1]; ++k)
-        if (s->Ai[k] == row)
-            return k;
-    return -1;
+    double t0 = bk_clock_s();
+    int rc = stability_init(st, s, order);
+    st->t_spent += bk_clock_s() - t0;
+    return rc;
 }
 
-int bk_stability_init(bk_stability *st, const bk_system *s)
+static int stability_init(bk_stability *st, const bk_system *s, const int *order)
 {
     memset(st, 0, sizeof *st);
     st->s = s;
@@ -72,7 +76,12 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
         st->nmult += st->ismult[i];
 
     /* Pattern of the Newton matrix with every diagonal present, and for each
-     * entry the positions of (i,j) and (j,i) in the system's values. */
+     * entry the positions of (i,j) and (j,i) in the system's values.  (j,i) is
+     * found with a cursor per column i that only moves down: the columns j are
+     * visited in increasing order and the rows of each column are sorted. */
+    int *cur = st->Pattern; /* scratch */
+    for (int i = 0; i < n; ++i)
+        cur[i] = s->Ap[i];
     long nz = 0;
     for (int j = 0; j < n; ++j) {
         st->Bp[j] = (int)nz;
@@ -86,9 +95,11 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
                 have_diag = 1;
             }
             have_diag |= i == j;
+            while (cur[i] < s->Ap[i + 1] && s->Ai[cur[i]] < j)
+                cur[i]++;
             st->Bi[nz] = i;
             st->src[nz] = k;
-            st->srct[nz] = slot(s, j, i);
+            st->srct[nz] = cur[i] < s->Ap[i + 1] && s->Ai[cur[i]] == j ? cur[i] : -1;
             nz++;
         }
         if (!have_diag) {
@@ -102,7 +113,7 @@ int bk_stability_init(bk_stability *st, const bk_system *s)
     /* A narrow band in reverse Cuthill-McKee order (beams): a band LDL^T, any
      * symmetric order has the same inertia (Sylvester).  Else AMD on the whole
      * pattern, then the multipliers first (each keeps its AMD rank). */
-    int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, BK_BAND_MAX_STORAGE);
+    int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, order, BK_BAND_MAX_STORAGE);
     if (bp < 0)
         return -1;
     if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2) {
@@ -224,6 +235,7 @@ double bk_stability_crossing(bk_stability *st, int count_before)
 {
     if (!st->have_prev || st->n == 0)
         return NAN;
+    double t0 = bk_clock_s();
     long nz = st->Bp[st->n];
     double lo = 0.0, hi = 1.0, *now = st->Bnow;
     memcpy(now, st->Bx, (size_t)nz * sizeof *now);
@@ -238,10 +250,20 @@ double bk_stability_crossing(bk_stability *st, int count_before)
             hi = t;
     }
     memcpy(st->Bx, now, (size_t)nz * sizeof *now);
+    st->t_spent += bk_clock_s() - t0;
     return 0.5 * (lo + hi);
 }
 
+static void stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
+
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res)
+{
+    double t0 = bk_clock_s();
+    stability_check(st, Ax, res);
+    st->t_spent += bk_clock_s() - t0;
+}
+
+static void stability_check(bk_stability *st, const double *Ax, bk_stability_result *res)
 {
     int n = st->n;
     memset(res, 0, sizeof *res);

@@ -36,6 +36,7 @@
 
 typedef struct bk_stability {
     const bk_system *s;
+    double t_spent;                 /* wall time in this analysis so far (s; set-up, checks, crossings) */
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
     int *Bp, *Bi;                   /* symmetric pattern with every diagonal   */
@@ -59,8 +60,10 @@ typedef struct bk_stability_result {
     int ok;                         /* 0: the factorization broke down (zero pivot)         */
 } bk_stability_result;
 
-/* Returns 0, or -1 when out of memory. */
-int bk_stability_init(bk_stability *st, const bk_system *s);
+/* order[neq]: a symmetric order of the system's unknowns for the band LDL^T
+ * (new -> old: the band LU's, bk_linsolver.band.perm, saves its own reverse
+ * Cuthill-McKee search), or NULL.  Returns 0, or -1 when out of memory. */
+int bk_stability_init(bk_stability *st, const bk_system *s, const int *order);
 /* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
 /* Makes the last checked matrix the reference of the next crossing search

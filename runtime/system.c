@@ -66,9 +66,15 @@ static void joint_x(const bk_nlcon *c, const double *q, int rates, double *x)
 
 static int find_slot(const bk_system *s, int row, int col)
 {
-    const int *lo = s->Ai + s->Ap[col], *hi = s->Ai + s->Ap[col + 1];
-    const int *p = bsearch(&row, lo, (size_t)(hi - lo), sizeof *lo, cmp_int);
-    return p ? (int)(p - s->Ai) : -1;
+    int lo = s->Ap[col], hi = s->Ap[col + 1];      /* bisection over the sorted rows of col */
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (s->Ai[mid] < row)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < s->Ap[col + 1] && s->Ai[lo] == row ? lo : -1;
 }
 
 /* Owner code of a matrix slot or DOF while the parts are made: 0 untouched,

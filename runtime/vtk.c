@@ -24,20 +24,14 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "system.h"
 
 #define NX 4
 #define MAX_RING 12              /* points of the largest section ring (ring_points) */
 #define BK_PVD_INTERVAL 0.5
 
-static double wall_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -133,7 +127,7 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     snprintf(v->dir, sizeof v->dir, "%s", dir);
     if (every <= 0)
         return 0;
-    v->t_pvd = wall_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
+    v->t_pvd = bk_clock_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
     v->cap = capacity > 16 ? capacity : 16;
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);
@@ -568,7 +562,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     v->frames[v->nframe] = frame;
     v->nframe++;
     v->pvd_stale = 1;
-    return wall_s() - v->t_pvd >= BK_PVD_INTERVAL ? bk_vtk_flush(v) : 0;
+    return bk_clock_s() - v->t_pvd >= BK_PVD_INTERVAL ? bk_vtk_flush(v) : 0;
 }
 
 int bk_vtk_flush(bk_vtk *v)
@@ -576,7 +570,7 @@ int bk_vtk_flush(bk_vtk *v)
     if (v->every <= 0 || !v->pvd_stale)
         return 0;
     v->pvd_stale = 0;
-    v->t_pvd = wall_s();
+    v->t_pvd = bk_clock_s();
     return write_pvd(v);
 }
 

@@ -257,7 +257,7 @@ static void run(const char *name, int kind)
             AT(nd + k, nd + k) = -1e-8;
         to_csc(n, D, mask, Ap, Ai, Ax);
         bk_bandsym bs;
-        if (bk_bandsym_plan(&bs, n, Ap, Ai, 1L << 24) == 0 && (sym_fac = bk_bandsym_factor(&bs, Ax)) == 0) {
+        if (bk_bandsym_plan(&bs, n, Ap, Ai, NULL, 1L << 24) == 0 && (sym_fac = bk_bandsym_factor(&bs, Ax)) == 0) {
             sym_neg = 0;
             for (int i = 0; i < n; ++i)
                 sym_neg += bs.D[i] < 0.0;

@@ -330,7 +330,7 @@ static void check_chain(int variant)
         tie(&S, 12, 9);
     bk_system *sys = bk_system_create(&S.m, stderr);
     bk_stability st;
-    if (!sys || bk_stability_init(&st, sys) != 0)
+    if (!sys || bk_stability_init(&st, sys, NULL) != 0)
         exit(3);
     bk_stability_result res;
     stability_of(sys, &st, S.q0, &res);
@@ -375,7 +375,7 @@ static void check_truss(void)
     fix(&S, 8);
     bk_system *sys = bk_system_create(&S.m, stderr);
     bk_stability st;
-    if (!sys || bk_stability_init(&st, sys) != 0)
+    if (!sys || bk_stability_init(&st, sys, NULL) != 0)
         exit(3);
     double q[MAXD];
     const double ys[3] = {h, 0.0, -h};
