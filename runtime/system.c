@@ -28,6 +28,10 @@
 #define BK_PAR_MIN_ELEMS 256
 /* Most parts of the parallel assembly (one per thread; owner codes of a byte). */
 #define BK_MAX_PARTS 250
+/* Parts per thread: the threads take parts as they finish the last (dynamic
+ * schedule), so a thread whose core is busy with another process does fewer
+ * of them instead of holding up the others. */
+#define BK_PARTS_PER_THREAD 8
 
 /* A pair whose elements are evaluated BK_LANES per call (bk_kernel.h, "Lane kernels"). */
 static int lane_pair(const bk_pair *p)
@@ -101,16 +105,21 @@ static int cmp_stage_ref(const void *a, const void *b)
 }
 
 /* The parts of the parallel assembly (system.h): contiguous runs of groups of
- * about equal cost, one per thread; the slots and DOFs that elements of two
- * parts add into, and the stage entries that keep those elements' terms. */
+ * about equal cost, BK_PARTS_PER_THREAD per thread; the slots and DOFs that
+ * elements of two parts add into, and the stage entries that keep those
+ * elements' terms. */
 static int make_parts(bk_system *s)
 {
     const bk_model *m = s->m;
     s->npart = 1;
-    int np = s->nthreads < BK_MAX_PARTS ? s->nthreads : BK_MAX_PARTS;
+    if (s->nthreads < 2 || m->nelem < BK_PAR_MIN_ELEMS)
+        return 0;
+    int np = s->nthreads * BK_PARTS_PER_THREAD;
+    if (np > BK_MAX_PARTS)
+        np = BK_MAX_PARTS;
     if (np > s->ngroup)
         np = s->ngroup;
-    if (np < 2 || m->nelem < BK_PAR_MIN_ELEMS)
+    if (np < 2)
         return 0;
     s->part = malloc(((size_t)np + 1) * sizeof *s->part);
     if (!s->part)
@@ -524,8 +533,8 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     if (make_parts(s) != 0)
         goto oom;
     {
-        /* one evaluation slot per part (one when serial) */
-        const size_t np = (size_t)(s->npart > 1 ? s->npart : 1);
+        /* one evaluation slot per thread (one when serial) */
+        const size_t np = (size_t)(s->npart > 1 ? s->nthreads : 1);
         s->bq = alloc_lanes(np * s->slot_q);
         s->bf = alloc_lanes(np * s->slot_q);
         s->bK = alloc_lanes(np * s->slot_K);
@@ -768,21 +777,21 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
         for (long k = 0; k < s->nzslot; ++k)
             Ax[s->zslot[k]] = 0.0;
     if (s->npart > 1) {
-        BK_OMP(omp parallel num_threads(s->npart) reduction(|: bad))
+        memset(fint, 0, (size_t)m->ndof * sizeof *fint);
+        BK_OMP(omp parallel num_threads(s->nthreads) reduction(|: bad))
         {
-            int T = 1, t = 0;
+            int t = 0;
 #ifdef _OPENMP
-            T = omp_get_num_threads(), t = omp_get_thread_num();
+            t = omp_get_thread_num();
 #endif
-            const int d0 = (int)((long)m->ndof * t / T), d1 = (int)((long)m->ndof * (t + 1) / T);
-            memset(fint + d0, 0, (size_t)(d1 - d0) * sizeof *fint);
-            BK_OMP(omp barrier)
-            /* a smaller team than asked for: each part still by one thread */
-            for (int p = t; p < s->npart; p += T)
+            /* each part by one thread, whichever is free (the order of every
+             * sum is the part's own, or the staged element order) */
+            BK_OMP(omp for schedule(dynamic, 1) nowait)
+            for (int p = 0; p < s->npart; ++p)
                 for (int g = s->part[p]; g < s->part[p + 1]; ++g) {
-                    eval_group(s, g, q, s->bq + p * sq, s->bf + p * sq, s->bK + p * sK, s->btab + p * st,
-                               s->bmat + p * sm, tangent);
-                    bad |= scatter_group(s, g, s->bf + p * sq, s->bK + p * sK, fint, Ax);
+                    eval_group(s, g, q, s->bq + t * sq, s->bf + t * sq, s->bK + t * sK, s->btab + t * st,
+                               s->bmat + t * sm, tangent);
+                    bad |= scatter_group(s, g, s->bf + t * sq, s->bK + t * sK, fint, Ax);
                 }
         }
         /* the shared slots and DOFs, their terms in element order */

@@ -47,12 +47,13 @@ typedef struct bk_system {
     int ngroup;
     int *group;              /* [ngroup+1] first element of each group        */
     size_t slot_q, slot_K, slot_tab; /* doubles per group slot of bq/bf, bK, btab */
-    double *bq, *bf, *bK;    /* per-part evaluation buffers (one slot each)    */
+    double *bq, *bf, *bK;    /* per-thread evaluation buffers (one slot each)  */
     double *btab, *bmat;     /* lane-ordered tables and material parameters   */
     /* Parallel assembly (nthreads > 1 and enough elements): npart contiguous
      * runs of groups of about equal cost, part[npart+1] their first groups,
-     * one per thread.  A thread adds its elements' terms directly into the
-     * slots of fint and Ax that only its part touches; terms for a slot or
+     * several per thread, each taken by the next free thread.  A thread adds
+     * a part's terms directly into the slots of fint and Ax that only that
+     * part touches; terms for a slot or
      * DOF that two parts touch go to stage[]: an element with such entries
      * has a map pmap[pel[e]..] (nd*nd slot codes, then nd DOF codes: >= 0
      * target, -1 none, <= -2 stage entry -2-code; pel[e] = -1: use eslot).
