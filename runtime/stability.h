@@ -40,7 +40,7 @@ typedef struct bk_stability {
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
     int *Bp, *Bi;                   /* symmetric pattern with every diagonal   */
-    long *src, *srct;               /* [nnz] index into the system's Ax of (i,j) and (j,i), -1: none */
+    int *src, *srct;                /* [nnz] index into the system's Ax of (i,j) and (j,i), -1: none */
     double *Bx, *Bprev, *Bnow;      /* values now, at the previous check, copy */
     int have_prev;
     int *Lp, *Parent, *Lnz, *Flag, *Pattern, *P, *Pinv, *Li;
