@@ -6,14 +6,17 @@
  *   timing REPEATS TARGET_SECONDS     (TARGET_SECONDS <= 0: no timing, comparison only)
  *   then per pair:  pair NAME NMAT m_1 .. m_NMAT LAW NPTS NSHAPE  [NPTS x (1 + 3 NSHAPE) numbers]
  *   (LAW "-" and NPTS 0: no plain loop for this pair)
- * Prints CSV: per pair the median time of one internal-force call and of one
+ * Prints CSV: per pair the shortest time (of REPEATS timed loops) of one internal-force call and of one
  * force + tangent call of the generated kernel (one element per call), of its
  * lane kernels per element (BK_LANES elements per call, what the solvers use;
  * NaN when the pair has none) and of the plain quadrature loop
  * (bench/plain.c), the largest difference between the generated kernel and the
  * plain loop and between the lane kernel and the one-element kernel.
  * Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID): on a shared
- * machine a time slice given to another process does not count.
+ * machine a time slice given to another process does not count.  The
+ * shortest loop, not the median: what remains of other load (a process on
+ * the core's other hardware thread sharing its floating-point units, caches)
+ * only ever slows a loop down, and it comes and goes between the repeats.
  */
 #include <math.h>
 #include <stdio.h>
@@ -63,8 +66,8 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Median over repeats of the time of one call, each repeat long enough to be
- * timed reliably. */
+/* The shortest over repeats of the time of one call, each repeat long enough
+ * to be timed reliably. */
 static double time_call(const job *j, int repeats, double target)
 {
     long n = 1;
@@ -87,9 +90,9 @@ static double time_call(const job *j, int repeats, double target)
         ts[r] = (now() - t0) / n;
     }
     qsort(ts, (size_t)repeats, sizeof *ts, cmp_double);
-    double med = repeats % 2 ? ts[repeats / 2] : 0.5 * (ts[repeats / 2 - 1] + ts[repeats / 2]);
+    double best = ts[0];
     free(ts);
-    return med;
+    return best;
 }
 
 static const bk_pair *find_pair(const char *name)
