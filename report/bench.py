@@ -706,9 +706,12 @@ def main(argv):
     for target, measured, status in bench_targets.target_rows(targets, met):
         L.append(f"| {target} | {measured} | {status} |")
     L += ["", "Around the solve (`bench_targets.json`): the front end is the whole `./build.sh run` process minus "
-          "the solver's own wall time; output and stability shares compare the default run with "
-          "`output.vtk_every = 0` and `static.stability = false` (the CSV tables cannot be switched off; they are "
-          "flushed at most every 0.5 s); solver runs are interleaved, medians of "
+          "the solver's own wall time; the output and stability shares are the solver's own account "
+          "(`summary.json` `output_s`, `stability_s`: the time inside its output calls, every table, frame and the "
+          "section forces they show, and inside the stability checks, over its `wall_s`), with the difference "
+          "of whole runs as a cross-check (the default run against `output.vtk_every = 0` and "
+          "`static.stability = false`; the CSV tables cannot be switched off; they are flushed at most every "
+          "0.5 s); solver runs are interleaved, medians of "
           f"{3 if quick else 9} runs each.", ""]
 
     # ---- work-precision sections

@@ -4,9 +4,12 @@
     (whole process minus summary.json wall_s), for a repeated run and for runs
     that change only numbers with --set (a new value each time, so that no
     earlier run is reused); whether such a run imports sympy or rebuilds the solver;
-  * output: the share of the solver's wall time that goes to ParaView frames
-    (default output against output.vtk_every = 0) and to the static stability
-    check (default against static.stability = false), per seed scene;
+  * output: the share of the solver's wall time that goes to all its output
+    (summary.json output_s: the solver times its own output calls; every
+    table, frame and the section forces they show) and to the static stability
+    check (stability_s), per seed scene, medians of the per-run shares; and as
+    a cross-check the difference of whole runs, default output against
+    output.vtk_every = 0 (the frames) and against static.stability = false;
   * statics: Newton iterations of seed Table 3 (-100 N, nu = 0.3) and of the
     two-turn roll-up at default settings, against fixed load steps;
   * dynamics: wall time of the soft and stiff seed pendulums (10 ancf3243
@@ -48,7 +51,7 @@ def _build_run(scene, sets, out):
 def _solver_times(cases, repeats, work):
     """cases: {label: (solver, model)}; runs them interleaved `repeats` times;
     {label: {"wall": [...], "summary": last summary}}."""
-    res = {k: {"wall": [], "cpu": []} for k in cases}
+    res = {k: {"wall": [], "cpu": [], "out_share": [], "stab_share": []} for k in cases}
     for _ in range(repeats):
         for label, (solver, model) in cases.items():
             d = work / f"t_{label}"
@@ -58,6 +61,8 @@ def _solver_times(cases, repeats, work):
             _, status, ru = os.wait4(pid, 0)
             s = json.loads((d / "summary.json").read_text())
             res[label]["wall"].append(s["wall_s"])
+            res[label]["out_share"].append(s.get("output_s", math.nan) / s["wall_s"])
+            res[label]["stab_share"].append(s.get("stability_s", math.nan) / s["wall_s"])
             res[label]["cpu"].append(ru.ru_utime + ru.ru_stime)
             res[label]["summary"] = s
     return res
@@ -113,8 +118,10 @@ def output_share(work, repeats, log):
         med = {k: statistics.median(v["wall"]) for k, v in t.items()}
         frames = len(list((work / "t_default").glob("step_*.vtu")))
         rows.append({"problem": label, "scene": scene, "wall_s": med["default"], "frames": frames,
+                     "output_share": statistics.median(t["default"]["out_share"]),
+                     "stability_share": statistics.median(t["default"]["stab_share"]) if static else None,
                      "vtu_share": (med["default"] - med["novtk"]) / med["default"],
-                     "stability_share": ((med["default"] - med["nostab"]) / med["default"]) if static else None,
+                     "stability_share_ab": ((med["default"] - med["nostab"]) / med["default"]) if static else None,
                      "spread": max(t["default"]["wall"]) / min(t["default"]["wall"])})
         log(f"  targets: output share {scene}")
     return rows
@@ -182,10 +189,12 @@ def target_rows(res, met):
                  met(fe["repeat_s"] <= 0.05 and fe["set_s"] <= 0.05 and not fe["set_imports_sympy"]
                      and not fe["set_rebuilt_solver"])))
     for r in res["output"]:
-        stab = "" if r["stability_share"] is None else f", stability check {100 * r['stability_share']:.0f} %"
-        ok = r["vtu_share"] <= 0.10 and (r["stability_share"] is None or r["stability_share"] <= 0.05)
+        stab = "" if r["stability_share"] is None else (f", stability check {100 * r['stability_share']:.1f} % "
+                                                        f"(whole runs: {100 * r['stability_share_ab']:.0f} %)")
+        ok = r["output_share"] <= 0.10 and (r["stability_share"] is None or r["stability_share"] <= 0.05)
         rows.append((f"output ≤ 10 %, static stability check ≤ 5 % of the solver's wall time: {r['problem']}",
-                     f"{_ms(r['wall_s'])}; {r['frames']} ParaView frames {100 * r['vtu_share']:.0f} %{stab} "
+                     f"{_ms(r['wall_s'])}; all output {100 * r['output_share']:.1f} % (whole runs: "
+                     f"{r['frames']} ParaView frames {100 * r['vtu_share']:.0f} %){stab} "
                      f"(max/min of the repeats {r['spread']:.2f})", met(ok)))
     rows.append(("seed Table 3 −100 N at default settings ≤ 15 Newton iterations",
                  f"{st['table3']} (10 fixed load steps: {st['table3_fixed10']})",

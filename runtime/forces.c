@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "amplitude.h"
+#include "csvrow.h"
 #include "loads.h"
 
 enum { K_NONE = 0, K_POS = 1, K_GRAD = 2, K_QUAT = 3 };
@@ -86,23 +87,21 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
     char path[1200];
     if (m->nreaction > 0) {
         snprintf(path, sizeof path, "%s/reactions.csv", dir);
-        f->reactions = fopen(path, "w");
+        f->reactions = bk_table_open(path, &f->tbuf[0]);
         if (!f->reactions) {
             fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
             return -1;
         }
         fprintf(f->reactions, "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n");
-        fflush(f->reactions);
     }
     if (m->nsection > 0 && m->analysis != BK_MODAL) {
         snprintf(path, sizeof path, "%s/sections.csv", dir);
-        f->sections = fopen(path, "w");
+        f->sections = bk_table_open(path, &f->tbuf[1]);
         if (!f->sections) {
             fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
             return -1;
         }
         fprintf(f->sections, "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3\n");
-        fflush(f->sections);
     }
     return 0;
 }
@@ -113,6 +112,8 @@ void bk_forces_close(bk_forces *f)
         fclose(f->reactions);
     if (f->sections)
         fclose(f->sections);
+    free(f->tbuf[0]);
+    free(f->tbuf[1]);
     free(f->fld);
     free(f->kind);
     free(f->comp);
@@ -286,9 +287,18 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
         double *L = f->last[c];
         for (int i = 0; i < 3; ++i)
             L[i] = F[i], L[3 + i] = M[i], L[6 + i] = x0[i];
-        if (f->reactions)
-            fprintf(f->reactions, "%d,%.17g,%d,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step,
-                    x, rc->index, rc->type, rc->at, x0[0], x0[1], x0[2], F[0], F[1], F[2], M[0], M[1], M[2]);
+        if (f->reactions) {
+            bk_row r;
+            bk_row_begin(&r, f->reactions);
+            bk_row_int(&r, step);
+            bk_row_num(&r, x);
+            bk_row_int(&r, rc->index);
+            bk_row_str(&r, rc->type);
+            bk_row_str(&r, rc->at);
+            for (int i = 0; i < 9; ++i)
+                bk_row_num(&r, i < 3 ? x0[i] : i < 6 ? F[i - 3] : M[i - 6]);
+            bk_row_end(&r);
+        }
     }
     f->have_last = 1;                    /* (flushed with the other tables: output.c) */
 }
@@ -351,6 +361,28 @@ static void section_components(const bk_model *m, int e, const double *qe, doubl
     }
 }
 
+/* One row of sections.csv: step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3
+ * (pos: x, y, z; out: N, Q2, Q3, T, M2, M3). */
+static void section_row(FILE *fp, int step, double t, const char *beam, int e, const char *source, int point,
+                        double xi, double s, const double *pos, const double *out)
+{
+    bk_row r;
+    bk_row_begin(&r, fp);
+    bk_row_int(&r, step);
+    bk_row_num(&r, t);
+    bk_row_str(&r, beam);
+    bk_row_int(&r, e);
+    bk_row_str(&r, source);
+    bk_row_int(&r, point);
+    bk_row_num(&r, xi);
+    bk_row_num(&r, s);
+    for (int i = 0; i < 3; ++i)
+        bk_row_num(&r, pos[i]);
+    for (int i = 0; i < 6; ++i)
+        bk_row_num(&r, out[i]);
+    bk_row_end(&r);
+}
+
 /* The rows of the element's own stress resultants (bk_pair.sections) at its
  * sample points: source = the pair's label. */
 static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_rec *sr, int step, double x,
@@ -368,9 +400,8 @@ static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_
         section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
         for (int i = 0; i < 6; ++i)
             f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
-        fprintf(f->sections, "%d,%.17g,%s,%d,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o[0], o[1], o[2],
-                out[0], out[1], out[2], out[3], out[4], out[5]);
+        section_row(f->sections, step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o,
+                    out);
     }
 }
 
@@ -429,9 +460,7 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
             for (int i = 0; i < 6; ++i)
                 f->sec[12 * (size_t)e + 6 * end + i] = out[i];
             if (f->sections)
-                fprintf(f->sections, "%d,%.17g,%s,%d,nodal,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                        "%.17g,%.17g\n", step, x, sr->beam, e, end, xi, end ? sr->s1 : sr->s0, xn[0], xn[1], xn[2],
-                        out[0], out[1], out[2], out[3], out[4], out[5]);
+                section_row(f->sections, step, x, sr->beam, e, "nodal", end, xi, end ? sr->s1 : sr->s0, xn, out);
         }
         if (f->sections)
             write_stress_rows(f, m, sr, step, x, qe);

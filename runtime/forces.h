@@ -38,6 +38,7 @@
 typedef struct bk_forces {
     const bk_model *m;
     FILE *reactions, *sections;   /* owned */
+    char *tbuf[2];                /* owned: their stdio buffers (csvrow.h bk_table_open) */
     int *fld;                     /* [4 ndof] global DOFs of the field of each DOF (-1 unused) */
     signed char *kind, *comp;     /* [ndof] 0 none, 1 position, 2 gradient, 3 quaternion; component */
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "csvrow.h"
 #include "interrupt.h"
 #include "system.h"
 
@@ -42,7 +43,7 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
 {
     memset(o, 0, sizeof *o);
     o->progress = progress && isatty(2);
-    o->t_start = o->t_last = bk_clock_s();
+    o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
     int rc = output_open(o, m, dir, err);
     spent(o, o->t_start);
     return rc;
@@ -61,13 +62,12 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     snprintf(o->dir, sizeof o->dir, "%s", dir);
     char path[1200];
     snprintf(path, sizeof path, "%s/sensors.csv", dir);
-    o->sensors = fopen(path, "w");
+    o->sensors = bk_table_open(path, &o->tbuf[0]);
     if (!o->sensors) {
         fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
         return -1;
     }
     fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
-    fflush(o->sensors);
     if (bk_forces_open(&o->forces, m, dir, err) != 0)
         return -1;
     o->vtk.sec = o->forces.sec;
@@ -85,17 +85,16 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         o->sections_every = 1;
     if (m->analysis == BK_DYNAMIC) {
         snprintf(path, sizeof path, "%s/energy.csv", dir);
-        o->energy = fopen(path, "w");
+        o->energy = bk_table_open(path, &o->tbuf[1]);
         if (!o->energy) {
             fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
             return -1;
         }
         fprintf(o->energy, "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual\n");
-        fflush(o->energy);
     }
     if (m->analysis == BK_STATIC) {
         snprintf(path, sizeof path, "%s/newton.csv", dir);
-        o->newton = fopen(path, "w");
+        o->newton = bk_table_open(path, &o->tbuf[2]);
         if (!o->newton) {
             fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
             return -1;
@@ -103,13 +102,12 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         fprintf(o->newton, "attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond\n");
         if (m->stat.stability) {
             snprintf(path, sizeof path, "%s/stability.csv", dir);
-            o->stability = fopen(path, "w");
+            o->stability = bk_table_open(path, &o->tbuf[3]);
             if (!o->stability) {
                 fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
                 return -1;
             }
             fprintf(o->stability, "step,load_factor,negative_eigenvalues,eig_min,eig_max\n");
-            fflush(o->stability);
         }
     }
     return 0;
@@ -172,10 +170,18 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
         double pos[3], disp[3], g[9];
         sensor_state(o->m, s, q, pos, disp, g);
         /* d1, d2 (section axes), d3 (axis-like); nan where undefined */
-        fprintf(o->sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                step, t, s->name, pos[0], pos[1], pos[2], disp[0], disp[1], disp[2],
-                g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8]);
+        bk_row r;
+        bk_row_begin(&r, o->sensors);
+        bk_row_int(&r, step);
+        bk_row_num(&r, t);
+        bk_row_str(&r, s->name);
+        for (int i = 0; i < 3; ++i)
+            bk_row_num(&r, pos[i]);
+        for (int i = 0; i < 3; ++i)
+            bk_row_num(&r, disp[i]);
+        for (int i = 0; i < 9; ++i)
+            bk_row_num(&r, g[i]);
+        bk_row_end(&r);
     }
     flush_due(o);
     spent(o, t0);
@@ -291,8 +297,14 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
     if (!o->energy)
         return;
     double t0 = bk_clock_s();
-    fprintf(o->energy, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3e\n", step, t, T, U, Vg, Vf,
-            T + U + Vg + Vf, cres);
+    bk_row r;
+    bk_row_begin(&r, o->energy);
+    bk_row_int(&r, step);
+    const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
+    for (int i = 0; i < 6; ++i)
+        bk_row_num(&r, v[i]);
+    bk_row_fmt(&r, "%.3e", cres);
+    bk_row_end(&r);
     flush_due(o);
     spent(o, t0);
 }
@@ -481,6 +493,10 @@ void bk_output_close(bk_output *o)
     if (o->stability)
         fclose(o->stability);
     o->sensors = o->energy = o->modes = o->mode_sensors = o->newton = o->stability = NULL;
+    for (int k = 0; k < 4; ++k) {
+        free(o->tbuf[k]);
+        o->tbuf[k] = NULL;
+    }
     bk_vtk_close(&o->vtk);
     bk_forces_close(&o->forces);
 }

@@ -21,6 +21,7 @@ typedef struct bk_output {
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
     FILE *newton;            /* owned; static analyses: one row per Newton iteration */
     FILE *stability;         /* owned; static analyses with stability checks */
+    char *tbuf[4];           /* owned: the stdio buffers of sensors, energy, newton, stability */
     int nfreq;
     double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */

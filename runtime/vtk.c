@@ -315,6 +315,25 @@ static void frame_points(const bk_model *m, const double *q, double *x)
     }
 }
 
+/* Bytes of a connectivity or offset entry: Int32 while every point index and
+ * offset fits (always, short of some 50 million elements), else Int64. */
+static size_t index_size(const bk_model *m)
+{
+    return bk_vtk_npoints(m) * 4 < INT32_MAX ? sizeof(int32_t) : sizeof(int64_t);
+}
+
+/* Appends index v to b as an index_size entry; returns the next position. */
+static unsigned char *put_index(unsigned char *b, int64_t v, size_t size)
+{
+    if (size == sizeof(int32_t)) {
+        int32_t w = (int32_t)v;
+        memcpy(b, &w, sizeof w);
+    } else {
+        memcpy(b, &v, sizeof v);
+    }
+    return b + size;
+}
+
 /* The cells block of every frame, as it is appended (byte count, connectivity;
  * byte count, offsets; byte count, types), into buf; its size in bytes (buf
  * NULL: the size only).  Point index of (element e, station k, ring point j) =
@@ -327,7 +346,8 @@ static size_t topology(const bk_model *m, unsigned char *buf)
         ncell += (long)(NX - 1) * r + 1;
         nconn += 4L * (NX - 1) * r + NX;
     }
-    const uint64_t sz_conn = (uint64_t)nconn * sizeof(int64_t), sz_off = (uint64_t)ncell * sizeof(int64_t);
+    const size_t isz = index_size(m);
+    const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
     const size_t size = 3 * sizeof(uint64_t) + sz_conn + sz_off + (size_t)ncell;
     if (!buf)
         return size;
@@ -349,8 +369,8 @@ static size_t topology(const bk_model *m, unsigned char *buf)
             }
         for (int k = 0; k < NX; ++k)
             conn[nv++] = base + k * w + r;
-        memcpy(b, conn, (size_t)nv * sizeof *conn);
-        b += (size_t)nv * sizeof *conn;
+        for (int64_t i = 0; i < nv; ++i)
+            b = put_index(b, conn[i], isz);
         base += (int64_t)NX * w;
     }
     memcpy(b, &sz_off, sizeof sz_off);
@@ -360,12 +380,10 @@ static size_t topology(const bk_model *m, unsigned char *buf)
         int r = ring_points(m, e);
         for (int c = 0; c < (NX - 1) * r; ++c) {
             o += 4;
-            memcpy(b, &o, sizeof o);
-            b += sizeof o;
+            b = put_index(b, o, isz);
         }
         o += NX;
-        memcpy(b, &o, sizeof o);
-        b += sizeof o;
+        b = put_index(b, o, isz);
     }
     const uint64_t nc = (uint64_t)ncell;
     memcpy(b, &nc, sizeof nc);
@@ -398,7 +416,9 @@ static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *
     int npass = mv ? 3 : 2;
     /* byte sizes of the appended arrays, in the order they are written */
     const uint64_t sz_pts = (uint64_t)npts * 3 * sizeof(double), sz_cell = (uint64_t)ncell * sizeof(double);
-    const uint64_t sz_conn = (uint64_t)nconn * sizeof(int64_t), sz_off = (uint64_t)ncell * sizeof(int64_t);
+    const size_t isz = index_size(m);
+    const char *itype = isz == sizeof(int32_t) ? "Int32" : "Int64";
+    const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
     uint64_t off = 0;
     fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
                 "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n");
@@ -439,11 +459,11 @@ static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *
                 (unsigned long long)off);
         off += 8 + sz_cell;
     }
-    fprintf(fp, "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" "
-                "offset=\"%llu\"/>\n", (unsigned long long)off);
+    fprintf(fp, "      <Cells>\n        <DataArray type=\"%s\" Name=\"connectivity\" format=\"appended\" "
+                "offset=\"%llu\"/>\n", itype, (unsigned long long)off);
     off += 8 + sz_conn;
-    fprintf(fp, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"%llu\"/>\n",
-            (unsigned long long)off);
+    fprintf(fp, "        <DataArray type=\"%s\" Name=\"offsets\" format=\"appended\" offset=\"%llu\"/>\n",
+            itype, (unsigned long long)off);
     off += 8 + sz_off;
     fprintf(fp, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"%llu\"/>\n"
                 "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _",
