@@ -564,7 +564,8 @@ def main(argv):
     if quick:
         only = {"ancf3243_svk_full", "ancf3243_svk_sri", "ancf3363_arruda_boyce_reduced", "ancf3363_svk_reduced",
                 "ancf3333_neo_hookean_full", "gef_resultant_full", "ancf_cable_resultant_full"}
-    krows = bench_kernels.run(WORK, repeats=3 if quick else 15, target=0.001 if quick else 0.004, only=only)
+    krows = bench_kernels.run(WORK, repeats=3 if quick else 5, target=0.001 if quick else 0.004, only=only,
+                              passes=1 if quick else 3)
     cpu = bench_kernels.cpu_peak()
     log(" statics")
     spoints, snotes = statics(quick, log)
@@ -742,10 +743,11 @@ def main(argv):
     # ---- kernels
     L += ["## Kernels", "",
           f"Per element at a deformed state (element 0.1 x 0.01 x 0.01 m), single thread, the shortest of "
-          f"{'3' if quick else '15'} repeats of a loop timed for ≥ {'1' if quick else '4'} ms of the thread's CPU "
-          "time (a time slice given to another process does not count; what other load remains, e.g. a process "
-          "on the core's other hardware thread, only slows a loop down, so the shortest is the kernel's own "
-          "rate; medians scattered by ±20 % between runs on this shared machine).  "
+          f"{'3' if quick else '3 passes x 5'} repeats of a loop timed for ≥ {'1' if quick else '4'} ms of the "
+          "thread's CPU time (a time slice given to another process does not count; what other load remains, e.g. "
+          "the host's other tenants, only slows a loop down, and it comes in spells of seconds: each pass times "
+          "every pair once, so a pair's samples lie seconds apart; the shortest is the kernel's own rate, where "
+          "single medians scattered by up to 1.5x between runs on this shared machine).  "
           "'t f', 't f+K': as the solvers call them, i.e. the lane kernels (8 elements per call, vectorized across "
           "elements; runtime/bk_kernel.h, \"Lane kernels\") divided by 8 where the pair has them; '1 el.': the "
           "one-element kernel.  Operations from the "
