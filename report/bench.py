@@ -424,6 +424,9 @@ def plot_wp(points, problem, path):
 
 # ---------------------------------------------------------------- scaling
 
+SCALING_PASSES = 3
+
+
 def scaling(quick, log):
     """Time per Newton iteration (assembly + factorization + solve) and peak
     memory for one long ancf3243 x svk beam (elements of 0.1 m)."""
@@ -437,23 +440,45 @@ def scaling(quick, log):
     exe = build_solver(["ancf3243_svk_full"], BUILD / "release" / "bench" / "bench_newton", index, "release",
                        main_objs=[obj] + robjs)
     sizes = (10, 100, 1000) if quick else (10, 30, 100, 300, 1000, 3000, 10000, 30000, 100000)
-    rows = []
     scene = ROOT / "models" / "cantilever_bend_10N.toml"
-    for n in sizes:
-        model = build(scene, [f"beam.arm.elements={n}", f"beam.arm.end.0={0.1 * n}"])
-        mpath = WORK / f"scaling_{n}.dat"
-        write_model(model, mpath)
+
+    def one(n, threads, mpath):
         nit = 11 if n < 3000 else 7 if n <= 10000 else 5   # medians of 5 at least: single runs here scatter by ±15 %
-        for threads in ((1, 2) if n in (1000, 10000) else (1,)):
-            env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-            r = subprocess.run([str(exe), str(mpath), str(nit)], capture_output=True, text=True, env=env)
-            if r.returncode != 0:
-                raise RuntimeError(f"bench_newton {n} elements failed: {r.stderr[-500:]}")
-            d = dict(line.split("=", 1) for line in r.stdout.split())
-            row = {"elements": n, "threads": threads, "iterations": nit}
-            for k, v in d.items():
-                row[k] = float(v) if "." in v or "e" in v else int(v)
-            rows.append(row)
+        env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+        r = subprocess.run([str(exe), str(mpath), str(nit)], capture_output=True, text=True, env=env)
+        if r.returncode != 0:
+            raise RuntimeError(f"bench_newton {n} elements failed: {r.stderr[-500:]}")
+        d = dict(line.split("=", 1) for line in r.stdout.split())
+        row = {"elements": n, "threads": threads, "iterations": nit}
+        for k, v in d.items():
+            row[k] = float(v) if "." in v or "e" in v else int(v)
+        return row
+
+    # Up to 10,000 elements the meshes are timed in SCALING_PASSES interleaved
+    # passes and each keeps its fastest pass (the host's slow spells last
+    # seconds: they reach one pass of a mesh, not all); the larger ones once.
+    small = [n for n in sizes if n <= 10000]
+    paths = {}
+    for n in small:
+        paths[n] = WORK / f"scaling_{n}.dat"
+        write_model(build(scene, [f"beam.arm.elements={n}", f"beam.arm.end.0={0.1 * n}"]), paths[n])
+    best = {}
+    for _ in range(1 if quick else SCALING_PASSES):
+        for n in small:
+            for threads in ((1, 2) if n in (1000, 10000) else (1,)):
+                row = one(n, threads, paths[n])
+                if (n, threads) not in best or row["iteration_s"] < best[n, threads]["iteration_s"]:
+                    best[n, threads] = row
+    rows = [best[k] for k in sorted(best)]
+    for n in small:
+        paths[n].unlink()
+    log(f"  scaling: {', '.join(str(n) for n in small)} elements")
+    for n in sizes:
+        if n in paths:
+            continue
+        mpath = WORK / f"scaling_{n}.dat"
+        write_model(build(scene, [f"beam.arm.elements={n}", f"beam.arm.end.0={0.1 * n}"]), mpath)
+        rows.append(one(n, 1, mpath))
         log(f"  scaling: {n} elements")
         mpath.unlink()
     return rows
@@ -787,7 +812,8 @@ def main(argv):
           "assembly (forces and tangent), then numeric factorization with the solve as a Newton iteration with a new "
           "matrix does them (the band LU up to its storage limit, its forward substitution inside the elimination; KLU "
           "refactor beyond): iteration = assembly + factor.  The solve column is one more solve with kept factors (an "
-          "iteration that reuses them).  Peak memory: "
+          "iteration that reuses them).  Up to 10,000 elements the meshes are timed in "
+          f"{1 if quick else SCALING_PASSES} interleaved passes and each row is its fastest pass.  Peak memory: "
           "VmHWM of that process (model, system, matrix, factors).", "",
           "![scaling](bench_scaling.png)", "",
           "| elements | threads | equations | nnz | iteration | assembly | factor + solve | solve (kept factors) | set-up | peak memory |",
