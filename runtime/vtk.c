@@ -116,7 +116,8 @@ static void section_point(const bk_model *m, const double *q, int e, double xi, 
         x[i] += y * u[i] + z * w[i];
 }
 
-static void frame_points(const bk_model *m, const double *q, double *x);
+typedef struct mode_view mode_view;
+static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x);
 static size_t topology(const bk_model *m, unsigned char *buf);
 
 int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity)
@@ -138,7 +139,7 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     v->topo = malloc(v->ntopo);
     if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
         return -1;
-    frame_points(m, m->q0, v->ref);
+    frame_points(m, m->q0, NULL, 0, v->ref);
     topology(m, v->topo);
     return 0;
 }
@@ -294,10 +295,11 @@ static void stress_value(const bk_model *m, const double *ssec, int maxsample, i
         x[i] = p->nsample == 1 ? v[i] : (1.0 - t) * v[6 * j + i] + t * v[6 * (j + 1) + i];
 }
 
-/* The points of a step frame for coordinates q, in frame order (element,
- * station, ring point; the centreline point last in each ring): 3 bk_vtk_npoints
- * doubles into x. */
-static void frame_points(const bk_model *m, const double *q, double *x)
+/* The points of a frame, in frame order (element, station, ring point; the
+ * centreline point last in each ring): 3 bk_vtk_npoints doubles into x; a step
+ * frame's (mv NULL) for coordinates q, else a mode frame's pass `pass`
+ * (point_value). */
+static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x)
 {
     long np = 0;
     for (int e = 0; e < m->nelem; ++e) {
@@ -309,7 +311,10 @@ static void frame_points(const bk_model *m, const double *q, double *x)
                 double y = 0.0, z = 0.0;
                 if (j < r)
                     ring_yz(g, r, j, &y, &z);
-                section_point(m, q, e, xi, y, z, x + 3 * np++);
+                if (mv)
+                    point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
+                else
+                    section_point(m, q, e, xi, y, z, x + 3 * np++);
             }
         }
     }
@@ -471,33 +476,15 @@ static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *
     /* points, displacements (and mode shapes): the same traversal each time; a
      * step frame's points once, its displacements from the reference points of
      * bk_vtk_open */
+    const size_t n3 = 3 * (size_t)npts;
     for (int pass = 0; pass < npass; ++pass) {
         put_u64(fp, sz_pts);
-        if (!mv) {
-            size_t n3 = 3 * (size_t)npts;
-            if (pass == 0)
-                frame_points(m, q, v->pts);
-            else
-                for (size_t i = 0; i < n3; ++i)
-                    v->pts[i] -= v->ref[i];
-            fwrite(v->pts, sizeof(double), n3, fp);
-            continue;
-        }
-        for (int e = 0; e < m->nelem; ++e) {
-            const double *g = m->geoms[m->elems[e].geom];
-            int r = ring_points(m, e), np = 0;
-            double pts[3 * NX * (MAX_RING + 1)];  /* the element's points, written at once */
-            for (int k = 0; k < NX; ++k) {
-                double xi = (double)k / (NX - 1);
-                for (int j = 0; j <= r; ++j) {
-                    double y = 0.0, z = 0.0;
-                    if (j < r)
-                        ring_yz(g, r, j, &y, &z);
-                    point_value(m, q, mv, pass, e, xi, y, z, pts + 3 * np++);
-                }
-            }
-            fwrite(pts, sizeof(double), 3 * (size_t)np, fp);
-        }
+        if (!mv && pass == 1)
+            for (size_t i = 0; i < n3; ++i)
+                v->pts[i] -= v->ref[i];
+        else
+            frame_points(m, q, mv, pass, v->pts);
+        fwrite(v->pts, sizeof(double), n3, fp);
     }
     for (int a = 0; sec && a < 2; ++a) {
         put_u64(fp, sz_pts);
