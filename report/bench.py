@@ -467,8 +467,11 @@ def scaling(quick, log):
         for n in small:
             for threads in ((1, 2) if n in (1000, 10000) else (1,)):
                 row = one(n, threads, paths[n])
-                if (n, threads) not in best or row["iteration_s"] < best[n, threads]["iteration_s"]:
+                old = best.get((n, threads))
+                if old is None or row["iteration_s"] < old["iteration_s"]:
                     best[n, threads] = row
+                # the fastest assembly on its own (the thread comparison's measure), over the passes
+                best[n, threads]["assembly_min_s"] = min(row["assembly_s"], old["assembly_min_s"] if old else math.inf)
     rows = [best[k] for k in sorted(best)]
     for n in small:
         paths[n].unlink()
@@ -617,7 +620,7 @@ def main(argv):
                "gflops_force", "gflops_force_tangent", "t_plain_force_s", "t_plain_force_tangent_s",
                "speedup_force", "speedup_force_tangent", "plain_rel_diff_f", "plain_rel_diff_K", "lanes_rel_diff"])
     write_csv(OUT / "bench_scaling.csv", srows,
-              ["elements", "threads", "dofs", "equations", "nnz", "iterations", "iteration_s", "assembly_s",
+              ["elements", "threads", "dofs", "equations", "nnz", "iterations", "iteration_s", "assembly_s", "assembly_min_s",
                "factor_s", "solve_s", "setup_s", "analyses", "factorizations", "full_factorizations", "maxrss_kb"])
     write_csv(OUT / "bench_toolchain.csv", [{"unit": n, "regen_s": t} for n, t in tc["regen"]], ["unit", "regen_s"])
     problems = []
@@ -642,7 +645,8 @@ def main(argv):
     s1 = {r["elements"]: r for r in srows if r["threads"] == 1}
     s2 = {r["elements"]: r for r in srows if r["threads"] == 2}
     nbig = max(s2) if s2 else None
-    par = s1[nbig]["assembly_s"] / s2[nbig]["assembly_s"] if nbig in s2 else math.nan
+    par = s1[nbig].get("assembly_min_s", s1[nbig]["assembly_s"]) / s2[nbig].get("assembly_min_s", s2[nbig]["assembly_s"]) \
+        if nbig in s2 else math.nan
     big = max((r for r in srows if r["threads"] == 1), key=lambda r: r["elements"])
     # memory per element: the slope of the peak memory between the two largest runs
     n_a, n_b = sorted(s1)[-2:] if len(s1) >= 2 else (None, None)
@@ -725,7 +729,8 @@ def main(argv):
              f"taken by the next free thread, which adds directly into the entries only that part touches; entries "
              f"shared by two parts are staged and summed in element order after the region; bit-identical results for 1, 2, 3 threads "
              f"(tests/test_parallel.py); assembly at {nbig:,} elements "
-             f"{par:.2f}x as fast with 2 threads as with 1 (machine load average {load[0]:.1f} on "
+             f"{par:.2f}x as fast with 2 threads as with 1 (fastest assembly of each over "
+             f"{1 if quick else SCALING_PASSES} interleaved passes; machine load average {load[0]:.1f} on "
              f"{os.cpu_count()} cores during the run; target ≥ 1.7x) | {met(par >= 1.7 and nbig >= 10000)} |")
     L.append(f"| incremental regeneration; full regeneration < 10 min | unchanged pairs are skipped by input hash "
              f"(re-run: {tc['regen_incremental_redone']} units redone, {tc['regen_incremental_s']:.1f} s); "
