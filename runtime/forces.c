@@ -63,6 +63,16 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
             f->relem[f->nrelem++] = e;
     }
     free(held);
+    /* dynamics: their mass matrices, constant, once (the residual of every step uses them) */
+    if (m->analysis == BK_DYNAMIC && f->nrelem > 0) {
+        f->rmass = malloc((size_t)f->nrelem * md * md * sizeof *f->rmass);
+        if (!f->rmass) {
+            fprintf(err, "error: out of memory for the reactions and section forces\n");
+            return -1;
+        }
+        for (int k = 0; k < f->nrelem; ++k)
+            bk_element_mass(m, f->relem[k], f->buf, f->rmass + (size_t)k * md * md);
+    }
     for (size_t i = 0; i < 4 * nd; ++i)
         f->fld[i] = -1;
     for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
@@ -125,6 +135,7 @@ void bk_forces_close(bk_forces *f)
     free(f->sres);
     free(f->ssec);
     free(f->relem);
+    free(f->rmass);
     memset(f, 0, sizeof *f);
 }
 
@@ -184,7 +195,7 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
     double lf = bk_load_factor(m, -1, x);
     size_t md = (size_t)s->maxdof;
     double *qe = f->buf, *qde = qe + md, *qdde = qde + md, *fe = qdde + md, *tmp = fe + md;
-    double *K1 = tmp + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
+    double *K1 = tmp + md, *K2 = K1 + md * md, *K3 = K2 + md * md;
     /* internal forces of the elements at the held DOFs (the only entries read) */
     memset(f->res, 0, (size_t)nd * sizeof *f->res);
     for (int k = 0; k < f->nrelem; ++k) {
@@ -216,7 +227,7 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
         bk_gather(m, e, q, qe);
         bk_gather(m, e, qd, qde);
         bk_gather(m, e, qdd, qdde);
-        bk_element_mass(m, e, K1, Me);
+        const double *Me = f->rmass + (size_t)kk * md * md;
         for (int i = 0; i < ne; ++i) {
             double sum = 0.0;
             for (int j = 0; j < ne; ++j)

@@ -44,6 +44,7 @@ typedef struct bk_forces {
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */
     int have_fext;                /* fext holds the dead loads of unit load factor */
     int nrelem, *relem;           /* the elements with a DOF held by a reaction's constraint */
+    double *rmass;                /* owned, dynamics: their mass matrices (maxdof^2 apart; bk_element_mass) */
     double (*last)[9];            /* [nreaction] force, moment, point at the last output step */
     int have_last;
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each

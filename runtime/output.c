@@ -68,6 +68,13 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         return -1;
     }
     fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
+    o->sensor_p0 = malloc((3 * (size_t)m->nsensor + 1) * sizeof *o->sensor_p0);
+    if (!o->sensor_p0) {
+        fprintf(err, "error: out of memory\n");
+        return -1;
+    }
+    for (int k = 0; k < m->nsensor; ++k)
+        bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, o->sensor_p0 + 3 * k, NULL);
     if (bk_forces_open(&o->forces, m, dir, err) != 0)
         return -1;
     o->vtk.sec = o->forces.sec;
@@ -113,14 +120,14 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     return 0;
 }
 
-static void sensor_state(const bk_model *m, const bk_sensor *s, const double *q, double *pos,
-                         double *disp, double *grad)
+/* Sensor k at q: position, displacement from its reference position (p0 of
+ * bk_output_open) and the section vectors. */
+static void sensor_state(const bk_output *o, int k, const double *q, double *pos, double *disp, double *grad)
 {
-    double p0[3];
-    bk_eval_point(m, q, s->elem, s->xi, pos, grad);
-    bk_eval_point(m, m->q0, s->elem, s->xi, p0, NULL);
+    const bk_sensor *s = &o->m->sensors[k];
+    bk_eval_point(o->m, q, s->elem, s->xi, pos, grad);
     for (int i = 0; i < 3; ++i)
-        disp[i] = pos[i] - p0[i];
+        disp[i] = pos[i] - o->sensor_p0[3 * k + i];
 }
 
 void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual)
@@ -168,7 +175,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
     for (int k = 0; k < o->m->nsensor; ++k) {
         const bk_sensor *s = &o->m->sensors[k];
         double pos[3], disp[3], g[9];
-        sensor_state(o->m, s, q, pos, disp, g);
+        sensor_state(o, k, q, pos, disp, g);
         /* d1, d2 (section axes), d3 (axis-like); nan where undefined */
         bk_row r;
         bk_row_begin(&r, o->sensors);
@@ -434,7 +441,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     for (int k = 0; k < m->nsensor; ++k) {
         const bk_sensor *s = &m->sensors[k];
         double pos[3], disp[3], g[9];
-        sensor_state(m, s, q, pos, disp, g);
+        sensor_state(o, k, q, pos, disp, g);
         fprintf(fp, "%s\n    ", k ? "," : "");
         json_string(fp, s->name);
         fprintf(fp, ": {\"position\": ");
@@ -488,6 +495,8 @@ void bk_output_close(bk_output *o)
         fclose(o->mode_sensors);
     free(o->mode_q);
     o->mode_q = NULL;
+    free(o->sensor_p0);
+    o->sensor_p0 = NULL;
     if (o->newton)
         fclose(o->newton);
     if (o->stability)

@@ -19,6 +19,7 @@ typedef struct bk_output {
     FILE *modes;             /* owned; modal analyses only */
     FILE *mode_sensors;      /* owned; modal analyses only */
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
+    double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
     FILE *newton;            /* owned; static analyses: one row per Newton iteration */
     FILE *stability;         /* owned; static analyses with stability checks */
     char *tbuf[4];           /* owned: the stdio buffers of sensors, energy, newton, stability */
