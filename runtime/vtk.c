@@ -118,6 +118,7 @@ static void section_point(const bk_model *m, const double *q, int e, double xi, 
 
 typedef struct mode_view mode_view;
 static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x);
+static void frame_cells(const bk_model *m, long *ncell, long *nconn);
 static size_t topology(const bk_model *m, unsigned char *buf);
 
 int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity)
@@ -132,7 +133,9 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     v->cap = capacity > 16 ? capacity : 16;
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);
-    size_t np = (size_t)bk_vtk_npoints(m);
+    v->npts = bk_vtk_npoints(m);
+    frame_cells(m, &v->ncell, &v->nconn);
+    size_t np = (size_t)v->npts;
     v->ref = malloc((3 * np + 1) * sizeof *v->ref);
     v->pts = malloc((3 * np + 1) * sizeof *v->pts);
     v->ntopo = topology(m, NULL);
@@ -320,11 +323,22 @@ static void frame_points(const bk_model *m, const double *q, const mode_view *mv
     }
 }
 
+/* Cells and connectivity entries of every frame of the model. */
+static void frame_cells(const bk_model *m, long *ncell, long *nconn)
+{
+    *ncell = *nconn = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        *ncell += (long)(NX - 1) * r + 1;
+        *nconn += 4L * (NX - 1) * r + NX;
+    }
+}
+
 /* Bytes of a connectivity or offset entry: Int32 while every point index and
  * offset fits (always, short of some 50 million elements), else Int64. */
-static size_t index_size(const bk_model *m)
+static size_t index_size(long npts)
 {
-    return bk_vtk_npoints(m) * 4 < INT32_MAX ? sizeof(int32_t) : sizeof(int64_t);
+    return npts * 4 < INT32_MAX ? sizeof(int32_t) : sizeof(int64_t);
 }
 
 /* Appends index v to b as an index_size entry; returns the next position. */
@@ -345,13 +359,9 @@ static unsigned char *put_index(unsigned char *b, int64_t v, size_t size)
  * base_e + k (r + 1) + j; j = r is the centreline point. */
 static size_t topology(const bk_model *m, unsigned char *buf)
 {
-    long ncell = 0, nconn = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        ncell += (long)(NX - 1) * r + 1;
-        nconn += 4L * (NX - 1) * r + NX;
-    }
-    const size_t isz = index_size(m);
+    long ncell, nconn;
+    frame_cells(m, &ncell, &nconn);
+    const size_t isz = index_size(bk_vtk_npoints(m));
     const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
     const size_t size = 3 * sizeof(uint64_t) + sz_conn + sz_off + (size_t)ncell;
     if (!buf)
@@ -412,16 +422,11 @@ static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *
         return -1;
     char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
     setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
-    long npts = bk_vtk_npoints(m), ncell = 0, nconn = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        ncell += (long)(NX - 1) * r + 1;
-        nconn += 4L * (NX - 1) * r + NX;
-    }
+    const long npts = v->npts, ncell = v->ncell, nconn = v->nconn;
     int npass = mv ? 3 : 2;
     /* byte sizes of the appended arrays, in the order they are written */
     const uint64_t sz_pts = (uint64_t)npts * 3 * sizeof(double), sz_cell = (uint64_t)ncell * sizeof(double);
-    const size_t isz = index_size(m);
+    const size_t isz = index_size(npts);
     const char *itype = isz == sizeof(int32_t) ? "Int32" : "Int64";
     const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
     uint64_t off = 0;

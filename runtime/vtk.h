@@ -27,6 +27,7 @@ typedef struct bk_vtk {
     double *pts;             /* owned: a frame's points (scratch, 3 per point) */
     unsigned char *topo;     /* owned: the cells block every frame appends (topology, in bk_vtk_open) */
     size_t ntopo;            /* its size in bytes */
+    long npts, ncell, nconn; /* points, cells and connectivity entries of every frame */
 } bk_vtk;
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
