@@ -1,20 +1,26 @@
 /* csvrow.c -- rows of the result tables (see csvrow.h). */
 #include "csvrow.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
-FILE *bk_table_open(const char *path, char **buf)
+FILE *bk_table_open(const char *dir, const char *name, const char *header, char **buf, FILE *err)
 {
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
     *buf = NULL;
     FILE *fp = fopen(path, "w");
-    if (!fp)
+    if (!fp) {
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
         return NULL;
+    }
     *buf = malloc(BK_TABLE_BUFFER);
     if (*buf && setvbuf(fp, *buf, _IOFBF, BK_TABLE_BUFFER) != 0) {
         free(*buf);
         *buf = NULL;
     }
+    fputs(header, fp);
     return fp;
 }
 

@@ -29,11 +29,12 @@ void bk_row_str(bk_row *r, const char *s);         /* as "%s" (names: no quoting
 void bk_row_fmt(bk_row *r, const char *fmt, double v);  /* one number with a printf format */
 void bk_row_end(bk_row *r);                        /* newline, and the row to fp */
 
-/* fopen(path, "w") with a buffer of BK_TABLE_BUFFER bytes (a table is written
- * in a few large writes, and a short run's at its close), *buf: that buffer,
- * the caller's to free after fclose (NULL if it could not be had: the stream
- * keeps stdio's own).  NULL on failure, errno set. */
+/* DIR/NAME opened for writing with a buffer of BK_TABLE_BUFFER bytes (a table
+ * is written in a few large writes, and a short run's at its close) and its
+ * header line written; *buf: that buffer, the caller's to free after fclose
+ * (NULL if it could not be had: the stream keeps stdio's own).  NULL on
+ * failure, with "error: DIR/NAME: cannot write: ..." on err. */
 #define BK_TABLE_BUFFER (1 << 16)
-FILE *bk_table_open(const char *path, char **buf);
+FILE *bk_table_open(const char *dir, const char *name, const char *header, char **buf, FILE *err);
 
 #endif

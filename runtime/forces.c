@@ -94,25 +94,14 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
             }
         }
     }
-    char path[1200];
-    if (m->nreaction > 0) {
-        snprintf(path, sizeof path, "%s/reactions.csv", dir);
-        f->reactions = bk_table_open(path, &f->tbuf[0]);
-        if (!f->reactions) {
-            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
-            return -1;
-        }
-        fprintf(f->reactions, "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n");
-    }
-    if (m->nsection > 0 && m->analysis != BK_MODAL) {
-        snprintf(path, sizeof path, "%s/sections.csv", dir);
-        f->sections = bk_table_open(path, &f->tbuf[1]);
-        if (!f->sections) {
-            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
-            return -1;
-        }
-        fprintf(f->sections, "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3\n");
-    }
+    if (m->nreaction > 0 &&
+        !(f->reactions = bk_table_open(dir, "reactions.csv", "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n",
+                                       &f->tbuf[0], err)))
+        return -1;
+    if (m->nsection > 0 && m->analysis != BK_MODAL &&
+        !(f->sections = bk_table_open(dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,"
+                                      "M2,M3\n", &f->tbuf[1], err)))
+        return -1;
     return 0;
 }
 

@@ -60,14 +60,10 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     }
     o->m = m;
     snprintf(o->dir, sizeof o->dir, "%s", dir);
-    char path[1200];
-    snprintf(path, sizeof path, "%s/sensors.csv", dir);
-    o->sensors = bk_table_open(path, &o->tbuf[0]);
-    if (!o->sensors) {
-        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
+    o->sensors = bk_table_open(dir, "sensors.csv", "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,"
+                               "d3y,d3z\n", &o->tbuf[0], err);
+    if (!o->sensors)
         return -1;
-    }
-    fprintf(o->sensors, "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
     o->sensor_p0 = malloc((3 * (size_t)m->nsensor + 1) * sizeof *o->sensor_p0);
     if (!o->sensor_p0) {
         fprintf(err, "error: out of memory\n");
@@ -90,33 +86,18 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
     else
         o->sections_every = 1;
-    if (m->analysis == BK_DYNAMIC) {
-        snprintf(path, sizeof path, "%s/energy.csv", dir);
-        o->energy = bk_table_open(path, &o->tbuf[1]);
-        if (!o->energy) {
-            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
-            return -1;
-        }
-        fprintf(o->energy, "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual\n");
-    }
-    if (m->analysis == BK_STATIC) {
-        snprintf(path, sizeof path, "%s/newton.csv", dir);
-        o->newton = bk_table_open(path, &o->tbuf[2]);
-        if (!o->newton) {
-            fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
-            return -1;
-        }
-        fprintf(o->newton, "attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond\n");
-        if (m->stat.stability) {
-            snprintf(path, sizeof path, "%s/stability.csv", dir);
-            o->stability = bk_table_open(path, &o->tbuf[3]);
-            if (!o->stability) {
-                fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
-                return -1;
-            }
-            fprintf(o->stability, "step,load_factor,negative_eigenvalues,eig_min,eig_max\n");
-        }
-    }
+    if (m->analysis == BK_DYNAMIC &&
+        !(o->energy = bk_table_open(dir, "energy.csv", "step,time,kinetic,strain,gravity,load_potential,total,"
+                                    "constraint_residual\n", &o->tbuf[1], err)))
+        return -1;
+    if (m->analysis == BK_STATIC &&
+        !(o->newton = bk_table_open(dir, "newton.csv", "attempt,step,load_factor,iteration,residual,reference,"
+                                    "increment,alpha,rcond\n", &o->tbuf[2], err)))
+        return -1;
+    if (m->analysis == BK_STATIC && m->stat.stability &&
+        !(o->stability = bk_table_open(dir, "stability.csv", "step,load_factor,negative_eigenvalues,eig_min,eig_max\n",
+                                       &o->tbuf[3], err)))
+        return -1;
     return 0;
 }
 
