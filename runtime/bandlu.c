@@ -343,8 +343,6 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
 {
     memset(b, 0, sizeof *b);
     b->n = n;
-    b->Ap = Ap;
-    b->Ai = Ai;
     size_t N = (size_t)(n > 0 ? n : 1);
     b->perm = malloc(N * sizeof *b->perm);
     b->iperm = malloc(N * sizeof *b->iperm);
@@ -371,31 +369,41 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
         bk_bandsym_free(b);
         return 1;
     }
-    long nnz = Ap[n];
-    b->map = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *b->map);
     b->ab = malloc((size_t)b->ldab * N * sizeof *b->ab);
     b->D = malloc(N * sizeof *b->D);
     b->w = malloc(N * sizeof *b->w);
-    if (!b->map || !b->ab || !b->D || !b->w) {
+    if (!b->ab || !b->D || !b->w) {
         bk_bandsym_free(b);
         return -1;
     }
-    for (int j = 0; j < n; ++j)
-        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            int i = b->iperm[Ai[p]], c = b->iperm[j];
-            b->map[p] = i >= c ? (long)(i - c) + (long)c * b->ldab : -1;
-        }
     return 0;
 }
 
-int bk_bandsym_factor(bk_bandsym *b, const double *Ax)
+void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band)
+{
+    const int n = b->n, ldab = b->ldab;
+    const int *iperm = b->iperm;
+    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
+    for (int j = 0; j < n; ++j) {
+        const int c = iperm[j];
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            const int r = iperm[Ai[p]];
+            if (r == c)
+                band[(long)c * ldab] = Ax[p];
+            else if (r > c)
+                band[(r - c) + (long)c * ldab] += 0.5 * Ax[p];
+            else
+                band[(c - r) + (long)r * ldab] += 0.5 * Ax[p];
+        }
+    }
+}
+
+int bk_bandsym_factor(bk_bandsym *b, const double *band)
 {
     const int n = b->n, kd = b->kd, ldab = b->ldab;
     double *ab = b->ab;
-    memset(ab, 0, (size_t)ldab * (size_t)n * sizeof *ab);
-    for (long p = 0; p < b->Ap[n]; ++p)
-        if (b->map[p] >= 0)
-            ab[b->map[p]] = Ax[p];
+    if (band != ab)
+        memcpy(ab, band, (size_t)ldab * (size_t)n * sizeof *ab);
     for (int j = 0; j < n; ++j) {
         double *col = ab + (long)j * ldab;           /* col[r] = A(j + r, j) */
         const double d = col[0];
@@ -441,11 +449,31 @@ void bk_bandsym_solve(bk_bandsym *b, double *x)
         x[b->perm[i]] = w[i];
 }
 
+void bk_bandsym_matvec(bk_bandsym *b, const double *band, const double *x, double *y)
+{
+    const int n = b->n, kd = b->kd, ldab = b->ldab;
+    double *w = b->w;
+    for (int i = 0; i < n; ++i)
+        w[i] = 0.0;
+    for (int c = 0; c < n; ++c) {
+        const int km = kd < n - 1 - c ? kd : n - 1 - c;
+        const double *col = band + (long)c * ldab, xc = x[b->perm[c]];
+        double s = col[0] * xc;
+        for (int r = 1; r <= km; ++r) {
+            const double xr = x[b->perm[c + r]];
+            w[c + r] += col[r] * xc;
+            s += col[r] * xr;
+        }
+        w[c] += s;
+    }
+    for (int i = 0; i < n; ++i)
+        y[b->perm[i]] = w[i];
+}
+
 void bk_bandsym_free(bk_bandsym *b)
 {
     free(b->perm);
     free(b->iperm);
-    free(b->map);
     free(b->ab);
     free(b->D);
     free(b->w);

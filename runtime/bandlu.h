@@ -64,26 +64,35 @@ void bk_band_free(bk_band *b);
 /* bandsym: LDL^T without pivoting of a symmetric matrix stored as a band
  * (lower triangle) after the same reverse Cuthill-McKee ordering: for the
  * inertia of a symmetric matrix (the negative entries of D, by Sylvester's law
- * the negative eigenvalues) and solves with it.  Same sizes and directions as
- * above; the values are read from the entries (i, j) with i at or below j in
- * the new order (the matrix must be symmetric).
- *   bk_bandsym_plan   order[n]: a symmetric order to use instead (new -> old; e.g.
- *                     the band LU's of the same pattern), or NULL;
- *                     0, 1 (band larger than allowed), -1 (out of memory);
- *   bk_bandsym_factor 0, or -1 on a zero or non-finite pivot (D[j], new order,
- *                     holds the pivots); no allocation;
- *   bk_bandsym_solve  x[n] overwritten with A^-1 x (w[n] of the plan as scratch). */
+ * the negative eigenvalues) and solves with it.
+ *   bk_bandsym_plan   in: n, the CSC pattern Ap[n+1], Ai[nnz], order[n] (a
+ *                     symmetric order to use, new -> old: e.g. the band LU's of
+ *                     the same pattern) or NULL (reverse Cuthill-McKee of the
+ *                     pattern), the largest band storage allowed (doubles);
+ *                     out: perm, iperm, kd.  0, 1 (band larger than allowed),
+ *                     -1 (out of memory).  The pattern stays the caller's.
+ *   bk_bandsym_fill   in: a CSC matrix (Ap, Ai, Ax) whose pattern is the plan's
+ *                     (or lies within its band); out: band[ldab n], its
+ *                     symmetric part (A + A^T) / 2 in the band layout (column c
+ *                     of the new order at band + c ldab, row c + r at [r]);
+ *                     an entry without its transpose counts half.
+ *   bk_bandsym_factor in: band[ldab n] as filled (band may be b->ab: factored in
+ *                     place); 0, or -1 on a zero or non-finite pivot (D[j], new
+ *                     order, holds the pivots); no allocation;
+ *   bk_bandsym_solve  x[n] overwritten with A^-1 x (w[n] of the plan as scratch).
+ *   bk_bandsym_matvec y[n] = A x for the band values `band` (as filled), x and y
+ *                     in the original order (w[n] of the plan as scratch). */
 typedef struct bk_bandsym {
     int n, kd, ldab;         /* half bandwidth, ldab = kd + 1 */
-    int *perm, *iperm;
-    long *map;               /* [nnz] position in ab, -1: the upper triangle (ignored) */
-    const int *Ap, *Ai;
-    double *ab, *D, *w;
+    int *perm, *iperm;       /* [n] new -> old, old -> new */
+    double *ab, *D, *w;      /* [ldab n] the factor; [n] pivots; [n] scratch */
 } bk_bandsym;
 
 int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, long max_storage);
-int bk_bandsym_factor(bk_bandsym *b, const double *Ax);
+void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band);
+int bk_bandsym_factor(bk_bandsym *b, const double *band);
 void bk_bandsym_solve(bk_bandsym *b, double *x);
+void bk_bandsym_matvec(bk_bandsym *b, const double *band, const double *x, double *y);
 void bk_bandsym_free(bk_bandsym *b);
 
 #endif

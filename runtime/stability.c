@@ -23,63 +23,25 @@ int bk_stability_init(bk_stability *st, const bk_system *s, const int *order)
     return rc;
 }
 
-static int stability_init(bk_stability *st, const bk_system *s, const int *order)
+/* The symmetric pattern of the Newton matrix with every diagonal (Bp, Bi) and
+ * for each entry the positions of (i,j) and (j,i) in the system's values.
+ * (j,i) is found with a cursor per column i that only moves down: the columns
+ * j are visited in increasing order and the rows of each column are sorted. */
+static int sym_pattern(bk_stability *st)
 {
-    memset(st, 0, sizeof *st);
-    st->s = s;
-    int n = st->n = s->neq;
-    const bk_model *m = s->m;
+    const bk_system *s = st->s;
+    int n = st->n;
     size_t N = (size_t)(n > 0 ? n : 1);
-    st->ismult = calloc(N, 1);
-    st->Bp = malloc((N + 1) * sizeof *st->Bp);
     long cap = s->nnz + n;
+    st->Bp = malloc((N + 1) * sizeof *st->Bp);
     st->Bi = malloc((size_t)cap * sizeof *st->Bi);
     st->src = malloc((size_t)cap * sizeof *st->src);
     st->srct = malloc((size_t)cap * sizeof *st->srct);
-    st->Bx = malloc((size_t)cap * sizeof *st->Bx);
-    st->Bprev = malloc((size_t)cap * sizeof *st->Bprev);
-    st->Bnow = malloc((size_t)cap * sizeof *st->Bnow);
-    st->Lp = malloc((N + 1) * sizeof *st->Lp);
-    st->Parent = malloc(N * sizeof(int));
-    st->Lnz = malloc(N * sizeof(int));
-    st->Flag = malloc(N * sizeof(int));
-    st->Pattern = malloc(N * sizeof(int));
-    st->P = malloc(N * sizeof(int));
-    st->Pinv = malloc(N * sizeof(int));
-    st->D = malloc(N * sizeof(double));
-    st->Y = malloc(N * sizeof(double));
-    st->x = malloc(N * sizeof(double));
-    st->y = malloc(N * sizeof(double));
-    st->z = malloc(N * sizeof(double));
-    st->xmax = malloc(N * sizeof(double));
-    if (!st->ismult || !st->Bp || !st->Bi || !st->src || !st->srct || !st->Bx || !st->Bprev || !st->Bnow || !st->Lp || !st->Parent ||
-        !st->Lnz || !st->Flag || !st->Pattern || !st->P || !st->Pinv || !st->D || !st->Y || !st->x ||
-        !st->y || !st->z || !st->xmax)
+    int *cur = malloc(N * sizeof *cur);
+    if (!st->Bp || !st->Bi || !st->src || !st->srct || !cur) {
+        free(cur);
         return -1;
-
-    /* Multiplier unknowns: the constraint rows and the element-internal
-     * multipliers. */
-    for (int i = s->nfree; i < n; ++i)
-        st->ismult[i] = 1;
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_element *et = m->pairs[el->pair]->element;
-        for (int f = 0; f < et->nfield; ++f)
-            if (et->field_role[f] == BK_FIELD_MULTIPLIER)
-                for (int k = 0; k < et->field_dim[f]; ++k) {
-                    int qe = s->eq[el->dofs[et->field_dof[f] + k]];
-                    if (qe >= 0)
-                        st->ismult[qe] = 1;
-                }
     }
-    for (int i = 0; i < n; ++i)
-        st->nmult += st->ismult[i];
-
-    /* Pattern of the Newton matrix with every diagonal present, and for each
-     * entry the positions of (i,j) and (j,i) in the system's values.  (j,i) is
-     * found with a cursor per column i that only moves down: the columns j are
-     * visited in increasing order and the rows of each column are sorted. */
-    int *cur = st->Pattern; /* scratch */
     for (int i = 0; i < n; ++i)
         cur[i] = s->Ap[i];
     long nz = 0;
@@ -109,19 +71,108 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
         }
     }
     st->Bp[n] = (int)nz;
+    free(cur);
+    return 0;
+}
 
-    /* A narrow band in reverse Cuthill-McKee order (beams): a band LDL^T, any
-     * symmetric order has the same inertia (Sylvester).  Else AMD on the whole
-     * pattern, then the multipliers first (each keeps its AMD rank). */
-    int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, order, BK_BAND_MAX_STORAGE);
-    if (bp < 0)
+static void free_pattern(bk_stability *st)
+{
+    free(st->Bp);
+    free(st->Bi);
+    free(st->src);
+    free(st->srct);
+    st->Bp = st->Bi = st->src = st->srct = NULL;
+}
+
+/* A narrow band: the band LDL^T's buffers (the factor's are the plan's). */
+static int use_band(bk_stability *st)
+{
+    size_t len = (size_t)st->band.ldab * (size_t)(st->n > 0 ? st->n : 1);
+    st->use_band = 1;
+    st->bnow = malloc(len * sizeof *st->bnow);
+    st->bprev = malloc(len * sizeof *st->bprev);
+    return st->bnow && st->bprev ? 0 : -1;
+}
+
+static int stability_init(bk_stability *st, const bk_system *s, const int *order)
+{
+    memset(st, 0, sizeof *st);
+    st->s = s;
+    int n = st->n = s->neq;
+    const bk_model *m = s->m;
+    size_t N = (size_t)(n > 0 ? n : 1);
+    st->ismult = calloc(N, 1);
+    if (!st->ismult)
         return -1;
-    if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2) {
-        st->use_band = 1;
-        return 0;
+
+    /* Multiplier unknowns: the constraint rows and the element-internal
+     * multipliers. */
+    for (int i = s->nfree; i < n; ++i)
+        st->ismult[i] = 1;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_element *et = m->pairs[el->pair]->element;
+        for (int f = 0; f < et->nfield; ++f)
+            if (et->field_role[f] == BK_FIELD_MULTIPLIER)
+                for (int k = 0; k < et->field_dim[f]; ++k) {
+                    int qe = s->eq[el->dofs[et->field_dof[f] + k]];
+                    if (qe >= 0)
+                        st->ismult[qe] = 1;
+                }
     }
-    if (bp == 0)
-        bk_bandsym_free(&st->band);
+    for (int i = 0; i < n; ++i)
+        st->nmult += st->ismult[i];
+    if (m->stat.eigenvalues) {
+        st->x = malloc(N * sizeof(double));
+        st->y = malloc(N * sizeof(double));
+        st->z = malloc(N * sizeof(double));
+        st->xmax = malloc(N * sizeof(double));
+        if (!st->x || !st->y || !st->z || !st->xmax)
+            return -1;
+    }
+
+    /* A narrow band in the band LU's (reverse Cuthill-McKee) order, or in
+     * one of the symmetric pattern's own (beams): a band LDL^T, any symmetric
+     * order has the same inertia (Sylvester).  Else AMD on the whole pattern,
+     * then the multipliers first (each keeps its AMD rank). */
+    if (order) {
+        int bp = bk_bandsym_plan(&st->band, n, s->Ap, s->Ai, order, BK_BAND_MAX_STORAGE);
+        if (bp < 0)
+            return -1;
+        if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2)
+            return use_band(st);
+        if (bp == 0)
+            bk_bandsym_free(&st->band);
+    }
+    if (sym_pattern(st) != 0)
+        return -1;
+    if (!order) {
+        int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, NULL, BK_BAND_MAX_STORAGE);
+        if (bp < 0)
+            return -1;
+        if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2) {
+            free_pattern(st);
+            return use_band(st);
+        }
+        if (bp == 0)
+            bk_bandsym_free(&st->band);
+    }
+    long cap = st->Bp[n];
+    st->Bx = malloc((size_t)cap * sizeof *st->Bx);
+    st->Bprev = malloc((size_t)cap * sizeof *st->Bprev);
+    st->Bnow = malloc((size_t)cap * sizeof *st->Bnow);
+    st->Lp = malloc((N + 1) * sizeof *st->Lp);
+    st->Parent = malloc(N * sizeof(int));
+    st->Lnz = malloc(N * sizeof(int));
+    st->Flag = malloc(N * sizeof(int));
+    st->Pattern = malloc(N * sizeof(int));
+    st->P = malloc(N * sizeof(int));
+    st->Pinv = malloc(N * sizeof(int));
+    st->D = malloc(N * sizeof(double));
+    st->Y = malloc(N * sizeof(double));
+    if (!st->Bx || !st->Bprev || !st->Bnow || !st->Lp || !st->Parent || !st->Lnz || !st->Flag || !st->Pattern ||
+        !st->P || !st->Pinv || !st->D || !st->Y)
+        return -1;
     int *perm = st->Pattern; /* scratch */
     double control[AMD_CONTROL], info[AMD_INFO];
     amd_defaults(control);
@@ -142,9 +193,51 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
     return st->Li && st->Lx ? 0 : -1;
 }
 
-/* Symmetric part of the Newton matrix, multiplier diagonals regularized. */
+/* The multipliers' regularization -delta_i of the method (stability.h):
+ * b2[j] is the sum of the squares of column j's off-diagonal entries, kmax
+ * the largest diagonal magnitude of the other unknowns. */
+static double regularization(double b2, double kmax)
+{
+    return -1e-8 * (b2 > 0.0 ? b2 / kmax : kmax);
+}
+
+/* Symmetric part of the Newton matrix, multiplier diagonals regularized: in
+ * the band (bnow) or on the symmetric pattern (Bx). */
+static void fill_band(bk_stability *st, const double *Ax)
+{
+    const bk_system *s = st->s;
+    const bk_bandsym *b = &st->band;
+    const int n = st->n, ldab = b->ldab, *iperm = b->iperm;
+    double *band = st->bnow;
+    bk_bandsym_fill(b, s->Ap, s->Ai, Ax, band);
+    double kmax = 0.0;
+    for (int j = 0; j < n; ++j)
+        if (!st->ismult[j])
+            kmax = fmax(kmax, fabs(band[(long)iperm[j] * ldab]));
+    if (!(kmax > 0.0))
+        kmax = 1.0;
+    for (int j = 0; j < n; ++j) {
+        if (!st->ismult[j])
+            continue;
+        const int c = iperm[j];
+        double b2 = 0.0;
+        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k) {
+            const int r = iperm[s->Ai[k]];
+            if (r == c)
+                continue;
+            const double v = r > c ? band[(r - c) + (long)c * ldab] : band[(c - r) + (long)r * ldab];
+            b2 += v * v;
+        }
+        band[(long)c * ldab] = regularization(b2, kmax);
+    }
+}
+
 static void fill(bk_stability *st, const double *Ax)
 {
+    if (st->use_band) {
+        fill_band(st, Ax);
+        return;
+    }
     int n = st->n;
     double kmax = 0.0;
     for (int j = 0; j < n; ++j) {
@@ -169,13 +262,16 @@ static void fill(bk_stability *st, const double *Ax)
             else
                 b2 += st->Bx[k] * st->Bx[k];
         }
-        double delta = 1e-8 * (b2 > 0.0 ? b2 / kmax : kmax);
-        st->Bx[dk] = -delta;
+        st->Bx[dk] = regularization(b2, kmax);
     }
 }
 
-static void matvec(const bk_stability *st, const double *x, double *y)
+static void matvec(bk_stability *st, const double *x, double *y)
 {
+    if (st->use_band) {
+        bk_bandsym_matvec(&st->band, st->bnow, x, y);
+        return;
+    }
     memset(y, 0, (size_t)st->n * sizeof *y);
     for (int j = 0; j < st->n; ++j)
         for (int k = st->Bp[j]; k < st->Bp[j + 1]; ++k)
@@ -209,13 +305,15 @@ static void start_vector(double *x, int n)
     normalize(x, n);
 }
 
-/* Negative pivots minus multipliers of the matrix in Bx; -1 on a zero pivot. */
-static int inertia(bk_stability *st)
+/* Negative pivots minus multipliers of the matrix in band (the band values:
+ * bnow, or the factor's own array filled in place) or in Bx; -1 on a zero
+ * pivot. */
+static int inertia(bk_stability *st, const double *band)
 {
     int n = st->n;
     const double *D = st->D;
     if (st->use_band) {
-        if (bk_bandsym_factor(&st->band, st->Bx) != 0)
+        if (bk_bandsym_factor(&st->band, band) != 0)
             return -1;
         D = st->band.D;
     } else {
@@ -236,20 +334,31 @@ double bk_stability_crossing(bk_stability *st, int count_before)
     if (!st->have_prev || st->n == 0)
         return NAN;
     double t0 = bk_clock_s();
-    long nz = st->Bp[st->n];
-    double lo = 0.0, hi = 1.0, *now = st->Bnow;
-    memcpy(now, st->Bx, (size_t)nz * sizeof *now);
+    double lo = 0.0, hi = 1.0;
     for (int it = 0; it < 30; ++it) {
         double t = 0.5 * (lo + hi);
-        for (long k = 0; k < nz; ++k)
-            st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * now[k];
-        int c = inertia(st);
+        int c;
+        if (st->use_band) {
+            long len = (long)st->band.ldab * st->n;
+            double *ab = st->band.ab;
+            for (long k = 0; k < len; ++k)
+                ab[k] = (1.0 - t) * st->bprev[k] + t * st->bnow[k];
+            c = inertia(st, ab);
+        } else {
+            long nz = st->Bp[st->n];
+            if (it == 0)
+                memcpy(st->Bnow, st->Bx, (size_t)nz * sizeof *st->Bnow);
+            for (long k = 0; k < nz; ++k)
+                st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * st->Bnow[k];
+            c = inertia(st, NULL);
+        }
         if (c == count_before)
             lo = t;
         else
             hi = t;
     }
-    memcpy(st->Bx, now, (size_t)nz * sizeof *now);
+    if (!st->use_band)
+        memcpy(st->Bx, st->Bnow, (size_t)st->Bp[st->n] * sizeof *st->Bx);
     st->t_spent += bk_clock_s() - t0;
     return 0.5 * (lo + hi);
 }
@@ -271,7 +380,7 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
     if (n == 0)
         return;
     fill(st, Ax);
-    int c = inertia(st);
+    int c = inertia(st, st->bnow);
     if (c < 0) {
         /* An exactly zero pivot: singular on the constraint tangent space. */
         res->ok = 0;
@@ -348,9 +457,15 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
     res->eig_max = big;
 }
 
+/* The values now become the previous ones (the next check fills the others). */
 void bk_stability_accept(bk_stability *st)
 {
-    memcpy(st->Bprev, st->Bx, (size_t)st->Bp[st->n] * sizeof *st->Bx);
+    double *t = st->bprev;
+    st->bprev = st->bnow;
+    st->bnow = t;
+    t = st->Bprev;
+    st->Bprev = st->Bx;
+    st->Bx = t;
     st->have_prev = 1;
 }
 
@@ -379,6 +494,8 @@ void bk_stability_free(bk_stability *st)
     free(st->xmax);
     free(st->Li);
     free(st->Lx);
+    free(st->bnow);
+    free(st->bprev);
     bk_bandsym_free(&st->band);
     memset(st, 0, sizeof *st);
 }

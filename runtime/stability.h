@@ -24,6 +24,10 @@
  * The critical load between two equilibria with different counts is found by
  * bisection on the inertia of the linearly interpolated matrix.
  *
+ * Storage: for a narrow band (beams, in the band LU's order) three band
+ * copies, the matrix now, at the last accepted equilibrium and the factor;
+ * otherwise the symmetric pattern and SuiteSparse LDL's arrays.
+ *
  * Ownership: the checker owns every array it allocates (bk_stability_free);
  * it keeps a pointer to the system, which must outlive it.  No allocation
  * after bk_stability_init.
@@ -39,18 +43,23 @@ typedef struct bk_stability {
     double t_spent;                 /* wall time in this analysis so far (s; set-up, checks, crossings) */
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
-    int *Bp, *Bi;                   /* symmetric pattern with every diagonal   */
-    int *src, *srct;                /* [nnz] index into the system's Ax of (i,j) and (j,i), -1: none */
-    double *Bx, *Bprev, *Bnow;      /* values now, at the previous check, copy */
-    int have_prev;
+    int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
+    int have_prev;                  /* a check was accepted (the *prev values) */
+    /* band: the symmetric part in band layout, now and at the last accepted check */
+    bk_bandsym band;
+    double *bnow, *bprev;           /* [band.ldab n] */
+    /* sparse LDL^T: the symmetric pattern with every diagonal, and for each
+     * entry the positions of (i,j) and (j,i) in the system's values */
+    int *Bp, *Bi;
+    int *src, *srct;                /* [nnz] index into the system's Ax, -1: none */
+    double *Bx, *Bprev, *Bnow;      /* values now, at the last accepted check, copy */
     int *Lp, *Parent, *Lnz, *Flag, *Pattern, *P, *Pinv, *Li;
     double *Lx, *D, *Y;
+    /* eigenvalue iterations (static.eigenvalues) */
     double *x, *y, *z;              /* iteration vectors                        */
     double *xmax;                   /* the last power-iteration vector          */
     int have_vec;                   /* x holds the last eigenvector             */
     int have_vmax;                  /* xmax holds one                           */
-    int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
-    bk_bandsym band;
 } bk_stability;
 
 typedef struct bk_stability_result {

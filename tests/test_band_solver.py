@@ -48,13 +48,15 @@ def test_band_ldlt_inertia_matches_jacobi_eigenvalues():
     """The symmetric band LDL^T of the stability check (no pivoting; the
     saddle-point case has multipliers, so its inertia counts them as negative):
     its negative pivots equal the negative eigenvalues by cyclic Jacobi
-    rotations of the dense matrix, and its solve reproduces the known solution."""
+    rotations of the dense matrix, its solve reproduces the known solution and its
+    product with a vector the dense product."""
     r = results()
     for case in ("indefinite", "kkt"):
         d = r[case]
         assert d["sym_factor"] == "0", (case, d)
         assert int(d["sym_negative"]) == int(d["jacobi_negative"]), (case, d)
         assert float(d["sym_err"]) <= 1e-6, (case, d)   # (1e-8 regularization: cond ~ 1e8)
+        assert float(d["sym_matvec_err"]) <= 1e-12, (case, d)   # the band product against the dense one
     assert int(r["indefinite"]["jacobi_negative"]) > 0          # the shift really made it indefinite
     assert int(r["kkt"]["jacobi_negative"]) >= 3                 # at least one per multiplier
 
