@@ -364,15 +364,17 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
                 kd = -d;
         }
     b->kd = kd;
-    b->ldab = kd + 1;
+    /* kd + 1 rounded up to whole vectors: the factor's updates are whole vectors */
+    b->ldab = (kd + BK_BAND_LANES) / BK_BAND_LANES * BK_BAND_LANES;
     if ((double)b->ldab * n > (double)max_storage) {
         bk_bandsym_free(b);
         return 1;
     }
-    b->ab = malloc((size_t)b->ldab * N * sizeof *b->ab);
+    b->ab = aligned_alloc(64, (size_t)b->ldab * N * sizeof *b->ab);
     b->D = malloc(N * sizeof *b->D);
     b->w = malloc(N * sizeof *b->w);
-    if (!b->ab || !b->D || !b->w) {
+    b->piv = aligned_alloc(64, (size_t)(b->ldab + BK_BAND_LANES) * sizeof *b->piv);
+    if (!b->ab || !b->D || !b->w || !b->piv) {
         bk_bandsym_free(b);
         return -1;
     }
@@ -387,13 +389,11 @@ void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const do
     for (int j = 0; j < n; ++j) {
         const int c = iperm[j];
         for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            const int r = iperm[Ai[p]];
-            if (r == c)
-                band[(long)c * ldab] = Ax[p];
-            else if (r > c)
-                band[(r - c) + (long)c * ldab] += 0.5 * Ax[p];
-            else
-                band[(c - r) + (long)r * ldab] += 0.5 * Ax[p];
+            /* (r, c) and (c, r) share the lower entry: each adds half (the
+             * diagonal all of it); no branch on the side (unpredictable) */
+            const int r = iperm[Ai[p]], lo = r < c ? r : c, hi = r < c ? c : r;
+            const double h = r == c ? 1.0 : 0.5;
+            band[(hi - lo) + (long)lo * ldab] += h * Ax[p];
         }
     }
 }
@@ -401,9 +401,11 @@ void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const do
 int bk_bandsym_factor(bk_bandsym *b, const double *band)
 {
     const int n = b->n, kd = b->kd, ldab = b->ldab;
-    double *ab = b->ab;
+    double *ab = b->ab, *restrict l = b->piv;
     if (band != ab)
         memcpy(ab, band, (size_t)ldab * (size_t)n * sizeof *ab);
+    for (int r = 0; r < ldab + BK_BAND_LANES; ++r)
+        l[r] = 0.0;
     for (int j = 0; j < n; ++j) {
         double *col = ab + (long)j * ldab;           /* col[r] = A(j + r, j) */
         const double d = col[0];
@@ -412,13 +414,26 @@ int bk_bandsym_factor(bk_bandsym *b, const double *band)
             return -1;
         const int km = kd < n - 1 - j ? kd : n - 1 - j;
         const double inv = 1.0 / d;
+        /* l: column j below the pivot, zero beyond its last row, so that every
+         * update below is whole vectors (the rows past km stay unchanged) */
+        for (int r = 1; r <= km; ++r)
+            l[r] = col[r];
         for (int c = 1; c <= km; ++c) {              /* column j + c, rows j + c ... j + km */
             const double f = col[c] * inv;
-            if (f != 0.0)
-                axpy_sub(km - c + 1, f, col + c, ab + (long)(j + c) * ldab);
+            if (f == 0.0)
+                continue;
+            double *restrict y = ab + (long)(j + c) * ldab;
+            const double *restrict x = l + c;
+            for (int r0 = 0; r0 <= km - c; r0 += BK_BAND_LANES) {
+#pragma omp simd
+                for (int r = 0; r < BK_BAND_LANES; ++r)
+                    y[r0 + r] -= f * x[r0 + r];
+            }
         }
-        for (int r = 1; r <= km; ++r)
+        for (int r = 1; r <= km; ++r) {
             col[r] *= inv;
+            l[r] = 0.0;
+        }
     }
     return 0;
 }
@@ -474,6 +489,7 @@ void bk_bandsym_free(bk_bandsym *b)
 {
     free(b->perm);
     free(b->iperm);
+    free(b->piv);
     free(b->ab);
     free(b->D);
     free(b->w);

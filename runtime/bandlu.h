@@ -83,9 +83,10 @@ void bk_band_free(bk_band *b);
  *   bk_bandsym_matvec y[n] = A x for the band values `band` (as filled), x and y
  *                     in the original order (w[n] of the plan as scratch). */
 typedef struct bk_bandsym {
-    int n, kd, ldab;         /* half bandwidth, ldab = kd + 1 */
+    int n, kd, ldab;         /* half bandwidth; ldab: kd + 1 rounded up to BK_BAND_LANES */
     int *perm, *iperm;       /* [n] new -> old, old -> new */
     double *ab, *D, *w;      /* [ldab n] the factor; [n] pivots; [n] scratch */
+    double *piv;             /* [ldab + BK_BAND_LANES] the factor's pivot column (scratch) */
 } bk_bandsym;
 
 int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, long max_storage);
