@@ -26,7 +26,7 @@ JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
 RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c", "newton.c", "stability.c",
                    "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c",
-                   "main.c", "amplitude.c", "loads.c", "forces.c", "numfmt.c", "csvrow.c")
+                   "main.c", "amplitude.c", "loads.c", "forces.c", "numfmt.c", "csvrow.c", "filewriter.c")
 LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
 # The lane kernels' vector log, cbrt, pow (out/kernels/*_*.c, `declare simd`): glibc's libmvec.
 if os.uname().sysname == "Linux" and os.uname().machine == "x86_64":   # (os.uname: no platform import)

@@ -96,6 +96,8 @@ int main(int argc, char **argv)
     info.wall_s = bk_clock_s() - t0;
     info.output_s = out.t_output;
     int wrc = bk_output_summary(&out, &info, q, stderr);   /* before the close: it reports the reactions */
+    if (out.write_failed)
+        wrc = -1;
     bk_output_close(&out);
     if (rc != 0)
         fprintf(stderr, "%s: %s: %s\n", info.interrupted ? "interrupted" : "error", m->name, info.message);

@@ -140,6 +140,8 @@ void bk_output_final(bk_output *o, int step, double t, const double *q)
         bk_output_last_frame(o, step, t, q);
     double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
+    if (bk_vtk_finish(&o->vtk, stderr) != 0)       /* every frame on disk before the summary */
+        o->write_failed = 1;
     spent(o, t0);
     if (o->progress && bk_clock_s() - o->t_start >= 1.0)
         fprintf(stderr, "\n");

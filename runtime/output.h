@@ -33,6 +33,7 @@ typedef struct bk_output {
     double t_output;         /* wall time spent in the bk_output_* calls so far (s) */
     bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
     int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
+    int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
 } bk_output;
 
 /* A change of the number of negative eigenvalues of the tangent between two
@@ -98,7 +99,9 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
 void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual);
 /* Writes the ParaView frame of the last state if the stride skipped it (not
  * for modal analyses: bk_solve_modal writes the frames of the state the modes
- * are about itself, with bk_output_last_frame), and ends the progress line. */
+ * are about itself, with bk_output_last_frame), waits until every frame is on
+ * disk (they are written by a background thread, vtk.h), and ends the
+ * progress line. */
 void bk_output_final(bk_output *o, int step, double t, const double *q);
 void bk_output_last_frame(bk_output *o, int step, double t, const double *q);
 /* One row per sensor for the configuration q at output step `step`, time t. */

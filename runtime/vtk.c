@@ -144,11 +144,44 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
         return -1;
     frame_points(m, m->q0, NULL, 0, v->ref);
     topology(m, v->topo);
+    /* the appended arrays of the largest frame (a mode's: points, displacement,
+     * mode shape; a step's: points, displacement, four section arrays, the
+     * cells' energy density), the cells block and the XML around them */
+    v->frame_bytes = 7 * (8 + 3 * np * sizeof(double)) + 8 + (size_t)v->ncell * sizeof(double) + v->ntopo + 16384;
     return 0;
+}
+
+/* From the third frame of a run on (a run of one or two frames would pay more
+ * for the thread and its buffers' first use than it saves), frames of up to
+ * BK_VTK_BACKGROUND_MAX bytes go to the background writer; if it cannot be
+ * made, they are written directly. */
+static void maybe_background(bk_vtk *v)
+{
+    if (v->background || v->tried_background || v->written < 2 || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
+        return;
+    v->tried_background = 1;
+    if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
+        v->background = 1;
+    else
+        bk_filewriter_close(&v->fw);
+}
+
+int bk_vtk_finish(bk_vtk *v, FILE *err)
+{
+    if (!v->background || bk_filewriter_drain(&v->fw) == 0)
+        return 0;
+    if (err && v->fw.failed == 1) {
+        fprintf(err, "error: %s: cannot write: %s\n", v->fw.failed_path, strerror(v->fw.errno_));
+        v->fw.failed = 2;                 /* reported */
+    }
+    return -1;
 }
 
 void bk_vtk_close(bk_vtk *v)
 {
+    if (v->background)
+        bk_filewriter_close(&v->fw);
+    v->background = 0;
     free(v->times);
     free(v->frames);
     free(v->ref);
@@ -184,15 +217,19 @@ static int write_collection(const char *dir, const char *name, int n, const doub
     return rename(tmp, path);
 }
 
-static int write_pvd(const bk_vtk *v)
+static int write_pvd(bk_vtk *v)
 {
+    if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
+        bk_filewriter_drain(&v->fw);
     return write_collection(v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
 }
 
 /* modes.pvd: mode_NN.vtu of modes 1..nmode, the mode number as the time value
  * (ParaView's animation steps through the modes). */
-static int write_modes_pvd(const bk_vtk *v)
+static int write_modes_pvd(bk_vtk *v)
 {
+    if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
+        bk_filewriter_drain(&v->fw);
     return write_collection(v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
 }
 
@@ -412,16 +449,10 @@ static size_t topology(const bk_model *m, unsigned char *buf)
     return size;
 }
 
-static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *const *fname,
-                     const double *fval, const double *q, const mode_view *mv, const double *sec,
-                     const double *ssec, int maxsample)
+static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *const *fname, const double *fval,
+                         const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
 {
     const bk_model *m = v->m;
-    FILE *fp = fopen(path, "wb");
-    if (!fp)
-        return -1;
-    char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
-    setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
     const long npts = v->npts, ncell = v->ncell, nconn = v->nconn;
     int npass = mv ? 3 : 2;
     /* byte sizes of the appended arrays, in the order they are written */
@@ -541,6 +572,37 @@ static int write_vtu(const bk_vtk *v, const char *path, int nfield, const char *
     }
     fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (topology) */
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
+}
+
+/* The frame file `path`: made in a buffer of the background writer (which
+ * creates and writes the file), or written here (large frames; or a frame
+ * that did not fit the buffer). */
+static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
+                     const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
+{
+    maybe_background(v);
+    v->written++;
+    if (v->background) {
+        unsigned char *buf = bk_filewriter_buffer(&v->fw);
+        FILE *mp = buf ? fmemopen(buf, v->fw.cap, "wb") : NULL;
+        if (mp) {
+            setvbuf(mp, NULL, _IONBF, 0);
+            vtu_contents(v, mp, nfield, fname, fval, q, mv, sec, ssec, maxsample);
+            long len = ftell(mp);
+            int bad = ferror(mp) || len < 0 || (size_t)len >= v->fw.cap;
+            fclose(mp);
+            if (!bad)
+                return bk_filewriter_submit(&v->fw, buf, path, (size_t)len);
+        }
+        if (buf)
+            bk_filewriter_cancel(&v->fw, buf);
+    }
+    FILE *fp = fopen(path, "wb");
+    if (!fp)
+        return -1;
+    char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
+    setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
+    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample);
     return fclose(fp) != 0 ? -1 : 0;              /* (flushes iobuf before it goes out of scope) */
 }
 

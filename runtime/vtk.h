@@ -3,6 +3,9 @@
 #ifndef BK_VTK_H
 #define BK_VTK_H
 
+#include <stdio.h>
+
+#include "filewriter.h"
 #include "model.h"
 
 struct bk_system;
@@ -28,7 +31,16 @@ typedef struct bk_vtk {
     unsigned char *topo;     /* owned: the cells block every frame appends (topology, in bk_vtk_open) */
     size_t ntopo;            /* its size in bytes */
     long npts, ncell, nconn; /* points, cells and connectivity entries of every frame */
+    size_t frame_bytes;      /* the largest frame file (header allowance included) */
+    int written;             /* frame files so far (step and mode frames) */
+    int background, tried_background;   /* 1: frames go to fw, written by its thread */
+    bk_filewriter fw;        /* owned when background */
 } bk_vtk;
+
+/* From a run's third frame on, frames up to this size are made in memory and
+ * written by a background thread (filewriter.h: two buffers of a frame each),
+ * larger ones directly. */
+#define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
 int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity);
@@ -36,9 +48,13 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
  * frame number -step). */
 int bk_vtk_frame(bk_vtk *v, const struct bk_system *s, int step, double t, const double *q);
 /* Rewrites results.pvd when frames were written since its last write (frames
- * rewrite it at most every BK_PVD_INTERVAL s of wall time); 0, or -1 on a write
- * error. */
+ * rewrite it at most every BK_PVD_INTERVAL s of wall time), after every frame
+ * handed to the background writer is on disk; 0, or -1 on a write error (of
+ * the collection or of a frame: bk_vtk_failed says which). */
 int bk_vtk_flush(bk_vtk *v);
+/* Waits for the frames being written; 0, or -1 when one failed:
+ * "error: PATH: cannot write: REASON" on err (once). */
+int bk_vtk_finish(bk_vtk *v, FILE *err);
 void bk_vtk_close(bk_vtk *v);
 
 /* Number of points of every frame of the model. */

@@ -116,6 +116,34 @@ def test_dynamic_failure_keeps_steps_and_says_where():
     assert len({x["step"] for x in rows}) == s["steps"] + 1
 
 
+def test_frame_that_cannot_be_written_is_an_error():
+    """A ParaView frame past the second (those are written by the background
+    thread) that cannot be created -- its name taken by a directory -- is
+    reported with its path and reason, the run exits with status 1, and the
+    frames before and after it and summary.json are still written."""
+    out = fresh()
+    sets = ["--set", "dynamic.t_end=0.2"]
+    solver = out.parent / (out.name + "-solver")      # a private copy (see the progress-line test)
+    for _ in range(5):
+        assert run_cli(["run", "pendulum_soft_gef", "--quiet", "--out", str(out)] + sets).returncode == 0
+        shutil.copy2(ROOT / "out" / "bin" / "pendulum_soft_gef", solver)
+        frames = sorted(p.name for p in out.glob("step_*.vtu"))
+        probe = subprocess.run([str(solver), str(out / "model.dat"), str(out), "--quiet"], capture_output=True)
+        if probe.returncode == 0:
+            break
+    assert len(frames) >= 6, frames
+    run_dir = fresh()
+    (run_dir / frames[3]).mkdir()
+    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert f"error: {run_dir}/{frames[3]}: cannot write: Is a directory" in p.stderr, p.stderr
+    assert p.stderr.count("cannot write") == 1, p.stderr
+    written = sorted(q.name for q in run_dir.glob("step_*.vtu") if q.is_file())
+    assert written == [f for f in frames if f != frames[3]], written
+    assert json.loads((run_dir / "summary.json").read_text())["converged"]
+
+
 def test_progress_line_on_a_terminal_only():
     """A run over one second shows an updating progress line when stderr is a terminal, none
     otherwise, and none with --quiet."""

@@ -1,0 +1,175 @@
+/* filewriter.c -- whole files written by a background thread (filewriter.h). */
+#include "filewriter.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define WRITER_STACK (256 << 10)
+
+/* path := data[len]; 0, or an errno. */
+static int write_file(const char *path, const unsigned char *data, size_t len)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0)
+        return errno;
+    size_t done = 0;
+    while (done < len) {
+        ssize_t k = write(fd, data + done, len - done);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0) {
+            int e = k < 0 ? errno : EIO;
+            close(fd);
+            return e;
+        }
+        done += (size_t)k;
+    }
+    return close(fd) != 0 ? errno : 0;
+}
+
+/* The first failure is kept (called with the lock held, or unthreaded). */
+static void record(bk_filewriter *w, const char *path, int err)
+{
+    if (err == 0 || w->failed)
+        return;
+    w->failed = 1;
+    w->errno_ = err;
+    snprintf(w->failed_path, sizeof w->failed_path, "%s", path);
+}
+
+static void *writer_main(void *arg)
+{
+    bk_filewriter *w = arg;
+    pthread_mutex_lock(&w->mu);
+    for (;;) {
+        while (w->count == 0 && !w->stop)
+            pthread_cond_wait(&w->cv, &w->mu);
+        if (w->count == 0)
+            break;
+        int b = w->queue[w->head];
+        pthread_mutex_unlock(&w->mu);
+        int err = write_file(w->path[b], w->buf[b], w->len[b]);
+        pthread_mutex_lock(&w->mu);
+        record(w, w->path[b], err);
+        w->head = (w->head + 1) % BK_FILEWRITER_BUFFERS;
+        w->count--;
+        w->state[b] = 0;
+        pthread_cond_broadcast(&w->cv);
+    }
+    pthread_mutex_unlock(&w->mu);
+    return NULL;
+}
+
+int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
+{
+    memset(w, 0, sizeof *w);
+    w->cap = cap;
+    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
+        if (!(w->buf[b] = malloc(cap > 0 ? cap : 1)))
+            return -1;
+    if (pthread_mutex_init(&w->mu, NULL) != 0)
+        return -1;
+    if (pthread_cond_init(&w->cv, NULL) != 0) {
+        pthread_mutex_destroy(&w->mu);
+        return -1;
+    }
+    w->ready = 1;
+    if (threaded) {
+        pthread_attr_t at;
+        if (pthread_attr_init(&at) == 0) {
+            pthread_attr_setstacksize(&at, WRITER_STACK);
+            w->threaded = pthread_create(&w->thread, &at, writer_main, w) == 0;
+            pthread_attr_destroy(&at);
+        }
+    }
+    return 0;
+}
+
+unsigned char *bk_filewriter_buffer(bk_filewriter *w)
+{
+    pthread_mutex_lock(&w->mu);
+    int b = -1;
+    for (;;) {
+        for (int k = 0; k < BK_FILEWRITER_BUFFERS && b < 0; ++k)
+            if (w->state[k] == 0)
+                b = k;
+        if (b >= 0 || !w->threaded)
+            break;
+        pthread_cond_wait(&w->cv, &w->mu);
+    }
+    if (b >= 0)
+        w->state[b] = 1;
+    pthread_mutex_unlock(&w->mu);
+    return b >= 0 ? w->buf[b] : NULL;
+}
+
+int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *path, size_t len)
+{
+    int b = 0;
+    while (b < BK_FILEWRITER_BUFFERS && w->buf[b] != buffer)
+        b++;
+    if (b == BK_FILEWRITER_BUFFERS)
+        return -1;
+    if (!w->threaded) {
+        record(w, path, write_file(path, buffer, len));
+        pthread_mutex_lock(&w->mu);
+        w->state[b] = 0;
+        pthread_mutex_unlock(&w->mu);
+        return w->failed ? -1 : 0;
+    }
+    pthread_mutex_lock(&w->mu);
+    snprintf(w->path[b], sizeof w->path[b], "%s", path);
+    w->len[b] = len;
+    w->state[b] = 2;
+    w->queue[(w->head + w->count) % BK_FILEWRITER_BUFFERS] = b;
+    w->count++;
+    pthread_cond_broadcast(&w->cv);
+    int failed = w->failed;
+    pthread_mutex_unlock(&w->mu);
+    return failed ? -1 : 0;
+}
+
+void bk_filewriter_cancel(bk_filewriter *w, unsigned char *buffer)
+{
+    pthread_mutex_lock(&w->mu);
+    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
+        if (w->buf[b] == buffer && w->state[b] == 1)
+            w->state[b] = 0;
+    pthread_cond_broadcast(&w->cv);
+    pthread_mutex_unlock(&w->mu);
+}
+
+int bk_filewriter_drain(bk_filewriter *w)
+{
+    if (!w->threaded)
+        return w->failed ? -1 : 0;
+    pthread_mutex_lock(&w->mu);
+    while (w->count > 0)
+        pthread_cond_wait(&w->cv, &w->mu);
+    int failed = w->failed;
+    pthread_mutex_unlock(&w->mu);
+    return failed ? -1 : 0;
+}
+
+void bk_filewriter_close(bk_filewriter *w)
+{
+    if (w->threaded) {
+        pthread_mutex_lock(&w->mu);
+        w->stop = 1;
+        pthread_cond_broadcast(&w->cv);
+        pthread_mutex_unlock(&w->mu);
+        pthread_join(w->thread, NULL);
+        w->threaded = 0;
+    }
+    if (w->ready) {
+        pthread_cond_destroy(&w->cv);
+        pthread_mutex_destroy(&w->mu);
+    }
+    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
+        free(w->buf[b]);
+    memset(w, 0, sizeof *w);
+}

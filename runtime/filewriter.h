@@ -1,0 +1,60 @@
+/* filewriter.h -- whole files (the ParaView frames) written by a background
+ * thread while the solve goes on.
+ *
+ * A file is made in one of the writer's buffers and handed over with its path;
+ * the thread creates, writes and closes it, in the order handed over, and
+ * gives the buffer back.  On this kind of machine creating and writing a
+ * frame costs 30-60 us, more than a small model's load step; with the thread
+ * the solver's core does not wait for it.
+ *
+ * Sizes and directions:
+ *   bk_filewriter_open    in: cap, the largest file in bytes; threaded: 0 makes
+ *                         every submit write at once in the caller's thread
+ *                         (as when no thread could be made).  0, or -1 when out
+ *                         of memory (bk_filewriter_close frees what was made).
+ *   bk_filewriter_buffer  out: a buffer of cap bytes the caller may fill (waits
+ *                         while both are being written).
+ *   bk_filewriter_submit  in: that buffer's first len bytes are DIR/... path's
+ *                         contents.  0, or -1 on the first failed write so far
+ *                         (this file's or an earlier one's: failed_path, errno_).
+ *   bk_filewriter_cancel  gives a buffer from bk_filewriter_buffer back unused.
+ *   bk_filewriter_drain   waits until every file handed over is written; 0 or -1
+ *                         as above.
+ *   bk_filewriter_close   drains, ends the thread, frees the buffers.
+ * No allocation after open.  The signal mask is the opener's (the solver
+ * blocks SIGINT/SIGTERM before: interrupt.h). */
+#ifndef BK_FILEWRITER_H
+#define BK_FILEWRITER_H
+
+#include <pthread.h>
+#include <stddef.h>
+
+#define BK_FILEWRITER_BUFFERS 2
+#define BK_FILEWRITER_PATH 1200
+
+typedef struct bk_filewriter {
+    size_t cap;                          /* bytes per buffer */
+    unsigned char *buf[BK_FILEWRITER_BUFFERS];   /* owned */
+    /* per buffer: 0 free, 1 handed to the caller, 2 queued or being written */
+    int state[BK_FILEWRITER_BUFFERS];
+    size_t len[BK_FILEWRITER_BUFFERS];
+    char path[BK_FILEWRITER_BUFFERS][BK_FILEWRITER_PATH];
+    int queue[BK_FILEWRITER_BUFFERS];   /* buffers in the order handed over */
+    int head, count;
+    int threaded, stop, ready;         /* ready: mu and cv made */
+    pthread_t thread;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    int failed;                          /* a write failed: */
+    int errno_;                          /*   its errno */
+    char failed_path[BK_FILEWRITER_PATH];
+} bk_filewriter;
+
+int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
+unsigned char *bk_filewriter_buffer(bk_filewriter *w);
+int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *path, size_t len);
+void bk_filewriter_cancel(bk_filewriter *w, unsigned char *buffer);
+int bk_filewriter_drain(bk_filewriter *w);
+void bk_filewriter_close(bk_filewriter *w);
+
+#endif
