@@ -591,8 +591,10 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
             long len = ftell(mp);
             int bad = ferror(mp) || len < 0 || (size_t)len >= v->fw.cap;
             fclose(mp);
-            if (!bad)
-                return bk_filewriter_submit(&v->fw, buf, path, (size_t)len);
+            if (!bad) {                  /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
+                bk_filewriter_submit(&v->fw, buf, path, (size_t)len);
+                return 0;
+            }
         }
         if (buf)
             bk_filewriter_cancel(&v->fw, buf);
