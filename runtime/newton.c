@@ -122,12 +122,22 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
  * their failures are the alternation between membrane and bending residuals of
  * slender beams, which the rotation trust region below and the load increment
  * address.  It was removed rather than kept as an option that does nothing. */
+/* The stability check of the reference state made on the first Newton matrix
+ * of the first load step, when that matrix is the reference state's
+ * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res). */
+typedef struct reference_probe {
+    bk_stability *st;
+    bk_stability_result res;
+    int state;
+} reference_probe;
+
 typedef struct static_problem {
     bk_system *s;
     work *w;
     double *q;
     double lam, lam_last;            /* the load factor sought, the last equilibrium's */
     double lscale;
+    reference_probe *ref;            /* NULL, or a pending check of the reference state at q */
 } static_problem;
 
 static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
@@ -139,6 +149,10 @@ static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval 
     (void)r, (void)Ax;               /* w->r, w->Ax are the solver's buffers */
     if (residual(s, w, p->q, w->nu, p->lam, matrix) != 0)
         return -1;
+    if (matrix && p->ref && p->ref->state == 1) {
+        bk_stability_check(p->ref->st, w->Ax, &p->ref->res);
+        p->ref->state = 2;
+    }
     /* Every measure is invariant under a rigid rotation of the scene: field
      * norms, column-block norms, scalar products (norms.h). */
     ev->rnorm = bk_norm2(w->r, s->neq);
@@ -195,9 +209,10 @@ static bk_nl_opts static_nl_opts(const bk_static_opts *o)
  * fraction of the Newton step taken, below 1 when the rotation trust region
  * shortened it). */
 static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, double lam_last, attempt *a,
-                  const bk_static_opts *o, double lscale, int step)
+                  const bk_static_opts *o, double lscale, int step, reference_probe *ref)
 {
-    static_problem sp = {.s = s, .w = w, .q = q, .lam = lam, .lam_last = lam_last, .lscale = lscale};
+    static_problem sp = {.s = s, .w = w, .q = q, .lam = lam, .lam_last = lam_last, .lscale = lscale,
+                         .ref = ref && ref->state == 1 ? ref : NULL};
     bk_nl_problem p = {.ctx = &sp, .q = q, .residual = sp_residual, .update = sp_update,
                        .step_limit = sp_step_limit};
     bk_nl_opts no = static_nl_opts(o);
@@ -218,6 +233,31 @@ static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, doubl
     a->singular_at_start = res.singular_at_start;
     a->signo = res.signo;
     return res.code;
+}
+
+/* Whether the Newton matrix depends on neither the load factor nor the
+ * multipliers: no load with a stiffness or a varying factor (moments, follower,
+ * distributed and tendon loads, gravity with an amplitude, forces with one), no
+ * joint nonlinear in q, no constraint coefficient that changes with the load
+ * factor.  The matrix at q0 of the first load step's first Newton iteration is
+ * then, to the bit, the reference state's. */
+static int matrix_free_of_load(const bk_system *s)
+{
+    const bk_model *m = s->m;
+    if (m->nmoment > 0 || m->ndload > 0 || m->ntendon > 0 || m->nnlcon > 0 || (m->has_gravity && m->gravity_amp))
+        return 0;
+    for (int i = 0; i < m->nforce; ++i)
+        if (m->forces[i].amp >= 0 || m->forces[i].follower)
+            return 0;
+    for (int c = 0; c < m->nlincon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        if (lc->kappa == 0.0 || (lc->rate == 0.0 && lc->amp == 0.0 && !lc->ampl))
+            continue;                    /* the angle is constant: so are the coefficients */
+        for (int k = 0; k < lc->nterm; ++k)
+            if (lc->cc[k] != 0.0 || lc->cs[k] != 0.0)
+                return 0;
+    }
+    return 1;
 }
 
 /* Stability of the equilibrium q at load factor lam (not yet accepted):
@@ -929,7 +969,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             arc_save(s, w, q, lam_new, &B);
             memcpy(w->qsave, A.q, (size_t)nd * sizeof *q);
             a.id++;
-            int lst = newton(s, nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
+            int lst = newton(s, nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1, NULL);
             info->newton_iterations += a.iters;
             if (lst == NEWTON_OK)
                 lam_new = target;
@@ -1134,7 +1174,10 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
     bk_output_step(out, 0, 0.0, q);
     double prev_lam = 0.0;
     bk_stability_result sres;
-    if (have_stab) {
+    reference_probe ref = {.st = &stab};
+    if (have_stab && !o->arc_length && matrix_free_of_load(s))
+        ref.state = 1;                   /* on the first Newton matrix (at q0) */
+    else if (have_stab) {
         probe_stability(&stab, s, &w, q, 0.0, 0, &sres);
         accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
     }
@@ -1180,8 +1223,17 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     memcpy(w.nu, w.nusave, (size_t)nc * sizeof *w.nu);
                 }
                 a.id++;
-                st = newton(s, &nl, &w, q, target, lam, &a, o, m->length_scale, info->steps + 1);
+                st = newton(s, &nl, &w, q, target, lam, &a, o, m->length_scale, info->steps + 1, &ref);
                 info->newton_iterations += a.iters;
+            }
+            int assembled = 1;           /* w.Ax: the matrix at q (a converged solve ends on it) */
+            if (ref.state != 0) {         /* the reference state's check, before this step's */
+                if (ref.state == 1) {     /* no Newton matrix was made at it */
+                    probe_stability(&stab, s, &w, m->q0, 0.0, 0, &ref.res);
+                    assembled = 0;
+                }
+                accept_stability(&stab, &ref.res, 0.0, out, info, log, &prev_lam);
+                ref.state = 0;
             }
             /* On a stable path (static.stable_path), an increment that ends
              * at an equilibrium with more negative eigenvalues than the last
@@ -1190,7 +1242,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
              * the bifurcation is bracketed as closely as the cut-backs allow
              * and then passed (and reported). */
             if (st == NEWTON_OK && have_stab) {
-                int c = probe_stability(&stab, s, &w, q, target, 1, &sres);
+                int c = probe_stability(&stab, s, &w, q, target, assembled, &sres);
                 /* not for an eigenvalue at round-off level (the count is
                  * uncertain there) nor below a millionth of the increment */
                 if (o->stable_path && c > max_negative && cuts_in_row < o->max_cutbacks &&
