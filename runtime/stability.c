@@ -335,7 +335,7 @@ double bk_stability_crossing(bk_stability *st, int count_before)
         return NAN;
     double t0 = bk_clock_s();
     double lo = 0.0, hi = 1.0;
-    for (int it = 0; it < 30; ++it) {
+    for (int it = 0; it < BK_CROSSING_BISECTIONS; ++it) {
         double t = 0.5 * (lo + hi);
         int c;
         if (st->use_band) {

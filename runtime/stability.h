@@ -82,8 +82,11 @@ void bk_stability_accept(bk_stability *st);
  * t in (0, 1) between the last accepted and the current state at which the matrix
  * interpolated linearly between the two, (1 - t) A_prev + t A, first has a
  * negative-eigenvalue count different from the previous one (bisection on
- * the inertia, 30 factorizations; exact for a tangent linear in the load, as
- * on a straight pre-buckling path).  NaN when unavailable. */
+ * the inertia, BK_CROSSING_BISECTIONS factorizations: t within 2^-21 of that
+ * point, exact up to that for a tangent linear in the load, as on a straight
+ * pre-buckling path; elsewhere the linear interpolation's own error, of the
+ * order of the squared step, is far larger).  NaN when unavailable. */
+#define BK_CROSSING_BISECTIONS 20
 double bk_stability_crossing(bk_stability *st, int count_before);
 void bk_stability_free(bk_stability *st);
 
