@@ -85,12 +85,18 @@ void bk_row_str(bk_row *r, const char *s)
     r->n += (int)len;
 }
 
-void bk_row_fmt(bk_row *r, const char *fmt, double v)
+void bk_row_e(bk_row *r, double v, int prec)
 {
-    room(r, 64);
+    room(r, BK_NUMFMT_MAX + 1);
     separator(r);
-    int k = snprintf(r->buf + r->n, 64, fmt, v);
-    r->n += k < 0 ? 0 : k < 64 ? k : 63;
+    r->n += bk_fmt_e(r->buf + r->n, v, prec);
+}
+
+void bk_row_g(bk_row *r, double v, int prec)
+{
+    room(r, BK_NUMFMT_MAX + 1);
+    separator(r);
+    r->n += bk_fmt_g(r->buf + r->n, v, prec);
 }
 
 void bk_row_end(bk_row *r)

@@ -1,6 +1,7 @@
 /* csvrow.h -- one row of a result table (CSV), built in a buffer and written
  * with one fwrite: numbers with bk_fmt_g17 (numfmt.h: the text of "%.17g",
- * several times faster than fprintf), integers and names.
+ * several times faster than fprintf) or with fewer digits (bk_fmt_e,
+ * bk_fmt_g: the text of "%.Ne", "%.Ng"), integers and names.
  *
  *   bk_row r;  bk_row_begin(&r, fp);
  *   bk_row_int(&r, step);  bk_row_num(&r, t);  bk_row_str(&r, name);
@@ -26,7 +27,8 @@ void bk_row_begin(bk_row *r, FILE *fp);
 void bk_row_num(bk_row *r, double v);              /* as "%.17g" */
 void bk_row_int(bk_row *r, long v);                /* as "%ld" */
 void bk_row_str(bk_row *r, const char *s);         /* as "%s" (names: no quoting) */
-void bk_row_fmt(bk_row *r, const char *fmt, double v);  /* one number with a printf format */
+void bk_row_e(bk_row *r, double v, int prec);     /* as "%.{prec}e" (numfmt.h bk_fmt_e) */
+void bk_row_g(bk_row *r, double v, int prec);     /* as "%.{prec}g" (numfmt.h bk_fmt_g) */
 void bk_row_end(bk_row *r);                        /* newline, and the row to fp */
 
 /* DIR/NAME opened for writing with a buffer of BK_TABLE_BUFFER bytes (a table

@@ -418,33 +418,12 @@ static int halfway(uint64_t m, int e, int p)
     return m % d == 0;
 }
 
-int bk_fmt_g17(char *buf, double v)
+/* |v| = m 2^e of a finite v != 0 (m with its top bit at 52; subnormals
+ * normalized): the 17 significant digits of "%.17e", d[0..16], and their
+ * decimal exponent *xp; 0, or -1 in the window where snprintf decides (see
+ * the error argument above). */
+static int digits17(uint64_t m, int e, char d[17], int *xp)
 {
-    uint64_t bits;
-    memcpy(&bits, &v, sizeof bits);
-    int neg = (int)(bits >> 63);
-    int be = (int)(bits >> 52) & 0x7ff;
-    uint64_t m = bits & ((UINT64_C(1) << 52) - 1);
-    char *s = buf;
-    if (neg)
-        *s++ = '-';
-    if (be == 0x7ff) {
-        memcpy(s, m ? "nan" : "inf", 4);
-        return (int)(s - buf) + 3;
-    }
-    int e;
-    if (be) {
-        m |= UINT64_C(1) << 52;
-        e = be - 1075;
-    } else if (m) {                  /* subnormal: normalize */
-        int z = __builtin_clzll(m) - 11;
-        m <<= z;
-        e = -1074 - z;
-    } else {
-        memcpy(s, "0", 2);
-        return (int)(s - buf) + 1;
-    }
-
     /* X' = m 10^p 2^e = q + f 2^-64 (truncated; see the error argument) */
     int k0 = ((e + 52) * 78913) >> 18;            /* floor((e + 52) log10 2) */
     int p = 16 - k0;
@@ -472,7 +451,7 @@ int bk_fmt_g17(char *buf, double v)
     }
     if (doubt) {
         if (!halfway(m, e, p - fold))            /* near a boundary, not on it */
-            return snprintf(buf, BK_NUMFMT_MAX, "%.17g", v);
+            return -1;
         up = (int)(n & 1);
     }
     n += (uint64_t)up;
@@ -481,21 +460,110 @@ int bk_fmt_g17(char *buf, double v)
         n = e16;
         ++x;
     }
-
-    char d[17];
     uint64_t hi = n / 100000000;                  /* 9 digits */
     d[0] = (char)('0' + hi / 100000000);
     put8(d + 1, (uint32_t)(hi % 100000000));
     put8(d + 9, (uint32_t)(n % 100000000));
-    int nd = 17;
-    while (d[nd - 1] == '0')                      /* d[0] != '0' */
-        --nd;
+    *xp = x;
+    return 0;
+}
 
-    if (x >= -4 && x < 17) {                      /* fixed notation */
+/* Decodes v: writes its sign to *s; 1 with (m, e) for a finite v != 0, else
+ * 0 with the text of +-0 ("0" + zero_tail), inf or nan written after the sign
+ * and *len its total length. */
+static int decode(double v, char *buf, char **s, uint64_t *mp, int *ep, const char *zero_tail, int *len)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    int be = (int)(bits >> 52) & 0x7ff;
+    uint64_t m = bits & ((UINT64_C(1) << 52) - 1);
+    char *t = buf;
+    if (bits >> 63)
+        *t++ = '-';
+    *s = t;
+    if (be == 0x7ff) {
+        memcpy(t, m ? "nan" : "inf", 4);
+        *len = (int)(t - buf) + 3;
+        return 0;
+    }
+    if (be) {
+        *mp = m | UINT64_C(1) << 52;
+        *ep = be - 1075;
+        return 1;
+    }
+    if (m) {                                      /* subnormal: normalize */
+        int z = __builtin_clzll(m) - 11;
+        *mp = m << z;
+        *ep = -1074 - z;
+        return 1;
+    }
+    size_t k = strlen(zero_tail);
+    *t = '0';
+    memcpy(t + 1, zero_tail, k + 1);
+    *len = (int)(t - buf) + 1 + (int)k;
+    return 0;
+}
+
+/* d[0..16] rounded to its first P digits (1 <= P <= 17), to nearest from the
+ * 17-digit text: exact, since that text is within half a unit of its 17th
+ * digit of v, except when the rest is exactly 5000..., where v may lie on
+ * either side of the halfway point (-1: snprintf decides).  A carry out of
+ * d[0] makes it 1 and increments *x. */
+static int round_digits(char d[17], int P, int *x)
+{
+    if (P >= 17)
+        return 0;
+    if (d[P] < '5')
+        return 0;
+    if (d[P] == '5') {
+        int k = P + 1;
+        while (k < 17 && d[k] == '0')
+            ++k;
+        if (k == 17)
+            return -1;
+    }
+    int i = P - 1;
+    while (i >= 0 && d[i] == '9')
+        d[i--] = '0';
+    if (i >= 0) {
+        d[i]++;
+    } else {
+        d[0] = '1';
+        ++*x;
+    }
+    return 0;
+}
+
+/* e+XX / e-XXX as glibc writes an exponent. */
+static char *put_exponent(char *s, int x)
+{
+    *s++ = 'e';
+    *s++ = x < 0 ? '-' : '+';
+    unsigned a = (unsigned)(x < 0 ? -x : x);
+    if (a >= 100) {
+        *s++ = (char)('0' + a / 100);
+        a %= 100;
+    }
+    memcpy(s, digits2 + 2 * a, 2);
+    return s + 2;
+}
+
+/* "%.Pg": the digits d[0..P-1] (rounded, exponent x) laid out as %g lays them
+ * out (trailing zeros removed). */
+static int layout_g(char *buf, char *s, const char *d, int P, int x)
+{
+    int nd = P;
+    while (nd > 1 && d[nd - 1] == '0')
+        --nd;
+    if (x >= -4 && x < P) {                       /* fixed notation */
         if (x >= 0) {
-            memcpy(s, d, (size_t)x + 1);
-            s += x + 1;
-            if (nd > x + 1) {
+            if (nd <= x + 1) {                    /* an integer: the zeros up to the point */
+                memcpy(s, d, (size_t)nd);
+                memset(s + nd, '0', (size_t)(x + 1 - nd));
+                s += x + 1;
+            } else {
+                memcpy(s, d, (size_t)x + 1);
+                s += x + 1;
                 *s++ = '.';
                 memcpy(s, d + x + 1, (size_t)(nd - x - 1));
                 s += nd - x - 1;
@@ -513,16 +581,61 @@ int bk_fmt_g17(char *buf, double v)
             memcpy(s, d + 1, (size_t)nd - 1);
             s += nd - 1;
         }
-        *s++ = 'e';
-        *s++ = x < 0 ? '-' : '+';
-        unsigned a = (unsigned)(x < 0 ? -x : x);
-        if (a >= 100) {
-            *s++ = (char)('0' + a / 100);
-            a %= 100;
-        }
-        memcpy(s, digits2 + 2 * a, 2);
-        s += 2;
+        s = put_exponent(s, x);
     }
+    *s = '\0';
+    return (int)(s - buf);
+}
+
+int bk_fmt_g17(char *buf, double v)
+{
+    char *s, d[17];
+    uint64_t m;
+    int e, x, len;
+    if (!decode(v, buf, &s, &m, &e, "", &len))
+        return len;
+    if (digits17(m, e, d, &x) != 0)
+        return snprintf(buf, BK_NUMFMT_MAX, "%.17g", v);
+    return layout_g(buf, s, d, 17, x);
+}
+
+int bk_fmt_g(char *buf, double v, int prec)
+{
+    const int P = prec < 1 ? 1 : prec > 17 ? 17 : prec;
+    char *s, d[17];
+    uint64_t m;
+    int e, x, len;
+    if (!decode(v, buf, &s, &m, &e, "", &len))
+        return len;
+    if (digits17(m, e, d, &x) != 0 || round_digits(d, P, &x) != 0)
+        return snprintf(buf, BK_NUMFMT_MAX, "%.*g", P, v);
+    return layout_g(buf, s, d, P, x);
+}
+
+int bk_fmt_e(char *buf, double v, int prec)
+{
+    const int p = prec < 0 ? 0 : prec > 16 ? 16 : prec;
+    static const char zeros[] = ".0000000000000000e+00";
+    char *s, d[17], ztail[24];
+    uint64_t m;
+    int e, x, len;
+    if (p == 0)
+        memcpy(ztail, "e+00", 5);
+    else {
+        memcpy(ztail, zeros, (size_t)p + 1);
+        memcpy(ztail + p + 1, "e+00", 5);
+    }
+    if (!decode(v, buf, &s, &m, &e, ztail, &len))
+        return len;
+    if (digits17(m, e, d, &x) != 0 || round_digits(d, p + 1, &x) != 0)
+        return snprintf(buf, BK_NUMFMT_MAX, "%.*e", p, v);
+    *s++ = d[0];
+    if (p > 0) {
+        *s++ = '.';
+        memcpy(s, d + 1, (size_t)p);
+        s += p;
+    }
+    s = put_exponent(s, x);
     *s = '\0';
     return (int)(s - buf);
 }

@@ -16,4 +16,12 @@
 #define BK_NUMFMT_MAX 32
 int bk_fmt_g17(char *buf, double v);
 
+/* The same for "%.{prec}g" (prec 1..17; outside, clamped) and "%.{prec}e"
+ * (prec 0..16): the 17 digits rounded to prec (+ 1) significant digits, which
+ * is exact except when the digits dropped are exactly 5000...; that rare case,
+ * where the 17-digit text cannot tell on which side of the halfway point v
+ * lies, goes to snprintf.  Same buffer rules and return value. */
+int bk_fmt_g(char *buf, double v, int prec);
+int bk_fmt_e(char *buf, double v, int prec);
+
 #endif

@@ -266,8 +266,18 @@ void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int it
     if (!o->newton)
         return;
     double t0 = bk_clock_s();
-    fprintf(o->newton, "%d,%d,%.17g,%d,%.6e,%.6e,%.6e,%.6g,%.3e\n", attempt, step, lam, iter, residual, ref,
-            increment, alpha, rcond);
+    bk_row r;                      /* attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond */
+    bk_row_begin(&r, o->newton);
+    bk_row_int(&r, attempt);
+    bk_row_int(&r, step);
+    bk_row_num(&r, lam);
+    bk_row_int(&r, iter);
+    bk_row_e(&r, residual, 6);
+    bk_row_e(&r, ref, 6);
+    bk_row_e(&r, increment, 6);
+    bk_row_g(&r, alpha, 6);
+    bk_row_e(&r, rcond, 3);
+    bk_row_end(&r);
     spent(o, t0);
 }
 
@@ -276,7 +286,14 @@ void bk_output_stability(bk_output *o, int step, double lam, int negative, doubl
     if (!o->stability)
         return;
     double t0 = bk_clock_s();
-    fprintf(o->stability, "%d,%.17g,%d,%.9e,%.6e\n", step, lam, negative, eig_min, eig_max);
+    bk_row r;                      /* step,load_factor,negative_eigenvalues,eig_min,eig_max */
+    bk_row_begin(&r, o->stability);
+    bk_row_int(&r, step);
+    bk_row_num(&r, lam);
+    bk_row_int(&r, negative);
+    bk_row_e(&r, eig_min, 9);
+    bk_row_e(&r, eig_max, 6);
+    bk_row_end(&r);
     flush_due(o);
     spent(o, t0);
 }
@@ -293,7 +310,7 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
     const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
     for (int i = 0; i < 6; ++i)
         bk_row_num(&r, v[i]);
-    bk_row_fmt(&r, "%.3e", cres);
+    bk_row_e(&r, cres, 3);
     bk_row_end(&r);
     flush_due(o);
     spent(o, t0);

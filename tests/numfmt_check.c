@@ -1,4 +1,5 @@
-/* numfmt_check.c -- bk_fmt_g17 (runtime/numfmt.c) against glibc's "%.17g".
+/* numfmt_check.c -- bk_fmt_g17, bk_fmt_e and bk_fmt_g (runtime/numfmt.c)
+ * against glibc's "%.17g", "%.{prec}e" and "%.{prec}g".
  *
  *   numfmt_check [NRANDOM [NNICE [SEED]]]   checks; exit 0 when all pass
  *   numfmt_check --bench [N]                 ns per value, bk_fmt_g17 vs snprintf
@@ -6,7 +7,10 @@
  *                                            bk_fmt_g17's text out, one a line
  *
  * Every value checked: strtod of the text gives v back bit for bit (finite v),
- * the text is the one snprintf(buf, .., "%.17g", v) writes, the returned length
+ * the text is the one snprintf(buf, .., "%.17g", v) writes, and so are those of
+ * "%.3e", "%.6e", "%.9e", "%.6g" and of "%.{k}e", "%.{k+1}g" with k going
+ * round 0..16 from one value to the next (their mismatches count in
+ * mismatch); the returned length
  * is strlen and < BK_NUMFMT_MAX (the output buffer is malloc'ed at exactly
  * BK_NUMFMT_MAX bytes, so AddressSanitizer sees an overrun).  Value sets, one
  * output line each ("set=NAME n=.. mismatch=.. roundtrip=.."):
@@ -66,8 +70,32 @@ static uint64_t to_bits(double v)
     return b;
 }
 
+/* bk_fmt_e / bk_fmt_g against snprintf's "%.{prec}e" / "%.{prec}g" (no
+ * round-trip: fewer digits). */
+static void check_prec(double v, int is_e, int prec)
+{
+    char ref[64];
+    int len = is_e ? bk_fmt_e(out, v, prec) : bk_fmt_g(out, v, prec);
+    snprintf(ref, sizeof ref, is_e ? "%.*e" : "%.*g", prec, v);
+    if (len < 0 || len >= BK_NUMFMT_MAX || (size_t)len != strlen(out) || strcmp(out, ref) != 0) {
+        ++n_mismatch;
+        if (n_printed++ < 20)
+            fprintf(stderr, "bits=%016llx %%.%d%c numfmt=\"%s\" (len %d) glibc=\"%s\"\n",
+                    (unsigned long long)to_bits(v), prec, is_e ? 'e' : 'g', out, len, ref);
+    }
+}
+
 static void check(double v)
 {
+    /* the precisions the tables use, and one more of each kind in turn */
+    static int turn;
+    check_prec(v, 1, 3);
+    check_prec(v, 1, 6);
+    check_prec(v, 1, 9);
+    check_prec(v, 0, 6);
+    check_prec(v, 1, turn % 17);
+    check_prec(v, 0, 1 + turn % 17);
+    turn++;
     char ref[64];
     int len = bk_fmt_g17(out, v);
     snprintf(ref, sizeof ref, "%.17g", v);

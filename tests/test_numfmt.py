@@ -1,5 +1,6 @@
-"""bk_fmt_g17 (runtime/numfmt.c), the CSV tables' "%.17g": the same text as glibc's
-snprintf and strtod of it gives the double back, checked by the C harness
+"""bk_fmt_g17 (runtime/numfmt.c), the CSV tables' "%.17g", and bk_fmt_e / bk_fmt_g,
+their "%.Ne" / "%.Ng" (newton.csv, stability.csv, energy.csv): the same text as glibc's
+snprintf (and strtod of the 17 digits gives the double back), checked by the C harness
 tests/numfmt_check.c (AddressSanitizer + UBSan) over edge values, every exact
 halfway case form, 2 x 10^6 random bit patterns and 10^6 CSV-like values; and
 on values chosen here against Python's own correctly rounded formatting
