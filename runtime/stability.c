@@ -122,6 +122,9 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
     }
     for (int i = 0; i < n; ++i)
         st->nmult += st->ismult[i];
+    st->dcross = malloc(2 * N * sizeof *st->dcross);
+    if (!st->dcross)
+        return -1;
     if (m->stat.eigenvalues) {
         st->x = malloc(N * sizeof(double));
         st->y = malloc(N * sizeof(double));
@@ -335,6 +338,8 @@ double bk_stability_crossing(bk_stability *st, int count_before)
         return NAN;
     double t0 = bk_clock_s();
     double lo = 0.0, hi = 1.0;
+    double *Dlo = st->dcross, *Dhi = st->dcross + st->n;    /* the pivots at lo and hi, when factored */
+    int have_lo = 0, have_hi = 0, count_hi = count_before;
     for (int it = 0; it < BK_CROSSING_BISECTIONS; ++it) {
         double t = 0.5 * (lo + hi);
         int c;
@@ -352,15 +357,37 @@ double bk_stability_crossing(bk_stability *st, int count_before)
                 st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * st->Bnow[k];
             c = inertia(st, NULL);
         }
-        if (c == count_before)
+        const double *D = st->use_band ? st->band.D : st->D;
+        if (c == count_before) {
             lo = t;
-        else
+            memcpy(Dlo, D, (size_t)st->n * sizeof *Dlo);
+            have_lo = 1;
+        } else {
             hi = t;
+            if (c >= 0)                  /* (a zero pivot ends the factorization early) */
+                memcpy(Dhi, D, (size_t)st->n * sizeof *Dhi);
+            have_hi = c >= 0;
+            count_hi = c;
+        }
     }
     if (!st->use_band)
         memcpy(st->Bx, st->Bnow, (size_t)st->Bp[st->n] * sizeof *st->Bx);
+    /* det(hi) / det(lo) as the product of the pivots' ratios (each near 1 in
+     * so narrow a bracket, but for the pivots the crossing moves).  k
+     * eigenvalues crossing at t* make det ~ (t - t*)^k there (k = 2: the
+     * two bending planes of a square section): t* where the k-th root of |det|
+     * interpolated linearly vanishes, when the sign of the ratio agrees. */
+    double t = 0.5 * (lo + hi);
+    const int k = count_hi > count_before ? count_hi - count_before : count_before - count_hi;
+    if (have_lo && have_hi && k >= 1) {
+        double r = 1.0;
+        for (int i = 0; i < st->n; ++i)
+            r *= Dhi[i] / Dlo[i];
+        if (isfinite(r) && r != 0.0 && (r < 0.0) == (k % 2 == 1))
+            t = lo + (hi - lo) / (1.0 + pow(fabs(r), 1.0 / k));
+    }
     st->t_spent += bk_clock_s() - t0;
-    return 0.5 * (lo + hi);
+    return t;
 }
 
 static void stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
@@ -472,6 +499,7 @@ void bk_stability_accept(bk_stability *st)
 void bk_stability_free(bk_stability *st)
 {
     free(st->ismult);
+    free(st->dcross);
     free(st->Bp);
     free(st->Bi);
     free(st->src);

@@ -57,6 +57,7 @@ typedef struct bk_stability {
     double *Lx, *D, *Y;
     /* eigenvalue iterations (static.eigenvalues) */
     double *x, *y, *z;              /* iteration vectors                        */
+    double *dcross;                 /* [2 n] the pivots at the ends of the crossing's bracket */
     double *xmax;                   /* the last power-iteration vector          */
     int have_vec;                   /* x holds the last eigenvector             */
     int have_vmax;                  /* xmax holds one                           */
@@ -81,11 +82,14 @@ void bk_stability_accept(bk_stability *st);
 /* After a check whose count differs from the previous one: the fraction
  * t in (0, 1) between the last accepted and the current state at which the matrix
  * interpolated linearly between the two, (1 - t) A_prev + t A, first has a
- * negative-eigenvalue count different from the previous one (bisection on
- * the inertia, BK_CROSSING_BISECTIONS factorizations: t within 2^-21 of that
- * point, exact up to that for a tangent linear in the load, as on a straight
- * pre-buckling path; elsewhere the linear interpolation's own error, of the
- * order of the squared step, is far larger).  NaN when unavailable. */
+ * negative-eigenvalue count different from the previous one: bisection on
+ * the inertia, BK_CROSSING_BISECTIONS factorizations, to a bracket 2^-20
+ * wide, then the zero of the k-th root of the determinant (the product of
+ * the pivots; k eigenvalues crossing) interpolated linearly across it (within
+ * about the squared width, so exact to round-off for a tangent linear in the
+ * load, as on a straight pre-buckling path), or the bracket's middle when the
+ * determinant's sign does not fit k.  Off such a path the linear interpolation's own error, of
+ * the order of the squared step, is far larger.  NaN when unavailable. */
 #define BK_CROSSING_BISECTIONS 20
 double bk_stability_crossing(bk_stability *st, int count_before);
 void bk_stability_free(bk_stability *st);
