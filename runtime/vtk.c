@@ -151,14 +151,22 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     return 0;
 }
 
-/* From the third frame of a run on (a run of one or two frames would pay more
- * for the thread and its buffers' first use than it saves), frames of up to
- * BK_VTK_BACKGROUND_MAX bytes go to the background writer; if it cannot be
- * made, they are written directly. */
-static void maybe_background(bk_vtk *v)
+/* Frames of up to BK_VTK_BACKGROUND_MAX bytes go to the background writer
+ * from the third frame of a run on that is expected to have at least
+ * BK_VTK_BACKGROUND_MIN frames: the thread, its buffers' first use and the
+ * wait for the last frame at the end cost about as much as 5-8 frames written
+ * directly.  frac: the fraction of the run done at this frame (load factor,
+ * time or mode over its end), which with the frames so far gives the
+ * expected number; <= 0 when unknown (arc-length, load cycles: the writer
+ * starts at the third frame).  If it cannot be made, frames are written
+ * directly. */
+#define BK_VTK_BACKGROUND_MIN 8
+static void maybe_background(bk_vtk *v, double frac)
 {
     if (v->background || v->tried_background || v->written < 2 || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
         return;
+    if (frac > 0.0 && (v->written + 1) < BK_VTK_BACKGROUND_MIN * frac)
+        return;                              /* a short run (asked again at its next frame) */
     v->tried_background = 1;
     if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
         v->background = 1;
@@ -166,15 +174,31 @@ static void maybe_background(bk_vtk *v)
         bk_filewriter_close(&v->fw);
 }
 
+/* The first file written here that failed is kept. */
+static void record_failure(bk_vtk *v, const char *path, int err)
+{
+    if (v->failed)
+        return;
+    v->failed = 1;
+    v->errno_ = err ? err : EIO;
+    snprintf(v->failed_path, sizeof v->failed_path, "%s", path);
+}
+
 int bk_vtk_finish(bk_vtk *v, FILE *err)
 {
-    if (!v->background || bk_filewriter_drain(&v->fw) == 0)
-        return 0;
-    if (err && v->fw.failed == 1) {
-        fprintf(err, "error: %s: cannot write: %s\n", v->fw.failed_path, strerror(v->fw.errno_));
-        v->fw.failed = 2;                 /* reported */
+    int bad = v->background && bk_filewriter_drain(&v->fw) != 0;
+    const char *path = NULL;
+    int e = 0;
+    if (v->failed == 1) {
+        path = v->failed_path, e = v->errno_;
+        v->failed = 2;                    /* reported */
+    } else if (bad && v->fw.failed == 1) {
+        path = v->fw.failed_path, e = v->fw.errno_;
+        v->fw.failed = 2;
     }
-    return -1;
+    if (err && path)
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(e));
+    return bad || v->failed ? -1 : 0;
 }
 
 void bk_vtk_close(bk_vtk *v)
@@ -196,15 +220,17 @@ void bk_vtk_close(bk_vtk *v)
 /* A ParaView collection DIR/NAME of n files: entry k is file_fmt with id[k] (k + 1
  * when id is NULL) at time value t[k] (k + 1 when t is NULL); written to a
  * temporary file and renamed, so a reader never sees half a collection. */
-static int write_collection(const char *dir, const char *name, int n, const double *t, const int *id,
+static int write_collection(bk_vtk *v, const char *dir, const char *name, int n, const double *t, const int *id,
                             const char *file_fmt)
 {
     char path[1200], tmp[1210], file[64];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     FILE *fp = fopen(tmp, "w");
-    if (!fp)
+    if (!fp) {
+        record_failure(v, tmp, errno);
         return -1;
+    }
     fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
     for (int k = 0; k < n; ++k) {
         snprintf(file, sizeof file, file_fmt, id ? id[k] : k + 1);
@@ -212,16 +238,22 @@ static int write_collection(const char *dir, const char *name, int n, const doub
                 file);
     }
     fprintf(fp, "  </Collection>\n</VTKFile>\n");
-    if (fclose(fp) != 0)
+    if (fclose(fp) != 0) {
+        record_failure(v, tmp, errno);
         return -1;
-    return rename(tmp, path);
+    }
+    if (rename(tmp, path) != 0) {
+        record_failure(v, path, errno);
+        return -1;
+    }
+    return 0;
 }
 
 static int write_pvd(bk_vtk *v)
 {
     if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
         bk_filewriter_drain(&v->fw);
-    return write_collection(v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
+    return write_collection(v, v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
 }
 
 /* modes.pvd: mode_NN.vtu of modes 1..nmode, the mode number as the time value
@@ -230,7 +262,7 @@ static int write_modes_pvd(bk_vtk *v)
 {
     if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
         bk_filewriter_drain(&v->fw);
-    return write_collection(v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
+    return write_collection(v, v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
 }
 
 /* What a .vtu shows.  A step frame (mode == NULL): the points of q and their
@@ -580,7 +612,6 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
 static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
                      const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
 {
-    maybe_background(v);
     v->written++;
     if (v->background) {
         unsigned char *buf = bk_filewriter_buffer(&v->fw);
@@ -600,12 +631,18 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
             bk_filewriter_cancel(&v->fw, buf);
     }
     FILE *fp = fopen(path, "wb");
-    if (!fp)
+    if (!fp) {
+        record_failure(v, path, errno);
         return -1;
+    }
     char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
     setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
     vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample);
-    return fclose(fp) != 0 ? -1 : 0;              /* (flushes iobuf before it goes out of scope) */
+    if (fclose(fp) != 0) {                        /* (flushes iobuf before it goes out of scope) */
+        record_failure(v, path, errno);
+        return -1;
+    }
+    return 0;
 }
 
 int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
@@ -632,6 +669,13 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     static const char *const names[] = {"TIME"};
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
+    const bk_model *m = v->m;
+    double frac = -1.0;
+    if (m->analysis == BK_DYNAMIC && m->dyn.t_end > 0.0)
+        frac = t / m->dyn.t_end;
+    else if (m->analysis == BK_STATIC && !m->stat.arc_length && m->stat.cycles == 0)
+        frac = t;                                    /* the load factor, 0 -> 1 */
+    maybe_background(v, frac);
     if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
         return -1;
     v->times[v->nframe] = t;
@@ -660,6 +704,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, do
     static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
     const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
     mode_view mv = {qp, qm, eps, norm, scale};
+    maybe_background(v, v->m->modal.nmodes > 0 ? (double)mode / v->m->modal.nmodes : -1.0);
     if (write_vtu(v, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)

@@ -35,6 +35,9 @@ typedef struct bk_vtk {
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     bk_filewriter fw;        /* owned when background */
+    int failed;              /* a frame or collection written here could not be: 1, 2 once reported */
+    int errno_;              /*   its errno */
+    char failed_path[1200];  /*   its path */
 } bk_vtk;
 
 /* From a run's third frame on, frames up to this size are made in memory and
@@ -52,8 +55,9 @@ int bk_vtk_frame(bk_vtk *v, const struct bk_system *s, int step, double t, const
  * handed to the background writer is on disk; 0, or -1 on a write error (of
  * the collection or of a frame: bk_vtk_failed says which). */
 int bk_vtk_flush(bk_vtk *v);
-/* Waits for the frames being written; 0, or -1 when one failed:
- * "error: PATH: cannot write: REASON" on err (once). */
+/* Waits for the frames being written; 0, or -1 when a frame or collection
+ * could not be written (by the background thread or here): "error: PATH:
+ * cannot write: REASON" on err for the first (once). */
 int bk_vtk_finish(bk_vtk *v, FILE *err);
 void bk_vtk_close(bk_vtk *v);
 

@@ -116,9 +116,30 @@ def test_dynamic_failure_keeps_steps_and_says_where():
     assert len({x["step"] for x in rows}) == s["steps"] + 1
 
 
+def test_frame_written_directly_that_cannot_be_is_an_error():
+    """Seed Table 3 writes its two frames directly (too few for the background
+    writer): the last one's name taken by a directory is reported with its path
+    and reason, the run exits with status 1, the other frame, the tables and
+    summary.json are still written."""
+    out = fresh()
+    assert run_cli(["run", "cantilever_bend_100N_nu03", "--quiet", "--out", str(out)]).returncode == 0
+    frames = sorted(p.name for p in out.glob("step_*.vtu"))
+    assert len(frames) == 2, frames
+    run_dir = fresh()
+    (run_dir / frames[1]).mkdir()
+    solver = ROOT / "out" / "bin" / "cantilever_bend_100N_nu03"
+    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert f"error: {run_dir}/{frames[1]}: cannot write: Is a directory" in p.stderr, p.stderr
+    assert p.stderr.count("cannot write") == 1, p.stderr
+    assert (run_dir / frames[0]).is_file() and (run_dir / "sections.csv").is_file()
+    assert json.loads((run_dir / "summary.json").read_text())["converged"]
+
+
 def test_frame_that_cannot_be_written_is_an_error():
-    """A ParaView frame past the second (those are written by the background
-    thread) that cannot be created -- its name taken by a directory -- is
+    """A ParaView frame past the second of a run long enough for the background
+    writer that cannot be created -- its name taken by a directory -- is
     reported with its path and reason, the run exits with status 1, and the
     frames before and after it and summary.json are still written."""
     out = fresh()
