@@ -95,6 +95,8 @@ int main(int argc, char **argv)
     info.strain_energy = bk_strain_energy(s, q);
     info.wall_s = bk_clock_s() - t0;
     info.output_s = out.t_output;
+    if (bk_output_close_tables(&out, stderr) != 0)       /* every table on disk before the summary */
+        out.write_failed = 1;
     int wrc = bk_output_summary(&out, &info, q, stderr);   /* before the close: it reports the reactions */
     if (out.write_failed)
         wrc = -1;

@@ -483,6 +483,37 @@ void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fm
         fprintf(console, "warning: %s: %s\n", scene, text);
 }
 
+/* Closes *fp (DIR/name); 0, or -1 with the error on err. */
+static int close_table(const bk_output *o, FILE **fp, const char *name, FILE *err)
+{
+    if (!*fp)
+        return 0;
+    int bad = ferror(*fp) != 0;
+    int e = bad ? EIO : 0;
+    if (fclose(*fp) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    *fp = NULL;
+    if (bad && err)
+        fprintf(err, "error: %s/%s: cannot write: %s\n", o->dir, name, strerror(e));
+    return bad ? -1 : 0;
+}
+
+int bk_output_close_tables(bk_output *o, FILE *err)
+{
+    int bad = 0;
+    bad |= close_table(o, &o->sensors, "sensors.csv", err);
+    bad |= close_table(o, &o->energy, "energy.csv", err);
+    bad |= close_table(o, &o->newton, "newton.csv", err);
+    bad |= close_table(o, &o->stability, "stability.csv", err);
+    bad |= close_table(o, &o->modes, "modes.csv", err);
+    bad |= close_table(o, &o->mode_sensors, "mode_sensors.csv", err);
+    bad |= close_table(o, &o->forces.reactions, "reactions.csv", err);
+    bad |= close_table(o, &o->forces.sections, "sections.csv", err);
+    return bad ? -1 : 0;
+}
+
 void bk_output_close(bk_output *o)
 {
     if (o->sensors)

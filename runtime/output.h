@@ -142,6 +142,12 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
  * recorded with the same text is not repeated. */
 void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
+/* Writes out and closes the result tables (their last rows are still in
+ * their buffers: a short run writes them only now), before summary.json;
+ * 0, or -1 with "error: PATH: cannot write: REASON" on err for each table
+ * that could not be written. */
+int bk_output_close_tables(bk_output *o, FILE *err);
+/* Closes what is still open (the tables too, unreported) and frees. */
 void bk_output_close(bk_output *o);
 
 #endif

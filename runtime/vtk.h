@@ -37,7 +37,7 @@ typedef struct bk_vtk {
     bk_filewriter fw;        /* owned when background */
     int failed;              /* a frame or collection written here could not be: 1, 2 once reported */
     int errno_;              /*   its errno */
-    char failed_path[1200];  /*   its path */
+    char failed_path[1216];  /*   its path (a collection's temporary name included) */
 } bk_vtk;
 
 /* From a run's third frame on, frames up to this size are made in memory and

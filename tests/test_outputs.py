@@ -137,6 +137,25 @@ def test_frame_written_directly_that_cannot_be_is_an_error():
     assert json.loads((run_dir / "summary.json").read_text())["converged"]
 
 
+def test_table_that_cannot_be_written_is_an_error():
+    """A result table whose bytes cannot be written (newton.csv a link to
+    /dev/full: every write fails with ENOSPC, as on a full disk; a short run
+    writes its tables only when it closes them) is reported with its path and
+    reason before summary.json is written, and the run exits with status 1."""
+    out = fresh()
+    assert run_cli(["run", "cantilever_bend_100N_nu03", "--quiet", "--out", str(out)]).returncode == 0
+    run_dir = fresh()
+    os.symlink("/dev/full", run_dir / "newton.csv")
+    solver = ROOT / "out" / "bin" / "cantilever_bend_100N_nu03"
+    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert f"error: {run_dir}/newton.csv: cannot write: No space left on device" in p.stderr, p.stderr
+    assert p.stderr.count("cannot write") == 1, p.stderr
+    assert (run_dir / "sensors.csv").read_text().count("\n") == 3
+    assert json.loads((run_dir / "summary.json").read_text())["converged"]
+
+
 def test_frame_that_cannot_be_written_is_an_error():
     """A ParaView frame past the second of a run long enough for the background
     writer that cannot be created -- its name taken by a directory -- is
