@@ -116,23 +116,44 @@ def test_dynamic_failure_keeps_steps_and_says_where():
     assert len({x["step"] for x in rows}) == s["steps"] + 1
 
 
+def _private_solver(scene, sets=()):
+    """A run of `scene` and a private copy of its solver that reads that run's
+    model.dat (another test may relink out/bin/SCENE for other elements at any
+    time: then build again and copy again); (run directory, solver, frames)."""
+    out = fresh()
+    solver = out.parent / (out.name + "-solver")
+    for _ in range(5):
+        assert run_cli(["run", scene, "--quiet", "--out", str(out)] + list(sets)).returncode == 0
+        shutil.copy2(ROOT / "out" / "bin" / scene, solver)
+        frames = sorted(p.name for p in out.glob("step_*.vtu"))
+        probe = subprocess.run([str(solver), str(out / "model.dat"), str(out), "--quiet"], capture_output=True)
+        if probe.returncode == 0:
+            break
+    return out, solver, frames
+
+
+def _run_into(solver, out, run_dir):
+    return subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
+                          text=True, timeout=600)
+
+
+def _fails_once(p, path, reason):
+    """The run exited with status 1 and reported one write error, PATH's."""
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert f"error: {path}: cannot write: {reason}" in p.stderr, p.stderr
+    assert p.stderr.count("cannot write") == 1, p.stderr
+
+
 def test_frame_written_directly_that_cannot_be_is_an_error():
     """Seed Table 3 writes its two frames directly (too few for the background
     writer): the last one's name taken by a directory is reported with its path
     and reason, the run exits with status 1, the other frame, the tables and
     summary.json are still written."""
-    out = fresh()
-    assert run_cli(["run", "cantilever_bend_100N_nu03", "--quiet", "--out", str(out)]).returncode == 0
-    frames = sorted(p.name for p in out.glob("step_*.vtu"))
+    out, solver, frames = _private_solver("cantilever_bend_100N_nu03")
     assert len(frames) == 2, frames
     run_dir = fresh()
     (run_dir / frames[1]).mkdir()
-    solver = ROOT / "out" / "bin" / "cantilever_bend_100N_nu03"
-    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
-                       text=True, timeout=600)
-    assert p.returncode == 1, (p.returncode, p.stderr)
-    assert f"error: {run_dir}/{frames[1]}: cannot write: Is a directory" in p.stderr, p.stderr
-    assert p.stderr.count("cannot write") == 1, p.stderr
+    _fails_once(_run_into(solver, out, run_dir), f"{run_dir}/{frames[1]}", "Is a directory")
     assert (run_dir / frames[0]).is_file() and (run_dir / "sections.csv").is_file()
     assert json.loads((run_dir / "summary.json").read_text())["converged"]
 
@@ -142,16 +163,10 @@ def test_table_that_cannot_be_written_is_an_error():
     /dev/full: every write fails with ENOSPC, as on a full disk; a short run
     writes its tables only when it closes them) is reported with its path and
     reason before summary.json is written, and the run exits with status 1."""
-    out = fresh()
-    assert run_cli(["run", "cantilever_bend_100N_nu03", "--quiet", "--out", str(out)]).returncode == 0
+    out, solver, _ = _private_solver("cantilever_bend_100N_nu03")
     run_dir = fresh()
     os.symlink("/dev/full", run_dir / "newton.csv")
-    solver = ROOT / "out" / "bin" / "cantilever_bend_100N_nu03"
-    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
-                       text=True, timeout=600)
-    assert p.returncode == 1, (p.returncode, p.stderr)
-    assert f"error: {run_dir}/newton.csv: cannot write: No space left on device" in p.stderr, p.stderr
-    assert p.stderr.count("cannot write") == 1, p.stderr
+    _fails_once(_run_into(solver, out, run_dir), f"{run_dir}/newton.csv", "No space left on device")
     assert (run_dir / "sensors.csv").read_text().count("\n") == 3
     assert json.loads((run_dir / "summary.json").read_text())["converged"]
 
@@ -161,24 +176,11 @@ def test_frame_that_cannot_be_written_is_an_error():
     writer that cannot be created -- its name taken by a directory -- is
     reported with its path and reason, the run exits with status 1, and the
     frames before and after it and summary.json are still written."""
-    out = fresh()
-    sets = ["--set", "dynamic.t_end=0.2"]
-    solver = out.parent / (out.name + "-solver")      # a private copy (see the progress-line test)
-    for _ in range(5):
-        assert run_cli(["run", "pendulum_soft_gef", "--quiet", "--out", str(out)] + sets).returncode == 0
-        shutil.copy2(ROOT / "out" / "bin" / "pendulum_soft_gef", solver)
-        frames = sorted(p.name for p in out.glob("step_*.vtu"))
-        probe = subprocess.run([str(solver), str(out / "model.dat"), str(out), "--quiet"], capture_output=True)
-        if probe.returncode == 0:
-            break
+    out, solver, frames = _private_solver("pendulum_soft_gef", ["--set", "dynamic.t_end=0.2"])
     assert len(frames) >= 6, frames
     run_dir = fresh()
     (run_dir / frames[3]).mkdir()
-    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True,
-                       text=True, timeout=600)
-    assert p.returncode == 1, (p.returncode, p.stderr)
-    assert f"error: {run_dir}/{frames[3]}: cannot write: Is a directory" in p.stderr, p.stderr
-    assert p.stderr.count("cannot write") == 1, p.stderr
+    _fails_once(_run_into(solver, out, run_dir), f"{run_dir}/{frames[3]}", "Is a directory")
     written = sorted(q.name for q in run_dir.glob("step_*.vtu") if q.is_file())
     assert written == [f for f in frames if f != frames[3]], written
     assert json.loads((run_dir / "summary.json").read_text())["converged"]
@@ -187,18 +189,9 @@ def test_frame_that_cannot_be_written_is_an_error():
 def test_progress_line_on_a_terminal_only():
     """A run over one second shows an updating progress line when stderr is a terminal, none
     otherwise, and none with --quiet."""
-    out = fresh()
     # 30,000 steps: a few seconds even on a fast, idle machine (the line appears after one second)
     sets = ["--set", "dynamic.dt=5e-5", "--set", "dynamic.t_end=1.5", "--set", "output.vtk_every=0"]
-    # a private copy of the solver: another test may relink out/bin/pendulum_soft_ancf for other
-    # elements at any time (then build again and copy again)
-    solver = out.parent / (out.name + "-solver")
-    for _ in range(5):
-        assert run_cli(["run", "pendulum_soft_ancf", "--quiet", "--out", str(out)] + sets).returncode == 0
-        shutil.copy2(ROOT / "out" / "bin" / "pendulum_soft_ancf", solver)
-        probe = subprocess.run([str(solver), str(out / "model.dat"), str(out), "--quiet"], capture_output=True)
-        if probe.returncode == 0:
-            break
+    out, solver, _ = _private_solver("pendulum_soft_ancf", sets)
     args = [str(solver), str(out / "model.dat"), str(out)]
     master, slave = pty.openpty()
     p = subprocess.run(args, stderr=slave, stdout=subprocess.DEVNULL, timeout=600)
