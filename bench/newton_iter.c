@@ -10,9 +10,7 @@
  * band solver does the forward substitution during the elimination):
  * iteration_s = assembly_s + factor_s.  solve_s is one more solve with the
  * kept factors (an iteration that reuses them).  Prints key=value lines: the
- * medians of each part, the fastest assembly (assembly_fastest_s: the
- * thread comparison's measure, the one least touched by a second core that
- * the host gives to another guest for a while), the setup time, the peak resident memory (VmHWM) and the
+ * medians of each part, the setup time, the peak resident memory (VmHWM) and the
  * counts of KLU analyses, numeric factorizations and full (pivoting,
  * allocating) factorizations.
  */
@@ -122,10 +120,6 @@ int main(int argc, char **argv)
     printf("elements=%d\ndofs=%d\nequations=%d\nnnz=%ld\nthreads=%d\n", m->nelem, nd, ne, s->nnz, s->nthreads);
     printf("setup_s=%.6e\niteration_s=%.6e\nassembly_s=%.6e\nfactor_s=%.6e\nsolve_s=%.6e\n", t_setup,
            median(tt, nit), median(ta, nit), median(tf, nit), median(ts, nit));
-    double fastest = ta[0];
-    for (int it = 1; it < nit; ++it)
-        fastest = ta[it] < fastest ? ta[it] : fastest;
-    printf("assembly_fastest_s=%.6e\n", fastest);
     printf("analyses=%d\nfactorizations=%d\nfull_factorizations=%d\nmaxrss_kb=%ld\n", ls.nanalyze, ls.nfactor,
            ls.nfull, hwm);
     bk_lin_free(&ls);
