@@ -20,6 +20,7 @@ import json
 import math
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -465,6 +466,7 @@ def scaling(quick, log):
         paths[n] = WORK / f"scaling_{n}.dat"
         write_model(build(scene, [f"beam.arm.elements={n}", f"beam.arm.end.0={0.1 * n}"]), paths[n])
     best = {}
+    speedups = {}                       # n: the 2-thread speedups of the assembly, one a pass
     npass = 1 if quick else SCALING_PASSES
     for k in range(npass):
         for n in sizes:
@@ -472,19 +474,25 @@ def scaling(quick, log):
             if mpath is None:
                 mpath = WORK / f"scaling_{n}.dat"
                 write_model(build(scene, [f"beam.arm.elements={n}", f"beam.arm.end.0={0.1 * n}"]), mpath)
+            pair = {}
             for threads in ((1, 2) if n in (1000, 10000) else (1,)):
                 row = one(n, threads, mpath)
+                pair[threads] = row["assembly_s"]
                 old = best.get((n, threads))
                 if old is None or row["iteration_s"] < old["iteration_s"]:
                     best[n, threads] = row
                 # the fastest assembly on its own (the thread comparison's measure), over the passes
                 best[n, threads]["assembly_min_s"] = min(row["assembly_s"], old["assembly_min_s"] if old else math.inf)
+            if 2 in pair:                # back-to-back runs: a slow spell of the host reaches both alike
+                speedups.setdefault(n, []).append(pair[1] / pair[2])
             if n not in paths:
                 mpath.unlink()
                 log(f"  scaling: {n} elements, pass {k + 1}")
         log(f"  scaling: pass {k + 1} done")
     for n in small:
         paths[n].unlink()
+    for n, v in speedups.items():
+        best[n, 2]["assembly_speedup"] = statistics.median(v)
     return [best[k] for k in sorted(best)]
 
 
@@ -646,7 +654,7 @@ def main(argv):
     s1 = {r["elements"]: r for r in srows if r["threads"] == 1}
     s2 = {r["elements"]: r for r in srows if r["threads"] == 2}
     nbig = max(s2) if s2 else None
-    par = s1[nbig].get("assembly_min_s", s1[nbig]["assembly_s"]) / s2[nbig].get("assembly_min_s", s2[nbig]["assembly_s"]) \
+    par = s2[nbig].get("assembly_speedup", s1[nbig]["assembly_s"] / s2[nbig]["assembly_s"]) \
         if nbig in s2 else math.nan
     big = max((r for r in srows if r["threads"] == 1), key=lambda r: r["elements"])
     # memory per element: the slope of the peak memory between the two largest runs
@@ -730,8 +738,9 @@ def main(argv):
              f"taken by the next free thread, which adds directly into the entries only that part touches; entries "
              f"shared by two parts are staged and summed in element order after the region; bit-identical results for 1, 2, 3 threads "
              f"(tests/test_parallel.py); assembly at {nbig:,} elements "
-             f"{par:.2f}x as fast with 2 threads as with 1 (fastest assembly of each over "
-             f"{1 if quick else SCALING_PASSES} interleaved passes; machine load average {load[0]:.1f} on "
+             f"{par:.2f}x as fast with 2 threads as with 1 (median over "
+             f"{1 if quick else SCALING_PASSES} passes of the ratio of back-to-back runs, each the median "
+             f"assembly of its iterations; machine load average {load[0]:.1f} on "
              f"{os.cpu_count()} cores during the run; target ≥ 1.7x) | {met(par >= 1.7 and nbig >= 10000)} |")
     L.append(f"| incremental regeneration; full regeneration < 10 min | unchanged pairs are skipped by input hash "
              f"(re-run: {tc['regen_incremental_redone']} units redone, {tc['regen_incremental_s']:.1f} s); "
