@@ -112,6 +112,15 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
     bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
 }
 
+/* The stability check of the reference state made on the first Newton matrix
+ * of the first load step, when that matrix is the reference state's
+ * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res). */
+typedef struct reference_probe {
+    bk_stability *st;
+    bk_stability_result res;
+    int state;
+} reference_probe;
+
 /* The static problem for the nonlinear solver (nonlinear.h): the residual at
  * load factor lam, the update of q and the multipliers, the rotation trust
  * region.
@@ -122,15 +131,6 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
  * their failures are the alternation between membrane and bending residuals of
  * slender beams, which the rotation trust region below and the load increment
  * address.  It was removed rather than kept as an option that does nothing. */
-/* The stability check of the reference state made on the first Newton matrix
- * of the first load step, when that matrix is the reference state's
- * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res). */
-typedef struct reference_probe {
-    bk_stability *st;
-    bk_stability_result res;
-    int state;
-} reference_probe;
-
 typedef struct static_problem {
     bk_system *s;
     work *w;
