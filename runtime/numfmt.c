@@ -418,11 +418,36 @@ static int halfway(uint64_t m, int e, int p)
     return m % d == 0;
 }
 
+/* The digits are kept in a DIGITS-byte buffer, '0' past the 17th, so that the
+ * layouts below copy whole blocks of 16 or 17 bytes (no call for a copy of
+ * variable length) and write past the text's end, within BK_NUMFMT_MAX. */
+#define DIGITS 32
+static const uint64_t ZEROS8 = UINT64_C(0x3030303030303030);     /* "00000000" */
+
+static inline void pad_digits(char *d)
+{
+    memcpy(d + 17, "000000000000000", 15);
+}
+
+/* The number of digits of d[0..16] without the trailing zeros (at least 1),
+ * from two 8-byte words: the last byte that is not '0' (little endian). */
+static inline int significant(const char *d)
+{
+    uint64_t w;
+    memcpy(&w, d + 9, 8);
+    if (w != ZEROS8)
+        return 9 + 8 - (__builtin_clzll(w ^ ZEROS8) >> 3);
+    memcpy(&w, d + 1, 8);
+    if (w != ZEROS8)
+        return 1 + 8 - (__builtin_clzll(w ^ ZEROS8) >> 3);
+    return 1;
+}
+
 /* |v| = m 2^e of a finite v != 0 (m with its top bit at 52; subnormals
- * normalized): the 17 significant digits of "%.17e", d[0..16], and their
- * decimal exponent *xp; 0, or -1 in the window where snprintf decides (see
+ * normalized): the 17 significant digits of "%.17e", d[0..16] (d: DIGITS
+ * bytes, '0' past them), and their decimal exponent *xp; 0, or -1 in the window where snprintf decides (see
  * the error argument above). */
-static int digits17(uint64_t m, int e, char d[17], int *xp)
+static int digits17(uint64_t m, int e, char *d, int *xp)
 {
     /* X' = m 10^p 2^e = q + f 2^-64 (truncated; see the error argument) */
     int k0 = ((e + 52) * 78913) >> 18;            /* floor((e + 52) log10 2) */
@@ -464,6 +489,7 @@ static int digits17(uint64_t m, int e, char d[17], int *xp)
     d[0] = (char)('0' + hi / 100000000);
     put8(d + 1, (uint32_t)(hi % 100000000));
     put8(d + 9, (uint32_t)(n % 100000000));
+    pad_digits(d);
     *xp = x;
     return 0;
 }
@@ -548,39 +574,35 @@ static char *put_exponent(char *s, int x)
     return s + 2;
 }
 
-/* "%.Pg": the digits d[0..P-1] (rounded, exponent x) laid out as %g lays them
- * out (trailing zeros removed). */
-static int layout_g(char *buf, char *s, const char *d, int P, int x)
+/* "%.Pg": the digits d[0..P-1] (rounded, exponent x; d as above) laid out as
+ * %g lays them out (trailing zeros removed). */
+static int layout_g(char *buf, char *s, char *d, int P, int x)
 {
-    int nd = P;
-    while (nd > 1 && d[nd - 1] == '0')
-        --nd;
+    if (P < 17)
+        memset(d + P, '0', (size_t)(17 - P));
+    const int nd = significant(d);
     if (x >= -4 && x < P) {                       /* fixed notation */
         if (x >= 0) {
-            if (nd <= x + 1) {                    /* an integer: the zeros up to the point */
-                memcpy(s, d, (size_t)nd);
-                memset(s + nd, '0', (size_t)(x + 1 - nd));
+            memcpy(s, d, 17);                     /* the integer part: x + 1 <= 17 digits */
+            if (nd <= x + 1) {                    /* an integer (d is '0' up to the point) */
                 s += x + 1;
             } else {
-                memcpy(s, d, (size_t)x + 1);
                 s += x + 1;
                 *s++ = '.';
-                memcpy(s, d + x + 1, (size_t)(nd - x - 1));
+                memcpy(s, d + x + 1, 16);         /* nd - x - 1 <= 16 digits */
                 s += nd - x - 1;
             }
         } else {
-            memcpy(s, "0.000", (size_t)(1 - x));
+            memcpy(s, "0.0000", 6);
             s += 1 - x;
-            memcpy(s, d, (size_t)nd);
+            memcpy(s, d, 17);
             s += nd;
         }
     } else {                                      /* d.ddde+XX */
-        *s++ = d[0];
-        if (nd > 1) {
-            *s++ = '.';
-            memcpy(s, d + 1, (size_t)nd - 1);
-            s += nd - 1;
-        }
+        s[0] = d[0];
+        s[1] = '.';
+        memcpy(s + 2, d + 1, 16);
+        s += nd > 1 ? nd + 1 : 1;
         s = put_exponent(s, x);
     }
     *s = '\0';
@@ -589,7 +611,7 @@ static int layout_g(char *buf, char *s, const char *d, int P, int x)
 
 int bk_fmt_g17(char *buf, double v)
 {
-    char *s, d[17];
+    char *s, d[DIGITS];
     uint64_t m;
     int e, x, len;
     if (!decode(v, buf, &s, &m, &e, "", &len))
@@ -602,7 +624,7 @@ int bk_fmt_g17(char *buf, double v)
 int bk_fmt_g(char *buf, double v, int prec)
 {
     const int P = prec < 1 ? 1 : prec > 17 ? 17 : prec;
-    char *s, d[17];
+    char *s, d[DIGITS];
     uint64_t m;
     int e, x, len;
     if (!decode(v, buf, &s, &m, &e, "", &len))
@@ -616,7 +638,7 @@ int bk_fmt_e(char *buf, double v, int prec)
 {
     const int p = prec < 0 ? 0 : prec > 16 ? 16 : prec;
     static const char zeros[] = ".0000000000000000e+00";
-    char *s, d[17], ztail[24];
+    char *s, d[DIGITS], ztail[24];
     uint64_t m;
     int e, x, len;
     if (p == 0)
@@ -629,12 +651,10 @@ int bk_fmt_e(char *buf, double v, int prec)
         return len;
     if (digits17(m, e, d, &x) != 0 || round_digits(d, p + 1, &x) != 0)
         return snprintf(buf, BK_NUMFMT_MAX, "%.*e", p, v);
-    *s++ = d[0];
-    if (p > 0) {
-        *s++ = '.';
-        memcpy(s, d + 1, (size_t)p);
-        s += p;
-    }
+    s[0] = d[0];
+    s[1] = '.';
+    memcpy(s + 2, d + 1, 16);                     /* p <= 16 digits */
+    s += p > 0 ? p + 2 : 1;
     s = put_exponent(s, x);
     *s = '\0';
     return (int)(s - buf);

@@ -13,7 +13,7 @@
  * NUL-terminated, into buf (at least BK_NUMFMT_MAX bytes); returns the length.
  * inf and nan as glibc writes them ("inf", "-inf", "nan", "-nan").  Assumes the
  * default rounding mode (to nearest), in which glibc rounds halfway cases to even. */
-#define BK_NUMFMT_MAX 32
+#define BK_NUMFMT_MAX 40
 int bk_fmt_g17(char *buf, double v);
 
 /* The same for "%.{prec}g" (prec 1..17; outside, clamped) and "%.{prec}e"
