@@ -173,6 +173,35 @@ static void map_dof(const bk_forces *f, const double *q, int d, double r, const 
     }
 }
 
+/* y[i] (+)= sum_j A[i n + j] v[j], j in order, over the n rows of A (n x n,
+ * row-major), from y[i] or, with from_zero, from 0: four rows at a time, each
+ * its own sum (the same bits as one row after the other, without waiting on
+ * one chain of dependent additions). */
+static void rows_times(int n, const double *restrict A, const double *restrict v, double *restrict y,
+                       int from_zero)
+{
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+        const double *a0 = A + (size_t)i * n, *a1 = a0 + n, *a2 = a1 + n, *a3 = a2 + n;
+        double s0 = from_zero ? 0.0 : y[i], s1 = from_zero ? 0.0 : y[i + 1];
+        double s2 = from_zero ? 0.0 : y[i + 2], s3 = from_zero ? 0.0 : y[i + 3];
+        for (int j = 0; j < n; ++j) {
+            const double vj = v[j];
+            s0 += a0[j] * vj;
+            s1 += a1[j] * vj;
+            s2 += a2[j] * vj;
+            s3 += a3[j] * vj;
+        }
+        y[i] = s0, y[i + 1] = s1, y[i + 2] = s2, y[i + 3] = s3;
+    }
+    for (; i < n; ++i) {
+        double s0 = from_zero ? 0.0 : y[i];
+        for (int j = 0; j < n; ++j)
+            s0 += A[(size_t)i * n + j] * v[j];
+        y[i] = s0;
+    }
+}
+
 /* The generalized residual without the constraint forces over every DOF:
  * f_int - f_ext (statics) + M (q'' + alpha q') + beta K q' + viscous + rotary
  * (dynamics), into f->res. */
@@ -217,12 +246,9 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
         bk_gather(m, e, qd, qde);
         bk_gather(m, e, qdd, qdde);
         const double *Me = f->rmass + (size_t)kk * md * md;
-        for (int i = 0; i < ne; ++i) {
-            double sum = 0.0;
-            for (int j = 0; j < ne; ++j)
-                sum += Me[i * ne + j] * (qdde[j] + ra * qde[j]);
-            fe[i] = sum;
-        }
+        for (int j = 0; j < ne; ++j)
+            tmp[j] = qdde[j] + ra * qde[j];
+        rows_times(ne, Me, tmp, fe, 1);
         bk_scatter(m, e, fe, 1.0, f->res);
         if (rb != 0.0) {
             p->force_tangent(qe, m->tabs[el->geom], mat->params, tmp, K1);
@@ -434,9 +460,9 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
                     for (int j = 0; j < ne; ++j)
                         ge[i] += rb * K1[i * ne + j] * qde[j];
             bk_element_mass(m, e, K1, Me);
-            for (int i = 0; i < ne; ++i)
-                for (int j = 0; j < ne; ++j)
-                    ge[i] += Me[i * ne + j] * (qdde[j] + ra * qde[j]);
+            for (int j = 0; j < ne; ++j)
+                Qe[j] = qdde[j] + ra * qde[j];           /* (Qe is free until the viscous forces) */
+            rows_times(ne, Me, Qe, ge, 0);
             if (mat->nvisc > 0 && p->viscous) {
                 p->viscous(qe, qde, m->tabs[el->geom], mat->visc, Qe, K1, K2);
                 for (int i = 0; i < ne; ++i)
