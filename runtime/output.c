@@ -27,16 +27,20 @@ static void spent(bk_output *o, double t0)
  * much of its tables; an interrupted one (SIGINT/SIGTERM) loses nothing. */
 #define BK_FLUSH_INTERVAL 0.5
 
-static void flush_due(bk_output *o)
+/* spent, and the tables flushed when due (one reading of the clock for both
+ * when they are not). */
+static void spent_flush(bk_output *o, double t0)
 {
     double now = bk_clock_s();
-    if (now - o->t_flush < BK_FLUSH_INTERVAL)
-        return;
-    o->t_flush = now;
-    FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
-    for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k)
-        if (tables[k])
-            fflush(tables[k]);
+    if (now - o->t_flush >= BK_FLUSH_INTERVAL) {
+        o->t_flush = now;
+        FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
+        for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k)
+            if (tables[k])
+                fflush(tables[k]);
+        now = bk_clock_s();
+    }
+    o->t_output += now - t0;
 }
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
@@ -173,8 +177,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
             bk_row_num(&r, g[i]);
         bk_row_end(&r);
     }
-    flush_due(o);
-    spent(o, t0);
+    spent_flush(o, t0);
 }
 
 void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
@@ -294,8 +297,7 @@ void bk_output_stability(bk_output *o, int step, double lam, int negative, doubl
     bk_row_e(&r, eig_min, 9);
     bk_row_e(&r, eig_max, 6);
     bk_row_end(&r);
-    flush_due(o);
-    spent(o, t0);
+    spent_flush(o, t0);
 }
 
 void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
@@ -312,8 +314,7 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
         bk_row_num(&r, v[i]);
     bk_row_e(&r, cres, 3);
     bk_row_end(&r);
-    flush_due(o);
-    spent(o, t0);
+    spent_flush(o, t0);
 }
 
 static void json_string(FILE *fp, const char *s)
