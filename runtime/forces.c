@@ -252,12 +252,9 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
         bk_scatter(m, e, fe, 1.0, f->res);
         if (rb != 0.0) {
             p->force_tangent(qe, m->tabs[el->geom], mat->params, tmp, K1);
-            for (int i = 0; i < ne; ++i) {
-                double sum = 0.0;
-                for (int j = 0; j < ne; ++j)
-                    sum += K1[i * ne + j] * qde[j];
-                fe[i] = rb * sum;
-            }
+            rows_times(ne, K1, qde, fe, 1);
+            for (int i = 0; i < ne; ++i)
+                fe[i] *= rb;
             bk_scatter(m, e, fe, 1.0, f->res);
         }
         if (mat->nvisc > 0 && p->viscous) {

@@ -27,6 +27,22 @@ static void spent(bk_output *o, double t0)
  * much of its tables; an interrupted one (SIGINT/SIGTERM) loses nothing. */
 #define BK_FLUSH_INTERVAL 0.5
 
+/* The run's result tables (each NULL when the run has none) and their file
+ * names, in one place for the flushes and the closes. */
+#define BK_NTABLES 8
+static void table_list(bk_output *o, FILE **fp[BK_NTABLES], const char *name[BK_NTABLES])
+{
+    static const char *const names[BK_NTABLES] = {"sensors.csv", "energy.csv", "newton.csv", "stability.csv",
+                                                  "modes.csv", "mode_sensors.csv", "reactions.csv", "sections.csv"};
+    FILE **const all[BK_NTABLES] = {&o->sensors, &o->energy, &o->newton, &o->stability,
+                                    &o->modes, &o->mode_sensors, &o->forces.reactions, &o->forces.sections};
+    for (int k = 0; k < BK_NTABLES; ++k) {
+        fp[k] = all[k];
+        if (name)
+            name[k] = names[k];
+    }
+}
+
 /* spent, and the tables flushed when due (one reading of the clock for both
  * when they are not). */
 static void spent_flush(bk_output *o, double t0)
@@ -34,10 +50,11 @@ static void spent_flush(bk_output *o, double t0)
     double now = bk_clock_s();
     if (now - o->t_flush >= BK_FLUSH_INTERVAL) {
         o->t_flush = now;
-        FILE *tables[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
-        for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k)
-            if (tables[k])
-                fflush(tables[k]);
+        FILE **fp[BK_NTABLES];
+        table_list(o, fp, NULL);
+        for (int k = 0; k < BK_NTABLES; ++k)
+            if (*fp[k])
+                fflush(*fp[k]);
         now = bk_clock_s();
     }
     o->t_output += now - t0;
@@ -503,37 +520,22 @@ static int close_table(const bk_output *o, FILE **fp, const char *name, FILE *er
 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
+    FILE **fp[BK_NTABLES];
+    const char *name[BK_NTABLES];
+    table_list(o, fp, name);
     int bad = 0;
-    bad |= close_table(o, &o->sensors, "sensors.csv", err);
-    bad |= close_table(o, &o->energy, "energy.csv", err);
-    bad |= close_table(o, &o->newton, "newton.csv", err);
-    bad |= close_table(o, &o->stability, "stability.csv", err);
-    bad |= close_table(o, &o->modes, "modes.csv", err);
-    bad |= close_table(o, &o->mode_sensors, "mode_sensors.csv", err);
-    bad |= close_table(o, &o->forces.reactions, "reactions.csv", err);
-    bad |= close_table(o, &o->forces.sections, "sections.csv", err);
+    for (int k = 0; k < BK_NTABLES; ++k)
+        bad |= close_table(o, fp[k], name[k], err);
     return bad ? -1 : 0;
 }
 
 void bk_output_close(bk_output *o)
 {
-    if (o->sensors)
-        fclose(o->sensors);
-    if (o->energy)
-        fclose(o->energy);
-    if (o->modes)
-        fclose(o->modes);
-    if (o->mode_sensors)
-        fclose(o->mode_sensors);
+    bk_output_close_tables(o, NULL);     /* (before their buffers are freed) */
     free(o->mode_q);
     o->mode_q = NULL;
     free(o->sensor_p0);
     o->sensor_p0 = NULL;
-    if (o->newton)
-        fclose(o->newton);
-    if (o->stability)
-        fclose(o->stability);
-    o->sensors = o->energy = o->modes = o->mode_sensors = o->newton = o->stability = NULL;
     for (int k = 0; k < 4; ++k) {
         free(o->tbuf[k]);
         o->tbuf[k] = NULL;

@@ -94,6 +94,21 @@ static int use_band(bk_stability *st)
     return st->bnow && st->bprev ? 0 : -1;
 }
 
+/* The band LDL^T of the pattern (Ap, Ai) in `order` (NULL: its reverse
+ * Cuthill-McKee order) when narrow enough: 0 (its buffers made), 1 (not
+ * narrow: nothing kept), -1 (out of memory). */
+static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *order)
+{
+    int bp = bk_bandsym_plan(&st->band, st->n, Ap, Ai, order, BK_BAND_MAX_STORAGE);
+    if (bp < 0)
+        return -1;
+    if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2)
+        return use_band(st);
+    if (bp == 0)
+        bk_bandsym_free(&st->band);
+    return 1;
+}
+
 static int stability_init(bk_stability *st, const bk_system *s, const int *order)
 {
     memset(st, 0, sizeof *st);
@@ -138,27 +153,14 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
      * one of the symmetric pattern's own (beams): a band LDL^T, any symmetric
      * order has the same inertia (Sylvester).  Else AMD on the whole pattern,
      * then the multipliers first (each keeps its AMD rank). */
-    if (order) {
-        int bp = bk_bandsym_plan(&st->band, n, s->Ap, s->Ai, order, BK_BAND_MAX_STORAGE);
-        if (bp < 0)
-            return -1;
-        if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2)
-            return use_band(st);
-        if (bp == 0)
-            bk_bandsym_free(&st->band);
-    }
+    int bp = order ? band_plan(st, s->Ap, s->Ai, order) : 1;
+    if (bp <= 0)
+        return bp;
     if (sym_pattern(st) != 0)
         return -1;
-    if (!order) {
-        int bp = bk_bandsym_plan(&st->band, n, st->Bp, st->Bi, NULL, BK_BAND_MAX_STORAGE);
-        if (bp < 0)
-            return -1;
-        if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2) {
-            free_pattern(st);
-            return use_band(st);
-        }
-        if (bp == 0)
-            bk_bandsym_free(&st->band);
+    if (!order && (bp = band_plan(st, st->Bp, st->Bi, NULL)) <= 0) {
+        free_pattern(st);
+        return bp;
     }
     long cap = st->Bp[n];
     st->Bx = malloc((size_t)cap * sizeof *st->Bx);
