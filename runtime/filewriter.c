@@ -31,6 +31,33 @@ static int write_file(const char *path, const unsigned char *data, size_t len)
     return close(fd) != 0 ? errno : 0;
 }
 
+/* path := what make writes for job: made in buf (cap bytes) and written in
+ * one piece, or, when it outgrows buf, written to the file as it is made;
+ * 0, or an errno. */
+static int make_file(const char *path, unsigned char *buf, size_t cap, bk_filewriter_make make, const void *job)
+{
+    FILE *mp = fmemopen(buf, cap, "wb");
+    if (mp) {
+        setvbuf(mp, NULL, _IONBF, 0);
+        make(job, mp);
+        long len = ftell(mp);
+        int bad = ferror(mp) || len < 0 || (size_t)len >= cap;
+        fclose(mp);
+        if (!bad)
+            return write_file(path, buf, (size_t)len);
+    }
+    FILE *fp = fopen(path, "wb");
+    if (!fp)
+        return errno;
+    char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
+    setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
+    make(job, fp);
+    int bad = ferror(fp);
+    if (fclose(fp) != 0 || bad)          /* (flushes iobuf before it goes out of scope) */
+        return errno ? errno : EIO;
+    return 0;
+}
+
 /* The first failure is kept (called with the lock held, or unthreaded). */
 static void record(bk_filewriter *w, const char *path, int err)
 {
@@ -52,7 +79,8 @@ static void *writer_main(void *arg)
             break;
         int b = w->queue[w->head];
         pthread_mutex_unlock(&w->mu);
-        int err = write_file(w->path[b], w->buf[b], w->len[b]);
+        int err = w->make[b] ? make_file(w->path[b], w->buf[b], w->cap, w->make[b], w->job[b])
+                             : write_file(w->path[b], w->buf[b], w->len[b]);
         pthread_mutex_lock(&w->mu);
         record(w, w->path[b], err);
         w->head = (w->head + 1) % BK_FILEWRITER_BUFFERS;
@@ -89,7 +117,7 @@ int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
     return 0;
 }
 
-unsigned char *bk_filewriter_buffer(bk_filewriter *w)
+int bk_filewriter_slot(bk_filewriter *w)
 {
     pthread_mutex_lock(&w->mu);
     int b = -1;
@@ -104,7 +132,49 @@ unsigned char *bk_filewriter_buffer(bk_filewriter *w)
     if (b >= 0)
         w->state[b] = 1;
     pthread_mutex_unlock(&w->mu);
+    return b;
+}
+
+unsigned char *bk_filewriter_buffer(bk_filewriter *w)
+{
+    int b = bk_filewriter_slot(w);
     return b >= 0 ? w->buf[b] : NULL;
+}
+
+/* Queues buffer b (the caller's, filled or with its job set) for the thread. */
+static int queue(bk_filewriter *w, int b, const char *path)
+{
+    pthread_mutex_lock(&w->mu);
+    snprintf(w->path[b], sizeof w->path[b], "%s", path);
+    w->state[b] = 2;
+    w->queue[(w->head + w->count) % BK_FILEWRITER_BUFFERS] = b;
+    w->count++;
+    pthread_cond_broadcast(&w->cv);
+    int failed = w->failed;
+    pthread_mutex_unlock(&w->mu);
+    return failed ? -1 : 0;
+}
+
+/* Buffer b back to free (unthreaded: its file written here). */
+static int release(bk_filewriter *w, int b)
+{
+    pthread_mutex_lock(&w->mu);
+    w->state[b] = 0;
+    pthread_mutex_unlock(&w->mu);
+    return w->failed ? -1 : 0;
+}
+
+int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job)
+{
+    if (slot < 0 || slot >= BK_FILEWRITER_BUFFERS || w->state[slot] != 1)
+        return -1;
+    if (!w->threaded) {
+        record(w, path, make_file(path, w->buf[slot], w->cap, make, job));
+        return release(w, slot);
+    }
+    w->make[slot] = make;
+    w->job[slot] = job;
+    return queue(w, slot, path);
 }
 
 int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *path, size_t len)
@@ -116,21 +186,11 @@ int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *pa
         return -1;
     if (!w->threaded) {
         record(w, path, write_file(path, buffer, len));
-        pthread_mutex_lock(&w->mu);
-        w->state[b] = 0;
-        pthread_mutex_unlock(&w->mu);
-        return w->failed ? -1 : 0;
+        return release(w, b);
     }
-    pthread_mutex_lock(&w->mu);
-    snprintf(w->path[b], sizeof w->path[b], "%s", path);
+    w->make[b] = NULL;
     w->len[b] = len;
-    w->state[b] = 2;
-    w->queue[(w->head + w->count) % BK_FILEWRITER_BUFFERS] = b;
-    w->count++;
-    pthread_cond_broadcast(&w->cv);
-    int failed = w->failed;
-    pthread_mutex_unlock(&w->mu);
-    return failed ? -1 : 0;
+    return queue(w, b, path);
 }
 
 void bk_filewriter_cancel(bk_filewriter *w, unsigned char *buffer)

@@ -130,6 +130,8 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     if (every <= 0)
         return 0;
     v->t_pvd = bk_clock_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
+    if (m->analysis == BK_DYNAMIC && m->dyn.dt > 0.0 && m->dyn.output_every > 0)
+        v->expected = (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / every) + 1;
     v->cap = capacity > 16 ? capacity : 16;
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);
@@ -151,27 +153,65 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     return 0;
 }
 
+/* The inputs of a step frame made by the writer's thread, copied when it is
+ * handed over (the solve goes on with its own): the frame's time, the
+ * coordinates, the section forces and stress resultants of its step (when it
+ * has them), and the thread's scratch for the points. */
+typedef struct bk_vtk_job {
+    const bk_vtk *v;         /* read-only while the thread runs: m, npts, ref, topo */
+    double t;
+    double *q;               /* m->ndof */
+    double *sec, *ssec;      /* 12 per element; 6 maxsample per element */
+    int with_sec, with_ssec;
+    double *pts;             /* 3 npts */
+} bk_vtk_job;
+
 /* Frames of up to BK_VTK_BACKGROUND_MAX bytes go to the background writer
  * from the third frame of a run on that is expected to have at least
- * BK_VTK_BACKGROUND_MIN frames: the thread, its buffers' first use and the
- * wait for the last frame at the end cost about as much as 5-8 frames written
+ * BK_VTK_BACKGROUND_MIN frames (from the first when the run's frames are known
+ * in advance, v->expected): the thread, its buffers' first use and the wait
+ * for the last frame at the end cost about as much as 5-8 frames written
  * directly.  frac: the fraction of the run done at this frame (load factor,
  * time or mode over its end), which with the frames so far gives the
  * expected number; <= 0 when unknown (arc-length, load cycles: the writer
  * starts at the third frame).  If it cannot be made, frames are written
- * directly. */
+ * directly; without memory for the step frames' inputs, they are made here
+ * and written by the thread. */
 #define BK_VTK_BACKGROUND_MIN 8
 static void maybe_background(bk_vtk *v, double frac)
 {
-    if (v->background || v->tried_background || v->written < 2 || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
+    if (v->background || v->tried_background || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
         return;
-    if (frac > 0.0 && (v->written + 1) < BK_VTK_BACKGROUND_MIN * frac)
-        return;                              /* a short run (asked again at its next frame) */
+    if (v->expected < BK_VTK_BACKGROUND_MIN) {
+        if (v->written < 2)
+            return;
+        if (frac > 0.0 && (v->written + 1) < BK_VTK_BACKGROUND_MIN * frac)
+            return;                          /* a short run (asked again at its next frame) */
+    }
     v->tried_background = 1;
-    if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
-        v->background = 1;
-    else
+    if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) != 0) {
         bk_filewriter_close(&v->fw);
+        return;
+    }
+    v->background = 1;
+    const bk_model *m = v->m;
+    size_t nq = (size_t)m->ndof, ne = (size_t)m->nelem, ns = 6 * (size_t)(v->maxsample > 0 ? v->maxsample : 1) * ne;
+    size_t each = nq + 12 * ne + ns + 3 * (size_t)v->npts + 1;
+    v->jobs = calloc(BK_FILEWRITER_BUFFERS, sizeof *v->jobs);
+    double *mem = v->jobs ? malloc(BK_FILEWRITER_BUFFERS * each * sizeof *mem) : NULL;
+    if (!mem) {
+        free(v->jobs);
+        v->jobs = NULL;
+        return;
+    }
+    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b) {
+        bk_vtk_job *j = &v->jobs[b];
+        j->v = v;
+        j->q = mem + (size_t)b * each;
+        j->sec = j->q + nq;
+        j->ssec = j->sec + 12 * ne;
+        j->pts = j->ssec + ns;
+    }
 }
 
 /* The first file written here that failed is kept. */
@@ -206,6 +246,10 @@ void bk_vtk_close(bk_vtk *v)
     if (v->background)
         bk_filewriter_close(&v->fw);
     v->background = 0;
+    if (v->jobs)
+        free(v->jobs[0].q);              /* the block of every job's arrays */
+    free(v->jobs);
+    v->jobs = NULL;
     free(v->times);
     free(v->frames);
     free(v->ref);
@@ -482,7 +526,8 @@ static size_t topology(const bk_model *m, unsigned char *buf)
 }
 
 static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *const *fname, const double *fval,
-                         const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
+                         const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample,
+                         double *pts)
 {
     const bk_model *m = v->m;
     const long npts = v->npts, ncell = v->ncell, nconn = v->nconn;
@@ -549,10 +594,10 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
         put_u64(fp, sz_pts);
         if (!mv && pass == 1)
             for (size_t i = 0; i < n3; ++i)
-                v->pts[i] -= v->ref[i];
+                pts[i] -= v->ref[i];
         else
-            frame_points(m, q, mv, pass, v->pts);
-        fwrite(v->pts, sizeof(double), n3, fp);
+            frame_points(m, q, mv, pass, pts);
+        fwrite(pts, sizeof(double), n3, fp);
     }
     for (int a = 0; sec && a < 2; ++a) {
         put_u64(fp, sz_pts);
@@ -618,7 +663,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
         FILE *mp = buf ? fmemopen(buf, v->fw.cap, "wb") : NULL;
         if (mp) {
             setvbuf(mp, NULL, _IONBF, 0);
-            vtu_contents(v, mp, nfield, fname, fval, q, mv, sec, ssec, maxsample);
+            vtu_contents(v, mp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
             long len = ftell(mp);
             int bad = ferror(mp) || len < 0 || (size_t)len >= v->fw.cap;
             fclose(mp);
@@ -637,12 +682,48 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
     }
     char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
     setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
-    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample);
+    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
     if (fclose(fp) != 0) {                        /* (flushes iobuf before it goes out of scope) */
         record_failure(v, path, errno);
         return -1;
     }
     return 0;
+}
+
+static const char *const step_fields[] = {"TIME"};
+
+/* A step frame of job (bk_filewriter_make: called by the writer's thread). */
+static void step_frame(const void *job, FILE *fp)
+{
+    const bk_vtk_job *j = job;
+    vtu_contents(j->v, fp, 1, step_fields, &j->t, j->q, NULL, j->with_sec ? j->sec : NULL,
+                 j->with_sec && j->with_ssec ? j->ssec : NULL, j->v->maxsample, j->pts);
+}
+
+/* The step frame `path` of q at time t (sec: its step's section forces, or
+ * NULL): its inputs copied for the background writer's thread, which makes
+ * and writes it; else made (and written) here. */
+static int write_step_frame(bk_vtk *v, const char *path, double t, const double *q, const double *sec)
+{
+    if (v->background && v->jobs) {
+        int b = bk_filewriter_slot(&v->fw);
+        if (b >= 0) {
+            const bk_model *m = v->m;
+            bk_vtk_job *j = &v->jobs[b];
+            j->t = t;
+            memcpy(j->q, q, (size_t)m->ndof * sizeof *q);
+            j->with_sec = sec != NULL;
+            j->with_ssec = sec && v->ssec;
+            if (j->with_sec)
+                memcpy(j->sec, sec, 12 * (size_t)m->nelem * sizeof *sec);
+            if (j->with_ssec)
+                memcpy(j->ssec, v->ssec, 6 * (size_t)v->maxsample * (size_t)m->nelem * sizeof *v->ssec);
+            v->written++;                /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
+            bk_filewriter_submit_job(&v->fw, b, path, step_frame, j);
+            return 0;
+        }
+    }
+    return write_vtu(v, path, 1, step_fields, &t, q, NULL, sec, v->ssec, v->maxsample);
 }
 
 int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
@@ -667,7 +748,6 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     int frame = step < 0 ? -step : step;
     char path[1200];
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
-    static const char *const names[] = {"TIME"};
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
     const bk_model *m = v->m;
     double frac = -1.0;
@@ -676,7 +756,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     else if (m->analysis == BK_STATIC && !m->stat.arc_length && m->stat.cycles == 0)
         frac = t;                                    /* the load factor, 0 -> 1 */
     maybe_background(v, frac);
-    if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
+    if (write_step_frame(v, path, t, q, sec) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;

@@ -34,15 +34,19 @@ typedef struct bk_vtk {
     size_t frame_bytes;      /* the largest frame file (header allowance included) */
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
+    int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
     bk_filewriter fw;        /* owned when background */
+    struct bk_vtk_job *jobs; /* owned when background: per buffer of fw, the inputs of the step
+                              * frame its thread makes (NULL: frames are made here) */
     int failed;              /* a frame or collection written here could not be: 1, 2 once reported */
     int errno_;              /*   its errno */
     char failed_path[1216];  /*   its path (a collection's temporary name included) */
 } bk_vtk;
 
-/* From a run's third frame on, frames up to this size are made in memory and
- * written by a background thread (filewriter.h: two buffers of a frame each),
- * larger ones directly. */
+/* From a run's third frame on (its first, in a run known to write many),
+ * frames up to this size are made and written by a background thread
+ * (filewriter.h: two buffers of a frame each; the step frames' inputs are
+ * copied for it), larger ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
