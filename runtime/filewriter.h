@@ -32,7 +32,8 @@
  *   bk_filewriter_drain   waits until every file handed over is written; 0 or -1
  *                         as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
- * No allocation after open.  The signal mask is the opener's (the solver
+ * No allocation after open but for a job's stream on its buffer (fmemopen).
+ * The signal mask is the opener's (the solver
  * blocks SIGINT/SIGTERM before: interrupt.h). */
 #ifndef BK_FILEWRITER_H
 #define BK_FILEWRITER_H
