@@ -137,9 +137,11 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
     }
     for (int i = 0; i < n; ++i)
         st->nmult += st->ismult[i];
-    st->dcross = malloc(2 * N * sizeof *st->dcross);
+    st->dcross = malloc(4 * N * sizeof *st->dcross);
     if (!st->dcross)
         return -1;
+    st->dchk = st->dcross + 2 * N;
+    st->dacc = st->dchk + N;
     if (m->stat.eigenvalues) {
         st->x = malloc(N * sizeof(double));
         st->y = malloc(N * sizeof(double));
@@ -334,59 +336,111 @@ static int inertia(bk_stability *st, const double *band)
     return neg < 0 ? 0 : neg;
 }
 
+/* The count of the matrix interpolated at t between the accepted and the
+ * current one, (1 - t) A_prev + t A; its pivots in st->band.D or st->D. */
+static int count_at(bk_stability *st, double t, int first)
+{
+    if (st->use_band) {
+        long len = (long)st->band.ldab * st->n;
+        double *ab = st->band.ab;
+        for (long k = 0; k < len; ++k)
+            ab[k] = (1.0 - t) * st->bprev[k] + t * st->bnow[k];
+        return inertia(st, ab);
+    }
+    long nz = st->Bp[st->n];
+    if (first)
+        memcpy(st->Bnow, st->Bx, (size_t)nz * sizeof *st->Bnow);
+    for (long k = 0; k < nz; ++k)
+        st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * st->Bnow[k];
+    return inertia(st, NULL);
+}
+
+/* The zero in (lo, hi) of the k-th root of |det| interpolated linearly from
+ * the pivots at the ends (k eigenvalues crossing make det ~ (t - t*)^k near
+ * t*: k = 2 for the two bending planes of a square section), when the sign of
+ * det(hi) / det(lo) fits k; else NaN. */
+static double det_zero(const double *Dlo, const double *Dhi, int n, int k, double lo, double hi)
+{
+    double r = 1.0;
+    for (int i = 0; i < n; ++i)
+        r *= Dhi[i] / Dlo[i];
+    if (k < 1 || !isfinite(r) || r == 0.0 || (r < 0.0) != (k % 2 == 1))
+        return NAN;
+    return lo + (hi - lo) / (1.0 + pow(fabs(r), 1.0 / k));
+}
+
+/* The bracket [lo, hi] (count_before at lo, another count at hi) and the
+ * pivots at its ends while it narrows. */
+typedef struct bracket {
+    double lo, hi;
+    double *Dlo, *Dhi;
+    int have_lo, have_hi, count_hi;
+} bracket;
+
+/* The count at t moves one end of the bracket to t. */
+static void probe(bk_stability *st, bracket *b, double t, int count_before, int first)
+{
+    int c = count_at(st, t, first);
+    const double *D = st->use_band ? st->band.D : st->D;
+    if (c == count_before) {
+        b->lo = t;
+        memcpy(b->Dlo, D, (size_t)st->n * sizeof *b->Dlo);
+        b->have_lo = 1;
+    } else {
+        b->hi = t;
+        if (c >= 0)                      /* (a zero pivot ends the factorization early) */
+            memcpy(b->Dhi, D, (size_t)st->n * sizeof *b->Dhi);
+        b->have_hi = c >= 0;
+        b->count_hi = c;
+    }
+}
+
+static int crossing_k(const bracket *b, int count_before)
+{
+    return b->count_hi > count_before ? b->count_hi - count_before : count_before - b->count_hi;
+}
+
 double bk_stability_crossing(bk_stability *st, int count_before)
 {
     if (!st->have_prev || st->n == 0)
         return NAN;
     double t0 = bk_clock_s();
-    double lo = 0.0, hi = 1.0;
-    double *Dlo = st->dcross, *Dhi = st->dcross + st->n;    /* the pivots at lo and hi, when factored */
-    int have_lo = 0, have_hi = 0, count_hi = count_before;
-    for (int it = 0; it < BK_CROSSING_BISECTIONS; ++it) {
-        double t = 0.5 * (lo + hi);
-        int c;
-        if (st->use_band) {
-            long len = (long)st->band.ldab * st->n;
-            double *ab = st->band.ab;
-            for (long k = 0; k < len; ++k)
-                ab[k] = (1.0 - t) * st->bprev[k] + t * st->bnow[k];
-            c = inertia(st, ab);
-        } else {
-            long nz = st->Bp[st->n];
-            if (it == 0)
-                memcpy(st->Bnow, st->Bx, (size_t)nz * sizeof *st->Bnow);
-            for (long k = 0; k < nz; ++k)
-                st->Bx[k] = (1.0 - t) * st->Bprev[k] + t * st->Bnow[k];
-            c = inertia(st, NULL);
+    const int n = st->n;
+    /* the ends: the accepted check's pivots (t = 0) and the current one's (t = 1) */
+    bracket b = {0.0, 1.0, st->dcross, st->dcross + n, st->ok_acc, st->ok_chk, st->count_chk};
+    if (b.have_lo)
+        memcpy(b.Dlo, st->dacc, (size_t)n * sizeof *b.Dlo);
+    if (b.have_hi)
+        memcpy(b.Dhi, st->dchk, (size_t)n * sizeof *b.Dhi);
+    const double width = ldexp(1.0, -BK_CROSSING_BISECTIONS);
+    int guess = 1, first = 1;
+    for (int nf = 0; b.hi - b.lo > width && nf < 3 * BK_CROSSING_BISECTIONS; ) {
+        double g = guess && b.have_lo && b.have_hi
+                       ? det_zero(b.Dlo, b.Dhi, n, crossing_k(&b, count_before), b.lo, b.hi) : NAN;
+        if (!isfinite(g)) {                              /* bisection */
+            probe(st, &b, 0.5 * (b.lo + b.hi), count_before, first);
+            first = 0, nf++, guess = 1;
+            continue;
         }
-        const double *D = st->use_band ? st->band.D : st->D;
-        if (c == count_before) {
-            lo = t;
-            memcpy(Dlo, D, (size_t)st->n * sizeof *Dlo);
-            have_lo = 1;
-        } else {
-            hi = t;
-            if (c >= 0)                  /* (a zero pivot ends the factorization early) */
-                memcpy(Dhi, D, (size_t)st->n * sizeof *Dhi);
-            have_hi = c >= 0;
-            count_hi = c;
+        const double d = fmax(BK_CROSSING_GUESS_WIDTH * (b.hi - b.lo), 0.25 * width);
+        const double t1 = g - d, t2 = g + d, was = b.hi - b.lo;
+        if (t1 > b.lo) {
+            probe(st, &b, t1, count_before, first);
+            first = 0, nf++;
         }
+        if (b.lo >= t1 && t2 < b.hi) {                   /* the zero is above t1 */
+            probe(st, &b, t2, count_before, first);
+            first = 0, nf++;
+        }
+        guess = b.hi - b.lo <= 2.0 * d * (1.0 + 1e-12) || b.hi - b.lo < 0.5 * was;   /* it bracketed: again */
     }
-    if (!st->use_band)
-        memcpy(st->Bx, st->Bnow, (size_t)st->Bp[st->n] * sizeof *st->Bx);
-    /* det(hi) / det(lo) as the product of the pivots' ratios (each near 1 in
-     * so narrow a bracket, but for the pivots the crossing moves).  k
-     * eigenvalues crossing at t* make det ~ (t - t*)^k there (k = 2: the
-     * two bending planes of a square section): t* where the k-th root of |det|
-     * interpolated linearly vanishes, when the sign of the ratio agrees. */
-    double t = 0.5 * (lo + hi);
-    const int k = count_hi > count_before ? count_hi - count_before : count_before - count_hi;
-    if (have_lo && have_hi && k >= 1) {
-        double r = 1.0;
-        for (int i = 0; i < st->n; ++i)
-            r *= Dhi[i] / Dlo[i];
-        if (isfinite(r) && r != 0.0 && (r < 0.0) == (k % 2 == 1))
-            t = lo + (hi - lo) / (1.0 + pow(fabs(r), 1.0 / k));
+    if (!first && !st->use_band)
+        memcpy(st->Bx, st->Bnow, (size_t)st->Bp[n] * sizeof *st->Bx);
+    double t = 0.5 * (b.lo + b.hi);
+    if (b.have_lo && b.have_hi) {
+        double z = det_zero(b.Dlo, b.Dhi, n, crossing_k(&b, count_before), b.lo, b.hi);
+        if (isfinite(z))
+            t = z;
     }
     st->t_spent += bk_clock_s() - t0;
     return t;
@@ -410,6 +464,8 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
         return;
     fill(st, Ax);
     int c = inertia(st, st->bnow);
+    st->ok_chk = c >= 0;
+    st->count_chk = c;
     if (c < 0) {
         /* An exactly zero pivot: singular on the constraint tangent space. */
         res->ok = 0;
@@ -417,6 +473,7 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
         st->have_vec = 0;
         return;
     }
+    memcpy(st->dchk, st->use_band ? st->band.D : st->D, (size_t)n * sizeof *st->dchk);
     res->ok = 1;
     res->negative = c;
     if (!st->s->m->stat.eigenvalues)       /* the inertia alone (static.eigenvalues = false) */
@@ -495,6 +552,10 @@ void bk_stability_accept(bk_stability *st)
     t = st->Bprev;
     st->Bprev = st->Bx;
     st->Bx = t;
+    t = st->dacc;
+    st->dacc = st->dchk;
+    st->dchk = t;
+    st->ok_acc = st->ok_chk;
     st->have_prev = 1;
 }
 

@@ -58,6 +58,9 @@ typedef struct bk_stability {
     /* eigenvalue iterations (static.eigenvalues) */
     double *x, *y, *z;              /* iteration vectors                        */
     double *dcross;                 /* [2 n] the pivots at the ends of the crossing's bracket */
+    double *dchk, *dacc;            /* [n] each: the pivots of the last check and of the last
+                                     * accepted one (the crossing's ends t = 1 and t = 0) */
+    int count_chk, ok_chk, ok_acc;  /* the last check's count; whether dchk, dacc hold pivots */
     double *xmax;                   /* the last power-iteration vector          */
     int have_vec;                   /* x holds the last eigenvector             */
     int have_vmax;                  /* xmax holds one                           */
@@ -82,15 +85,20 @@ void bk_stability_accept(bk_stability *st);
 /* After a check whose count differs from the previous one: the fraction
  * t in (0, 1) between the last accepted and the current state at which the matrix
  * interpolated linearly between the two, (1 - t) A_prev + t A, first has a
- * negative-eigenvalue count different from the previous one: bisection on
- * the inertia, BK_CROSSING_BISECTIONS factorizations, to a bracket 2^-20
+ * negative-eigenvalue count different from the previous one: the inertia
+ * narrows a bracket (lo: the previous count, hi: another) to 2^-BK_CROSSING_BISECTIONS
  * wide, then the zero of the k-th root of the determinant (the product of
- * the pivots; k eigenvalues crossing) interpolated linearly across it (within
- * about the squared width, so exact to round-off for a tangent linear in the
- * load, as on a straight pre-buckling path), or the bracket's middle when the
- * determinant's sign does not fit k.  Off such a path the linear interpolation's own error, of
- * the order of the squared step, is far larger.  NaN when unavailable. */
+ * the pivots; k eigenvalues crossing) is interpolated linearly across it
+ * (within about the squared width, so exact to round-off for a tangent linear
+ * in the load, as on a straight pre-buckling path), or the bracket's middle
+ * when the determinant's sign does not fit k.  Each narrowing factors the
+ * matrix at two points BK_CROSSING_GUESS_WIDTH of the bracket either side of
+ * that interpolated zero, which brackets it tightly when it is good; after a
+ * guess that missed, or without one, it bisects.  Off such a path the linear
+ * interpolation's own error, of the order of the squared step, is far larger.
+ * NaN when unavailable. */
 #define BK_CROSSING_BISECTIONS 20
+#define BK_CROSSING_GUESS_WIDTH (1.0 / 64.0)
 double bk_stability_crossing(bk_stability *st, int count_before);
 void bk_stability_free(bk_stability *st);
 
