@@ -421,12 +421,12 @@ static int halfway(uint64_t m, int e, int p)
 /* The digits are kept in a DIGITS-byte buffer, '0' past the 17th, so that the
  * layouts below copy whole blocks of 16 or 17 bytes (no call for a copy of
  * variable length) and write past the text's end, within BK_NUMFMT_MAX. */
-#define DIGITS 32
+#define DIGITS 34
 static const uint64_t ZEROS8 = UINT64_C(0x3030303030303030);     /* "00000000" */
 
 static inline void pad_digits(char *d)
 {
-    memcpy(d + 17, "000000000000000", 15);
+    memcpy(d + 17, "00000000000000000", 17);     /* d[17..33]: what the layouts' copies read */
 }
 
 /* The number of digits of d[0..16] without the trailing zeros (at least 1),
@@ -462,18 +462,15 @@ static int digits17(uint64_t m, int e, char *d, int *xp)
     uint64_t f = (w1 << (128 - sh)) | (w0 >> (sh - 64));
 
     const uint64_t half = UINT64_C(1) << 63, e16 = UINT64_C(10000000000000000);
-    int fold = q >= 10 * e16, up, doubt;
-    uint64_t n;
-    if (!fold) {
-        n = q;
-        up = f > half;
-        doubt = f == half || f == half - 1;
-    } else {
-        n = q / 10;
-        unsigned r = (unsigned)(q % 10);
-        up = r >= 5;
-        doubt = (r == 5 && f == 0) || (r == 4 && f == UINT64_MAX);
-    }
+    /* both roundings, one kept (whether X has 18 digits follows the
+     * mantissa: a branch on it would be mispredicted often) */
+    const int fold = q >= 10 * e16;
+    const uint64_t q10 = q / 10;
+    const unsigned r = (unsigned)(q - 10 * q10);
+    const int up17 = f > half, doubt17 = f == half || f == half - 1;
+    const int up18 = r >= 5, doubt18 = (r == 5 && f == 0) | (r == 4 && f == UINT64_MAX);
+    uint64_t n = fold ? q10 : q;
+    int up = fold ? up18 : up17, doubt = fold ? doubt18 : doubt17;
     if (doubt) {
         if (!halfway(m, e, p - fold))            /* near a boundary, not on it */
             return -1;
@@ -504,8 +501,8 @@ static int decode(double v, char *buf, char **s, uint64_t *mp, int *ep, const ch
     int be = (int)(bits >> 52) & 0x7ff;
     uint64_t m = bits & ((UINT64_C(1) << 52) - 1);
     char *t = buf;
-    if (bits >> 63)
-        *t++ = '-';
+    *t = '-';                                     /* kept only for a negative v (no branch on the sign) */
+    t += bits >> 63;
     *s = t;
     if (be == 0x7ff) {
         memcpy(t, m ? "nan" : "inf", 4);
@@ -583,15 +580,13 @@ static int layout_g(char *buf, char *s, char *d, int P, int x)
     const int nd = significant(d);
     if (x >= -4 && x < P) {                       /* fixed notation */
         if (x >= 0) {
-            memcpy(s, d, 17);                     /* the integer part: x + 1 <= 17 digits */
-            if (nd <= x + 1) {                    /* an integer (d is '0' up to the point) */
-                s += x + 1;
-            } else {
-                s += x + 1;
-                *s++ = '.';
-                memcpy(s, d + x + 1, 16);         /* nd - x - 1 <= 16 digits */
-                s += nd - x - 1;
-            }
+            /* the integer part (x + 1 <= 17 digits), the point and the
+             * fraction (nd - x - 1 <= 16 digits); an integer ends before the
+             * point (no branch on which) */
+            memcpy(s, d, 17);
+            s[x + 1] = '.';
+            memcpy(s + x + 2, d + x + 1, 16);
+            s += nd <= x + 1 ? x + 1 : nd + 1;
         } else {
             memcpy(s, "0.0000", 6);
             s += 1 - x;
