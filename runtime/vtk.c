@@ -167,7 +167,7 @@ typedef struct bk_vtk_job {
 } bk_vtk_job;
 
 /* Frames of up to BK_VTK_BACKGROUND_MAX bytes go to the background writer
- * from the third frame of a run on that is expected to have at least
+ * from the second frame of a run on that is expected to have at least
  * BK_VTK_BACKGROUND_MIN frames (from the first when the run's frames are known
  * in advance, v->expected): the thread, its buffers' first use and the wait
  * for the last frame at the end cost about as much as 5-8 frames written
@@ -183,7 +183,7 @@ static void maybe_background(bk_vtk *v, double frac)
     if (v->background || v->tried_background || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
         return;
     if (v->expected < BK_VTK_BACKGROUND_MIN) {
-        if (v->written < 2)
+        if (v->written < (frac > 0.0 ? 1 : 2))
             return;
         if (frac > 0.0 && (v->written + 1) < BK_VTK_BACKGROUND_MIN * frac)
             return;                          /* a short run (asked again at its next frame) */

@@ -43,7 +43,8 @@ typedef struct bk_vtk {
     char failed_path[1216];  /*   its path (a collection's temporary name included) */
 } bk_vtk;
 
-/* From a run's third frame on (its first, in a run known to write many),
+/* From a run's second frame on (its third when its length is unknown, its
+ * first when it is known to write many),
  * frames up to this size are made and written by a background thread
  * (filewriter.h: two buffers of a frame each; the step frames' inputs are
  * copied for it), larger ones directly. */
