@@ -168,7 +168,10 @@ case "$cmd" in
             echo "error: run needs a SCENE (./build.sh scenes lists them)" >&2
             exit $EX_USAGE
         fi
-        exec "$PY" -S "$ROOT/gen/fastrun.py" run "$@"   # gen/cli.py unless an identical run is cached
+        # gen/cli.py unless an identical run is cached; -S: no site packages (the
+        # run path needs none), frozen modules: the interpreter's own start-up
+        # modules from its binary (1.5 ms of a 10 ms start here)
+        exec "$PY" -S -X frozen_modules=on "$ROOT/gen/fastrun.py" run "$@"
         ;;
     gen)
         shift
