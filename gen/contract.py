@@ -6,6 +6,7 @@ The header is the one definition; this module only parses it, so a slot, role
 or capability added there is known here without a second list.
 """
 import os
+from functools import lru_cache
 
 from gen.derived import derived
 
@@ -44,17 +45,12 @@ def _parse(data):
     return out
 
 
-_PARSED = []
-
-
+@lru_cache(maxsize=None)
 def _parsed():
     """What _parse finds in the header, through gen/derived.py (a run does not
-    parse an unchanged header again), once per process (a plain memo: functools
-    and collections cost a scene run 3 ms to import)."""
-    if not _PARSED:
-        with open(HEADER, "rb") as fh:
-            _PARSED.append(derived("contract", fh.read(), _parse))
-    return _PARSED[0]
+    parse an unchanged header again)."""
+    with open(HEADER, "rb") as fh:
+        return derived("contract", fh.read(), _parse)
 
 
 def _define(name):
