@@ -414,7 +414,8 @@ double bk_stability_crossing(bk_stability *st, int count_before)
         memcpy(b.Dhi, st->dchk, (size_t)n * sizeof *b.Dhi);
     const double width = ldexp(1.0, -BK_CROSSING_BISECTIONS);
     int guess = 1, first = 1;
-    for (int nf = 0; b.hi - b.lo > width && nf < 3 * BK_CROSSING_BISECTIONS; ) {
+    const int cap = 3 * BK_CROSSING_BISECTIONS;         /* factorizations at most */
+    for (int nf = 0; b.hi - b.lo > width && nf < cap; ) {
         double g = guess && b.have_lo && b.have_hi
                        ? det_zero(b.Dlo, b.Dhi, n, crossing_k(&b, count_before), b.lo, b.hi) : NAN;
         if (!isfinite(g)) {                              /* bisection */
@@ -428,7 +429,7 @@ double bk_stability_crossing(bk_stability *st, int count_before)
             probe(st, &b, t1, count_before, first);
             first = 0, nf++;
         }
-        if (b.lo >= t1 && t2 < b.hi) {                   /* the zero is above t1 */
+        if (b.lo >= t1 && t2 < b.hi && nf < cap) {       /* the zero is above t1 */
             probe(st, &b, t2, count_before, first);
             first = 0, nf++;
         }
