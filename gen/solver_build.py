@@ -10,7 +10,8 @@ import sys
 import threading
 from pathlib import Path
 
-from gen.solver_fresh import BuildError, kernel_files as _kernel_files, kernel_headers, linked_after_sources
+from gen.solver_fresh import BuildError, LIBS, kernel_files as _kernel_files, kernel_headers, linked_after_sources
+from gen.solver_fresh import stamp_text as _stamp_text
 
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
     from _sha256 import sha256
@@ -27,10 +28,6 @@ JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c", "newton.c", "stability.c",
                    "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c",
                    "main.c", "amplitude.c", "loads.c", "forces.c", "numfmt.c", "csvrow.c", "filewriter.c")
-LIBS = ["-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl", "-lgslcblas", "-lm"]
-# The lane kernels' vector log, cbrt, pow (out/kernels/*_*.c, `declare simd`): glibc's libmvec.
-if os.uname().sysname == "Linux" and os.uname().machine == "x86_64":   # (os.uname: no platform import)
-    LIBS.insert(LIBS.index("-lm"), "-lmvec")
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP
 # (results are bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the
 # sanitizer build keeps OpenMP so that it checks the code that runs.
@@ -238,7 +235,7 @@ def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
         kernel_objects(pairs, index, variant, log) + [tobj]
     out_path = Path(out_path)
     stamp = out_path.with_name(out_path.name + ".pairs")
-    stamp_text = variant + "\n" + "\n".join(pairs) + "\n"
+    stamp_text = _stamp_text(variant, pairs)
     fresh = (out_path.exists() and stamp.exists() and stamp.read_text() == stamp_text
              and out_path.stat().st_mtime >= _newest(objs))
     if fresh:
