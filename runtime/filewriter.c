@@ -79,8 +79,7 @@ static void *writer_main(void *arg)
             break;
         int b = w->queue[w->head];
         pthread_mutex_unlock(&w->mu);
-        int err = w->make[b] ? make_file(w->path[b], w->buf[b], w->cap, w->make[b], w->job[b])
-                             : write_file(w->path[b], w->buf[b], w->len[b]);
+        int err = make_file(w->path[b], w->buf[b], w->cap, w->make[b], w->job[b]);
         pthread_mutex_lock(&w->mu);
         record(w, w->path[b], err);
         w->head = (w->head + 1) % BK_FILEWRITER_BUFFERS;
@@ -135,13 +134,7 @@ int bk_filewriter_slot(bk_filewriter *w)
     return b;
 }
 
-unsigned char *bk_filewriter_buffer(bk_filewriter *w)
-{
-    int b = bk_filewriter_slot(w);
-    return b >= 0 ? w->buf[b] : NULL;
-}
-
-/* Queues buffer b (the caller's, filled or with its job set) for the thread. */
+/* Queues buffer b (the caller's, with its job set) for the thread. */
 static int queue(bk_filewriter *w, int b, const char *path)
 {
     pthread_mutex_lock(&w->mu);
@@ -175,32 +168,6 @@ int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_fi
     w->make[slot] = make;
     w->job[slot] = job;
     return queue(w, slot, path);
-}
-
-int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *path, size_t len)
-{
-    int b = 0;
-    while (b < BK_FILEWRITER_BUFFERS && w->buf[b] != buffer)
-        b++;
-    if (b == BK_FILEWRITER_BUFFERS)
-        return -1;
-    if (!w->threaded) {
-        record(w, path, write_file(path, buffer, len));
-        return release(w, b);
-    }
-    w->make[b] = NULL;
-    w->len[b] = len;
-    return queue(w, b, path);
-}
-
-void bk_filewriter_cancel(bk_filewriter *w, unsigned char *buffer)
-{
-    pthread_mutex_lock(&w->mu);
-    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
-        if (w->buf[b] == buffer && w->state[b] == 1)
-            w->state[b] = 0;
-    pthread_cond_broadcast(&w->cv);
-    pthread_mutex_unlock(&w->mu);
 }
 
 int bk_filewriter_drain(bk_filewriter *w)

@@ -1,40 +1,35 @@
-/* filewriter.h -- whole files (the ParaView frames) written by a background
- * thread while the solve goes on.
+/* filewriter.h -- whole files (the ParaView frames) made and written by a
+ * background thread while the solve goes on.
  *
- * A file is made in one of the writer's buffers and handed over with its path,
- * or handed over as a job that the thread makes into the buffer itself (from
- * inputs the caller copied into that buffer's job memory); the thread creates,
- * writes and closes it, in the order handed over, and gives the buffer back.
- * On this kind of machine creating and writing a frame costs 30-60 us, and
- * making it 20-30 us, more than a small model's load step; with the thread the
- * solver's core does not wait for either.
+ * A file is handed over as a job: its path and a function that writes its
+ * contents from inputs the caller copied into its own memory for that job's
+ * buffer.  The thread makes the contents in the buffer, then creates, writes
+ * and closes the file, in the order handed over, and gives the buffer back.
+ * On this kind of machine making a frame takes 20-30 us and creating and
+ * writing it 30-60 us, more than a small model's load step; with the thread
+ * the solver's core does not wait for either.
  *
  * Sizes and directions:
- *   bk_filewriter_open    in: cap, the largest file in bytes; threaded: 0 makes
+ *   bk_filewriter_open    in: cap, the largest file in bytes (a larger one is
+ *                         written to its file as it is made); threaded: 0 makes
  *                         every submit write at once in the caller's thread
  *                         (as when no thread could be made).  0, or -1 when out
  *                         of memory (bk_filewriter_close frees what was made).
- *   bk_filewriter_buffer  out: a buffer of cap bytes the caller may fill (waits
- *                         while both are being written).
- *   bk_filewriter_submit  in: that buffer's first len bytes are DIR/... path's
- *                         contents.  0, or -1 on the first failed write so far
- *                         (this file's or an earlier one's: failed_path, errno_).
  *   bk_filewriter_slot    out: the index (0 .. BK_FILEWRITER_BUFFERS-1) of a free
  *                         buffer, now the caller's (waits while both are being
  *                         written); the caller's job memory of that index is
  *                         free to fill until it is submitted.
  *   bk_filewriter_submit_job  in: slot from bk_filewriter_slot; path; make, called
  *                         once (in the thread, or here when unthreaded) with job
- *                         and a stream to write the file's contents to: on the
- *                         buffer, or on the file itself when they outgrow it.
- *                         0, or -1 as bk_filewriter_submit.
- *   bk_filewriter_cancel  gives a buffer from bk_filewriter_buffer back unused.
+ *                         and a stream to write the file's contents to.  0, or
+ *                         -1 on the first failed write so far (this file's or an
+ *                         earlier one's: failed_path, errno_).
  *   bk_filewriter_drain   waits until every file handed over is written; 0 or -1
  *                         as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
  * No allocation after open but for a job's stream on its buffer (fmemopen).
- * The signal mask is the opener's (the solver
- * blocks SIGINT/SIGTERM before: interrupt.h). */
+ * The signal mask is the opener's (the solver blocks SIGINT/SIGTERM before:
+ * interrupt.h). */
 #ifndef BK_FILEWRITER_H
 #define BK_FILEWRITER_H
 
@@ -53,9 +48,8 @@ typedef struct bk_filewriter {
     unsigned char *buf[BK_FILEWRITER_BUFFERS];   /* owned */
     /* per buffer: 0 free, 1 handed to the caller, 2 queued or being written */
     int state[BK_FILEWRITER_BUFFERS];
-    size_t len[BK_FILEWRITER_BUFFERS];
     char path[BK_FILEWRITER_BUFFERS][BK_FILEWRITER_PATH];
-    bk_filewriter_make make[BK_FILEWRITER_BUFFERS];   /* NULL: the buffer holds the file */
+    bk_filewriter_make make[BK_FILEWRITER_BUFFERS];
     const void *job[BK_FILEWRITER_BUFFERS];
     int queue[BK_FILEWRITER_BUFFERS];   /* buffers in the order handed over */
     int head, count;
@@ -69,11 +63,8 @@ typedef struct bk_filewriter {
 } bk_filewriter;
 
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
-unsigned char *bk_filewriter_buffer(bk_filewriter *w);
-int bk_filewriter_submit(bk_filewriter *w, unsigned char *buffer, const char *path, size_t len);
 int bk_filewriter_slot(bk_filewriter *w);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
-void bk_filewriter_cancel(bk_filewriter *w, unsigned char *buffer);
 int bk_filewriter_drain(bk_filewriter *w);
 void bk_filewriter_close(bk_filewriter *w);
 

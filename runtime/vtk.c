@@ -153,16 +153,22 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     return 0;
 }
 
-/* The inputs of a step frame made by the writer's thread, copied when it is
- * handed over (the solve goes on with its own): the frame's time, the
- * coordinates, the section forces and stress resultants of its step (when it
- * has them), and the thread's scratch for the points. */
+/* The inputs of a frame made by the writer's thread, copied when it is handed
+ * over (the solve goes on with its own): the field data, the coordinates (and
+ * a mode frame's q +- eps phi with its view), the section forces and stress
+ * resultants of its step (when it has them), and the thread's scratch for the
+ * points. */
+#define BK_VTK_MAX_FIELDS 5
 typedef struct bk_vtk_job {
     const bk_vtk *v;         /* read-only while the thread runs: m, npts, ref, topo */
-    double t;
-    double *q;               /* m->ndof */
+    int nfield;
+    const char *const *fname;            /* static names */
+    double fval[BK_VTK_MAX_FIELDS];
+    double *q, *qp, *qm;     /* m->ndof each */
+    int is_mode;             /* a mode frame: qp, qm and */
+    double eps, norm, scale; /*   its view (mode_view) */
     double *sec, *ssec;      /* 12 per element; 6 maxsample per element */
-    int with_sec, with_ssec;
+    int with_sec, with_ssec, maxsample;
     double *pts;             /* 3 npts */
 } bk_vtk_job;
 
@@ -175,8 +181,7 @@ typedef struct bk_vtk_job {
  * time or mode over its end), which with the frames so far gives the
  * expected number; <= 0 when unknown (arc-length, load cycles: the writer
  * starts at the third frame).  If it cannot be made, frames are written
- * directly; without memory for the step frames' inputs, they are made here
- * and written by the thread. */
+ * directly, as they are without memory for the frames' inputs. */
 #define BK_VTK_BACKGROUND_MIN 8
 static void maybe_background(bk_vtk *v, double frac)
 {
@@ -196,7 +201,7 @@ static void maybe_background(bk_vtk *v, double frac)
     v->background = 1;
     const bk_model *m = v->m;
     size_t nq = (size_t)m->ndof, ne = (size_t)m->nelem, ns = 6 * (size_t)(v->maxsample > 0 ? v->maxsample : 1) * ne;
-    size_t each = nq + 12 * ne + ns + 3 * (size_t)v->npts + 1;
+    size_t each = 3 * nq + 12 * ne + ns + 3 * (size_t)v->npts + 1;
     v->jobs = calloc(BK_FILEWRITER_BUFFERS, sizeof *v->jobs);
     double *mem = v->jobs ? malloc(BK_FILEWRITER_BUFFERS * each * sizeof *mem) : NULL;
     if (!mem) {
@@ -208,7 +213,9 @@ static void maybe_background(bk_vtk *v, double frac)
         bk_vtk_job *j = &v->jobs[b];
         j->v = v;
         j->q = mem + (size_t)b * each;
-        j->sec = j->q + nq;
+        j->qp = j->q + nq;
+        j->qm = j->qp + nq;
+        j->sec = j->qm + nq;
         j->ssec = j->sec + 12 * ne;
         j->pts = j->ssec + ns;
     }
@@ -651,29 +658,47 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
 }
 
-/* The frame file `path`: made in a buffer of the background writer (which
- * creates and writes the file), or written here (large frames; or a frame
- * that did not fit the buffer). */
+/* A frame of job (bk_filewriter_make: called by the writer's thread). */
+static void frame_job(const void *job, FILE *fp)
+{
+    const bk_vtk_job *j = job;
+    const mode_view mv = {j->qp, j->qm, j->eps, j->norm, j->scale};
+    vtu_contents(j->v, fp, j->nfield, j->fname, j->fval, j->q, j->is_mode ? &mv : NULL, j->with_sec ? j->sec : NULL,
+                 j->with_ssec ? j->ssec : NULL, j->maxsample, j->pts);
+}
+
+/* The frame file `path`: its inputs copied for the background writer's thread,
+ * which makes, creates and writes it; or made and written here (no writer, a
+ * large frame). */
 static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
                      const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
 {
     v->written++;
-    if (v->background) {
-        unsigned char *buf = bk_filewriter_buffer(&v->fw);
-        FILE *mp = buf ? fmemopen(buf, v->fw.cap, "wb") : NULL;
-        if (mp) {
-            setvbuf(mp, NULL, _IONBF, 0);
-            vtu_contents(v, mp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
-            long len = ftell(mp);
-            int bad = ferror(mp) || len < 0 || (size_t)len >= v->fw.cap;
-            fclose(mp);
-            if (!bad) {                  /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
-                bk_filewriter_submit(&v->fw, buf, path, (size_t)len);
-                return 0;
-            }
+    const int b = v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(&v->fw) : -1;
+    if (b >= 0) {
+        const bk_model *m = v->m;
+        const size_t nq = (size_t)m->ndof;
+        bk_vtk_job *j = &v->jobs[b];
+        j->nfield = nfield;
+        j->fname = fname;
+        memcpy(j->fval, fval, (size_t)nfield * sizeof *fval);
+        memcpy(j->q, q, nq * sizeof *q);
+        j->is_mode = mv != NULL;
+        if (mv) {
+            memcpy(j->qp, mv->qp, nq * sizeof *q);
+            memcpy(j->qm, mv->qm, nq * sizeof *q);
+            j->eps = mv->eps, j->norm = mv->norm, j->scale = mv->scale;
         }
-        if (buf)
-            bk_filewriter_cancel(&v->fw, buf);
+        j->with_sec = sec != NULL;
+        j->with_ssec = sec && ssec;      /* (vtu_contents: the stress arrays go with the section forces) */
+        j->maxsample = maxsample;
+        if (j->with_sec)
+            memcpy(j->sec, sec, 12 * (size_t)m->nelem * sizeof *sec);
+        if (j->with_ssec)
+            memcpy(j->ssec, ssec, 6 * (size_t)maxsample * (size_t)m->nelem * sizeof *ssec);
+        /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
+        bk_filewriter_submit_job(&v->fw, b, path, frame_job, j);
+        return 0;
     }
     FILE *fp = fopen(path, "wb");
     if (!fp) {
@@ -688,42 +713,6 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
         return -1;
     }
     return 0;
-}
-
-static const char *const step_fields[] = {"TIME"};
-
-/* A step frame of job (bk_filewriter_make: called by the writer's thread). */
-static void step_frame(const void *job, FILE *fp)
-{
-    const bk_vtk_job *j = job;
-    vtu_contents(j->v, fp, 1, step_fields, &j->t, j->q, NULL, j->with_sec ? j->sec : NULL,
-                 j->with_sec && j->with_ssec ? j->ssec : NULL, j->v->maxsample, j->pts);
-}
-
-/* The step frame `path` of q at time t (sec: its step's section forces, or
- * NULL): its inputs copied for the background writer's thread, which makes
- * and writes it; else made (and written) here. */
-static int write_step_frame(bk_vtk *v, const char *path, double t, const double *q, const double *sec)
-{
-    if (v->background && v->jobs) {
-        int b = bk_filewriter_slot(&v->fw);
-        if (b >= 0) {
-            const bk_model *m = v->m;
-            bk_vtk_job *j = &v->jobs[b];
-            j->t = t;
-            memcpy(j->q, q, (size_t)m->ndof * sizeof *q);
-            j->with_sec = sec != NULL;
-            j->with_ssec = sec && v->ssec;
-            if (j->with_sec)
-                memcpy(j->sec, sec, 12 * (size_t)m->nelem * sizeof *sec);
-            if (j->with_ssec)
-                memcpy(j->ssec, v->ssec, 6 * (size_t)v->maxsample * (size_t)m->nelem * sizeof *v->ssec);
-            v->written++;                /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
-            bk_filewriter_submit_job(&v->fw, b, path, step_frame, j);
-            return 0;
-        }
-    }
-    return write_vtu(v, path, 1, step_fields, &t, q, NULL, sec, v->ssec, v->maxsample);
 }
 
 int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
@@ -756,7 +745,8 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     else if (m->analysis == BK_STATIC && !m->stat.arc_length && m->stat.cycles == 0)
         frac = t;                                    /* the load factor, 0 -> 1 */
     maybe_background(v, frac);
-    if (write_step_frame(v, path, t, q, sec) != 0)
+    static const char *const names[] = {"TIME"};
+    if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;

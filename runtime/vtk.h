@@ -36,8 +36,8 @@ typedef struct bk_vtk {
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
     bk_filewriter fw;        /* owned when background */
-    struct bk_vtk_job *jobs; /* owned when background: per buffer of fw, the inputs of the step
-                              * frame its thread makes (NULL: frames are made here) */
+    struct bk_vtk_job *jobs; /* owned when background: per buffer of fw, the inputs of the
+                              * frame its thread makes (NULL: frames are written here) */
     int failed;              /* a frame or collection written here could not be: 1, 2 once reported */
     int errno_;              /*   its errno */
     char failed_path[1216];  /*   its path (a collection's temporary name included) */
@@ -46,8 +46,8 @@ typedef struct bk_vtk {
 /* From a run's second frame on (its third when its length is unknown, its
  * first when it is known to write many),
  * frames up to this size are made and written by a background thread
- * (filewriter.h: two buffers of a frame each; the step frames' inputs are
- * copied for it), larger ones directly. */
+ * (filewriter.h: two buffers of a frame each; the frames' inputs are copied
+ * for it), larger ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
 /* capacity: expected number of frames (the arrays grow if exceeded). */
