@@ -72,10 +72,14 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
 
 static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
 {
-    int frames = m->analysis == BK_DYNAMIC
-                     ? (int)(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / (m->vtk_every > 0 ? m->vtk_every : 1)) + 4
-                     : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
-    if (bk_vtk_open(&o->vtk, m, dir, m->vtk_every, frames) != 0) {
+    /* the frames a dynamic run writes (known from the start), and the room for
+     * them (a static run: its load steps, which the step control may change) */
+    const int known = m->analysis == BK_DYNAMIC
+                          ? (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) /
+                                               (m->vtk_every > 0 ? m->vtk_every : 1)) + 1
+                          : 0;
+    const int frames = known ? known + 3 : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+    if (bk_vtk_open(&o->vtk, m, dir, m->vtk_every, frames, known) != 0) {
         fprintf(err, "error: out of memory for the ParaView frames\n");
         return -1;
     }

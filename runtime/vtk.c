@@ -121,7 +121,7 @@ static void frame_points(const bk_model *m, const double *q, const mode_view *mv
 static void frame_cells(const bk_model *m, long *ncell, long *nconn);
 static size_t topology(const bk_model *m, unsigned char *buf);
 
-int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity)
+int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity, int expected)
 {
     memset(v, 0, sizeof *v);
     v->m = m;
@@ -130,8 +130,7 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     if (every <= 0)
         return 0;
     v->t_pvd = bk_clock_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
-    if (m->analysis == BK_DYNAMIC && m->dyn.dt > 0.0 && m->dyn.output_every > 0)
-        v->expected = (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / every) + 1;
+    v->expected = expected;
     v->cap = capacity > 16 ? capacity : 16;
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);

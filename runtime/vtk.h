@@ -50,8 +50,9 @@ typedef struct bk_vtk {
  * for it), larger ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
-/* capacity: expected number of frames (the arrays grow if exceeded). */
-int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity);
+/* capacity: room for this many frames (the arrays grow if exceeded);
+ * expected: the frames the run will write when known in advance, else 0. */
+int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity, int expected);
 /* Writes a frame for every `every`-th call (step < 0: write unconditionally,
  * frame number -step). */
 int bk_vtk_frame(bk_vtk *v, const struct bk_system *s, int step, double t, const double *q);
