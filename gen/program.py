@@ -69,6 +69,24 @@ def lower(prog, hoistable):
 
     exprs = [e.replace(_is_third, _root) if e.has(sp.Pow) else e for e in exprs]
     root_defs = [(c, sp.Pow(b, sp.Rational(1, 3), evaluate=False)) for b, c in roots.items()]
+    # A base with several negative integer powers (b**-5, b**-8, ...) through
+    # one reciprocal r = 1/b and products of r: one division where there were
+    # several (a vector division costs as much as 20-30 multiplications).
+    negs = {}
+    for e in exprs:
+        for f in e.atoms(sp.Pow):
+            if f.exp.is_Integer and f.exp < 0:
+                negs.setdefault(f.base, set()).add(int(f.exp))
+    recips = {}
+    for b in sorted((b for b, ns in negs.items() if len(ns) > 1), key=sp.default_sort_key):
+        recips[b] = sp.Symbol(f"rc{len(recips)}", real=True)
+
+    def _is_recip(e):
+        return e.is_Pow and e.exp.is_Integer and e.exp < 0 and e.base in recips
+
+    if recips:
+        exprs = [e.replace(_is_recip, lambda e: recips[e.base] ** int(-e.exp)) for e in exprs]
+        root_defs += [(r, sp.Pow(b, -1, evaluate=False)) for b, r in recips.items()]
     exprs = [e for _, e in root_defs] + exprs
     repl, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("x", real=True), order="none")
     nr = len(root_defs)

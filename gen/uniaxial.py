@@ -8,12 +8,17 @@ over d: dw/dd = 0 at d = d*(c).  The uniaxial energy is U(c) = w(c, d*(c)); by
 the envelope theorem U'(c) = w_c and U''(c) = w_cc - w_cd^2 / w_dd at d*.  The
 generated kernels solve dw/dd = 0 at each point by NEWTON_STEPS Newton steps
 from d0 = c^(-nu_log), nu_log = w_cd / w_dd at c = d = 1 (the small-strain
-Poisson ratio in logarithmic strain), exact for St. Venant-Kirchhoff after one.
+Poisson ratio in logarithmic strain), exact for St. Venant-Kirchhoff after one;
+the step dw/dd / d2w/dd2 as one fraction where that takes no more operations
+(one division where the derivatives had up to 16: a vector division costs as
+much as 20-30 multiplications).
 
 U0, U1, U2 are sympy functions standing for U, U', U'' in an energy expression;
 define_uniaxial() puts their values into a program.
 """
 import sympy as sp
+
+from gen.program import count_ops
 
 NEWTON_STEPS = 5
 
@@ -77,8 +82,12 @@ def define_uniaxial(prog, mat, params, c):
     wd, wdd = sp.diff(w, _d), sp.diff(w, _d, 2)
     steps = 1 if uniaxial_exact(mat, params) else NEWTON_STEPS
     d = prog.define("ulat0", c**(-nu_log(mat, params)) if steps > 1 else sp.Integer(1))
+    step = wd / wdd
+    one = sp.together(step)              # one fraction: a single division per step,
+    if count_ops(one).total() <= count_ops(step).total():
+        step = one                       # where that is no more operations
     for k in range(steps):
-        d = prog.define(f"ulat{k + 1}", d - (wd / wdd).subs({_c: c, _d: d}))
+        d = prog.define(f"ulat{k + 1}", d - step.subs({_c: c, _d: d}))
     at = {_c: c, _d: d}
     wc = sp.diff(w, _c)
     u0 = prog.define("Uax0", w.subs(at))

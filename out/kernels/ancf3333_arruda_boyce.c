@@ -17,6 +17,7 @@ double ancf3333_arruda_boyce_full_energy(const double *restrict q, const double 
 {
     double e = 0.0;
     {   /* energy part "all": 12 quadrature points */
+        const double rc1 = (1.0/mat[1]);
         for (int p = 0; p < 12; ++p) {
             const double *restrict t = tab + 0 + 13 * p;
             const double F00 = q[0]*t[1] + q[12]*t[6] + q[15]*t[8] + q[18]*t[9] + q[21]*t[10] + q[24]*t[12] + q[3]*t[2] + q[6]*t[4] + q[9]*t[5];
@@ -46,7 +47,8 @@ double ancf3333_arruda_boyce_full_energy(const double *restrict q, const double 
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
             const double cb0 = (cbrt(J));
-            e += t[0]*(mat[0]*((0.5*I1/((cb0*cb0))) - 1.5 + (0.05*(((I1*I1)/((cb0*cb0*cb0*cb0))) - 9.0)/((mat[1]*mat[1]))) + (0.010476190476190476*(((I1*I1*I1)/((J*J))) - 27.0)/((mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0027142857142857142*(((I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 81.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]))) + (0.0007703153988868275*(((I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - 243.0)/((mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1])))) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
+            const double rc0 = (1.0/cb0);
+            e += t[0]*(mat[0]*(0.5*I1*(rc0*rc0) + 0.0007703153988868275*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1)*((I1*I1*I1*I1*I1)*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0) - 243.0) + 0.0027142857142857142*(rc1*rc1*rc1*rc1*rc1*rc1)*((I1*I1*I1*I1)*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0) - 81.0) + 0.010476190476190476*(rc1*rc1*rc1*rc1)*(((I1*I1*I1)/((J*J))) - 27.0) + 0.05*(rc1*rc1)*((I1*I1)*(rc0*rc0*rc0*rc0) - 9.0) - 1.5) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
         }
     }
     return e;
@@ -56,10 +58,11 @@ void ancf3333_arruda_boyce_full_force(const double *restrict q, const double *re
 {
     for (int i = 0; i < 27; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
-        const double x9 = (1.0/(mat[1]*mat[1]));
-        const double x11 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x13 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x15 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
+        const double rc2 = (1.0/mat[1]);
+        const double x9 = (rc2*rc2);
+        const double x11 = (rc2*rc2*rc2*rc2);
+        const double x13 = (rc2*rc2*rc2*rc2*rc2*rc2);
+        const double x15 = (rc2*rc2*rc2*rc2*rc2*rc2*rc2*rc2);
         for (int p = 0; p < 12; ++p) {
             const double *restrict t = tab + 0 + 13 * p;
             const double F00 = q[0]*t[1] + q[12]*t[6] + q[15]*t[8] + q[18]*t[9] + q[21]*t[10] + q[24]*t[12] + q[3]*t[2] + q[6]*t[4] + q[9]*t[5];
@@ -88,12 +91,14 @@ void ancf3333_arruda_boyce_full_force(const double *restrict q, const double *re
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double rc0 = (1.0/J);
             const double cb0 = (cbrt(J));
+            const double rc1 = (1.0/cb0);
             const double x10 = (I1*I1);
             const double x12 = (I1*I1*I1);
             const double x14 = (I1*I1*I1*I1);
-            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+            const double W_J = t[0]*(mat[0]*(-0.002567717996289425*x15*(I1*I1*I1*I1*I1)*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.3333333333333333*I1*(rc1*rc1*rc1*rc1*rc1) - 0.02095238095238095*x11*x12*(rc0*rc0*rc0) - 0.007238095238095238*x13*x14*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.06666666666666667*x10*x9*(rc1*rc1*rc1*rc1*rc1*rc1*rc1)) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_I1 = mat[0]*t[0]*(0.1*I1*x9*(rc1*rc1*rc1*rc1) + 0.03142857142857143*x10*x11*(rc0*rc0) + 0.0038515769944341373*x14*x15*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.010857142857142857*x12*x13*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.5*(rc1*rc1));
             const double x16 = 2.0*W_I1;
             const double P00 = F00*x16 + W_J*cof00;
             const double P10 = F10*x16 + W_J*cof10;
@@ -149,10 +154,11 @@ void ancf3333_arruda_boyce_full_force_lanes(const double *restrict q, const doub
             const double *restrict t = tab + (0 + 13 * p) * 8;
             #pragma omp simd
             for (int l = 0; l < 8; ++l) {
-                const double x9 = (1.0/(mat[8 + l]*mat[8 + l]));
-                const double x11 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
-                const double x13 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
-                const double x15 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double rc2 = (1.0/mat[8 + l]);
+                const double x9 = (rc2*rc2);
+                const double x11 = (rc2*rc2*rc2*rc2);
+                const double x13 = (rc2*rc2*rc2*rc2*rc2*rc2);
+                const double x15 = (rc2*rc2*rc2*rc2*rc2*rc2*rc2*rc2);
                 const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
                 const double x0 = (F00*F00);
                 const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
@@ -179,12 +185,14 @@ void ancf3333_arruda_boyce_full_force_lanes(const double *restrict q, const doub
                 const double cof10 = -F01*F22 + F02*F21;
                 const double cof20 = F01*F12 - F02*F11;
                 const double J = F00*cof00 + F10*cof10 + F20*cof20;
+                const double rc0 = (1.0/J);
                 const double cb0 = (cbrt(J));
+                const double rc1 = (1.0/cb0);
                 const double x10 = (I1*I1);
                 const double x12 = (I1*I1*I1);
                 const double x14 = (I1*I1*I1*I1);
-                const double W_J = t[0 + l]*(mat[0 + l]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[16 + l]*(2.0*J - 2.0));
-                const double W_I1 = mat[0 + l]*t[0 + l]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+                const double W_J = t[0 + l]*(mat[0 + l]*(-0.002567717996289425*x15*(I1*I1*I1*I1*I1)*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.3333333333333333*I1*(rc1*rc1*rc1*rc1*rc1) - 0.02095238095238095*x11*x12*(rc0*rc0*rc0) - 0.007238095238095238*x13*x14*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.06666666666666667*x10*x9*(rc1*rc1*rc1*rc1*rc1*rc1*rc1)) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double W_I1 = mat[0 + l]*t[0 + l]*(0.1*I1*x9*(rc1*rc1*rc1*rc1) + 0.03142857142857143*x10*x11*(rc0*rc0) + 0.0038515769944341373*x14*x15*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.010857142857142857*x12*x13*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.5*(rc1*rc1));
                 const double x16 = 2.0*W_I1;
                 const double P00 = F00*x16 + W_J*cof00;
                 const double P10 = F10*x16 + W_J*cof10;
@@ -238,10 +246,11 @@ void ancf3333_arruda_boyce_full_force_tangent(const double *restrict q, const do
     for (int i = 0; i < 27; ++i) f[i] = 0.0;
     for (int i = 0; i < 729; ++i) K[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
-        const double x45 = (1.0/(mat[1]*mat[1]));
-        const double x49 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x53 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x57 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
+        const double rc2 = (1.0/mat[1]);
+        const double x45 = (rc2*rc2);
+        const double x49 = (rc2*rc2*rc2*rc2);
+        const double x53 = (rc2*rc2*rc2*rc2*rc2*rc2);
+        const double x57 = (rc2*rc2*rc2*rc2*rc2*rc2*rc2*rc2);
         for (int p = 0; p < 12; ++p) {
             const double *restrict t = tab + 0 + 13 * p;
             double A[45];
@@ -283,22 +292,24 @@ void ancf3333_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x52 = (I1*I1*I1);
             const double x56 = (I1*I1*I1*I1);
             const double cb0 = (cbrt(J));
-            const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
-            const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
-            const double x62 = (1.0/(J*J*J));
-            const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
-            const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double rc1 = (1.0/cb0);
+            const double x60 = (rc1*rc1*rc1*rc1*rc1);
+            const double x61 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1);
+            const double rc0 = (1.0/J);
+            const double x62 = (rc0*rc0*rc0);
+            const double x63 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
+            const double x64 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
             const double W_J = t[0]*(mat[0]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double x44 = (1.0/(cb0*cb0*cb0*cb0));
+            const double x44 = (rc1*rc1*rc1*rc1);
             const double x46 = I1*x45;
-            const double x47 = (1.0/(J*J));
+            const double x47 = (rc0*rc0);
             const double x50 = x48*x49;
-            const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x51 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
             const double x54 = x52*x53;
-            const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+            const double x55 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
             const double x58 = x56*x57;
             const double x59 = mat[0]*t[0];
-            const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
+            const double W_I1 = x59*(0.5*(rc1*rc1) + 0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58);
             const double x65 = 2.0*W_I1;
             const double P00 = F00*x65 + W_J*cof00;
             const double P10 = F10*x65 + W_J*cof10;
@@ -324,7 +335,7 @@ void ancf3333_arruda_boyce_full_force_tangent(const double *restrict q, const do
             const double x40 = F01*F10;
             const double cof22 = x39 - x40;
             const double P22 = F22*x65 + W_J*cof22;
-            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[2]);
+            const double W_J_J = t[0]*(1.6491445062873634e-06*I1*mat[0]*(38115.0*x50*(rc0*rc0*rc0*rc0) + 6747.0*x58*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 16093.0*x54*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 94325.0*x46*x55 + 336875.0*x51) + mat[2]);
             const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
             const double x66 = 4.0*W_I1_I1;
             const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
@@ -468,10 +479,11 @@ void ancf3333_arruda_boyce_full_force_tangent_lanes(const double *restrict q, co
             double A[360];
             #pragma omp simd
             for (int l = 0; l < 8; ++l) {
-                const double x45 = (1.0/(mat[8 + l]*mat[8 + l]));
-                const double x49 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
-                const double x53 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
-                const double x57 = (1.0/(mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]*mat[8 + l]));
+                const double rc2 = (1.0/mat[8 + l]);
+                const double x45 = (rc2*rc2);
+                const double x49 = (rc2*rc2*rc2*rc2);
+                const double x53 = (rc2*rc2*rc2*rc2*rc2*rc2);
+                const double x57 = (rc2*rc2*rc2*rc2*rc2*rc2*rc2*rc2);
                 const double F00 = q[0 + l]*t[8 + l] + q[96 + l]*t[48 + l] + q[120 + l]*t[64 + l] + q[144 + l]*t[72 + l] + q[168 + l]*t[80 + l] + q[192 + l]*t[96 + l] + q[24 + l]*t[16 + l] + q[48 + l]*t[32 + l] + q[72 + l]*t[40 + l];
                 const double x0 = (F00*F00);
                 const double F10 = q[80 + l]*t[40 + l] + q[104 + l]*t[48 + l] + q[128 + l]*t[64 + l] + q[152 + l]*t[72 + l] + q[8 + l]*t[8 + l] + q[176 + l]*t[80 + l] + q[200 + l]*t[96 + l] + q[32 + l]*t[16 + l] + q[56 + l]*t[32 + l];
@@ -510,22 +522,24 @@ void ancf3333_arruda_boyce_full_force_tangent_lanes(const double *restrict q, co
                 const double x52 = (I1*I1*I1);
                 const double x56 = (I1*I1*I1*I1);
                 const double cb0 = (cbrt(J));
-                const double x60 = (1.0/(cb0*cb0*cb0*cb0*cb0));
-                const double x61 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0));
-                const double x62 = (1.0/(J*J*J));
-                const double x63 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
-                const double x64 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double rc1 = (1.0/cb0);
+                const double x60 = (rc1*rc1*rc1*rc1*rc1);
+                const double x61 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1);
+                const double rc0 = (1.0/J);
+                const double x62 = (rc0*rc0*rc0);
+                const double x63 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
+                const double x64 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
                 const double W_J = t[0 + l]*(mat[0 + l]*(-0.002567717996289425*x57*x64*(I1*I1*I1*I1*I1) - 0.3333333333333333*I1*x60 - 0.06666666666666667*x45*x48*x61 - 0.02095238095238095*x49*x52*x62 - 0.007238095238095238*x53*x56*x63) + 0.5*mat[16 + l]*(2.0*J - 2.0));
-                const double x44 = (1.0/(cb0*cb0*cb0*cb0));
+                const double x44 = (rc1*rc1*rc1*rc1);
                 const double x46 = I1*x45;
-                const double x47 = (1.0/(J*J));
+                const double x47 = (rc0*rc0);
                 const double x50 = x48*x49;
-                const double x51 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x51 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
                 const double x54 = x52*x53;
-                const double x55 = (1.0/(cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0));
+                const double x55 = (rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1);
                 const double x58 = x56*x57;
                 const double x59 = mat[0 + l]*t[0 + l];
-                const double W_I1 = x59*(0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58 + (0.5/((cb0*cb0))));
+                const double W_I1 = x59*(0.5*(rc1*rc1) + 0.1*x44*x46 + 0.03142857142857143*x47*x50 + 0.010857142857142857*x51*x54 + 0.0038515769944341373*x55*x58);
                 const double x65 = 2.0*W_I1;
                 const double P00 = F00*x65 + W_J*cof00;
                 const double P10 = F10*x65 + W_J*cof10;
@@ -551,7 +565,7 @@ void ancf3333_arruda_boyce_full_force_tangent_lanes(const double *restrict q, co
                 const double x40 = F01*F10;
                 const double cof22 = x39 - x40;
                 const double P22 = F22*x65 + W_J*cof22;
-                const double W_J_J = t[0 + l]*(1.6491445062873634e-06*I1*mat[0 + l]*(94325.0*x46*x55 + 336875.0*x51 + (16093.0*x54/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (6747.0*x58/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (38115.0*x50/((J*J*J*J)))) + mat[16 + l]);
+                const double W_J_J = t[0 + l]*(1.6491445062873634e-06*I1*mat[0 + l]*(38115.0*x50*(rc0*rc0*rc0*rc0) + 6747.0*x58*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 16093.0*x54*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 94325.0*x46*x55 + 336875.0*x51) + mat[16 + l]);
                 const double W_I1_I1 = 7.421150278293136e-06*x45*x59*(13475.0*x44 + 8470.0*x46*x47 + 4389.0*x50*x51 + 2076.0*x54*x55);
                 const double x66 = 4.0*W_I1_I1;
                 const double W_I1_J = -4.94743351886209e-06*x59*(26950.0*x46*x61 + 12705.0*x50*x62 + 5852.0*x54*x63 + 2595.0*x58*x64 + 67375.0*x60);
@@ -703,10 +717,11 @@ void ancf3333_arruda_boyce_full_sections(const double *restrict geom, const doub
         static const double pz[12] = {-0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287, -0.28867513459481287, 0.28867513459481287};
         static const double cw[12] = {3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 2.25, 2.25, 2.25, 2.25, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996, 3.5999999999999996};
         static const int st[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
-        const double x9 = (1.0/(mat[1]*mat[1]));
-        const double x11 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x13 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
-        const double x15 = (1.0/(mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]*mat[1]));
+        const double rc2 = (1.0/mat[1]);
+        const double x9 = (rc2*rc2);
+        const double x11 = (rc2*rc2*rc2*rc2);
+        const double x13 = (rc2*rc2*rc2*rc2*rc2*rc2);
+        const double x15 = (rc2*rc2*rc2*rc2*rc2*rc2*rc2*rc2);
         for (int p = 0; p < 12; ++p) {
             const double *restrict t = tab + 0 + 13 * p;
             double tr[3], N[9], Nc[9], arm[3] = {0.0, 0.0, 0.0};
@@ -736,12 +751,14 @@ void ancf3333_arruda_boyce_full_sections(const double *restrict geom, const doub
             const double cof10 = -F01*F22 + F02*F21;
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
+            const double rc0 = (1.0/J);
             const double cb0 = (cbrt(J));
+            const double rc1 = (1.0/cb0);
             const double x10 = (I1*I1);
             const double x12 = (I1*I1*I1);
             const double x14 = (I1*I1*I1*I1);
-            const double W_J = t[0]*(mat[0]*(-(0.002567717996289425*x15*(I1*I1*I1*I1*I1)/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.3333333333333333*I1/((cb0*cb0*cb0*cb0*cb0))) - (0.06666666666666667*x10*x9/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.007238095238095238*x13*x14/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) - (0.02095238095238095*x11*x12/((J*J*J)))) + 0.5*mat[2]*(2.0*J - 2.0));
-            const double W_I1 = mat[0]*t[0]*((0.1*I1*x9/((cb0*cb0*cb0*cb0))) + (0.5/((cb0*cb0))) + (0.010857142857142857*x12*x13/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.0038515769944341373*x14*x15/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (0.03142857142857143*x10*x11/((J*J))));
+            const double W_J = t[0]*(mat[0]*(-0.002567717996289425*x15*(I1*I1*I1*I1*I1)*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.3333333333333333*I1*(rc1*rc1*rc1*rc1*rc1) - 0.02095238095238095*x11*x12*(rc0*rc0*rc0) - 0.007238095238095238*x13*x14*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) - 0.06666666666666667*x10*x9*(rc1*rc1*rc1*rc1*rc1*rc1*rc1)) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_I1 = mat[0]*t[0]*(0.1*I1*x9*(rc1*rc1*rc1*rc1) + 0.03142857142857143*x10*x11*(rc0*rc0) + 0.0038515769944341373*x14*x15*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.010857142857142857*x12*x13*(rc1*rc1*rc1*rc1*rc1*rc1*rc1*rc1) + 0.5*(rc1*rc1));
             const double x16 = 2.0*W_I1;
             const double P00 = F00*x16 + W_J*cof00;
             const double P10 = F10*x16 + W_J*cof10;
@@ -779,8 +796,8 @@ const bk_pair bk_pair_ancf3333_arruda_boyce_full = {
     .param_names = param_names,
     .ntab = 156,
     .nqp = 12,
-    .ops_force = 4316L,
-    .ops_force_tangent = 34448L,
+    .ops_force = 4337L,
+    .ops_force_tangent = 34361L,
     .tabulate = ancf3333_full_tabulate,
     .energy = ancf3333_arruda_boyce_full_energy,
     .force = ancf3333_arruda_boyce_full_force,

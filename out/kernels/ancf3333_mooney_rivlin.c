@@ -50,7 +50,8 @@ double ancf3333_mooney_rivlin_full_energy(const double *restrict q, const double
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
             const double cb0 = (cbrt(J));
-            e += t[0]*(mat[0]*((I1/((cb0*cb0))) - 3.0) + mat[1]*((I2/((cb0*cb0*cb0*cb0))) - 3.0) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
+            const double rc0 = (1.0/cb0);
+            e += t[0]*(mat[0]*(I1*(rc0*rc0) - 3.0) + mat[1]*(I2*(rc0*rc0*rc0*rc0) - 3.0) + 0.5*mat[2]*((J - 1.0)*(J - 1.0)));
         }
     }
     return e;
@@ -91,11 +92,12 @@ void ancf3333_mooney_rivlin_full_force(const double *restrict q, const double *r
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
             const double cb0 = (cbrt(J));
-            const double W_I1 = (mat[0]*t[0]/((cb0*cb0)));
-            const double W_I2 = (mat[1]*t[0]/((cb0*cb0*cb0*cb0)));
+            const double rc0 = (1.0/cb0);
+            const double W_I1 = mat[0]*t[0]*(rc0*rc0);
+            const double W_I2 = mat[1]*t[0]*(rc0*rc0*rc0*rc0);
             const double C12 = F01*F02 + F11*F12 + F21*F22;
             const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
-            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[1]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_J = t[0]*(-0.6666666666666666*I1*mat[0]*(rc0*rc0*rc0*rc0*rc0) - 1.3333333333333333*I2*mat[1]*(rc0*rc0*rc0*rc0*rc0*rc0*rc0) + 0.5*mat[2]*(2.0*J - 2.0));
             const double x9 = 2.0*F00;
             const double x10 = 2.0*F01;
             const double x11 = 2.0*F02;
@@ -188,11 +190,12 @@ void ancf3333_mooney_rivlin_full_force_lanes(const double *restrict q, const dou
                 const double cof20 = F01*F12 - F02*F11;
                 const double J = F00*cof00 + F10*cof10 + F20*cof20;
                 const double cb0 = (cbrt(J));
-                const double W_I1 = (mat[0 + l]*t[0 + l]/((cb0*cb0)));
-                const double W_I2 = (mat[8 + l]*t[0 + l]/((cb0*cb0*cb0*cb0)));
+                const double rc0 = (1.0/cb0);
+                const double W_I1 = mat[0 + l]*t[0 + l]*(rc0*rc0);
+                const double W_I2 = mat[8 + l]*t[0 + l]*(rc0*rc0*rc0*rc0);
                 const double C12 = F01*F02 + F11*F12 + F21*F22;
                 const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
-                const double W_J = t[0 + l]*(-(0.6666666666666666*I1*mat[0 + l]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[8 + l]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[16 + l]*(2.0*J - 2.0));
+                const double W_J = t[0 + l]*(-0.6666666666666666*I1*mat[0 + l]*(rc0*rc0*rc0*rc0*rc0) - 1.3333333333333333*I2*mat[8 + l]*(rc0*rc0*rc0*rc0*rc0*rc0*rc0) + 0.5*mat[16 + l]*(2.0*J - 2.0));
                 const double x9 = 2.0*F00;
                 const double x10 = 2.0*F01;
                 const double x11 = 2.0*F02;
@@ -292,11 +295,12 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double x25 = F20*cof20;
             const double J = x23 + x24 + x25;
             const double cb0 = (cbrt(J));
+            const double rc0 = (1.0/cb0);
             const double x27 = mat[1]*t[0];
-            const double W_I2 = (x27/((cb0*cb0*cb0*cb0)));
-            const double x28 = (0.6666666666666666/((cb0*cb0*cb0*cb0*cb0)));
+            const double W_I2 = x27*(rc0*rc0*rc0*rc0);
+            const double x28 = 0.6666666666666666*(rc0*rc0*rc0*rc0*rc0);
             const double x29 = I1*mat[0];
-            const double x30 = (1.3333333333333333/((cb0*cb0*cb0*cb0*cb0*cb0*cb0)));
+            const double x30 = 1.3333333333333333*(rc0*rc0*rc0*rc0*rc0*rc0*rc0);
             const double C01 = F00*F01 + F10*F11 + F20*F21;
             const double C02 = F00*F02 + F10*F12 + F20*F22;
             const double C12 = F01*F02 + F11*F12 + F21*F22;
@@ -310,7 +314,7 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double x36 = 2.0*F02;
             const double x37 = C02*x36;
             const double x26 = mat[0]*t[0];
-            const double W_I1 = (x26/((cb0*cb0)));
+            const double W_I1 = x26*(rc0*rc0);
             const double x38 = 2.0*W_I1;
             const double P00 = F00*x38 + W_I2*(2.0*F00*I1 - x33 - x35 - x37) + W_J*cof00;
             const double x45 = 2.0*F10;
@@ -366,7 +370,7 @@ void ancf3333_mooney_rivlin_full_force_tangent(const double *restrict q, const d
             const double x67 = C12*x59;
             const double x68 = C22*x61;
             const double P22 = F22*x38 + W_I2*(2.0*F22*I1 - x66 - x67 - x68) + W_J*cof22;
-            const double W_J_J = t[0]*(mat[2] + (1.1111111111111112*x29/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (3.111111111111111*x31/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))));
+            const double W_J_J = t[0]*(mat[2] + 3.111111111111111*x31*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0) + 1.1111111111111112*x29*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0));
             const double x69 = 2.0*W_I2;
             const double x70 = -C00*x69;
             const double W_I1_J = -x26*x28;
@@ -562,11 +566,12 @@ void ancf3333_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, c
                 const double x25 = F20*cof20;
                 const double J = x23 + x24 + x25;
                 const double cb0 = (cbrt(J));
+                const double rc0 = (1.0/cb0);
                 const double x27 = mat[8 + l]*t[0 + l];
-                const double W_I2 = (x27/((cb0*cb0*cb0*cb0)));
-                const double x28 = (0.6666666666666666/((cb0*cb0*cb0*cb0*cb0)));
+                const double W_I2 = x27*(rc0*rc0*rc0*rc0);
+                const double x28 = 0.6666666666666666*(rc0*rc0*rc0*rc0*rc0);
                 const double x29 = I1*mat[0 + l];
-                const double x30 = (1.3333333333333333/((cb0*cb0*cb0*cb0*cb0*cb0*cb0)));
+                const double x30 = 1.3333333333333333*(rc0*rc0*rc0*rc0*rc0*rc0*rc0);
                 const double C01 = F00*F01 + F10*F11 + F20*F21;
                 const double C02 = F00*F02 + F10*F12 + F20*F22;
                 const double C12 = F01*F02 + F11*F12 + F21*F22;
@@ -580,7 +585,7 @@ void ancf3333_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, c
                 const double x36 = 2.0*F02;
                 const double x37 = C02*x36;
                 const double x26 = mat[0 + l]*t[0 + l];
-                const double W_I1 = (x26/((cb0*cb0)));
+                const double W_I1 = x26*(rc0*rc0);
                 const double x38 = 2.0*W_I1;
                 const double P00 = F00*x38 + W_I2*(2.0*F00*I1 - x33 - x35 - x37) + W_J*cof00;
                 const double x45 = 2.0*F10;
@@ -636,7 +641,7 @@ void ancf3333_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, c
                 const double x67 = C12*x59;
                 const double x68 = C22*x61;
                 const double P22 = F22*x38 + W_I2*(2.0*F22*I1 - x66 - x67 - x68) + W_J*cof22;
-                const double W_J_J = t[0 + l]*(mat[16 + l] + (1.1111111111111112*x29/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + (3.111111111111111*x31/((cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0*cb0))));
+                const double W_J_J = t[0 + l]*(mat[16 + l] + 3.111111111111111*x31*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0) + 1.1111111111111112*x29*(rc0*rc0*rc0*rc0*rc0*rc0*rc0*rc0));
                 const double x69 = 2.0*W_I2;
                 const double x70 = -C00*x69;
                 const double W_I1_J = -x26*x28;
@@ -837,11 +842,12 @@ void ancf3333_mooney_rivlin_full_sections(const double *restrict geom, const dou
             const double cof20 = F01*F12 - F02*F11;
             const double J = F00*cof00 + F10*cof10 + F20*cof20;
             const double cb0 = (cbrt(J));
-            const double W_I1 = (mat[0]*t[0]/((cb0*cb0)));
-            const double W_I2 = (mat[1]*t[0]/((cb0*cb0*cb0*cb0)));
+            const double rc0 = (1.0/cb0);
+            const double W_I1 = mat[0]*t[0]*(rc0*rc0);
+            const double W_I2 = mat[1]*t[0]*(rc0*rc0*rc0*rc0);
             const double C12 = F01*F02 + F11*F12 + F21*F22;
             const double I2 = C00*C11 + C00*C22 - (C01*C01) - (C02*C02) + C11*C22 - (C12*C12);
-            const double W_J = t[0]*(-(0.6666666666666666*I1*mat[0]/((cb0*cb0*cb0*cb0*cb0))) - (1.3333333333333333*I2*mat[1]/((cb0*cb0*cb0*cb0*cb0*cb0*cb0))) + 0.5*mat[2]*(2.0*J - 2.0));
+            const double W_J = t[0]*(-0.6666666666666666*I1*mat[0]*(rc0*rc0*rc0*rc0*rc0) - 1.3333333333333333*I2*mat[1]*(rc0*rc0*rc0*rc0*rc0*rc0*rc0) + 0.5*mat[2]*(2.0*J - 2.0));
             const double x9 = 2.0*F00;
             const double x10 = 2.0*F01;
             const double x11 = 2.0*F02;
@@ -887,8 +893,8 @@ const bk_pair bk_pair_ancf3333_mooney_rivlin_full = {
     .param_names = param_names,
     .ntab = 156,
     .nqp = 12,
-    .ops_force = 4848L,
-    .ops_force_tangent = 49008L,
+    .ops_force = 4860L,
+    .ops_force_tangent = 49020L,
     .tabulate = ancf3333_full_tabulate,
     .energy = ancf3333_mooney_rivlin_full_energy,
     .force = ancf3333_mooney_rivlin_full_force,
