@@ -56,13 +56,6 @@ KERNEL_FLAGS = {
                  "-fno-sanitize-recover=all", "-fopenmp-simd"],
     "memcheck": ["-O2", MEMCHECK_ARCH, "-fopenmp-simd", "-fno-math-errno", "-fPIC"],
 }
-# The continuum pairs' files (their lane kernels evaluate 8 elements per call,
-# one AVX-512 register of doubles per operation): gcc's tuning for recent Intel
-# CPUs prefers 256-bit vectors, which splits every operation in two; with 512
-# the continuum force + tangent kernels take 20-35 % less time here (every pair,
-# bench kernel timings), while the rod kernels (scalar, one element per call)
-# take 25 % more, so they keep the default.  No effect without AVX-512.
-LANE_FLAGS = {"release": ["-mprefer-vector-width=512"]}
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
 INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse"]
 
@@ -190,23 +183,15 @@ def kernel_objects(pairs, index, variant="release", log=None):
 def _kernel_objects(pairs, index, variant, log):
     flags = KERNEL_FLAGS[variant]
     files = _kernel_files(pairs, index)
-    lanes = continuum_files(index)
     jobs = []
     for f in files:
         src = KERNELS / f
         if not src.exists():
             raise BuildError(f"{src} is missing: run ./build.sh gen")
         obj = BUILD / variant / "kernels" / (Path(f).stem + ".o")
-        extra = LANE_FLAGS.get(variant, []) if f in lanes else []
-        jobs.append((src, obj, flags + extra, _kernel_headers(src)))
+        jobs.append((src, obj, flags, _kernel_headers(src)))
     _compile_many(jobs, log)
     return [j[1] for j in jobs]
-
-
-def continuum_files(index):
-    """The kernel files of the continuum pairs (element and pair files; LANE_FLAGS)."""
-    kinds = {name: e.get("kind") for name, e in index["elements"].items()}
-    return {f for p in index["pairs"] if kinds.get(p["element"]) == "continuum" for f in p["files"]}
 
 
 def kernel_table_source(pairs, version):

@@ -669,8 +669,8 @@ def main(argv):
     L = ["# Speed against error (`./build.sh bench" + (" --quick`)" if quick else "`)"), ""]
     L += [f"CPU: {cpu['model']}, {cpu['mhz']:.0f} MHz, {os.cpu_count()} cores; {cpu['isa']}: "
           f"{cpu['flops_per_cycle']} double flop/cycle/core, peak {cpu['peak_gflops']:.1f} GFLOP/s per core.  "
-          f"Kernels and solvers compiled with `{' '.join(bench_kernels_flags())}`, the continuum pairs' kernels "
-          f"also with `{' '.join(lane_flags())}` (gen/solver_build.py LANE_FLAGS).  Wall times are the solver's "
+          f"Kernels and solvers compiled with `{' '.join(bench_kernels_flags())}`; the lane kernels (8 elements "
+          f"per call) prefer 512-bit vectors (`BK_LANE_TARGET`, gen/emit.py).  Wall times are the solver's "
           f"own (`summary.json` `wall_s`: model read to results written), on a shared machine: expect a few "
           f"% noise." + (f"  **--quick**: a subset (fewer variants, meshes and steps, shorter dynamics)." if quick
                          else ""), ""]
@@ -867,11 +867,6 @@ def main(argv):
     log(f" wrote {OUT / 'bench.md'}")
     print(f"bench: {OUT / 'bench.md'} ({time.time() - t_all:.0f} s)")
     return 0
-
-
-def lane_flags():
-    from gen.solver_build import LANE_FLAGS
-    return LANE_FLAGS["release"]
 
 
 def bench_kernels_flags():

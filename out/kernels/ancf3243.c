@@ -2369,7 +2369,7 @@ void ancf3243_tangent_contract(const double *restrict A, const double *restrict 
     ancf3243_contract_row7(A, t, K);
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2479,7 +2479,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row0(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2571,7 +2571,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row1(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2674,7 +2674,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row2(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2759,7 +2759,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row3(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2809,7 +2809,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row4(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2850,7 +2850,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row5(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2881,7 +2881,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row6(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3243_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3243_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2898,7 +2898,7 @@ static BK_NOINLINE void ancf3243_contract_lanes_row7(const double *restrict A, c
     }
 }
 
-void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+BK_LANE_TARGET void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
 {
     ancf3243_contract_lanes_row0(A, t, K);
     ancf3243_contract_lanes_row1(A, t, K);

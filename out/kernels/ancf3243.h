@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:5f6d4f3bb8f964b4bff906f9a4d576b3b12d0c7540487454749e0b0b049d7723
+ * input hash: sha256:472e8395b867b98a06038632a9381e36a389b7c7db34fe89ae1c5fad2e0bc094
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -42,5 +42,12 @@ void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, c
 void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+
+/* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define BK_LANE_TARGET __attribute__((target("prefer-vector-width=512")))
+#else
+#define BK_LANE_TARGET
+#endif
 
 #endif

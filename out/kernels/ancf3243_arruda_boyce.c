@@ -154,7 +154,7 @@ void ancf3243_arruda_boyce_full_force(const double *restrict q, const double *re
     }
 }
 
-void ancf3243_arruda_boyce_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3243_arruda_boyce_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -488,7 +488,7 @@ void ancf3243_arruda_boyce_full_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
-void ancf3243_arruda_boyce_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3243_arruda_boyce_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     for (int r = 0; r < 24; ++r)
@@ -1591,7 +1591,7 @@ void ancf3243_arruda_boyce_sri_force(const double *restrict q, const double *res
     }
 }
 
-void ancf3243_arruda_boyce_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3243_arruda_boyce_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 12 quadrature points */
@@ -2748,7 +2748,7 @@ void ancf3243_arruda_boyce_sri_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
-void ancf3243_arruda_boyce_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3243_arruda_boyce_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     for (int r = 0; r < 24; ++r)

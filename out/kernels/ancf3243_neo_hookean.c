@@ -129,7 +129,7 @@ void ancf3243_neo_hookean_full_force(const double *restrict q, const double *res
     }
 }
 
-void ancf3243_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3243_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -350,7 +350,7 @@ void ancf3243_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
-void ancf3243_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3243_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     for (int r = 0; r < 24; ++r)
@@ -855,7 +855,7 @@ void ancf3243_neo_hookean_sri_force(const double *restrict q, const double *rest
     }
 }
 
-void ancf3243_neo_hookean_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3243_neo_hookean_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 12 quadrature points */
@@ -1437,7 +1437,7 @@ void ancf3243_neo_hookean_sri_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 24 + c] = K[c * 24 + r];
 }
 
-void ancf3243_neo_hookean_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3243_neo_hookean_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 192; ++i) f[i] = 0.0;
     for (int r = 0; r < 24; ++r)

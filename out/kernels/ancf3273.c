@@ -5142,7 +5142,7 @@ void ancf3273_tangent_contract(const double *restrict A, const double *restrict 
     ancf3273_contract_row13(A, t, K);
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -5334,7 +5334,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row0(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -5508,7 +5508,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row1(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -5728,7 +5728,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row2(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -5930,7 +5930,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row3(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6108,7 +6108,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row4(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6287,7 +6287,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row5(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6418,7 +6418,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row6(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6504,7 +6504,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row7(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6586,7 +6586,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row8(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row9(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row9(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6663,7 +6663,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row9(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row10(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row10(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6726,7 +6726,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row10(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row11(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row11(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6773,7 +6773,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row11(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row12(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row12(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6810,7 +6810,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row12(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3273_contract_lanes_row13(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3273_contract_lanes_row13(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6827,7 +6827,7 @@ static BK_NOINLINE void ancf3273_contract_lanes_row13(const double *restrict A, 
     }
 }
 
-void ancf3273_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+BK_LANE_TARGET void ancf3273_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
 {
     ancf3273_contract_lanes_row0(A, t, K);
     ancf3273_contract_lanes_row1(A, t, K);

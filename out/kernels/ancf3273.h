@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:8244ec84e8a483c756945bc21d6901fc17248c23fc8603e25f6e0ed0a00de937
+ * input hash: sha256:ce4e1d134bb4fd8f898a1b757c9828345a360f9cbc3b877437395f3cdf70c7c1
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -53,5 +53,12 @@ void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, c
 void ancf3273_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3273_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+
+/* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define BK_LANE_TARGET __attribute__((target("prefer-vector-width=512")))
+#else
+#define BK_LANE_TARGET
+#endif
 
 #endif

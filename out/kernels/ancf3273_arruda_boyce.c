@@ -181,7 +181,7 @@ void ancf3273_arruda_boyce_full_force(const double *restrict q, const double *re
     }
 }
 
-void ancf3273_arruda_boyce_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_arruda_boyce_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 27 quadrature points */
@@ -569,7 +569,7 @@ void ancf3273_arruda_boyce_full_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_arruda_boyce_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_arruda_boyce_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -1084,7 +1084,7 @@ void ancf3273_arruda_boyce_reduced_force(const double *restrict q, const double 
     }
 }
 
-void ancf3273_arruda_boyce_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_arruda_boyce_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -1472,7 +1472,7 @@ void ancf3273_arruda_boyce_reduced_force_tangent(const double *restrict q, const
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_arruda_boyce_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_arruda_boyce_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -2656,7 +2656,7 @@ void ancf3273_arruda_boyce_sri_force(const double *restrict q, const double *res
     }
 }
 
-void ancf3273_arruda_boyce_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_arruda_boyce_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 27 quadrature points */
@@ -3921,7 +3921,7 @@ void ancf3273_arruda_boyce_sri_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_arruda_boyce_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_arruda_boyce_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)

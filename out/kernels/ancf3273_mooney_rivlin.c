@@ -188,7 +188,7 @@ void ancf3273_mooney_rivlin_full_force(const double *restrict q, const double *r
     }
 }
 
-void ancf3273_mooney_rivlin_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 27 quadrature points */
@@ -621,7 +621,7 @@ void ancf3273_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -1188,7 +1188,7 @@ void ancf3273_mooney_rivlin_reduced_force(const double *restrict q, const double
     }
 }
 
-void ancf3273_mooney_rivlin_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -1621,7 +1621,7 @@ void ancf3273_mooney_rivlin_reduced_force_tangent(const double *restrict q, cons
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_mooney_rivlin_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -2525,7 +2525,7 @@ void ancf3273_mooney_rivlin_sri_force(const double *restrict q, const double *re
     }
 }
 
-void ancf3273_mooney_rivlin_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 27 quadrature points */
@@ -3514,7 +3514,7 @@ void ancf3273_mooney_rivlin_sri_force_tangent(const double *restrict q, const do
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_mooney_rivlin_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_mooney_rivlin_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)

@@ -156,7 +156,7 @@ void ancf3273_neo_hookean_full_force(const double *restrict q, const double *res
     }
 }
 
-void ancf3273_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_neo_hookean_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 27 quadrature points */
@@ -431,7 +431,7 @@ void ancf3273_neo_hookean_full_force_tangent(const double *restrict q, const dou
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_neo_hookean_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -808,7 +808,7 @@ void ancf3273_neo_hookean_reduced_force(const double *restrict q, const double *
     }
 }
 
-void ancf3273_neo_hookean_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_neo_hookean_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -1083,7 +1083,7 @@ void ancf3273_neo_hookean_reduced_force_tangent(const double *restrict q, const 
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_neo_hookean_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_neo_hookean_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -1669,7 +1669,7 @@ void ancf3273_neo_hookean_sri_force(const double *restrict q, const double *rest
     }
 }
 
-void ancf3273_neo_hookean_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_neo_hookean_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 27 quadrature points */
@@ -2359,7 +2359,7 @@ void ancf3273_neo_hookean_sri_force_tangent(const double *restrict q, const doub
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_neo_hookean_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_neo_hookean_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)

@@ -162,7 +162,7 @@ void ancf3273_svk_full_force(const double *restrict q, const double *restrict ta
     }
 }
 
-void ancf3273_svk_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_svk_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 27 quadrature points */
@@ -507,7 +507,7 @@ void ancf3273_svk_full_force_tangent(const double *restrict q, const double *res
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_svk_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_svk_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -973,7 +973,7 @@ void ancf3273_svk_reduced_force(const double *restrict q, const double *restrict
     }
 }
 
-void ancf3273_svk_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_svk_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -1318,7 +1318,7 @@ void ancf3273_svk_reduced_force_tangent(const double *restrict q, const double *
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_svk_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_svk_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)
@@ -1939,7 +1939,7 @@ void ancf3273_svk_sri_force(const double *restrict q, const double *restrict tab
     }
 }
 
-void ancf3273_svk_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3273_svk_sri_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     {   /* energy part "full_order": 27 quadrature points */
@@ -2606,7 +2606,7 @@ void ancf3273_svk_sri_force_tangent(const double *restrict q, const double *rest
         for (int c = 0; c < r; ++c) K[r * 42 + c] = K[c * 42 + r];
 }
 
-void ancf3273_svk_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3273_svk_sri_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 336; ++i) f[i] = 0.0;
     for (int r = 0; r < 42; ++r)

@@ -2452,7 +2452,7 @@ void ancf3333_tangent_contract(const double *restrict A, const double *restrict 
     ancf3333_contract_row8(A, t, K);
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2573,7 +2573,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row0(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2692,7 +2692,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row1(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2797,7 +2797,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row2(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2878,7 +2878,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row3(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -2953,7 +2953,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row4(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -3014,7 +3014,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row5(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -3055,7 +3055,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row6(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -3086,7 +3086,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row7(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3333_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3333_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -3103,7 +3103,7 @@ static BK_NOINLINE void ancf3333_contract_lanes_row8(const double *restrict A, c
     }
 }
 
-void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+BK_LANE_TARGET void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
 {
     ancf3333_contract_lanes_row0(A, t, K);
     ancf3333_contract_lanes_row1(A, t, K);

@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:049d5012e610c579613a5e68713ff00db66d8fcf919229c336e3854e01ebff56
+ * input hash: sha256:5a5e66269fe12bc4f154efef8c22d832d51066006d7226bf2d94fde3e141cc38
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -38,5 +38,12 @@ void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, 
 void ancf3333_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+
+/* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define BK_LANE_TARGET __attribute__((target("prefer-vector-width=512")))
+#else
+#define BK_LANE_TARGET
+#endif
 
 #endif

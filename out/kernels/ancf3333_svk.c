@@ -129,7 +129,7 @@ void ancf3333_svk_full_force(const double *restrict q, const double *restrict ta
     }
 }
 
-void ancf3333_svk_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3333_svk_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 216; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -408,7 +408,7 @@ void ancf3333_svk_full_force_tangent(const double *restrict q, const double *res
         for (int c = 0; c < r; ++c) K[r * 27 + c] = K[c * 27 + r];
 }
 
-void ancf3333_svk_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3333_svk_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 216; ++i) f[i] = 0.0;
     for (int r = 0; r < 27; ++r)

@@ -6327,7 +6327,7 @@ void ancf3363_tangent_contract(const double *restrict A, const double *restrict 
     ancf3363_contract_row17(A, t, K);
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row0(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6571,7 +6571,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row0(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row1(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -6828,7 +6828,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row1(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row2(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -7071,7 +7071,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row2(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row3(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -7298,7 +7298,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row3(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row4(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -7533,7 +7533,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row4(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row5(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -7730,7 +7730,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row5(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row6(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -7893,7 +7893,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row6(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row7(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8060,7 +8060,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row7(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row8(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8213,7 +8213,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row8(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row9(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row9(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8350,7 +8350,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row9(const double *restrict A, c
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row10(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row10(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8486,7 +8486,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row10(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row11(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row11(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8593,7 +8593,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row11(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row12(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row12(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8675,7 +8675,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row12(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row13(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row13(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8752,7 +8752,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row13(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row14(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row14(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8815,7 +8815,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row14(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row15(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row15(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8862,7 +8862,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row15(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row16(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row16(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8899,7 +8899,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row16(const double *restrict A, 
     }
 }
 
-static BK_NOINLINE void ancf3363_contract_lanes_row17(const double *restrict A, const double *restrict t, double *restrict K)
+static BK_NOINLINE BK_LANE_TARGET void ancf3363_contract_lanes_row17(const double *restrict A, const double *restrict t, double *restrict K)
 {
     #pragma omp simd
     for (int l = 0; l < 8; ++l) {
@@ -8916,7 +8916,7 @@ static BK_NOINLINE void ancf3363_contract_lanes_row17(const double *restrict A, 
     }
 }
 
-void ancf3363_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
+BK_LANE_TARGET void ancf3363_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K)
 {
     ancf3363_contract_lanes_row0(A, t, K);
     ancf3363_contract_lanes_row1(A, t, K);

@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:53b81cf2d952efbccb917755487e9404177527e2c111ce05b6d14c87fa18e1c3
+ * input hash: sha256:9ba3065dade564a6d4bca911f090a3a7fa2b88d2220a9b18ac2cb3fdb4ac15e2
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -52,5 +52,12 @@ void ancf3363_reduced_viscous(const double *restrict q, const double *restrict q
 void ancf3363_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3363_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+
+/* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define BK_LANE_TARGET __attribute__((target("prefer-vector-width=512")))
+#else
+#define BK_LANE_TARGET
+#endif
 
 #endif

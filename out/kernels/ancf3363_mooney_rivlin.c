@@ -180,7 +180,7 @@ void ancf3363_mooney_rivlin_full_force(const double *restrict q, const double *r
     }
 }
 
-void ancf3363_mooney_rivlin_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3363_mooney_rivlin_full_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 432; ++i) f[i] = 0.0;
     {   /* energy part "all": 27 quadrature points */
@@ -601,7 +601,7 @@ void ancf3363_mooney_rivlin_full_force_tangent(const double *restrict q, const d
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-void ancf3363_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3363_mooney_rivlin_full_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 432; ++i) f[i] = 0.0;
     for (int r = 0; r < 54; ++r)
@@ -1156,7 +1156,7 @@ void ancf3363_mooney_rivlin_reduced_force(const double *restrict q, const double
     }
 }
 
-void ancf3363_mooney_rivlin_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
+BK_LANE_TARGET void ancf3363_mooney_rivlin_reduced_force_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f)
 {
     for (int i = 0; i < 432; ++i) f[i] = 0.0;
     {   /* energy part "all": 12 quadrature points */
@@ -1577,7 +1577,7 @@ void ancf3363_mooney_rivlin_reduced_force_tangent(const double *restrict q, cons
         for (int c = 0; c < r; ++c) K[r * 54 + c] = K[c * 54 + r];
 }
 
-void ancf3363_mooney_rivlin_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
+BK_LANE_TARGET void ancf3363_mooney_rivlin_reduced_force_tangent_lanes(const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict f, double *restrict K)
 {
     for (int i = 0; i < 432; ++i) f[i] = 0.0;
     for (int r = 0; r < 54; ++r)

@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:012c82cc25623294e6b0f74df06667ae541ae85cc03b6694f8027e86d348ce9c
+ * input hash: sha256:87b1ff6c32a8cd28481f9405d66baacefe4004784731c9953d8f79415e4676ce
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
