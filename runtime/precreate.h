@@ -17,7 +17,8 @@
  * Sizes and directions:
  *   bk_precreate_init   in: dir (the run's directory, exists), nnamed and
  *                       nspare (slots); 0, or -1 when out of memory.
- *   bk_precreate_want   in: slot k (< nnamed) and the file's name in dir:
+ *   bk_precreate_want   in: slot k (< nnamed), dir (bk_precreate_init's) and
+ *                       the file's name in it (< BK_PRECREATE_NAME bytes):
  *                       file k will be needed (before bk_precreate_start).
  *   bk_precreate_start  starts the helper (if it cannot be made, every file is
  *                       created by the caller when it is needed).
@@ -44,11 +45,12 @@
 #include <pthread.h>
 #include <stdio.h>
 
-#define BK_PRECREATE_PATH 1200
+#define BK_PRECREATE_NAME 32   /* the longest file name in the directory */
 
 typedef struct bk_precreate {
     int nnamed, nspare, n;   /* slots: named 0 .. nnamed-1, spares nnamed .. n-1 */
-    char (*path)[BK_PRECREATE_PATH];   /* owned: [n] */
+    char *path;              /* owned: [n pathlen] */
+    size_t dirlen, pathlen;  /* the directory's length; room per path */
     int *state;              /* owned: [n] (precreate.c) */
     int *fd, *err;           /* owned: [n] the helper's result */
     int threaded, ready;     /* ready: mu made */
