@@ -18,7 +18,8 @@
 #include <string.h>
 
 typedef struct reader {
-    FILE *fp;
+    char *buf;               /* owned: the whole file, NUL-terminated */
+    size_t len, pos;         /* its length; where the next token starts */
     const char *path;
     FILE *err;
     int failed;
@@ -38,15 +39,40 @@ static void fail(reader *r, const char *fmt, ...)
     va_end(ap);
 }
 
-static const char *next(reader *r, const char *what)
+static int is_space(char c)
+{
+    return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* The next whitespace-separated token (at most 255 bytes, as "%255s" reads:
+ * a longer one goes on in the next token), or NULL at the end.  what: what
+ * was expected, for the error; its text is made only then (a model file has
+ * thousands of tokens: tokens read with fscanf and messages made for each were
+ * a tenth of a small model's run). */
+static const char *next_tok(reader *r)
 {
     if (r->failed)
         return NULL;
-    if (fscanf(r->fp, "%255s", r->tok) != 1) {
-        fail(r, "model file ends early: expected %s", what);
+    const char *p = r->buf + r->pos, *e = r->buf + r->len;
+    while (p < e && is_space(*p))
+        ++p;
+    if (p == e)
         return NULL;
-    }
+    size_t n = 0;
+    while (p + n < e && n < sizeof r->tok - 1 && !is_space(p[n]))
+        ++n;
+    memcpy(r->tok, p, n);
+    r->tok[n] = '\0';
+    r->pos = (size_t)(p + n - r->buf);
     return r->tok;
+}
+
+static const char *next(reader *r, const char *what)
+{
+    const char *t = next_tok(r);
+    if (!t && !r->failed)
+        fail(r, "model file ends early: expected %s", what);
+    return t;
 }
 
 static void expect(reader *r, const char *kw)
@@ -59,11 +85,12 @@ static void expect(reader *r, const char *kw)
 /* The value of the named field `rec.key` (token "key=value"). */
 static const char *field(reader *r, const char *rec, const char *key)
 {
-    char what[128];
-    snprintf(what, sizeof what, "field %s.%s", rec, key);
-    const char *t = next(r, what);
-    if (!t)
+    const char *t = next_tok(r);
+    if (!t) {
+        if (!r->failed)
+            fail(r, "model file ends early: expected field %s.%s", rec, key);
         return NULL;
+    }
     size_t n = strlen(key);
     if (strncmp(t, key, n) != 0 || t[n] != '=') {
         fail(r, "record '%s': expected field '%s=...', found '%s' (a model file of another beamkit version? "
@@ -103,16 +130,32 @@ static int parse_int(reader *r, const char *what, const char *t, int lo, int hi)
 
 static double fnum(reader *r, const char *rec, const char *key)
 {
-    char what[128];
+    const char *t = field(r, rec, key);
+    if (!t)
+        return 0.0;
+    char *end;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (*end == '\0' && errno != ERANGE && isfinite(v))
+        return v;
+    char what[128];                      /* (the message's name only now) */
     snprintf(what, sizeof what, "%s.%s", rec, key);
-    return parse_num(r, what, field(r, rec, key));
+    return parse_num(r, what, t);
 }
 
 static int fint(reader *r, const char *rec, const char *key, int lo, int hi)
 {
-    char what[128];
+    const char *t = field(r, rec, key);
+    if (!t)
+        return lo;
+    char *end;
+    errno = 0;
+    long v = strtol(t, &end, 10);
+    if (*end == '\0' && errno != ERANGE && v >= lo && v <= hi)
+        return (int)v;
+    char what[128];                      /* (the message's name only now) */
     snprintf(what, sizeof what, "%s.%s", rec, key);
-    return parse_int(r, what, field(r, rec, key), lo, hi);
+    return parse_int(r, what, t, lo, hi);
 }
 
 static double num(reader *r, const char *what)
@@ -303,14 +346,34 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     reader R = {0}, *r = &R;
     r->path = path;
     r->err = err;
-    r->fp = fopen(path, "r");
-    if (!r->fp) {
+    FILE *fp = fopen(path, "r");
+    if (!fp) {
         fprintf(err, "error: %s: cannot open model file: %s\n", path, strerror(errno));
         return NULL;
     }
+    /* the whole file in memory (read in pieces: its size need not be known) */
+    size_t cap = 1 << 16;
+    r->buf = malloc(cap);
+    while (r->buf) {
+        r->len += fread(r->buf + r->len, 1, cap - r->len - 1, fp);
+        if (r->len < cap - 1)
+            break;
+        char *nb = realloc(r->buf, cap *= 2);
+        if (!nb)
+            free(r->buf);
+        r->buf = nb;
+    }
+    int bad = !r->buf || ferror(fp);
+    fclose(fp);
+    if (bad) {
+        fprintf(err, "error: %s: %s\n", path, r->buf ? "cannot read model file" : "out of memory");
+        free(r->buf);
+        return NULL;
+    }
+    r->buf[r->len] = '\0';
     bk_model *m = calloc(1, sizeof *m);
     if (!m) {
-        fclose(r->fp);
+        free(r->buf);
         fprintf(err, "error: out of memory\n");
         return NULL;
     }
@@ -601,7 +664,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     }
     read_extras(r, m);
     expect(r, "end");
-    fclose(r->fp);
+    free(r->buf);
     if (r->failed) {
         bk_model_free(m);
         return NULL;
