@@ -1,97 +1,27 @@
 /* csvrow.c -- rows of the result tables (see csvrow.h). */
-#define _GNU_SOURCE              /* fopencookie */
 #include "csvrow.h"
 
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
-struct bk_table {
-    bk_precreate *pre;
-    int k;                   /* its named slot in pre */
-    int fd;                  /* -1 until the first write */
-    int err;                 /* errno of the first failure, or 0 */
-    int discard;
-    char buf[BK_TABLE_BUFFER];
-};
-
-/* The stream's writes (fopencookie): n bytes, or 0 on failure (errno set). */
-static ssize_t table_write(void *cookie, const char *b, size_t n)
+FILE *bk_table_open(const char *dir, const char *name, const char *header, char **buf, FILE *err)
 {
-    bk_table *t = cookie;
-    if (t->discard)
-        return (ssize_t)n;
-    if (t->fd < 0 && !t->err && (t->fd = bk_precreate_named(t->pre, t->k)) < 0)
-        t->err = errno ? errno : EIO;
-    if (t->err) {
-        errno = t->err;
-        return 0;
-    }
-    size_t done = 0;
-    while (done < n) {
-        ssize_t w = write(t->fd, b + done, n - done);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0) {
-            t->err = w < 0 ? errno : EIO;
-            errno = t->err;
-            return 0;
-        }
-        done += (size_t)w;
-    }
-    return (ssize_t)n;
-}
-
-static int table_close(void *cookie)
-{
-    bk_table *t = cookie;
-    if (t->fd >= 0 && close(t->fd) != 0 && !t->err)
-        t->err = errno;
-    t->fd = -1;
-    if (t->err) {
-        errno = t->err;
-        return EOF;
-    }
-    return 0;
-}
-
-FILE *bk_table_open(bk_precreate *pre, int k, const char *header, bk_table **tp)
-{
-    bk_table *t = *tp = malloc(sizeof *t);
-    if (!t)
-        return NULL;
-    t->pre = pre;
-    t->k = k;
-    t->fd = -1;
-    t->err = 0;
-    t->discard = 0;
-    cookie_io_functions_t io = {.read = NULL, .write = table_write, .seek = NULL, .close = table_close};
-    FILE *fp = fopencookie(t, "w", io);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    *buf = NULL;
+    FILE *fp = fopen(path, "w");
     if (!fp) {
-        free(t);
-        *tp = NULL;
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
         return NULL;
     }
-    setvbuf(fp, t->buf, _IOFBF, sizeof t->buf);
+    *buf = malloc(BK_TABLE_BUFFER);
+    if (*buf && setvbuf(fp, *buf, _IOFBF, BK_TABLE_BUFFER) != 0) {
+        free(*buf);
+        *buf = NULL;
+    }
     fputs(header, fp);
     return fp;
-}
-
-int bk_table_error(const bk_table *t)
-{
-    return t ? t->err : 0;
-}
-
-void bk_table_discard(bk_table *t)
-{
-    if (t)
-        t->discard = 1;
-}
-
-void bk_table_free(bk_table *t)
-{
-    free(t);
 }
 
 void bk_row_begin(bk_row *r, FILE *fp)

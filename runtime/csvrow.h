@@ -15,7 +15,6 @@
 #include <stdio.h>
 
 #include "numfmt.h"
-#include "precreate.h"
 
 typedef struct bk_row {
     char buf[2048];
@@ -32,21 +31,12 @@ void bk_row_e(bk_row *r, double v, int prec);     /* as "%.{prec}e" (numfmt.h bk
 void bk_row_g(bk_row *r, double v, int prec);     /* as "%.{prec}g" (numfmt.h bk_fmt_g) */
 void bk_row_end(bk_row *r);                        /* newline, and the row to fp */
 
-/* A result table: named file k of pre (precreate.h), written through a
- * buffer of BK_TABLE_BUFFER bytes (a table is written in a few large writes,
- * and a short run's at its close), its header line in it.  The file is opened
- * when the buffer is first written out -- by then the helper of precreate.h
- * has usually created it -- so no error shows before: a failed write makes
- * the stream's error flag and bk_table_error give its errno.  *t: the
- * table's memory, the caller's to free with bk_table_free after fclose.  NULL
- * when out of memory. */
+/* DIR/NAME opened for writing with a buffer of BK_TABLE_BUFFER bytes (a table
+ * is written in a few large writes, and a short run's at its close) and its
+ * header line written; *buf: that buffer, the caller's to free after fclose
+ * (NULL if it could not be had: the stream keeps stdio's own).  NULL on
+ * failure, with "error: DIR/NAME: cannot write: ..." on err. */
 #define BK_TABLE_BUFFER (1 << 16)
-typedef struct bk_table bk_table;
-FILE *bk_table_open(bk_precreate *pre, int k, const char *header, bk_table **t);
-/* The errno of the table's first failed open or write, or 0. */
-int bk_table_error(const bk_table *t);
-/* From now on nothing reaches the table's file (a run that did not start). */
-void bk_table_discard(bk_table *t);
-void bk_table_free(bk_table *t);
+FILE *bk_table_open(const char *dir, const char *name, const char *header, char **buf, FILE *err);
 
 #endif

@@ -37,7 +37,8 @@
 
 typedef struct bk_forces {
     const bk_model *m;
-    FILE *reactions, *sections;   /* the tables (output.c's), NULL when the run has none */
+    FILE *reactions, *sections;   /* owned */
+    char *tbuf[2];                /* owned: their stdio buffers (csvrow.h bk_table_open) */
     int *fld;                     /* [4 ndof] global DOFs of the field of each DOF (-1 unused) */
     signed char *kind, *comp;     /* [ndof] 0 none, 1 position, 2 gradient, 3 quaternion; component */
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */
@@ -55,10 +56,7 @@ typedef struct bk_forces {
                                    * resultants at its sample points, step sec_step (NaN: none) */
 } bk_forces;
 
-/* 0, or -1 when out of memory (a message on err; bk_forces_close frees what
- * was made).  The tables are opened by output.c, which sets reactions and
- * sections. */
-int bk_forces_open(bk_forces *f, const bk_model *m, FILE *err);
+int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);
 /* Rows of reactions.csv and, when with_sections, of sections.csv for the
  * state q at x (time or load factor); qd, qdd: velocities and accelerations
  * (NULL in statics); nu: the constraint multipliers (NULL: unknown, the linear

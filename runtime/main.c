@@ -62,16 +62,15 @@ int main(int argc, char **argv)
     }
     if (!quiet && m->nelem > 100000)
         fprintf(stderr, "setting up %d elements, %d DOFs (sparse pattern, KLU analysis)...\n", m->nelem, m->ndof);
-    bk_output out;                       /* first: its files are created while the system is set up */
-    if (bk_output_open(&out, m, out_dir, !quiet && !verbose, stderr) != 0) {
-        bk_output_close(&out);
+    bk_system *s = bk_system_create(m, stderr);
+    if (!s) {
         bk_model_free(m);
         return 1;
     }
-    bk_system *s = bk_system_create(m, stderr);
-    if (!s) {
-        bk_output_discard(&out);
+    bk_output out;
+    if (bk_output_open(&out, m, out_dir, !quiet && !verbose, stderr) != 0) {
         bk_output_close(&out);
+        bk_system_free(s);
         bk_model_free(m);
         return 1;
     }

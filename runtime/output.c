@@ -27,77 +27,20 @@ static void spent(bk_output *o, double t0)
  * much of its tables; an interrupted one (SIGINT/SIGTERM) loses nothing. */
 #define BK_FLUSH_INTERVAL 0.5
 
-/* The run's result tables (each NULL when the run has none), in the order of
- * BK_NTABLES (output.h), their file names and header lines, in one place for
- * the opens, the flushes and the closes. */
-enum { T_SENSORS, T_ENERGY, T_NEWTON, T_STABILITY, T_MODES, T_MODE_SENSORS, T_REACTIONS, T_SECTIONS };
-static const char *const table_name[BK_NTABLES] = {
-    "sensors.csv", "energy.csv", "newton.csv", "stability.csv", "modes.csv", "mode_sensors.csv",
-    "reactions.csv", "sections.csv"};
-static const char *const table_header[BK_NTABLES] = {
-    "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n",
-    "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual\n",
-    "attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond\n",
-    "step,load_factor,negative_eigenvalues,eig_min,eig_max\n",
-    "mode,frequency_hz,omega,scale_m\n",
-    "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n",
-    "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n",
-    "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3\n"};
-
-static void table_list(bk_output *o, FILE **fp[BK_NTABLES])
+/* The run's result tables (each NULL when the run has none) and their file
+ * names, in one place for the flushes and the closes. */
+#define BK_NTABLES 8
+static void table_list(bk_output *o, FILE **fp[BK_NTABLES], const char *name[BK_NTABLES])
 {
+    static const char *const names[BK_NTABLES] = {"sensors.csv", "energy.csv", "newton.csv", "stability.csv",
+                                                  "modes.csv", "mode_sensors.csv", "reactions.csv", "sections.csv"};
     FILE **const all[BK_NTABLES] = {&o->sensors, &o->energy, &o->newton, &o->stability,
                                     &o->modes, &o->mode_sensors, &o->forces.reactions, &o->forces.sections};
-    for (int k = 0; k < BK_NTABLES; ++k)
+    for (int k = 0; k < BK_NTABLES; ++k) {
         fp[k] = all[k];
-}
-
-/* Whether the run has table k. */
-static int has_table(const bk_model *m, int k)
-{
-    switch (k) {
-    case T_SENSORS:
-        return 1;
-    case T_ENERGY:
-        return m->analysis == BK_DYNAMIC;
-    case T_NEWTON:
-        return m->analysis == BK_STATIC;
-    case T_STABILITY:
-        return m->analysis == BK_STATIC && m->stat.stability;
-    case T_MODES:
-    case T_MODE_SENSORS:
-        return m->analysis == BK_MODAL;
-    case T_REACTIONS:
-        return m->nreaction > 0;
-    case T_SECTIONS:
-        return m->nsection > 0 && m->analysis != BK_MODAL;
+        if (name)
+            name[k] = names[k];
     }
-    return 0;
-}
-
-/* Spares (precreate.h) for the files written here under a temporary name:
- * the frames written directly -- a static run's before the background writer
- * takes them (vtk.c: from the second frame when the first load step implies
- * BK_VTK_BACKGROUND_MIN frames, the third when the run's length is unknown;
- * one more for a cut-back step), a short dynamic run's, a modal run's state
- * frame, mode frames and the modes.pvd written after each -- the first write
- * of results.pvd, and summary.json.  known: a dynamic run's frames. */
-#define BK_MAX_SPARES 12
-static int spares_for(const bk_model *m, int known)
-{
-    int n = 1;                                       /* summary.json */
-    if (m->vtk_every > 0) {
-        if (m->analysis == BK_DYNAMIC)
-            n += known >= BK_VTK_BACKGROUND_MIN ? 0 : known;
-        else if (m->analysis == BK_MODAL)
-            n += 2 * m->modal.nmodes;
-        else if (m->stat.arc_length || m->stat.cycles > 0)
-            n += 2;
-        else
-            n += m->stat.load_steps + 1 >= BK_VTK_BACKGROUND_MIN ? 1 : m->stat.load_steps + 2;
-        n += 1;                                      /* results.pvd */
-    }
-    return n < BK_MAX_SPARES ? n : BK_MAX_SPARES;
 }
 
 /* spent, and the tables flushed when due (one reading of the clock for both
@@ -108,7 +51,7 @@ static void spent_flush(bk_output *o, double t0)
     if (now - o->t_flush >= BK_FLUSH_INTERVAL) {
         o->t_flush = now;
         FILE **fp[BK_NTABLES];
-        table_list(o, fp);
+        table_list(o, fp, NULL);
         for (int k = 0; k < BK_NTABLES; ++k)
             if (*fp[k])
                 fflush(*fp[k]);
@@ -123,50 +66,29 @@ int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progres
     o->progress = progress && isatty(2);
     o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
     int rc = output_open(o, m, dir, err);
-    if (rc != 0)
-        bk_output_discard(o);
     spent(o, o->t_start);
     return rc;
 }
 
 static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
 {
-    o->m = m;
-    snprintf(o->dir, sizeof o->dir, "%s", dir);
-    if (access(dir, W_OK | X_OK) != 0) {        /* (the files themselves are created meanwhile) */
-        fprintf(err, "error: %s: cannot write there: %s\n", dir, strerror(errno));
-        return -1;
-    }
     /* the frames a dynamic run writes (known from the start), and the room for
      * them (a static run: its load steps, which the step control may change) */
     const int known = m->analysis == BK_DYNAMIC
                           ? (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) /
                                                (m->vtk_every > 0 ? m->vtk_every : 1)) + 1
                           : 0;
-    if (bk_forces_open(&o->forces, m, err) != 0)
-        return -1;
-    if (bk_precreate_init(&o->pre, dir, BK_NTABLES, spares_for(m, known)) != 0) {
-        fprintf(err, "error: out of memory\n");
-        return -1;
-    }
-    FILE **fp[BK_NTABLES];
-    table_list(o, fp);
-    for (int k = 0; k < BK_NTABLES; ++k) {
-        if (!has_table(m, k))
-            continue;
-        bk_precreate_want(&o->pre, k, dir, table_name[k]);
-        if (!(*fp[k] = bk_table_open(&o->pre, k, table_header[k], &o->tmem[k]))) {
-            fprintf(err, "error: out of memory\n");
-            return -1;
-        }
-    }
-    bk_precreate_start(&o->pre);
     const int frames = known ? known + 3 : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
     if (bk_vtk_open(&o->vtk, m, dir, m->vtk_every, frames, known) != 0) {
         fprintf(err, "error: out of memory for the ParaView frames\n");
         return -1;
     }
-    o->vtk.pre = &o->pre;
+    o->m = m;
+    snprintf(o->dir, sizeof o->dir, "%s", dir);
+    o->sensors = bk_table_open(dir, "sensors.csv", "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,"
+                               "d3y,d3z\n", &o->tbuf[0], err);
+    if (!o->sensors)
+        return -1;
     o->sensor_p0 = malloc((3 * (size_t)m->nsensor + 1) * sizeof *o->sensor_p0);
     if (!o->sensor_p0) {
         fprintf(err, "error: out of memory\n");
@@ -174,6 +96,8 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     }
     for (int k = 0; k < m->nsensor; ++k)
         bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, o->sensor_p0 + 3 * k, NULL);
+    if (bk_forces_open(&o->forces, m, dir, err) != 0)
+        return -1;
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
     o->vtk.ssec = o->forces.ssec;
@@ -187,6 +111,18 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
     else
         o->sections_every = 1;
+    if (m->analysis == BK_DYNAMIC &&
+        !(o->energy = bk_table_open(dir, "energy.csv", "step,time,kinetic,strain,gravity,load_potential,total,"
+                                    "constraint_residual\n", &o->tbuf[1], err)))
+        return -1;
+    if (m->analysis == BK_STATIC &&
+        !(o->newton = bk_table_open(dir, "newton.csv", "attempt,step,load_factor,iteration,residual,reference,"
+                                    "increment,alpha,rcond\n", &o->tbuf[2], err)))
+        return -1;
+    if (m->analysis == BK_STATIC && m->stat.stability &&
+        !(o->stability = bk_table_open(dir, "stability.csv", "step,load_factor,negative_eigenvalues,eig_min,eig_max\n",
+                                       &o->tbuf[3], err)))
+        return -1;
     return 0;
 }
 
@@ -276,6 +212,19 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
 
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
 {
+    char path[1200];
+    snprintf(path, sizeof path, "%s/modes.csv", o->dir);
+    o->modes = fopen(path, "w");
+    if (o->modes) {
+        fprintf(o->modes, "mode,frequency_hz,omega,scale_m\n");
+        snprintf(path, sizeof path, "%s/mode_sensors.csv", o->dir);
+        o->mode_sensors = fopen(path, "w");
+    }
+    if (!o->modes || !o->mode_sensors) {
+        snprintf(err, nerr, "%s: cannot write: %s", path, strerror(errno));
+        return -1;
+    }
+    fprintf(o->mode_sensors, "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
     o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
     if (!o->mode_q) {
         snprintf(err, nerr, "out of memory for the mode output");
@@ -424,15 +373,12 @@ static void json_vec(FILE *fp, const double *v)
     fputc(']', fp);
 }
 
-int bk_output_summary(bk_output *o, const bk_run_info *info, const double *q, FILE *err)
+int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err)
 {
     char path[1200], tmp[1210];
     snprintf(path, sizeof path, "%s/summary.json", o->dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    int spare;                           /* written to a spare (precreate.h) or to tmp, then renamed */
-    FILE *fp = bk_precreate_stream(&o->pre, &spare);
-    if (!fp)
-        fp = fopen(tmp, "w");
+    FILE *fp = fopen(tmp, "w");
     if (!fp) {
         fprintf(err, "error: %s: cannot write: %s\n", tmp, strerror(errno));
         return -1;
@@ -533,7 +479,7 @@ int bk_output_summary(bk_output *o, const bk_run_info *info, const double *q, FI
         fprintf(fp, "}");
     }
     fprintf(fp, "%s}\n}\n", m->nsensor ? "\n  " : "");
-    if (fclose(fp) != 0 || (spare >= 0 ? bk_precreate_rename(&o->pre, spare, path) : rename(tmp, path)) != 0) {
+    if (fclose(fp) != 0 || rename(tmp, path) != 0) {
         fprintf(err, "error: %s: cannot write: %s\n", path, strerror(errno));
         return -1;
     }
@@ -559,51 +505,45 @@ void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fm
         fprintf(console, "warning: %s: %s\n", scene, text);
 }
 
-/* Closes table k; 0, or -1 with the error on err. */
-static int close_table(bk_output *o, int k, FILE *err)
+/* Closes *fp (DIR/name); 0, or -1 with the error on err. */
+static int close_table(const bk_output *o, FILE **fp, const char *name, FILE *err)
 {
-    FILE **fp[BK_NTABLES];
-    table_list(o, fp);
-    if (!*fp[k])
+    if (!*fp)
         return 0;
-    int bad = ferror(*fp[k]) != 0;
-    if (fclose(*fp[k]) != 0)
+    int bad = ferror(*fp) != 0;
+    int e = bad ? EIO : 0;
+    if (fclose(*fp) != 0 && !bad) {
         bad = 1;
-    *fp[k] = NULL;
-    int e = bk_table_error(o->tmem[k]);
+        e = errno;
+    }
+    *fp = NULL;
     if (bad && err)
-        fprintf(err, "error: %s/%s: cannot write: %s\n", o->dir, table_name[k], strerror(e ? e : EIO));
+        fprintf(err, "error: %s/%s: cannot write: %s\n", o->dir, name, strerror(e));
     return bad ? -1 : 0;
 }
 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
+    FILE **fp[BK_NTABLES];
+    const char *name[BK_NTABLES];
+    table_list(o, fp, name);
     int bad = 0;
     for (int k = 0; k < BK_NTABLES; ++k)
-        bad |= close_table(o, k, err);
+        bad |= close_table(o, fp[k], name[k], err);
     return bad ? -1 : 0;
-}
-
-void bk_output_discard(bk_output *o)
-{
-    for (int k = 0; k < BK_NTABLES; ++k)
-        bk_table_discard(o->tmem[k]);
-    bk_output_close_tables(o, NULL);
-    bk_precreate_end(&o->pre, 1);
 }
 
 void bk_output_close(bk_output *o)
 {
-    bk_output_close_tables(o, NULL);     /* (before their memory is freed) */
-    bk_vtk_close(&o->vtk);               /* (its background writer done before the spares go) */
-    bk_precreate_end(&o->pre, 0);
+    bk_output_close_tables(o, NULL);     /* (before their buffers are freed) */
     free(o->mode_q);
     o->mode_q = NULL;
     free(o->sensor_p0);
     o->sensor_p0 = NULL;
-    for (int k = 0; k < BK_NTABLES; ++k) {
-        bk_table_free(o->tmem[k]);
-        o->tmem[k] = NULL;
+    for (int k = 0; k < 4; ++k) {
+        free(o->tbuf[k]);
+        o->tbuf[k] = NULL;
     }
+    bk_vtk_close(&o->vtk);
     bk_forces_close(&o->forces);
 }

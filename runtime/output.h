@@ -9,12 +9,7 @@
 
 #include "forces.h"
 #include "model.h"
-#include "precreate.h"
 #include "vtk.h"
-
-/* The result tables: sensors.csv, energy.csv, newton.csv, stability.csv,
- * modes.csv, mode_sensors.csv, reactions.csv, sections.csv (output.c). */
-#define BK_NTABLES 8
 
 typedef struct bk_output {
     const bk_model *m;
@@ -27,8 +22,7 @@ typedef struct bk_output {
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
     FILE *newton;            /* owned; static analyses: one row per Newton iteration */
     FILE *stability;         /* owned; static analyses with stability checks */
-    struct bk_table *tmem[BK_NTABLES];  /* owned: the tables' memory (csvrow.h), in table order */
-    bk_precreate pre;        /* the run's files created ahead (precreate.h) */
+    char *tbuf[4];           /* owned: the stdio buffers of sensors, energy, newton, stability */
     int nfreq;
     double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */
@@ -98,11 +92,7 @@ typedef struct bk_run_info {
     bk_critical_point critical[BK_MAX_EVENTS];
 } bk_run_info;
 
-/* Before the system is set up: the tables' streams (their files are created
- * by a helper thread meanwhile, precreate.h) and the frames' set-up.  -1 when
- * dir cannot be written to or out of memory (a message on err; nothing is left
- * in dir).  progress: show an updating line on stderr (only if it is a
- * terminal). */
+/* progress: show an updating line on stderr (only if it is a terminal). */
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
 /* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
  * only after the first second, only on a terminal. */
@@ -133,8 +123,8 @@ void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int it
  * eigenvalues of the constrained tangent (-1: factorization broke down) and
  * its smallest-magnitude and largest eigenvalue. */
 void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max);
-/* Allocates the mode buffers (modes.csv and mode_sensors.csv are opened with
- * the other tables); -1 on failure (a message in err). */
+/* Opens modes.csv and mode_sensors.csv and allocates the mode buffers; -1 on
+ * failure (a message in err). */
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);
 /* Mode `mode` (1, 2, ...) with frequency f_hz, angular frequency omega and
  * vector phi[ndof] (any scale) about the state q: normalizes it to a largest
@@ -146,7 +136,7 @@ int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);
 double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi);
 #define BK_MODE_SIZE 0.1
 #define BK_MODE_ROTATION 0.5
-int bk_output_summary(bk_output *o, const bk_run_info *info, const double *q, FILE *err);
+int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
 /* Records a warning in info (summary.json "warnings") and prints it as
  * "warning: SCENE: ..." on `console` unless it is NULL.  A warning already
  * recorded with the same text is not repeated. */
@@ -159,8 +149,5 @@ void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fm
 int bk_output_close_tables(bk_output *o, FILE *err);
 /* Closes what is still open (the tables too, unreported) and frees. */
 void bk_output_close(bk_output *o);
-/* A run that did not start (its set-up failed): nothing reaches the tables,
- * and the files created ahead are removed; then bk_output_close. */
-void bk_output_discard(bk_output *o);
 
 #endif

@@ -181,6 +181,7 @@ typedef struct bk_vtk_job {
  * expected number; <= 0 when unknown (arc-length, load cycles: the writer
  * starts at the third frame).  If it cannot be made, frames are written
  * directly, as they are without memory for the frames' inputs. */
+#define BK_VTK_BACKGROUND_MIN 8
 static void maybe_background(bk_vtk *v, double frac)
 {
     if (v->background || v->tried_background || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
@@ -275,10 +276,7 @@ static int write_collection(bk_vtk *v, const char *dir, const char *name, int n,
     char path[1200], tmp[1210], file[64];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    int spare;                           /* written to a spare (precreate.h) or to tmp */
-    FILE *fp = bk_precreate_stream(v->pre, &spare);
-    if (!fp)
-        fp = fopen(tmp, "w");
+    FILE *fp = fopen(tmp, "w");
     if (!fp) {
         record_failure(v, tmp, errno);
         return -1;
@@ -291,10 +289,10 @@ static int write_collection(bk_vtk *v, const char *dir, const char *name, int n,
     }
     fprintf(fp, "  </Collection>\n</VTKFile>\n");
     if (fclose(fp) != 0) {
-        record_failure(v, spare >= 0 ? path : tmp, errno);
+        record_failure(v, tmp, errno);
         return -1;
     }
-    if ((spare >= 0 ? bk_precreate_rename(v->pre, spare, path) : rename(tmp, path)) != 0) {
+    if (rename(tmp, path) != 0) {
         record_failure(v, path, errno);
         return -1;
     }
@@ -701,10 +699,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
         bk_filewriter_submit_job(&v->fw, b, path, frame_job, j);
         return 0;
     }
-    int spare;                           /* written to a spare (precreate.h), renamed; or directly */
-    FILE *fp = bk_precreate_stream(v->pre, &spare);
-    if (!fp)
-        fp = fopen(path, "wb");
+    FILE *fp = fopen(path, "wb");
     if (!fp) {
         record_failure(v, path, errno);
         return -1;
@@ -712,8 +707,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
     char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
     setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
     vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
-    if (fclose(fp) != 0 ||                        /* (flushes iobuf before it goes out of scope) */
-        (spare >= 0 && bk_precreate_rename(v->pre, spare, path) != 0)) {
+    if (fclose(fp) != 0) {                        /* (flushes iobuf before it goes out of scope) */
         record_failure(v, path, errno);
         return -1;
     }

@@ -7,7 +7,6 @@
 
 #include "filewriter.h"
 #include "model.h"
-#include "precreate.h"
 
 struct bk_system;
 
@@ -37,7 +36,6 @@ typedef struct bk_vtk {
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
     bk_filewriter fw;        /* owned when background */
-    bk_precreate *pre;   /* spares for the files written here (precreate.h), or NULL */
     struct bk_vtk_job *jobs; /* owned when background: per buffer of fw, the inputs of the
                               * frame its thread makes (NULL: frames are written here) */
     int failed;              /* a frame or collection written here could not be: 1, 2 once reported */
@@ -46,12 +44,11 @@ typedef struct bk_vtk {
 } bk_vtk;
 
 /* From a run's second frame on (its third when its length is unknown, its
- * first when it is known to write at least BK_VTK_BACKGROUND_MIN),
+ * first when it is known to write many),
  * frames up to this size are made and written by a background thread
  * (filewriter.h: two buffers of a frame each; the frames' inputs are copied
  * for it), larger ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
-#define BK_VTK_BACKGROUND_MIN 8
 
 /* capacity: room for this many frames (the arrays grow if exceeded);
  * expected: the frames the run will write when known in advance, else 0. */

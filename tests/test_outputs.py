@@ -171,28 +171,6 @@ def test_table_that_cannot_be_written_is_an_error():
     assert json.loads((run_dir / "summary.json").read_text())["converged"]
 
 
-def test_files_created_ahead_leave_no_spares():
-    """The solver's files are created ahead by a helper thread, some as hidden
-    spares renamed when written (runtime/precreate.c): after a run only the
-    documented files are in the directory -- the spares not used are removed
-    -- and every table has its header and rows.  A missing output directory
-    is an error before the solve, with nothing written."""
-    out, solver, frames = _private_solver("cantilever_bend_100N_nu03")
-    run_dir = fresh()
-    p = _run_into(solver, out, run_dir)
-    assert p.returncode == 0, p.stderr
-    names = sorted(q.name for q in run_dir.iterdir())
-    assert names == sorted(frames + ["newton.csv", "reactions.csv", "results.pvd", "sections.csv", "sensors.csv",
-                                     "stability.csv", "summary.json"]), names
-    assert (run_dir / "newton.csv").read_text().startswith("attempt,step,load_factor,")
-    assert (run_dir / "sensors.csv").read_text().count("\n") == 3      # header, steps 0 and 1
-    missing = run_dir / "no" / "such"
-    p = _run_into(solver, out, missing)
-    assert p.returncode == 1 and f"error: {missing}: cannot write there: No such file or directory" in p.stderr, \
-        (p.returncode, p.stderr)
-    assert not missing.parent.exists()
-
-
 def test_frame_that_cannot_be_written_is_an_error():
     """A ParaView frame past the second of a run long enough for the background
     writer that cannot be created -- its name taken by a directory -- is
