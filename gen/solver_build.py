@@ -10,7 +10,7 @@ import sys
 import threading
 from pathlib import Path
 
-from gen.solver_fresh import BuildError, LIBS, kernel_files as _kernel_files, kernel_headers, linked_after_sources
+from gen.solver_fresh import BuildError, LIBS, kernel_files as _kernel_files, kernel_headers, libs, linked_after_sources
 from gen.solver_fresh import stamp_text as _stamp_text
 
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
@@ -243,7 +243,7 @@ def _build_solver(pairs, out_path, index, variant, log, main_objs, extra_flags):
             os.utime(out_path)         # checked against every object now: the quick test above holds next time
         return out_path
     out_path.parent.mkdir(parents=True, exist_ok=True)
-    cmd = [CC] + VARIANTS[variant] + list(extra_flags) + [str(o) for o in objs] + ["-o", str(out_path)] + LIBS
+    cmd = [CC] + VARIANTS[variant] + list(extra_flags) + [str(o) for o in objs] + ["-o", str(out_path)] + libs(variant)
     if log:
         log(f"  link {out_path.relative_to(ROOT) if out_path.is_relative_to(ROOT) else out_path}")
     import shlex
