@@ -45,10 +45,10 @@ static int is_space(char c)
 }
 
 /* The next whitespace-separated token (at most 255 bytes, as "%255s" reads:
- * a longer one goes on in the next token), or NULL at the end.  what: what
- * was expected, for the error; its text is made only then (a model file has
- * thousands of tokens: tokens read with fscanf and messages made for each were
- * a tenth of a small model's run). */
+ * a longer one goes on in the next token), or NULL at the end.  (A model file
+ * has thousands of tokens: reading each with fscanf, and making each one's
+ * error-message name whether or not it was needed, were a tenth of a small
+ * model's run.) */
 static const char *next_tok(reader *r)
 {
     if (r->failed)
@@ -67,6 +67,7 @@ static const char *next_tok(reader *r)
     return r->tok;
 }
 
+/* next_tok, and an error naming `what` at the end of the file. */
 static const char *next(reader *r, const char *what)
 {
     const char *t = next_tok(r);
@@ -100,7 +101,17 @@ static const char *field(reader *r, const char *rec, const char *key)
     return t + n + 1;
 }
 
-static double parse_num(reader *r, const char *what, const char *t)
+/* The name of a value in an error message: `what`, or "rec.key" of a named
+ * field (made only for the message). */
+static const char *value_name(char *buf, size_t n, const char *what, const char *rec, const char *key)
+{
+    if (!rec)
+        return what;
+    snprintf(buf, n, "%s.%s", rec, key);
+    return buf;
+}
+
+static double parse_num_of(reader *r, const char *t, const char *what, const char *rec, const char *key)
 {
     if (!t)
         return 0.0;
@@ -108,13 +119,14 @@ static double parse_num(reader *r, const char *what, const char *t)
     errno = 0;
     double v = strtod(t, &end);
     if (*end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fail(r, "%s: expected a finite number, found '%s'", what, t);
+        char name[128];
+        fail(r, "%s: expected a finite number, found '%s'", value_name(name, sizeof name, what, rec, key), t);
         return 0.0;
     }
     return v;
 }
 
-static int parse_int(reader *r, const char *what, const char *t, int lo, int hi)
+static int parse_int_of(reader *r, const char *t, const char *what, const char *rec, const char *key, int lo, int hi)
 {
     if (!t)
         return lo;
@@ -122,40 +134,27 @@ static int parse_int(reader *r, const char *what, const char *t, int lo, int hi)
     errno = 0;
     long v = strtol(t, &end, 10);
     if (*end != '\0' || errno == ERANGE || v < lo || v > hi) {
-        fail(r, "%s: expected an integer in [%d, %d], found '%s'", what, lo, hi, t);
+        char name[128];
+        fail(r, "%s: expected an integer in [%d, %d], found '%s'", value_name(name, sizeof name, what, rec, key),
+             lo, hi, t);
         return lo;
     }
     return (int)v;
 }
 
+static double parse_num(reader *r, const char *what, const char *t)
+{
+    return parse_num_of(r, t, what, NULL, NULL);
+}
+
 static double fnum(reader *r, const char *rec, const char *key)
 {
-    const char *t = field(r, rec, key);
-    if (!t)
-        return 0.0;
-    char *end;
-    errno = 0;
-    double v = strtod(t, &end);
-    if (*end == '\0' && errno != ERANGE && isfinite(v))
-        return v;
-    char what[128];                      /* (the message's name only now) */
-    snprintf(what, sizeof what, "%s.%s", rec, key);
-    return parse_num(r, what, t);
+    return parse_num_of(r, field(r, rec, key), NULL, rec, key);
 }
 
 static int fint(reader *r, const char *rec, const char *key, int lo, int hi)
 {
-    const char *t = field(r, rec, key);
-    if (!t)
-        return lo;
-    char *end;
-    errno = 0;
-    long v = strtol(t, &end, 10);
-    if (*end == '\0' && errno != ERANGE && v >= lo && v <= hi)
-        return (int)v;
-    char what[128];                      /* (the message's name only now) */
-    snprintf(what, sizeof what, "%s.%s", rec, key);
-    return parse_int(r, what, t, lo, hi);
+    return parse_int_of(r, field(r, rec, key), NULL, rec, key, lo, hi);
 }
 
 static double num(reader *r, const char *what)
@@ -165,7 +164,7 @@ static double num(reader *r, const char *what)
 
 static int inum(reader *r, const char *what, int lo, int hi)
 {
-    return parse_int(r, what, next(r, what), lo, hi);
+    return parse_int_of(r, next(r, what), what, NULL, NULL, lo, hi);
 }
 
 static void *xcalloc(reader *r, size_t n, size_t size)
