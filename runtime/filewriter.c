@@ -77,14 +77,23 @@ static void *writer_main(void *arg)
             pthread_cond_wait(&w->cv, &w->mu);
         if (w->count == 0)
             break;
-        int b = w->queue[w->head];
+        const bk_filewriter_entry e = w->queue[w->head];
         pthread_mutex_unlock(&w->mu);
-        int err = make_file(w->path[b], w->buf[b], w->cap, w->make[b], w->job[b]);
+        int err = 0;
+        if (e.buf >= 0)
+            err = make_file(w->path[e.buf], w->buf[e.buf], w->cap, e.make, e.job);
+        else
+            e.make(e.job, NULL);
         pthread_mutex_lock(&w->mu);
-        record(w, w->path[b], err);
-        w->head = (w->head + 1) % BK_FILEWRITER_BUFFERS;
+        if (e.buf >= 0) {
+            record(w, w->path[e.buf], err);
+            w->state[e.buf] = 0;
+        } else {
+            w->ncall--;
+            w->calls_done++;
+        }
+        w->head = (w->head + 1) % BK_FILEWRITER_QUEUE;
         w->count--;
-        w->state[b] = 0;
         pthread_cond_broadcast(&w->cv);
     }
     pthread_mutex_unlock(&w->mu);
@@ -134,13 +143,13 @@ int bk_filewriter_slot(bk_filewriter *w)
     return b;
 }
 
-/* Queues buffer b (the caller's, with its job set) for the thread. */
-static int queue(bk_filewriter *w, int b, const char *path)
+/* Queues buffer b (the caller's) for the thread, made by make(job). */
+static int queue(bk_filewriter *w, int b, const char *path, bk_filewriter_make make, const void *job)
 {
     pthread_mutex_lock(&w->mu);
     snprintf(w->path[b], sizeof w->path[b], "%s", path);
     w->state[b] = 2;
-    w->queue[(w->head + w->count) % BK_FILEWRITER_BUFFERS] = b;
+    w->queue[(w->head + w->count) % BK_FILEWRITER_QUEUE] = (bk_filewriter_entry){b, make, job};
     w->count++;
     pthread_cond_broadcast(&w->cv);
     int failed = w->failed;
@@ -165,9 +174,36 @@ int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_fi
         record(w, path, make_file(path, w->buf[slot], w->cap, make, job));
         return release(w, slot);
     }
-    w->make[slot] = make;
-    w->job[slot] = job;
-    return queue(w, slot, path);
+    return queue(w, slot, path, make, job);
+}
+
+long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg)
+{
+    if (!w->threaded) {
+        fn(arg, NULL);
+        w->calls_done = ++w->calls;
+        return w->calls;
+    }
+    pthread_mutex_lock(&w->mu);
+    while (w->ncall == BK_FILEWRITER_CALLS)     /* (each frame in the queue holds a buffer: room for the calls) */
+        pthread_cond_wait(&w->cv, &w->mu);
+    w->queue[(w->head + w->count) % BK_FILEWRITER_QUEUE] = (bk_filewriter_entry){-1, fn, arg};
+    w->count++;
+    w->ncall++;
+    long ticket = ++w->calls;
+    pthread_cond_broadcast(&w->cv);
+    pthread_mutex_unlock(&w->mu);
+    return ticket;
+}
+
+void bk_filewriter_wait(bk_filewriter *w, long ticket)
+{
+    if (!w->threaded)
+        return;
+    pthread_mutex_lock(&w->mu);
+    while (w->calls_done < ticket)
+        pthread_cond_wait(&w->cv, &w->mu);
+    pthread_mutex_unlock(&w->mu);
 }
 
 int bk_filewriter_drain(bk_filewriter *w)

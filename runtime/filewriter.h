@@ -1,5 +1,6 @@
 /* filewriter.h -- whole files (the ParaView frames) made and written by a
- * background thread while the solve goes on.
+ * background thread while the solve goes on, and other work handed to that
+ * thread in the same order (the result tables' rows: csvrow.h).
  *
  * A file is handed over as a job: its path and a function that writes its
  * contents from inputs the caller copied into its own memory for that job's
@@ -24,8 +25,14 @@
  *                         and a stream to write the file's contents to.  0, or
  *                         -1 on the first failed write so far (this file's or an
  *                         earlier one's: failed_path, errno_).
- *   bk_filewriter_drain   waits until every file handed over is written; 0 or -1
- *                         as above.
+ *   bk_filewriter_call    in: fn, arg: fn(arg, NULL) run by the thread after
+ *                         what was handed over before (here and now when
+ *                         unthreaded); no buffer.  The call's ticket (1, 2, ...;
+ *                         waits while BK_FILEWRITER_CALLS calls are queued).
+ *   bk_filewriter_wait    in: ticket of bk_filewriter_call: waits until that call
+ *                         has returned.
+ *   bk_filewriter_drain   waits until every file and call handed over is done;
+ *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
  * No allocation after open but for a job's stream on its buffer (fmemopen).
  * The signal mask is the opener's (the solver blocks SIGINT/SIGTERM before:
@@ -38,10 +45,20 @@
 #include <stdio.h>
 
 #define BK_FILEWRITER_BUFFERS 2
+#define BK_FILEWRITER_CALLS 2
+#define BK_FILEWRITER_QUEUE (BK_FILEWRITER_BUFFERS + BK_FILEWRITER_CALLS)
 #define BK_FILEWRITER_PATH 1200
 
-/* Writes a file's contents to fp (the caller's inputs in job). */
+/* Writes a file's contents to fp (the caller's inputs in job); for a call
+ * (bk_filewriter_call) fp is NULL. */
 typedef void (*bk_filewriter_make)(const void *job, FILE *fp);
+
+/* A job in the queue: a file made in buffer buf, or a call (buf -1). */
+typedef struct bk_filewriter_entry {
+    int buf;
+    bk_filewriter_make make;
+    const void *job;
+} bk_filewriter_entry;
 
 typedef struct bk_filewriter {
     size_t cap;                          /* bytes per buffer */
@@ -49,10 +66,10 @@ typedef struct bk_filewriter {
     /* per buffer: 0 free, 1 handed to the caller, 2 queued or being written */
     int state[BK_FILEWRITER_BUFFERS];
     char path[BK_FILEWRITER_BUFFERS][BK_FILEWRITER_PATH];
-    bk_filewriter_make make[BK_FILEWRITER_BUFFERS];
-    const void *job[BK_FILEWRITER_BUFFERS];
-    int queue[BK_FILEWRITER_BUFFERS];   /* buffers in the order handed over */
+    bk_filewriter_entry queue[BK_FILEWRITER_QUEUE];   /* the jobs in the order handed over */
     int head, count;
+    int ncall;                           /* calls in the queue */
+    long calls, calls_done;              /* calls handed over, calls returned */
     int threaded, stop, ready;         /* ready: mu and cv made */
     pthread_t thread;
     pthread_mutex_t mu;
@@ -65,6 +82,8 @@ typedef struct bk_filewriter {
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
 int bk_filewriter_slot(bk_filewriter *w);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
+long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);
+void bk_filewriter_wait(bk_filewriter *w, long ticket);
 int bk_filewriter_drain(bk_filewriter *w);
 void bk_filewriter_close(bk_filewriter *w);
 

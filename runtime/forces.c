@@ -312,7 +312,7 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
             L[i] = F[i], L[3 + i] = M[i], L[6 + i] = x0[i];
         if (f->reactions) {
             bk_row r;
-            bk_row_begin(&r, f->reactions);
+            bk_row_begin(&r, f->reactions, f->rq);
             bk_row_int(&r, step);
             bk_row_num(&r, x);
             bk_row_int(&r, rc->index);
@@ -386,11 +386,11 @@ static void section_components(const bk_model *m, int e, const double *qe, doubl
 
 /* One row of sections.csv: step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3
  * (pos: x, y, z; out: N, Q2, Q3, T, M2, M3). */
-static void section_row(FILE *fp, int step, double t, const char *beam, int e, const char *source, int point,
-                        double xi, double s, const double *pos, const double *out)
+static void section_row(FILE *fp, bk_rowqueue *rq, int step, double t, const char *beam, int e, const char *source,
+                        int point, double xi, double s, const double *pos, const double *out)
 {
     bk_row r;
-    bk_row_begin(&r, fp);
+    bk_row_begin(&r, fp, rq);
     bk_row_int(&r, step);
     bk_row_num(&r, t);
     bk_row_str(&r, beam);
@@ -423,7 +423,7 @@ static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_
         section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
         for (int i = 0; i < 6; ++i)
             f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
-        section_row(f->sections, step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o,
+        section_row(f->sections, f->rq, step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o,
                     out);
     }
 }
@@ -483,7 +483,7 @@ static void write_sections(bk_forces *f, bk_system *s, int step, double x, const
             for (int i = 0; i < 6; ++i)
                 f->sec[12 * (size_t)e + 6 * end + i] = out[i];
             if (f->sections)
-                section_row(f->sections, step, x, sr->beam, e, "nodal", end, xi, end ? sr->s1 : sr->s0, xn, out);
+                section_row(f->sections, f->rq, step, x, sr->beam, e, "nodal", end, xi, end ? sr->s1 : sr->s0, xn, out);
         }
         if (f->sections)
             write_stress_rows(f, m, sr, step, x, qe);

@@ -33,12 +33,15 @@
 
 #include <stdio.h>
 
+#include "csvrow.h"
+
 #include "system.h"
 
 typedef struct bk_forces {
     const bk_model *m;
     FILE *reactions, *sections;   /* owned */
     char *tbuf[2];                /* owned: their stdio buffers (csvrow.h bk_table_open) */
+    bk_rowqueue *rq;              /* not owned: the rows' queue to a writer thread (output.c), or NULL */
     int *fld;                     /* [4 ndof] global DOFs of the field of each DOF (-1 unused) */
     signed char *kind, *comp;     /* [ndof] 0 none, 1 position, 2 gradient, 3 quaternion; component */
     double *res, *fext, *buf;     /* [ndof], [ndof], element buffers */

@@ -44,20 +44,38 @@ static void table_list(bk_output *o, FILE **fp[BK_NTABLES], const char *name[BK_
 }
 
 /* spent, and the tables flushed when due (one reading of the clock for both
- * when they are not). */
+ * when they are not); with the rows queued for the writer thread, the thread
+ * flushes them after the rows so far. */
 static void spent_flush(bk_output *o, double t0)
 {
     double now = bk_clock_s();
     if (now - o->t_flush >= BK_FLUSH_INTERVAL) {
         o->t_flush = now;
-        FILE **fp[BK_NTABLES];
-        table_list(o, fp, NULL);
-        for (int k = 0; k < BK_NTABLES; ++k)
-            if (*fp[k])
-                fflush(*fp[k]);
+        if (o->rq.w) {
+            bk_rowqueue_submit(&o->rq, 1);
+        } else {
+            FILE **fp[BK_NTABLES];
+            table_list(o, fp, NULL);
+            for (int k = 0; k < BK_NTABLES; ++k)
+                if (*fp[k])
+                    fflush(*fp[k]);
+        }
         now = bk_clock_s();
     }
     o->t_output += now - t0;
+}
+
+/* Once the frames have a writer thread (vtk.h: a run with enough frames), the
+ * tables' rows are formatted there too (csvrow.h bk_rowqueue): from here on
+ * the tables are that thread's until bk_output_close_tables. */
+static void rows_to_writer(bk_output *o)
+{
+    if (o->rq.w || !o->vtk.background || !o->vtk.fw.threaded)
+        return;
+    /* the tables written with bk_row (the mode tables are not) */
+    FILE *const list[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
+    if (bk_rowqueue_start(&o->rq, &o->vtk.fw, list, (int)(sizeof list / sizeof *list)) == 0)
+        o->forces.rq = &o->rq;
 }
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
@@ -156,6 +174,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
     double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, NULL, -step, t, q);
+    rows_to_writer(o);
     spent(o, t0);
 }
 
@@ -176,6 +195,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, NULL, step, t, q);
+    rows_to_writer(o);
     if (!o->sensors) {
         spent(o, t0);
         return;
@@ -186,7 +206,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
         sensor_state(o, k, q, pos, disp, g);
         /* d1, d2 (section axes), d3 (axis-like); nan where undefined */
         bk_row r;
-        bk_row_begin(&r, o->sensors);
+        bk_row_begin(&r, o->sensors, &o->rq);
         bk_row_int(&r, step);
         bk_row_num(&r, t);
         bk_row_str(&r, s->name);
@@ -291,7 +311,7 @@ void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int it
         return;
     double t0 = bk_clock_s();
     bk_row r;                      /* attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond */
-    bk_row_begin(&r, o->newton);
+    bk_row_begin(&r, o->newton, &o->rq);
     bk_row_int(&r, attempt);
     bk_row_int(&r, step);
     bk_row_num(&r, lam);
@@ -311,7 +331,7 @@ void bk_output_stability(bk_output *o, int step, double lam, int negative, doubl
         return;
     double t0 = bk_clock_s();
     bk_row r;                      /* step,load_factor,negative_eigenvalues,eig_min,eig_max */
-    bk_row_begin(&r, o->stability);
+    bk_row_begin(&r, o->stability, &o->rq);
     bk_row_int(&r, step);
     bk_row_num(&r, lam);
     bk_row_int(&r, negative);
@@ -328,7 +348,7 @@ void bk_output_energy(bk_output *o, int step, double t, double T, double U, doub
         return;
     double t0 = bk_clock_s();
     bk_row r;
-    bk_row_begin(&r, o->energy);
+    bk_row_begin(&r, o->energy, &o->rq);
     bk_row_int(&r, step);
     const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
     for (int i = 0; i < 6; ++i)
@@ -524,6 +544,8 @@ static int close_table(const bk_output *o, FILE **fp, const char *name, FILE *er
 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
+    bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */
+    o->forces.rq = NULL;
     FILE **fp[BK_NTABLES];
     const char *name[BK_NTABLES];
     table_list(o, fp, name);

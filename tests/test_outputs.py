@@ -189,8 +189,9 @@ def test_frame_that_cannot_be_written_is_an_error():
 def test_progress_line_on_a_terminal_only():
     """A run over one second shows an updating progress line when stderr is a terminal, none
     otherwise, and none with --quiet."""
-    # 30,000 steps: a few seconds even on a fast, idle machine (the line appears after one second)
-    sets = ["--set", "dynamic.dt=5e-5", "--set", "dynamic.t_end=1.5", "--set", "output.vtk_every=0"]
+    # 75,000 steps: about 3 s on an idle machine here (the line appears after one second; 30,000
+    # steps took 1.1 s, too close to it)
+    sets = ["--set", "dynamic.dt=2e-5", "--set", "dynamic.t_end=1.5", "--set", "output.vtk_every=0"]
     out, solver, _ = _private_solver("pendulum_soft_ancf", sets)
     args = [str(solver), str(out / "model.dat"), str(out)]
     master, slave = pty.openpty()
