@@ -339,7 +339,7 @@ void bk_band_free(bk_band *b)
     memset(b, 0, sizeof *b);
 }
 
-int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, long max_storage)
+int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, int kd, long max_storage)
 {
     memset(b, 0, sizeof *b);
     b->n = n;
@@ -354,15 +354,17 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
         memcpy(b->perm, order, (size_t)n * sizeof *b->perm);
     for (int i = 0; i < n; ++i)
         b->iperm[b->perm[i]] = i;
-    int kd = 0;
-    for (int j = 0; j < n; ++j)
-        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            int d = b->iperm[Ai[p]] - b->iperm[j];
-            if (d > kd)
-                kd = d;
-            if (-d > kd)
-                kd = -d;
-        }
+    if (!order || kd < 0) {
+        kd = 0;
+        for (int j = 0; j < n; ++j)
+            for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+                int d = b->iperm[Ai[p]] - b->iperm[j];
+                if (d > kd)
+                    kd = d;
+                if (-d > kd)
+                    kd = -d;
+            }
+    }
     b->kd = kd;
     /* kd + 1 rounded up to whole vectors: the factor's updates are whole vectors */
     b->ldab = (kd + BK_BAND_LANES) / BK_BAND_LANES * BK_BAND_LANES;
@@ -381,20 +383,40 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
     return 0;
 }
 
-void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band)
+int bk_bandsym_map(bk_bandsym *b, const int *Ap, const int *Ai)
 {
-    const int n = b->n, ldab = b->ldab;
-    const int *iperm = b->iperm;
-    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
+    const int n = b->n, ldab = b->ldab, *iperm = b->iperm;
+    b->npos = Ap[n];
+    free(b->pos);
+    b->pos = malloc((size_t)(b->npos > 0 ? b->npos : 1) * sizeof *b->pos);
+    if (!b->pos)
+        return -1;
     for (int j = 0; j < n; ++j) {
         const int c = iperm[j];
         for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            /* (r, c) and (c, r) share the lower entry: each adds half (the
-             * diagonal all of it); no branch on the side (unpredictable) */
+            /* (r, c) and (c, r) share the lower entry */
             const int r = iperm[Ai[p]], lo = r < c ? r : c, hi = r < c ? c : r;
-            const double h = r == c ? 1.0 : 0.5;
-            band[(hi - lo) + (long)lo * ldab] += h * Ax[p];
+            b->pos[p] = (hi - lo) + lo * ldab;
         }
+    }
+    return 0;
+}
+
+void bk_bandsym_fill(const bk_bandsym *b, const double *Ax, double *band)
+{
+    const int n = b->n, ldab = b->ldab, *restrict pos = b->pos;
+    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
+    for (long p = 0; p < b->npos; ++p)
+        band[pos[p]] += Ax[p];
+    /* each off-diagonal entry holds a + a^T (or a alone): half of it; the
+     * diagonal is its own transpose */
+    for (int c = 0; c < n; ++c) {
+        double *col = band + (long)c * ldab;
+        const double d = col[0];
+#pragma omp simd
+        for (int r = 0; r < ldab; ++r)
+            col[r] *= 0.5;
+        col[0] = d;
     }
 }
 
@@ -490,6 +512,7 @@ void bk_bandsym_free(bk_bandsym *b)
     free(b->perm);
     free(b->iperm);
     free(b->piv);
+    free(b->pos);
     free(b->ab);
     free(b->D);
     free(b->w);

@@ -1146,7 +1146,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         goto done;
     }
     if (o->stability) {
-        if (bk_stability_init(&stab, s, nl.ls.use_band ? nl.ls.band.perm : NULL) != 0) {
+        if (bk_stability_init(&stab, s, nl.ls.use_band ? &nl.ls.band : NULL) != 0) {
             snprintf(info->message, sizeof info->message, "out of memory (stability analysis)");
             goto done;
         }

@@ -13,12 +13,12 @@
 #define INV_ITERS 30
 #define POW_ITERS 40
 
-static int stability_init(bk_stability *st, const bk_system *s, const int *order);
+static int stability_init(bk_stability *st, const bk_system *s, const bk_band *lu);
 
-int bk_stability_init(bk_stability *st, const bk_system *s, const int *order)
+int bk_stability_init(bk_stability *st, const bk_system *s, const bk_band *lu)
 {
     double t0 = bk_clock_s();
-    int rc = stability_init(st, s, order);
+    int rc = stability_init(st, s, lu);
     st->t_spent += bk_clock_s() - t0;
     return rc;
 }
@@ -84,22 +84,26 @@ static void free_pattern(bk_stability *st)
     st->Bp = st->Bi = st->src = st->srct = NULL;
 }
 
-/* A narrow band: the band LDL^T's buffers (the factor's are the plan's). */
+/* A narrow band: the band LDL^T's buffers (the factor's are the plan's) and
+ * the place of every entry of the system's pattern in it. */
 static int use_band(bk_stability *st)
 {
     size_t len = (size_t)st->band.ldab * (size_t)(st->n > 0 ? st->n : 1);
     st->use_band = 1;
     st->bnow = malloc(len * sizeof *st->bnow);
     st->bprev = malloc(len * sizeof *st->bprev);
-    return st->bnow && st->bprev ? 0 : -1;
+    if (!st->bnow || !st->bprev)
+        return -1;
+    return bk_bandsym_map(&st->band, st->s->Ap, st->s->Ai);
 }
 
 /* The band LDL^T of the pattern (Ap, Ai) in `order` (NULL: its reverse
- * Cuthill-McKee order) when narrow enough: 0 (its buffers made), 1 (not
- * narrow: nothing kept), -1 (out of memory). */
-static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *order)
+ * Cuthill-McKee order; kd its half bandwidth when known, else -1) when narrow
+ * enough: 0 (its buffers made), 1 (not narrow: nothing kept), -1 (out of
+ * memory). */
+static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *order, int kd)
 {
-    int bp = bk_bandsym_plan(&st->band, st->n, Ap, Ai, order, BK_BAND_MAX_STORAGE);
+    int bp = bk_bandsym_plan(&st->band, st->n, Ap, Ai, order, kd, BK_BAND_MAX_STORAGE);
     if (bp < 0)
         return -1;
     if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2)
@@ -109,7 +113,7 @@ static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *
     return 1;
 }
 
-static int stability_init(bk_stability *st, const bk_system *s, const int *order)
+static int stability_init(bk_stability *st, const bk_system *s, const bk_band *lu)
 {
     memset(st, 0, sizeof *st);
     st->s = s;
@@ -155,12 +159,12 @@ static int stability_init(bk_stability *st, const bk_system *s, const int *order
      * one of the symmetric pattern's own (beams): a band LDL^T, any symmetric
      * order has the same inertia (Sylvester).  Else AMD on the whole pattern,
      * then the multipliers first (each keeps its AMD rank). */
-    int bp = order ? band_plan(st, s->Ap, s->Ai, order) : 1;
+    int bp = lu ? band_plan(st, s->Ap, s->Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku) : 1;
     if (bp <= 0)
         return bp;
     if (sym_pattern(st) != 0)
         return -1;
-    if (!order && (bp = band_plan(st, st->Bp, st->Bi, NULL)) <= 0) {
+    if (!lu && (bp = band_plan(st, st->Bp, st->Bi, NULL, -1)) <= 0) {
         free_pattern(st);
         return bp;
     }
@@ -216,7 +220,9 @@ static void fill_band(bk_stability *st, const double *Ax)
     const bk_bandsym *b = &st->band;
     const int n = st->n, ldab = b->ldab, *iperm = b->iperm;
     double *band = st->bnow;
-    bk_bandsym_fill(b, s->Ap, s->Ai, Ax, band);
+    bk_bandsym_fill(b, Ax, band);
+    if (st->nmult == 0)
+        return;
     double kmax = 0.0;
     for (int j = 0; j < n; ++j)
         if (!st->ismult[j])

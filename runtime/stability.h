@@ -73,10 +73,11 @@ typedef struct bk_stability_result {
     int ok;                         /* 0: the factorization broke down (zero pivot)         */
 } bk_stability_result;
 
-/* order[neq]: a symmetric order of the system's unknowns for the band LDL^T
- * (new -> old: the band LU's, bk_linsolver.band.perm, saves its own reverse
- * Cuthill-McKee search), or NULL.  Returns 0, or -1 when out of memory. */
-int bk_stability_init(bk_stability *st, const bk_system *s, const int *order);
+/* lu: the Newton solver's band LU plan of the system's pattern
+ * (bk_linsolver.band: its order and half bandwidths serve the band LDL^T and
+ * save its own reverse Cuthill-McKee search), or NULL.  Returns 0, or -1 when
+ * out of memory. */
+int bk_stability_init(bk_stability *st, const bk_system *s, const bk_band *lu);
 /* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
 /* Makes the last checked matrix the reference of the next crossing search
