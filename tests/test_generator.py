@@ -56,29 +56,35 @@ def test_invariant_derivatives_match_sympy_diff():
                         assert abs(float(ref2 - got2)) < 1e-12, (name, i, Jj, k, Ll, ref2, got2)
 
 
+# Hash seeds: sympy's term order inside a derivation may follow Python's string
+# hashes.  The two tests below regenerate under two fixed seeds and compare with
+# the committed files, so together they show the output is the same under both
+# (each is one generation: two of the suite's slowest steps, not three).
+GEN_CHECK_SEED = "12345"
+SUBSET_SEED = "0"
+
+
 @pytest.mark.slow
 def test_gen_check_passes_on_committed_kernels():
-    r = run_cli(["gen", "--check"])
+    """Every generated file regenerated (PYTHONHASHSEED 12345): byte-identical to out/kernels/."""
+    r = run_cli(["gen", "--check"], env={"PYTHONHASHSEED": GEN_CHECK_SEED})
     assert r.returncode == 0, r.stdout + r.stderr
 
 
 @pytest.mark.slow
 def test_generation_is_byte_identical_across_hash_seeds():
     """A representative subset (the load kernel, ancf3243 with every material, ancf3363 x
-    Arruda-Boyce) regenerated under two PYTHONHASHSEED values: identical to each other
-    and to the committed files (gen --check covers every file)."""
+    Arruda-Boyce) regenerated under PYTHONHASHSEED 0 into a new directory: identical to
+    the committed files, which the gen --check test above reproduces under seed 12345."""
+    assert SUBSET_SEED != GEN_CHECK_SEED
     subset = "loads,ancf3243,ancf3363_arruda_boyce"
-    outs = []
-    for seed in ("0", "12345"):
-        d = tempfile.mkdtemp(prefix="bk-gen-")
-        env = dict(ENV, PYTHONHASHSEED=seed)
-        r = subprocess.run([PY, "-m", "gen.cli", "gen", "--force", "--only", subset, "--out", d], env=env,
+    env = dict(ENV, PYTHONHASHSEED=SUBSET_SEED)
+    with tempfile.TemporaryDirectory(prefix="bk-gen-") as tmp:
+        d = Path(tmp)
+        r = subprocess.run([PY, "-m", "gen.cli", "gen", "--force", "--only", subset, "--out", str(d)], env=env,
                            capture_output=True, text=True, cwd=ROOT)
         assert r.returncode == 0, r.stderr
-        outs.append(Path(d))
-    names = sorted(p.name for p in outs[0].iterdir())
-    assert len(names) >= 10 and names == sorted(p.name for p in outs[1].iterdir()), names
-    match, mismatch, errors = filecmp.cmpfiles(outs[0], outs[1], names, shallow=False)
-    assert not mismatch and not errors, f"differ between hash seeds: {mismatch + errors}"
-    match, mismatch, errors = filecmp.cmpfiles(outs[0], ROOT / "out" / "kernels", names, shallow=False)
+        names = sorted(p.name for p in d.iterdir())
+        assert len(names) >= 10, names
+        match, mismatch, errors = filecmp.cmpfiles(d, ROOT / "out" / "kernels", names, shallow=False)
     assert not mismatch and not errors, f"differ from committed out/kernels: {mismatch + errors}"
