@@ -186,6 +186,20 @@ def run(workdir, repeats=7, target=0.004, only=None, log=None, passes=1):
     return rows
 
 
+def measured_peak(log=None):
+    """One core's peak double-precision GFLOP/s, measured by bench/peak.c (FMA
+    chains on 64-byte vectors) built with the kernels' release flags."""
+    from gen.solver_build import BUILD, CC, KERNEL_FLAGS, WARN
+    exe = BUILD / "release" / "bench" / "bench_peak"
+    exe.parent.mkdir(parents=True, exist_ok=True)
+    src = BENCH / "peak.c"
+    if not exe.exists() or exe.stat().st_mtime < src.stat().st_mtime:
+        flags = [f for f in KERNEL_FLAGS["release"] if f != "-fPIC"]
+        subprocess.run([CC] + WARN + flags + [str(src), "-o", str(exe)], check=True, capture_output=True, text=True)
+    r = subprocess.run([str(exe)], capture_output=True, text=True, env=_single_thread_env(), check=True)
+    return float(r.stdout.strip().split(",")[1])
+
+
 def _single_thread_env():
     import os
     env = dict(os.environ)
