@@ -89,6 +89,23 @@ static int rcm(int n, const int *Ap, const int *Ai, int *perm)
     return 0;
 }
 
+/* The widths of the pattern (Ap, Ai) in the order iperm (old -> new): the
+ * largest distance of an entry below the diagonal (*kl) and above it (*ku). */
+static void band_widths(int n, const int *Ap, const int *Ai, const int *iperm, int *kl, int *ku)
+{
+    int lo = 0, up = 0;
+    for (int j = 0; j < n; ++j)
+        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+            int d = iperm[Ai[p]] - iperm[j];
+            if (d > lo)
+                lo = d;
+            if (-d > up)
+                up = -d;
+        }
+    *kl = lo;
+    *ku = up;
+}
+
 int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_storage)
 {
     memset(b, 0, sizeof *b);
@@ -103,15 +120,8 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
     }
     for (int i = 0; i < n; ++i)
         b->iperm[b->perm[i]] = i;
-    int kl = 0, ku = 0;
-    for (int j = 0; j < n; ++j)
-        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            int d = b->iperm[Ai[p]] - b->iperm[j];
-            if (d > kl)
-                kl = d;
-            if (-d > ku)
-                ku = -d;
-        }
+    int kl, ku;
+    band_widths(n, Ap, Ai, b->iperm, &kl, &ku);
     b->kl = kl;
     b->ku = ku;
     /* rows below the band up to a multiple of BK_BAND_LANES: the update loops
@@ -355,15 +365,9 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
     for (int i = 0; i < n; ++i)
         b->iperm[b->perm[i]] = i;
     if (!order || kd < 0) {
-        kd = 0;
-        for (int j = 0; j < n; ++j)
-            for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-                int d = b->iperm[Ai[p]] - b->iperm[j];
-                if (d > kd)
-                    kd = d;
-                if (-d > kd)
-                    kd = -d;
-            }
+        int kl, ku;
+        band_widths(n, Ap, Ai, b->iperm, &kl, &ku);
+        kd = kl > ku ? kl : ku;
     }
     b->kd = kd;
     /* kd + 1 rounded up to whole vectors: the factor's updates are whole vectors */
