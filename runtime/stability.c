@@ -159,6 +159,8 @@ static int stability_init(bk_stability *st, const bk_system *s, const bk_band *l
      * one of the symmetric pattern's own (beams): a band LDL^T, any symmetric
      * order has the same inertia (Sylvester).  Else AMD on the whole pattern,
      * then the multipliers first (each keeps its AMD rank). */
+    if (lu && (lu->n != n || lu->Ap != s->Ap || lu->Ai != s->Ai))
+        lu = NULL;                       /* a plan of another pattern: its widths are not this one's */
     int bp = lu ? band_plan(st, s->Ap, s->Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku) : 1;
     if (bp <= 0)
         return bp;

@@ -25,7 +25,8 @@
  * bisection on the inertia of the linearly interpolated matrix.
  *
  * Storage: for a narrow band (beams, in the band LU's order) three band
- * copies, the matrix now, at the last accepted equilibrium and the factor;
+ * copies, the matrix now, at the last accepted equilibrium and the factor,
+ * and the band place of every entry of the system's pattern;
  * otherwise the symmetric pattern and SuiteSparse LDL's arrays.
  *
  * Ownership: the checker owns every array it allocates (bk_stability_free);
@@ -75,8 +76,8 @@ typedef struct bk_stability_result {
 
 /* lu: the Newton solver's band LU plan of the system's pattern
  * (bk_linsolver.band: its order and half bandwidths serve the band LDL^T and
- * save its own reverse Cuthill-McKee search), or NULL.  Returns 0, or -1 when
- * out of memory. */
+ * save its own reverse Cuthill-McKee search), or NULL (a plan of another
+ * pattern counts as NULL).  Returns 0, or -1 when out of memory. */
 int bk_stability_init(bk_stability *st, const bk_system *s, const bk_band *lu);
 /* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
