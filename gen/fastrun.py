@@ -14,9 +14,11 @@ records a new entry after building (out/cache/run/KEY.run + KEY.dat).  The
 reuse skips the scene reader's disk-space check for the output directory; its
 warnings were recorded and are printed and added to summary.json as before.
 
-Usage: python3 -S gen/fastrun.py run ARGS...  (falls back to gen/cli.py; as a
-script, not -m, which would import importlib.util, and with -S, no site packages:
-the full path adds them back)."""
+Usage (build.sh): python3 -S -c 'import sys; from gen.fastrun import main;
+sys.exit(main(sys.argv[1:]))' run ARGS...  (falls back to gen/cli.py).  Imported,
+so that its bytecode is cached (a script is compiled at every start), but not
+with -m, which would import importlib.util; with -S, no site packages: the full
+path adds them back.  `python3 -S gen/fastrun.py run ARGS...` works the same."""
 import os
 import sys
 
