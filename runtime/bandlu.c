@@ -387,31 +387,18 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
     return 0;
 }
 
-int bk_bandsym_map(bk_bandsym *b, const int *Ap, const int *Ai)
+void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band)
 {
-    const int n = b->n, ldab = b->ldab, *iperm = b->iperm;
-    b->npos = Ap[n];
-    free(b->pos);
-    b->pos = malloc((size_t)(b->npos > 0 ? b->npos : 1) * sizeof *b->pos);
-    if (!b->pos)
-        return -1;
+    const int n = b->n, ldab = b->ldab, *restrict iperm = b->iperm;
+    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
     for (int j = 0; j < n; ++j) {
         const int c = iperm[j];
         for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
             /* (r, c) and (c, r) share the lower entry */
             const int r = iperm[Ai[p]], lo = r < c ? r : c, hi = r < c ? c : r;
-            b->pos[p] = (hi - lo) + lo * ldab;
+            band[(hi - lo) + (long)lo * ldab] += Ax[p];
         }
     }
-    return 0;
-}
-
-void bk_bandsym_fill(const bk_bandsym *b, const double *Ax, double *band)
-{
-    const int n = b->n, ldab = b->ldab, *restrict pos = b->pos;
-    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
-    for (long p = 0; p < b->npos; ++p)
-        band[pos[p]] += Ax[p];
     /* each off-diagonal entry holds a + a^T (or a alone): half of it; the
      * diagonal is its own transpose */
     for (int c = 0; c < n; ++c) {
@@ -516,7 +503,6 @@ void bk_bandsym_free(bk_bandsym *b)
     free(b->perm);
     free(b->iperm);
     free(b->piv);
-    free(b->pos);
     free(b->ab);
     free(b->D);
     free(b->w);

@@ -74,15 +74,15 @@ void bk_band_free(bk_band *b);
  *                     storage allowed (doubles); out: perm, iperm, kd.  0, 1
  *                     (band larger than allowed), -1 (out of memory).  The
  *                     pattern stays the caller's.
- *   bk_bandsym_map    in: the CSC pattern Ap[n+1], Ai[nnz] of the matrices to
- *                     fill (the plan's, or one within its band); out: pos[nnz],
- *                     each entry's place in the band (the plan owns it).  0, or
- *                     -1 (out of memory).
- *   bk_bandsym_fill   in: values Ax[nnz] on the mapped pattern; out:
+ *   bk_bandsym_fill   in: a CSC pattern Ap[n+1], Ai[nnz] (the plan's, or one
+ *                     within its band) and values Ax[nnz] on it; out:
  *                     band[ldab n], its symmetric part (A + A^T) / 2 in the
  *                     band layout (column c of the new order at band + c ldab,
  *                     row c + r at [r]); an entry without its transpose counts
- *                     half.
+ *                     half.  Each entry's place from iperm (no map of nnz
+ *                     places: reading one costs as much as the look-up, and its
+ *                     pages are memory a small model's check would touch the
+ *                     first time, at 1-10 us a page).
  *   bk_bandsym_factor in: band[ldab n] as filled (band may be b->ab: factored in
  *                     place); 0, or -1 on a zero or non-finite pivot (D[j], new
  *                     order, holds the pivots); no allocation;
@@ -94,13 +94,10 @@ typedef struct bk_bandsym {
     int *perm, *iperm;       /* [n] new -> old, old -> new */
     double *ab, *D, *w;      /* [ldab n] the factor; [n] pivots; [n] scratch */
     double *piv;             /* [ldab + BK_BAND_LANES] the factor's pivot column (scratch) */
-    int *pos;                /* [npos] band place of each entry of the mapped pattern (bk_bandsym_map) */
-    long npos;
 } bk_bandsym;
 
 int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, int kd, long max_storage);
-int bk_bandsym_map(bk_bandsym *b, const int *Ap, const int *Ai);
-void bk_bandsym_fill(const bk_bandsym *b, const double *Ax, double *band);
+void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band);
 int bk_bandsym_factor(bk_bandsym *b, const double *band);
 void bk_bandsym_solve(bk_bandsym *b, double *x);
 void bk_bandsym_matvec(bk_bandsym *b, const double *band, const double *x, double *y);

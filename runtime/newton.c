@@ -114,7 +114,10 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
 
 /* The stability check of the reference state made on the first Newton matrix
  * of the first load step, when that matrix is the reference state's
- * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res). */
+ * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res)
+ * and its matrix accepted at once (the path starts there; the check's scratch
+ * is the band LU's, which the solve goes on to use: stability.h), its row and
+ * counts recorded after the step. */
 typedef struct reference_probe {
     bk_stability *st;
     bk_stability_result res;
@@ -151,6 +154,8 @@ static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval 
         return -1;
     if (matrix && p->ref && p->ref->state == 1) {
         bk_stability_check(p->ref->st, w->Ax, &p->ref->res);
+        if (p->ref->res.ok)
+            bk_stability_accept(p->ref->st);
         p->ref->state = 2;
     }
     /* Every measure is invariant under a rigid rotation of the scene: field
@@ -279,9 +284,10 @@ static int probe_stability(bk_stability *st, bk_system *s, work *w, const double
 }
 
 /* Accepts the probed equilibrium: when the count changed since the previous
- * one, records the event with the interpolated critical load factor. */
+ * one, records the event with the interpolated critical load factor.
+ * matrix: the checker accepts the probed matrix too (0: it did already). */
 static void accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
-                             bk_run_info *info, FILE *log, double *prev_lam)
+                             bk_run_info *info, FILE *log, double *prev_lam, int matrix)
 {
     const char *s_name = out->m->name;
     int before = info->negative_eigenvalues;
@@ -309,7 +315,7 @@ static void accept_stability(bk_stability *st, const bk_stability_result *res, d
                          "%.6g and %.6g (first change at load factor %.6g)\n",
                     before, res->negative, *prev_lam, lam, ev->lam_critical);
     }
-    if (res->ok)
+    if (res->ok && matrix)
         bk_stability_accept(st);
     *prev_lam = lam;
     bk_output_stability(out, info->steps, lam, res->ok ? res->negative : -1, res->eig_min, res->eig_max);
@@ -990,7 +996,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     lam, dl, a.iters, a.rnorm);
         if (have_stab) {
             probe_stability(stab, s, w, q, lam, 0, &sres);
-            accept_stability(stab, &sres, lam, out, info, log, &prev_lam);
+            accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1);
         }
         /* a change of the negative-eigenvalue count in the last step without
          * a limit point: a bifurcation candidate (its load factor from the
@@ -1179,7 +1185,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
         ref.state = 1;                   /* on the first Newton matrix (at q0) */
     else if (have_stab) {
         probe_stability(&stab, s, &w, q, 0.0, 0, &sres);
-        accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam);
+        accept_stability(&stab, &sres, 0.0, out, info, log, &prev_lam, 1);
     }
     if (o->arc_length) {
         rc = arc_length(s, &nl, &w, q, out, info, log, &stab, have_stab, &chk);
@@ -1232,7 +1238,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     probe_stability(&stab, s, &w, m->q0, 0.0, 0, &ref.res);
                     assembled = 0;
                 }
-                accept_stability(&stab, &ref.res, 0.0, out, info, log, &prev_lam);
+                accept_stability(&stab, &ref.res, 0.0, out, info, log, &prev_lam, ref.state == 1);
                 ref.state = 0;
             }
             /* On a stable path (static.stable_path), an increment that ends
@@ -1274,7 +1280,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, a.iters, a.rnorm);
                 if (have_stab) {
-                    accept_stability(&stab, &sres, lam, out, info, log, &prev_lam);
+                    accept_stability(&stab, &sres, lam, out, info, log, &prev_lam, 1);
                     /* the count may flicker at a nearly singular state: only
                      * a count above every one accepted so far is a new loss
                      * of stability */

@@ -5,6 +5,7 @@
 #include <amd.h>
 #include <ldl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,9 +14,9 @@
 #define INV_ITERS 30
 #define POW_ITERS 40
 
-static int stability_init(bk_stability *st, const bk_system *s, const bk_band *lu);
+static int stability_init(bk_stability *st, const bk_system *s, bk_band *lu);
 
-int bk_stability_init(bk_stability *st, const bk_system *s, const bk_band *lu)
+int bk_stability_init(bk_stability *st, const bk_system *s, bk_band *lu)
 {
     double t0 = bk_clock_s();
     int rc = stability_init(st, s, lu);
@@ -84,36 +85,50 @@ static void free_pattern(bk_stability *st)
     st->Bp = st->Bi = st->src = st->srct = NULL;
 }
 
-/* A narrow band: the band LDL^T's buffers (the factor's are the plan's) and
- * the place of every entry of the system's pattern in it. */
-static int use_band(bk_stability *st)
+/* A narrow band: the band LDL^T's buffers.  The matrix now and the factor are scratch of
+ * one check: they go into the band LU's storage when it holds both (lu: the
+ * Newton solver's plan, or NULL), so that a check touches no memory of its
+ * own but the accepted matrix (a page touched the first time costs more than
+ * the whole band factorization of a small model: 1-10 us). */
+static int use_band(bk_stability *st, bk_band *lu)
 {
     size_t len = (size_t)st->band.ldab * (size_t)(st->n > 0 ? st->n : 1);
     st->use_band = 1;
-    st->bnow = malloc(len * sizeof *st->bnow);
     st->bprev = malloc(len * sizeof *st->bprev);
-    if (!st->bnow || !st->bprev)
+    if (!st->bprev)
         return -1;
-    return bk_bandsym_map(&st->band, st->s->Ap, st->s->Ai);
+    if (lu && lu->ab && (size_t)lu->ldab * (size_t)lu->n >= 2 * len + BK_BAND_LANES) {
+        /* whole vectors from a 64-byte boundary, as the plan's own array */
+        double *ab = lu->ab + (BK_BAND_LANES - (uintptr_t)lu->ab / sizeof *ab % BK_BAND_LANES) % BK_BAND_LANES;
+        free(st->band.ab);
+        st->band.ab = ab;
+        st->bnow = ab + len;
+        st->borrowed = 1;
+    } else {
+        st->bnow = malloc(len * sizeof *st->bnow);
+        if (!st->bnow)
+            return -1;
+    }
+    return 0;
 }
 
 /* The band LDL^T of the pattern (Ap, Ai) in `order` (NULL: its reverse
  * Cuthill-McKee order; kd its half bandwidth when known, else -1) when narrow
  * enough: 0 (its buffers made), 1 (not narrow: nothing kept), -1 (out of
  * memory). */
-static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *order, int kd)
+static int band_plan(bk_stability *st, const int *Ap, const int *Ai, const int *order, int kd, bk_band *lu)
 {
     int bp = bk_bandsym_plan(&st->band, st->n, Ap, Ai, order, kd, BK_BAND_MAX_STORAGE);
     if (bp < 0)
         return -1;
     if (bp == 0 && st->band.kd <= BK_BAND_MAX_WIDTH / 2)
-        return use_band(st);
+        return use_band(st, lu);
     if (bp == 0)
         bk_bandsym_free(&st->band);
     return 1;
 }
 
-static int stability_init(bk_stability *st, const bk_system *s, const bk_band *lu)
+static int stability_init(bk_stability *st, const bk_system *s, bk_band *lu)
 {
     memset(st, 0, sizeof *st);
     st->s = s;
@@ -161,12 +176,12 @@ static int stability_init(bk_stability *st, const bk_system *s, const bk_band *l
      * then the multipliers first (each keeps its AMD rank). */
     if (lu && (lu->n != n || lu->Ap != s->Ap || lu->Ai != s->Ai))
         lu = NULL;                       /* a plan of another pattern: its widths are not this one's */
-    int bp = lu ? band_plan(st, s->Ap, s->Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku) : 1;
+    int bp = lu ? band_plan(st, s->Ap, s->Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku, lu) : 1;
     if (bp <= 0)
         return bp;
     if (sym_pattern(st) != 0)
         return -1;
-    if (!lu && (bp = band_plan(st, st->Bp, st->Bi, NULL, -1)) <= 0) {
+    if (!lu && (bp = band_plan(st, st->Bp, st->Bi, NULL, -1, NULL)) <= 0) {
         free_pattern(st);
         return bp;
     }
@@ -222,7 +237,7 @@ static void fill_band(bk_stability *st, const double *Ax)
     const bk_bandsym *b = &st->band;
     const int n = st->n, ldab = b->ldab, *iperm = b->iperm;
     double *band = st->bnow;
-    bk_bandsym_fill(b, Ax, band);
+    bk_bandsym_fill(b, s->Ap, s->Ai, Ax, band);
     if (st->nmult == 0)
         return;
     double kmax = 0.0;
@@ -552,12 +567,17 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
     res->eig_max = big;
 }
 
-/* The values now become the previous ones (the next check fills the others). */
+/* The values now become the previous ones (the next check fills the others;
+ * borrowed, the values now are copied: their place is the band LU's). */
 void bk_stability_accept(bk_stability *st)
 {
     double *t = st->bprev;
-    st->bprev = st->bnow;
-    st->bnow = t;
+    if (st->borrowed) {
+        memcpy(st->bprev, st->bnow, (size_t)st->band.ldab * (size_t)st->n * sizeof *st->bprev);
+    } else {
+        st->bprev = st->bnow;
+        st->bnow = t;
+    }
     t = st->Bprev;
     st->Bprev = st->Bx;
     st->Bx = t;
@@ -594,7 +614,10 @@ void bk_stability_free(bk_stability *st)
     free(st->xmax);
     free(st->Li);
     free(st->Lx);
-    free(st->bnow);
+    if (st->borrowed)
+        st->band.ab = NULL;              /* the band LU's */
+    else
+        free(st->bnow);
     free(st->bprev);
     bk_bandsym_free(&st->band);
     memset(st, 0, sizeof *st);

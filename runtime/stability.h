@@ -25,13 +25,19 @@
  * bisection on the inertia of the linearly interpolated matrix.
  *
  * Storage: for a narrow band (beams, in the band LU's order) three band
- * copies, the matrix now, at the last accepted equilibrium and the factor,
- * and the band place of every entry of the system's pattern;
- * otherwise the symmetric pattern and SuiteSparse LDL's arrays.
+ * copies, the matrix now, at the last accepted equilibrium and the factor;
+ * otherwise the symmetric pattern and SuiteSparse LDL's arrays.  The matrix
+ * now and the factor are the scratch of a check (and of the crossing search
+ * and the acceptance that follow it): when the Newton solver's band LU
+ * storage holds both, they are placed there (borrowed), so that a check
+ * touches no fresh memory but the accepted matrix; a check then overwrites
+ * the band LU's factors, which the static solver never keeps across a check
+ * (it factors every Newton matrix it makes: nonlinear.h opts.reuse = 0).
  *
  * Ownership: the checker owns every array it allocates (bk_stability_free);
- * it keeps a pointer to the system, which must outlive it.  No allocation
- * after bk_stability_init.
+ * it keeps a pointer to the system, which must outlive it, and borrows the
+ * band LU's storage, which must outlive it too.  No allocation after
+ * bk_stability_init.
  */
 #ifndef BK_STABILITY_H
 #define BK_STABILITY_H
@@ -45,6 +51,7 @@ typedef struct bk_stability {
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
     int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
+    int borrowed;                   /* bnow and band.ab are in the band LU's storage */
     int have_prev;                  /* a check was accepted (the *prev values) */
     /* band: the symmetric part in band layout, now and at the last accepted check */
     bk_bandsym band;
@@ -76,13 +83,16 @@ typedef struct bk_stability_result {
 
 /* lu: the Newton solver's band LU plan of the system's pattern
  * (bk_linsolver.band: its order and half bandwidths serve the band LDL^T and
- * save its own reverse Cuthill-McKee search), or NULL (a plan of another
- * pattern counts as NULL).  Returns 0, or -1 when out of memory. */
-int bk_stability_init(bk_stability *st, const bk_system *s, const bk_band *lu);
-/* Analyses the Newton matrix with values Ax (as assembled by newton.c). */
+ * save its own reverse Cuthill-McKee search; its storage is borrowed as the
+ * checks' scratch), or NULL (a plan of another pattern counts as NULL).
+ * Returns 0, or -1 when out of memory. */
+int bk_stability_init(bk_stability *st, const bk_system *s, bk_band *lu);
+/* Analyses the Newton matrix with values Ax (as assembled by newton.c).
+ * Overwrites the band LU's factors (see Storage). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
 /* Makes the last checked matrix the reference of the next crossing search
- * (call when its state is accepted as an equilibrium of the path). */
+ * (call when its state is accepted as an equilibrium of the path, before
+ * the band LU factors anything again). */
 void bk_stability_accept(bk_stability *st);
 /* After a check whose count differs from the previous one: the fraction
  * t in (0, 1) between the last accepted and the current state at which the matrix

@@ -258,12 +258,10 @@ static void run(const char *name, int kind)
         to_csc(n, D, mask, Ap, Ai, Ax);
         bk_bandsym bs;
         int sym_plan = bk_bandsym_plan(&bs, n, Ap, Ai, NULL, -1, 1L << 24);
-        if (sym_plan == 0 && bk_bandsym_map(&bs, Ap, Ai) != 0)
-            sym_plan = -1;
         double *band = sym_plan == 0 ? malloc((size_t)bs.ldab * n * sizeof *band) : NULL;
         if (band) {
             /* the band's product against the dense matrix's */
-            bk_bandsym_fill(&bs, Ax, band);
+            bk_bandsym_fill(&bs, Ap, Ai, Ax, band);
             double *y = malloc((size_t)n * sizeof *y);
             bk_bandsym_matvec(&bs, band, xt, y);
             sym_mv_err = 0.0;
