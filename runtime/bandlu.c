@@ -2,6 +2,7 @@
  * ordering (see bandlu.h). */
 #include "bandlu.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -128,7 +129,7 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
      * run over whole vectors (the extra rows hold zeros and stay zero) */
     b->klp = (kl + BK_BAND_LANES - 1) / BK_BAND_LANES * BK_BAND_LANES;
     b->ldab = kl + ku + b->klp + 1;
-    if ((double)b->ldab * n > (double)max_storage) {
+    if ((double)b->ldab * n > (double)max_storage || (double)b->ldab * n > (double)INT_MAX) {
         bk_band_free(b);
         return 1;
     }
@@ -146,7 +147,7 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
     for (int j = 0; j < n; ++j)
         for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
             int i = b->iperm[Ai[p]], c = b->iperm[j];
-            b->map[p] = (long)(kv + i - c) + (long)c * b->ldab;
+            b->map[p] = (kv + i - c) + c * b->ldab;
         }
     b->rcond = NAN;
     return 0;
