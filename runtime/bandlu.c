@@ -2,7 +2,6 @@
  * ordering (see bandlu.h). */
 #include "bandlu.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -129,26 +128,18 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
      * run over whole vectors (the extra rows hold zeros and stay zero) */
     b->klp = (kl + BK_BAND_LANES - 1) / BK_BAND_LANES * BK_BAND_LANES;
     b->ldab = kl + ku + b->klp + 1;
-    if ((double)b->ldab * n > (double)max_storage || (double)b->ldab * n > (double)INT_MAX) {
+    if ((double)b->ldab * n > (double)max_storage) {
         bk_band_free(b);
         return 1;
     }
-    long nnz = Ap[n];
-    b->map = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *b->map);
     b->ab = malloc((size_t)b->ldab * (size_t)(n > 0 ? n : 1) * sizeof *b->ab);
     b->rs = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->rs);
     b->ipiv = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->ipiv);
     b->w = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->w);
-    if (!b->map || !b->ab || !b->rs || !b->ipiv || !b->w) {
+    if (!b->ab || !b->rs || !b->ipiv || !b->w) {
         bk_band_free(b);
         return -1;
     }
-    const int kv = kl + ku;
-    for (int j = 0; j < n; ++j)
-        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            int i = b->iperm[Ai[p]], c = b->iperm[j];
-            b->map[p] = (kv + i - c) + c * b->ldab;
-        }
     b->rcond = NAN;
     return 0;
 }
@@ -220,8 +211,11 @@ static int band_factor(bk_band *b, const double *Ax, double *x)
             double *bc = ab + (long)c * ldab;
             memset(bc, 0, (size_t)ldab * sizeof *bc);
             const int jo = perm[c];
-            for (int p = Ap[jo]; p < Ap[jo + 1]; ++p)
-                ab[b->map[p]] += Ax[p] * rs[iperm[Ai[p]]];
+            double *at = bc + kv - c;                /* at[i] = A(i, c), i in the new order */
+            for (int p = Ap[jo]; p < Ap[jo + 1]; ++p) {
+                const int i = iperm[Ai[p]];
+                at[i] += Ax[p] * rs[i];
+            }
         }
         const int km = kl < n - 1 - j ? kl : n - 1 - j;
         double *col = ab + kv + (long)j * ldab;      /* col[r] = A(j + r, j) */
@@ -342,7 +336,6 @@ void bk_band_free(bk_band *b)
 {
     free(b->perm);
     free(b->iperm);
-    free(b->map);
     free(b->ab);
     free(b->rs);
     free(b->ipiv);

@@ -11,10 +11,11 @@
  * kept when it is at least BK_BAND_PIVOT_TOL of the largest candidate.
  *
  * Sizes and directions (n unknowns, CSC pattern Ap[n+1], Ai[nnz]):
- *   bk_band_plan   in: n, Ap, Ai, the largest band storage allowed (doubles;
- *                  never more than INT_MAX);
- *                  out: the plan (permutation, band widths, map of every CSC
- *                  entry into the band).  Returns 0, 1 when the band would be
+ *   bk_band_plan   in: n, Ap, Ai, the largest band storage allowed (doubles);
+ *                  out: the plan (permutation, band widths; an entry's place
+ *                  in the band follows from the permutation, which the fill
+ *                  reads anyway for the row scale: no map of nnz places in the
+ *                  stream the factorization reads).  Returns 0, 1 when the band would be
  *                  larger than allowed (use a general sparse solver), -1 when
  *                  out of memory.  The plan owns its arrays; the pattern stays
  *                  the caller's.
@@ -43,9 +44,6 @@ typedef struct bk_band {
     int klp;                 /* kl rounded up to a multiple of BK_BAND_LANES */
     int kvu;                 /* superdiagonals of the last U (ku, up to kl + ku with interchanges) */
     int *perm, *iperm;       /* [n] new -> old, old -> new */
-    int *map;                /* [nnz] position of each CSC entry in ab (the band's storage is
-                              * at most INT_MAX doubles: 4 bytes an entry, not 8, in the
-                              * memory the factorization streams) */
     const int *Ap, *Ai;
     double *ab;              /* [ldab n] the band, column-major (LAPACK layout) */
     double *rs;              /* [n] row scale factors (1 / largest entry), new order */
