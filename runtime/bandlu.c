@@ -141,7 +141,13 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
         return -1;
     }
     b->rcond = NAN;
+    b->dirty = kl + ku;                              /* fresh storage: all of it zeroed once */
     return 0;
+}
+
+void bk_band_clobbered(bk_band *b)
+{
+    b->dirty = b->kl + b->ku;
 }
 
 /* 2 when an entry of Ax in the CSC columns of new columns c >= from is not
@@ -184,6 +190,12 @@ static int band_factor(bk_band *b, const double *Ax, double *x)
     double umin = INFINITY, umax = 0.0;
     int ju = 0;                                      /* last column of U touched so far */
     int kvu = 0;                                     /* superdiagonals U has (ku without interchanges) */
+    /* Rows of a column above superdiagonal `top` are zero from the last
+     * factorization (it wrote up to its kvu); only the rows from there down are
+     * zeroed and filled, so that without interchanges the kl rows kept for
+     * their fill are neither read nor written: a third of the band's stream. */
+    const int top = b->dirty > ku ? b->dirty : ku, row0 = kv - top;
+    b->dirty = kv;                                   /* until this one has ended */
     for (int j = 0; j < n; ++j) {
         const int fill_to = j + kv + 1 < n ? j + kv + 1 : n;
         for (; filled < fill_to; ++filled) {
@@ -209,7 +221,7 @@ static int band_factor(bk_band *b, const double *Ax, double *x)
                     w[scaled] = x[perm[scaled]] * rs[scaled];
             }
             double *bc = ab + (long)c * ldab;
-            memset(bc, 0, (size_t)ldab * sizeof *bc);
+            memset(bc + row0, 0, (size_t)(ldab - row0) * sizeof *bc);
             const int jo = perm[c];
             double *at = bc + kv - c;                /* at[i] = A(i, c), i in the new order */
             for (int p = Ap[jo]; p < Ap[jo + 1]; ++p) {
@@ -277,6 +289,7 @@ static int band_factor(bk_band *b, const double *Ax, double *x)
     }
     b->rcond = n > 0 ? umin / umax : 1.0;
     b->kvu = kvu;
+    b->dirty = kvu;
     if (x)
         band_back_solve(b, x);
     return 0;

@@ -43,6 +43,8 @@ typedef struct bk_band {
     int n, kl, ku, ldab;     /* ldab = kl + ku + klp + 1 */
     int klp;                 /* kl rounded up to a multiple of BK_BAND_LANES */
     int kvu;                 /* superdiagonals of the last U (ku, up to kl + ku with interchanges) */
+    int dirty;               /* superdiagonals of ab that may hold non-zeros (the next
+                              * factorization zeroes those above ku) */
     int *perm, *iperm;       /* [n] new -> old, old -> new */
     const int *Ap, *Ai;
     double *ab;              /* [ldab n] the band, column-major (LAPACK layout) */
@@ -59,6 +61,10 @@ void bk_band_solve(bk_band *b, double *x);
  * forward substitution done during the elimination: the same bits as the two
  * calls.  On a non-zero return x is unspecified. */
 int bk_band_factor_solve(bk_band *b, const double *Ax, double *x);
+/* The storage ab was used as scratch (stability.c borrows it): the next
+ * factorization zeroes all of it, not only the band and the rows the last
+ * factorization's interchanges filled. */
+void bk_band_clobbered(bk_band *b);
 void bk_band_free(bk_band *b);
 
 

@@ -103,7 +103,7 @@ static int use_band(bk_stability *st, bk_band *lu)
         free(st->band.ab);
         st->band.ab = ab;
         st->bnow = ab + len;
-        st->borrowed = 1;
+        st->lender = lu;
     } else {
         st->bnow = malloc(len * sizeof *st->bnow);
         if (!st->bnow)
@@ -427,6 +427,8 @@ double bk_stability_crossing(bk_stability *st, int count_before)
 {
     if (!st->have_prev || st->n == 0)
         return NAN;
+    if (st->lender)
+        bk_band_clobbered(st->lender);
     double t0 = bk_clock_s();
     const int n = st->n;
     /* the ends: the accepted check's pivots (t = 0) and the current one's (t = 1) */
@@ -482,6 +484,8 @@ void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result 
 static void stability_check(bk_stability *st, const double *Ax, bk_stability_result *res)
 {
     int n = st->n;
+    if (st->lender)
+        bk_band_clobbered(st->lender);
     memset(res, 0, sizeof *res);
     res->eig_min = res->eig_max = NAN;
     if (n == 0)
@@ -572,7 +576,7 @@ static void stability_check(bk_stability *st, const double *Ax, bk_stability_res
 void bk_stability_accept(bk_stability *st)
 {
     double *t = st->bprev;
-    if (st->borrowed) {
+    if (st->lender) {
         memcpy(st->bprev, st->bnow, (size_t)st->band.ldab * (size_t)st->n * sizeof *st->bprev);
     } else {
         st->bprev = st->bnow;
@@ -614,7 +618,7 @@ void bk_stability_free(bk_stability *st)
     free(st->xmax);
     free(st->Li);
     free(st->Lx);
-    if (st->borrowed)
+    if (st->lender)
         st->band.ab = NULL;              /* the band LU's */
     else
         free(st->bnow);

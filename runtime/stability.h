@@ -51,7 +51,7 @@ typedef struct bk_stability {
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
     int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
-    int borrowed;                   /* bnow and band.ab are in the band LU's storage */
+    bk_band *lender;                /* NULL, or the band LU whose storage holds bnow and band.ab */
     int have_prev;                  /* a check was accepted (the *prev values) */
     /* band: the symmetric part in band layout, now and at the last accepted check */
     bk_bandsym band;

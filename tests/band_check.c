@@ -212,11 +212,44 @@ static void run(const char *name, int kind)
     int fac = plan == 0 ? bk_band_factor(&band, Ax) : -9;
     double err = NAN;
     int fused_same = -1;                 /* factor + solve in one pass: the same bits as the two calls */
+    int reuse_same = -1;                 /* a plan factoring again: the same bits as a fresh plan */
     if (fac == 0) {
         double *bf = malloc((size_t)n * sizeof *bf);
         memcpy(bf, b, (size_t)n * sizeof *bf);
         bk_band_solve(&band, b);
         fused_same = bk_band_factor_solve(&band, Ax, bf) == 0 && memcmp(bf, b, (size_t)n * sizeof *b) == 0;
+        /* The plan reused, as the Newton solver does: a second matrix on the
+         * same pattern, diagonally dominant (no interchanges), after this
+         * one (whose interchanges may have filled rows above the band), then
+         * this one again after the storage was scribbled on as scratch (the
+         * stability check borrows it): each the same bits as a fresh plan.
+         * The factorization zeroes only the rows an earlier one may have
+         * written; a row it wrongly assumed zero would show here. */
+        double *Ay = malloc((size_t)nnz * sizeof *Ay), big = 0.0;
+        for (int k = 0; k < nnz; ++k)
+            big = fmax(big, fabs(Ax[k]));
+        for (int j = 0; j < n; ++j)
+            for (int p = Ap[j]; p < Ap[j + 1]; ++p)
+                Ay[p] = Ax[p] + (Ai[p] == j ? 10.0 * n * big : 0.0);
+        double *y1 = malloc((size_t)n * sizeof *y1), *y2 = malloc((size_t)n * sizeof *y2);
+        bk_band fresh;
+        reuse_same = bk_band_plan(&fresh, n, Ap, Ai, 1L << 24) == 0;
+        for (int round = 0; round < 2 && reuse_same; ++round) {
+            const double *Am = round == 0 ? Ay : Ax;
+            memcpy(y1, bd, (size_t)n * sizeof *y1);
+            memcpy(y2, bd, (size_t)n * sizeof *y2);
+            if (round == 1) {
+                for (long k = 0; k < (long)band.ldab * n; ++k)
+                    band.ab[k] = NAN;
+                bk_band_clobbered(&band);
+            }
+            reuse_same = bk_band_factor_solve(&fresh, Am, y1) == 0 && bk_band_factor_solve(&band, Am, y2) == 0 &&
+                         memcmp(y1, y2, (size_t)n * sizeof *y1) == 0;
+            bk_band_free(&fresh);
+            if (round == 0 && reuse_same)
+                reuse_same = bk_band_plan(&fresh, n, Ap, Ai, 1L << 24) == 0;
+        }
+        free(Ay), free(y1), free(y2);
         free(bf);
         double *A = malloc((size_t)n * n * sizeof *A);
         memcpy(A, D, (size_t)n * n * sizeof *A);
@@ -297,9 +330,9 @@ static void run(const char *name, int kind)
         free(A);
     }
     printf("case=%s n=%d kl=%d ku=%d plan=%d factor=%d err=%.3e rcond=%.3e lin_band=%d lin_factor=%d lin_err=%.3e "
-           "sym_factor=%d sym_negative=%d jacobi_negative=%d sym_err=%.3e sym_matvec_err=%.3e fused_same=%d\n",
+           "sym_factor=%d sym_negative=%d jacobi_negative=%d sym_err=%.3e sym_matvec_err=%.3e fused_same=%d reuse_same=%d\n",
            name, n, band.kl, band.ku, plan, fac, err, band.rcond, ls.use_band, lf, lerr, sym_fac, sym_neg, jac_neg,
-           sym_err, sym_mv_err, fused_same);
+           sym_err, sym_mv_err, fused_same, reuse_same);
     bk_lin_free(&ls);
     bk_band_free(&band);
     free(D), free(mask), free(scr), free(Ap), free(Ai), free(Ax), free(Ax2), free(xt), free(b), free(xr), free(bd),

@@ -30,7 +30,9 @@ def test_band_lu_matches_dense_elimination():
     the band; the scrambled chain is recovered as a band of width 2 x 12 - 1
     each side (node blocks of 12 coupled to their neighbours).  bk_band_factor_solve
     (the nonlinear solver's call with a new matrix) gives bit for bit what
-    bk_band_factor then bk_band_solve give."""
+    bk_band_factor then bk_band_solve give, and so does a plan used again
+    (after interchanges, after its storage served as scratch) what a fresh one
+    gives."""
     r = results()
     for case in ("chain", "kkt", "indefinite", "scaled"):
         d = r[case]
@@ -39,6 +41,9 @@ def test_band_lu_matches_dense_elimination():
         assert d["lin_band"] == "1" and d["lin_factor"] == "0" and float(d["lin_err"]) <= 1e-9, (case, d)
         # the one-pass factorization with the forward substitution inside gives the same bits
         assert d["fused_same"] == "1", (case, d)
+        # a plan factoring another matrix, and again after its storage was used as
+        # scratch, gives the bits of a fresh plan (the rows it zeroes are enough)
+        assert d["reuse_same"] == "1", (case, d)
     assert int(r["chain"]["kl"]) == 23 and int(r["chain"]["ku"]) == 23, r["chain"]
     # the closed loop of the saddle-point case widens the band but keeps it a band
     assert int(r["kkt"]["kl"]) <= 60, r["kkt"]
