@@ -114,10 +114,12 @@ static void step_to(const bk_system *s, const work *w, const double *q0, const d
 
 /* The stability check of the reference state made on the first Newton matrix
  * of the first load step, when that matrix is the reference state's
- * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 2 made (res)
- * and its matrix accepted at once (the path starts there; the check's scratch
- * is the band LU's, which the solve goes on to use: stability.h), its row and
- * counts recorded after the step. */
+ * (matrix_free_of_load): one assembly fewer.  state: 1 pending, 3 its matrix
+ * made (checked at the next residual, before the matrix is made again: after
+ * the solver has factored it, so that the factorization, not the check, is
+ * the first to touch the band LU's storage, which the check borrows as
+ * scratch: stability.h), 2 made (res) and its matrix accepted at once (the
+ * path starts there), its row and counts recorded after the step. */
 typedef struct reference_probe {
     bk_stability *st;
     bk_stability_result res;
@@ -150,14 +152,16 @@ static int sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval 
     work *w = p->w;
     const bk_model *m = s->m;
     (void)r, (void)Ax;               /* w->r, w->Ax are the solver's buffers */
-    if (residual(s, w, p->q, w->nu, p->lam, matrix) != 0)
-        return -1;
-    if (matrix && p->ref && p->ref->state == 1) {
+    if (p->ref && p->ref->state == 3) {  /* w->Ax: still the reference state's matrix */
         bk_stability_check(p->ref->st, w->Ax, &p->ref->res);
         if (p->ref->res.ok)
             bk_stability_accept(p->ref->st);
         p->ref->state = 2;
     }
+    if (residual(s, w, p->q, w->nu, p->lam, matrix) != 0)
+        return -1;
+    if (matrix && p->ref && p->ref->state == 1)
+        p->ref->state = 3;
     /* Every measure is invariant under a rigid rotation of the scene: field
      * norms, column-block norms, scalar products (norms.h). */
     ev->rnorm = bk_norm2(w->r, s->neq);
@@ -217,7 +221,7 @@ static int newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, doubl
                   const bk_static_opts *o, double lscale, int step, reference_probe *ref)
 {
     static_problem sp = {.s = s, .w = w, .q = q, .lam = lam, .lam_last = lam_last, .lscale = lscale,
-                         .ref = ref && ref->state == 1 ? ref : NULL};
+                         .ref = ref && (ref->state == 1 || ref->state == 3) ? ref : NULL};
     bk_nl_problem p = {.ctx = &sp, .q = q, .residual = sp_residual, .update = sp_update,
                        .step_limit = sp_step_limit};
     bk_nl_opts no = static_nl_opts(o);
@@ -1234,11 +1238,12 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
             }
             int assembled = 1;           /* w.Ax: the matrix at q (a converged solve ends on it) */
             if (ref.state != 0) {         /* the reference state's check, before this step's */
-                if (ref.state == 1) {     /* no Newton matrix was made at it */
+                const int probe = ref.state != 2;   /* no Newton matrix was made at it, or not checked */
+                if (probe) {
                     probe_stability(&stab, s, &w, m->q0, 0.0, 0, &ref.res);
                     assembled = 0;
                 }
-                accept_stability(&stab, &ref.res, 0.0, out, info, log, &prev_lam, ref.state == 1);
+                accept_stability(&stab, &ref.res, 0.0, out, info, log, &prev_lam, probe);
                 ref.state = 0;
             }
             /* On a stable path (static.stable_path), an increment that ends
