@@ -92,3 +92,42 @@ def test_shear_modulus_is_the_small_strain_one():
         h = 1e-4
         num = (f(h) - 2 * f(0.0) + f(-h)) / h**2
         assert abs(float(shear_modulus(mat, p)) - num) <= 1e-5 * abs(num), (name, num)
+
+
+def test_lateral_stretch_is_the_root_to_round_off():
+    """The generated iteration (gen/uniaxial.py: HALLEY_STEPS steps from
+    c^-nu_log) ends on the root of dw/dd = 0 to round-off over axial stretches
+    from 0.32 to 3.2 (c from 0.1 to 10) and nearly incompressible to
+    compressible parameters; the root by bisection in 60-digit arithmetic
+    (mpmath), from a bracket checked by sign, not by the kernel's iteration."""
+    import mpmath as mp
+    from gen.uniaxial import _c, _d, lateral_energy
+    mp.mp.dps = 60
+    cases = {"neo_hookean": [{"lambda": nu / ((1 + nu) * (1 - 2 * nu)), "mu": 1 / (2 * (1 + nu))}
+                             for nu in (0.3, 0.45, 0.49, 0.4999)],
+             "mooney_rivlin": [{"c10": 0.5 * a, "c01": 0.5 * (1 - a), "kappa": k}
+                               for a in (1.0, 0.2) for k in (10.0, 1000.0, 1e4)],
+             "arruda_boyce": [{"mu": 1.0, "lambda_m": lm, "kappa": k} for lm in (1.5, 7.0) for k in (10.0, 1e4)],
+             "yeoh": [dict(VALUES["yeoh"], kappa=k) for k in (20.0, 2000.0)]}
+    mats = materials()
+    for name, grid in cases.items():
+        mat = mats[name]
+        params = {k: sp.Symbol(k, positive=True) for k in mat.PARAMS}
+        csym = sp.Symbol("C00", positive=True)
+        prog = Program()
+        define_uniaxial(prog, mat, params, csym)
+        dstar = [s for s, _ in prog.defs if str(s).startswith("ulat")][-1]
+        wd = sp.diff(lateral_energy(mat, params), _d)
+        for vals in grid:
+            f = sp.lambdify((_c, _d), wd.subs({params[k]: v for k, v in vals.items()}), "mpmath")
+            for c in np.geomspace(0.1, 10.0, 9):
+                env = {csym: float(c), **{params[k]: v for k, v in vals.items()}}
+                for s, e in prog.defs:
+                    env[s] = float(e.xreplace(env))
+                lo, hi = mp.mpf("1e-6"), mp.mpf(20)
+                assert f(c, lo) < 0 < f(c, hi), (name, vals, c)
+                for _ in range(200):
+                    mid = (lo + hi) / 2
+                    lo, hi = (mid, hi) if f(c, mid) < 0 else (lo, mid)
+                root = float(lo)
+                assert abs(env[dstar] - root) <= 4e-15 * root, (name, vals, c, env[dstar], root)
