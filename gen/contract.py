@@ -6,7 +6,6 @@ The header is the one definition; this module only parses it, so a slot, role
 or capability added there is known here without a second list.
 """
 import os
-from functools import lru_cache
 
 from gen.derived import derived
 
@@ -45,12 +44,17 @@ def _parse(data):
     return out
 
 
-@lru_cache(maxsize=None)
+_PARSED = []                           # the header's definitions, once per process
+
+
 def _parsed():
     """What _parse finds in the header, through gen/derived.py (a run does not
-    parse an unchanged header again)."""
-    with open(HEADER, "rb") as fh:
-        return derived("contract", fh.read(), _parse)
+    parse an unchanged header again).  Memoized by hand: functools (lru_cache)
+    would import collections, 4 ms of a run that only changes numbers."""
+    if not _PARSED:
+        with open(HEADER, "rb") as fh:
+            _PARSED.append(derived("contract", fh.read(), _parse))
+    return _PARSED[0]
 
 
 def _define(name):
