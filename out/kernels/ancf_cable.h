@@ -2,7 +2,7 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:6c8cad5cb5c68f21661476fad32e535678e41de94ea0c326a81032d9b3aafba6
+ * input hash: sha256:00835ccdb5d80d9193f25ac2d8e590c7e518958ec37239303b545ce02fdafa14
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
  * cubic Hermite interpolation of seed 001 Eqs. (4)-(6).

@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:c35a38118c7c6677d2ed3e82759f4bd2aa0526c5c116dfc573e961ae552bc4d4
+ * input hash: sha256:845e6c231b3e2e95107e1e9caa071e4ab5f216d159ac39f787def593ab837ee6
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

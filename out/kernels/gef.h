@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:21e4e7a31b325a3a7419eddd379fd4dc69352ab55ac3a4724fa448040c4f64ee
+ * input hash: sha256:c5b14cab6782d2a6e82c0ad3cb4ce219aaade1ddb5450b602888d26c187284c7
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

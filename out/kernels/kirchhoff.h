@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/chain.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:cafc0012ea5e14ddacd6f0ec8c0978d4e60887bf9a4a3a422fb38d39f678ed22
+ * input hash: sha256:0f60b55fdae5b2bb7056530cec2d6a373e17e5e6379d7ef447977793323251c4
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.
