@@ -3,7 +3,7 @@
  * The signals are blocked for the whole process at start-up (threads started
  * later, OpenMP's among them, inherit the mask), so they stay pending instead
  * of killing the solver; the analyses poll for them between Newton iterations
- * and steps, stop, keep every converged step and write summary.json with
+ * (at most every BK_INTERRUPT_POLL_S of wall time, nonlinear.h) and steps, stop, keep every converged step and write summary.json with
  * "interrupted": true.  No handler and no global state: the pending set is the
  * kernel's.  Exit status 128 + signal (130 SIGINT, 143 SIGTERM).
  */

@@ -44,6 +44,11 @@
 #define BK_REUSE_ITERATIONS 5
 #define BK_REUSE_DIVERGED 10.0
 
+/* Pending SIGINT / SIGTERM are polled (interrupt.h; a system call) before a
+ * Newton iteration at most this often (s of wall time): a small model's
+ * iteration costs a few microseconds, the poll as much as a tenth of it. */
+#define BK_INTERRUPT_POLL_S 0.002
+
 /* Below this pivot ratio the Newton matrix is singular to working precision. */
 #define BK_ILL_RCOND 1e-12
 
@@ -115,6 +120,7 @@ typedef struct bk_nl {
     double krate;         /* last measured contraction rate of kept factors */
     bk_floors fl;         /* round-off floors of the last assembled matrix */
     bk_output *out;       /* newton.csv rows (may be NULL) */
+    double t_poll;        /* when SIGINT / SIGTERM were last polled (bk_clock_s) */
 } bk_nl;
 
 /* Returns 0, or -1 with a message in msg. */
