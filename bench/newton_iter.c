@@ -21,9 +21,9 @@
 #include <sys/resource.h>
 #include <time.h>
 
-#include "linsolve.h"
-#include "model.h"
-#include "system.h"
+#include "linalg/linsolve.h"
+#include "model/model.h"
+#include "assembly/system.h"
 
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;

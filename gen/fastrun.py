@@ -37,7 +37,7 @@ if ROOT not in sys.path:               # run as a script: gen/ is importable fro
     sys.path.insert(0, ROOT)
 from gen.paths import caller_path, prepare_run_dir, scene_location  # noqa: E402
 CACHE = os.path.join(ROOT, "out", "cache", "run")
-SOURCES = (("gen", True), ("runtime", False), (os.path.join("out", "kernels"), False))
+SOURCES = (("gen", True), ("runtime", True), (os.path.join("out", "kernels"), False))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
 MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
 PRUNE_SLACK = 40                   # ... when there are this many more

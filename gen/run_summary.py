@@ -5,7 +5,7 @@ import os
 
 
 def _json_string(s):
-    """s as the solver writes a JSON string (runtime/output.c json_string)."""
+    """s as the solver writes a JSON string (runtime/output/output.c json_string)."""
     out = ['"']
     for c in s:
         if c in '"\\':

@@ -103,7 +103,7 @@ def linked_after_sources(pairs, out_path, index, variant, lock=True):
             if fh.read() != stamp_text(variant, pairs):
                 return False
         t = os.stat(out_path).st_mtime
-        srcs = [os.path.join(RUNTIME, n) for n in os.listdir(RUNTIME)
+        srcs = [os.path.join(d, n) for d, _, names in os.walk(RUNTIME) for n in names
                 if n.endswith((".c", ".h")) and not n.startswith(".")]
         srcs += [os.path.join(GEN, "solver_build.py"), os.path.join(KERNELS, "index.json")]
         for f in kernel_files(pairs, index):

@@ -432,10 +432,10 @@ def scaling(quick, log):
     """Time per Newton iteration (assembly + factorization + solve) and peak
     memory for one long ancf3243 x svk beam (elements of 0.1 m)."""
     from gen.scene import build, load_index, write_model
-    from gen.solver_build import BUILD, VARIANTS, compile_object, build_solver
+    from gen.solver_build import BUILD, VARIANTS, compile_object, build_solver, runtime_headers
     index = load_index()
     obj = BUILD / "release" / "bench" / "newton_iter.o"
-    compile_object(ROOT / "bench" / "newton_iter.c", obj, VARIANTS["release"], list((ROOT / "runtime").glob("*.h")))
+    compile_object(ROOT / "bench" / "newton_iter.c", obj, VARIANTS["release"], runtime_headers())
     from gen.solver_build import runtime_objects
     robjs = [o for o in runtime_objects("release") if o.stem != "main"]
     exe = build_solver(["ancf3243_svk_full"], BUILD / "release" / "bench" / "bench_newton", index, "release",

@@ -1,4 +1,4 @@
-"""Reading the project's .vtu files (runtime/vtk.c): XML UnstructuredGrid with
+"""Reading the project's .vtu files (runtime/output/vtk.c): XML UnstructuredGrid with
 the arrays appended raw (UInt64 byte counts, little endian) or inline ASCII.
 
 read(path) -> {"points", "displacement", "mode_shape" (modes), cell and cell data

@@ -9,14 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
-#include "dynamics.h"
-#include "interrupt.h"
-#include "modal.h"
-#include "model.h"
-#include "newton.h"
-#include "output.h"
-#include "system.h"
+#include "base/clock.h"
+#include "analysis/dynamics.h"
+#include "base/interrupt.h"
+#include "analysis/modal.h"
+#include "model/model.h"
+#include "analysis/newton.h"
+#include "output/output.h"
+#include "assembly/system.h"
 
 /* Defined by the per-scene kernel table generated at build time. */
 extern const bk_pair *const bk_linked_pairs[];

@@ -1,4 +1,4 @@
-/* band_check.c -- the band LU of runtime/bandlu.c against dense Gaussian
+/* band_check.c -- the band LU of runtime/linalg/bandlu.c against dense Gaussian
  * elimination with complete pivoting written here (a different algorithm on a
  * dense copy), on matrices shaped like the Newton systems:
  *   chain:    a block-tridiagonal chain (beam nodes of 12 unknowns), unsymmetric
@@ -16,8 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bandlu.h"
-#include "linsolve.h"
+#include "linalg/bandlu.h"
+#include "linalg/linsolve.h"
 
 static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
 static double urand(void)

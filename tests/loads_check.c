@@ -7,10 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "loads.h"
-#include "model.h"
-#include "quaternion.h"
-#include "system.h"
+#include "assembly/loads.h"
+#include "model/model.h"
+#include "assembly/quaternion.h"
+#include "assembly/system.h"
 
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;

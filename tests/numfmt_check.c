@@ -1,4 +1,4 @@
-/* numfmt_check.c -- bk_fmt_g17, bk_fmt_e and bk_fmt_g (runtime/numfmt.c)
+/* numfmt_check.c -- bk_fmt_g17, bk_fmt_e and bk_fmt_g (runtime/base/numfmt.c)
  * against glibc's "%.17g", "%.{prec}e" and "%.{prec}g".
  *
  *   numfmt_check [NRANDOM [NNICE [SEED]]]   checks; exit 0 when all pass
@@ -28,7 +28,7 @@
  * Allowed mismatches: none.  A mismatch is printed with both texts (the first
  * 20) and makes the exit status 1; a round-trip failure too.
  */
-#include "numfmt.h"
+#include "base/numfmt.h"
 
 #include <float.h>
 #include <math.h>
@@ -180,7 +180,7 @@ static void edge_values(void)
     check_pm(9007199254740993.0);
     check_pm(4503599627370495.5);
     /* the doubles nearest a rounding boundary without being on it (an exhaustive
-     * search, see runtime/numfmt.c): 17 digits, and 18 digits before rounding */
+     * search, see runtime/base/numfmt.c): 17 digits, and 18 digits before rounding */
     check_around(0x1.3de005bd620dfp+216, 2);
     check_around(0x1.f92bacb3cb40cp+717, 2);
     check_pm(0.1);

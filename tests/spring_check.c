@@ -19,8 +19,8 @@
 #include <string.h>
 
 #include "spring_element.h"
-#include "stability.h"
-#include "system.h"
+#include "solver/stability.h"
+#include "assembly/system.h"
 
 #define MAXN 16                     /* nodes              */
 #define MAXE 8                      /* elements           */

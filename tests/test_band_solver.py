@@ -1,5 +1,5 @@
-"""The band LU that solves the Newton systems of beam models (runtime/bandlu.c,
-chosen by runtime/linsolve.c when the matrix is a narrow band in reverse
+"""The band LU that solves the Newton systems of beam models (runtime/linalg/bandlu.c,
+chosen by runtime/linalg/linsolve.c when the matrix is a narrow band in reverse
 Cuthill-McKee order) against dense Gaussian elimination with complete pivoting
 written independently in the C harness tests/band_check.c (AddressSanitizer +
 UBSan), on chain, saddle-point (multipliers with a zero diagonal, a closed

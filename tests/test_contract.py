@@ -47,7 +47,7 @@ def test_no_runtime_file_compares_field_or_parameter_names():
     name, not naming one, and stays allowed.)"""
     names = _names()
     bad = []
-    for path in sorted(RUNTIME.glob("*.c")):
+    for path in sorted(RUNTIME.rglob("*.c")):
         text = re.sub(r"/\*.*?\*/", lambda c: "\n" * c.group(0).count("\n"), path.read_text(), flags=re.S)
         for m in CMP_RE.finditer(text):
             args = _call_args(text, m.end() - 1)

@@ -489,7 +489,7 @@ def test_follower_pressure_on_a_ring_is_pure_hoop_compression():
 
 def test_load_jacobians_against_central_differences():
     """dQ/dq of follower forces, moments, distributed follower loads and
-    tendons (runtime/loads.c) against central differences of Q itself; the
+    tendons (runtime/assembly/loads.c) against central differences of Q itself; the
     follower tip loads also on a continuum element (its section frame is the
     Gram-Schmidt frame of its slopes)."""
     exe = build_loads_check()
@@ -504,12 +504,12 @@ def test_load_jacobians_against_central_differences():
 
 
 def build_loads_check():
-    from gen.solver_build import VARIANTS, build_solver, compile_object, RUNTIME, runtime_objects
+    from gen.solver_build import VARIANTS, build_solver, compile_object, runtime_headers, runtime_objects
     from util import all_pair_symbols
     pairs, index = all_pair_symbols()
     pairs = [p for p in pairs if p.startswith(("gef_resultant", "ancf3243_svk"))]
     obj = BUILD / "sanitize" / "loads_check.o"
-    compile_object(ROOT / "tests" / "loads_check.c", obj, VARIANTS["sanitize"], list(RUNTIME.glob("*.h")))
+    compile_object(ROOT / "tests" / "loads_check.c", obj, VARIANTS["sanitize"], runtime_headers())
     objs = [o for o in runtime_objects("sanitize") if o.name != "main.o"] + [obj]
     return build_solver(pairs, BUILD / "sanitize" / "loads_check", index, "sanitize", main_objs=objs)
 

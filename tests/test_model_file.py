@@ -1,5 +1,5 @@
 """The model file is versioned and its scalar records are named fields
-(gen/scene/model_file.py RECORDS, read by name in runtime/model.c): a file of
+(gen/scene/model_file.py RECORDS, read by name in runtime/model/model.c): a file of
 another version, a renamed or missing field, or material parameters that do not
 match the kernel's parameter names are refused with one line naming them."""
 import json

@@ -1,4 +1,4 @@
-"""bk_fmt_g17 (runtime/numfmt.c), the CSV tables' "%.17g", and bk_fmt_e / bk_fmt_g,
+"""bk_fmt_g17 (runtime/base/numfmt.c), the CSV tables' "%.17g", and bk_fmt_e / bk_fmt_g,
 their "%.Ne" / "%.Ng" (newton.csv, stability.csv, energy.csv): the same text as glibc's
 snprintf (and strtod of the 17 digits gives the double back), checked by the C harness
 tests/numfmt_check.c (AddressSanitizer + UBSan) over edge values, every exact

@@ -2,7 +2,7 @@
 steps and cut-backs, Newton iterations within 2 % (dynamics: 4 %, with full Newton,
 dynamic.jacobian = "every_iteration"), and give the rotated results
 to 1e-8 of the model length: convergence tests and round-off floors are
-invariant under rotation (runtime/norms.h).  Before: the stiff pendulum (E = 7e11,
+invariant under rotation (runtime/solver/norms.h).  Before: the stiff pendulum (E = 7e11,
 ancf3243, dt = 1e-2, 0.6 s) took 60 steps aligned with the axes and 226 steps
 (176 cut-backs, 6,768 iterations) turned about (1, 2, 3) by 0.7 rad."""
 import json

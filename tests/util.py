@@ -80,21 +80,21 @@ def all_pair_symbols(index=None):
 def build_program(src, name, variant="sanitize", pairs=None):
     """Compile tests/<src> and link it with the kernel table of `pairs`
     (default: every generated pair).  Returns the executable path."""
-    from gen.solver_build import VARIANTS, compile_object, build_solver, RUNTIME
+    from gen.solver_build import VARIANTS, compile_object, build_solver, runtime_headers
     allp, index = all_pair_symbols()
     pairs = pairs or allp
     src = ROOT / "tests" / src
     obj = BUILD / variant / (Path(src).stem + ".o")
-    compile_object(src, obj, VARIANTS[variant], list(RUNTIME.glob("*.h")))
+    compile_object(src, obj, VARIANTS[variant], runtime_headers())
     return build_solver(pairs, BUILD / variant / name, index, variant, main_objs=[obj])
 
 
 def build_runtime_program(srcs, name, variant="sanitize"):
     """Compile tests/<src> for each of srcs and link them with the runtime objects
     (all but main.c) into a test program; no generated kernels.  Returns its path."""
-    from gen.solver_build import CC, LIBS, RUNTIME, VARIANTS, build_lock, compile_object, runtime_objects
+    from gen.solver_build import CC, LIBS, VARIANTS, build_lock, compile_object, runtime_headers, runtime_objects
     flags = VARIANTS[variant]
-    deps = list(RUNTIME.glob("*.h")) + list((ROOT / "tests").glob("*.h"))
+    deps = runtime_headers() + list((ROOT / "tests").glob("*.h"))
     with build_lock():
         objs = [o for o in runtime_objects(variant) if o.name != "main.o"]
         for src in srcs:

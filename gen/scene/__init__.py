@@ -1,7 +1,7 @@
 """The scene compiler (no sympy): a scene file to the model the C solver reads.
 
     build(path, sets)      validate and mesh a scene: the model as plain data
-    write_model(model, p)  the model file for runtime/model.c
+    write_model(model, p)  the model file for runtime/model/model.c
 Errors are one line, `error: FILE: KEY: what was expected`, raised as SceneError.
 """
 from gen.scene.build import ANALYSES, build  # noqa: F401

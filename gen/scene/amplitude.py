@@ -10,7 +10,7 @@ Types (gen/scene_keys.py AMPLITUDE), x the time or the load factor:
   table  piecewise linear through points [[x, a], ...] (x strictly increasing),
          inline or from a CSV file of two columns (path relative to the scene),
          constant beyond the first and last point
-Model-file form: (type, [parameters]) -- runtime/amplitude.c evaluates it.
+Model-file form: (type, [parameters]) -- runtime/model/amplitude.c evaluates it.
 """
 import math
 

@@ -1,5 +1,5 @@
 """Joints: [[constraint]] tables as rows of linear, possibly rheonomic
-constraints on the DOFs (the bk_lincon form of runtime/model.h), by type.
+constraints on the DOFs (the bk_lincon form of runtime/model/model.h), by type.
 
 A joint type is a function (ctx, ct, where, mesh, rows, beam, s, gid) that adds
 rows with rows.row(...) or holds DOFs with rows.fixed; JOINTS maps each

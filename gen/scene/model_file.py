@@ -1,11 +1,11 @@
-"""The model file the C solver reads (runtime/model.c)."""
+"""The model file the C solver reads (runtime/model/model.c)."""
 
 def _f(x):
     return repr(float(x))
 
 
 # Model file format: versioned; scalar records are named fields `key=value` in
-# this order, which runtime/model.c reads by name (a model file of another
+# this order, which runtime/model/model.c reads by name (a model file of another
 # version, or with a field renamed, is refused naming the record and field).
 VERSION = 4
 RECORDS = {
@@ -37,7 +37,7 @@ def _record(name, values):
 
 
 def write_model(model, path):
-    """Write the model file read by runtime/model.c."""
+    """Write the model file read by runtime/model/model.c."""
     s, d = model["static"], model["dynamic"]
     out = [f"beamkit-model {VERSION}",
            _record("scene", {"name": model["name"], "analysis": model["analysis"],

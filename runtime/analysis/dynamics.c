@@ -1,0 +1,555 @@
+/* dynamics.c -- generalized-alpha for constrained (index-3) systems.
+ *
+ *   M q'' + f_int(q) + f_d(q, q') + f_rot(q, q', q'') + s G^T nu = f_ext(q, t),
+ *   G(t) q = g(t)
+ *
+ * after Arnold and Bruls (2007): the equations hold exactly at t_{n+1}; the
+ * algorithmic acceleration a obeys
+ *   (1 - am) a_{n+1} + am a_n = (1 - af) q''_{n+1} + af q''_n,
+ *   q_{n+1}  = q_n + h q'_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1},
+ *   q'_{n+1} = q'_n + h (1 - gamma) a_n + h gamma a_{n+1},
+ * with am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), gamma = 1/2 + af - am,
+ * beta = (gamma + 1/2)^2 / 4 from the spectral radius at infinity rho
+ * (Chung-Hulbert).  Newton corrects q by dq and q' by gamma' dq, q'' by beta' dq,
+ * beta' = (1 - am)/(beta h^2 (1 - af)), gamma' = gamma/(beta h).  The constraint
+ * rows and the multipliers are scaled by s = beta' m (m: mean mass diagonal),
+ * so the iteration matrix stays balanced as h -> 0.
+ *
+ * Newton converges when the residual is below rtol times the force scale (or
+ * its round-off floor), the constraints hold to 1e-12 L and the last increment
+ * is below utol times the motion of the step.
+ * A step whose Newton iteration fails is retried with half the step; with
+ * dynamic.tol > 0 the step follows the local error estimate
+ *   e = h^2 |beta - 1/6| max|a_{n+1} - a_n| / L
+ * (L the model's length scale), accepted when e <= tol.
+ */
+#include "analysis/dynamics.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "output/checks.h"
+#include "base/interrupt.h"
+#include "linalg/linsolve.h"
+#include "solver/nonlinear.h"
+#include "assembly/loads.h"
+#include "solver/norms.h"
+#include "assembly/quaternion.h"
+
+/* dynamic.jacobian = "reuse" (modified Newton across steps): the Jacobian-reuse
+ * policy of the nonlinear solver (nonlinear.h, BK_REUSE_*); a step that fails
+ * with kept factors is retried with full Newton before it is halved. */
+typedef struct dyn_work {
+    int nd, ne, nc;
+    double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
+    double *q_s, *qd_s, *qdd_s, *a_s, *nu_s;   /* saved for cut-backs                 */
+    double *fint, *fext, *fgrav, *Mx, *tmp;
+    double *r, *dx, *Ax;                       /* the nonlinear solver's buffers (not owned) */
+    double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
+    int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
+    double *Mv;
+} dyn_work;
+
+static double *dalloc(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(double));
+}
+
+static void work_free(dyn_work *w)
+{
+    double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
+                    &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
+                    &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
+    for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
+        free(*p[i]);
+        *p[i] = NULL;
+    }
+    free(w->Mp), free(w->Mi), free(w->Mv);
+    w->Mp = w->Mi = NULL, w->Mv = NULL;
+}
+
+static int work_alloc(dyn_work *w, const bk_system *s)
+{
+    const bk_model *m = s->m;
+    size_t nd = (size_t)m->ndof, ne = (size_t)s->neq, nc = (size_t)s->ncon, nnz = (size_t)s->nnz;
+    size_t md = (size_t)s->maxdof;
+    w->nd = m->ndof;
+    w->ne = s->neq;
+    w->nc = s->ncon;
+    w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
+    w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
+    w->nu_s = dalloc(nc);
+    w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd);
+    w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
+    w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
+    w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
+    double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->fint,
+                     w->fext, w->fgrav, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
+                     w->fe, w->K1, w->K2, w->K3};
+    for (size_t i = 0; i < sizeof all / sizeof *all; ++i)
+        if (!all[i])
+            return -1;
+    w->Mp = malloc(((size_t)s->nfree + 1) * sizeof *w->Mp);
+    w->Mi = malloc((nnz ? nnz : 1) * sizeof *w->Mi);
+    w->Mv = dalloc(nnz);
+    return w->Mp && w->Mi && w->Mv ? 0 : -1;
+}
+
+/* Constant mass matrix (translational inertia) on the free DOFs, in the pattern
+ * of the Newton matrix; work and Me: element buffers of maxdof^2. */
+static void assemble_mass(const bk_system *s, double *Mx, double *work, double *Me)
+{
+    memset(Mx, 0, (size_t)s->nnz * sizeof *Mx);
+    for (int e = 0; e < s->m->nelem; ++e) {
+        bk_element_mass(s->m, e, work, Me);
+        bk_scatter_matrix(s, e, Me, 1.0, Mx);
+    }
+}
+
+/* y = A x over the free DOFs for A in compressed columns (Ap, Ai, Ax) over the
+ * equations, rows beyond the free ones ignored; x, y indexed by DOF (y over all
+ * ndof), fdof maps equations to DOFs. */
+static void csc_free_matvec(int ndof, int nfree, const int *fdof, const int *Ap, const int *Ai,
+                            const double *Ax, const double *x, double *y)
+{
+    memset(y, 0, (size_t)ndof * sizeof *y);
+    for (int j = 0; j < nfree; ++j) {
+        double xj = x[fdof[j]];
+        if (xj == 0.0)
+            continue;
+        for (int k = Ap[j]; k < Ap[j + 1]; ++k)
+            if (Ai[k] < nfree)
+                y[fdof[Ai[k]]] += Ax[k] * xj;
+    }
+}
+
+/* y = A x, A in the Newton pattern (its free block). */
+static void free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
+                        double *y)
+{
+    csc_free_matvec(s->m->ndof, s->nfree, fdof, s->Ap, s->Ai, Ax, x, y);
+}
+
+/* The free block's nonzeros of the mass matrix Mx (in the Newton pattern, where
+ * the mass couples no two components of a vector and no multipliers: about a
+ * third of the pattern) into w->Mp, Mi, Mv. */
+static void compact_mass(const bk_system *s, dyn_work *w, const double *Mx)
+{
+    int n = 0;
+    w->Mp[0] = 0;
+    for (int j = 0; j < s->nfree; ++j) {
+        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k)
+            if (s->Ai[k] < s->nfree && Mx[k] != 0.0)
+                w->Mi[n] = s->Ai[k], w->Mv[n++] = Mx[k];
+        w->Mp[j + 1] = n;
+    }
+}
+
+/* y = M x over the free DOFs, with the compact mass. */
+static void mass_matvec(const bk_system *s, const dyn_work *w, const int *fdof, const double *x, double *y)
+{
+    csc_free_matvec(s->m->ndof, s->nfree, fdof, w->Mp, w->Mi, w->Mv, x, y);
+}
+
+static double dot_free(const bk_system *s, const int *fdof, const double *a, const double *b)
+{
+    double d = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        d += a[fdof[j]] * b[fdof[j]];
+    return d;
+}
+
+/* Equation -> DOF map for free DOFs (built once). */
+static int *free_dofs(const bk_system *s)
+{
+    int *d = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *d);
+    if (!d)
+        return NULL;
+    for (int i = 0; i < s->m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            d[s->eq[i]] = i;
+    return d;
+}
+
+/* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
+ * rotary inertia.  Adds to fint and, with Ax, their contributions
+ * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy. */
+static double element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
+                               double kp, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    double Trot = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        const bk_element *et = p->element;
+        const bk_mat *mat = &m->mats[el->mat];
+        int visc = mat->nvisc > 0 && p->viscous != NULL;
+        if (!visc && !et->rotary)
+            continue;
+        bk_gather(m, e, q, w->qe);
+        bk_gather(m, e, w->qd, w->qde);
+        bk_gather(m, e, w->qdd, w->qdde);
+        if (visc) {
+            p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
+            bk_scatter(m, e, w->fe, 1.0, fint);
+            if (Ax) {
+                bk_scatter_matrix(s, e, w->K1, gp, Ax);
+                bk_scatter_matrix(s, e, w->K2, kp, Ax);
+            }
+        }
+        if (et->rotary) {
+            double T = 0.0;
+            et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
+            Trot += mat->rho * T;
+            bk_scatter(m, e, w->fe, mat->rho, fint);
+            if (Ax) {
+                bk_scatter_matrix(s, e, w->K1, mat->rho * bp, Ax);
+                bk_scatter_matrix(s, e, w->K2, mat->rho * gp, Ax);
+                bk_scatter_matrix(s, e, w->K3, mat->rho * kp, Ax);
+            }
+        }
+    }
+    return Trot;
+}
+
+/* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
+ * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
+ * matrix K_t (1 + gamma' beta_R) + (beta' + gamma' alpha_R) M + rotary/viscous terms
+ * + constraint rows into w->Ax.  Returns nonzero on a non-finite force. */
+static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q, double tn, double bp,
+                        double gp, int matrix, double *rnorm)
+{
+    const bk_model *m = s->m;
+    const bk_dynamic_opts *o = &m->dyn;
+    const int nd = m->ndof;
+    const double ra = o->rayleigh_alpha, rb = o->rayleigh_beta;
+    /* the damping force beta_R K_t q' needs K_t even when the matrix is kept */
+    double *A = matrix || rb != 0.0 ? w->Ax : NULL;
+    if (bk_assemble_internal(s, q, w->fint, A) != 0)
+        return -1;
+    if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
+        free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
+        for (int i = 0; i < nd; ++i)
+            w->fint[i] += rb * w->tmp[i];
+        if (matrix)
+            for (long k = 0; k < s->nnz; ++k)
+                w->Ax[k] *= 1.0 + gp * rb;
+    }
+    A = matrix ? w->Ax : NULL;
+    bk_assemble_follower(s, q, 1.0, w->fint, A);
+    bk_assemble_loads(s, q, tn, w->fint, A);
+    element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
+    mass_matvec(s, w, fdof, w->qdd, w->tmp);
+    for (int i = 0; i < nd; ++i)
+        w->fint[i] += w->tmp[i];
+    if (ra != 0.0) {
+        mass_matvec(s, w, fdof, w->qd, w->tmp);
+        for (int i = 0; i < nd; ++i)
+            w->fint[i] += ra * w->tmp[i];
+    }
+    if (matrix)
+        for (long k = 0; k < s->nnz; ++k)
+            w->Ax[k] += (bp + gp * ra) * w->Mx[k];
+    for (int i = 0; i < nd; ++i)
+        if (s->eq[i] >= 0)
+            w->r[s->eq[i]] = w->fint[i] - w->fext[i];
+    bk_assemble_constraints(s, q, w->nu, tn, w->r, A);
+    *rnorm = bk_norm2(w->r, s->nfree);
+    return isfinite(*rnorm) ? 0 : -1;
+}
+
+enum { DYN_OK = BK_NL_OK, DYN_MAXIT = BK_NL_MAXIT, DYN_NONFINITE = BK_NL_NONFINITE, DYN_SINGULAR = BK_NL_SINGULAR,
+       DYN_LINERR = BK_NL_LINERR };
+
+/* One step's Newton problem for the nonlinear solver (nonlinear.h): the
+ * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
+ * q'' by beta' dq. */
+typedef struct dyn_problem {
+    bk_system *s;
+    dyn_work *w;
+    const int *fdof;
+    const bk_norms *norms;
+    double *q;
+    double tn, bp, gp;
+} dyn_problem;
+
+static int dp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
+{
+    dyn_problem *p = ctx;
+    bk_system *s = p->s;
+    dyn_work *w = p->w;
+    const bk_model *m = s->m;
+    (void)r, (void)Ax;                          /* w->r, w->Ax are the solver's buffers */
+    if (dyn_residual(s, w, p->fdof, p->q, p->tn, p->bp, p->gp, matrix, &ev->rnorm) != 0)
+        return -1;
+    ev->ref = fmax(bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
+    ev->cres = bk_norm2(w->r + s->nfree, s->ncon) / s->cscale;
+    /* increments relative to the motion of this step */
+    ev->uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(p->norms, s, p->q, w->q_s));
+    ev->escale = 0.0;
+    return 0;
+}
+
+static void dp_update(void *ctx, const double *dx, double alpha)
+{
+    dyn_problem *p = ctx;
+    const bk_system *s = p->s;
+    dyn_work *w = p->w;
+    for (int j = 0; j < s->nfree; ++j) {
+        int i = p->fdof[j];
+        double d = alpha * dx[j];
+        p->q[i] += d;
+        w->qd[i] += p->gp * d;
+        w->qdd[i] += p->bp * d;
+    }
+    for (int c = 0; c < s->ncon; ++c)
+        w->nu[c] += alpha * dx[s->nfree + c];
+}
+
+static const char *dyn_why(int c)
+{
+    switch (c) {
+    case DYN_MAXIT: return "Newton did not converge within the iteration limit";
+    case DYN_NONFINITE: return "non-finite force or increment (an element inverted, J <= 0, or a value overflowed)";
+    case DYN_SINGULAR: return "singular iteration matrix: is every rigid motion constrained or given mass?";
+    case DYN_LINERR: return "linear solver error";
+    default: return "converged";
+    }
+}
+
+int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    const bk_model *m = s->m;
+    const bk_dynamic_opts *o = &m->dyn;
+    dyn_work w = {0};
+    bk_nl nl = {0};
+    int have_nl = 0;
+    bk_checks chk = {0};
+    int rc = 1, *fdof = NULL;
+    int nd = m->ndof;
+    int nquat = 0;
+    int step = 0, cuts = 0, written = 0;
+    double t = 0.0, h = o->dt;
+    int *quat = bk_quat_list(s, &nquat);
+    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_checks_init(&chk, s) != 0) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    if (s->neq == 0) {
+        snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to integrate");
+        goto done;
+    }
+    have_nl = 1;
+    if (bk_nl_init(&nl, s, NULL, info->message, sizeof info->message) != 0)
+        goto done;
+    w.r = nl.r, w.dx = nl.dx, w.Ax = nl.Ax;
+    bk_linsolver *ls = &nl.ls;
+    const double rho = o->rho_inf;
+    const double am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
+    const double gam = 0.5 + af - am, bet = 0.25 * (gam + 0.5) * (gam + 0.5);
+    const double ra = o->rayleigh_alpha;
+    /* Newton: rotation-invariant tests; converged when the residual is within
+     * rtol (or far below it), the constraints hold to 1e-12 L and the last
+     * correction is small in length or energy */
+    const bk_nl_opts nlo = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol,
+                            .ctol = 1e-12 * fmax(m->length_scale, 1.0), .accept_far_below = 1,
+                            .stagnation = 0, .divergence = 0, .reuse = o->reuse_jacobian,
+                            .lazy_matrix = 1};
+    int full_retry = 0;                         /* this step failed with kept factors: full Newton */
+
+    memcpy(q, m->q0, (size_t)nd * sizeof *q);
+    memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
+    bk_external_load(s, w.fext);
+    bk_gravity_load(s, w.fgrav);
+    assemble_mass(s, w.Mx, w.K1, w.K2);
+    compact_mass(s, &w, w.Mx);
+    double mbar = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        if (s->diag[j] >= 0)
+            mbar += fabs(w.Mx[s->diag[j]]);
+    mbar = s->nfree ? mbar / s->nfree : 1.0;
+    if (!(mbar > 0.0))
+        mbar = 1.0;
+
+    /* Consistent initial accelerations: [M s G^T; s G 0] [q''; nu] = [f_ext - f(q, q'); -s (d^2/dt^2 of
+     * the explicit time dependence)]; the mass is regularized by 1e-10 mbar where it vanishes
+     * (gauge directions of quaternions). */
+    {
+        s->cscale = mbar;
+        bk_assemble_internal(s, q, w.fint, w.Ax);
+        memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
+        bk_assemble_follower(s, q, 1.0, w.fint, NULL);
+        bk_assemble_loads(s, q, t, w.fint, NULL);
+        element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
+        for (int k = 0; k < (int)s->nnz; ++k)
+            w.Ax[k] += w.Mx[k];
+        for (int j = 0; j < s->nfree; ++j)
+            if (s->diag[j] >= 0)
+                w.Ax[s->diag[j]] += 1e-10 * mbar;
+        mass_matvec(s, &w, fdof, w.qd, w.tmp);               /* Rayleigh on the initial velocity */
+        for (int i = 0; i < nd; ++i)
+            if (s->eq[i] >= 0)
+                w.r[s->eq[i]] = w.fext[i] - w.fint[i] - ra * w.tmp[i];
+        bk_assemble_constraints(s, q, w.nu, t, NULL, w.Ax);
+        bk_constraint_accel_rhs(s, q, w.qd, t, w.r);   /* G q'' = -(d/dt G) q' - ... */
+        if (bk_lin_factor(ls, w.Ax) != BK_LIN_OK || bk_lin_solve(ls, w.r) != BK_LIN_OK) {
+            snprintf(info->message, sizeof info->message,
+                     "initial accelerations: singular mass/constraint system (is every DOF given mass or held?)");
+            goto done;
+        }
+        for (int i = 0; i < nd; ++i)
+            w.qdd[i] = s->eq[i] >= 0 ? w.r[s->eq[i]] : 0.0;
+        memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
+    }
+    double U0 = bk_strain_energy(s, q);
+    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
+    bk_output_step(out, 0, 0.0, q);
+    {
+        mass_matvec(s, &w, fdof, w.qd, w.tmp);
+        double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+        bk_output_energy(out, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
+        info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
+    }
+
+    while (t < o->t_end * (1.0 - 1e-12)) {
+        if (o->t_end - (t + h) < 1e-6 * h)      /* land on t_end, no sliver step */
+            h = o->t_end - t;
+        double tn = t + h;
+        const double bp = (1.0 - am) / (bet * h * h * (1.0 - af)), gp = gam / (bet * h);
+        s->cscale = bp * mbar;
+        memcpy(w.q_s, q, (size_t)nd * sizeof *q);
+        memcpy(w.qd_s, w.qd, (size_t)nd * sizeof *q);
+        memcpy(w.qdd_s, w.qdd, (size_t)nd * sizeof *q);
+        memcpy(w.a_s, w.a, (size_t)nd * sizeof *q);
+        memcpy(w.nu_s, w.nu, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+        /* predictor with constant acceleration, q''_{n+1} = q''_n */
+        for (int i = 0; i < nd; ++i) {
+            if (s->eq[i] < 0)
+                continue;
+            double an = (w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+            q[i] = w.q_s[i] + h * w.qd_s[i] + h * h * ((0.5 - bet) * w.a_s[i] + bet * an);
+            w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
+            w.qdd[i] = w.qdd_s[i];
+        }
+        dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
+        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update};
+        bk_nl_result res;
+        int st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
+        int it = res.iters, signo = st == BK_NL_INTERRUPTED ? res.signo : 0, step_reused = res.reused;
+        double rnorm = res.rnorm, dnorm = res.dnorm;
+        info->newton_iterations += it;
+        if (signo) {
+            memcpy(q, w.q_s, (size_t)nd * sizeof *q);
+            info->interrupted = signo;
+            snprintf(info->message, sizeof info->message,
+                     "interrupted by %s during step %d at t = %.6g s; the %d accepted steps (last t = %.6g s) "
+                     "are kept", bk_interrupt_name(signo), step + 1, tn, step, t);
+            goto done;
+        }
+        double err = 0.0;
+        if (st == DYN_OK) {
+            for (int i = 0; i < nd; ++i) {
+                double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+                err = fmax(err, fabs(an - w.a_s[i]));
+                w.a[i] = an;
+            }
+            err *= h * h * fabs(bet - 1.0 / 6.0) / m->length_scale;
+        }
+        int reject = st != DYN_OK || (o->tol > 0.0 && err > o->tol && h > o->dt_min * 1.0000001);
+        if (reject) {
+            memcpy(q, w.q_s, (size_t)nd * sizeof *q);
+            memcpy(w.qd, w.qd_s, (size_t)nd * sizeof *q);
+            memcpy(w.qdd, w.qdd_s, (size_t)nd * sizeof *q);
+            memcpy(w.a, w.a_s, (size_t)nd * sizeof *q);
+            memcpy(w.nu, w.nu_s, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+            if (st != DYN_OK && step_reused && st != DYN_SINGULAR) {
+                /* the fallback: the same step again with full Newton, before any halving */
+                full_retry = 1;
+                if (log)
+                    fprintf(log, "  t = %.6g: step %.3g failed with kept factors (%s), retried with full Newton\n",
+                            t, h, dyn_why(st));
+                continue;
+            }
+            double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
+            if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
+                char incr[64];
+                if (it > 0 && isfinite(dnorm))
+                    snprintf(incr, sizeof incr, ", last increment %.3e", dnorm);
+                else
+                    incr[0] = 0;
+                snprintf(info->message, sizeof info->message,
+                         "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e%s after "
+                         "%d iteration%s, %d cut-back%s in a row%s",
+                         step + 1, tn, h, st != DYN_OK ? dyn_why(st) : "local error above tol at the smallest step",
+                         rnorm, incr, it, it == 1 ? "" : "s", cuts, cuts == 1 ? "" : "s",
+                         hn < o->dt_min ? " (the next step would be below dynamic.dt_min)" : "");
+                goto done;
+            }
+            if (st != DYN_OK)
+                info->cutbacks++, cuts++;
+            if (log)
+                fprintf(log, "  t = %.6g: step %.3g rejected (%s), retry with %.3g\n", t, h,
+                        st != DYN_OK ? dyn_why(st) : "local error", hn);
+            h = hn;
+            continue;
+        }
+        cuts = 0;
+        full_retry = 0;
+        /* Quaternions back to unit length, their velocities without the gauge
+         * component, their accelerations with that of a unit quaternion: the
+         * rotations and angular velocities are unchanged,
+         * and the massless gauge direction cannot drift over long runs. */
+        {
+            double *acc[2] = {w.qdd, w.a};
+            bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
+        }
+        t = tn;
+        step++;
+        info->steps = step;
+        info->load_factor = t;
+        double cr = bk_constraint_residual(s, q, t);
+        info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
+        if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
+            bk_output_forces(out, s, step, t, q, w.qd, w.qdd, w.nu);
+            bk_output_step(out, step, t, q);
+            bk_checks_state(&chk, s, q, "t =", t, info, out->console);
+            written = step;
+            mass_matvec(s, &w, fdof, w.qd, w.tmp);
+            double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double U = bk_strain_energy(s, q) - U0;
+            double Vg = 0.0, Vf = 0.0;
+            for (int i = 0; i < nd; ++i) {
+                Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
+                Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
+            }
+            bk_load_potentials(s, q, t, &Vg, &Vf);
+            bk_output_energy(out, step, t, T, U, Vg, Vf, cr);
+        }
+        if (log)
+            fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
+        bk_output_progress(out, t / o->t_end, step, t, it, rnorm);
+        if (o->tol > 0.0 && err > 0.0)
+            h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
+        else if (h < o->dt)
+            h = fmin(2.0 * h, o->dt);
+    }
+    rc = 0;
+done:
+    /* a failed or interrupted run keeps its last accepted step even when the
+     * output stride skipped it */
+    if (rc != 0 && step > written)
+        bk_output_step(out, step, t, q);
+    info->converged = rc == 0;
+    info->factorizations = nl.ls.nfactor;
+    info->analyses = nl.ls.nanalyze;
+    if (have_nl)
+        bk_nl_free(&nl);
+    bk_checks_free(&chk);
+    free(fdof);
+    free(quat);
+    work_free(&w);
+    return rc;
+}

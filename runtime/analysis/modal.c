@@ -1,0 +1,311 @@
+/* modal.c -- natural frequencies and mode shapes of the linearized system.
+ *
+ * About the reference state (or the static equilibrium under the scene's loads,
+ * modal.about = "static"), the tangent K and the mass M (constant part plus the
+ * rotary inertia of beams with nodal rotations) are restricted to the free DOFs
+ * and to the null space Z of the linear constraints G (GSL QR of G^T):
+ *     K_r = Z^T K Z,  M_r = Z^T M Z,
+ * and the dense symmetric-definite problem M_r x = mu (K_r + sigma M_r) x is
+ * solved with GSL (gsl_eigen_gensymmv); omega^2 = 1/mu - sigma.  The shift
+ * sigma makes the right-hand matrix definite for free structures (rigid modes
+ * have omega = 0) and massless directions (quaternion scale) give mu = 0, i.e.
+ * infinite frequency, and are dropped.  Dense: meant for small models.
+ *
+ * Output: the state the modes are about goes to sensors.csv and step_*.vtu (the
+ * static load steps, or the reference as step 0); each mode to modes.csv,
+ * mode_sensors.csv and mode_NN.vtu (bk_output_mode normalizes and scales it).
+ */
+#include "analysis/modal.h"
+
+#include <gsl/gsl_blas.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_matrix.h>
+#include <gsl/gsl_sort_vector.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/newton.h"
+
+#define BK_MODAL_MAXDOF 4000
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static void add_element_block(const bk_system *s, int e, const double *Ke, double c, gsl_matrix *A)
+{
+    const bk_model *m = s->m;
+    const bk_elem *el = &m->elems[e];
+    int nd = m->pairs[el->pair]->element->ndof;
+    for (int a = 0; a < nd; ++a) {
+        int i = s->eq[el->dofs[a]];
+        if (i < 0)
+            continue;
+        for (int b = 0; b < nd; ++b) {
+            int j = s->eq[el->dofs[b]];
+            if (j >= 0)
+                *gsl_matrix_ptr(A, (size_t)i, (size_t)j) += c * Ke[a * nd + b];
+        }
+    }
+}
+
+/* Column c of G^T (the Jacobian row of constraint c), by bk_constraint_jacobian_row. */
+typedef struct gt_col {
+    gsl_matrix *GT;
+    int c;
+} gt_col;
+
+static void gt_add(void *ctx, int eq, double v)
+{
+    gt_col *g = ctx;
+    *gsl_matrix_ptr(g->GT, (size_t)eq, (size_t)g->c) += v;
+}
+
+static void k_add(void *ctx, int i, int j, double v)
+{
+    *gsl_matrix_ptr((gsl_matrix *)ctx, (size_t)i, (size_t)j) += v;
+}
+
+int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    const bk_model *m = s->m;
+    int n = s->nfree, nc = s->ncon, rc = 1;
+    gsl_matrix *K = NULL, *M = NULL, *Z = NULL, *T = NULL, *Kr = NULL, *Mr = NULL, *V = NULL, *GT = NULL;
+    gsl_vector *tau = NULL, *mu = NULL;
+    gsl_eigen_gensymmv_workspace *ws = NULL;
+    double *buf = NULL, *fint = NULL, *me = NULL, *qd0 = NULL;
+    if (n == 0) {
+        snprintf(info->message, sizeof info->message, "every DOF is fixed: no modes");
+        return 1;
+    }
+    if (n > BK_MODAL_MAXDOF) {
+        snprintf(info->message, sizeof info->message,
+                 "modal analysis is dense and limited to %d free DOFs; this model has %d", BK_MODAL_MAXDOF, n);
+        return 1;
+    }
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_element *et = bk_elem_type(m, e);
+        if (bk_element_has_role(et, BK_FIELD_MULTIPLIER)) {
+            snprintf(info->message, sizeof info->message,
+                     "modal analysis needs a positive semi-definite tangent; element %s has internal "
+                     "Lagrange multipliers (use gef)", et->name);
+            return 1;
+        }
+    }
+    /* The state the modes are about: sensors.csv rows and step_*.vtu frames (the
+     * static load steps, or the reference as step 0); the modes go to their own
+     * files (bk_output_mode). */
+    if (m->modal.about_static) {
+        bk_run_info sinfo = {0};
+        int st = bk_solve_static(s, q, out, &sinfo, log);
+        bk_output_last_frame(out, sinfo.steps, sinfo.load_factor, q);
+        info->newton_iterations = sinfo.newton_iterations;
+        info->cutbacks = sinfo.cutbacks;
+        info->load_factor = sinfo.load_factor;
+        for (int k = 0; k < sinfo.nwarning; ++k)       /* already printed by the static solve */
+            bk_warn(info, NULL, m->name, "static state: %s", sinfo.warnings[k]);
+        if (st != 0) {
+            snprintf(info->message, sizeof info->message, "static state for the modal analysis: %.900s", sinfo.message);
+            info->interrupted = sinfo.interrupted;
+            return 1;
+        }
+    } else {
+        memcpy(q, m->q0, (size_t)m->ndof * sizeof *q);
+        bk_output_step(out, 0, 0.0, q);
+    }
+    int md = s->maxdof;
+    K = gsl_matrix_calloc((size_t)n, (size_t)n);
+    M = gsl_matrix_calloc((size_t)n, (size_t)n);
+    buf = calloc((size_t)md * (size_t)md * 3 + (size_t)md * 4, sizeof *buf);
+    me = calloc((size_t)md * (size_t)md, sizeof *me);
+    fint = calloc((size_t)m->ndof, sizeof *fint);
+    qd0 = calloc((size_t)md, sizeof *qd0);
+    if (!K || !M || !buf || !me || !fint || !qd0) {
+        snprintf(info->message, sizeof info->message, "out of memory for the dense modal matrices");
+        goto done;
+    }
+    /* K and M element by element */
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        const bk_element *et = p->element;
+        double *qe = buf + 3 * (size_t)md * md, *fe = qe + md, *Ke = buf;
+        bk_gather(m, e, q, qe);
+        p->force_tangent(qe, m->tabs[el->geom], m->mats[el->mat].params, fe, Ke);
+        add_element_block(s, e, Ke, 1.0, K);
+        double rho = m->mats[el->mat].rho;
+        bk_element_mass(m, e, me, Ke);
+        add_element_block(s, e, Ke, 1.0, M);
+        if (et->rotary) {
+            double Trot, *Mq = buf, *Cq = buf + (size_t)md * md, *Kq = buf + 2 * (size_t)md * md;
+            et->rotary(m->geoms[el->geom], qe, qd0, qd0, fe, Mq, Cq, Kq, &Trot);
+            add_element_block(s, e, Mq, rho, M);
+        }
+    }
+    /* symmetrize (kernels are symmetric to round-off) */
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) {
+            double k = 0.5 * (gsl_matrix_get(K, i, j) + gsl_matrix_get(K, j, i));
+            double mm = 0.5 * (gsl_matrix_get(M, i, j) + gsl_matrix_get(M, j, i));
+            gsl_matrix_set(K, i, j, k);
+            gsl_matrix_set(K, j, i, k);
+            gsl_matrix_set(M, i, j, mm);
+            gsl_matrix_set(M, j, i, mm);
+        }
+    /* null space of the constraints */
+    int r = 0, nz = n;
+    if (nc > 0) {
+        GT = gsl_matrix_calloc((size_t)n, (size_t)nc);
+        for (int c = 0; c < nc; ++c) {
+            gt_col col = {GT, c};
+            bk_constraint_jacobian_row(s, q, 0.0, c, gt_add, &col);
+        }
+        int mn = n < nc ? n : nc;
+        tau = gsl_vector_alloc((size_t)mn);
+        gsl_linalg_QR_decomp(GT, tau);
+        double rmax = 0.0;
+        for (int i = 0; i < mn; ++i)
+            rmax = fmax(rmax, fabs(gsl_matrix_get(GT, i, i)));
+        for (int i = 0; i < mn; ++i)
+            if (fabs(gsl_matrix_get(GT, i, i)) > 1e-12 * rmax)
+                r++;
+        nz = n - r;
+        gsl_matrix *Q = gsl_matrix_alloc((size_t)n, (size_t)n), *R = gsl_matrix_alloc((size_t)n, (size_t)nc);
+        gsl_linalg_QR_unpack(GT, tau, Q, R);
+        Z = gsl_matrix_alloc((size_t)n, (size_t)(nz > 0 ? nz : 1));
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < nz; ++j)
+                gsl_matrix_set(Z, i, j, gsl_matrix_get(Q, i, r + j));
+        gsl_matrix_free(Q);
+        gsl_matrix_free(R);
+        /* Joints nonlinear in q carry a geometric stiffness sum_k lam_k d2 g_k/dq2
+         * in a loaded state: the multipliers from G^T lam = f_ext - f_int at the
+         * static equilibrium (least squares on the QR above; independent rows). */
+        if (m->nnlcon > 0 && m->modal.about_static && r == nc && nc <= n) {
+            gsl_vector *b = gsl_vector_calloc((size_t)n), *lam = gsl_vector_alloc((size_t)nc);
+            gsl_vector *res = gsl_vector_alloc((size_t)n);
+            double *fext = calloc((size_t)m->ndof, sizeof *fext);
+            if (!b || !lam || !res || !fext) {
+                gsl_vector_free(b), gsl_vector_free(lam), gsl_vector_free(res), free(fext);
+                snprintf(info->message, sizeof info->message, "out of memory");
+                goto done;
+            }
+            bk_assemble_internal(s, q, fint, NULL);
+            bk_assemble_follower(s, q, 1.0, fint, NULL);
+            bk_external_load(s, fext);
+            for (int i = 0; i < m->ndof; ++i)
+                if (s->eq[i] >= 0)
+                    gsl_vector_set(b, (size_t)s->eq[i], fext[i] - fint[i]);
+            gsl_set_error_handler_off();
+            if (gsl_linalg_QR_lssolve(GT, tau, b, lam, res) == 0)
+                bk_constraint_hessian(s, q, lam->data, k_add, K);
+            gsl_vector_free(b), gsl_vector_free(lam), gsl_vector_free(res), free(fext);
+        }
+    }
+    if (nz <= 0) {
+        snprintf(info->message, sizeof info->message, "the constraints leave no free motion");
+        goto done;
+    }
+    if (Z) {
+        T = gsl_matrix_alloc((size_t)n, (size_t)nz);
+        Kr = gsl_matrix_alloc((size_t)nz, (size_t)nz);
+        Mr = gsl_matrix_alloc((size_t)nz, (size_t)nz);
+        gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, K, Z, 0.0, T);
+        gsl_blas_dgemm(CblasTrans, CblasNoTrans, 1.0, Z, T, 0.0, Kr);
+        gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, M, Z, 0.0, T);
+        gsl_blas_dgemm(CblasTrans, CblasNoTrans, 1.0, Z, T, 0.0, Mr);
+    } else {
+        Kr = K;
+        Mr = M;
+        K = M = NULL;
+    }
+    double trK = 0.0, trM = 0.0;
+    for (int i = 0; i < nz; ++i) {
+        trK += gsl_matrix_get(Kr, i, i);
+        trM += gsl_matrix_get(Mr, i, i);
+    }
+    if (!(trM > 0.0)) {
+        snprintf(info->message, sizeof info->message, "the model has no mass (set rho)");
+        goto done;
+    }
+    double sigma = 1e-6 * fabs(trK) / trM;
+    gsl_matrix *B = gsl_matrix_alloc((size_t)nz, (size_t)nz), *Mcopy = gsl_matrix_alloc((size_t)nz, (size_t)nz);
+    gsl_matrix_memcpy(B, Kr);
+    gsl_matrix_memcpy(Mcopy, Mr);
+    gsl_matrix_scale(Mcopy, sigma);
+    gsl_matrix_add(B, Mcopy);
+    gsl_matrix_memcpy(Mcopy, Mr);
+    mu = gsl_vector_alloc((size_t)nz);
+    V = gsl_matrix_alloc((size_t)nz, (size_t)nz);
+    ws = gsl_eigen_gensymmv_alloc((size_t)nz);
+    gsl_set_error_handler_off();
+    int st = gsl_eigen_gensymmv(Mcopy, B, mu, V, ws);
+    gsl_matrix_free(B);
+    gsl_matrix_free(Mcopy);
+    if (st != 0) {
+        snprintf(info->message, sizeof info->message,
+                 "eigenproblem failed (tangent not positive semi-definite: is the state stable?)");
+        goto done;
+    }
+    gsl_eigen_gensymmv_sort(mu, V, GSL_EIGEN_SORT_VAL_DESC);
+    /* outputs */
+    int want = m->modal.nmodes, got = 0;
+    double *shape = calloc((size_t)m->ndof, sizeof *shape);
+    if (!shape) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        goto done;
+    }
+    if (bk_output_modes_begin(out, info->message, sizeof info->message) != 0) {
+        free(shape);
+        goto done;
+    }
+    for (int k = 0; k < nz && got < want; ++k) {
+        double muk = gsl_vector_get(mu, k);
+        if (!(muk > 1e-14 / (trK / trM + sigma)))
+            break;                              /* massless directions: infinite frequency */
+        double w2 = 1.0 / muk - sigma;
+        double omega = w2 > 0.0 ? sqrt(w2) : 0.0;
+        /* mode vector on all DOFs (fixed DOFs 0); bk_output_mode normalizes and scales it */
+        memset(shape, 0, (size_t)m->ndof * sizeof *shape);
+        for (int i = 0; i < m->ndof; ++i) {
+            int j = s->eq[i];
+            if (j < 0)
+                continue;
+            double v = 0.0;
+            if (Z)
+                for (int c = 0; c < nz; ++c)
+                    v += gsl_matrix_get(Z, j, c) * gsl_matrix_get(V, c, k);
+            else
+                v = gsl_matrix_get(V, j, k);
+            shape[i] = v;
+        }
+        got++;
+        bk_output_mode(out, got, omega / (2.0 * M_PI), omega, q, shape);
+    }
+    free(shape);
+    info->steps = got;
+    if (log)
+        fprintf(log, "  %d modes (%d free DOFs, %d constraints of rank %d)\n", got, n, nc, r);
+    rc = 0;
+done:
+    info->converged = rc == 0;
+    gsl_matrix_free(K);
+    gsl_matrix_free(M);
+    gsl_matrix_free(Z);
+    gsl_matrix_free(T);
+    gsl_matrix_free(Kr);
+    gsl_matrix_free(Mr);
+    gsl_matrix_free(V);
+    gsl_matrix_free(GT);
+    gsl_vector_free(tau);
+    gsl_vector_free(mu);
+    if (ws)
+        gsl_eigen_gensymmv_free(ws);
+    free(buf);
+    free(me);
+    free(fint);
+    free(qd0);
+    return rc;
+}

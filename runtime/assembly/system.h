@@ -1,0 +1,178 @@
+/* system.h -- the algebraic system of a model: equation numbering, the sparse
+ * pattern of the Newton matrix, and assembly of forces and tangents.
+ *
+ * Unknowns: the free DOFs (those not held fixed), then one multiplier per
+ * linear constraint.  The Newton matrix is
+ *     [ K    s G^T ]
+ *     [ s G  0     ]
+ * with s = cscale, a stiffness-sized factor that keeps the constraint rows on
+ * the scale of the stiffness rows.  The pattern and each element's scatter map
+ * into it are computed once; assembly does no allocation.  Element kernels
+ * run in parallel (OpenMP, when compiled with it), one contiguous part of the
+ * elements per thread, each entry summed in element order: results are
+ * bit-identical for any thread count.
+ */
+#ifndef BK_SYSTEM_H
+#define BK_SYSTEM_H
+
+#include <stdio.h>
+
+#include "model/model.h"
+
+typedef struct bk_system {
+    const bk_model *m;
+    int nfree, ncon, neq;
+    int *eq;                 /* [ndof] equation of each DOF, -1 when fixed     */
+    int *Ap, *Ai;            /* CSC pattern, neq columns                      */
+    long nnz;
+    int *eslot_off;          /* [nelem+1] offsets into eslot                  */
+    int *eslot;              /* CSC index of element entry (r, c), -1 if fixed */
+    unsigned char *efirst;   /* per eslot entry: the slot's first term in element
+                              * order (stored, not added: Ax is not zeroed first) */
+    long *zslot, nzslot;     /* slots no element entry writes (zeroed by assembly) */
+    int *cslot;              /* per constraint term: CSC index of s G, s G^T  */
+    int *cslot_off;          /* [ncon+1]                                      */
+    int *diag;               /* [nfree] CSC index of each free DOF's diagonal  */
+    /* joints nonlinear in q (model->nlcons): constraint rows nlincon.., one
+     * block per joint: its first row jrow[j] (jrow[nnlcon] = ncon) and CSC
+     * slots jslot[jslot_off[j]..]: NX x NX of the Hessian term, then nrow x NX
+     * of s G and of s G^T (-1 where a coordinate is fixed or constant) */
+    int *jrow, *jslot, *jslot_off;
+    double cscale;
+    int maxdof;              /* largest element DOF count                     */
+    double *fe, *Ke;         /* element work buffers (owned)                  */
+    /* Evaluation groups: runs of up to BK_LANES consecutive elements of one
+     * pair that has lane kernels (one call evaluates the run), or a single
+     * element.  They depend on the model only, never on the thread count. */
+    int ngroup;
+    int *group;              /* [ngroup+1] first element of each group        */
+    size_t slot_q, slot_K, slot_tab; /* doubles per group slot of bq/bf, bK, btab */
+    double *bq, *bf, *bK;    /* per-thread evaluation buffers (one slot each)  */
+    double *btab, *bmat;     /* lane-ordered tables and material parameters   */
+    /* Parallel assembly (nthreads > 1 and enough elements): npart contiguous
+     * runs of groups of about equal cost, part[npart+1] their first groups,
+     * several per thread, each taken by the next free thread.  A thread adds
+     * a part's terms directly into the slots of fint and Ax that only that
+     * part touches; terms for a slot or
+     * DOF that two parts touch go to stage[]: an element with such entries
+     * has a map pmap[pel[e]..] (nd*nd slot codes, then nd DOF codes: >= 0
+     * target, -1 none, <= -2 stage entry -2-code; pel[e] = -1: use eslot).
+     * Shared target i (DOFs first, nshared_dof of them, then slots) sums
+     * stage[sh_idx[sh_ptr[i]..sh_ptr[i+1]]] in element order into
+     * sh_to[i] after the parallel region.  Parts depend on the thread count;
+     * the order of every sum does not. */
+    int npart;               /* 1: serial                                       */
+    int *part;
+    long *pel;
+    int *pmap;
+    double *stage;
+    int nshared, nshared_dof;
+    int *sh_ptr, *sh_idx;
+    long *sh_to;
+    int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
+} bk_system;
+
+bk_system *bk_system_create(const bk_model *m, FILE *err);
+void bk_system_free(bk_system *s);
+
+/* Internal force over all DOFs into fint[ndof]; when Ax is not NULL also the
+ * tangent, written into Ax (nnz values, zeroed here).  Returns 0, or -1 when a
+ * kernel produced a non-finite value. */
+int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax);
+
+/* Strain energy of the configuration q (J). */
+double bk_strain_energy(const bk_system *s, const double *q);
+
+/* Generalized external load of unit load factor into fext[ndof] (zeroed here):
+ * point forces and gravity. */
+void bk_external_load(const bk_system *s, double *fext);
+
+/* Shape functions N[nshape] of the point force f: at its point (xi, y, z) of
+ * the element, or averaged over the rectangular section at xi (f->section). */
+void bk_force_shape(const bk_model *m, const bk_force_load *f, double *N);
+
+/* The gravity part alone, into fg[ndof] (zeroed here; zero when gravity has an
+ * amplitude: bk_assemble_loads applies it then). */
+void bk_gravity_load(const bk_system *s, double *fg);
+
+/* Configuration-dependent loads (moments on sections) at load factor lam:
+ * subtracts lam Q(q) from fint[ndof] and, when Ax is not NULL, adds
+ * -lam dQ/dq to the tangent. */
+void bk_assemble_follower(bk_system *s, const double *q, double lam, double *fint, double *Ax);
+
+/* Constraint part of the Newton system at time t: adds s G^T nu to
+ * r[0..nfree), writes s (G q - g) into r[nfree..neq) (r may be NULL), and, when
+ * Ax is not NULL, s G and s G^T. */
+void bk_assemble_constraints(const bk_system *s, const double *q, const double *nu, double t,
+                             double *r, double *Ax);
+
+/* Right-hand side of the constraint rows of the consistent initial
+ * accelerations: r[nfree + c] = -s (d^2/dt^2 of row c at fixed q'') given q,
+ * qd (linear rows: 2 G' q' + G'' q - g''; joints: q'^T d2 g_c/dq2 q'). */
+void bk_constraint_accel_rhs(const bk_system *s, const double *q, const double *qd, double t, double *r);
+
+/* The Jacobian row c of every constraint at (q, t), unscaled, on the free
+ * DOFs: calls add(ctx, equation, value) for each term. */
+void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, int c,
+                                void (*add)(void *ctx, int eq, double v), void *ctx);
+
+/* Multipliers for a start: adds to nu[ncon] the correction dnu that minimizes
+ * |r + s G^T dnu| over the free rows (r: a residual over the equations at q,
+ * nu), i.e. the constraint forces that best balance the other forces; a
+ * mechanism held only by its loads (a pendulum under gravity) then has the
+ * joints' geometric stiffness from the first Newton iteration on.  Returns 0,
+ * or -1 (nu unchanged) when the constraints are dependent or memory ran out. */
+int bk_constraint_multipliers(bk_system *s, const double *q, double t, const double *r, double *nu);
+
+/* The joints' Hessian term sum_k lam_k d2 g_k/dq2 at q for unscaled
+ * multipliers lam[ncon] (the constraint force is G^T lam; the linear rows have
+ * none): calls add(ctx, equation i, equation j, value) for each free pair. */
+void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+                           void (*add)(void *ctx, int i, int j, double v), void *ctx);
+
+/* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
+ * d^k/dt^k [G(t) x - g(t)] (the g term only when with_rhs). */
+double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs);
+
+/* Coefficient of term k of a constraint row at time t (the entry of G(t)). */
+double bk_constraint_coef(const bk_lincon *c, int k, double t);
+
+/* Largest |G(t) q - g(t)| over the constraint rows. */
+double bk_constraint_residual(const bk_system *s, const double *q, double t);
+
+/* Centreline point xi of element e: position and (if d != NULL) the section
+ * frame d1, d2, d3 (NaN where the element defines none). */
+void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d);
+
+/* Element e of the model: its descriptor and DOF count. */
+static inline const bk_element *bk_elem_type(const bk_model *m, int e)
+{
+    return m->pairs[m->elems[e].pair]->element;
+}
+
+/* Gather: xe[k] = x[dofs[k]] over the element's DOFs (x indexed by DOF). */
+static inline void bk_gather(const bk_model *m, int e, const double *x, double *xe)
+{
+    const int *d = m->elems[e].dofs;
+    const int nd = bk_elem_type(m, e)->ndof;
+    for (int k = 0; k < nd; ++k)
+        xe[k] = x[d[k]];
+}
+
+/* Scatter: x[dofs[k]] += c xe[k] over the element's DOFs.  Returns 1 when xe has
+ * a non-finite entry, else 0. */
+int bk_scatter(const bk_model *m, int e, const double *xe, double c, double *x);
+
+/* Scatter of an element matrix Ke[ndof*ndof] (row-major) into the Newton
+ * matrix values Ax: Ax += c Ke on the entries of free rows and columns. */
+void bk_scatter_matrix(const bk_system *s, int e, const double *Ke, double c, double *Ax);
+
+/* Element mass Me[ndof*ndof] = rho (m (x) I3) on the position shape functions'
+ * DOFs (zero elsewhere), m[nshape*nshape] = bk_element.mass per unit density;
+ * work[nshape*nshape] is scratch. */
+void bk_element_mass(const bk_model *m, int e, double *work, double *Me);
+
+/* 1 when some field of the element has the role. */
+int bk_element_has_role(const bk_element *et, bk_field_role role);
+
+#endif

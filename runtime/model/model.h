@@ -1,0 +1,232 @@
+/* model.h -- the discretized scene the solver works on.
+ *
+ * A model is read from the model file that gen/scene.py writes (the scene's
+ * TOML, validated and meshed).  The runtime never sees TOML.  All arrays are
+ * owned by the model and released by bk_model_free().
+ */
+#ifndef BK_MODEL_H
+#define BK_MODEL_H
+
+#include <stdio.h>
+
+#include "bk_joint.h"
+#include "bk_kernel.h"
+
+enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2 };
+
+typedef struct bk_elem {
+    int pair;          /* index into model->pairs                          */
+    int geom;          /* index into model->geoms (and model->tabs)        */
+    int mat;           /* index into model->mats                           */
+    int *dofs;         /* [ndof of the element] global DOF of each local DOF */
+} bk_elem;
+
+#define BK_MODEL_VERSION 4       /* model file format (gen/scene/model_file.py VERSION) */
+#define BK_MAT_MAXPARAM 8
+
+typedef struct bk_mat {
+    int nparam;
+    double params[BK_MAT_MAXPARAM];
+    char param_names[BK_MAT_MAXPARAM][24];  /* as the model file names them; checked against the kernel */
+    double rho;        /* kg/m^3 */
+    int nvisc;         /* Kelvin-Voigt parameters (0: no material damping) */
+    double visc[BK_MAT_MAXPARAM];
+} bk_mat;
+
+/* Amplitude: the history a load or a prescribed angle is multiplied by, as a
+ * function of the time (dynamics) or the load factor (statics); see
+ * runtime/model/amplitude.h.  par: ramp t0, t1; step t0; sine amplitude, frequency,
+ * phase, offset; table x0, a0, x1, a1, ... */
+enum bk_amplitude_type { BK_AMP_RAMP = 1, BK_AMP_STEP, BK_AMP_SINE, BK_AMP_TABLE };
+typedef struct bk_amplitude {
+    int type;
+    int npar;
+    double *par;
+} bk_amplitude;
+
+typedef struct bk_force_load {   /* force at a material point of an element */
+    int elem;
+    double xi, y, z;   /* element coordinates of the point */
+    int section;       /* 1: spread uniformly over the cross-section at xi */
+    double value[3];   /* N (follower: components along the section frame e1, e2, e3) */
+    int amp;           /* amplitude index, -1: the default (load factor in statics, 1 in dynamics) */
+    int follower;      /* 1: turns with the section frame at the point */
+} bk_force_load;
+
+typedef struct bk_moment_load {  /* moment on the cross-section at xi */
+    int elem;
+    double xi;
+    double value[3];   /* N m (follower: along e1, e2, e3 of the section) */
+    int amp, follower; /* as for forces; not follower: fixed in space */
+} bk_moment_load;
+
+typedef struct bk_dist_load {    /* force per unit reference length on xi0..xi1 of an element */
+    int elem;
+    double xi0, xi1;
+    int follower, amp;
+    double value[3];   /* N/m (follower: along e1, e2, e3 of the section) */
+} bk_dist_load;
+
+typedef struct bk_tendon_piece {
+    int elem;
+    double xi0, xi1;   /* part of the element the tendon runs through */
+    double dy, dz;     /* offset from the centreline along the section axes (m) */
+} bk_tendon_piece;
+
+typedef struct bk_tendon {       /* a tendon pulled with tension amp(x) T: potential T l(q) */
+    int amp;
+    double tension;
+    int npiece;
+    bk_tendon_piece *pieces;
+} bk_tendon;
+
+/* The rows one [[constraint]] added (fixed DOFs and linear constraints): its
+ * reaction is reported as one force and moment (about the point `elem`, `xi`). */
+typedef struct bk_reaction {
+    int index;         /* of the [[constraint]] table */
+    char type[32], at[64];
+    int elem;
+    double xi;
+    int nfixed, nlin, nside;
+    int *fixed, *lin;
+    int *side;         /* DOFs of body a when the joint is between bodies (nside 0: all) */
+    int nlcon;         /* its joint nonlinear in q (model->nlcons), -1: none */
+} bk_reaction;
+
+typedef struct bk_section_rec {  /* an element of a beam, for sections.csv */
+    char beam[64];
+    int elem;
+    double s0, s1;     /* arc length of its start and end (m) */
+} bk_section_rec;
+
+typedef struct bk_sensor {
+    char name[64];
+    int elem;
+    double xi;         /* along the element axis, on the centreline */
+} bk_sensor;
+
+/* A constraint linear in q, possibly rheonomic:
+ *   sum_k (c0[k] + cc[k] cos phi(t) + cs[k] sin phi(t)) q[dof[k]]
+ *       = r0 + rc cos phi(t) + rs sin phi(t),
+ *   phi(t) = kappa (rate t + amp sin(2 pi freq t) + angle a(t)).
+ * Clamps, spherical joints, revolute joints and prescribed rotations of ANCF
+ * slopes and of quaternions are all of this form. */
+typedef struct bk_lincon {
+    int nterm;
+    int *dof;
+    double *c0, *cc, *cs;
+    double r0, rc, rs;
+    double kappa, rate, amp, freq;
+    double angle;                 /* phi += kappa angle a(t) with a = *ampl (NULL: none) */
+    int ampid;                    /* index of *ampl in the model's amplitudes, -1: none */
+    const bk_amplitude *ampl;
+} bk_lincon;
+
+/* A joint between two frames (beam nodes with a rotation, rigid bodies, the
+ * ground), nonlinear in q: g(x) = 0 with x = (r_a, p_a, r_b, p_b) gathered
+ * from q (dof >= 0) or constant (dof = -1: the ground, x0), the generated
+ * kernel `kind` (runtime/bk_joint.h) bound by bk_model_bind_joints. */
+typedef struct bk_nlcon {
+    char type[24];
+    const bk_joint_kind *kind;
+    int dof[BK_JOINT_NX];
+    double x0[BK_JOINT_NX];
+    double prm[BK_JOINT_NPARAM];
+} bk_nlcon;
+
+typedef struct bk_static_opts {
+    int load_steps;
+    int max_iter;
+    int max_cutbacks;
+    int cycles;        /* load-unload cycles after the first loading */
+    double rtol;       /* residual tolerance relative to the load        */
+    double utol;       /* increment tolerance relative to the displacement */
+    int predictor;     /* 1: secant predictor from the last two equilibria */
+    int stability;     /* 1: inertia of the tangent at every equilibrium   */
+    int eigenvalues;   /* 1: also the extreme eigenvalues at every check (static.eigenvalues) */
+    int stable_path;   /* 1: cut back increments that lose stability       */
+    int adaptive;      /* 1: adaptive load increments (static.step_control) */
+    int arc_length;    /* 1: arc-length continuation (static.method) */
+    int arc_spherical; /* 1: spherical constraint, 0: cylindrical (static.arc_constraint) */
+    double target;     /* load-factor target of the path (static.target_load_factor) */
+    int max_steps;     /* step budget of the path */
+    double max_displacement;   /* > 0: stop when a sensor moved this far (m) */
+    int arc_iters;     /* Newton iterations per step the arc length aims at */
+    int branch_switch; /* 1: onto the secondary branch at the first bifurcation */
+} bk_static_opts;
+
+typedef struct bk_dynamic_opts {
+    double t_end, dt, dt_min, rho_inf;
+    double tol;            /* > 0: error-controlled step size with this local error */
+    int max_iter, max_cutbacks, output_every;
+    double rayleigh_alpha, rayleigh_beta;
+    double rtol, utol;
+    int reuse_jacobian;    /* 1: keep the factorized Jacobian while Newton contracts fast (dynamic.jacobian) */
+} bk_dynamic_opts;
+
+typedef struct bk_modal_opts {
+    int nmodes;
+    int about_static;      /* 1: linearize about the static equilibrium under the loads */
+} bk_modal_opts;
+
+typedef struct bk_model {
+    char name[128];
+    enum bk_analysis analysis;
+    double length_scale;         /* m, for increment tolerances         */
+    int ndof;
+    double *q0;                  /* [ndof] reference configuration       */
+    int npair;
+    const bk_pair **pairs;       /* resolved kernel descriptors          */
+    int ngeom;                   /* distinct (kernel, congruent element) tables */
+    double (*geoms)[BK_NGEOM];   /* geometry of each table (bk_kernel.h)  */
+    int *geom_pair;              /* kernel whose tabulate() builds it     */
+    int *geom_elem;              /* element whose reference coordinates it uses */
+    double **tabs;               /* [ngeom] tabulated constants            */
+    int nmat;
+    bk_mat *mats;
+    int nelem;
+    bk_elem *elems;
+    int nfixed;
+    int *fixed;                  /* DOFs held at their reference value   */
+    int nlincon;
+    bk_lincon *lincons;
+    int nnlcon;
+    bk_nlcon *nlcons;            /* joints nonlinear in q (rows after the linear ones) */
+    int nforce;
+    bk_force_load *forces;
+    int nmoment;
+    bk_moment_load *moments;
+    int has_gravity;
+    double gravity[3];
+    int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
+    const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
+    int nsensor;
+    bk_sensor *sensors;
+    int namp;
+    bk_amplitude *amps;
+    int ndload;
+    bk_dist_load *dloads;
+    int ntendon;
+    bk_tendon *tendons;
+    int nreaction;
+    bk_reaction *reactions;
+    int nsection;
+    bk_section_rec *sections;
+    bk_static_opts stat;
+    bk_dynamic_opts dyn;
+    bk_modal_opts modal;
+    double *qd0;                 /* [ndof] initial velocities (dynamic) */
+    int vtk_every;               /* a ParaView frame every n-th output step; 0: none */
+} bk_model;
+
+/* Reads a model file.  `avail` lists the kernel descriptors linked into this
+ * solver.  On error returns NULL and writes one line to `err` naming the file
+ * and what was expected. */
+bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navail, FILE *err);
+void bk_model_free(bk_model *m);
+
+/* Binds every joint of the model to its generated kernel in kinds[nkinds] by
+ * type name.  Returns 0, or -1 after one line to err. */
+int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nkinds, FILE *err);
+
+#endif

@@ -1,0 +1,116 @@
+/* checks.c -- plausibility of converged states (see checks.h). */
+#include "output/checks.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define TWO_PI_3 2.0943951023931954923
+
+int bk_checks_init(bk_checks *c, const bk_system *s)
+{
+    const bk_model *m = s->m;
+    int nqp = 1;
+    for (int k = 0; k < m->npair; ++k)
+        if (m->pairs[k]->invariants && m->pairs[k]->nqp > nqp)
+            nqp = m->pairs[k]->nqp;
+    c->inv = malloc((size_t)(3 * nqp) * sizeof *c->inv);
+    c->qe = malloc((size_t)(s->maxdof > 0 ? s->maxdof : 1) * sizeof *c->qe);
+    c->inverted = c->volume = c->strain = 0;
+    if (!c->inv || !c->qe) {
+        bk_checks_free(c);
+        return -1;
+    }
+    return 0;
+}
+
+void bk_checks_free(bk_checks *c)
+{
+    free(c->inv);
+    free(c->qe);
+    c->inv = c->qe = NULL;
+}
+
+void bk_principal_from_invariants(double I1, double I2, double I3, double *x)
+{
+    /* roots of x^3 - I1 x^2 + I2 x - I3 = 0, all real: with x = y + I1/3,
+     * y^3 + a y + b = 0 and the trigonometric solution */
+    double s = I1 / 3.0;
+    double a = I2 - I1 * I1 / 3.0;
+    double b = -2.0 * I1 * I1 * I1 / 27.0 + I1 * I2 / 3.0 - I3;
+    if (!(a < 0.0)) {
+        x[0] = x[1] = x[2] = s;
+        return;
+    }
+    double r = 2.0 * sqrt(-a / 3.0);
+    double arg = 3.0 * b / (a * r);
+    arg = arg > 1.0 ? 1.0 : arg < -1.0 ? -1.0 : arg;
+    double th = acos(arg) / 3.0;
+    double y0 = r * cos(th), y1 = r * cos(th - TWO_PI_3), y2 = r * cos(th - 2.0 * TWO_PI_3);
+    double lo = fmin(y0, fmin(y1, y2)), hi = fmax(y0, fmax(y1, y2));
+    x[0] = s + lo;
+    x[2] = s + hi;
+    x[1] = s + (y0 + y1 + y2 - lo - hi);
+}
+
+void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const char *what, double t,
+                     bk_run_info *info, FILE *console)
+{
+    const bk_model *m = s->m;
+    if (c->inverted && c->volume && c->strain)
+        return;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        if (!p->invariants)
+            continue;
+        bk_gather(m, e, q, c->qe);
+        p->invariants(c->qe, m->tabs[el->geom], c->inv);
+        const int ranged = !c->strain && (p->green_strain_min != 0.0 || p->green_strain_max != 0.0);
+        double jmin = INFINITY, jmax = -INFINITY, emin = INFINITY, emax = -INFINITY;
+        for (int k = 0; k < p->nqp; ++k) {
+            const double *v = c->inv + 3 * k;
+            jmin = fmin(jmin, v[0]);
+            jmax = fmax(jmax, v[0]);
+            if (!ranged)
+                continue;
+            /* the eigenvalues of C lie within I1/3 -+ 2 sqrt(-(I2 - I1^2/3)/3) (the
+             * trigonometric form of the roots): only when that interval leaves the
+             * law's range are they computed */
+            double s3 = v[1] / 3.0, a = v[2] - v[1] * v[1] / 3.0, r = a < 0.0 ? 2.0 * sqrt(-a / 3.0) : 0.0;
+            double x[3] = {s3 - r, s3, s3 + r};
+            if (0.5 * (x[0] - 1.0) < p->green_strain_min || 0.5 * (x[2] - 1.0) > p->green_strain_max)
+                bk_principal_from_invariants(v[1], v[2], v[0] * v[0], x);
+            emin = fmin(emin, 0.5 * (x[0] - 1.0));
+            emax = fmax(emax, 0.5 * (x[2] - 1.0));
+        }
+        double pos[3] = {NAN, NAN, NAN};
+        if ((!c->inverted && jmin <= 0.0) || (!c->volume && ((jmin > 0.0 && jmin < BK_J_MIN) || jmax > BK_J_MAX)) ||
+            (ranged && (emin < p->green_strain_min || emax > p->green_strain_max)))
+            bk_eval_point(m, q, e, 0.5, pos, NULL);       /* where, for a warning */
+        if (!c->inverted && jmin <= 0.0) {
+            c->inverted = 1;
+            bk_warn(info, console, m->name,
+                    "element %d (%s x %s) near (%.4g, %.4g, %.4g) m is inverted at %s %.6g: J = det F = %.3g <= 0 "
+                    "at a quadrature point (the beam is turned inside out): the result is not physical",
+                    e + 1, p->element->name, p->material, pos[0], pos[1], pos[2], what, t, jmin);
+        } else if (!c->volume && ((jmin > 0.0 && jmin < BK_J_MIN) || jmax > BK_J_MAX)) {
+            c->volume = 1;
+            double jv = jmin < BK_J_MIN ? jmin : jmax;
+            bk_warn(info, console, m->name,
+                    "element %d (%s x %s) near (%.4g, %.4g, %.4g) m: volume ratio J = %.3g outside [%g, %g] at "
+                    "%s %.6g: a deformation this large is unlikely to be meant",
+                    e + 1, p->element->name, p->material, pos[0], pos[1], pos[2], jv, BK_J_MIN, BK_J_MAX, what, t);
+        }
+        if (ranged && (emin < p->green_strain_min || emax > p->green_strain_max)) {
+            c->strain = 1;
+            double ev = emax > p->green_strain_max ? emax : emin;
+            bk_warn(info, console, m->name,
+                    "element %d (%s x %s) near (%.4g, %.4g, %.4g) m: principal Green strain %.3g at %s %.6g is "
+                    "outside [%g, %g], the range law %s is meant for: use a hyperelastic law for large strains",
+                    e + 1, p->element->name, p->material, pos[0], pos[1], pos[2], ev, what, t,
+                    p->green_strain_min, p->green_strain_max, p->material);
+        }
+        if (c->inverted && c->volume && c->strain)
+            return;
+    }
+}

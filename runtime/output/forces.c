@@ -1,0 +1,534 @@
+/* forces.c -- reactions and section forces (see forces.h). */
+#include "output/forces.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model/amplitude.h"
+#include "output/csvrow.h"
+#include "assembly/loads.h"
+
+enum { K_NONE = 0, K_POS = 1, K_GRAD = 2, K_QUAT = 3 };
+
+int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
+{
+    memset(f, 0, sizeof *f);
+    f->m = m;
+    size_t nd = (size_t)m->ndof;
+    int maxdof = 1;
+    for (int e = 0; e < m->nelem; ++e)
+        if (bk_elem_type(m, e)->ndof > maxdof)
+            maxdof = bk_elem_type(m, e)->ndof;
+    size_t md = (size_t)maxdof;
+    f->fld = malloc(4 * nd * sizeof *f->fld);
+    f->kind = calloc(nd, 1);
+    f->comp = calloc(nd, 1);
+    f->res = calloc(nd, sizeof *f->res);
+    f->fext = calloc(nd, sizeof *f->fext);
+    /* element buffers: q, qd, qdd, force, work, and four ndof^2 matrices */
+    f->buf = calloc(6 * md + 4 * md * md, sizeof *f->buf);
+    f->last = calloc((size_t)(m->nreaction ? m->nreaction : 1), sizeof *f->last);
+    f->sec = malloc(12 * (size_t)m->nelem * sizeof *f->sec);
+    f->sec_step = -1;
+    int maxsample = 1;
+    for (int e = 0; e < m->nelem; ++e)
+        if (m->pairs[m->elems[e].pair]->sections && m->pairs[m->elems[e].pair]->nsample > maxsample)
+            maxsample = m->pairs[m->elems[e].pair]->nsample;
+    f->maxsample = maxsample;
+    f->sres = malloc(9 * (size_t)maxsample * sizeof *f->sres);
+    f->ssec = malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
+    if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||
+        !f->ssec) {
+        fprintf(err, "error: out of memory for the reactions and section forces\n");
+        return -1;
+    }
+    /* the elements that touch a DOF a reaction reads from the residual */
+    char *held = calloc(nd ? nd : 1, 1);
+    f->relem = malloc((size_t)(m->nelem ? m->nelem : 1) * sizeof *f->relem);
+    if (!held || !f->relem) {
+        free(held);
+        fprintf(err, "error: out of memory for the reactions and section forces\n");
+        return -1;
+    }
+    for (int c = 0; c < m->nreaction; ++c)
+        for (int k = 0; k < m->reactions[c].nfixed; ++k)
+            held[m->reactions[c].fixed[k]] = 1;
+    for (int e = 0; e < m->nelem; ++e) {
+        int touch = 0;
+        for (int k = 0; k < bk_elem_type(m, e)->ndof && !touch; ++k)
+            touch = held[m->elems[e].dofs[k]];
+        if (touch)
+            f->relem[f->nrelem++] = e;
+    }
+    free(held);
+    /* dynamics: their mass matrices, constant, once (the residual of every step uses them) */
+    if (m->analysis == BK_DYNAMIC && f->nrelem > 0) {
+        f->rmass = malloc((size_t)f->nrelem * md * md * sizeof *f->rmass);
+        if (!f->rmass) {
+            fprintf(err, "error: out of memory for the reactions and section forces\n");
+            return -1;
+        }
+        for (int k = 0; k < f->nrelem; ++k)
+            bk_element_mass(m, f->relem[k], f->buf, f->rmass + (size_t)k * md * md);
+    }
+    for (size_t i = 0; i < 4 * nd; ++i)
+        f->fld[i] = -1;
+    for (size_t i = 0; i < 12 * (size_t)m->nelem; ++i)
+        f->sec[i] = NAN;
+    for (size_t i = 0; i < 6 * (size_t)maxsample * (size_t)m->nelem; ++i)
+        f->ssec[i] = NAN;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_element *et = bk_elem_type(m, e);
+        for (int k = 0; k < et->nfield; ++k) {
+            bk_field_role role = et->field_role[k];
+            int kind = role == BK_FIELD_POSITION ? K_POS : bk_field_is_gradient(role) ? K_GRAD
+                       : role == BK_FIELD_QUATERNION ? K_QUAT : K_NONE;
+            for (int c = 0; c < et->field_dim[k] && c < 4; ++c) {
+                int d = m->elems[e].dofs[et->field_dof[k] + c];
+                f->kind[d] = (signed char)kind;
+                f->comp[d] = (signed char)c;
+                for (int c2 = 0; c2 < et->field_dim[k] && c2 < 4; ++c2)
+                    f->fld[4 * d + c2] = m->elems[e].dofs[et->field_dof[k] + c2];
+            }
+        }
+    }
+    if (m->nreaction > 0 &&
+        !(f->reactions = bk_table_open(dir, "reactions.csv", "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n",
+                                       &f->tbuf[0], err)))
+        return -1;
+    if (m->nsection > 0 && m->analysis != BK_MODAL &&
+        !(f->sections = bk_table_open(dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,"
+                                      "M2,M3\n", &f->tbuf[1], err)))
+        return -1;
+    return 0;
+}
+
+void bk_forces_close(bk_forces *f)
+{
+    if (f->reactions)
+        fclose(f->reactions);
+    if (f->sections)
+        fclose(f->sections);
+    free(f->tbuf[0]);
+    free(f->tbuf[1]);
+    free(f->fld);
+    free(f->kind);
+    free(f->comp);
+    free(f->res);
+    free(f->fext);
+    free(f->buf);
+    free(f->last);
+    free(f->sec);
+    free(f->sres);
+    free(f->ssec);
+    free(f->relem);
+    free(f->rmass);
+    memset(f, 0, sizeof *f);
+}
+
+static void cross_add(const double *a, const double *b, double c, double *out)
+{
+    out[0] += c * (a[1] * b[2] - a[2] * b[1]);
+    out[1] += c * (a[2] * b[0] - a[0] * b[2]);
+    out[2] += c * (a[0] * b[1] - a[1] * b[0]);
+}
+
+/* F, M (about x0) of the generalized force value r at global DOF d (forces.h). */
+static void map_dof(const bk_forces *f, const double *q, int d, double r, const double *x0, double *F, double *M)
+{
+    const int *fl = f->fld + 4 * d;
+    int c = f->comp[d];
+    double e[3] = {0.0, 0.0, 0.0};
+    switch (f->kind[d]) {
+    case K_POS: {
+        double arm[3] = {q[fl[0]] - x0[0], q[fl[1]] - x0[1], q[fl[2]] - x0[2]};
+        e[c] = 1.0;
+        F[c] += r;
+        cross_add(arm, e, r, M);
+        break;
+    }
+    case K_GRAD: {
+        double g[3] = {q[fl[0]], q[fl[1]], q[fl[2]]};
+        e[c] = 1.0;
+        cross_add(g, e, r, M);
+        break;
+    }
+    case K_QUAT: {
+        double w = q[fl[0]], v[3] = {q[fl[1]], q[fl[2]], q[fl[3]]};
+        if (c == 0) {
+            for (int i = 0; i < 3; ++i)
+                M[i] -= 0.5 * r * v[i];
+        } else {
+            e[c - 1] = 1.0;
+            for (int i = 0; i < 3; ++i)
+                M[i] += 0.5 * w * r * e[i];
+            cross_add(v, e, 0.5 * r, M);
+        }
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+/* y[i] (+)= sum_j A[i n + j] v[j], j in order, over the n rows of A (n x n,
+ * row-major), from y[i] or, with from_zero, from 0: four rows at a time, each
+ * its own sum (the same bits as one row after the other, without waiting on
+ * one chain of dependent additions). */
+static void rows_times(int n, const double *restrict A, const double *restrict v, double *restrict y,
+                       int from_zero)
+{
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+        const double *a0 = A + (size_t)i * n, *a1 = a0 + n, *a2 = a1 + n, *a3 = a2 + n;
+        double s0 = from_zero ? 0.0 : y[i], s1 = from_zero ? 0.0 : y[i + 1];
+        double s2 = from_zero ? 0.0 : y[i + 2], s3 = from_zero ? 0.0 : y[i + 3];
+        for (int j = 0; j < n; ++j) {
+            const double vj = v[j];
+            s0 += a0[j] * vj;
+            s1 += a1[j] * vj;
+            s2 += a2[j] * vj;
+            s3 += a3[j] * vj;
+        }
+        y[i] = s0, y[i + 1] = s1, y[i + 2] = s2, y[i + 3] = s3;
+    }
+    for (; i < n; ++i) {
+        double s0 = from_zero ? 0.0 : y[i];
+        for (int j = 0; j < n; ++j)
+            s0 += A[(size_t)i * n + j] * v[j];
+        y[i] = s0;
+    }
+}
+
+/* The generalized residual without the constraint forces over every DOF:
+ * f_int - f_ext (statics) + M (q'' + alpha q') + beta K q' + viscous + rotary
+ * (dynamics), into f->res. */
+static void full_residual(bk_forces *f, bk_system *s, double x, const double *q, const double *qd,
+                          const double *qdd)
+{
+    const bk_model *m = s->m;
+    const int nd = m->ndof;
+    double lf = bk_load_factor(m, -1, x);
+    size_t md = (size_t)s->maxdof;
+    double *qe = f->buf, *qde = qe + md, *qdde = qde + md, *fe = qdde + md, *tmp = fe + md;
+    double *K1 = tmp + md, *K2 = K1 + md * md, *K3 = K2 + md * md;
+    /* internal forces of the elements at the held DOFs (the only entries read) */
+    memset(f->res, 0, (size_t)nd * sizeof *f->res);
+    for (int k = 0; k < f->nrelem; ++k) {
+        const int e = f->relem[k];
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        bk_gather(m, e, q, qe);
+        p->force(qe, m->tabs[el->geom], m->mats[el->mat].params, fe);
+        bk_scatter(m, e, fe, 1.0, f->res);
+    }
+    bk_assemble_follower(s, q, lf, f->res, NULL);
+    bk_assemble_loads(s, q, x, f->res, NULL);
+    if (!f->have_fext) {                     /* dead loads of unit factor: constant */
+        bk_external_load(s, f->fext);
+        f->have_fext = 1;
+    }
+    for (int i = 0; i < nd; ++i)
+        f->res[i] -= lf * f->fext[i];
+    if (!qdd)
+        return;
+    const double ra = m->dyn.rayleigh_alpha, rb = m->dyn.rayleigh_beta;
+    for (int kk = 0; kk < f->nrelem; ++kk) {
+        const int e = f->relem[kk];
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        const bk_element *et = p->element;
+        const bk_mat *mat = &m->mats[el->mat];
+        const int ne = et->ndof;
+        bk_gather(m, e, q, qe);
+        bk_gather(m, e, qd, qde);
+        bk_gather(m, e, qdd, qdde);
+        const double *Me = f->rmass + (size_t)kk * md * md;
+        for (int j = 0; j < ne; ++j)
+            tmp[j] = qdde[j] + ra * qde[j];
+        rows_times(ne, Me, tmp, fe, 1);
+        bk_scatter(m, e, fe, 1.0, f->res);
+        if (rb != 0.0) {
+            p->force_tangent(qe, m->tabs[el->geom], mat->params, tmp, K1);
+            rows_times(ne, K1, qde, fe, 1);
+            for (int i = 0; i < ne; ++i)
+                fe[i] *= rb;
+            bk_scatter(m, e, fe, 1.0, f->res);
+        }
+        if (mat->nvisc > 0 && p->viscous) {
+            p->viscous(qe, qde, m->tabs[el->geom], mat->visc, fe, K1, K2);
+            bk_scatter(m, e, fe, 1.0, f->res);
+        }
+        if (et->rotary) {
+            double T = 0.0;
+            et->rotary(m->geoms[el->geom], qe, qde, qdde, fe, K1, K2, K3, &T);
+            bk_scatter(m, e, fe, mat->rho, f->res);
+        }
+    }
+}
+
+static void write_reactions(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *nu)
+{
+    const bk_model *m = s->m;
+    for (int c = 0; c < m->nreaction; ++c) {
+        const bk_reaction *rc = &m->reactions[c];
+        double x0[3], F[3] = {0.0, 0.0, 0.0}, M[3] = {0.0, 0.0, 0.0};
+        bk_eval_point(m, q, rc->elem, rc->xi, x0, NULL);
+        for (int k = 0; k < rc->nfixed; ++k)
+            map_dof(f, q, rc->fixed[k], f->res[rc->fixed[k]], x0, F, M);
+        for (int k = 0; k < rc->nlin; ++k) {
+            const bk_lincon *lc = &m->lincons[rc->lin[k]];
+            for (int j = 0; j < lc->nterm; ++j) {
+                int d = lc->dof[j], ok = rc->nside == 0;
+                for (int i = 0; i < rc->nside && !ok; ++i)
+                    ok = rc->side[i] == d;
+                if (!ok)
+                    continue;
+                double r = nu ? -s->cscale * bk_constraint_coef(lc, j, x) * nu[rc->lin[k]] : NAN;
+                map_dof(f, q, d, r, x0, F, M);
+            }
+        }
+        if (rc->nlcon >= 0) {             /* a joint nonlinear in q: -s G^T nu on frame a's (r, p) */
+            const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+            for (int i = 0; i < BK_JOINT_NX; ++i)
+                xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
+            jc->kind->eval(xj, jc->prm, g, G);
+            const int row0 = s->jrow[rc->nlcon];
+            for (int i = 0; i < 7; ++i) {
+                const int d = jc->dof[i];
+                if (d < 0)
+                    continue;
+                double r = 0.0;
+                for (int k = 0; k < jc->kind->nrow; ++k)
+                    r += G[k * BK_JOINT_NX + i] * (nu ? nu[row0 + k] : NAN);
+                map_dof(f, q, d, -s->cscale * r, x0, F, M);
+            }
+        }
+        double *L = f->last[c];
+        for (int i = 0; i < 3; ++i)
+            L[i] = F[i], L[3 + i] = M[i], L[6 + i] = x0[i];
+        if (f->reactions) {
+            bk_row r;
+            bk_row_begin(&r, f->reactions, f->rq);
+            bk_row_int(&r, step);
+            bk_row_num(&r, x);
+            bk_row_int(&r, rc->index);
+            bk_row_str(&r, rc->type);
+            bk_row_str(&r, rc->at);
+            for (int i = 0; i < 9; ++i)
+                bk_row_num(&r, i < 3 ? x0[i] : i < 6 ? F[i - 3] : M[i - 6]);
+            bk_row_end(&r);
+        }
+    }
+    f->have_last = 1;                    /* (flushed with the other tables: output.c) */
+}
+
+/* The force and moment the element's node `node` (first or last) exerts on it,
+ * about the node's position xn. */
+static void node_action(const bk_forces *f, const bk_model *m, int e, int node, const double *q, const double *ge,
+                        double *xn, double *F, double *M)
+{
+    const bk_element *et = bk_elem_type(m, e);
+    int n = -1, pos = -1;
+    F[0] = F[1] = F[2] = M[0] = M[1] = M[2] = 0.0;
+    for (int k = 0; k < et->nfield; ++k) {
+        if (et->field_role[k] == BK_FIELD_POSITION) {
+            ++n;
+            if (n == node)
+                pos = et->field_dof[k];
+        }
+        if (et->field_role[k] == BK_FIELD_MULTIPLIER || n != node)
+            continue;
+        if (et->field_role[k] == BK_FIELD_POSITION)
+            for (int i = 0; i < 3; ++i)
+                xn[i] = q[m->elems[e].dofs[pos + i]];
+    }
+    n = -1;
+    for (int k = 0; k < et->nfield; ++k) {
+        if (et->field_role[k] == BK_FIELD_POSITION)
+            ++n;
+        if (et->field_role[k] == BK_FIELD_MULTIPLIER || n != node)
+            continue;
+        for (int c = 0; c < et->field_dim[k]; ++c) {
+            int l = et->field_dof[k] + c;
+            map_dof(f, q, m->elems[e].dofs[l], ge[l], xn, F, M);
+        }
+    }
+}
+
+/* N, Q2, Q3, T, M2, M3 of the force F and the moment M (global axes) on the
+ * section at xi of element e (state qe), sign sg: in the orthonormal section
+ * frame; without section axes (the cable) the axial force and the torque only. */
+static void section_components(const bk_model *m, int e, const double *qe, double xi, const double *F,
+                               const double *M, double sg, double *out)
+{
+    double R[9];
+    if (bk_section_frame(m, e, qe, xi, R) == 0) {
+        for (int i = 0; i < 3; ++i) {
+            const double *ax = R + 3 * ((i + 2) % 3);     /* e3, e1, e2 */
+            out[i] = sg * (F[0] * ax[0] + F[1] * ax[1] + F[2] * ax[2]);
+            out[3 + i] = sg * (M[0] * ax[0] + M[1] * ax[1] + M[2] * ax[2]);
+        }
+    } else {                            /* no section axes: the axial force and torque only */
+        const bk_element *et = bk_elem_type(m, e);
+        double pos[3], d[9];
+        et->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d);
+        double n3 = sqrt(d[6] * d[6] + d[7] * d[7] + d[8] * d[8]);
+        for (int i = 0; i < 6; ++i)
+            out[i] = NAN;
+        out[0] = sg * (F[0] * d[6] + F[1] * d[7] + F[2] * d[8]) / n3;
+        out[3] = sg * (M[0] * d[6] + M[1] * d[7] + M[2] * d[8]) / n3;
+    }
+}
+
+/* One row of sections.csv: step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3
+ * (pos: x, y, z; out: N, Q2, Q3, T, M2, M3). */
+static void section_row(FILE *fp, bk_rowqueue *rq, int step, double t, const char *beam, int e, const char *source,
+                        int point, double xi, double s, const double *pos, const double *out)
+{
+    bk_row r;
+    bk_row_begin(&r, fp, rq);
+    bk_row_int(&r, step);
+    bk_row_num(&r, t);
+    bk_row_str(&r, beam);
+    bk_row_int(&r, e);
+    bk_row_str(&r, source);
+    bk_row_int(&r, point);
+    bk_row_num(&r, xi);
+    bk_row_num(&r, s);
+    for (int i = 0; i < 3; ++i)
+        bk_row_num(&r, pos[i]);
+    for (int i = 0; i < 6; ++i)
+        bk_row_num(&r, out[i]);
+    bk_row_end(&r);
+}
+
+/* The rows of the element's own stress resultants (bk_pair.sections) at its
+ * sample points: source = the pair's label. */
+static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_rec *sr, int step, double x,
+                              const double *qe)
+{
+    const int e = sr->elem;
+    const bk_elem *el = &m->elems[e];
+    const bk_pair *p = m->pairs[el->pair];
+    if (!p->sections)
+        return;
+    p->sections(m->geoms[el->geom], qe, m->tabs[el->geom], m->mats[el->mat].params, f->sres);
+    for (int k = 0; k < p->nsample; ++k) {
+        const double *o = f->sres + 9 * k, xi = p->sample_xi[k];
+        double out[6];
+        section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
+        for (int i = 0; i < 6; ++i)
+            f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
+        section_row(f->sections, f->rq, step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o,
+                    out);
+    }
+}
+
+static void write_sections(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
+                           const double *qdd)
+{
+    const bk_model *m = s->m;
+    size_t md = (size_t)s->maxdof;
+    double *ge = f->buf, *Qe = ge + md, *qe = Qe + md, *qde = qe + md, *qdde = qde + md;
+    double *K1 = qdde + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
+    const double ra = m->dyn.rayleigh_alpha, rb = m->dyn.rayleigh_beta;
+    for (int k = 0; k < m->nsection; ++k) {
+        const bk_section_rec *sr = &m->sections[k];
+        const int e = sr->elem;
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        const bk_element *et = p->element;
+        const bk_mat *mat = &m->mats[el->mat];
+        const int ne = et->ndof;
+        bk_gather(m, e, q, qe);
+        if (qdd && rb != 0.0)
+            p->force_tangent(qe, m->tabs[el->geom], mat->params, ge, K1);
+        else
+            p->force(qe, m->tabs[el->geom], mat->params, ge);
+        if (qdd) {
+            bk_gather(m, e, qd, qde);
+            bk_gather(m, e, qdd, qdde);
+            if (rb != 0.0)
+                for (int i = 0; i < ne; ++i)
+                    for (int j = 0; j < ne; ++j)
+                        ge[i] += rb * K1[i * ne + j] * qde[j];
+            bk_element_mass(m, e, K1, Me);
+            for (int j = 0; j < ne; ++j)
+                Qe[j] = qdde[j] + ra * qde[j];           /* (Qe is free until the viscous forces) */
+            rows_times(ne, Me, Qe, ge, 0);
+            if (mat->nvisc > 0 && p->viscous) {
+                p->viscous(qe, qde, m->tabs[el->geom], mat->visc, Qe, K1, K2);
+                for (int i = 0; i < ne; ++i)
+                    ge[i] += Qe[i];
+            }
+            if (et->rotary) {
+                double T = 0.0;
+                et->rotary(m->geoms[el->geom], qe, qde, qdde, Qe, K1, K2, K3, &T);
+                for (int i = 0; i < ne; ++i)
+                    ge[i] += mat->rho * Qe[i];
+            }
+        }
+        bk_element_loads(s, q, x, e, Qe);
+        for (int i = 0; i < ne; ++i)
+            ge[i] -= Qe[i];
+        for (int end = 0; end < 2; ++end) {
+            double xn[3] = {NAN, NAN, NAN}, F[3], M[3], out[6];
+            node_action(f, m, e, end ? et->nnode - 1 : 0, q, ge, xn, F, M);
+            double xi = et->node_xi[end ? et->nnode - 1 : 0];
+            section_components(m, e, qe, xi, F, M, end ? 1.0 : -1.0, out);
+            for (int i = 0; i < 6; ++i)
+                f->sec[12 * (size_t)e + 6 * end + i] = out[i];
+            if (f->sections)
+                section_row(f->sections, f->rq, step, x, sr->beam, e, "nodal", end, xi, end ? sr->s1 : sr->s0, xn, out);
+        }
+        if (f->sections)
+            write_stress_rows(f, m, sr, step, x, qe);
+    }
+    f->sec_step = step;
+}
+
+void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
+                    const double *qdd, const double *nu, int with_sections)
+{
+    if (!f->m)
+        return;
+    if (f->reactions) {
+        if (f->nrelem > 0)
+            full_residual(f, s, x, q, qd, qdd);
+        write_reactions(f, s, step, x, q, nu);
+    }
+    if (f->sections && with_sections)
+        write_sections(f, s, step, x, q, qd, qdd);
+}
+
+static void json_num(FILE *fp, double v)
+{
+    if (isfinite(v))
+        fprintf(fp, "%.17g", v);
+    else
+        fprintf(fp, "null");
+}
+
+void bk_forces_summary(const bk_forces *f, FILE *fp)
+{
+    if (!f->m || !f->have_last || f->m->nreaction == 0)
+        return;
+    fprintf(fp, "  \"reactions\": [");
+    for (int c = 0; c < f->m->nreaction; ++c) {
+        const bk_reaction *rc = &f->m->reactions[c];
+        const double *L = f->last[c];
+        fprintf(fp, "%s\n    {\"constraint\": %d, \"type\": \"%s\", \"at\": \"%s\", \"point\": [", c ? "," : "",
+                rc->index, rc->type, rc->at);
+        for (int i = 0; i < 3; ++i)
+            json_num(fp, L[6 + i]), fprintf(fp, i < 2 ? ", " : "], \"force\": [");
+        for (int i = 0; i < 3; ++i)
+            json_num(fp, L[i]), fprintf(fp, i < 2 ? ", " : "], \"moment\": [");
+        for (int i = 0; i < 3; ++i)
+            json_num(fp, L[3 + i]), fprintf(fp, i < 2 ? ", " : "]}");
+    }
+    fprintf(fp, "\n  ],\n");
+}

@@ -1,0 +1,154 @@
+/* output.h -- result files of a run: sensors.csv (one row per output step and
+ * sensor, flushed as it is written so an interrupted run keeps its results),
+ * summary.json (written at the end, also when the solve failed) and, for modal
+ * analyses, modes.csv, mode_sensors.csv and the mode files of vtk.h. */
+#ifndef BK_OUTPUT_H
+#define BK_OUTPUT_H
+
+#include <stdio.h>
+
+#include "output/forces.h"
+#include "model/model.h"
+#include "output/vtk.h"
+
+typedef struct bk_output {
+    const bk_model *m;
+    char dir[1024];
+    FILE *sensors;           /* owned */
+    FILE *energy;            /* owned; dynamic analyses only */
+    FILE *modes;             /* owned; modal analyses only */
+    FILE *mode_sensors;      /* owned; modal analyses only */
+    double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
+    double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
+    FILE *newton;            /* owned; static analyses: one row per Newton iteration */
+    FILE *stability;         /* owned; static analyses with stability checks */
+    char *tbuf[4];           /* owned: the stdio buffers of sensors, energy, newton, stability */
+    int nfreq;
+    double freqs[64];        /* first frequencies (Hz), for the summary */
+    bk_vtk vtk;              /* ParaView frames */
+    int progress;            /* 1: an updating progress line on stderr */
+    FILE *console;           /* warnings are printed here (NULL: --quiet) */
+    double t_start, t_last;  /* wall clock of the start and of the last progress line */
+    double t_flush;          /* wall clock of the last flush of the result tables */
+    double t_output;         /* wall time spent in the bk_output_* calls so far (s) */
+    bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
+    int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
+    int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
+    bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
+} bk_output;
+
+/* A change of the number of negative eigenvalues of the tangent between two
+ * consecutive static equilibria: a bifurcation or limit point was passed. */
+typedef struct bk_stability_event {
+    int step;                /* the first equilibrium with the new count          */
+    double lam_before, lam_after;
+    int neg_before, neg_after;
+    double lam_critical;     /* interpolated critical load factor (NaN: unknown)   */
+} bk_stability_event;
+
+/* A critical point of an arc-length path: a limit point (the load factor
+ * turns; refined by bisection on the arc length) or a bifurcation (the
+ * negative-eigenvalue count changes without a limit point; refined by
+ * bisection on the inertia). */
+#define BK_CRIT_SENSORS 4
+typedef struct bk_critical_point {
+    int limit;               /* 1: limit point, 0: bifurcation                    */
+    int step;                /* the first equilibrium past it                     */
+    double lam;              /* critical load factor                              */
+    int nsensor;             /* sensors with a displacement below (the first ones) */
+    double u[BK_CRIT_SENSORS][3];   /* their displacements there (m; NaN: unknown) */
+} bk_critical_point;
+
+#define BK_MAX_EVENTS 32
+#define BK_MAX_WARNINGS 16
+#define BK_WARNING_LEN 400
+
+typedef struct bk_run_info {
+    int converged;
+    double wall_s;           /* model read to results written, less the summary (s) */
+    double output_s;         /* of it, writing results: files, frames, the section forces (s) */
+    double stability_s;      /* of it, the static stability checks (s) */
+    int steps;
+    int newton_iterations;
+    int cutbacks;
+    int factorizations;
+    int analyses;
+    double load_factor;
+    double strain_energy;
+    double max_constraint_residual;
+    char message[1024];      /* empty when converged */
+    int interrupted;         /* the signal (SIGINT, SIGTERM) that stopped the run, or 0 */
+    int nwarning;            /* warnings: likely wrong results (also on the console) */
+    int warnings_dropped;    /* beyond BK_MAX_WARNINGS */
+    char warnings[BK_MAX_WARNINGS][BK_WARNING_LEN];
+    /* statics with [static] stability */
+    int stability_checked;
+    int negative_eigenvalues;  /* at the last equilibrium                         */
+    double eig_min, eig_max;   /* smallest-magnitude and largest eigenvalue there  */
+    int nstability;
+    bk_stability_event stability[BK_MAX_EVENTS];
+    /* statics with static.method = "arc_length" */
+    int continuation;
+    int ncritical;
+    bk_critical_point critical[BK_MAX_EVENTS];
+} bk_run_info;
+
+/* progress: show an updating line on stderr (only if it is a terminal). */
+int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
+/* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
+ * only after the first second, only on a terminal. */
+void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual);
+/* Writes the ParaView frame of the last state if the stride skipped it (not
+ * for modal analyses: bk_solve_modal writes the frames of the state the modes
+ * are about itself, with bk_output_last_frame), waits until every frame is on
+ * disk (they are written by a background thread, vtk.h), and ends the
+ * progress line. */
+void bk_output_final(bk_output *o, int step, double t, const double *q);
+void bk_output_last_frame(bk_output *o, int step, double t, const double *q);
+/* One row per sensor for the configuration q at output step `step`, time t. */
+void bk_output_step(bk_output *o, int step, double t, const double *q);
+/* Reactions and section forces of the output step (forces.h bk_forces_step). */
+void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
+                      const double *qdd, const double *nu);
+/* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,
+ * potential of the other constant loads, their total, constraint residual. */
+void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
+                      double cres);
+/* newton.csv (statics): one row per Newton iteration of attempt `attempt`
+ * towards equilibrium `step` at load factor lam: residual norm, the reference
+ * force it is measured against, the increment (max norm, after the line
+ * search), the line-search step length and KLU's reciprocal pivot ratio. */
+void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
+                         double ref, double increment, double alpha, double rcond);
+/* stability.csv (statics): per equilibrium, the number of negative
+ * eigenvalues of the constrained tangent (-1: factorization broke down) and
+ * its smallest-magnitude and largest eigenvalue. */
+void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max);
+/* Opens modes.csv and mode_sensors.csv and allocates the mode buffers; -1 on
+ * failure (a message in err). */
+int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);
+/* Mode `mode` (1, 2, ...) with frequency f_hz, angular frequency omega and
+ * vector phi[ndof] (any scale) about the state q: normalizes it to a largest
+ * point translation of 1 (mode_shape), scales it for display to a largest
+ * translation of BK_MODE_SIZE times the model length, or less if the sections
+ * would turn by more than BK_MODE_ROTATION rad, and writes the row of modes.csv
+ * (mode, frequency in Hz, angular frequency, that scale in m), the rows of
+ * mode_sensors.csv and mode_NN.vtu.  Returns the scale (m). */
+double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi);
+#define BK_MODE_SIZE 0.1
+#define BK_MODE_ROTATION 0.5
+int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
+/* Records a warning in info (summary.json "warnings") and prints it as
+ * "warning: SCENE: ..." on `console` unless it is NULL.  A warning already
+ * recorded with the same text is not repeated. */
+void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* Writes out and closes the result tables (their last rows are still in
+ * their buffers: a short run writes them only now), before summary.json;
+ * 0, or -1 with "error: PATH: cannot write: REASON" on err for each table
+ * that could not be written. */
+int bk_output_close_tables(bk_output *o, FILE *err);
+/* Closes what is still open (the tables too, unreported) and frees. */
+void bk_output_close(bk_output *o);
+
+#endif

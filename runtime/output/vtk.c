@@ -1,0 +1,782 @@
+/* vtk.c -- ParaView output: one XML UnstructuredGrid (.vtu) per written step and
+ * a .pvd collection listing them with their times (rewritten at most every
+ * BK_PVD_INTERVAL seconds of wall time while frames come, and at the end, so
+ * that a run killed outright still leaves a readable collection, short of the
+ * frames of its last half second; an interrupted run lists them all); modal analyses add one
+ * mode_NN.vtu per mode and their collection modes.pvd (time value = mode number).
+ *
+ * Every element contributes, at NX stations along its axis, a ring of points
+ * around its cross-section (8 for a rectangle, 12 for a circle) joined by
+ * quads, and a polyline along the centreline.  Continuum (ANCF) elements place
+ * the ring with their own interpolation, so the section shows its actual
+ * deformation; beams with a section frame place it with d1, d2; the cable,
+ * which has none, sweeps a section normal to its axis.  Point data:
+ * displacement (m); cell data: strain energy density of the element (J/m^3).
+ * Mode files: the points of the base state displaced by the scaled mode, point
+ * data displacement (the scaled mode, m) and mode_shape (the mode normalized to
+ * a largest point translation of 1), field data MODE, FREQUENCY_HZ, OMEGA and
+ * MODE_SCALE (m).
+ */
+#include "output/vtk.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/clock.h"
+#include "assembly/system.h"
+
+#define NX 4
+#define MAX_RING 12              /* points of the largest section ring (ring_points) */
+#define BK_PVD_INTERVAL 0.5
+
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Section shape of element e (enum bk_section_shape): an element that takes
+ * one shape only has that one (the continuum elements: their box b x h); else
+ * the beam's, geom[BK_GEOM_SHAPE] as the scene compiler writes it (a
+ * rectangle where a hand-made model leaves it unstated). */
+static int section_shape(const bk_model *m, int e)
+{
+    const unsigned both = BK_CAP_SECTION_RECTANGLE | BK_CAP_SECTION_CIRCLE;
+    const unsigned caps = bk_elem_type(m, e)->caps & both;
+    if (caps == BK_CAP_SECTION_RECTANGLE)
+        return BK_SECTION_RECTANGLE;
+    if (caps == BK_CAP_SECTION_CIRCLE)
+        return BK_SECTION_CIRCLE;
+    const double shape = m->geoms[m->elems[e].geom][BK_GEOM_SHAPE];
+    return shape == (double)BK_SECTION_CIRCLE ? BK_SECTION_CIRCLE : BK_SECTION_RECTANGLE;
+}
+
+/* Points of the section ring: 8 around a rectangle, 12 around a circle. */
+static int ring_points(const bk_model *m, int e)
+{
+    return section_shape(m, e) == BK_SECTION_CIRCLE ? 12 : 8;
+}
+
+/* Section point k of n in section coordinates (y along d1, z along d2). */
+static void ring_yz(const double *g, int n, int k, double *y, double *z)
+{
+    if (n == 8) {
+        static const double uy[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, uz[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
+        *y = 0.5 * g[BK_GEOM_B] * uy[k];
+        *z = 0.5 * g[BK_GEOM_H] * uz[k];
+    } else {
+        double a = 2.0 * M_PI * k / n;
+        *y = 0.5 * g[BK_GEOM_B] * cos(a);
+        *z = 0.5 * g[BK_GEOM_B] * sin(a);
+    }
+}
+
+static void unit(double *v)
+{
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (n > 0)
+        for (int i = 0; i < 3; ++i)
+            v[i] /= n;
+}
+
+/* Position of section point (y, z) at station xi of element e for coordinates q. */
+static void section_point(const bk_model *m, const double *q, int e, double xi, double y, double z, double *x)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_element *et = m->pairs[el->pair]->element;
+    const double *g = m->geoms[el->geom];
+    double d[9], N[BK_MAX_SHAPE];
+    if (et->caps & BK_CAP_SECTION_FIELD) {         /* continuum: the element's own field */
+        et->shape(g, xi, y, z, N);
+        for (int i = 0; i < 3; ++i)
+            x[i] = 0.0;
+        for (int a = 0; a < et->nshape; ++a)
+            for (int i = 0; i < 3; ++i)
+                x[i] += N[a] * q[el->dofs[et->shape_dof[a] + i]];
+        return;
+    }
+    bk_eval_point(m, q, e, xi, x, d);
+    if (isfinite(d[0]) && isfinite(d[3])) {        /* beams with a section frame */
+        for (int i = 0; i < 3; ++i)
+            x[i] += y * d[i] + z * d[3 + i];
+        return;
+    }
+    /* no section frame (cable): a section normal to the axis, oriented by the global
+     * axis least aligned with it */
+    double t[3] = {d[6], d[7], d[8]}, a[3] = {0, 0, 0}, u[3], w[3];
+    unit(t);
+    int k = fabs(t[0]) < fabs(t[1]) ? (fabs(t[0]) < fabs(t[2]) ? 0 : 2) : (fabs(t[1]) < fabs(t[2]) ? 1 : 2);
+    a[k] = 1.0;
+    u[0] = a[1] * t[2] - a[2] * t[1], u[1] = a[2] * t[0] - a[0] * t[2], u[2] = a[0] * t[1] - a[1] * t[0];
+    unit(u);
+    w[0] = t[1] * u[2] - t[2] * u[1], w[1] = t[2] * u[0] - t[0] * u[2], w[2] = t[0] * u[1] - t[1] * u[0];
+    for (int i = 0; i < 3; ++i)
+        x[i] += y * u[i] + z * w[i];
+}
+
+typedef struct mode_view mode_view;
+static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x);
+static void frame_cells(const bk_model *m, long *ncell, long *nconn);
+static size_t topology(const bk_model *m, unsigned char *buf);
+
+int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity, int expected)
+{
+    memset(v, 0, sizeof *v);
+    v->m = m;
+    v->every = every;
+    snprintf(v->dir, sizeof v->dir, "%s", dir);
+    if (every <= 0)
+        return 0;
+    v->t_pvd = bk_clock_s();            /* the first collection once frames have come for BK_PVD_INTERVAL */
+    v->expected = expected;
+    v->cap = capacity > 16 ? capacity : 16;
+    v->times = malloc((size_t)v->cap * sizeof *v->times);
+    v->frames = malloc((size_t)v->cap * sizeof *v->frames);
+    v->npts = bk_vtk_npoints(m);
+    frame_cells(m, &v->ncell, &v->nconn);
+    size_t np = (size_t)v->npts;
+    v->ref = malloc((3 * np + 1) * sizeof *v->ref);
+    v->pts = malloc((3 * np + 1) * sizeof *v->pts);
+    v->ntopo = topology(m, NULL);
+    v->topo = malloc(v->ntopo);
+    if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
+        return -1;
+    frame_points(m, m->q0, NULL, 0, v->ref);
+    topology(m, v->topo);
+    /* the appended arrays of the largest frame (a mode's: points, displacement,
+     * mode shape; a step's: points, displacement, four section arrays, the
+     * cells' energy density), the cells block and the XML around them */
+    v->frame_bytes = 7 * (8 + 3 * np * sizeof(double)) + 8 + (size_t)v->ncell * sizeof(double) + v->ntopo + 16384;
+    return 0;
+}
+
+/* The inputs of a frame made by the writer's thread, copied when it is handed
+ * over (the solve goes on with its own): the field data, the coordinates (and
+ * a mode frame's q +- eps phi with its view), the section forces and stress
+ * resultants of its step (when it has them), and the thread's scratch for the
+ * points. */
+#define BK_VTK_MAX_FIELDS 5
+typedef struct bk_vtk_job {
+    const bk_vtk *v;         /* read-only while the thread runs: m, npts, ref, topo */
+    int nfield;
+    const char *const *fname;            /* static names */
+    double fval[BK_VTK_MAX_FIELDS];
+    double *q, *qp, *qm;     /* m->ndof each */
+    int is_mode;             /* a mode frame: qp, qm and */
+    double eps, norm, scale; /*   its view (mode_view) */
+    double *sec, *ssec;      /* 12 per element; 6 maxsample per element */
+    int with_sec, with_ssec, maxsample;
+    double *pts;             /* 3 npts */
+} bk_vtk_job;
+
+/* Frames of up to BK_VTK_BACKGROUND_MAX bytes go to the background writer
+ * from the second frame of a run on that is expected to have at least
+ * BK_VTK_BACKGROUND_MIN frames (from the first when the run's frames are known
+ * in advance, v->expected): the thread, its buffers' first use and the wait
+ * for the last frame at the end cost about as much as 5-8 frames written
+ * directly.  frac: the fraction of the run done at this frame (load factor,
+ * time or mode over its end), which with the frames so far gives the
+ * expected number; <= 0 when unknown (arc-length, load cycles: the writer
+ * starts at the third frame).  If it cannot be made, frames are written
+ * directly, as they are without memory for the frames' inputs. */
+#define BK_VTK_BACKGROUND_MIN 8
+static void maybe_background(bk_vtk *v, double frac)
+{
+    if (v->background || v->tried_background || v->frame_bytes > BK_VTK_BACKGROUND_MAX)
+        return;
+    if (v->expected < BK_VTK_BACKGROUND_MIN) {
+        if (v->written < (frac > 0.0 ? 1 : 2))
+            return;
+        if (frac > 0.0 && (v->written + 1) < BK_VTK_BACKGROUND_MIN * frac)
+            return;                          /* a short run (asked again at its next frame) */
+    }
+    v->tried_background = 1;
+    if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) != 0) {
+        bk_filewriter_close(&v->fw);
+        return;
+    }
+    v->background = 1;
+    const bk_model *m = v->m;
+    size_t nq = (size_t)m->ndof, ne = (size_t)m->nelem, ns = 6 * (size_t)(v->maxsample > 0 ? v->maxsample : 1) * ne;
+    size_t each = 3 * nq + 12 * ne + ns + 3 * (size_t)v->npts + 1;
+    v->jobs = calloc(BK_FILEWRITER_BUFFERS, sizeof *v->jobs);
+    double *mem = v->jobs ? malloc(BK_FILEWRITER_BUFFERS * each * sizeof *mem) : NULL;
+    if (!mem) {
+        free(v->jobs);
+        v->jobs = NULL;
+        return;
+    }
+    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b) {
+        bk_vtk_job *j = &v->jobs[b];
+        j->v = v;
+        j->q = mem + (size_t)b * each;
+        j->qp = j->q + nq;
+        j->qm = j->qp + nq;
+        j->sec = j->qm + nq;
+        j->ssec = j->sec + 12 * ne;
+        j->pts = j->ssec + ns;
+    }
+}
+
+/* The first file written here that failed is kept. */
+static void record_failure(bk_vtk *v, const char *path, int err)
+{
+    if (v->failed)
+        return;
+    v->failed = 1;
+    v->errno_ = err ? err : EIO;
+    snprintf(v->failed_path, sizeof v->failed_path, "%s", path);
+}
+
+int bk_vtk_finish(bk_vtk *v, FILE *err)
+{
+    int bad = v->background && bk_filewriter_drain(&v->fw) != 0;
+    const char *path = NULL;
+    int e = 0;
+    if (v->failed == 1) {
+        path = v->failed_path, e = v->errno_;
+        v->failed = 2;                    /* reported */
+    } else if (bad && v->fw.failed == 1) {
+        path = v->fw.failed_path, e = v->fw.errno_;
+        v->fw.failed = 2;
+    }
+    if (err && path)
+        fprintf(err, "error: %s: cannot write: %s\n", path, strerror(e));
+    return bad || v->failed ? -1 : 0;
+}
+
+void bk_vtk_close(bk_vtk *v)
+{
+    if (v->background)
+        bk_filewriter_close(&v->fw);
+    v->background = 0;
+    if (v->jobs)
+        free(v->jobs[0].q);              /* the block of every job's arrays */
+    free(v->jobs);
+    v->jobs = NULL;
+    free(v->times);
+    free(v->frames);
+    free(v->ref);
+    free(v->pts);
+    free(v->topo);
+    v->times = NULL;
+    v->frames = NULL;
+    v->ref = v->pts = NULL;
+    v->topo = NULL;
+}
+
+/* A ParaView collection DIR/NAME of n files: entry k is file_fmt with id[k] (k + 1
+ * when id is NULL) at time value t[k] (k + 1 when t is NULL); written to a
+ * temporary file and renamed, so a reader never sees half a collection. */
+static int write_collection(bk_vtk *v, const char *dir, const char *name, int n, const double *t, const int *id,
+                            const char *file_fmt)
+{
+    char path[1200], tmp[1210], file[64];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *fp = fopen(tmp, "w");
+    if (!fp) {
+        record_failure(v, tmp, errno);
+        return -1;
+    }
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
+    for (int k = 0; k < n; ++k) {
+        snprintf(file, sizeof file, file_fmt, id ? id[k] : k + 1);
+        fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"%s\"/>\n", t ? t[k] : (double)(k + 1),
+                file);
+    }
+    fprintf(fp, "  </Collection>\n</VTKFile>\n");
+    if (fclose(fp) != 0) {
+        record_failure(v, tmp, errno);
+        return -1;
+    }
+    if (rename(tmp, path) != 0) {
+        record_failure(v, path, errno);
+        return -1;
+    }
+    return 0;
+}
+
+static int write_pvd(bk_vtk *v)
+{
+    if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
+        bk_filewriter_drain(&v->fw);
+    return write_collection(v, v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
+}
+
+/* modes.pvd: mode_NN.vtu of modes 1..nmode, the mode number as the time value
+ * (ParaView's animation steps through the modes). */
+static int write_modes_pvd(bk_vtk *v)
+{
+    if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
+        bk_filewriter_drain(&v->fw);
+    return write_collection(v, v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
+}
+
+/* What a .vtu shows.  A step frame (mode == NULL): the points of q and their
+ * displacement from the reference.  A mode frame: the base state q displaced by
+ * scale * shape, where shape is the linearized motion of each point along the
+ * mode vector phi, (x(q + eps phi) - x(q - eps phi)) / (2 eps) / norm (exact for
+ * the continuum elements, whose points are linear in q). */
+typedef struct mode_view {
+    const double *qp, *qm;   /* q + eps phi, q - eps phi */
+    double eps, norm, scale;
+} mode_view;
+
+/* A mode frame's point (y, z) at station xi of element e: pass 0 the displaced
+ * point, 1 the scaled shape (displacement), 2 the shape. */
+static void point_value(const bk_model *m, const double *q, const mode_view *mv, int pass, int e, double xi,
+                        double y, double z, double *out)
+{
+    double x[3], a[3], sh[3];
+    section_point(m, mv->qp, e, xi, y, z, x);
+    section_point(m, mv->qm, e, xi, y, z, a);
+    for (int i = 0; i < 3; ++i)
+        sh[i] = (x[i] - a[i]) / (2.0 * mv->eps * mv->norm);
+    if (pass == 0) {
+        section_point(m, q, e, xi, y, z, x);
+        for (int i = 0; i < 3; ++i)
+            out[i] = x[i] + mv->scale * sh[i];
+    } else {
+        for (int i = 0; i < 3; ++i)
+            out[i] = pass == 1 ? mv->scale * sh[i] : sh[i];
+    }
+}
+
+long bk_vtk_npoints(const bk_model *m)
+{
+    long n = 0;
+    for (int e = 0; e < m->nelem; ++e)
+        n += (long)NX * ring_points(m, e) + NX;
+    return n;
+}
+
+void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, double eps, double *translation,
+                        double *rotation)
+{
+    double tmax = 0.0, rmax = 0.0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const double *g = m->geoms[m->elems[e].geom];
+        int r = ring_points(m, e);
+        for (int k = 0; k < NX; ++k) {
+            double xi = (double)k / (NX - 1), c[3], a[3], b[3];
+            section_point(m, qp, e, xi, 0.0, 0.0, a);
+            section_point(m, qm, e, xi, 0.0, 0.0, b);
+            for (int i = 0; i < 3; ++i)
+                c[i] = (a[i] - b[i]) / (2.0 * eps);
+            tmax = fmax(tmax, sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+            for (int j = 0; j < r; ++j) {
+                double y, z, d[3];
+                ring_yz(g, r, j, &y, &z);
+                section_point(m, qp, e, xi, y, z, a);
+                section_point(m, qm, e, xi, y, z, b);
+                for (int i = 0; i < 3; ++i)
+                    d[i] = (a[i] - b[i]) / (2.0 * eps);
+                tmax = fmax(tmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+                for (int i = 0; i < 3; ++i)
+                    d[i] -= c[i];
+                rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / sqrt(y * y + z * z));
+            }
+        }
+    }
+    *translation = tmax;
+    *rotation = rmax;
+}
+
+/* One XML UnstructuredGrid file: field data (name, value pairs), points,
+ * point data (displacement; mode_shape for modes), cell data (strain energy
+ * density, step frames only), cells.  The arrays are appended raw binary
+ * (little endian, a UInt64 byte count before each), which ParaView reads and
+ * which is written ~10 times faster than ASCII; the XML header names every
+ * array with its offset into the appended block. */
+static void put_u64(FILE *fp, uint64_t n)
+{
+    fwrite(&n, sizeof n, 1, fp);
+}
+
+/* The element's own stress resultants (sections.csv rows not "nodal") at xi:
+ * piecewise linear between its sample points, constant beyond the outer ones;
+ * a = 0: the force (N, Q2, Q3), 1: the moment (T, M2, M3); NaN without them. */
+static void stress_value(const bk_model *m, const double *ssec, int maxsample, int e, int a, double xi, double *x)
+{
+    const bk_pair *p = m->pairs[m->elems[e].pair];
+    const double *v = ssec + 6 * (size_t)maxsample * (size_t)e + 3 * a;
+    if (!p->sections || p->nsample < 1) {
+        x[0] = x[1] = x[2] = NAN;
+        return;
+    }
+    const double *xs = p->sample_xi;
+    int j = 0;
+    while (j + 2 < p->nsample && xi > xs[j + 1])
+        ++j;
+    double t = p->nsample == 1 ? 0.0 : (xi - xs[j]) / (xs[j + 1] - xs[j]);
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    for (int i = 0; i < 3; ++i)
+        x[i] = p->nsample == 1 ? v[i] : (1.0 - t) * v[6 * j + i] + t * v[6 * (j + 1) + i];
+}
+
+/* The points of a frame, in frame order (element, station, ring point; the
+ * centreline point last in each ring): 3 bk_vtk_npoints doubles into x; a step
+ * frame's (mv NULL) for coordinates q, else a mode frame's pass `pass`
+ * (point_value). */
+static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x)
+{
+    long np = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const double *g = m->geoms[m->elems[e].geom];
+        int r = ring_points(m, e);
+        for (int k = 0; k < NX; ++k) {
+            double xi = (double)k / (NX - 1);
+            for (int j = 0; j <= r; ++j) {
+                double y = 0.0, z = 0.0;
+                if (j < r)
+                    ring_yz(g, r, j, &y, &z);
+                if (mv)
+                    point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
+                else
+                    section_point(m, q, e, xi, y, z, x + 3 * np++);
+            }
+        }
+    }
+}
+
+/* Cells and connectivity entries of every frame of the model. */
+static void frame_cells(const bk_model *m, long *ncell, long *nconn)
+{
+    *ncell = *nconn = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        *ncell += (long)(NX - 1) * r + 1;
+        *nconn += 4L * (NX - 1) * r + NX;
+    }
+}
+
+/* Bytes of a connectivity or offset entry: Int32 while every point index and
+ * offset fits (always, short of some 50 million elements), else Int64. */
+static size_t index_size(long npts)
+{
+    return npts * 4 < INT32_MAX ? sizeof(int32_t) : sizeof(int64_t);
+}
+
+/* Appends index v to b as an index_size entry; returns the next position. */
+static unsigned char *put_index(unsigned char *b, int64_t v, size_t size)
+{
+    if (size == sizeof(int32_t)) {
+        int32_t w = (int32_t)v;
+        memcpy(b, &w, sizeof w);
+    } else {
+        memcpy(b, &v, sizeof v);
+    }
+    return b + size;
+}
+
+/* The cells block of every frame, as it is appended (byte count, connectivity;
+ * byte count, offsets; byte count, types), into buf; its size in bytes (buf
+ * NULL: the size only).  Point index of (element e, station k, ring point j) =
+ * base_e + k (r + 1) + j; j = r is the centreline point. */
+static size_t topology(const bk_model *m, unsigned char *buf)
+{
+    long ncell, nconn;
+    frame_cells(m, &ncell, &nconn);
+    const size_t isz = index_size(bk_vtk_npoints(m));
+    const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
+    const size_t size = 3 * sizeof(uint64_t) + sz_conn + sz_off + (size_t)ncell;
+    if (!buf)
+        return size;
+    unsigned char *b = buf;
+    memcpy(b, &sz_conn, sizeof sz_conn);
+    b += sizeof sz_conn;
+    int64_t base = 0, nv;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e), w = r + 1;
+        int64_t conn[4 * (NX - 1) * MAX_RING + NX];
+        nv = 0;
+        for (int k = 0; k + 1 < NX; ++k)
+            for (int j = 0; j < r; ++j) {
+                int j2 = (j + 1) % r;
+                conn[nv++] = base + k * w + j;
+                conn[nv++] = base + k * w + j2;
+                conn[nv++] = base + (k + 1) * w + j2;
+                conn[nv++] = base + (k + 1) * w + j;
+            }
+        for (int k = 0; k < NX; ++k)
+            conn[nv++] = base + k * w + r;
+        for (int64_t i = 0; i < nv; ++i)
+            b = put_index(b, conn[i], isz);
+        base += (int64_t)NX * w;
+    }
+    memcpy(b, &sz_off, sizeof sz_off);
+    b += sizeof sz_off;
+    int64_t o = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        for (int c = 0; c < (NX - 1) * r; ++c) {
+            o += 4;
+            b = put_index(b, o, isz);
+        }
+        o += NX;
+        b = put_index(b, o, isz);
+    }
+    const uint64_t nc = (uint64_t)ncell;
+    memcpy(b, &nc, sizeof nc);
+    b += sizeof nc;
+    for (int e = 0; e < m->nelem; ++e) {
+        int r = ring_points(m, e);
+        memset(b, 9, (size_t)(NX - 1) * r);              /* VTK_QUAD */
+        b += (size_t)(NX - 1) * r;
+        *b++ = 4;                                        /* VTK_POLY_LINE */
+    }
+    return size;
+}
+
+static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *const *fname, const double *fval,
+                         const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample,
+                         double *pts)
+{
+    const bk_model *m = v->m;
+    const long npts = v->npts, ncell = v->ncell, nconn = v->nconn;
+    int npass = mv ? 3 : 2;
+    /* byte sizes of the appended arrays, in the order they are written */
+    const uint64_t sz_pts = (uint64_t)npts * 3 * sizeof(double), sz_cell = (uint64_t)ncell * sizeof(double);
+    const size_t isz = index_size(npts);
+    const char *itype = isz == sizeof(int32_t) ? "Int32" : "Int64";
+    const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
+    uint64_t off = 0;
+    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+                "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n");
+    for (int f = 0; f < nfield; ++f)
+        fprintf(fp, "      <DataArray type=\"Float64\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n",
+                fname[f], fval[f]);
+    fprintf(fp, "    </FieldData>\n    <Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n", npts, ncell);
+    fprintf(fp, "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+                "offset=\"%llu\"/>\n      </Points>\n", (unsigned long long)off);
+    off += 8 + sz_pts;
+    fprintf(fp, "      <PointData Vectors=\"displacement\">\n        <DataArray type=\"Float64\" Name=\"displacement\" "
+                "NumberOfComponents=\"3\" format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)off);
+    off += 8 + sz_pts;
+    if (mv) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"mode_shape\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    /* section forces (N, Q2, Q3) and moments (T, M2, M3), linear along each element
+     * between its end values (sections.csv) */
+    for (int a = 0; sec && a < 2; ++a) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", a ? "section_moment" : "section_force",
+                (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    /* the elements' own stress resultants at their sample points, piecewise linear between them */
+    for (int a = 0; sec && ssec && a < 2; ++a) {
+        fprintf(fp, "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
+                    "format=\"appended\" offset=\"%llu\"/>\n", a ? "section_moment_stress" : "section_force_stress",
+                (unsigned long long)off);
+        off += 8 + sz_pts;
+    }
+    fprintf(fp, "      </PointData>\n");
+    if (!mv) {
+        fprintf(fp, "      <CellData Scalars=\"strain_energy_density\">\n        <DataArray type=\"Float64\" "
+                    "Name=\"strain_energy_density\" format=\"appended\" offset=\"%llu\"/>\n      </CellData>\n",
+                (unsigned long long)off);
+        off += 8 + sz_cell;
+    }
+    fprintf(fp, "      <Cells>\n        <DataArray type=\"%s\" Name=\"connectivity\" format=\"appended\" "
+                "offset=\"%llu\"/>\n", itype, (unsigned long long)off);
+    off += 8 + sz_conn;
+    fprintf(fp, "        <DataArray type=\"%s\" Name=\"offsets\" format=\"appended\" offset=\"%llu\"/>\n",
+            itype, (unsigned long long)off);
+    off += 8 + sz_off;
+    fprintf(fp, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"%llu\"/>\n"
+                "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _",
+            (unsigned long long)off);
+    /* points, displacements (and mode shapes): the same traversal each time; a
+     * step frame's points once, its displacements from the reference points of
+     * bk_vtk_open */
+    const size_t n3 = 3 * (size_t)npts;
+    for (int pass = 0; pass < npass; ++pass) {
+        put_u64(fp, sz_pts);
+        if (!mv && pass == 1)
+            for (size_t i = 0; i < n3; ++i)
+                pts[i] -= v->ref[i];
+        else
+            frame_points(m, q, mv, pass, pts);
+        fwrite(pts, sizeof(double), n3, fp);
+    }
+    for (int a = 0; sec && a < 2; ++a) {
+        put_u64(fp, sz_pts);
+        for (int e = 0; e < m->nelem; ++e) {
+            int r = ring_points(m, e);
+            const double *v0 = sec + 12 * (size_t)e + 3 * a, *v1 = v0 + 6;
+            double vals[3 * NX * (MAX_RING + 1)];
+            int np = 0;
+            for (int k = 0; k < NX; ++k) {
+                double xi = (double)k / (NX - 1), x[3];
+                for (int i = 0; i < 3; ++i)
+                    x[i] = (1.0 - xi) * v0[i] + xi * v1[i];
+                for (int j = 0; j <= r; ++j, ++np)
+                    memcpy(vals + 3 * np, x, sizeof x);
+            }
+            fwrite(vals, sizeof(double), 3 * (size_t)np, fp);
+        }
+    }
+    for (int a = 0; sec && ssec && a < 2; ++a) {
+        put_u64(fp, sz_pts);
+        for (int e = 0; e < m->nelem; ++e) {
+            int r = ring_points(m, e);
+            double vals[3 * NX * (MAX_RING + 1)];
+            int np = 0;
+            for (int k = 0; k < NX; ++k) {
+                double x[3];
+                stress_value(m, ssec, maxsample, e, a, (double)k / (NX - 1), x);
+                for (int j = 0; j <= r; ++j, ++np)
+                    memcpy(vals + 3 * np, x, sizeof x);
+            }
+            fwrite(vals, sizeof(double), 3 * (size_t)np, fp);
+        }
+    }
+    if (!mv) {
+        put_u64(fp, sz_cell);
+        double qe[BK_MAX_ELEMENT_DOF];
+        for (int e = 0; e < m->nelem; ++e) {
+            const bk_elem *el = &m->elems[e];
+            const bk_pair *p = m->pairs[el->pair];
+            bk_gather(m, e, q, qe);
+            const double *g = m->geoms[el->geom];
+            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
+            int r = ring_points(m, e), nc = (NX - 1) * r + 1;
+            double vals[(NX - 1) * MAX_RING + 1];
+            for (int c = 0; c < nc; ++c)
+                vals[c] = dens;
+            fwrite(vals, sizeof dens, (size_t)nc, fp);
+        }
+    }
+    fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (topology) */
+    fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
+}
+
+/* A frame of job (bk_filewriter_make: called by the writer's thread). */
+static void frame_job(const void *job, FILE *fp)
+{
+    const bk_vtk_job *j = job;
+    const mode_view mv = {j->qp, j->qm, j->eps, j->norm, j->scale};
+    vtu_contents(j->v, fp, j->nfield, j->fname, j->fval, j->q, j->is_mode ? &mv : NULL, j->with_sec ? j->sec : NULL,
+                 j->with_ssec ? j->ssec : NULL, j->maxsample, j->pts);
+}
+
+/* The frame file `path`: its inputs copied for the background writer's thread,
+ * which makes, creates and writes it; or made and written here (no writer, a
+ * large frame). */
+static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
+                     const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
+{
+    v->written++;
+    const int b = v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(&v->fw) : -1;
+    if (b >= 0) {
+        const bk_model *m = v->m;
+        const size_t nq = (size_t)m->ndof;
+        bk_vtk_job *j = &v->jobs[b];
+        j->nfield = nfield;
+        j->fname = fname;
+        memcpy(j->fval, fval, (size_t)nfield * sizeof *fval);
+        memcpy(j->q, q, nq * sizeof *q);
+        j->is_mode = mv != NULL;
+        if (mv) {
+            memcpy(j->qp, mv->qp, nq * sizeof *q);
+            memcpy(j->qm, mv->qm, nq * sizeof *q);
+            j->eps = mv->eps, j->norm = mv->norm, j->scale = mv->scale;
+        }
+        j->with_sec = sec != NULL;
+        j->with_ssec = sec && ssec;      /* (vtu_contents: the stress arrays go with the section forces) */
+        j->maxsample = maxsample;
+        if (j->with_sec)
+            memcpy(j->sec, sec, 12 * (size_t)m->nelem * sizeof *sec);
+        if (j->with_ssec)
+            memcpy(j->ssec, ssec, 6 * (size_t)maxsample * (size_t)m->nelem * sizeof *ssec);
+        /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
+        bk_filewriter_submit_job(&v->fw, b, path, frame_job, j);
+        return 0;
+    }
+    FILE *fp = fopen(path, "wb");
+    if (!fp) {
+        record_failure(v, path, errno);
+        return -1;
+    }
+    char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
+    setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
+    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
+    if (fclose(fp) != 0) {                        /* (flushes iobuf before it goes out of scope) */
+        record_failure(v, path, errno);
+        return -1;
+    }
+    return 0;
+}
+
+int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
+{
+    (void)s;
+    if (v->every <= 0)
+        return 0;
+    if (v->calls++ % v->every != 0 && step >= 0)
+        return 0;
+    if (v->nframe == v->cap) {                       /* grow (rare: capacity is estimated) */
+        int cap = 2 * v->cap;
+        double *nt = realloc(v->times, (size_t)cap * sizeof *nt);
+        if (!nt)
+            return -1;
+        v->times = nt;
+        int *nf = realloc(v->frames, (size_t)cap * sizeof *nf);
+        if (!nf)
+            return -1;
+        v->frames = nf;
+        v->cap = cap;
+    }
+    int frame = step < 0 ? -step : step;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
+    const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
+    const bk_model *m = v->m;
+    double frac = -1.0;
+    if (m->analysis == BK_DYNAMIC && m->dyn.t_end > 0.0)
+        frac = t / m->dyn.t_end;
+    else if (m->analysis == BK_STATIC && !m->stat.arc_length && m->stat.cycles == 0)
+        frac = t;                                    /* the load factor, 0 -> 1 */
+    maybe_background(v, frac);
+    static const char *const names[] = {"TIME"};
+    if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
+        return -1;
+    v->times[v->nframe] = t;
+    v->frames[v->nframe] = frame;
+    v->nframe++;
+    v->pvd_stale = 1;
+    return bk_clock_s() - v->t_pvd >= BK_PVD_INTERVAL ? bk_vtk_flush(v) : 0;
+}
+
+int bk_vtk_flush(bk_vtk *v)
+{
+    if (v->every <= 0 || !v->pvd_stale)
+        return 0;
+    v->pvd_stale = 0;
+    v->t_pvd = bk_clock_s();
+    return write_pvd(v);
+}
+
+int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, double norm, const double *q,
+                const double *qp, const double *qm, double eps)
+{
+    if (v->every <= 0)
+        return 0;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/mode_%02d.vtu", v->dir, mode);
+    static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
+    const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
+    mode_view mv = {qp, qm, eps, norm, scale};
+    maybe_background(v, v->m->modal.nmodes > 0 ? (double)mode / v->m->modal.nmodes : -1.0);
+    if (write_vtu(v, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
+        return -1;
+    if (mode > v->nmode)
+        v->nmode = mode;
+    return write_modes_pvd(v);
+}
