@@ -10,11 +10,9 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "analysis/dynamics.h"
+#include "analysis/analysis.h"
 #include "base/interrupt.h"
-#include "analysis/modal.h"
 #include "model/model.h"
-#include "analysis/newton.h"
 #include "output/output.h"
 #include "assembly/system.h"
 
@@ -84,13 +82,12 @@ int main(int argc, char **argv)
         return 1;
     }
     bk_run_info info = {0};
-    int rc;
-    if (m->analysis == BK_DYNAMIC)
-        rc = bk_solve_dynamic(s, q, &out, &info, verbose ? stderr : NULL);
-    else if (m->analysis == BK_MODAL)
-        rc = bk_solve_modal(s, q, &out, &info, verbose ? stderr : NULL);
+    const bk_analysis_module *an = bk_analysis_for(m);
+    int rc = 1;
+    if (an)
+        rc = an->run(s, q, &out, &info, verbose ? stderr : NULL);
     else
-        rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
+        snprintf(info.message, sizeof info.message, "no analysis module of this solver runs the model's analysis");
     bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
     /* every table on disk before the summary, and inside wall_s and output_s

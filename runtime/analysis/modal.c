@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/newton.h"
+#include "analysis/static.h"
 
 #define BK_MODAL_MAXDOF 4000
 

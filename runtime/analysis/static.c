@@ -1,0 +1,198 @@
+/* static.c -- statics by load control: the load factor from 0 to 1 (and
+ * static.cycles times back and forth) in increments that adapt to the Newton
+ * iterations and are cut back on failure; the analysis module "static" (see
+ * analysis.h) unless static.method = "arc_length" (continuation.c). */
+#include "analysis/static.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "analysis/static_problem.h"
+#include "assembly/quaternion.h"
+#include "base/interrupt.h"
+
+/* The next load increment after one that converged in `iters` iterations.
+ * Fixed control (static.step_control = "fixed", or no cut-backs allowed):
+ * back towards the initial increment after easy steps.  Adaptive control (the
+ * default): grow by 2 after an increment of at most 3 iterations, by 1.5 after
+ * one of at most TARGET_ITERS, not right after a cut-back (two converged
+ * increments first), never beyond the leg; an increment that needs many
+ * iterations is kept (slowly converging problems need them at any size) and
+ * one that fails is cut back. */
+#define TARGET_ITERS 6
+static double next_increment(const bk_static_opts *o, double dlam, double dlam0, int iters, int calm)
+{
+    if (!o->adaptive || o->max_cutbacks == 0)
+        return iters <= 6 && dlam < dlam0 ? fmin(2.0 * dlam, dlam0) : dlam;
+    double f = iters <= 3 ? 2.0 : iters <= TARGET_ITERS ? 1.5 : 1.0;
+    if (calm < 2)
+        f = fmin(f, dlam < dlam0 ? 2.0 : 1.0);      /* after a cut-back: back to dlam0 at most */
+    return fmin(fmin(dlam * f, calm < 2 ? fmax(dlam0, dlam) : 1.0), 1.0);
+}
+
+int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    const bk_model *m = s->m;
+    const bk_static_opts *o = &m->stat;
+    int nd = m->ndof, nc = s->ncon > 0 ? s->ncon : 1;
+    static_run R;
+    int rc = 1;
+    if (bk_static_begin(&R, s, q, out, info, log, 1) != 0)
+        goto done;
+    work *w = &R.w;
+    /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
+     * show path independence); each leg in load_steps increments. */
+    double lam = 0.0, lam_prev = 0.0, dlam0 = 1.0 / o->load_steps, dlam = dlam0;
+    int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0, warned_singular = 0;
+    int cuts_since_growth_ok = 2;      /* converged increments since the last cut-back (at most 2) */
+    attempt a = {0};
+    for (int leg = 0; leg < nleg; ++leg) {
+        double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
+        dlam = dlam0;
+        have_prev = 0;
+        while (dir * (goal - lam) > 0.0) {
+            double target = lam + dir * dlam;
+            if (dir * (goal - target) < 1e-12)
+                target = goal;
+            memcpy(w->qsave, q, (size_t)nd * sizeof *q);
+            memcpy(w->nusave, w->nu, (size_t)nc * sizeof *w->nu);
+            /* Secant predictor: extrapolate the last two equilibria of this
+             * leg to the target load. */
+            if (o->predictor && have_prev && lam != lam_prev) {
+                double c = (target - lam) / (lam - lam_prev);
+                for (int i = 0; i < nd; ++i)
+                    q[i] += c * (q[i] - w->qprev[i]);
+                for (int k = 0; k < s->ncon; ++k)
+                    w->nu[k] += c * (w->nu[k] - w->nuprev[k]);
+                bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
+            }
+            /* Attempts: Newton from the predicted state, then from the last
+             * equilibrium; then the increment is cut back. */
+            int st = NEWTON_MAXIT;
+            for (int k = 0; k < 2 && st != NEWTON_OK && st != NEWTON_INTERRUPTED; ++k) {
+                int predicted = k == 0 && o->predictor && have_prev;
+                if (k == 0 && !predicted)
+                    continue;
+                if (k > 0) {
+                    memcpy(q, w->qsave, (size_t)nd * sizeof *q);
+                    memcpy(w->nu, w->nusave, (size_t)nc * sizeof *w->nu);
+                }
+                a.id++;
+                st = bk_static_newton(s, &R.nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1, &R.ref);
+                info->newton_iterations += a.iters;
+            }
+            int assembled = 1;           /* w->Ax: the matrix at q (a converged solve ends on it) */
+            if (R.ref.state != 0) {         /* the reference state's check, before this step's */
+                const int probe = R.ref.state != 2;   /* no Newton matrix was made at it, or not checked */
+                if (probe) {
+                    bk_static_probe_stability(&R.stab, s, w, m->q0, 0.0, 0, &R.ref.res);
+                    assembled = 0;
+                }
+                bk_static_accept_stability(&R.stab, &R.ref.res, 0.0, out, info, log, &R.prev_lam, probe);
+                R.ref.state = 0;
+            }
+            /* On a stable path (static.stable_path), an increment that ends
+             * at an equilibrium with more negative eigenvalues than the last
+             * one is cut back while cut-backs remain: with an imperfection
+             * the stable branch is reached with smaller increments; without,
+             * the bifurcation is bracketed as closely as the cut-backs allow
+             * and then passed (and reported). */
+            if (st == NEWTON_OK && R.have_stab) {
+                int c = bk_static_probe_stability(&R.stab, s, w, q, target, assembled, &R.sres);
+                /* not for an eigenvalue at round-off level (the count is
+                 * uncertain there) nor below a millionth of the increment */
+                if (o->stable_path && c > max_negative && cuts_in_row < o->max_cutbacks &&
+                    dlam > 1e-6 * dlam0)
+                    st = NEWTON_UNSTABLE;
+            }
+            if (st == NEWTON_OK) {
+                if (isfinite(a.rcond) && a.rcond < ILL_RCOND && !warned_singular++)
+                    bk_warn(info, out->console, m->name,
+                            "numerically singular tangent at the equilibrium of load factor %.6g (pivot "
+                            "ratio %.1e): the solution is not unique; likely cause: a rigid motion or "
+                            "mechanism the constraints leave free (e.g. the rotation of a beam about its own "
+                            "axis at a spherical joint), or a bifurcation point", target, a.rcond);
+                memcpy(w->qprev, w->qsave, (size_t)nd * sizeof *q);
+                memcpy(w->nuprev, w->nusave, (size_t)nc * sizeof *w->nu);
+                lam_prev = lam;
+                have_prev = 1;
+                lam = target;
+                info->steps++;
+                info->load_factor = lam;
+                bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w->nu);
+                bk_output_step(out, info->steps, lam, q);
+                bk_checks_state(&R.chk, s, q, "load factor", lam, info, out->console);
+                cuts_in_row = 0;
+                if (cuts_since_growth_ok < 2)
+                    cuts_since_growth_ok++;
+                dlam = next_increment(o, dlam, dlam0, a.iters, cuts_since_growth_ok);
+                if (log)
+                    fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
+                            info->steps, lam, a.iters, a.rnorm);
+                if (R.have_stab) {
+                    bk_static_accept_stability(&R.stab, &R.sres, lam, out, info, log, &R.prev_lam, 1);
+                    /* the count may flicker at a nearly singular state: only
+                     * a count above every one accepted so far is a new loss
+                     * of stability */
+                    if (info->negative_eigenvalues > max_negative)
+                        max_negative = info->negative_eigenvalues;
+                }
+                bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
+                                   a.iters, a.rnorm);
+                continue;
+            }
+            memcpy(q, w->qsave, (size_t)nd * sizeof *q);
+            memcpy(w->nu, w->nusave, (size_t)nc * sizeof *w->nu);
+            if (st == NEWTON_INTERRUPTED) {
+                info->interrupted = a.signo;
+                snprintf(info->message, sizeof info->message,
+                         "interrupted by %s during step %d at load factor %.6g; the %d converged steps (last "
+                         "load factor %.6g) are kept", bk_interrupt_name(a.signo), info->steps + 1, target,
+                         info->steps, lam);
+                goto done;
+            }
+            /* A tangent singular at the last equilibrium itself (iteration 0
+             * without predictor) does not depend on the increment: cutting
+             * back cannot help. */
+            int hopeless = st == NEWTON_SINGULAR && a.singular_at_start && !(o->predictor && have_prev);
+            if (cuts_in_row >= o->max_cutbacks || hopeless) {
+                char what[600], incr[64];
+                bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                if (a.iters > 0 && isfinite(a.dnorm))
+                    snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
+                else
+                    incr[0] = 0;
+                snprintf(info->message, sizeof info->message,
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
+                         "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s",
+                         info->steps + 1, target, lam, what, a.rnorm, a.rtol_abs, incr, a.iters,
+                         a.iters == 1 ? "" : "s", cuts_in_row, cuts_in_row == 1 ? "" : "s",
+                         hopeless ? " (a tangent singular at the last equilibrium does not improve with smaller "
+                                    "increments)"
+                         : info->negative_eigenvalues > 0 && info->steps > 0
+                             ? "; the last equilibrium was unstable (negative tangent eigenvalues): "
+                               "a bifurcation or limit point was passed"
+                             : "");
+                goto done;
+            }
+            cuts_in_row++;
+            info->cutbacks++;
+            dlam *= 0.5;
+            cuts_since_growth_ok = 0;
+            if (dlam <= 1e-14 * fmax(fabs(lam), 1.0)) {
+                snprintf(info->message, sizeof info->message,
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): the load "
+                         "increment fell below round-off after repeated cut-backs (last: %s); residual %.3e, "
+                         "last increment %.3e after %d iterations",
+                         info->steps + 1, target, lam, bk_static_why(st), a.rnorm, a.dnorm, a.iters);
+                goto done;
+            }
+            if (log)
+                fprintf(log, "  cut-back at load factor %.6g (%s): new increment %.3g\n", target, bk_static_why(st), dlam);
+        }
+    }
+    rc = 0;
+done:
+    bk_static_end(&R, info, rc);
+    return rc;
+}
