@@ -13,7 +13,7 @@ static int runs_dynamic(const bk_model *m) { return m->analysis == BK_DYNAMIC; }
 static int runs_modal(const bk_model *m) { return m->analysis == BK_MODAL; }
 
 static const bk_analysis_module table[] = {
-    {"static", runs_static, bk_solve_static},
+    {"static", runs_static, bk_run_static},
     {"continuation", runs_continuation, bk_solve_continuation},
     {"dynamic", runs_dynamic, bk_solve_dynamic},
     {"modal", runs_modal, bk_solve_modal},

@@ -250,7 +250,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     lam, dl, a.iters, a.rnorm);
         if (have_stab) {
             bk_static_probe_stability(stab, s, w, q, lam, 0, &sres);
-            bk_static_accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1);
+            bk_static_accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1, w->stability_csv);
         }
         /* a change of the negative-eigenvalue count in the last step without
          * a limit point: a bifurcation candidate (its load factor from the
@@ -374,7 +374,7 @@ int bk_solve_continuation(bk_system *s, double *q, bk_output *out, bk_run_info *
 {
     static_run R;
     int rc = 1;
-    if (bk_static_begin(&R, s, q, out, info, log, 0) == 0)
+    if (bk_static_begin(&R, s, q, out, info, log, 0, 1) == 0)
         rc = arc_length(s, &R.nl, &R.w, q, out, info, log, &R.stab, R.have_stab, &R.chk);
     bk_static_end(&R, info, rc);
     return rc;

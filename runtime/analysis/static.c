@@ -30,14 +30,14 @@ static double next_increment(const bk_static_opts *o, double dlam, double dlam0,
     return fmin(fmin(dlam * f, calm < 2 ? fmax(dlam0, dlam) : 1.0), 1.0);
 }
 
-int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, int tables)
 {
     const bk_model *m = s->m;
     const bk_static_opts *o = &m->stat;
     int nd = m->ndof, nc = s->ncon > 0 ? s->ncon : 1;
     static_run R;
     int rc = 1;
-    if (bk_static_begin(&R, s, q, out, info, log, 1) != 0)
+    if (bk_static_begin(&R, s, q, out, info, log, 1, tables) != 0)
         goto done;
     work *w = &R.w;
     /* Load path: 0 -> 1, then `cycles` times 1 -> 0 -> 1 (load-unload cycles, to
@@ -88,7 +88,8 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     bk_static_probe_stability(&R.stab, s, w, m->q0, 0.0, 0, &R.ref.res);
                     assembled = 0;
                 }
-                bk_static_accept_stability(&R.stab, &R.ref.res, 0.0, out, info, log, &R.prev_lam, probe);
+                bk_static_accept_stability(&R.stab, &R.ref.res, 0.0, out, info, log, &R.prev_lam, probe,
+                                           w->stability_csv);
                 R.ref.state = 0;
             }
             /* On a stable path (static.stable_path), an increment that ends
@@ -130,7 +131,7 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                     fprintf(log, "  step %d: load factor %.6g, %d iterations, residual %.3e\n",
                             info->steps, lam, a.iters, a.rnorm);
                 if (R.have_stab) {
-                    bk_static_accept_stability(&R.stab, &R.sres, lam, out, info, log, &R.prev_lam, 1);
+                    bk_static_accept_stability(&R.stab, &R.sres, lam, out, info, log, &R.prev_lam, 1, w->stability_csv);
                     /* the count may flicker at a nearly singular state: only
                      * a count above every one accepted so far is a new loss
                      * of stability */
@@ -195,4 +196,14 @@ int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
 done:
     bk_static_end(&R, info, rc);
     return rc;
+}
+
+int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    return load_control(s, q, out, info, log, 0);
+}
+
+int bk_run_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    return load_control(s, q, out, info, log, 1);
 }

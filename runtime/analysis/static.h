@@ -20,7 +20,11 @@
 /* Both solve in place: q holds the reference configuration on entry and the
  * last converged configuration on return.  Return 0 when the full load (the
  * path's end) was reached, 1 otherwise (info->message says where and why). */
-int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
+int bk_run_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
 int bk_solve_continuation(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
+
+/* Load control as another analysis's first stage (modal about a loaded state):
+ * no newton.csv, no stability.csv. */
+int bk_solve_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
 
 #endif

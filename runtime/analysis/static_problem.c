@@ -226,7 +226,7 @@ int bk_static_probe_stability(bk_stability *st, bk_system *s, work *w, const dou
  * one, records the event with the interpolated critical load factor.
  * matrix: the checker accepts the probed matrix too (0: it did already). */
 void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
-                             bk_run_info *info, FILE *log, double *prev_lam, int matrix)
+                             bk_run_info *info, FILE *log, double *prev_lam, int matrix, FILE *table)
 {
     const char *s_name = out->m->name;
     int before = info->negative_eigenvalues;
@@ -257,12 +257,42 @@ void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res
     if (res->ok && matrix)
         bk_stability_accept(st);
     *prev_lam = lam;
-    bk_output_stability(out, info->steps, lam, res->ok ? res->negative : -1, res->eig_min, res->eig_max);
+    if (table) {
+        double t0 = bk_clock_s();
+        bk_row r;                    /* step,load_factor,negative_eigenvalues,eig_min,eig_max */
+        bk_output_row(out, &r, table);
+        bk_row_int(&r, info->steps);
+        bk_row_num(&r, lam);
+        bk_row_int(&r, res->ok ? res->negative : -1);
+        bk_row_e(&r, res->eig_min, 9);
+        bk_row_e(&r, res->eig_max, 6);
+        bk_output_row_end(out, &r, t0, 1);
+    }
 }
 
 
+/* A row of newton.csv (the nonlinear solver's record of an iteration). */
+static void newton_row(void *ctx, const bk_nl_row *row, int iter, double rnorm, double ref, double increment,
+                       double alpha, double rcond)
+{
+    const work *w = ctx;
+    double t0 = bk_clock_s();
+    bk_row r;                        /* attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond */
+    bk_output_row(w->out, &r, w->newton_csv);
+    bk_row_int(&r, row->attempt);
+    bk_row_int(&r, row->step);
+    bk_row_num(&r, row->lam);
+    bk_row_int(&r, iter);
+    bk_row_e(&r, rnorm, 6);
+    bk_row_e(&r, ref, 6);
+    bk_row_e(&r, increment, 6);
+    bk_row_g(&r, alpha, 6);
+    bk_row_e(&r, rcond, 3);
+    bk_output_row_end(w->out, &r, t0, 0);
+}
+
 int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log,
-                    int reference_on_first)
+                    int reference_on_first, int tables)
 {
     const bk_model *m = s->m;
     const bk_static_opts *o = &m->stat;
@@ -270,6 +300,20 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
     int nd = m->ndof, nc = s->ncon > 0 ? s->ncon : 1;
     memset(R, 0, sizeof *R);
     R->ref.st = &R->stab;
+    w->out = out;
+    if (tables) {
+        if (!(w->newton_csv = bk_output_table(out, "newton.csv", "attempt,step,load_factor,iteration,residual,"
+                                              "reference,increment,alpha,rcond\n", stderr))) {
+            snprintf(info->message, sizeof info->message, "cannot write newton.csv");
+            return 1;
+        }
+        if (o->stability &&
+            !(w->stability_csv = bk_output_table(out, "stability.csv", "step,load_factor,negative_eigenvalues,"
+                                                 "eig_min,eig_max\n", stderr))) {
+            snprintf(info->message, sizeof info->message, "cannot write stability.csv");
+            return 1;
+        }
+    }
     w->fint = calloc((size_t)nd, sizeof(double));
     w->fext = calloc((size_t)nd, sizeof(double));
     w->qsave = calloc((size_t)nd, sizeof(double));
@@ -286,8 +330,12 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         return 1;
     }
     R->have_nl = 1;
-    if (bk_nl_init(&R->nl, s, out, info->message, sizeof info->message) != 0)
+    if (bk_nl_init(&R->nl, s, info->message, sizeof info->message) != 0)
         return 1;
+    if (w->newton_csv) {
+        R->nl.on_iteration = newton_row;
+        R->nl.iteration_ctx = w;
+    }
     w->r = R->nl.r, w->dx = R->nl.dx, w->Ax = R->nl.Ax, w->norms = &R->nl.norms;
     w->quat = bk_quat_list(s, &w->nquat);
     if (w->nquat < 0 || bk_checks_init(&R->chk, s) != 0) {
@@ -326,7 +374,7 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         R->ref.state = 1;                /* on the first Newton matrix (at q0) */
     else if (R->have_stab) {
         bk_static_probe_stability(&R->stab, s, w, q, 0.0, 0, &R->sres);
-        bk_static_accept_stability(&R->stab, &R->sres, 0.0, out, info, log, &R->prev_lam, 1);
+        bk_static_accept_stability(&R->stab, &R->sres, 0.0, out, info, log, &R->prev_lam, 1, w->stability_csv);
     }
     return 0;
 }

@@ -21,6 +21,9 @@ typedef struct work {
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
     const bk_norms *norms;           /* rotation-invariant measures (the solver's) */
+    FILE *newton_csv;                /* newton.csv: a row per Newton iteration (NULL: none) */
+    FILE *stability_csv;             /* stability.csv: a row per stability check (NULL: none) */
+    bk_output *out;                  /* where they are registered */
 } work;
 
 /* One Newton solve: its outcome and counters. */
@@ -93,10 +96,11 @@ typedef struct static_run {
  * stability checker; sets q to the reference state, the dead load, the
  * constraint scale; writes the reference state's output rows and checks its
  * stability (now, or on the first Newton matrix when reference_on_first and
- * that matrix is the reference state's).  Returns 0, or 1 with info->message
+ * that matrix is the reference state's); tables: newton.csv and (with
+ * static.stability) stability.csv are opened and written.  Returns 0, or 1 with info->message
  * set (bk_static_end frees what was made). */
 int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log,
-                    int reference_on_first);
+                    int reference_on_first, int tables);
 /* Counters into info; frees what bk_static_begin made.  rc: the path's result. */
 void bk_static_end(static_run *R, bk_run_info *info, int rc);
 
@@ -115,6 +119,6 @@ int bk_static_matrix_free_of_load(const bk_system *s);
 int bk_static_probe_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
                               int assembled, bk_stability_result *res);
 void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
-                                bk_run_info *info, FILE *log, double *prev_lam, int matrix);
+                                bk_run_info *info, FILE *log, double *prev_lam, int matrix, FILE *table);
 
 #endif

@@ -259,6 +259,16 @@ void bk_rowqueue_stop(bk_rowqueue *q)
     memset(q, 0, sizeof *q);
 }
 
+int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp)
+{
+    if (!q->w)
+        return 0;
+    for (int t = 0; t < q->nfp; ++t)
+        if (q->fp[t] == fp)
+            return 1;
+    return 0;
+}
+
 /* ---- the row API: recorded when fp is one of a started queue's streams ---- */
 
 void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q)

@@ -70,6 +70,8 @@ typedef struct bk_row {
 int bk_rowqueue_start(bk_rowqueue *q, struct bk_filewriter *w, FILE *const *fp, int n);
 void bk_rowqueue_submit(bk_rowqueue *q, int flush);
 void bk_rowqueue_stop(bk_rowqueue *q);
+/* 1 when q is started and fp is one of its streams (the writer thread's). */
+int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp);
 
 /* q: NULL or not started, or fp not one of its streams: formatted here. */
 void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q);

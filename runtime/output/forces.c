@@ -12,7 +12,7 @@
 
 enum { K_NONE = 0, K_POS = 1, K_GRAD = 2, K_QUAT = 3 };
 
-int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
+int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
 {
     memset(f, 0, sizeof *f);
     f->m = m;
@@ -95,24 +95,19 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err)
         }
     }
     if (m->nreaction > 0 &&
-        !(f->reactions = bk_table_open(dir, "reactions.csv", "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n",
-                                       &f->tbuf[0], err)))
+        !(f->reactions = bk_tables_open(ts, dir, "reactions.csv",
+                                        "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
         return -1;
     if (m->nsection > 0 && m->analysis != BK_MODAL &&
-        !(f->sections = bk_table_open(dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,"
-                                      "M2,M3\n", &f->tbuf[1], err)))
+        !(f->sections = bk_tables_open(ts, dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,"
+                                       "Q3,T,M2,M3\n", 1, err)))
         return -1;
     return 0;
 }
 
 void bk_forces_close(bk_forces *f)
 {
-    if (f->reactions)
-        fclose(f->reactions);
-    if (f->sections)
-        fclose(f->sections);
-    free(f->tbuf[0]);
-    free(f->tbuf[1]);
+    f->reactions = f->sections = NULL;   /* the run's tables close them */
     free(f->fld);
     free(f->kind);
     free(f->comp);

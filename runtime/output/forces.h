@@ -34,13 +34,13 @@
 #include <stdio.h>
 
 #include "output/csvrow.h"
+#include "output/tables.h"
 
 #include "assembly/system.h"
 
 typedef struct bk_forces {
     const bk_model *m;
-    FILE *reactions, *sections;   /* owned */
-    char *tbuf[2];                /* owned: their stdio buffers (csvrow.h bk_table_open) */
+    FILE *reactions, *sections;   /* registered in the run's tables (tables.h), which close them */
     bk_rowqueue *rq;              /* not owned: the rows' queue to a writer thread (output.c), or NULL */
     int *fld;                     /* [4 ndof] global DOFs of the field of each DOF (-1 unused) */
     signed char *kind, *comp;     /* [ndof] 0 none, 1 position, 2 gradient, 3 quaternion; component */
@@ -59,7 +59,9 @@ typedef struct bk_forces {
                                    * resultants at its sample points, step sec_step (NaN: none) */
 } bk_forces;
 
-int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, FILE *err);
+/* Opens reactions.csv and sections.csv (when the model has reactions and
+ * sections) in dir, registered in ts.  0, or -1 with a message on err. */
+int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err);
 /* Rows of reactions.csv and, when with_sections, of sections.csv for the
  * state q at x (time or load factor); qd, qdd: velocities and accelerations
  * (NULL in statics); nu: the constraint multipliers (NULL: unknown, the linear

@@ -27,20 +27,10 @@ static void spent(bk_output *o, double t0)
  * much of its tables; an interrupted one (SIGINT/SIGTERM) loses nothing. */
 #define BK_FLUSH_INTERVAL 0.5
 
-/* The run's result tables (each NULL when the run has none) and their file
- * names, in one place for the flushes and the closes. */
-#define BK_NTABLES 8
-static void table_list(bk_output *o, FILE **fp[BK_NTABLES], const char *name[BK_NTABLES])
+/* A table the writer thread holds (not to be flushed here). */
+static int queued(void *ctx, FILE *fp)
 {
-    static const char *const names[BK_NTABLES] = {"sensors.csv", "energy.csv", "newton.csv", "stability.csv",
-                                                  "modes.csv", "mode_sensors.csv", "reactions.csv", "sections.csv"};
-    FILE **const all[BK_NTABLES] = {&o->sensors, &o->energy, &o->newton, &o->stability,
-                                    &o->modes, &o->mode_sensors, &o->forces.reactions, &o->forces.sections};
-    for (int k = 0; k < BK_NTABLES; ++k) {
-        fp[k] = all[k];
-        if (name)
-            name[k] = names[k];
-    }
+    return bk_rowqueue_owns(ctx, fp);
 }
 
 /* spent, and the tables flushed when due (one reading of the clock for both
@@ -51,15 +41,9 @@ static void spent_flush(bk_output *o, double t0)
     double now = bk_clock_s();
     if (now - o->t_flush >= BK_FLUSH_INTERVAL) {
         o->t_flush = now;
-        if (o->rq.w) {
+        if (o->rq.w)
             bk_rowqueue_submit(&o->rq, 1);
-        } else {
-            FILE **fp[BK_NTABLES];
-            table_list(o, fp, NULL);
-            for (int k = 0; k < BK_NTABLES; ++k)
-                if (*fp[k])
-                    fflush(*fp[k]);
-        }
+        bk_tables_flush(&o->tables, queued, &o->rq);
         now = bk_clock_s();
     }
     o->t_output += now - t0;
@@ -73,8 +57,9 @@ static void rows_to_writer(bk_output *o)
     if (o->rq.w || !o->vtk.background || !o->vtk.fw.threaded)
         return;
     /* the tables written with bk_row (the mode tables are not) */
-    FILE *const list[] = {o->sensors, o->energy, o->newton, o->stability, o->forces.reactions, o->forces.sections};
-    if (bk_rowqueue_start(&o->rq, &o->vtk.fw, list, (int)(sizeof list / sizeof *list)) == 0)
+    FILE *list[BK_ROWQ_TABLES];
+    int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
+    if (bk_rowqueue_start(&o->rq, &o->vtk.fw, list, n) == 0)
         o->forces.rq = &o->rq;
 }
 
@@ -103,8 +88,8 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     }
     o->m = m;
     snprintf(o->dir, sizeof o->dir, "%s", dir);
-    o->sensors = bk_table_open(dir, "sensors.csv", "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,"
-                               "d3y,d3z\n", &o->tbuf[0], err);
+    o->sensors = bk_tables_open(&o->tables, dir, "sensors.csv", "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,"
+                                "d2y,d2z,d3x,d3y,d3z\n", 1, err);
     if (!o->sensors)
         return -1;
     o->sensor_p0 = malloc((3 * (size_t)m->nsensor + 1) * sizeof *o->sensor_p0);
@@ -114,7 +99,7 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     }
     for (int k = 0; k < m->nsensor; ++k)
         bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, o->sensor_p0 + 3 * k, NULL);
-    if (bk_forces_open(&o->forces, m, dir, err) != 0)
+    if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
         return -1;
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
@@ -129,18 +114,6 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
     else
         o->sections_every = 1;
-    if (m->analysis == BK_DYNAMIC &&
-        !(o->energy = bk_table_open(dir, "energy.csv", "step,time,kinetic,strain,gravity,load_potential,total,"
-                                    "constraint_residual\n", &o->tbuf[1], err)))
-        return -1;
-    if (m->analysis == BK_STATIC &&
-        !(o->newton = bk_table_open(dir, "newton.csv", "attempt,step,load_factor,iteration,residual,reference,"
-                                    "increment,alpha,rcond\n", &o->tbuf[2], err)))
-        return -1;
-    if (m->analysis == BK_STATIC && m->stat.stability &&
-        !(o->stability = bk_table_open(dir, "stability.csv", "step,load_factor,negative_eigenvalues,eig_min,eig_max\n",
-                                       &o->tbuf[3], err)))
-        return -1;
     return 0;
 }
 
@@ -230,21 +203,53 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
     spent(o, t0);
 }
 
-int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
+FILE *bk_output_table(bk_output *o, const char *name, const char *header, FILE *err)
+{
+    double t0 = bk_clock_s();
+    FILE *fp = bk_tables_open(&o->tables, o->dir, name, header, 1, err);
+    spent(o, t0);
+    return fp;
+}
+
+void bk_output_row(bk_output *o, bk_row *r, FILE *table)
+{
+    bk_row_begin(r, table, &o->rq);
+}
+
+void bk_output_row_end(bk_output *o, bk_row *r, double t0, int flush)
+{
+    bk_row_end(r);
+    if (flush)
+        spent_flush(o, t0);
+    else
+        spent(o, t0);
+}
+
+/* DIR/NAME opened with its header and registered (written with fprintf, not
+ * queued); NULL with a message in err. */
+static FILE *mode_table(bk_output *o, const char *name, const char *header, char *err, size_t nerr)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/modes.csv", o->dir);
-    o->modes = fopen(path, "w");
-    if (o->modes) {
-        fprintf(o->modes, "mode,frequency_hz,omega,scale_m\n");
-        snprintf(path, sizeof path, "%s/mode_sensors.csv", o->dir);
-        o->mode_sensors = fopen(path, "w");
-    }
-    if (!o->modes || !o->mode_sensors) {
+    snprintf(path, sizeof path, "%s/%s", o->dir, name);
+    FILE *fp = fopen(path, "w");
+    if (!fp) {
         snprintf(err, nerr, "%s: cannot write: %s", path, strerror(errno));
-        return -1;
+        return NULL;
     }
-    fprintf(o->mode_sensors, "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
+    if (bk_tables_add(&o->tables, name, fp, 0) != 0) {
+        snprintf(err, nerr, "out of memory for the mode output");
+        return NULL;
+    }
+    fputs(header, fp);
+    return fp;
+}
+
+int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
+{
+    if (!(o->modes = mode_table(o, "modes.csv", "mode,frequency_hz,omega,scale_m\n", err, nerr)) ||
+        !(o->mode_sensors = mode_table(o, "mode_sensors.csv",
+                                       "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n", err, nerr)))
+        return -1;
     o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
     if (!o->mode_q) {
         snprintf(err, nerr, "out of memory for the mode output");
@@ -302,60 +307,6 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
     bk_vtk_mode(&o->vtk, mode, f_hz, omega, scale, norm, q, qp, qm, eps);
     spent(o, t0);
     return scale;
-}
-
-void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
-                         double ref, double increment, double alpha, double rcond)
-{
-    if (!o->newton)
-        return;
-    double t0 = bk_clock_s();
-    bk_row r;                      /* attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond */
-    bk_row_begin(&r, o->newton, &o->rq);
-    bk_row_int(&r, attempt);
-    bk_row_int(&r, step);
-    bk_row_num(&r, lam);
-    bk_row_int(&r, iter);
-    bk_row_e(&r, residual, 6);
-    bk_row_e(&r, ref, 6);
-    bk_row_e(&r, increment, 6);
-    bk_row_g(&r, alpha, 6);
-    bk_row_e(&r, rcond, 3);
-    bk_row_end(&r);
-    spent(o, t0);
-}
-
-void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max)
-{
-    if (!o->stability)
-        return;
-    double t0 = bk_clock_s();
-    bk_row r;                      /* step,load_factor,negative_eigenvalues,eig_min,eig_max */
-    bk_row_begin(&r, o->stability, &o->rq);
-    bk_row_int(&r, step);
-    bk_row_num(&r, lam);
-    bk_row_int(&r, negative);
-    bk_row_e(&r, eig_min, 9);
-    bk_row_e(&r, eig_max, 6);
-    bk_row_end(&r);
-    spent_flush(o, t0);
-}
-
-void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
-                      double cres)
-{
-    if (!o->energy)
-        return;
-    double t0 = bk_clock_s();
-    bk_row r;
-    bk_row_begin(&r, o->energy, &o->rq);
-    bk_row_int(&r, step);
-    const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
-    for (int i = 0; i < 6; ++i)
-        bk_row_num(&r, v[i]);
-    bk_row_e(&r, cres, 3);
-    bk_row_end(&r);
-    spent_flush(o, t0);
 }
 
 static void json_string(FILE *fp, const char *s)
@@ -525,34 +476,11 @@ void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fm
         fprintf(console, "warning: %s: %s\n", scene, text);
 }
 
-/* Closes *fp (DIR/name); 0, or -1 with the error on err. */
-static int close_table(const bk_output *o, FILE **fp, const char *name, FILE *err)
-{
-    if (!*fp)
-        return 0;
-    int bad = ferror(*fp) != 0;
-    int e = bad ? EIO : 0;
-    if (fclose(*fp) != 0 && !bad) {
-        bad = 1;
-        e = errno;
-    }
-    *fp = NULL;
-    if (bad && err)
-        fprintf(err, "error: %s/%s: cannot write: %s\n", o->dir, name, strerror(e));
-    return bad ? -1 : 0;
-}
-
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
     bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */
     o->forces.rq = NULL;
-    FILE **fp[BK_NTABLES];
-    const char *name[BK_NTABLES];
-    table_list(o, fp, name);
-    int bad = 0;
-    for (int k = 0; k < BK_NTABLES; ++k)
-        bad |= close_table(o, fp[k], name[k], err);
-    return bad ? -1 : 0;
+    return bk_tables_close(&o->tables, o->dir, err);
 }
 
 void bk_output_close(bk_output *o)
@@ -562,10 +490,8 @@ void bk_output_close(bk_output *o)
     o->mode_q = NULL;
     free(o->sensor_p0);
     o->sensor_p0 = NULL;
-    for (int k = 0; k < 4; ++k) {
-        free(o->tbuf[k]);
-        o->tbuf[k] = NULL;
-    }
+    bk_tables_free(&o->tables);
+    o->sensors = o->modes = o->mode_sensors = NULL;
     bk_vtk_close(&o->vtk);
     bk_forces_close(&o->forces);
 }

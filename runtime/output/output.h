@@ -8,21 +8,19 @@
 #include <stdio.h>
 
 #include "output/forces.h"
+#include "output/tables.h"
 #include "model/model.h"
 #include "output/vtk.h"
 
 typedef struct bk_output {
     const bk_model *m;
     char dir[1024];
-    FILE *sensors;           /* owned */
-    FILE *energy;            /* owned; dynamic analyses only */
-    FILE *modes;             /* owned; modal analyses only */
-    FILE *mode_sensors;      /* owned; modal analyses only */
+    bk_tables tables;        /* every result table of the run (tables.h): owned */
+    FILE *sensors;           /* sensors.csv (registered in tables) */
+    FILE *modes;             /* modal analyses only (registered in tables) */
+    FILE *mode_sensors;      /* modal analyses only (registered in tables) */
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
-    FILE *newton;            /* owned; static analyses: one row per Newton iteration */
-    FILE *stability;         /* owned; static analyses with stability checks */
-    char *tbuf[4];           /* owned: the stdio buffers of sensors, energy, newton, stability */
     int nfreq;
     double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */
@@ -110,20 +108,16 @@ void bk_output_step(bk_output *o, int step, double t, const double *q);
 /* Reactions and section forces of the output step (forces.h bk_forces_step). */
 void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const double *q, const double *qd,
                       const double *qdd, const double *nu);
-/* One row of energy.csv (dynamic analyses): kinetic, strain, gravity potential,
- * potential of the other constant loads, their total, constraint residual. */
-void bk_output_energy(bk_output *o, int step, double t, double T, double U, double Vg, double Vf,
-                      double cres);
-/* newton.csv (statics): one row per Newton iteration of attempt `attempt`
- * towards equilibrium `step` at load factor lam: residual norm, the reference
- * force it is measured against, the increment (max norm, after the line
- * search), the line-search step length and KLU's reciprocal pivot ratio. */
-void bk_output_iteration(bk_output *o, int attempt, int step, double lam, int iter, double residual,
-                         double ref, double increment, double alpha, double rcond);
-/* stability.csv (statics): per equilibrium, the number of negative
- * eigenvalues of the constrained tangent (-1: factorization broke down) and
- * its smallest-magnitude and largest eigenvalue. */
-void bk_output_stability(bk_output *o, int step, double lam, int negative, double eig_min, double eig_max);
+/* A result table of an analysis or an interaction: DIR/NAME opened with its
+ * header line and registered (tables.h: closed with the others, its rows
+ * queued to the writer thread once it runs).  The stream, or NULL with a
+ * message on err. */
+FILE *bk_output_table(bk_output *o, const char *name, const char *header, FILE *err);
+/* A row of such a table (csvrow.h: then bk_row_num, ...), and its end: the
+ * row written (or queued), the tables flushed when due (flush), the time
+ * since t0 (bk_clock_s) counted as output time. */
+void bk_output_row(bk_output *o, bk_row *r, FILE *table);
+void bk_output_row_end(bk_output *o, bk_row *r, double t0, int flush);
 /* Opens modes.csv and mode_sensors.csv and allocates the mode buffers; -1 on
  * failure (a message in err). */
 int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);

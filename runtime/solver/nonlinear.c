@@ -21,11 +21,10 @@ const char *bk_nl_why(int code)
     }
 }
 
-int bk_nl_init(bk_nl *nl, bk_system *s, bk_output *out, char *msg, size_t nmsg)
+int bk_nl_init(bk_nl *nl, bk_system *s, char *msg, size_t nmsg)
 {
     memset(nl, 0, sizeof *nl);
     nl->s = s;
-    nl->out = out;
     nl->t_poll = -INFINITY;                        /* the first iteration polls */
     size_t ne = (size_t)(s->neq > 0 ? s->neq : 1), nnz = (size_t)(s->nnz > 0 ? s->nnz : 1);
     nl->r = calloc(ne, sizeof(double));
@@ -111,9 +110,9 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
         res->dnorm = dnorm;
         res->ref = ev.ref;
         res->iters = it;
-        if (row)
-            bk_output_iteration(nl->out, row->attempt, row->step, row->lam, it, rnorm, ev.ref, it ? dnorm : NAN,
-                                it ? alpha : NAN, nl->ls.rcond);
+        if (row && nl->on_iteration)
+            nl->on_iteration(nl->iteration_ctx, row, it, rnorm, ev.ref, it ? dnorm : NAN, it ? alpha : NAN,
+                             nl->ls.rcond);
         if (!isfinite(rnorm)) {
             code = BK_NL_NONFINITE;
             break;

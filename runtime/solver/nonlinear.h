@@ -8,7 +8,7 @@
  * a limit on the step.  The solver owns the iteration, the convergence tests
  * (rotation-invariant measures and round-off floors of norms.h), the
  * factorizations (KLU, linsolve.h), the Jacobian-reuse policy across solves,
- * the diagnostics of a failure and the rows of newton.csv.
+ * the diagnostics of a failure and the record of every iteration (on_iteration).
  *
  * Convergence: the residual within max(rtol ref, force floor), the constraint
  * rows within ctol (when ctol > 0), and the last correction small in length
@@ -37,7 +37,6 @@
 
 #include "linalg/linsolve.h"
 #include "solver/norms.h"
-#include "output/output.h"
 #include "assembly/system.h"
 
 #define BK_REUSE_MAX_RATE 0.5
@@ -119,12 +118,18 @@ typedef struct bk_nl {
     double factors_key;
     double krate;         /* last measured contraction rate of kept factors */
     bk_floors fl;         /* round-off floors of the last assembled matrix */
-    bk_output *out;       /* newton.csv rows (may be NULL) */
+    /* The record of each iteration of a solve given a row label (bk_nl_solve's
+     * row): the residual norm, its reference force, the increment (max norm,
+     * NaN at iteration 0), the step length taken and the pivot ratio of the
+     * last factorization.  NULL: none (an analysis writes them to a table). */
+    void (*on_iteration)(void *ctx, const struct bk_nl_row *row, int iter, double rnorm, double ref,
+                         double increment, double alpha, double rcond);
+    void *iteration_ctx;
     double t_poll;        /* when SIGINT / SIGTERM were last polled (bk_clock_s) */
 } bk_nl;
 
 /* Returns 0, or -1 with a message in msg. */
-int bk_nl_init(bk_nl *nl, bk_system *s, bk_output *out, char *msg, size_t nmsg);
+int bk_nl_init(bk_nl *nl, bk_system *s, char *msg, size_t nmsg);
 void bk_nl_free(bk_nl *nl);
 
 /* One Newton solve from the provider's current state.  key: the matrix key of

@@ -1,0 +1,50 @@
+/* tables.h -- the registry of a run's result tables (CSV files): every table
+ * an analysis, an interaction or the output itself writes is registered here
+ * when it is opened, and the registry flushes and closes them all.  No fixed
+ * number of tables: the registry grows (at set-up, never while rows are
+ * written).
+ *
+ * Sizes and directions:
+ *   bk_tables_open   in: dir, name (the file name, at most BK_TABLE_NAME - 1
+ *                    characters), header (its first line, with the newline),
+ *                    rows (1: written with bk_row, csvrow.h, and so may be
+ *                    queued to the writer thread).  Out: the stream, owned by
+ *                    the registry; NULL on failure, with "error: DIR/NAME:
+ *                    cannot write: ..." on err (nothing registered).
+ *   bk_tables_add    registers a stream opened elsewhere (taken over: closed
+ *                    with the others); -1 when out of memory (fp closed).
+ *   bk_tables_rows   the streams written with bk_row, in registration order,
+ *                    into fp[max]; returns their count.
+ *   bk_tables_flush  flushes every open stream (skip: one the caller must not
+ *                    touch, e.g. queued to the writer thread; may be NULL).
+ *   bk_tables_close  closes every stream; 0, or -1 with "error: DIR/NAME:
+ *                    cannot write: REASON" on err (if not NULL) for each that
+ *                    could not be written.
+ *   bk_tables_free   closes what is open (unreported) and frees. */
+#ifndef BK_TABLES_H
+#define BK_TABLES_H
+
+#include <stdio.h>
+
+#define BK_TABLE_NAME 64
+
+typedef struct bk_table {
+    char name[BK_TABLE_NAME];
+    FILE *fp;                /* owned; NULL once closed */
+    char *buf;               /* owned: its stdio buffer (may be NULL) */
+    int rows;                /* written with bk_row */
+} bk_table;
+
+typedef struct bk_tables {
+    bk_table *t;             /* owned: [cap] */
+    int n, cap;
+} bk_tables;
+
+FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const char *header, int rows, FILE *err);
+int bk_tables_add(bk_tables *ts, const char *name, FILE *fp, int rows);
+int bk_tables_rows(const bk_tables *ts, FILE **fp, int max);
+void bk_tables_flush(bk_tables *ts, int (*skip)(void *ctx, FILE *fp), void *ctx);
+int bk_tables_close(bk_tables *ts, const char *dir, FILE *err);
+void bk_tables_free(bk_tables *ts);
+
+#endif
