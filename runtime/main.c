@@ -104,6 +104,7 @@ int main(int argc, char **argv)
     bk_output_close(&out);
     if (rc != 0)
         fprintf(stderr, "%s: %s: %s\n", info.interrupted ? "interrupted" : "error", m->name, info.message);
+    bk_run_info_free(&info);
     free(q);
     bk_system_free(s);
     bk_model_free(m);

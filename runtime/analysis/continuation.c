@@ -19,8 +19,8 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     const bk_model *m = s->m;
     const bk_static_opts *o = &m->stat;
     int nd = m->ndof, ne = s->neq, nc = s->ncon > 0 ? s->ncon : 1, rc = 1;
-    bk_critical_point cand[BK_MAX_EVENTS];          /* bifurcation candidates */
-    int cand_neg[BK_MAX_EVENTS][2], ncand = 0;
+    candidate *cand = NULL;                          /* bifurcation candidates */
+    int ncand = 0, cand_cap = 0;
     arc_ctx c = {.sp = {.s = s, .w = w, .q = q, .lscale = m->length_scale}, .w = w};
     double *W = calloc((size_t)ne, sizeof *W);
     int *fdof = calloc((size_t)(s->nfree > 0 ? s->nfree : 1), sizeof *fdof);
@@ -99,11 +99,15 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         }
         double sigma = have_dir ? bk_arc_orientation(s, &c, q, lam, A.q, A.lam) : 1.0;
         /* a limit point between the last two equilibria: the load factor turned */
-        if (have_dir && sigma != sigma_prev && !after_switch && info->ncritical < BK_MAX_EVENTS) {
+        if (have_dir && sigma != sigma_prev && !after_switch) {
             bk_arc_save(s, w, q, lam, &B);
             int step = info->steps;
             double lc = bk_arc_bisect_limit(s, nl, &c, q, &A, sigma_prev, dl_prev, o, &a, step, info, &best, lam);
-            bk_critical_point *cp = &info->critical[info->ncritical++];
+            bk_critical_point *cp = bk_run_insert_critical(info, info->ncritical);
+            if (!cp) {
+                snprintf(info->message, sizeof info->message, "out of memory");
+                goto done;
+            }
             cp->limit = 1;
             cp->step = step;
             cp->lam = lc;
@@ -259,9 +263,18 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
          * (the count flickers while the smallest eigenvalue hovers about zero
          * on the flat top of a limit point); not the change of a branch switch */
         if (info->nstability > 0 && info->stability[info->nstability - 1].step == info->steps &&
-            claimed != info->steps && !after_switch && ncand < BK_MAX_EVENTS) {
+            claimed != info->steps && !after_switch) {
             const bk_stability_event *ev = &info->stability[info->nstability - 1];
-            bk_critical_point *cp = &cand[ncand++], ca, cb;
+            if (ncand == cand_cap) {
+                candidate *more = realloc(cand, (size_t)(cand_cap = cand_cap ? 2 * cand_cap : 8) * sizeof *cand);
+                if (!more) {
+                    snprintf(info->message, sizeof info->message, "out of memory");
+                    goto done;
+                }
+                cand = more;
+            }
+            memset(&cand[ncand], 0, sizeof cand[ncand]);
+            bk_critical_point *cp = &cand[ncand++].cp, ca, cb;
             double f = isfinite(ev->lam_critical) && lam != A.lam ? (ev->lam_critical - A.lam) / (lam - A.lam) : 1.0;
             bk_sensor_displacements(m, A.q, &ca);
             bk_sensor_displacements(m, q, &cb);
@@ -272,7 +285,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             for (int k = 0; k < cb.nsensor; ++k)
                 for (int i = 0; i < 3; ++i)
                     cp->u[k][i] = ca.u[k][i] + f * (cb.u[k][i] - ca.u[k][i]);
-            cand_neg[ncand - 1][0] = ev->neg_before, cand_neg[ncand - 1][1] = ev->neg_after;
+            cand[ncand - 1].neg[0] = ev->neg_before, cand[ncand - 1].neg[1] = ev->neg_after;
             claimed = info->steps;
             if (o->branch_switch && !switched && ev->neg_after > ev->neg_before) {
                 switching = 1;          /* the next step switches branch */
@@ -341,29 +354,30 @@ done:
     /* the bifurcations: candidates away from every limit point, merged by
      * step; a change taken back within ARC_NEAR steps (0 -> 1 -> 0) is the
      * flicker of an eigenvalue about zero and no bifurcation */
-    char gone[BK_MAX_EVENTS] = {0};
     for (int k = 0; k + 1 < ncand; ++k)
-        if (!gone[k] && cand_neg[k][0] == cand_neg[k + 1][1] && cand_neg[k][1] == cand_neg[k + 1][0] &&
-            cand[k + 1].step - cand[k].step <= ARC_NEAR)
-            gone[k] = gone[k + 1] = 1;
+        if (!cand[k].gone && cand[k].neg[0] == cand[k + 1].neg[1] && cand[k].neg[1] == cand[k + 1].neg[0] &&
+            cand[k + 1].cp.step - cand[k].cp.step <= ARC_NEAR)
+            cand[k].gone = cand[k + 1].gone = 1;
     for (int k = 0; k < ncand; ++k) {
-        int near = gone[k];
+        const bk_critical_point *ck = &cand[k].cp;
+        int near = cand[k].gone;
         for (int j = 0; j < info->ncritical; ++j)
-            near |= info->critical[j].limit && abs(info->critical[j].step - cand[k].step) <= ARC_NEAR;
-        if (near || info->ncritical >= BK_MAX_EVENTS)
+            near |= info->critical[j].limit && abs(info->critical[j].step - ck->step) <= ARC_NEAR;
+        if (near)
             continue;
         int at = info->ncritical;
-        while (at > 0 && info->critical[at - 1].step > cand[k].step) {
-            info->critical[at] = info->critical[at - 1];
+        while (at > 0 && info->critical[at - 1].step > ck->step)
             at--;
-        }
-        info->critical[at] = cand[k];
-        info->ncritical++;
+        bk_critical_point *slot = bk_run_insert_critical(info, at);
+        if (!slot)
+            break;
+        *slot = *ck;
         if (out->console)
             fprintf(out->console, "%s: bifurcation at load factor %.6g (between steps %d and %d: negative tangent "
-                    "eigenvalues %d -> %d)\n", m->name, cand[k].lam, cand[k].step - 1, cand[k].step, cand_neg[k][0],
-                    cand_neg[k][1]);
+                    "eigenvalues %d -> %d)\n", m->name, ck->lam, ck->step - 1, ck->step, cand[k].neg[0],
+                    cand[k].neg[1]);
     }
+    free(cand);
     free(W), free(fdof), free(c.rl), free(c.t), free(c.tmp), free(c.fol), free(tprim);
     bk_arc_path_free(&path);
     free(A.q), free(A.nu), free(B.q), free(B.nu), free(best.q), free(best.nu);

@@ -71,6 +71,14 @@ typedef struct arc_path {
     char *isq;                       /* [nd] 1: a DOF of a quaternion */
 } arc_path;
 
+/* A bifurcation candidate of a path: the critical point, the negative
+ * eigenvalue counts before and after, taken back (a flicker about zero). */
+typedef struct candidate {
+    bk_critical_point cp;
+    int neg[2];
+    char gone;
+} candidate;
+
 /* Bisections of a limit point; steps within which a limit point claims a
  * change of the negative-eigenvalue count. */
 #define ARC_BISECTIONS 14

@@ -106,6 +106,7 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         info->load_factor = sinfo.load_factor;
         for (int k = 0; k < sinfo.nwarning; ++k)       /* already printed by the static solve */
             bk_warn(info, NULL, m->name, "static state: %s", sinfo.warnings[k]);
+        bk_run_info_free(&sinfo);
         if (st != 0) {
             snprintf(info->message, sizeof info->message, "static state for the modal analysis: %.900s", sinfo.message);
             info->interrupted = sinfo.interrupted;

@@ -233,9 +233,9 @@ void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res
     info->negative_eigenvalues = res->ok ? res->negative : before;
     info->eig_min = res->eig_min;
     info->eig_max = res->eig_max;
-    if (res->ok && res->negative != before && info->steps >= 1 && info->nstability < BK_MAX_EVENTS) {
+    bk_stability_event *ev;
+    if (res->ok && res->negative != before && info->steps >= 1 && (ev = bk_run_add_stability(info)) != NULL) {
         double t = bk_stability_crossing(st, before);
-        bk_stability_event *ev = &info->stability[info->nstability++];
         ev->step = info->steps;
         ev->lam_before = *prev_lam;
         ev->lam_after = lam;

@@ -457,25 +457,6 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     return 0;
 }
 
-void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
-{
-    char text[BK_WARNING_LEN];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(text, sizeof text, fmt, ap);
-    va_end(ap);
-    for (int k = 0; k < info->nwarning; ++k)
-        if (strcmp(info->warnings[k], text) == 0)
-            return;
-    if (info->nwarning >= BK_MAX_WARNINGS) {
-        info->warnings_dropped++;
-        return;
-    }
-    memcpy(info->warnings[info->nwarning++], text, sizeof text);
-    if (console)
-        fprintf(console, "warning: %s: %s\n", scene, text);
-}
-
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
     bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "output/forces.h"
+#include "output/run_info.h"
 #include "output/tables.h"
 #include "model/model.h"
 #include "output/vtk.h"
@@ -35,61 +36,6 @@ typedef struct bk_output {
     bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
 } bk_output;
 
-/* A change of the number of negative eigenvalues of the tangent between two
- * consecutive static equilibria: a bifurcation or limit point was passed. */
-typedef struct bk_stability_event {
-    int step;                /* the first equilibrium with the new count          */
-    double lam_before, lam_after;
-    int neg_before, neg_after;
-    double lam_critical;     /* interpolated critical load factor (NaN: unknown)   */
-} bk_stability_event;
-
-/* A critical point of an arc-length path: a limit point (the load factor
- * turns; refined by bisection on the arc length) or a bifurcation (the
- * negative-eigenvalue count changes without a limit point; refined by
- * bisection on the inertia). */
-#define BK_CRIT_SENSORS 4
-typedef struct bk_critical_point {
-    int limit;               /* 1: limit point, 0: bifurcation                    */
-    int step;                /* the first equilibrium past it                     */
-    double lam;              /* critical load factor                              */
-    int nsensor;             /* sensors with a displacement below (the first ones) */
-    double u[BK_CRIT_SENSORS][3];   /* their displacements there (m; NaN: unknown) */
-} bk_critical_point;
-
-#define BK_MAX_EVENTS 32
-#define BK_MAX_WARNINGS 16
-#define BK_WARNING_LEN 400
-
-typedef struct bk_run_info {
-    int converged;
-    double wall_s;           /* model read to results written, less the summary (s) */
-    double output_s;         /* of it, writing results: files, frames, the section forces (s) */
-    double stability_s;      /* of it, the static stability checks (s) */
-    int steps;
-    int newton_iterations;
-    int cutbacks;
-    int factorizations;
-    int analyses;
-    double load_factor;
-    double strain_energy;
-    double max_constraint_residual;
-    char message[1024];      /* empty when converged */
-    int interrupted;         /* the signal (SIGINT, SIGTERM) that stopped the run, or 0 */
-    int nwarning;            /* warnings: likely wrong results (also on the console) */
-    int warnings_dropped;    /* beyond BK_MAX_WARNINGS */
-    char warnings[BK_MAX_WARNINGS][BK_WARNING_LEN];
-    /* statics with [static] stability */
-    int stability_checked;
-    int negative_eigenvalues;  /* at the last equilibrium                         */
-    double eig_min, eig_max;   /* smallest-magnitude and largest eigenvalue there  */
-    int nstability;
-    bk_stability_event stability[BK_MAX_EVENTS];
-    /* statics with static.method = "arc_length" */
-    int continuation;
-    int ncritical;
-    bk_critical_point critical[BK_MAX_EVENTS];
-} bk_run_info;
 
 /* progress: show an updating line on stderr (only if it is a terminal). */
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
@@ -132,11 +78,6 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
 #define BK_MODE_SIZE 0.1
 #define BK_MODE_ROTATION 0.5
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);
-/* Records a warning in info (summary.json "warnings") and prints it as
- * "warning: SCENE: ..." on `console` unless it is NULL.  A warning already
- * recorded with the same text is not repeated. */
-void bk_warn(bk_run_info *info, FILE *console, const char *scene, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
 /* Writes out and closes the result tables (their last rows are still in
  * their buffers: a short run writes them only now), before summary.json;
  * 0, or -1 with "error: PATH: cannot write: REASON" on err for each table
