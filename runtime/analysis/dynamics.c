@@ -24,6 +24,7 @@
  * (L the model's length scale), accepted when e <= tol.
  */
 #include "analysis/dynamics.h"
+#include "analysis/dynamics_impl.h"
 
 #include <float.h>
 #include <math.h>
@@ -38,183 +39,6 @@
 #include "assembly/loads.h"
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
-
-/* dynamic.jacobian = "reuse" (modified Newton across steps): the Jacobian-reuse
- * policy of the nonlinear solver (nonlinear.h, BK_REUSE_*); a step that fails
- * with kept factors is retried with full Newton before it is halved. */
-typedef struct dyn_work {
-    int nd, ne, nc;
-    double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
-    double *q_s, *qd_s, *qdd_s, *a_s, *nu_s;   /* saved for cut-backs                 */
-    double *fint, *fext, *fgrav, *Mx, *tmp;
-    double *r, *dx, *Ax;                       /* the nonlinear solver's buffers (not owned) */
-    double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
-    int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
-    double *Mv;
-} dyn_work;
-
-static double *dalloc(size_t n)
-{
-    return calloc(n ? n : 1, sizeof(double));
-}
-
-static void work_free(dyn_work *w)
-{
-    double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
-                    &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
-                    &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
-    for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
-        free(*p[i]);
-        *p[i] = NULL;
-    }
-    free(w->Mp), free(w->Mi), free(w->Mv);
-    w->Mp = w->Mi = NULL, w->Mv = NULL;
-}
-
-static int work_alloc(dyn_work *w, const bk_system *s)
-{
-    const bk_model *m = s->m;
-    size_t nd = (size_t)m->ndof, ne = (size_t)s->neq, nc = (size_t)s->ncon, nnz = (size_t)s->nnz;
-    size_t md = (size_t)s->maxdof;
-    w->nd = m->ndof;
-    w->ne = s->neq;
-    w->nc = s->ncon;
-    w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
-    w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
-    w->nu_s = dalloc(nc);
-    w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd);
-    w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
-    w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
-    w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
-    double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->fint,
-                     w->fext, w->fgrav, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
-                     w->fe, w->K1, w->K2, w->K3};
-    for (size_t i = 0; i < sizeof all / sizeof *all; ++i)
-        if (!all[i])
-            return -1;
-    w->Mp = malloc(((size_t)s->nfree + 1) * sizeof *w->Mp);
-    w->Mi = malloc((nnz ? nnz : 1) * sizeof *w->Mi);
-    w->Mv = dalloc(nnz);
-    return w->Mp && w->Mi && w->Mv ? 0 : -1;
-}
-
-/* Constant mass matrix (translational inertia) on the free DOFs, in the pattern
- * of the Newton matrix; work and Me: element buffers of maxdof^2. */
-static void assemble_mass(const bk_system *s, double *Mx, double *work, double *Me)
-{
-    memset(Mx, 0, (size_t)s->nnz * sizeof *Mx);
-    for (int e = 0; e < s->m->nelem; ++e) {
-        bk_element_mass(s->m, e, work, Me);
-        bk_scatter_matrix(s, e, Me, 1.0, Mx);
-    }
-}
-
-/* y = A x over the free DOFs for A in compressed columns (Ap, Ai, Ax) over the
- * equations, rows beyond the free ones ignored; x, y indexed by DOF (y over all
- * ndof), fdof maps equations to DOFs. */
-static void csc_free_matvec(int ndof, int nfree, const int *fdof, const int *Ap, const int *Ai,
-                            const double *Ax, const double *x, double *y)
-{
-    memset(y, 0, (size_t)ndof * sizeof *y);
-    for (int j = 0; j < nfree; ++j) {
-        double xj = x[fdof[j]];
-        if (xj == 0.0)
-            continue;
-        for (int k = Ap[j]; k < Ap[j + 1]; ++k)
-            if (Ai[k] < nfree)
-                y[fdof[Ai[k]]] += Ax[k] * xj;
-    }
-}
-
-/* y = A x, A in the Newton pattern (its free block). */
-static void free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
-                        double *y)
-{
-    csc_free_matvec(s->m->ndof, s->nfree, fdof, s->Ap, s->Ai, Ax, x, y);
-}
-
-/* The free block's nonzeros of the mass matrix Mx (in the Newton pattern, where
- * the mass couples no two components of a vector and no multipliers: about a
- * third of the pattern) into w->Mp, Mi, Mv. */
-static void compact_mass(const bk_system *s, dyn_work *w, const double *Mx)
-{
-    int n = 0;
-    w->Mp[0] = 0;
-    for (int j = 0; j < s->nfree; ++j) {
-        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k)
-            if (s->Ai[k] < s->nfree && Mx[k] != 0.0)
-                w->Mi[n] = s->Ai[k], w->Mv[n++] = Mx[k];
-        w->Mp[j + 1] = n;
-    }
-}
-
-/* y = M x over the free DOFs, with the compact mass. */
-static void mass_matvec(const bk_system *s, const dyn_work *w, const int *fdof, const double *x, double *y)
-{
-    csc_free_matvec(s->m->ndof, s->nfree, fdof, w->Mp, w->Mi, w->Mv, x, y);
-}
-
-static double dot_free(const bk_system *s, const int *fdof, const double *a, const double *b)
-{
-    double d = 0.0;
-    for (int j = 0; j < s->nfree; ++j)
-        d += a[fdof[j]] * b[fdof[j]];
-    return d;
-}
-
-/* Equation -> DOF map for free DOFs (built once). */
-static int *free_dofs(const bk_system *s)
-{
-    int *d = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *d);
-    if (!d)
-        return NULL;
-    for (int i = 0; i < s->m->ndof; ++i)
-        if (s->eq[i] >= 0)
-            d[s->eq[i]] = i;
-    return d;
-}
-
-/* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
- * rotary inertia.  Adds to fint and, with Ax, their contributions
- * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy. */
-static double element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
-                               double kp, double *fint, double *Ax)
-{
-    const bk_model *m = s->m;
-    double Trot = 0.0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_elem *el = &m->elems[e];
-        const bk_pair *p = m->pairs[el->pair];
-        const bk_element *et = p->element;
-        const bk_mat *mat = &m->mats[el->mat];
-        int visc = mat->nvisc > 0 && p->viscous != NULL;
-        if (!visc && !et->rotary)
-            continue;
-        bk_gather(m, e, q, w->qe);
-        bk_gather(m, e, w->qd, w->qde);
-        bk_gather(m, e, w->qdd, w->qdde);
-        if (visc) {
-            p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
-            bk_scatter(m, e, w->fe, 1.0, fint);
-            if (Ax) {
-                bk_scatter_matrix(s, e, w->K1, gp, Ax);
-                bk_scatter_matrix(s, e, w->K2, kp, Ax);
-            }
-        }
-        if (et->rotary) {
-            double T = 0.0;
-            et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
-            Trot += mat->rho * T;
-            bk_scatter(m, e, w->fe, mat->rho, fint);
-            if (Ax) {
-                bk_scatter_matrix(s, e, w->K1, mat->rho * bp, Ax);
-                bk_scatter_matrix(s, e, w->K2, mat->rho * gp, Ax);
-                bk_scatter_matrix(s, e, w->K3, mat->rho * kp, Ax);
-            }
-        }
-    }
-    return Trot;
-}
 
 /* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
  * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
@@ -232,7 +56,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     if (bk_assemble_internal(s, q, w->fint, A) != 0)
         return -1;
     if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
-        free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
+        bk_dyn_free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += rb * w->tmp[i];
         if (matrix)
@@ -242,12 +66,12 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     A = matrix ? w->Ax : NULL;
     bk_assemble_follower(s, q, 1.0, w->fint, A);
     bk_assemble_loads(s, q, tn, w->fint, A);
-    element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
-    mass_matvec(s, w, fdof, w->qdd, w->tmp);
+    bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
+    bk_dyn_mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
         w->fint[i] += w->tmp[i];
     if (ra != 0.0) {
-        mass_matvec(s, w, fdof, w->qd, w->tmp);
+        bk_dyn_mass_matvec(s, w, fdof, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += ra * w->tmp[i];
     }
@@ -357,7 +181,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         snprintf(info->message, sizeof info->message, "cannot write energy.csv");
         goto done;
     }
-    if (work_alloc(&w, s) != 0 || !(fdof = free_dofs(s)) || nquat < 0 || bk_checks_init(&chk, s) != 0) {
+    if (bk_dyn_work_alloc(&w, s) != 0 || !(fdof = bk_dyn_free_dofs(s)) || nquat < 0 || bk_checks_init(&chk, s) != 0) {
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
@@ -387,8 +211,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
     bk_external_load(s, w.fext);
     bk_gravity_load(s, w.fgrav);
-    assemble_mass(s, w.Mx, w.K1, w.K2);
-    compact_mass(s, &w, w.Mx);
+    bk_dyn_assemble_mass(s, w.Mx, w.K1, w.K2);
+    bk_dyn_compact_mass(s, &w, w.Mx);
     double mbar = 0.0;
     for (int j = 0; j < s->nfree; ++j)
         if (s->diag[j] >= 0)
@@ -406,13 +230,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
         bk_assemble_follower(s, q, 1.0, w.fint, NULL);
         bk_assemble_loads(s, q, t, w.fint, NULL);
-        element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
+        bk_dyn_element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
         for (int k = 0; k < (int)s->nnz; ++k)
             w.Ax[k] += w.Mx[k];
         for (int j = 0; j < s->nfree; ++j)
             if (s->diag[j] >= 0)
                 w.Ax[s->diag[j]] += 1e-10 * mbar;
-        mass_matvec(s, &w, fdof, w.qd, w.tmp);               /* Rayleigh on the initial velocity */
+        bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);               /* Rayleigh on the initial velocity */
         for (int i = 0; i < nd; ++i)
             if (s->eq[i] >= 0)
                 w.r[s->eq[i]] = w.fext[i] - w.fint[i] - ra * w.tmp[i];
@@ -431,8 +255,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
     {
-        mass_matvec(s, &w, fdof, w.qd, w.tmp);
-        double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+        bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
+        double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
         energy_row(out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
@@ -540,8 +364,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             bk_output_step(out, step, t, q);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
-            mass_matvec(s, &w, fdof, w.qd, w.tmp);
-            double T = 0.5 * dot_free(s, fdof, w.qd, w.tmp) + element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
+            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
             double U = bk_strain_energy(s, q) - U0;
             double Vg = 0.0, Vf = 0.0;
             for (int i = 0; i < nd; ++i) {
@@ -573,6 +397,6 @@ done:
     bk_checks_free(&chk);
     free(fdof);
     free(quat);
-    work_free(&w);
+    bk_dyn_work_free(&w);
     return rc;
 }

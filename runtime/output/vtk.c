@@ -28,98 +28,9 @@
 #include "base/clock.h"
 #include "assembly/system.h"
 
-#define NX 4
-#define MAX_RING 12              /* points of the largest section ring (ring_points) */
+#include "output/vtk_geometry.h"
+
 #define BK_PVD_INTERVAL 0.5
-
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
-
-/* Section shape of element e (enum bk_section_shape): an element that takes
- * one shape only has that one (the continuum elements: their box b x h); else
- * the beam's, geom[BK_GEOM_SHAPE] as the scene compiler writes it (a
- * rectangle where a hand-made model leaves it unstated). */
-static int section_shape(const bk_model *m, int e)
-{
-    const unsigned both = BK_CAP_SECTION_RECTANGLE | BK_CAP_SECTION_CIRCLE;
-    const unsigned caps = bk_elem_type(m, e)->caps & both;
-    if (caps == BK_CAP_SECTION_RECTANGLE)
-        return BK_SECTION_RECTANGLE;
-    if (caps == BK_CAP_SECTION_CIRCLE)
-        return BK_SECTION_CIRCLE;
-    const double shape = m->geoms[m->elems[e].geom][BK_GEOM_SHAPE];
-    return shape == (double)BK_SECTION_CIRCLE ? BK_SECTION_CIRCLE : BK_SECTION_RECTANGLE;
-}
-
-/* Points of the section ring: 8 around a rectangle, 12 around a circle. */
-static int ring_points(const bk_model *m, int e)
-{
-    return section_shape(m, e) == BK_SECTION_CIRCLE ? 12 : 8;
-}
-
-/* Section point k of n in section coordinates (y along d1, z along d2). */
-static void ring_yz(const double *g, int n, int k, double *y, double *z)
-{
-    if (n == 8) {
-        static const double uy[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, uz[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
-        *y = 0.5 * g[BK_GEOM_B] * uy[k];
-        *z = 0.5 * g[BK_GEOM_H] * uz[k];
-    } else {
-        double a = 2.0 * M_PI * k / n;
-        *y = 0.5 * g[BK_GEOM_B] * cos(a);
-        *z = 0.5 * g[BK_GEOM_B] * sin(a);
-    }
-}
-
-static void unit(double *v)
-{
-    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (n > 0)
-        for (int i = 0; i < 3; ++i)
-            v[i] /= n;
-}
-
-/* Position of section point (y, z) at station xi of element e for coordinates q. */
-static void section_point(const bk_model *m, const double *q, int e, double xi, double y, double z, double *x)
-{
-    const bk_elem *el = &m->elems[e];
-    const bk_element *et = m->pairs[el->pair]->element;
-    const double *g = m->geoms[el->geom];
-    double d[9], N[BK_MAX_SHAPE];
-    if (et->caps & BK_CAP_SECTION_FIELD) {         /* continuum: the element's own field */
-        et->shape(g, xi, y, z, N);
-        for (int i = 0; i < 3; ++i)
-            x[i] = 0.0;
-        for (int a = 0; a < et->nshape; ++a)
-            for (int i = 0; i < 3; ++i)
-                x[i] += N[a] * q[el->dofs[et->shape_dof[a] + i]];
-        return;
-    }
-    bk_eval_point(m, q, e, xi, x, d);
-    if (isfinite(d[0]) && isfinite(d[3])) {        /* beams with a section frame */
-        for (int i = 0; i < 3; ++i)
-            x[i] += y * d[i] + z * d[3 + i];
-        return;
-    }
-    /* no section frame (cable): a section normal to the axis, oriented by the global
-     * axis least aligned with it */
-    double t[3] = {d[6], d[7], d[8]}, a[3] = {0, 0, 0}, u[3], w[3];
-    unit(t);
-    int k = fabs(t[0]) < fabs(t[1]) ? (fabs(t[0]) < fabs(t[2]) ? 0 : 2) : (fabs(t[1]) < fabs(t[2]) ? 1 : 2);
-    a[k] = 1.0;
-    u[0] = a[1] * t[2] - a[2] * t[1], u[1] = a[2] * t[0] - a[0] * t[2], u[2] = a[0] * t[1] - a[1] * t[0];
-    unit(u);
-    w[0] = t[1] * u[2] - t[2] * u[1], w[1] = t[2] * u[0] - t[0] * u[2], w[2] = t[0] * u[1] - t[1] * u[0];
-    for (int i = 0; i < 3; ++i)
-        x[i] += y * u[i] + z * w[i];
-}
-
-typedef struct mode_view mode_view;
-static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x);
-static void frame_cells(const bk_model *m, long *ncell, long *nconn);
-static size_t topology(const bk_model *m, unsigned char *buf);
 
 int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int capacity, int expected)
 {
@@ -135,16 +46,16 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     v->times = malloc((size_t)v->cap * sizeof *v->times);
     v->frames = malloc((size_t)v->cap * sizeof *v->frames);
     v->npts = bk_vtk_npoints(m);
-    frame_cells(m, &v->ncell, &v->nconn);
+    bk_vtk_frame_cells(m, &v->ncell, &v->nconn);
     size_t np = (size_t)v->npts;
     v->ref = malloc((3 * np + 1) * sizeof *v->ref);
     v->pts = malloc((3 * np + 1) * sizeof *v->pts);
-    v->ntopo = topology(m, NULL);
+    v->ntopo = bk_vtk_topology(m, NULL);
     v->topo = malloc(v->ntopo);
     if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
         return -1;
-    frame_points(m, m->q0, NULL, 0, v->ref);
-    topology(m, v->topo);
+    bk_vtk_frame_points(m, m->q0, NULL, 0, v->ref);
+    bk_vtk_topology(m, v->topo);
     /* the appended arrays of the largest frame (a mode's: points, displacement,
      * mode shape; a step's: points, displacement, four section arrays, the
      * cells' energy density), the cells block and the XML around them */
@@ -315,75 +226,6 @@ static int write_modes_pvd(bk_vtk *v)
     return write_collection(v, v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
 }
 
-/* What a .vtu shows.  A step frame (mode == NULL): the points of q and their
- * displacement from the reference.  A mode frame: the base state q displaced by
- * scale * shape, where shape is the linearized motion of each point along the
- * mode vector phi, (x(q + eps phi) - x(q - eps phi)) / (2 eps) / norm (exact for
- * the continuum elements, whose points are linear in q). */
-typedef struct mode_view {
-    const double *qp, *qm;   /* q + eps phi, q - eps phi */
-    double eps, norm, scale;
-} mode_view;
-
-/* A mode frame's point (y, z) at station xi of element e: pass 0 the displaced
- * point, 1 the scaled shape (displacement), 2 the shape. */
-static void point_value(const bk_model *m, const double *q, const mode_view *mv, int pass, int e, double xi,
-                        double y, double z, double *out)
-{
-    double x[3], a[3], sh[3];
-    section_point(m, mv->qp, e, xi, y, z, x);
-    section_point(m, mv->qm, e, xi, y, z, a);
-    for (int i = 0; i < 3; ++i)
-        sh[i] = (x[i] - a[i]) / (2.0 * mv->eps * mv->norm);
-    if (pass == 0) {
-        section_point(m, q, e, xi, y, z, x);
-        for (int i = 0; i < 3; ++i)
-            out[i] = x[i] + mv->scale * sh[i];
-    } else {
-        for (int i = 0; i < 3; ++i)
-            out[i] = pass == 1 ? mv->scale * sh[i] : sh[i];
-    }
-}
-
-long bk_vtk_npoints(const bk_model *m)
-{
-    long n = 0;
-    for (int e = 0; e < m->nelem; ++e)
-        n += (long)NX * ring_points(m, e) + NX;
-    return n;
-}
-
-void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, double eps, double *translation,
-                        double *rotation)
-{
-    double tmax = 0.0, rmax = 0.0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const double *g = m->geoms[m->elems[e].geom];
-        int r = ring_points(m, e);
-        for (int k = 0; k < NX; ++k) {
-            double xi = (double)k / (NX - 1), c[3], a[3], b[3];
-            section_point(m, qp, e, xi, 0.0, 0.0, a);
-            section_point(m, qm, e, xi, 0.0, 0.0, b);
-            for (int i = 0; i < 3; ++i)
-                c[i] = (a[i] - b[i]) / (2.0 * eps);
-            tmax = fmax(tmax, sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
-            for (int j = 0; j < r; ++j) {
-                double y, z, d[3];
-                ring_yz(g, r, j, &y, &z);
-                section_point(m, qp, e, xi, y, z, a);
-                section_point(m, qm, e, xi, y, z, b);
-                for (int i = 0; i < 3; ++i)
-                    d[i] = (a[i] - b[i]) / (2.0 * eps);
-                tmax = fmax(tmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-                for (int i = 0; i < 3; ++i)
-                    d[i] -= c[i];
-                rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / sqrt(y * y + z * z));
-            }
-        }
-    }
-    *translation = tmax;
-    *rotation = rmax;
-}
 
 /* One XML UnstructuredGrid file: field data (name, value pairs), points,
  * point data (displacement; mode_shape for modes), cell data (strain energy
@@ -396,141 +238,6 @@ static void put_u64(FILE *fp, uint64_t n)
     fwrite(&n, sizeof n, 1, fp);
 }
 
-/* The element's own stress resultants (sections.csv rows not "nodal") at xi:
- * piecewise linear between its sample points, constant beyond the outer ones;
- * a = 0: the force (N, Q2, Q3), 1: the moment (T, M2, M3); NaN without them. */
-static void stress_value(const bk_model *m, const double *ssec, int maxsample, int e, int a, double xi, double *x)
-{
-    const bk_pair *p = m->pairs[m->elems[e].pair];
-    const double *v = ssec + 6 * (size_t)maxsample * (size_t)e + 3 * a;
-    if (!p->sections || p->nsample < 1) {
-        x[0] = x[1] = x[2] = NAN;
-        return;
-    }
-    const double *xs = p->sample_xi;
-    int j = 0;
-    while (j + 2 < p->nsample && xi > xs[j + 1])
-        ++j;
-    double t = p->nsample == 1 ? 0.0 : (xi - xs[j]) / (xs[j + 1] - xs[j]);
-    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-    for (int i = 0; i < 3; ++i)
-        x[i] = p->nsample == 1 ? v[i] : (1.0 - t) * v[6 * j + i] + t * v[6 * (j + 1) + i];
-}
-
-/* The points of a frame, in frame order (element, station, ring point; the
- * centreline point last in each ring): 3 bk_vtk_npoints doubles into x; a step
- * frame's (mv NULL) for coordinates q, else a mode frame's pass `pass`
- * (point_value). */
-static void frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x)
-{
-    long np = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const double *g = m->geoms[m->elems[e].geom];
-        int r = ring_points(m, e);
-        for (int k = 0; k < NX; ++k) {
-            double xi = (double)k / (NX - 1);
-            for (int j = 0; j <= r; ++j) {
-                double y = 0.0, z = 0.0;
-                if (j < r)
-                    ring_yz(g, r, j, &y, &z);
-                if (mv)
-                    point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
-                else
-                    section_point(m, q, e, xi, y, z, x + 3 * np++);
-            }
-        }
-    }
-}
-
-/* Cells and connectivity entries of every frame of the model. */
-static void frame_cells(const bk_model *m, long *ncell, long *nconn)
-{
-    *ncell = *nconn = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        *ncell += (long)(NX - 1) * r + 1;
-        *nconn += 4L * (NX - 1) * r + NX;
-    }
-}
-
-/* Bytes of a connectivity or offset entry: Int32 while every point index and
- * offset fits (always, short of some 50 million elements), else Int64. */
-static size_t index_size(long npts)
-{
-    return npts * 4 < INT32_MAX ? sizeof(int32_t) : sizeof(int64_t);
-}
-
-/* Appends index v to b as an index_size entry; returns the next position. */
-static unsigned char *put_index(unsigned char *b, int64_t v, size_t size)
-{
-    if (size == sizeof(int32_t)) {
-        int32_t w = (int32_t)v;
-        memcpy(b, &w, sizeof w);
-    } else {
-        memcpy(b, &v, sizeof v);
-    }
-    return b + size;
-}
-
-/* The cells block of every frame, as it is appended (byte count, connectivity;
- * byte count, offsets; byte count, types), into buf; its size in bytes (buf
- * NULL: the size only).  Point index of (element e, station k, ring point j) =
- * base_e + k (r + 1) + j; j = r is the centreline point. */
-static size_t topology(const bk_model *m, unsigned char *buf)
-{
-    long ncell, nconn;
-    frame_cells(m, &ncell, &nconn);
-    const size_t isz = index_size(bk_vtk_npoints(m));
-    const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
-    const size_t size = 3 * sizeof(uint64_t) + sz_conn + sz_off + (size_t)ncell;
-    if (!buf)
-        return size;
-    unsigned char *b = buf;
-    memcpy(b, &sz_conn, sizeof sz_conn);
-    b += sizeof sz_conn;
-    int64_t base = 0, nv;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e), w = r + 1;
-        int64_t conn[4 * (NX - 1) * MAX_RING + NX];
-        nv = 0;
-        for (int k = 0; k + 1 < NX; ++k)
-            for (int j = 0; j < r; ++j) {
-                int j2 = (j + 1) % r;
-                conn[nv++] = base + k * w + j;
-                conn[nv++] = base + k * w + j2;
-                conn[nv++] = base + (k + 1) * w + j2;
-                conn[nv++] = base + (k + 1) * w + j;
-            }
-        for (int k = 0; k < NX; ++k)
-            conn[nv++] = base + k * w + r;
-        for (int64_t i = 0; i < nv; ++i)
-            b = put_index(b, conn[i], isz);
-        base += (int64_t)NX * w;
-    }
-    memcpy(b, &sz_off, sizeof sz_off);
-    b += sizeof sz_off;
-    int64_t o = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        for (int c = 0; c < (NX - 1) * r; ++c) {
-            o += 4;
-            b = put_index(b, o, isz);
-        }
-        o += NX;
-        b = put_index(b, o, isz);
-    }
-    const uint64_t nc = (uint64_t)ncell;
-    memcpy(b, &nc, sizeof nc);
-    b += sizeof nc;
-    for (int e = 0; e < m->nelem; ++e) {
-        int r = ring_points(m, e);
-        memset(b, 9, (size_t)(NX - 1) * r);              /* VTK_QUAD */
-        b += (size_t)(NX - 1) * r;
-        *b++ = 4;                                        /* VTK_POLY_LINE */
-    }
-    return size;
-}
-
 static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *const *fname, const double *fval,
                          const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample,
                          double *pts)
@@ -540,7 +247,7 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
     int npass = mv ? 3 : 2;
     /* byte sizes of the appended arrays, in the order they are written */
     const uint64_t sz_pts = (uint64_t)npts * 3 * sizeof(double), sz_cell = (uint64_t)ncell * sizeof(double);
-    const size_t isz = index_size(npts);
+    const size_t isz = bk_vtk_index_size(npts);
     const char *itype = isz == sizeof(int32_t) ? "Int32" : "Int64";
     const uint64_t sz_conn = (uint64_t)nconn * isz, sz_off = (uint64_t)ncell * isz;
     uint64_t off = 0;
@@ -602,13 +309,13 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
             for (size_t i = 0; i < n3; ++i)
                 pts[i] -= v->ref[i];
         else
-            frame_points(m, q, mv, pass, pts);
+            bk_vtk_frame_points(m, q, mv, pass, pts);
         fwrite(pts, sizeof(double), n3, fp);
     }
     for (int a = 0; sec && a < 2; ++a) {
         put_u64(fp, sz_pts);
         for (int e = 0; e < m->nelem; ++e) {
-            int r = ring_points(m, e);
+            int r = bk_vtk_ring_points(m, e);
             const double *v0 = sec + 12 * (size_t)e + 3 * a, *v1 = v0 + 6;
             double vals[3 * NX * (MAX_RING + 1)];
             int np = 0;
@@ -625,12 +332,12 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
     for (int a = 0; sec && ssec && a < 2; ++a) {
         put_u64(fp, sz_pts);
         for (int e = 0; e < m->nelem; ++e) {
-            int r = ring_points(m, e);
+            int r = bk_vtk_ring_points(m, e);
             double vals[3 * NX * (MAX_RING + 1)];
             int np = 0;
             for (int k = 0; k < NX; ++k) {
                 double x[3];
-                stress_value(m, ssec, maxsample, e, a, (double)k / (NX - 1), x);
+                bk_vtk_stress_value(m, ssec, maxsample, e, a, (double)k / (NX - 1), x);
                 for (int j = 0; j <= r; ++j, ++np)
                     memcpy(vals + 3 * np, x, sizeof x);
             }
@@ -646,14 +353,14 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
             bk_gather(m, e, q, qe);
             const double *g = m->geoms[el->geom];
             double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
-            int r = ring_points(m, e), nc = (NX - 1) * r + 1;
+            int r = bk_vtk_ring_points(m, e), nc = (NX - 1) * r + 1;
             double vals[(NX - 1) * MAX_RING + 1];
             for (int c = 0; c < nc; ++c)
                 vals[c] = dens;
             fwrite(vals, sizeof dens, (size_t)nc, fp);
         }
     }
-    fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (topology) */
+    fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (bk_vtk_topology) */
     fprintf(fp, "\n  </AppendedData>\n</VTKFile>\n");
 }
 

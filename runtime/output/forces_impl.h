@@ -1,0 +1,22 @@
+/* forces_impl.h -- what the reactions (forces.c) and the section forces
+ * (sections.c) share (private to output/): the kinds of DOF and the force and
+ * moment of a generalized force at a DOF, and the row-by-row product of the
+ * element matrices. */
+#ifndef BK_FORCES_IMPL_H
+#define BK_FORCES_IMPL_H
+
+#include "output/forces.h"
+
+enum { K_NONE = 0, K_POS = 1, K_GRAD = 2, K_QUAT = 3 };
+
+/* F, M (about x0) of the generalized force value r at global DOF d (forces.h). */
+void bk_forces_map_dof(const bk_forces *f, const double *q, int d, double r, const double *x0, double *F, double *M);
+/* y[i] (+)= sum_j A[i n + j] v[j] over the n rows of A (n x n, row-major),
+ * from y[i] or, with from_zero, from 0 (forces.c). */
+void bk_forces_rows_times(int n, const double *restrict A, const double *restrict v, double *restrict y,
+                          int from_zero);
+/* Rows of sections.csv of one output step (sections.c). */
+void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
+                        const double *qdd);
+
+#endif
