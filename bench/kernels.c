@@ -183,7 +183,7 @@ int main(int argc, char **argv)
         double tlf = NAN, tlft = NAN, dl = NAN;
         if (p->force_lanes && p->force_tangent_lanes) {
             const int W = BK_LANES, np = p->nparam;
-            /* 64-byte aligned, as the runtime's buffers (runtime/assembly/system.c) */
+            /* 64-byte aligned, as the runtime's buffers (runtime/assembly/system.c: alloc_lanes) */
             double *lq = aligned_alloc(64, (size_t)nd * W * sizeof *lq);
             double *ltab = aligned_alloc(64, ((size_t)p->ntab + 1) * W * sizeof *ltab);
             double *lmat = aligned_alloc(64, (size_t)(np + 1) * W * sizeof *lmat);

@@ -39,7 +39,7 @@ def runtime_headers():
 
 
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP
-# (results are bit-identical for any OMP_NUM_THREADS, see runtime/assembly/system.c); the
+# (results are bit-identical for any OMP_NUM_THREADS, see runtime/assembly/assembly.c); the
 # sanitizer build keeps OpenMP so that it checks the code that runs.
 #   release   -O2 -march=native: the instruction set of the machine it is built on
 #   sanitize  AddressSanitizer + UBSan (`./build.sh run --sanitize`)

@@ -1,5 +1,5 @@
 /* bk_joint.h -- the contract between the generated joint kernels
- * (out/kernels/joints.c, gen/body.py) and the runtime (runtime/assembly/system.c).
+ * (out/kernels/joints.c, gen/body.py) and the runtime (runtime/assembly/constraints.c).
  *
  * A joint couples two frames a and b, each a node with a position and a
  * rotation quaternion (a rod node, a rigid body) or the ground (constant

@@ -37,5 +37,5 @@ def test_dynamic_step_loop_does_not_allocate_serial():
 
 @pytest.mark.slow
 def test_dynamic_step_loop_does_not_allocate_parallel():
-    # 260 elements: above the serial limit (256, runtime/assembly/system.c), OpenMP region per assembly
+    # 260 elements: above the serial limit (256, runtime/assembly/system_impl.h), OpenMP region per assembly
     check_steps(260, 2, 0.003, 0.006)

@@ -1,4 +1,4 @@
-"""Rigid bodies and joints nonlinear in q (gen/body.py, runtime/assembly/system.c), each
+"""Rigid bodies and joints nonlinear in q (gen/body.py, runtime/assembly/constraints.c), each
 against a reference that is not our own element: finite differences of the
 generated joint kernels, the Euler-Bernoulli frequency equation with a tip mass
 and Rayleigh's estimate, beam theory, rigid multibody models integrated with

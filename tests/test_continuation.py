@@ -1,4 +1,4 @@
-"""Arc-length continuation (static.method = "arc_length", runtime/analysis/newton.c) on
+"""Arc-length continuation (static.method = "arc_length", runtime/analysis/continuation.c) on
 benchmarks with independent references: the von Mises two-bar truss (closed
 form derived below), the clamped-hinged deep circular arch (DaDeppo and
 Schmidt 1975), Lee's frame under a dead and a follower load (a Reissner beam

@@ -1,5 +1,5 @@
 """OpenMP element evaluation: results bit-identical for any thread count
-(runtime/assembly/system.c evaluates fixed groups of up to 8 elements with the lane
+(runtime/assembly/assembly.c evaluates fixed groups of up to 8 elements with the lane
 kernels; each thread takes one contiguous part of the groups and adds directly
 into the entries only its part touches, entries shared between parts are
 staged and summed in element order), and the KLU analysis done once per run.

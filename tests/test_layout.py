@@ -1,0 +1,85 @@
+"""The code's layout (issue 33): the runtime's folders are layers and a layer
+includes only the layers below it; every runtime, generator, report and API
+module has at most 500 lines and opens with a comment or docstring naming its
+job; the analyses are reached only through their table.  A structural check:
+it reads the source, it runs nothing."""
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RUNTIME = ROOT / "runtime"
+
+# folder -> the folders it may include (besides its own and the kernel contract)
+MAY_CALL = {
+    "base": set(),
+    "linalg": set(),
+    "model": set(),
+    "assembly": {"model", "linalg"},
+    "solver": {"assembly", "linalg", "base", "model"},
+    "output": {"assembly", "model", "base"},
+    "analysis": {"assembly", "model", "base", "linalg", "solver", "output"},
+}
+MAX_LINES = 500
+INCLUDE_RE = re.compile(r'^#include "([a-z_]+)/[a-z_0-9]+\.h"', re.M)
+
+
+def _runtime_files():
+    return sorted(p for p in RUNTIME.rglob("*") if p.suffix in (".c", ".h"))
+
+
+def test_runtime_folders_are_the_layers():
+    folders = {p.name for p in RUNTIME.iterdir() if p.is_dir()}
+    assert folders == set(MAY_CALL), f"runtime folders {sorted(folders)} != the layers {sorted(MAY_CALL)}"
+    for d in folders:
+        assert (RUNTIME / d / "README.md").exists(), f"runtime/{d}/ has no README.md saying what it owns"
+    top = sorted(p.name for p in RUNTIME.iterdir() if p.is_file() and p.suffix in (".c", ".h"))
+    assert top == ["bk_joint.h", "bk_kernel.h", "main.c"], top
+
+
+def test_a_layer_includes_only_the_layers_below_it():
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME)
+        if len(rel.parts) < 2:
+            continue
+        layer = rel.parts[0]
+        for used in INCLUDE_RE.findall(p.read_text()):
+            if used != layer and used not in MAY_CALL[layer]:
+                bad.append(f"runtime/{rel} includes {used}/ (a {layer}/ file may call {sorted(MAY_CALL[layer])})")
+    assert not bad, "\n".join(bad)
+
+
+def _modules():
+    yield from _runtime_files()
+    for d in ("gen", "report", "beamkit"):
+        yield from sorted((ROOT / d).rglob("*.py"))
+
+
+def test_every_module_is_at_most_500_lines_and_names_its_job_first():
+    long, silent = [], []
+    for p in _modules():
+        text = p.read_text()
+        n = text.count("\n")
+        if n > MAX_LINES:
+            long.append(f"{p.relative_to(ROOT)}: {n} lines")
+        head = text.lstrip()
+        if not text.strip() and p.name == "__init__.py":
+            continue
+        if p.suffix == ".py":
+            ok = head.startswith(('"""', "'''", "#"))
+        else:
+            ok = head.startswith("/*")
+        if not ok:
+            silent.append(str(p.relative_to(ROOT)))
+    assert not long, "modules above %d lines:\n" % MAX_LINES + "\n".join(long)
+    assert not silent, "modules that do not open with a comment naming their job:\n" + "\n".join(silent)
+
+
+def test_analyses_are_dispatched_through_their_table_only():
+    main = (RUNTIME / "main.c").read_text()
+    assert "bk_analysis_for(" in main
+    assert not re.search(r"analysis\s*[=!]=", main), "main.c switches on the analysis"
+    assert not re.search(r"bk_solve_(static|dynamic|modal|continuation)\s*\(", main)
+    table = (RUNTIME / "analysis" / "analysis.c").read_text()
+    for name in ("static", "continuation", "dynamic", "modal"):
+        assert f'{{"{name}",' in table, f"analysis {name} is not in the table"
