@@ -64,8 +64,9 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
                 w->Ax[k] *= 1.0 + gp * rb;
     }
     A = matrix ? w->Ax : NULL;
-    bk_assemble_follower(s, q, 1.0, w->fint, A);
-    bk_assemble_loads(s, q, tn, w->fint, A);
+    const bk_path path = {.factor = 1.0, .x = tn};
+    if (bk_assemble_interactions(s, q, &path, w->fint, A) != 0)
+        return -1;
     bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
     bk_dyn_mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
@@ -116,6 +117,13 @@ static int dp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval 
     ev->uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(p->norms, s, p->q, w->q_s));
     ev->escale = 0.0;
     return 0;
+}
+
+/* The interactions' step limit (e.g. no contact gap crosses zero). */
+static double dp_step_limit(void *ctx, const double *dx)
+{
+    const dyn_problem *p = ctx;
+    return bk_interactions_step_limit(p->s, p->q, dx);
 }
 
 static void dp_update(void *ctx, const double *dx, double alpha)
@@ -228,8 +236,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         s->cscale = mbar;
         bk_assemble_internal(s, q, w.fint, w.Ax);
         memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
-        bk_assemble_follower(s, q, 1.0, w.fint, NULL);
-        bk_assemble_loads(s, q, t, w.fint, NULL);
+        const bk_path path = {.factor = 1.0, .x = t};
+        bk_assemble_interactions(s, q, &path, w.fint, NULL);
         bk_dyn_element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
         for (int k = 0; k < (int)s->nnz; ++k)
             w.Ax[k] += w.Mx[k];
@@ -282,7 +290,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             w.qdd[i] = w.qdd_s[i];
         }
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
-        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update};
+        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update,
+                              .step_limit = dp_step_limit};
         bk_nl_result res;
         int st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
         int it = res.iters, signo = st == BK_NL_INTERRUPTED ? res.signo : 0, step_reused = res.reused;
@@ -356,6 +365,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         t = tn;
         step++;
         info->steps = step;
+        bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});
         info->load_factor = t;
         double cr = bk_constraint_residual(s, q, t);
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);

@@ -59,8 +59,9 @@ int bk_static_residual(bk_system *s, work *w, const double *q, const double *nu,
     double *Ax = with_tangent ? w->Ax : NULL;
     if (bk_assemble_internal(s, q, w->fint, Ax) != 0)
         return -1;
-    bk_assemble_follower(s, q, lam, w->fint, Ax);
-    bk_assemble_loads(s, q, lam, w->fint, Ax);
+    const bk_path path = {.factor = lam, .x = lam};
+    if (bk_assemble_interactions(s, q, &path, w->fint, Ax) != 0)
+        return -1;
     for (int i = 0; i < m->ndof; ++i)
         if (s->eq[i] >= 0)
             w->r[s->eq[i]] = w->fint[i] - lam * w->fext[i];
@@ -138,7 +139,9 @@ double bk_sp_step_limit(void *ctx, const double *dx)
             ss += dx[s->eq[w->quat[k] + i]] * dx[s->eq[w->quat[k] + i]];
         dpmax = fmax(dpmax, sqrt(ss));
     }
-    return dpmax > ROT_STEP ? ROT_STEP / dpmax : 1.0;
+    double a = dpmax > ROT_STEP ? ROT_STEP / dpmax : 1.0;
+    double b = bk_interactions_step_limit(s, p->q, dx);     /* e.g. no contact gap crosses zero */
+    return b < a ? b : a;
 }
 
 bk_nl_opts bk_static_nl_opts(const bk_static_opts *o)

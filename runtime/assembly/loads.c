@@ -215,44 +215,76 @@ static void finish(bk_system *s, int e, const double *Q, const double *K, double
         bk_scatter_matrix(s, e, K, -1.0, Ax);
 }
 
-void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, double *Ax)
+int bk_loads_present(const bk_model *m)
 {
-    const bk_model *m = s->m;
     int any = m->ndload > 0 || m->ntendon > 0 || (m->has_gravity && m->gravity_amp);
     for (int i = 0; i < m->nforce && !any; ++i)
         any = varying_force(&m->forces[i]);
     for (int i = 0; i < m->nmoment && !any; ++i)
         any = varying_moment(&m->moments[i]);
-    if (!any)
-        return;
+    return any;
+}
+
+struct bk_loads_scratch {
     scratch w;
-    if (scratch_init(&w, s->maxdof) != 0) {
-        scratch_free(&w);
-        for (int i = 0; i < m->ndof; ++i)
+};
+
+bk_loads_scratch *bk_loads_scratch_new(int maxdof)
+{
+    bk_loads_scratch *ls = calloc(1, sizeof *ls);
+    if (ls && scratch_init(&ls->w, maxdof) != 0) {
+        bk_loads_scratch_free(ls);
+        return NULL;
+    }
+    return ls;
+}
+
+void bk_loads_scratch_free(bk_loads_scratch *ls)
+{
+    if (ls)
+        scratch_free(&ls->w);
+    free(ls);
+}
+
+void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, double *Ax)
+{
+    if (!bk_loads_present(s->m))
+        return;
+    bk_loads_scratch *ls = bk_loads_scratch_new(s->maxdof);
+    if (!ls) {
+        for (int i = 0; i < s->m->ndof; ++i)
             fint[i] = NAN;            /* out of memory: the solver stops on a non-finite residual */
         return;
     }
+    bk_assemble_loads_in(s, ls, q, x, fint, Ax);
+    bk_loads_scratch_free(ls);
+}
+
+void bk_assemble_loads_in(bk_system *s, bk_loads_scratch *ls, const double *q, double x, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    scratch *w = &ls->w;
     double *Q = s->fe, *K = Ax ? s->Ke : NULL;
     for (int i = 0; i < m->nforce; ++i) {
         const bk_force_load *f = &m->forces[i];
         if (!varying_force(f))
             continue;
-        begin(m, f->elem, q, &w, Q, K);
-        point_force(m, f, bk_load_factor(m, f->amp, x), &w, Q, K);
+        begin(m, f->elem, q, w, Q, K);
+        point_force(m, f, bk_load_factor(m, f->amp, x), w, Q, K);
         finish(s, f->elem, Q, K, fint, Ax);
     }
     for (int i = 0; i < m->nmoment; ++i) {
         const bk_moment_load *mo = &m->moments[i];
         if (!varying_moment(mo))
             continue;
-        begin(m, mo->elem, q, &w, Q, K);
-        point_moment(m, mo, bk_load_factor(m, mo->amp, x), &w, Q, K);
+        begin(m, mo->elem, q, w, Q, K);
+        point_moment(m, mo, bk_load_factor(m, mo->amp, x), w, Q, K);
         finish(s, mo->elem, Q, K, fint, Ax);
     }
     for (int i = 0; i < m->ndload; ++i) {
         const bk_dist_load *d = &m->dloads[i];
-        begin(m, d->elem, q, &w, Q, d->follower ? K : NULL);
-        dist_load(m, d, bk_load_factor(m, d->amp, x), &w, Q, d->follower ? K : NULL);
+        begin(m, d->elem, q, w, Q, d->follower ? K : NULL);
+        dist_load(m, d, bk_load_factor(m, d->amp, x), w, Q, d->follower ? K : NULL);
         finish(s, d->elem, Q, d->follower ? K : NULL, fint, Ax);
     }
     if (m->has_gravity && m->gravity_amp) {
@@ -260,8 +292,8 @@ void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, do
         for (int e = 0; e < m->nelem; ++e) {
             const bk_element *et = bk_elem_type(m, e);
             memset(Q, 0, (size_t)et->ndof * sizeof *Q);
-            et->volume(m->geoms[m->elems[e].geom], w.N);
-            add_force(et, w.N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Q, NULL);
+            et->volume(m->geoms[m->elems[e].geom], w->N);
+            add_force(et, w->N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Q, NULL);
             bk_scatter(m, e, Q, -1.0, fint);
         }
     }
@@ -269,12 +301,11 @@ void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, do
         const bk_tendon *t = &m->tendons[i];
         double T = t->tension * bk_load_factor(m, t->amp, x);
         for (int k = 0; k < t->npiece; ++k) {
-            begin(m, t->pieces[k].elem, q, &w, Q, K);
-            tendon_piece(m, &t->pieces[k], T, &w, Q, K);
+            begin(m, t->pieces[k].elem, q, w, Q, K);
+            tendon_piece(m, &t->pieces[k], T, w, Q, K);
             finish(s, t->pieces[k].elem, Q, K, fint, Ax);
         }
     }
-    scratch_free(&w);
 }
 
 /* Length of a tendon piece with coordinates qe: the quadrature of |p_xi| of

@@ -17,6 +17,16 @@
  * Newton matrix (unsymmetric for follower loads). */
 void bk_assemble_loads(bk_system *s, const double *q, double x, double *fint, double *Ax);
 
+/* The same without allocation, with scratch made once (bk_loads_scratch_new
+ * for the system's largest element, NULL when out of memory) for the loads
+ * interaction (interactions.c); bk_assemble_loads makes one per call. */
+typedef struct bk_loads_scratch bk_loads_scratch;
+bk_loads_scratch *bk_loads_scratch_new(int maxdof);
+void bk_loads_scratch_free(bk_loads_scratch *ls);
+void bk_assemble_loads_in(bk_system *s, bk_loads_scratch *ls, const double *q, double x, double *fint, double *Ax);
+/* 1 when the model has loads of bk_assemble_loads (else it adds nothing). */
+int bk_loads_present(const bk_model *m);
+
 /* The loads element e carries itself (distributed loads, tendon pieces, gravity,
  * point forces and moments strictly inside it) at x, over its DOFs, into
  * Qe[ndof] (overwritten): what the section forces subtract from the element's

@@ -389,6 +389,8 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
             goto oom;
     }
+    if (bk_interactions_create(s) != 0)
+        goto oom;
     return s;
 oom:
     fprintf(err, "error: out of memory while building the system of '%s'\n", m->name);
@@ -400,6 +402,7 @@ void bk_system_free(bk_system *s)
 {
     if (!s)
         return;
+    bk_interactions_free(s);
     free(s->eq);
     free(s->Ap);
     free(s->Ai);

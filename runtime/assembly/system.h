@@ -17,6 +17,7 @@
 
 #include <stdio.h>
 
+#include "assembly/interaction.h"
 #include "model/model.h"
 
 typedef struct bk_system {
@@ -70,6 +71,8 @@ typedef struct bk_system {
     int *sh_ptr, *sh_idx;
     long *sh_to;
     int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
+    bk_interaction *inter;   /* owned: [ninter] the model's interactions (interaction.h) */
+    int ninter;
 } bk_system;
 
 bk_system *bk_system_create(const bk_model *m, FILE *err);

@@ -217,8 +217,8 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
         p->force(qe, m->tabs[el->geom], m->mats[el->mat].params, fe);
         bk_scatter(m, e, fe, 1.0, f->res);
     }
-    bk_assemble_follower(s, q, lf, f->res, NULL);
-    bk_assemble_loads(s, q, x, f->res, NULL);
+    const bk_path path = {.factor = lf, .x = x};
+    bk_assemble_interactions(s, q, &path, f->res, NULL);
     if (!f->have_fext) {                     /* dead loads of unit factor: constant */
         bk_external_load(s, f->fext);
         f->have_fext = 1;

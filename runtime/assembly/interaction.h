@@ -1,0 +1,63 @@
+/* interaction.h -- everything that adds to the force residual besides the
+ * elements' internal forces, behind one interface: follower moments on
+ * sections, loads with amplitudes, follower and distributed loads and tendons
+ * (loads.c), and next contact.  The system holds the model's interactions in
+ * a fixed order (interactions.c), made once by bk_system_create; the analyses
+ * reach them only through the loops below, so a new interaction is a module
+ * and a line in the table of interactions.c.
+ *
+ * An interaction gives:
+ *   assemble    (required) its generalized forces at q on the path point p,
+ *               subtracted from fint[ndof] (fint holds internal minus
+ *               external forces), and, when Ax is not NULL, its Jacobian
+ *               d(-Q)/dq added to the Newton matrix values Ax (system.h's
+ *               pattern: the element blocks).  0, or -1 on a non-finite value.
+ *   step_limit  (optional) the largest fraction in (0, 1] of the correction
+ *               dx[neq] (on the equations, system.h) that keeps its state
+ *               admissible (contact: no gap crosses zero); NULL: 1.
+ *   accept      (optional) its per-step state update after an accepted
+ *               equilibrium or time step (active sets, friction history).
+ *   free        (optional) frees its own data.
+ * The constraint rows (multipliers) are not interactions: constraints.c. */
+#ifndef BK_INTERACTION_H
+#define BK_INTERACTION_H
+
+struct bk_system;
+
+/* A point of the path: factor scales the loads proportional to the load
+ * factor (statics: the load factor; dynamics: 1), x is the variable of the
+ * amplitudes (statics: the load factor; dynamics: the time). */
+typedef struct bk_path {
+    double factor;
+    double x;
+} bk_path;
+
+typedef struct bk_interaction_ops {
+    const char *name;
+    int (*assemble)(void *self, struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
+    double (*step_limit)(void *self, const struct bk_system *s, const double *q, const double *dx);
+    void (*accept)(void *self, const struct bk_system *s, const double *q, const bk_path *p);
+    void (*free)(void *self);
+} bk_interaction_ops;
+
+typedef struct bk_interaction {
+    const bk_interaction_ops *ops;
+    void *self;                      /* owned through ops->free (may be NULL) */
+} bk_interaction;
+
+/* The interactions the model has, in the table's order, into s->inter
+ * (allocated here; s->ninter of them).  0, or -1 when out of memory. */
+int bk_interactions_create(struct bk_system *s);
+void bk_interactions_free(struct bk_system *s);
+
+/* Every interaction's assemble, in order: subtracts their forces at (q, p)
+ * from fint and adds their Jacobians to Ax (when not NULL).  0, or -1 when
+ * one gave a non-finite value. */
+int bk_assemble_interactions(struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
+/* The smallest step limit of the interactions for the correction dx (1 when
+ * none limits it). */
+double bk_interactions_step_limit(const struct bk_system *s, const double *q, const double *dx);
+/* Every interaction's accept after an accepted state. */
+void bk_interactions_accept(const struct bk_system *s, const double *q, const bk_path *p);
+
+#endif
