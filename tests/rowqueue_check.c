@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "output/csvrow.h"
-#include "output/filewriter.h"
+#include "base/csvrow.h"
+#include "base/filewriter.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ULL;
 

@@ -14,7 +14,7 @@ MAY_CALL = {
     "base": set(),
     "linalg": set(),
     "model": set(),
-    "assembly": {"model", "linalg"},
+    "assembly": {"model", "linalg", "base"},
     "solver": {"assembly", "linalg", "base", "model"},
     "output": {"assembly", "model", "base"},
     "analysis": {"assembly", "model", "base", "linalg", "solver", "output"},

@@ -1,4 +1,4 @@
-"""The result tables' rows formatted by the writer thread (runtime/output/csvrow.c
+"""The result tables' rows formatted by the writer thread (runtime/base/csvrow.c
 bk_rowqueue: recorded as values, formatted in order by the frames' writer
 thread) have the text glibc's fprintf gives the same rows: the C harness
 tests/rowqueue_check.c under AddressSanitizer + UBSan; and a dynamic and a

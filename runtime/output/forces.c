@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "model/amplitude.h"
-#include "output/csvrow.h"
+#include "base/csvrow.h"
 #include "assembly/loads.h"
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)

@@ -33,8 +33,8 @@
 
 #include <stdio.h>
 
-#include "output/csvrow.h"
-#include "output/tables.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
 
 #include "assembly/system.h"
 

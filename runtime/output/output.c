@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "base/clock.h"
-#include "output/csvrow.h"
+#include "base/csvrow.h"
 #include "base/interrupt.h"
 #include "assembly/system.h"
 

@@ -9,7 +9,7 @@
 
 #include "output/forces.h"
 #include "output/run_info.h"
-#include "output/tables.h"
+#include "base/tables.h"
 #include "model/model.h"
 #include "output/vtk.h"
 

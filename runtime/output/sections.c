@@ -9,7 +9,7 @@
 
 #include "assembly/loads.h"
 #include "model/amplitude.h"
-#include "output/csvrow.h"
+#include "base/csvrow.h"
 
 /* The force and moment the element's node `node` (first or last) exerts on it,
  * about the node's position xn. */

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "output/filewriter.h"
+#include "base/filewriter.h"
 #include "model/model.h"
 
 struct bk_system;

@@ -1,11 +1,11 @@
 /* tables.c -- the registry of a run's result tables (see tables.h). */
-#include "output/tables.h"
+#include "base/tables.h"
 
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "output/csvrow.h"
+#include "base/csvrow.h"
 
 /* Room for one more table; 0, or -1 when out of memory. */
 static int grow(bk_tables *ts)

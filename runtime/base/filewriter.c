@@ -1,5 +1,5 @@
 /* filewriter.c -- whole files written by a background thread (filewriter.h). */
-#include "output/filewriter.h"
+#include "base/filewriter.h"
 
 #include <errno.h>
 #include <fcntl.h>

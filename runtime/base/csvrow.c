@@ -1,5 +1,5 @@
 /* csvrow.c -- rows of the result tables (see csvrow.h). */
-#include "output/csvrow.h"
+#include "base/csvrow.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -24,7 +24,7 @@ FILE *bk_table_open(const char *dir, const char *name, const char *header, char 
     return fp;
 }
 
-#include "output/filewriter.h"
+#include "base/filewriter.h"
 
 /* ---- rows formatted here (or by the writer thread, from a chunk) ---- */
 
