@@ -83,3 +83,17 @@ def test_analyses_are_dispatched_through_their_table_only():
     table = (RUNTIME / "analysis" / "analysis.c").read_text()
     for name in ("static", "continuation", "dynamic", "modal"):
         assert f'{{"{name}",' in table, f"analysis {name} is not in the table"
+
+
+def test_no_analysis_switch_outside_the_table_and_the_model():
+    """The analysis is chosen in analysis/analysis.c; the layers below ask the
+    model only whether its states form a path and in what (model.h)."""
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel in ("analysis/analysis.c", "model/model.h", "model/model.c"):
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in re.finditer(r"analysis\s*[=!]=|\bBK_(STATIC|DYNAMIC|MODAL)\b", text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "analysis switches outside analysis/analysis.c:\n" + "\n".join(bad)

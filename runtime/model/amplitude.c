@@ -49,6 +49,6 @@ double bk_amp_eval(const bk_amplitude *a, double x, int k)
 double bk_load_factor(const bk_model *m, int amp, double x)
 {
     if (amp < 0)
-        return m->analysis == BK_DYNAMIC ? 1.0 : x;
+        return bk_model_in_time(m) ? 1.0 : x;
     return bk_amp_eval(&m->amps[amp], x, 0);
 }

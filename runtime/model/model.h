@@ -229,4 +229,24 @@ void bk_model_free(bk_model *m);
  * type name.  Returns 0, or -1 after one line to err. */
 int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nkinds, FILE *err);
 
+/* What the layers below the analyses may know of the analysis: whether its
+ * states form a path (load steps or time steps: sensors, sections and frames
+ * per state) and whether the path's parameter is time (dynamics) or the load
+ * factor.  The analyses themselves are chosen by analysis/analysis.c. */
+static inline int bk_model_on_path(const bk_model *m)
+{
+    return m->analysis != BK_MODAL;
+}
+
+static inline int bk_model_in_time(const bk_model *m)
+{
+    return m->analysis == BK_DYNAMIC;
+}
+
+/* A path in the load factor (statics: load control or continuation). */
+static inline int bk_model_in_load(const bk_model *m)
+{
+    return bk_model_on_path(m) && !bk_model_in_time(m);
+}
+
 #endif

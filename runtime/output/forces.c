@@ -62,7 +62,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
     }
     free(held);
     /* dynamics: their mass matrices, constant, once (the residual of every step uses them) */
-    if (m->analysis == BK_DYNAMIC && f->nrelem > 0) {
+    if (bk_model_in_time(m) && f->nrelem > 0) {
         f->rmass = malloc((size_t)f->nrelem * md * md * sizeof *f->rmass);
         if (!f->rmass) {
             fprintf(err, "error: out of memory for the reactions and section forces\n");
@@ -96,7 +96,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
         !(f->reactions = bk_tables_open(ts, dir, "reactions.csv",
                                         "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
         return -1;
-    if (m->nsection > 0 && m->analysis != BK_MODAL &&
+    if (m->nsection > 0 && bk_model_on_path(m) &&
         !(f->sections = bk_tables_open(ts, dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,"
                                        "Q3,T,M2,M3\n", 1, err)))
         return -1;

@@ -77,7 +77,7 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
 {
     /* the frames a dynamic run writes (known from the start), and the room for
      * them (a static run: its load steps, which the step control may change) */
-    const int known = m->analysis == BK_DYNAMIC
+    const int known = bk_model_in_time(m)
                           ? (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) /
                                                (m->vtk_every > 0 ? m->vtk_every : 1)) + 1
                           : 0;
@@ -110,7 +110,7 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
      * frames in dynamics, every equilibrium in statics) */
     if (m->vtk_every > 0)
         o->sections_every = m->vtk_every;
-    else if (m->analysis == BK_DYNAMIC)
+    else if (bk_model_in_time(m))
         o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
     else
         o->sections_every = 1;
@@ -137,7 +137,7 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, int iters
     o->t_last = now;
     double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
     fprintf(stderr, "\r%s: step %d, %s %.6g, %d Newton it., residual %.2e, %3.0f %%, %.0f s left   ",
-            o->m->name, step, o->m->analysis == BK_DYNAMIC ? "t" : "load", t, iters, residual,
+            o->m->name, step, bk_model_in_time(o->m) ? "t" : "load", t, iters, residual,
             100.0 * frac, eta);
     fflush(stderr);
 }
@@ -153,7 +153,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 
 void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
-    if (o->m->analysis != BK_MODAL)
+    if (bk_model_on_path(o->m))
         bk_output_last_frame(o, step, t, q);
     double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
@@ -373,18 +373,18 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         fprintf(fp, "  \"warnings_dropped\": %d,\n", info->warnings_dropped);
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
     fprintf(fp, "  \"output_s\": %.6f,\n", info->output_s);
-    if (o->m->analysis == BK_STATIC && o->m->stat.stability)
+    if (bk_model_in_load(o->m) && o->m->stat.stability)
         fprintf(fp, "  \"stability_s\": %.6f,\n", info->stability_s);
     fprintf(fp, "  \"steps\": %d,\n", info->steps);
     fprintf(fp, "  \"newton_iterations\": %d,\n", info->newton_iterations);
     fprintf(fp, "  \"cutbacks\": %d,\n", info->cutbacks);
     fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
     fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
-    fprintf(fp, "  \"%s\": %.17g,\n", m->analysis == BK_DYNAMIC ? "time" : "load_factor", info->load_factor);
+    fprintf(fp, "  \"%s\": %.17g,\n", bk_model_in_time(m) ? "time" : "load_factor", info->load_factor);
     fprintf(fp, "  \"max_constraint_residual\": %.3e,\n", info->max_constraint_residual);
     fprintf(fp, "  \"strain_energy\": %.17g,\n", info->strain_energy);
     fprintf(fp, "  \"dofs\": %d,\n  \"elements\": %d,\n", m->ndof, m->nelem);
-    if (m->analysis == BK_MODAL) {
+    if (!bk_model_on_path(m)) {
         fprintf(fp, "  \"frequencies_hz\": [");
         for (int k = 0; k < o->nfreq; ++k)
             fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);

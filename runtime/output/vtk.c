@@ -446,9 +446,9 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
     const bk_model *m = v->m;
     double frac = -1.0;
-    if (m->analysis == BK_DYNAMIC && m->dyn.t_end > 0.0)
+    if (bk_model_in_time(m) && m->dyn.t_end > 0.0)
         frac = t / m->dyn.t_end;
-    else if (m->analysis == BK_STATIC && !m->stat.arc_length && m->stat.cycles == 0)
+    else if (bk_model_in_load(m) && !m->stat.arc_length && m->stat.cycles == 0)
         frac = t;                                    /* the load factor, 0 -> 1 */
     maybe_background(v, frac);
     static const char *const names[] = {"TIME"};
