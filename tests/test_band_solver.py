@@ -45,6 +45,11 @@ def test_band_lu_matches_dense_elimination():
         # scratch, gives the bits of a fresh plan (the rows it zeroes are enough)
         assert d["reuse_same"] == "1", (case, d)
     assert int(r["chain"]["kl"]) == 23 and int(r["chain"]["ku"]) == 23, r["chain"]
+    # the linear-solver object's three backends, each chosen explicitly, solve the
+    # same systems (the dense LU is an independent elimination over all n^2 entries)
+    for case in ("chain", "kkt", "indefinite", "scaled"):
+        for k in ("band_err", "klu_err", "dense_err"):
+            assert float(r[case][k]) <= 1e-9, (case, k, r[case])
     # the closed loop of the saddle-point case widens the band but keeps it a band
     assert int(r["kkt"]["kl"]) <= 60, r["kkt"]
 
