@@ -31,7 +31,8 @@ Jacobian G = dg/dx and the Hessian term H = sum_k nu_k d2 g_k / dx2.
 import sympy as sp
 
 from gen.program import Program
-from gen.rod import _sym, _syms, rotary_node_program, rotation
+from gen.rod import _sym, _syms, rotation
+from gen.rod_inertia import rotary_node_program
 
 NX = 14
 NPARAM = 24
@@ -100,7 +101,7 @@ def joint_program(name, order):
 # Rigid body element
 
 def body_rotary_program():
-    """The nodal rotary inertia of gen/rod.py with Jn = (J1, J2, J3) about the
+    """The nodal rotary inertia of gen/rod_inertia.py with Jn = (J1, J2, J3) about the
     body axes (the columns of R(p))."""
     return rotary_node_program()
 

@@ -1,7 +1,7 @@
 """The C descriptors of runtime/bk_kernel.h, written by one emitter for every
 element family.
 
-An element family (continuum ANCF: gen/emit.py; cable and rods: gen/emit_rod.py)
+An element family (continuum ANCF: gen/emit.py; cable: gen/emit_cable.py; rods: gen/emit_rod.py)
 describes an element by an ElementDesc and its element x material pairs by
 PairDescs; this module writes their static arrays and designated initializers,
 the version guard every generated C file carries, and what out/kernels/index.json

@@ -4,12 +4,13 @@ runtime/bk_joint.h), from gen/body.py."""
 from pathlib import Path
 
 from gen import body
+from gen.c_functions import _function, section_frame_function
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
-from gen.emit import BANNER, CORE_FILES, _function, core_paths, input_hash, section_frame_function
 from gen.program import Program, count_lowered, lower
+from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
-BODY_FILES = ("body.py", "emit_body.py", "rod.py", "chain.py")
+BODY_FILES = ("body.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py")
 UNITS = ("rigid_body", "joints")
 NAME = "rigid_body"
 MATERIAL = "rigid"

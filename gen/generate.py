@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 
 from gen.elements import all_elements
-from gen.emit import core_paths, element_source, input_hash, pair_source
+from gen.provenance import core_paths, input_hash
 from gen.materials import all_materials
 
 HASH_RE = re.compile(r"input hash: sha256:([0-9a-f]{64})")
@@ -35,7 +35,7 @@ def plan(elements=None, materials=None):
     here = Path(__file__).resolve().parent
     units = [("header", "rod_math", [here / "rodmath.py", here / "program.py"])]
     if any(e.kind == "rod" for e, _ in elements.values()):
-        from gen.emit_rod import SHARED_UNITS, shared_paths
+        from gen.emit_rod_shared import SHARED_UNITS, shared_paths
         units += [("shared", u, shared_paths()) for u in SHARED_UNITS]
     from gen.emit_body import UNITS as BODY_UNITS, paths as body_paths
     units += [("body", u, body_paths()) for u in BODY_UNITS]
@@ -55,7 +55,7 @@ def compatible(elem, mat):
 def family_paths(elem):
     if elem.kind == "continuum":
         return []
-    from gen.emit_rod import family_paths as fp
+    from gen.emit_resultant import family_paths as fp
     return fp(elem)
 
 
@@ -63,13 +63,17 @@ def kernel_files(elem):
     """Shared generated files an element family's pairs link (besides their own)."""
     if elem.kind == "continuum":
         return []
-    from gen.emit_rod import kernel_files as kf
+    from gen.emit_rod_shared import kernel_files as kf
     return kf(elem)
 
 
 def _emitter(elem):
+    """The module that writes an element family's files: describe,
+    element_source, pair_source."""
     if elem.kind == "continuum":
         import gen.emit as m
+    elif elem.kind == "cable":
+        import gen.emit_cable as m
     else:
         import gen.emit_rod as m
     return m
@@ -80,11 +84,11 @@ def produce(unit):
     kind, name, inputs = unit
     t0 = time.time()
     if kind == "header":
-        from gen.emit import BANNER
+        from gen.provenance import BANNER
         from gen.rodmath import rod_math_header
         h, c = rod_math_header(BANNER, input_hash(inputs)), None
     elif kind == "shared":
-        from gen.emit_rod import shared_source
+        from gen.emit_rod_shared import shared_source
         h, c = shared_source(name)
     elif kind == "body":
         from gen.emit_body import unit_source

@@ -12,7 +12,8 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from report.hard import M_TWO_TURNS, PCR, elastica_compressed, pendulum_error, tip_path  # noqa: E402
+from report.hard_closed_forms import M_TWO_TURNS, PCR, elastica_compressed  # noqa: E402
+from report.hard_dynamics import pendulum_error, tip_path  # noqa: E402
 from references.rigid_pendulum import rigid_pendulum  # noqa: E402
 
 L = 1.0
