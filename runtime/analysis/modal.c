@@ -68,7 +68,10 @@ static void k_add(void *ctx, int i, int j, double v)
     *gsl_matrix_ptr((gsl_matrix *)ctx, (size_t)i, (size_t)j) += v;
 }
 
-int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+/* The frequencies summary.json lists (every mode is in modes.csv). */
+#define BK_SUMMARY_FREQUENCIES 64
+
+static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, double *freqs, int *nfreq)
 {
     const bk_model *m = s->m;
     int n = s->nfree, nc = s->ncon, rc = 1;
@@ -284,6 +287,8 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
         }
         got++;
         bk_output_mode(out, got, omega / (2.0 * M_PI), omega, q, shape);
+        if (*nfreq < BK_SUMMARY_FREQUENCIES)
+            freqs[(*nfreq)++] = omega / (2.0 * M_PI);
     }
     free(shape);
     info->steps = got;
@@ -308,5 +313,23 @@ done:
     free(me);
     free(fint);
     free(qd0);
+    return rc;
+}
+
+int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
+{
+    double freqs[BK_SUMMARY_FREQUENCIES];
+    int nfreq = 0;
+    int rc = modal(s, q, out, info, log, freqs, &nfreq);
+    /* summary.json "frequencies_hz": the first ones, as "%.17g" (also [] when none) */
+    char text[BK_SUMMARY_FREQUENCIES * 26 + 4];
+    int len = snprintf(text, sizeof text, "[");
+    for (int k = 0; k < nfreq; ++k)
+        len += snprintf(text + len, sizeof text - (size_t)len, "%s%.17g", k ? ", " : "", freqs[k]);
+    snprintf(text + len, sizeof text - (size_t)len, "]");
+    if (bk_run_summary(info, "frequencies_hz", text) != 0 && rc == 0) {
+        snprintf(info->message, sizeof info->message, "out of memory");
+        rc = 1;
+    }
     return rc;
 }

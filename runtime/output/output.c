@@ -283,8 +283,6 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
     }
     if (eps == 0.0)
         eps = 1.0;                              /* zero vector: qp = qm = q, shape 0 */
-    if (o->nfreq < (int)(sizeof o->freqs / sizeof *o->freqs))
-        o->freqs[o->nfreq++] = f_hz;
     if (o->modes) {
         fprintf(o->modes, "%d,%.17g,%.17g,%.9g\n", mode, f_hz, omega, scale);
         fflush(o->modes);
@@ -384,11 +382,10 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"max_constraint_residual\": %.3e,\n", info->max_constraint_residual);
     fprintf(fp, "  \"strain_energy\": %.17g,\n", info->strain_energy);
     fprintf(fp, "  \"dofs\": %d,\n  \"elements\": %d,\n", m->ndof, m->nelem);
-    if (!bk_model_on_path(m)) {
-        fprintf(fp, "  \"frequencies_hz\": [");
-        for (int k = 0; k < o->nfreq; ++k)
-            fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);
-        fprintf(fp, "],\n");
+    for (int k = 0; k < info->nsummary; ++k) {          /* the analysis's own entries */
+        fprintf(fp, "  ");
+        json_string(fp, info->summary_key[k]);
+        fprintf(fp, ": %s,\n", info->summary_json[k]);
     }
     if (info->stability_checked) {
         fprintf(fp, "  \"stability\": {\"negative_eigenvalues\": %d, \"eig_min\": ", info->negative_eigenvalues);

@@ -22,8 +22,6 @@ typedef struct bk_output {
     FILE *mode_sensors;      /* modal analyses only (registered in tables) */
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
-    int nfreq;
-    double freqs[64];        /* first frequencies (Hz), for the summary */
     bk_vtk vtk;              /* ParaView frames */
     int progress;            /* 1: an updating progress line on stderr */
     FILE *console;           /* warnings are printed here (NULL: --quiet) */

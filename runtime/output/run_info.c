@@ -62,8 +62,38 @@ bk_critical_point *bk_run_insert_critical(bk_run_info *info, int at)
     return &info->critical[at];
 }
 
+int bk_run_summary(bk_run_info *info, const char *key, const char *json)
+{
+    if (room((void **)&info->summary_key, &info->summary_cap, info->nsummary, sizeof *info->summary_key) != 0)
+        return -1;
+    int cap = info->summary_cap;         /* the second array follows the first's capacity */
+    char **js = realloc(info->summary_json, (size_t)cap * sizeof *js);
+    if (!js)
+        return -1;
+    info->summary_json = js;
+    char *k = malloc(strlen(key) + 1), *v = malloc(strlen(json) + 1);
+    if (!k || !v) {
+        free(k);
+        free(v);
+        return -1;
+    }
+    strcpy(k, key);
+    strcpy(v, json);
+    info->summary_key[info->nsummary] = k;
+    info->summary_json[info->nsummary++] = v;
+    return 0;
+}
+
 void bk_run_info_free(bk_run_info *info)
 {
+    for (int k = 0; k < info->nsummary; ++k) {
+        free(info->summary_key[k]);
+        free(info->summary_json[k]);
+    }
+    free(info->summary_key);
+    free(info->summary_json);
+    info->summary_key = info->summary_json = NULL;
+    info->nsummary = info->summary_cap = 0;
     for (int k = 0; k < info->nwarning; ++k)
         free(info->warnings[k]);
     free(info->warnings);

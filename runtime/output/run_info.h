@@ -64,6 +64,9 @@ typedef struct bk_run_info {
     int continuation;
     int ncritical, critical_cap;
     bk_critical_point *critical;     /* owned: [ncritical], in step order (bk_run_insert_critical) */
+    /* summary.json entries an analysis adds (bk_run_summary), in order */
+    int nsummary, summary_cap;
+    char **summary_key, **summary_json;  /* owned: [nsummary] each */
 } bk_run_info;
 
 
@@ -81,7 +84,13 @@ bk_stability_event *bk_run_add_stability(bk_run_info *info);
  * the later ones moved up; NULL when out of memory. */
 bk_critical_point *bk_run_insert_critical(bk_run_info *info, int at);
 
-/* Frees the warnings, events and critical points (info may be reused). */
+/* An entry "key": json of summary.json that the analysis adds (json: a JSON
+ * value's text, copied), written after the counters in the order added.  0,
+ * or -1 when out of memory (then none is added). */
+int bk_run_summary(bk_run_info *info, const char *key, const char *json);
+
+/* Frees the warnings, events, critical points and summary entries (info may
+ * be reused). */
 void bk_run_info_free(bk_run_info *info);
 
 #endif
