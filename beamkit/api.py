@@ -6,32 +6,27 @@ no sympy), the same per-scene solver, results as numpy arrays.
     run = sc.run({"beam.rod.elements": 20}, out="/tmp/pend20")
     run.converged, run.wall_s, run.sensor("B").displacement[-1]
 
-A scene is a name in models/, a path to a TOML file, or a dict of the same
-tables (parsed TOML).  Overrides are the keys of `--set` (a dict or a list of
+A run is gen/pipeline.py's run(), the function behind `./build.sh run`, with
+the same solver cache (gen/solver_cache.py).  A scene is a name in models/, a
+path to a TOML file, or a dict of the same tables (parsed TOML).  Overrides are the keys of `--set` (a dict or a list of
 "KEY=VALUE" strings).  Bad input raises BeamkitError with the one-line message
 of the command line; a run that does not converge is returned
 (`run.converged` False, `run.error`), not raised.
 """
 import csv
 import json
-import os
-import subprocess
 from pathlib import Path
 
 import numpy as np
 
-from gen.paths import prepare_run_dir, scene_location
-from gen.run_summary import add_scene_warnings
-from gen.scene import ROOT, SceneError, build, load_index, read_toml, write_model
+from gen import pipeline, solver_cache
+from gen.scene import ROOT, SceneError, build, read_toml
 
 MODELS = ROOT / "models"
 RUNS = ROOT / "out" / "runs"
-SOLVERS = ROOT / "out" / "bin" / "api"
 EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED = 0, 1, 2
 EXIT_SIGNAL = {130: "SIGINT", 143: "SIGTERM"}
-# Solvers this process has built or found fresh: {sorted pairs: (path, (size, mtime_ns))}.
-# A Dask worker keeps them across the runs it is given.
-_SOLVERS = {}
+BUILDING = "error: building the solver for "
 
 
 class BeamkitError(Exception):
@@ -79,15 +74,8 @@ class Scene:
             self.name = name or (sc.get("name") if isinstance(sc.get("name"), str) else "scene")
             self.path = f"<dict scene {self.name}>"
         else:
-            p, named = scene_location(source, MODELS)
-            if not os.path.isfile(p):
-                if named:
-                    names = sorted(x.stem for x in MODELS.glob("*.toml"))
-                    raise BeamkitError(f"error: scene {str(source)!r}: no models/{source}.toml "
-                                       f"(scenes: {', '.join(names)})")
-                raise BeamkitError(f"error: {source}: no such scene file (looked for {p})")
-            self.path = str(Path(p))
             try:
+                self.path = str(Path(pipeline.scene_path(source)))
                 self.doc = read_toml(self.path)
             except SceneError as e:
                 raise BeamkitError(str(e)) from None
@@ -112,60 +100,37 @@ class Scene:
             raise BeamkitError(str(e)) from None
 
     def solver(self, pairs):
-        """The solver for these element x material pairs: built once (or found fresh
-        in out/build by gen/solver_build.py) and reused while its file is unchanged.
-        Numeric overrides never change the pairs, so they never rebuild it."""
-        key = tuple(sorted(pairs))
-        hit = _SOLVERS.get(key)
-        if hit is not None:
-            try:
-                st = os.stat(hit[0])
-                if (st.st_size, st.st_mtime_ns) == hit[1]:
-                    return hit[0]
-            except OSError:
-                pass
-        return self._build_solver(key)
-
-    def _build_solver(self, key):
-        import hashlib
-        from gen.solver_build import build_solver
-        tag = hashlib.sha256("\n".join(key).encode()).hexdigest()[:16]
+        """The solver for these element x material pairs (gen/solver_cache.py):
+        built once and reused while its file is unchanged.  Numeric overrides
+        never change the pairs, so they never rebuild it."""
         try:
-            path = build_solver(list(key), SOLVERS / f"solver_{tag}", load_index())
+            return solver_cache.solver(pairs)
         except SceneError as e:
             raise BeamkitError(str(e)) from None
         except Exception as e:             # BuildError: the compiler's messages
             first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-            raise BeamkitError(f"error: building the solver for {self.path}: {first}") from None
-        st = os.stat(path)
-        _SOLVERS[key] = (str(path), (st.st_size, st.st_mtime_ns))
-        return str(path)
+            raise BeamkitError(f"{BUILDING}{self.path}: {first}") from None
 
     def run(self, sets=None, out=None, threads=None, verbose=False):
         """Mesh the scene with these overrides, write the model file into `out`
         (default out/runs/NAME, cleared first) and run the solver.  threads: the
         solver's OpenMP threads (default: the environment's).  Returns a Run."""
-        model = self.model(sets, out)
-        out = Path(out) if out else RUNS / model["name"]
-        why = prepare_run_dir(out)
-        if why:
-            raise BeamkitError(why)
-        write_model(model, out / "model.dat")
-        solver = self.solver(model["pairs"])
-        cmd = [solver, str(out / "model.dat"), str(out), "--verbose" if verbose else "--quiet"]
-        env = None
-        if threads:
-            env = dict(os.environ, OMP_NUM_THREADS=str(int(threads)))
-        r = subprocess.run(cmd, stdout=None if verbose else subprocess.DEVNULL, stderr=subprocess.PIPE,
-                           text=True, env=env)
-        if r.returncode == EXIT_INPUT:
+        try:
+            r = pipeline.run(self.path, self.sets + set_strings(sets), str(out) if out else None, doc=self.doc,
+                             name=self.name, verbose=verbose, quiet=not verbose, threads=threads, capture=True)
+        except SceneError as e:
+            msg = str(e)
+            if msg.startswith(BUILDING):      # the compiler's messages: the first line
+                msg = msg.strip().splitlines()[0]
+            raise BeamkitError(msg) from None
+        out = Path(r.out)
+        if r.rc == EXIT_INPUT:
             last = [x for x in r.stderr.strip().splitlines() if x.strip()]
             raise BeamkitError(last[-1] if last else f"error: {out}/model.dat: the solver refused the model")
-        add_scene_warnings(out, model.get("warnings", []))
         if not (out / "summary.json").exists():
-            raise BeamkitError(f"error: {out}: the solver exited with status {r.returncode} and wrote no "
+            raise BeamkitError(f"error: {out}: the solver exited with status {r.rc} and wrote no "
                                f"summary.json: {r.stderr.strip()[-300:]}")
-        return Run(out, r.returncode, r.stderr)
+        return Run(out, r.rc, r.stderr)
 
 
 def run(source, sets=None, out=None, threads=None):

@@ -2,7 +2,7 @@
 cannot represent.
 
 The TOML reading, the `--set` override logic, the error format and the small
-typed getters are gen/scene.py's (which imports no sympy); the material laws are
+typed getters are gen/scene/'s (which imports no sympy); the material laws are
 read here from the scene keys directly (gen/materials/ imports sympy).  Every
 refusal is one line `error: FILE: KEY: ...` raised as SceneError.
 """

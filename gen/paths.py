@@ -1,8 +1,8 @@
 """Paths given on the command line are the caller's: build.sh changes to the
 repository and passes the caller's working directory in BK_CALLER_CWD.  Also
 where a scene name points and how a run directory is prepared.  Standard
-library os only (no pathlib at import): the fast path of a repeated run
-(gen/fastrun.py) uses these too."""
+library os only (no pathlib at import): the run pipeline (gen/pipeline.py)
+uses these on a repeated run too, before any scene compiler is imported."""
 import os
 
 MARKER = ".beamkit-run"            # in every directory made by ./build.sh run

@@ -1,6 +1,6 @@
 """What `./build.sh run` prints after a solve, and the scene warnings it adds to
-summary.json; standard library os only, so that the fast path of a repeated
-run (gen/fastrun.py) can use it without the scene compiler."""
+summary.json; standard library os only, so that the run pipeline
+(gen/pipeline.py) can use it on a repeated run without the scene compiler."""
 import os
 
 

@@ -1,6 +1,6 @@
 """Every key a scene file may hold, per table, in one place (sympy-free).
 
-The scene reader (gen/scene.py) accepts exactly these keys (plus, in
+The scene reader (gen/scene/) accepts exactly these keys (plus, in
 [material.NAME], the parameter keys of the chosen law: gen/materials/*.py
 INPUTS); tests/test_docs.py checks that the README's scene reference lists
 the same keys.

@@ -22,7 +22,7 @@ def test_memcheck_variant_flags_are_not_native():
 
 def test_valgrind_is_only_started_through_the_memcheck_build():
     """No test, report or tool starts valgrind on its own (it would pick the release
-    build, -march=native): the only valgrind command line is gen/cli.py's."""
+    build, -march=native): the only valgrind command line is gen/pipeline.py's."""
     offenders = []
     for path in list((ROOT / "tests").glob("*.py")) + list((ROOT / "report").glob("*.py")) + \
             list((ROOT / "gen").rglob("*.py")) + [ROOT / "build.sh"]:
@@ -30,7 +30,7 @@ def test_valgrind_is_only_started_through_the_memcheck_build():
             continue
         for n, line in enumerate(path.read_text().splitlines(), 1):
             if re.search(r"""["']valgrind["']\s*,""", line) or re.search(r"^\s*(exec\s+)?valgrind\s+-", line):
-                if path != ROOT / "gen" / "cli.py":
+                if path != ROOT / "gen" / "pipeline.py":
                     offenders.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
     assert not offenders, "valgrind started outside run --memcheck:\n" + "\n".join(offenders)
 
@@ -38,11 +38,10 @@ def test_valgrind_is_only_started_through_the_memcheck_build():
 def test_memcheck_solver_has_no_avx512_instructions():
     """The linked memcheck solver and every object in it: built with x86-64-v3 (flag
     stamps) and free of AVX-512 registers (zmm, opmask k0-k7) in the disassembly."""
-    from gen.cli import solver_for
-    from gen.scene import build, load_index
-    index = load_index()
+    from gen.solver_cache import solver
+    from gen.scene import build
     model = build(ROOT / "models" / "cantilever_bend_10N.toml")
-    exe = solver_for(model, index, "memcheck")
+    exe = solver(model["pairs"], "memcheck")
     stamps = list((ROOT / "out" / "build" / "memcheck").rglob("*.o.flags"))
     assert stamps
     for st in stamps:

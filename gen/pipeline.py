@@ -1,0 +1,278 @@
+"""Run a scene: the one run pipeline behind `./build.sh run` (gen/cli.py, also
+when it repeats an identical run) and the Python API (beamkit/api.py, and so
+sweeps and fits).  run() is that function:
+
+    scene + overrides -> model file: an identical earlier run's (gen/run_cache.py,
+        without the scene compiler) or the scene compiler's (gen/scene/)
+    -> the solver of its element x material pairs (gen/solver_cache.py, the one
+       solver cache) -> the solver run in the output directory -> results there
+
+At import the standard library's os and sys only (and _signal), so that a
+repeated run imports neither the scene compiler nor sympy; the scene compiler
+is imported when a model must be built (and to raise its SceneError)."""
+import os
+import sys
+
+try:                                   # the signal module's enum wrappers cost ~5 ms to import
+    import _signal as signal
+except ImportError:                    # pragma: no cover
+    import signal
+
+from gen import run_cache, solver_cache
+from gen.paths import prepare_run_dir, scene_location
+from gen.run_summary import add_scene_warnings
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MODELS = os.path.join(ROOT, "models")
+RUNS = os.path.join(ROOT, "out", "runs")
+EXIT_MEMCHECK = 99
+EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
+SIGNAL_NAME = {signal.SIGINT: "SIGINT", signal.SIGTERM: "SIGTERM"}
+VALGRIND_SUPPRESSIONS = os.path.join(ROOT, "runtime", "valgrind.supp")
+REUSED = "  model and solver of an identical earlier run (out/cache/run/)"
+
+
+def scene_error():
+    """gen/scene's SceneError (bad input), importing the scene compiler only now:
+    `except scene_error()` is evaluated only when an exception gets there."""
+    from gen.scene import SceneError
+    return SceneError
+
+
+def scene_names():
+    return sorted(n[:-5] for n in os.listdir(MODELS) if n.endswith(".toml") and not n.startswith("."))
+
+
+def scene_path(spec):
+    """The scene file (a str) of a scene argument, or SceneError."""
+    p, named = scene_location(spec, MODELS)
+    if not os.path.isfile(p):
+        if not named:
+            raise scene_error()(f"error: {spec}: no such scene file (looked for {p})")
+        raise scene_error()(f"error: scene {str(spec)!r}: no models/{spec}.toml "
+                            f"(scenes: {', '.join(scene_names())})")
+    return p
+
+
+def prepare_out_dir(out):
+    """Create or reuse an output directory (a str); never mix with foreign files."""
+    why = prepare_run_dir(out)
+    if why:
+        raise scene_error()(why)
+    return str(out)
+
+
+def memcheck_command(solver_cmd):
+    """valgrind memcheck around a solver command: every error and every leak kind
+    fails the run with status 99 (libgomp's own start-up allocation, reachable
+    until exit, is suppressed by runtime/valgrind.supp).  The solver must be the
+    `memcheck` build (gen/solver_build.py): valgrind cannot decode AVX-512."""
+    return ["valgrind", "--tool=memcheck", f"--error-exitcode={EXIT_MEMCHECK}", "--leak-check=full",
+            "--errors-for-leak-kinds=all", "--show-leak-kinds=all",
+            f"--suppressions={VALGRIND_SUPPRESSIONS}"] + list(solver_cmd)
+
+
+def write_interrupted_summary(out, name, analysis, signo):
+    """summary.json of a run interrupted before the solver wrote one (during
+    meshing or the build): no step was taken."""
+    path = os.path.join(str(out), "summary.json")
+    if os.path.exists(path):
+        return
+    import json
+    sig = SIGNAL_NAME.get(signo, str(signo))
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(json.dumps({
+            "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
+            "steps": 0, "newton_iterations": 0, "cutbacks": 0, "wall_s": 0.0, "sensors": {},
+            "warnings": [], "error": f"interrupted by {sig} before the solve started"}, indent=1) + "\n")
+
+
+def _scene_name(path):
+    """(name, analysis) of a scene without meshing it."""
+    from gen.scene import read_toml, NAME_RE
+    try:
+        sc = read_toml(path).get("scene", {})
+    except scene_error():
+        sc = {}
+    name = (sc.get("name") if isinstance(sc.get("name"), str) and NAME_RE.match(sc["name"])
+            else os.path.splitext(os.path.basename(str(path)))[0])
+    an = sc.get("analysis") if isinstance(sc.get("analysis"), str) else "static"
+    return name, an
+
+
+class _Interrupt(Exception):
+    def __init__(self, signo):
+        self.signo = signo
+
+
+class _Signals:
+    """SIGINT and SIGTERM during a run: before the solver starts they raise
+    _Interrupt (meshing and the build stop at once); while it runs they are
+    passed on to it, and it stops at its next step, keeps its results and exits
+    130 / 143.  Not entered for the API (captured runs): a Dask worker runs
+    them on threads, which cannot set signal handlers."""
+
+    def __init__(self, active=True):
+        self.pid = None
+        self.active = active
+
+    def __enter__(self):
+        if self.active:
+            self.old = {sg: signal.signal(sg, self._handle) for sg in EXIT_SIGNAL}
+        return self
+
+    def __exit__(self, *exc):
+        if self.active:
+            for sg, h in self.old.items():
+                signal.signal(sg, h)
+        return False
+
+    def _handle(self, signo, _frame):
+        if self.pid is None:
+            raise _Interrupt(signo)
+        try:
+            os.kill(self.pid, signo)
+        except ProcessLookupError:
+            pass
+
+    def run(self, cmd):
+        self.pid = os.posix_spawnp(cmd[0], cmd, os.environ)   # cheaper than fork + exec of this process
+        _, status = os.waitpid(self.pid, 0)
+        rc = os.waitstatus_to_exitcode(status)
+        if rc < 0 and -rc in EXIT_SIGNAL:      # the solver died of the signal itself
+            rc = EXIT_SIGNAL[-rc]
+        return rc
+
+
+class Outcome:
+    """What run() did: rc (the solver's exit status, or 130 / 143 when
+    interrupted before it started), out (the output directory, a str), name,
+    analysis, warnings (the scene reader's), stderr (the solver's, when
+    captured), reused (the model and solver of an identical earlier run)."""
+    __slots__ = ("rc", "out", "name", "analysis", "warnings", "stderr", "reused")
+
+    def __init__(self, rc, out, name, analysis, warnings, stderr=None, reused=False):
+        self.rc, self.out, self.name, self.analysis = rc, out, name, analysis
+        self.warnings, self.stderr, self.reused = warnings, stderr, reused
+
+
+def _stderr_line(line):
+    print(line, file=sys.stderr, flush=True)
+
+
+def _print_warnings(name, warnings):
+    for w in warnings:
+        print(f"warning: {name}: {w}", file=sys.stderr)
+
+
+def _reuse(path, sets, out, quiet, verbose):
+    """(entry, out dir) of an identical earlier run, its model file written into
+    the output directory; None when there is none or the directory is not
+    usable (the full path then says why)."""
+    hit = run_cache.lookup(os.path.realpath(path), sets)
+    if hit is None:
+        return None
+    entry, model = hit
+    dest = os.path.normpath(out) if out else os.path.join(RUNS, entry["name"])
+    if prepare_run_dir(dest) is not None:
+        return None
+    if not quiet:
+        _print_warnings(entry["name"], entry["warnings"])
+        if verbose:
+            print(REUSED, file=sys.stderr)
+    with open(os.path.join(dest, "model.dat"), "wb") as fh:
+        fh.write(model)
+    return entry, dest
+
+
+def _build(path, sets, out, doc, name, variant, quiet, console):
+    """Mesh the scene (the scene compiler), write model.dat into the output
+    directory and get the solver: (model, out dir, solver)."""
+    from gen.scene import build, write_model
+    log = _stderr_line if console and not quiet else None
+    model = build(path, sets, name=name, log=log, out_dir=out or RUNS, doc=doc)
+    if console and not quiet:
+        _print_warnings(model["name"], model.get("warnings", []))
+    dest = prepare_out_dir(out or os.path.join(RUNS, model["name"]))
+    write_model(model, os.path.join(dest, "model.dat"))
+    try:
+        exe = solver_cache.solver(model["pairs"], variant, log)
+    except _Interrupt:
+        raise
+    except Exception as e:
+        raise scene_error()(f"error: building the solver for {path}: {e}")
+    return model, dest, exe
+
+
+def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", memcheck=False, verbose=False,
+        quiet=True, threads=None, capture=False, reuse=False, remember=False):
+    """Run one scene; returns an Outcome, raises SceneError for bad input (the
+    one-line `error:` message of the command line).
+
+    scene: a name in models/ or a scene file's path (the caller's, gen/paths.py);
+    with doc (the scene's tables, parsed TOML) only its label in messages.
+    sets: `--set` strings.  out: the output directory (a str as the caller
+    means it; default out/runs/NAME).  variant: the solver build, release or
+    sanitize; memcheck: the memcheck build run under valgrind.  verbose / quiet:
+    the solver's --verbose / --quiet.
+    capture: the API's run: the solver's stderr captured (stdout dropped unless
+    verbose), OMP_NUM_THREADS=threads, no messages and no signal handling of
+    this process; else the command line's: messages on stderr, the solver on
+    the terminal, SIGINT / SIGTERM passed on.
+    reuse: take the model file and solver of an identical earlier run without
+    the scene compiler (a release run of a scene file).  remember: record this
+    run for that (release) and link out/bin/NAME to its solver."""
+    if memcheck:
+        variant = "memcheck"
+    sets = list(sets)
+    path = scene if doc is not None else scene_path(scene)
+    console = not capture
+    with _Signals(active=console) as sig:
+        model = dest = None
+        try:
+            hit = _reuse(path, sets, out, quiet, verbose) if reuse and doc is None and variant == "release" else None
+            if hit is not None:
+                entry, dest = hit
+                exe, run_name, analysis, warnings = entry["solver"], entry["name"], entry["analysis"], \
+                    entry["warnings"]
+            else:
+                model, dest, exe = _build(path, sets, out, doc, name, variant, quiet, console)
+                run_name, analysis, warnings = model["name"], model["analysis"], model.get("warnings", [])
+                if remember and variant == "release":
+                    run_cache.record(str(path), sets, os.path.join(dest, "model.dat"), exe, run_name, analysis,
+                                     warnings)
+            if remember:
+                solver_cache.link_scene(run_name, exe, variant)
+        except _Interrupt as e:
+            run_name, analysis = (model["name"], model["analysis"]) if model else _scene_name(path)
+            if dest is None:                   # interrupted while meshing
+                dest = prepare_out_dir(out or os.path.join(RUNS, run_name))
+            write_interrupted_summary(dest, run_name, analysis, e.signo)
+            print(f"interrupted by {SIGNAL_NAME.get(e.signo, e.signo)} before the solve started "
+                  f"(summary in {dest}/)", file=sys.stderr)
+            return Outcome(EXIT_SIGNAL[e.signo], dest, run_name, analysis, [])
+        cmd = [exe, os.path.join(dest, "model.dat"), dest]
+        if verbose:
+            cmd.append("--verbose")
+        elif quiet:
+            cmd.append("--quiet")
+        if memcheck:
+            cmd = memcheck_command(cmd)
+        stderr = None
+        if capture:
+            rc, stderr = _captured(cmd, verbose, threads)
+        else:
+            rc = sig.run(cmd)
+    if console and rc in EXIT_SIGNAL.values():
+        write_interrupted_summary(dest, run_name, analysis, signal.SIGINT if rc == 130 else signal.SIGTERM)
+    add_scene_warnings(dest, warnings)
+    return Outcome(rc, dest, run_name, analysis, warnings, stderr, hit is not None)
+
+
+def _captured(cmd, verbose, threads):
+    """The solver run for the API: (exit status, its stderr)."""
+    import subprocess
+    env = dict(os.environ, OMP_NUM_THREADS=str(int(threads))) if threads else None
+    r = subprocess.run(cmd, stdout=None if verbose else subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                       env=env)
+    return r.returncode, r.stderr

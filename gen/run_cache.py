@@ -1,0 +1,169 @@
+"""The record of earlier runs that lets an identical `./build.sh run` skip the
+scene compiler: out/cache/run/KEY.dat (the model file that run wrote) and
+KEY.run (its solver, scene name, analysis and scene warnings).  Standard
+library only (os; sha256 from its C module), so that a repeated run imports
+neither the scene compiler nor sympy; gen/pipeline.py looks entries up and
+records them.
+
+A run is "the same" when these are byte-identical: the scene file's path and
+contents, every --set, and the state (name, size, modification time) of every
+file the model and the solver are made from: gen/ (the scene compiler and the
+build rules), runtime/ and out/kernels/.  The solver binary must still be the one
+that run used (same size and modification time: a relinked solver is another
+binary)."""
+import os
+
+try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
+    from _sha256 import sha256
+except ImportError:                    # pragma: no cover
+    from hashlib import sha256
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CACHE = os.path.join(ROOT, "out", "cache", "run")
+SOURCES = (("gen", True), ("runtime", True), (os.path.join("out", "kernels"), False))
+MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
+MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
+PRUNE_SLACK = 40                   # ... when there are this many more
+
+
+_MEMO = {}                             # the fingerprint this process computed
+
+
+def fingerprint_once():
+    """fingerprint() of the repository, computed once per process: a run changes
+    none of its files (a kernel regenerated meanwhile only makes the entry it
+    records miss later)."""
+    if "fp" not in _MEMO:
+        _MEMO["fp"] = fingerprint()
+    return _MEMO["fp"]
+
+
+def fingerprint(root=ROOT, sources=SOURCES):
+    """Names, sizes and modification times of the files the model and the solver
+    are made from (sorted): any edit, regeneration or checkout changes it."""
+    items = []
+    cut = len(os.path.join(root, ""))   # paths below root start with root + "/" (os.path.relpath: ~20x slower)
+
+    def walk(d, recursive):
+        try:
+            with os.scandir(d) as it:
+                for e in it:
+                    if e.is_dir(follow_symlinks=False):
+                        if recursive and e.name != "__pycache__":
+                            walk(e.path, True)
+                    elif e.is_file():
+                        st = e.stat()
+                        items.append(f"{e.path[cut:]}\0{st.st_size}\0{st.st_mtime_ns}")
+        except FileNotFoundError:
+            pass
+
+    for d, rec in sources:
+        walk(os.path.join(root, d), rec)
+    items.sort()
+    return "\n".join(items)
+
+
+def key(scene, scene_bytes, sets, fp):
+    h = sha256(b"beamkit-run-cache 1\0")
+    h.update(scene.encode() + b"\0" + scene_bytes + b"\0")
+    for s in sets:
+        h.update(s.encode() + b"\0")
+    h.update(fp.encode())
+    return h.hexdigest()[:32]
+
+
+def lookup(scene, sets):
+    """(cache entry, model bytes) of an identical earlier run of the scene file
+    `scene` (a real path) with these --set strings, or None."""
+    try:
+        with open(scene, "rb") as fh:
+            text = fh.read()
+    except OSError:
+        return None
+    k = key(scene, text, sets, fingerprint_once())
+    try:
+        with open(os.path.join(CACHE, k + ".run"), encoding="utf-8") as fh:
+            entry = read_entry(fh.read())
+        with open(os.path.join(CACHE, k + ".dat"), "rb") as fh:
+            model = fh.read()
+        st = os.stat(entry["solver"])
+    except (OSError, ValueError, KeyError, IndexError):
+        return None
+    if [st.st_size, st.st_mtime_ns] != entry["solver_stat"]:
+        return None
+    return entry, model
+
+
+ENTRY_FIELDS = ("version", "scene", "solver", "solver_size", "solver_mtime_ns", "name", "analysis")
+
+
+def write_entry(e):
+    """An entry as text: one `field value` line each, then one line per warning."""
+    lines = [f"{f} {e[f]}" for f in ENTRY_FIELDS] + ["warning " + w.replace("\n", " ") for w in e["warnings"]]
+    return "\n".join(lines) + "\n"
+
+
+def read_entry(text):
+    e = {"warnings": []}
+    for line in text.splitlines():
+        f, _, v = line.partition(" ")
+        if f == "warning":
+            e["warnings"].append(v)
+        elif f in ENTRY_FIELDS:
+            e[f] = v
+    if e.get("version") != "1" or any(f not in e for f in ENTRY_FIELDS):
+        raise ValueError("not a run-cache entry")
+    e["solver_stat"] = [int(e["solver_size"]), int(e["solver_mtime_ns"])]
+    return e
+
+
+def record(scene, sets, model_path, solver, name, analysis, warnings):
+    """The entry a later identical run reuses, written after the model file and
+    the solver, before the solve (the fingerprint is of the files that made them)."""
+    try:
+        size = os.path.getsize(model_path)
+        if size > MAX_MODEL_BYTES:
+            return
+        with open(scene, "rb") as fh:
+            text = fh.read()
+        scene = os.path.realpath(scene)
+        k = key(scene, text, list(sets), fingerprint_once())
+        os.makedirs(CACHE, exist_ok=True)
+        st = os.stat(solver)
+        entry = {"version": "1", "scene": scene, "solver": os.path.abspath(solver), "solver_size": st.st_size,
+                 "solver_mtime_ns": st.st_mtime_ns, "name": name, "analysis": analysis,
+                 "warnings": list(warnings)}
+        for ext, data in ((".dat", None), (".run", write_entry(entry))):
+            tmp = os.path.join(CACHE, f"{k}{ext}.{os.getpid()}.tmp")
+            if data is None:
+                with open(model_path, "rb") as src, open(tmp, "wb") as dst:
+                    dst.write(src.read())
+            else:
+                with open(tmp, "w", encoding="utf-8") as fh:
+                    fh.write(data)
+            os.replace(tmp, os.path.join(CACHE, k + ext))
+        prune()
+    except OSError:
+        pass                           # no cache: the next run takes the full path
+
+
+def prune(limit=MAX_ENTRIES, slack=PRUNE_SLACK):
+    """Remove the least recently written entries beyond `limit`, once there are
+    `slack` more than that (the names are listed on every record, the entries'
+    times read only then: stat-ing all of them on every run cost ~2 ms)."""
+    names = [n for n in os.listdir(CACHE) if n.endswith(".run")]
+    if len(names) <= limit + slack:
+        return
+    runs = []
+    for n in names:
+        try:
+            runs.append((os.stat(os.path.join(CACHE, n)).st_mtime_ns, n[:-4]))
+        except FileNotFoundError:
+            pass
+    runs.sort()
+    for _, k in runs[:max(0, len(runs) - limit)]:
+        for ext in (".run", ".dat"):
+            try:
+                os.unlink(os.path.join(CACHE, k + ext))
+            except FileNotFoundError:
+                pass
