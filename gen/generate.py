@@ -39,6 +39,8 @@ def plan(elements=None, materials=None):
         units += [("shared", u, shared_paths()) for u in SHARED_UNITS]
     from gen.emit_body import UNITS as BODY_UNITS, paths as body_paths
     units += [("body", u, body_paths()) for u in BODY_UNITS]
+    from gen.emit_contact import UNIT as CONTACT_UNIT, paths as contact_paths
+    units.append(("contact", CONTACT_UNIT, contact_paths()))
     for ename, (elem, epath) in elements.items():
         fam = family_paths(elem)
         units.append(("element", ename, [epath] + fam))
@@ -93,6 +95,9 @@ def produce(unit):
     elif kind == "body":
         from gen.emit_body import unit_source
         h, c = unit_source(name)
+    elif kind == "contact":
+        from gen.emit_contact import unit_source
+        h, c = unit_source()
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = _emitter(elem).element_source(elem, epath)[:2]

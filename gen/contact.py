@@ -1,0 +1,134 @@
+"""Contact kernels, derived with sympy: the gap between a point of a beam's
+centreline and a rigid primitive with its first and second derivatives in the
+point's position, the barrier that keeps gaps positive, and the smoothed
+Coulomb friction profile (out/kernels/contact.{h,c}).
+
+Gaps (g > 0: apart, the beam's own section radius not included; x the point):
+  half-space  n . x - d                    (prm: unit normal n, offset d)
+  sphere      |x - c| - R                  (prm: centre c, radius R)
+  segment     |x - a - t (b - a)| - R,     t = (x - a).(b - a) / |b - a|^2
+              the distance to the segment's line; the ends (t <= 0, t >= 1) of
+              a capsule are spheres (prm: a, b, R; out: t after the
+              derivatives, for the caller's choice of branch)
+Each gap kernel writes out[0] = g, out[1..3] = dg/dx, out[4..12] = d2g/dx2
+(row-major).
+
+Barrier (incremental potential contact, Li et al. 2020): for a distance
+0 < s < shat, b(s) = -(s - shat)^2 ln(s / shat), zero beyond; C2 at s = shat,
+growing without bound as s -> 0, so an iterate that keeps s > 0 (the step
+limiter's job) feels a force that grows as it approaches.  out[0..2] = b, b',
+b''.
+
+Friction (the same paper's smoothed slip function): for a slip magnitude
+y >= 0 and tolerance eps, f1(y) = 2 y/eps - y^2/eps^2 below eps, 1 beyond, so
+the friction force mu N f1(y) t/|t| is exact Coulomb past eps and a stiff
+linear spring below it (static friction up to the tolerance).  out[0..3] =
+f1, f1', f1(y)/y, d(f1(y)/y)/dy, the last two regular at y = 0 (the force is
+mu N (f1/y) u for the slip vector u)."""
+import sympy as sp
+
+from gen.c_functions import _function
+from gen.program import Program, count_lowered, lower
+
+_D = "const double *restrict"
+_W = "double *restrict"
+
+
+def _vec(name, k=0, n=3):
+    return sp.Matrix([sp.Symbol(f"{name}[{k + i}]", real=True) for i in range(n)])
+
+
+def _gap_program(g, x, extra=()):
+    """g, dg/dx, d2g/dx2 of a gap expression g(x) into out[0..12] (and extra
+    outputs after them)."""
+    p = Program()
+    p.output("out[0]", g, op="=")
+    dg = [sp.diff(g, xi) for xi in x]
+    for i in range(3):
+        p.output(f"out[{1 + i}]", dg[i], op="=")
+    for i in range(3):
+        for j in range(3):
+            p.output(f"out[{4 + 3 * i + j}]", sp.diff(dg[i], x[j]), op="=")
+    for k, e in enumerate(extra):
+        p.output(f"out[{13 + k}]", e, op="=")
+    return lower(p, ())
+
+
+def half_space():
+    x, n, d = _vec("x"), _vec("prm"), sp.Symbol("prm[3]", real=True)
+    return _gap_program(n.dot(x) - d, x)
+
+
+def sphere():
+    x, c, R = _vec("x"), _vec("prm"), sp.Symbol("prm[3]", real=True)
+    r = x - c
+    return _gap_program(sp.sqrt(r.dot(r)) - R, x)
+
+
+def segment():
+    x, a, b, R = _vec("x"), _vec("prm"), _vec("prm", 3), sp.Symbol("prm[6]", real=True)
+    e = b - a
+    t = (x - a).dot(e) / e.dot(e)
+    r = x - a - t * e
+    return _gap_program(sp.sqrt(r.dot(r)) - R, x, extra=(t,))
+
+
+def barrier():
+    s, shat = sp.symbols("s shat", positive=True)
+    b = -(s - shat) ** 2 * sp.log(s / shat)
+    p = Program()
+    p.output("out[0]", b, op="=")
+    p.output("out[1]", sp.diff(b, s), op="=")
+    p.output("out[2]", sp.diff(b, s, 2), op="=")
+    return lower(p, ())
+
+
+def friction():
+    y, eps = sp.symbols("y eps", nonnegative=True)
+    f1 = 2 * y / eps - y ** 2 / eps ** 2
+    f1y = sp.simplify(f1 / y)                   # 2/eps - y/eps^2: regular at y = 0
+    p = Program()
+    p.output("out[0]", f1, op="=")
+    p.output("out[1]", sp.diff(f1, y), op="=")
+    p.output("out[2]", f1y, op="=")
+    p.output("out[3]", sp.diff(f1y, y), op="=")
+    return lower(p, ())
+
+
+def _ops(low):
+    pro, bod = count_lowered(low)
+    return pro.total() + bod.total()
+
+
+def functions():
+    """(name, signature, doc, C lines) of every contact kernel, in file order."""
+    out = []
+    for name, make, nprm, nout, doc in (
+            ("half_space", half_space, 4, 13, "gap to the half-space n . x >= d"),
+            ("sphere", sphere, 4, 13, "gap to the sphere |x - c| = R"),
+            ("segment", segment, 7, 14, "gap to the line of the segment a b (radius R), then t")):
+        low = make()
+        sig = (f"void bk_contact_gap_{name}({_D} x, {_D} prm, {_W} out)")
+        out.append((f"bk_contact_gap_{name}", sig,
+                    f"{doc}: x[3], prm[{nprm}] in; out[{nout}]; {_ops(low)} operations", _function(sig, low)))
+    low = barrier()
+    sig = "static void barrier_inside(double s, double shat, double *restrict out)"
+    body = _function(sig, low)
+    wrap = ["void bk_contact_barrier(double s, double shat, double *restrict out)", "{",
+            "    if (s >= shat) {", "        out[0] = out[1] = out[2] = 0.0;", "        return;", "    }",
+            "    barrier_inside(s, shat, out);", "}", ""]
+    out.append(("bk_contact_barrier", wrap[0],
+                f"barrier b, b', b'' at the distance s (0 < s; zero from shat on); {_ops(low)} operations",
+                body + wrap))
+    low = friction()
+    sig = "static void friction_inside(double y, double eps, double *restrict out)"
+    body = _function(sig, low)
+    wrap = ["void bk_contact_friction(double y, double eps, double *restrict out)", "{",
+            "    if (y >= eps) {",
+            "        out[0] = 1.0;", "        out[1] = 0.0;", "        out[2] = 1.0 / y;",
+            "        out[3] = -1.0 / (y * y);", "        return;", "    }",
+            "    friction_inside(y, eps, out);", "}", ""]
+    out.append(("bk_contact_friction", wrap[0],
+                f"slip function f1, f1', f1/y, (f1/y)' at the slip y >= 0 (tolerance eps); {_ops(low)} operations",
+                body + wrap))
+    return out

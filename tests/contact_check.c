@@ -1,0 +1,116 @@
+/* contact_check.c -- the generated contact kernels (out/kernels/contact.c)
+ * against central differences of themselves (gap -> gradient -> Hessian,
+ * barrier and friction profile -> their derivatives) and against closed forms
+ * written here independently (distances to a plane, a sphere, a line); prints
+ * the largest relative errors, tests/test_contact_kernels.py asserts them. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "contact.h"
+
+typedef void (*gap_fn)(const double *, const double *, double *);
+
+static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
+static double urand(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+/* largest relative error of gradient and Hessian against central differences */
+static void fd_gap(gap_fn f, const double *x, const double *prm, int nout, double *egrad, double *ehess)
+{
+    double o[16], op[16], om[16], h = 1e-6;
+    f(x, prm, o);
+    (void)nout;
+    for (int j = 0; j < 3; ++j) {
+        double xp[3], xm[3];
+        memcpy(xp, x, sizeof xp);
+        memcpy(xm, x, sizeof xm);
+        xp[j] += h;
+        xm[j] -= h;
+        f(xp, prm, op);
+        f(xm, prm, om);
+        double d = (op[0] - om[0]) / (2 * h);
+        *egrad = fmax(*egrad, fabs(d - o[1 + j]) / fmax(1.0, fabs(o[1 + j])));
+        for (int i = 0; i < 3; ++i) {
+            double dd = (op[1 + i] - om[1 + i]) / (2 * h);
+            *ehess = fmax(*ehess, fabs(dd - o[4 + 3 * i + j]) / fmax(1.0, fabs(o[4 + 3 * i + j])));
+        }
+    }
+}
+
+int main(void)
+{
+    double eg = 0, eh = 0, eclosed = 0, esym = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        double x[3] = {2 * urand() - 1, 2 * urand() - 1, 2 * urand() - 1}, o[16];
+        /* half-space */
+        double n[3] = {urand() - 0.5, urand() - 0.5, urand() - 0.5};
+        double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double ph[4] = {n[0] / nn, n[1] / nn, n[2] / nn, urand() - 0.5};
+        fd_gap(bk_contact_gap_half_space, x, ph, 13, &eg, &eh);
+        bk_contact_gap_half_space(x, ph, o);
+        eclosed = fmax(eclosed, fabs(o[0] - (ph[0] * x[0] + ph[1] * x[1] + ph[2] * x[2] - ph[3])));
+        /* sphere */
+        double ps[4] = {urand() - 0.5, urand() - 0.5, urand() - 0.5, 0.1 + urand()};
+        fd_gap(bk_contact_gap_sphere, x, ps, 13, &eg, &eh);
+        bk_contact_gap_sphere(x, ps, o);
+        double r[3] = {x[0] - ps[0], x[1] - ps[1], x[2] - ps[2]};
+        eclosed = fmax(eclosed, fabs(o[0] - (sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) - ps[3])));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                esym = fmax(esym, fabs(o[4 + 3 * i + j] - o[4 + 3 * j + i]));
+        /* segment: distance to the line by the cross product, and t */
+        double pg[7] = {urand() - 0.5, urand() - 0.5, urand() - 0.5, urand() + 0.5, urand() - 0.5, urand() - 0.5,
+                        0.05 + 0.1 * urand()};
+        fd_gap(bk_contact_gap_segment, x, pg, 14, &eg, &eh);
+        bk_contact_gap_segment(x, pg, o);
+        double e[3] = {pg[3] - pg[0], pg[4] - pg[1], pg[5] - pg[2]}, w[3] = {x[0] - pg[0], x[1] - pg[1], x[2] - pg[2]};
+        double c[3] = {w[1] * e[2] - w[2] * e[1], w[2] * e[0] - w[0] * e[2], w[0] * e[1] - w[1] * e[0]};
+        double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+        double dist = sqrt((c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / ee);
+        eclosed = fmax(eclosed, fabs(o[0] - (dist - pg[6])));
+        eclosed = fmax(eclosed, fabs(o[13] - (w[0] * e[0] + w[1] * e[1] + w[2] * e[2]) / ee));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                esym = fmax(esym, fabs(o[4 + 3 * i + j] - o[4 + 3 * j + i]));
+    }
+    /* barrier: derivatives by central differences, C2 at shat, growth at 0 */
+    double eb = 0, shat = 1e-3;
+    for (int k = 1; k < 100; ++k) {
+        double s = shat * k / 100.0, h = 1e-9 * shat, b[3], bp[3], bm[3];
+        bk_contact_barrier(s, shat, b);
+        bk_contact_barrier(s + h, shat, bp);
+        bk_contact_barrier(s - h, shat, bm);
+        eb = fmax(eb, fabs((bp[0] - bm[0]) / (2 * h) - b[1]) / fmax(1e-12, fabs(b[1])));
+        eb = fmax(eb, fabs((bp[1] - bm[1]) / (2 * h) - b[2]) / fmax(1e-12, fabs(b[2])));
+    }
+    double bl[3], bz[3];
+    bk_contact_barrier(shat * (1 - 1e-9), shat, bl);
+    bk_contact_barrier(1e-12 * shat, shat, bz);
+    /* friction profile: derivatives, continuity at eps, f1/y regular at 0 */
+    double ef = 0, eps = 1e-4;
+    for (int k = 1; k < 100; ++k) {
+        double y = eps * k / 100.0, h = 1e-7 * eps, f[4], fp[4], fm[4];
+        bk_contact_friction(y, eps, f);
+        bk_contact_friction(y + h, eps, fp);
+        bk_contact_friction(y - h, eps, fm);
+        ef = fmax(ef, fabs((fp[0] - fm[0]) / (2 * h) - f[1]) / fmax(1.0, fabs(f[1])));
+        ef = fmax(ef, fabs((fp[2] - fm[2]) / (2 * h) - f[3]) / fmax(1.0, fabs(f[3])));
+        ef = fmax(ef, fabs(f[2] - f[0] / y) / fabs(f[2]));
+    }
+    double fl[4], fr[4], f0[4];
+    bk_contact_friction(eps * (1 - 1e-12), eps, fl);
+    bk_contact_friction(eps, eps, fr);
+    bk_contact_friction(0.0, eps, f0);
+    printf("gap_grad_err=%.3e gap_hess_err=%.3e closed_err=%.3e hess_sym_err=%.3e barrier_err=%.3e "
+           "barrier_at_shat=%.3e,%.3e,%.3e barrier_near_0=%.3e friction_err=%.3e friction_jump=%.3e,%.3e "
+           "friction_f1y_at_0=%.17g\n",
+           eg, eh, eclosed, esym, eb, bl[0], bl[1], bl[2], bz[0], ef, fabs(fl[0] - fr[0]), fabs(fl[1] - fr[1]),
+           f0[2] * eps);
+    return 0;
+}
