@@ -261,7 +261,8 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
-    if (bk_output_modes_begin(out, info->message, sizeof info->message) != 0) {
+    static const char *const names[] = {"frequency_hz", "omega"};
+    if (bk_output_modes_begin(out, 2, names, info->message, sizeof info->message) != 0) {
         free(shape);
         goto done;
     }
@@ -286,7 +287,8 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
             shape[i] = v;
         }
         got++;
-        bk_output_mode(out, got, omega / (2.0 * M_PI), omega, q, shape);
+        const double vals[2] = {omega / (2.0 * M_PI), omega};
+        bk_output_mode(out, got, vals, q, shape);
         if (*nfreq < BK_SUMMARY_FREQUENCIES)
             freqs[(*nfreq)++] = omega / (2.0 * M_PI);
     }

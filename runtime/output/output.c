@@ -244,11 +244,22 @@ static FILE *mode_table(bk_output *o, const char *name, const char *header, char
     return fp;
 }
 
-int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
+int bk_output_modes_begin(bk_output *o, int nval, const char *const *names, char *err, size_t nerr)
 {
-    if (!(o->modes = mode_table(o, "modes.csv", "mode,frequency_hz,omega,scale_m\n", err, nerr)) ||
-        !(o->mode_sensors = mode_table(o, "mode_sensors.csv",
-                                       "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n", err, nerr)))
+    if (nval < 1 || nval > BK_MODE_VALUES) {
+        snprintf(err, nerr, "%d values per mode (expected 1 to %d)", nval, BK_MODE_VALUES);
+        return -1;
+    }
+    o->mode_nval = nval;
+    o->mode_names = names;
+    char head[400], shead[300];
+    int len = snprintf(head, sizeof head, "mode");
+    for (int k = 0; k < nval; ++k)
+        len += snprintf(head + len, sizeof head - (size_t)len, ",%s", names[k]);
+    snprintf(head + len, sizeof head - (size_t)len, ",scale_m\n");
+    snprintf(shead, sizeof shead, "mode,%s,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n", names[0]);
+    if (!(o->modes = mode_table(o, "modes.csv", head, err, nerr)) ||
+        !(o->mode_sensors = mode_table(o, "mode_sensors.csv", shead, err, nerr)))
         return -1;
     o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
     if (!o->mode_q) {
@@ -258,7 +269,7 @@ int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
     return 0;
 }
 
-double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi)
+double bk_output_mode(bk_output *o, int mode, const double *vals, const double *q, const double *phi)
 {
     double t0 = bk_clock_s();
     const bk_model *m = o->m;
@@ -284,7 +295,10 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
     if (eps == 0.0)
         eps = 1.0;                              /* zero vector: qp = qm = q, shape 0 */
     if (o->modes) {
-        fprintf(o->modes, "%d,%.17g,%.17g,%.9g\n", mode, f_hz, omega, scale);
+        fprintf(o->modes, "%d", mode);
+        for (int k = 0; k < o->mode_nval; ++k)
+            fprintf(o->modes, ",%.17g", vals[k]);
+        fprintf(o->modes, ",%.9g\n", scale);
         fflush(o->modes);
     }
     if (o->mode_sensors) {
@@ -296,13 +310,13 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
             bk_eval_point(m, qm, s->elem, s->xi, b, NULL);
             for (int i = 0; i < 3; ++i)
                 sh[i] = (a[i] - b[i]) / (2.0 * eps * norm);
-            fprintf(o->mode_sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", mode, f_hz,
+            fprintf(o->mode_sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", mode, vals[0],
                     s->name, x[0] + scale * sh[0], x[1] + scale * sh[1], x[2] + scale * sh[2], scale * sh[0],
                     scale * sh[1], scale * sh[2], sh[0], sh[1], sh[2]);
         }
         fflush(o->mode_sensors);
     }
-    bk_vtk_mode(&o->vtk, mode, f_hz, omega, scale, norm, q, qp, qm, eps);
+    bk_vtk_mode(&o->vtk, mode, o->mode_nval, o->mode_names, vals, scale, norm, q, qp, qm, eps);
     spent(o, t0);
     return scale;
 }

@@ -21,6 +21,8 @@ typedef struct bk_output {
     FILE *modes;             /* modal analyses only (registered in tables) */
     FILE *mode_sensors;      /* modal analyses only (registered in tables) */
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
+    int mode_nval;           /* values per mode and their names (bk_output_modes_begin) */
+    const char *const *mode_names;
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
     bk_vtk vtk;              /* ParaView frames */
     int progress;            /* 1: an updating progress line on stderr */
@@ -62,17 +64,23 @@ FILE *bk_output_table(bk_output *o, const char *name, const char *header, FILE *
  * since t0 (bk_clock_s) counted as output time. */
 void bk_output_row(bk_output *o, bk_row *r, FILE *table);
 void bk_output_row_end(bk_output *o, bk_row *r, double t0, int flush);
-/* Opens modes.csv and mode_sensors.csv and allocates the mode buffers; -1 on
- * failure (a message in err). */
-int bk_output_modes_begin(bk_output *o, char *err, size_t nerr);
-/* Mode `mode` (1, 2, ...) with frequency f_hz, angular frequency omega and
- * vector phi[ndof] (any scale) about the state q: normalizes it to a largest
- * point translation of 1 (mode_shape), scales it for display to a largest
- * translation of BK_MODE_SIZE times the model length, or less if the sections
- * would turn by more than BK_MODE_ROTATION rad, and writes the row of modes.csv
- * (mode, frequency in Hz, angular frequency, that scale in m), the rows of
- * mode_sensors.csv and mode_NN.vtu.  Returns the scale (m). */
-double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const double *q, const double *phi);
+/* Opens modes.csv and mode_sensors.csv for modes that each carry nval values
+ * named names[nval] (1 <= nval <= BK_MODE_VALUES; the analysis's: a modal
+ * analysis "frequency_hz", "omega"; the names must outlive the output) and
+ * allocates the mode buffers; -1 on failure (a message in err).  Headers:
+ * modes.csv "mode,NAMES...,scale_m", mode_sensors.csv "mode,NAMES[0],sensor,
+ * x,y,z,dx,dy,dz,shape_x,shape_y,shape_z". */
+#define BK_MODE_VALUES 4
+int bk_output_modes_begin(bk_output *o, int nval, const char *const *names, char *err, size_t nerr);
+/* Mode `mode` (1, 2, ...) with its values vals[nval] and vector phi[ndof]
+ * (any scale) about the state q: normalizes it to a largest point translation
+ * of 1 (mode_shape), scales it for display to a largest translation of
+ * BK_MODE_SIZE times the model length, or less if the sections would turn by
+ * more than BK_MODE_ROTATION rad, and writes the row of modes.csv (mode, the
+ * values, that scale in m), the rows of mode_sensors.csv and mode_NN.vtu (its
+ * field data: MODE, the values under their names in capitals, MODE_SCALE).
+ * Returns the scale (m). */
+double bk_output_mode(bk_output *o, int mode, const double *vals, const double *q, const double *phi);
 #define BK_MODE_SIZE 0.1
 #define BK_MODE_ROTATION 0.5
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err);

@@ -470,18 +470,32 @@ int bk_vtk_flush(bk_vtk *v)
     return write_pvd(v);
 }
 
-int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, double norm, const double *q,
-                const double *qp, const double *qm, double eps)
+int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const double *vals, double scale,
+                double norm, const double *q, const double *qp, const double *qm, double eps)
 {
     if (v->every <= 0)
         return 0;
     char path[1200];
     snprintf(path, sizeof path, "%s/mode_%02d.vtu", v->dir, mode);
-    static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
-    const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
+    enum { MAXF = 8, NAMELEN = 48 };
+    char caps[MAXF][NAMELEN];
+    const char *fname[MAXF];
+    double fval[MAXF];
+    int nf = 0;
+    fname[nf] = "TIME", fval[nf++] = (double)mode;
+    fname[nf] = "MODE", fval[nf++] = (double)mode;
+    for (int k = 0; k < nval && nf < MAXF - 1; ++k, ++nf) {
+        int i = 0;
+        for (; names[k][i] && i < NAMELEN - 1; ++i)
+            caps[nf][i] = (char)(names[k][i] >= 'a' && names[k][i] <= 'z' ? names[k][i] - 'a' + 'A' : names[k][i]);
+        caps[nf][i] = 0;
+        fname[nf] = caps[nf];
+        fval[nf] = vals[k];
+    }
+    fname[nf] = "MODE_SCALE", fval[nf++] = scale;
     mode_view mv = {qp, qm, eps, norm, scale};
     maybe_background(v, v->m->modal.nmodes > 0 ? (double)mode / v->m->modal.nmodes : -1.0);
-    if (write_vtu(v, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
+    if (write_vtu(v, path, nf, fname, fval, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;

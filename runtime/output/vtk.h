@@ -78,8 +78,10 @@ void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, d
 /* Writes mode_NN.vtu of mode `mode` (1, 2, ...) and rewrites modes.pvd: the
  * points of q displaced by scale * shape, shape = the linearized point motion of
  * qp/qm divided by norm (so its largest translation is 1 when norm is the
- * translation extent).  Nothing when ParaView output is off. */
-int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, double norm, const double *q,
-                const double *qp, const double *qm, double eps);
+ * translation extent); field data TIME and MODE (the mode number), the nval
+ * values under their names in capitals, MODE_SCALE.  Nothing when ParaView
+ * output is off. */
+int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const double *vals, double scale,
+                double norm, const double *q, const double *qp, const double *qm, double eps);
 
 #endif
