@@ -27,7 +27,7 @@ JOBS = max(1, min(os.cpu_count() or 1, int(os.environ.get("BK_JOBS", "2"))))
 
 RUNTIME_SOURCES = ("model.c", "system.c", "bandlu.c", "linsolve.c", "nonlinear.c", "newton.c", "stability.c",
                    "quaternion.c", "dynamics.c", "modal.c", "output.c", "vtk.c", "interrupt.c", "norms.c", "checks.c",
-                   "main.c", "amplitude.c", "loads.c", "forces.c", "numfmt.c", "csvrow.c", "filewriter.c")
+                   "buckling.c", "main.c", "amplitude.c", "loads.c", "forces.c", "numfmt.c", "csvrow.c", "filewriter.c")
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP
 # (results are bit-identical for any OMP_NUM_THREADS, see runtime/system.c); the
 # sanitizer build keeps OpenMP so that it checks the code that runs.

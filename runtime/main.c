@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "buckling.h"
 #include "clock.h"
 #include "dynamics.h"
 #include "interrupt.h"
@@ -89,6 +90,8 @@ int main(int argc, char **argv)
         rc = bk_solve_dynamic(s, q, &out, &info, verbose ? stderr : NULL);
     else if (m->analysis == BK_MODAL)
         rc = bk_solve_modal(s, q, &out, &info, verbose ? stderr : NULL);
+    else if (m->analysis == BK_BUCKLING)
+        rc = bk_solve_buckling(s, q, &out, &info, verbose ? stderr : NULL);
     else
         rc = bk_solve_static(s, q, &out, &info, verbose ? stderr : NULL);
     bk_output_final(&out, info.steps, info.load_factor, q);

@@ -180,7 +180,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 
 void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
-    if (o->m->analysis != BK_MODAL)
+    if (o->m->analysis != BK_MODAL && o->m->analysis != BK_BUCKLING)
         bk_output_last_frame(o, step, t, q);
     double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
@@ -236,7 +236,8 @@ int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
     snprintf(path, sizeof path, "%s/modes.csv", o->dir);
     o->modes = fopen(path, "w");
     if (o->modes) {
-        fprintf(o->modes, "mode,frequency_hz,omega,scale_m\n");
+        fprintf(o->modes, o->m->analysis == BK_BUCKLING ? "mode,load_factor,scale_m\n"
+                                                        : "mode,frequency_hz,omega,scale_m\n");
         snprintf(path, sizeof path, "%s/mode_sensors.csv", o->dir);
         o->mode_sensors = fopen(path, "w");
     }
@@ -244,7 +245,8 @@ int bk_output_modes_begin(bk_output *o, char *err, size_t nerr)
         snprintf(err, nerr, "%s: cannot write: %s", path, strerror(errno));
         return -1;
     }
-    fprintf(o->mode_sensors, "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
+    fprintf(o->mode_sensors, "mode,%s,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n",
+            o->m->analysis == BK_BUCKLING ? "load_factor" : "frequency_hz");
     o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
     if (!o->mode_q) {
         snprintf(err, nerr, "out of memory for the mode output");
@@ -280,7 +282,10 @@ double bk_output_mode(bk_output *o, int mode, double f_hz, double omega, const d
         eps = 1.0;                              /* zero vector: qp = qm = q, shape 0 */
     if (o->nfreq < (int)(sizeof o->freqs / sizeof *o->freqs))
         o->freqs[o->nfreq++] = f_hz;
-    if (o->modes) {
+    if (o->modes && m->analysis == BK_BUCKLING) {   /* f_hz: the load factor */
+        fprintf(o->modes, "%d,%.17g,%.9g\n", mode, f_hz, scale);
+        fflush(o->modes);
+    } else if (o->modes) {
         fprintf(o->modes, "%d,%.17g,%.17g,%.9g\n", mode, f_hz, omega, scale);
         fflush(o->modes);
     }
@@ -406,7 +411,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     const bk_model *m = o->m;
     fprintf(fp, "{\n  \"scene\": ");
     json_string(fp, m->name);
-    static const char *const kind[] = {"static", "dynamic", "modal"};
+    static const char *const kind[] = {"static", "dynamic", "modal", "buckling"};
     fprintf(fp, ",\n  \"analysis\": \"%s\",\n", kind[m->analysis]);
     fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
     fprintf(fp, "  \"interrupted\": %s,\n", info->interrupted ? "true" : "false");
@@ -438,6 +443,15 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         for (int k = 0; k < o->nfreq; ++k)
             fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);
         fprintf(fp, "],\n");
+    }
+    if (m->analysis == BK_BUCKLING) {     /* positive factors ascending, then negative ones (buckling.c) */
+        fprintf(fp, "  \"buckling\": {\"about\": \"%s\", \"load_factors\": [",
+                m->modal.about_static ? "preloaded" : "reference");
+        for (int k = 0; k < o->nfreq; ++k)
+            fprintf(fp, "%s%.17g", k ? ", " : "", o->freqs[k]);
+        fprintf(fp, "], \"critical_load_factor\": ");
+        json_num(fp, o->nfreq > 0 && o->freqs[0] > 0.0 ? o->freqs[0] : NAN);
+        fprintf(fp, "},\n");
     }
     if (info->stability_checked) {
         fprintf(fp, "  \"stability\": {\"negative_eigenvalues\": %d, \"eig_min\": ", info->negative_eigenvalues);

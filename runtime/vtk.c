@@ -771,10 +771,14 @@ int bk_vtk_mode(bk_vtk *v, int mode, double f_hz, double omega, double scale, do
     char path[1200];
     snprintf(path, sizeof path, "%s/mode_%02d.vtu", v->dir, mode);
     static const char *const names[] = {"TIME", "MODE", "FREQUENCY_HZ", "OMEGA", "MODE_SCALE"};
+    static const char *const bnames[] = {"TIME", "MODE", "LOAD_FACTOR", "MODE_SCALE"};   /* buckling */
+    const int buckling = v->m->analysis == BK_BUCKLING;
     const double vals[] = {(double)mode, (double)mode, f_hz, omega, scale};
+    const double bvals[] = {(double)mode, (double)mode, f_hz, scale};
     mode_view mv = {qp, qm, eps, norm, scale};
     maybe_background(v, v->m->modal.nmodes > 0 ? (double)mode / v->m->modal.nmodes : -1.0);
-    if (write_vtu(v, path, 5, names, vals, q, &mv, NULL, NULL, 0) != 0)
+    if (write_vtu(v, path, buckling ? 4 : 5, buckling ? bnames : names, buckling ? bvals : vals, q, &mv, NULL,
+                  NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;
