@@ -56,5 +56,5 @@ def all_keys():
     """{table: keys} for every table but the law parameters of [material.NAME]."""
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
-            "modal": MODAL, "buckling": BUCKLING, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE)}
+            "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING}
