@@ -23,13 +23,10 @@
  * quaternions' gauge (GSL QR of the rows' transpose, as modal.c): with
  * A = Z^T K0 Z, B = Z^T K1 Z, C = Z^T K2 Z and nu = 1/lam,
  *     nu [phi; psi] = [0, I; -A^{-1} C, -A^{-1} B] [phi; psi]
- * (GSL's nonsymmetric solver: the element multipliers of euler_bernoulli and
- * kirchhoff make K0 indefinite, follower loads make it unsymmetric).  The
- * first-order pencil K0 + lam K1 alone is not enough: K1 holds the change of
- * the elastic stiffness along u (first order in lam), which moves the factor
- * of a symmetric bifurcation at second order, where K2 balances it; the
- * cantilever strip's lateral-torsional factor is 8.80 N without K2, 11.48 N
- * with it (closed form 11.47 N; Euler columns change by 2e-5).
+ * (GSL, nonsymmetric: multipliers of euler_bernoulli, kirchhoff, followers).
+ * Without K2 the change of the elastic stiffness along u in K1 moves the
+ * factor of a symmetric bifurcation at second order unbalanced: the strip's
+ * lateral-torsional factor is 8.80 N so, 11.48 N with K2 (closed form 11.47).
  * Reported: the `modes` real factors of least magnitude (|Im nu| <= 1e-6
  * |nu|; |nu| >= 1e-8 max |nu|), positive ones first in ascending order, then
  * negative ones by increasing magnitude (the loads reversed buckle at |lam|).
@@ -59,8 +56,7 @@
 typedef struct work {
     int nz, nquat;
     int *quat;                                   /* first DOF of each free nodal quaternion */
-    double *f, *g, *r, *fext, *u, *w, *qp, *phi; /* [ndof] */
-    double *Ax;                                  /* [nnz] */
+    double *f, *g, *r, *fext, *u, *w, *qp, *phi, *Ax; /* [ndof] each, Ax [nnz] */
     gsl_matrix *K0, *K1, *K2, *Z, *T, *A, *B, *C;
     gsl_vector *b, *y;
     gsl_permutation *perm;
@@ -316,41 +312,45 @@ static int modes(bk_system *s, work *w, const double *q, bk_output *out, bk_run_
     for (int k = 0; k < n2; ++k)
         numax = fmax(numax, gsl_complex_abs(gsl_vector_complex_get(nu, (size_t)k)));
     int nf = 0, ncomplex = 0;
+    double cmax = 0.0;                               /* the largest |nu| of a complex pair */
     for (int k = 0; k < n2; ++k) {
         gsl_complex z = gsl_vector_complex_get(nu, (size_t)k);
         double a = gsl_complex_abs(z);
         if (!(a >= BK_BUCKLING_RANGE * numax) || a == 0.0)
             continue;                                /* no buckling along it (lam beyond the range) */
         if (fabs(GSL_IMAG(z)) > BK_BUCKLING_IMAG * a) {
-            ncomplex++;
+            ncomplex++, cmax = fmax(cmax, a);
             continue;
         }
         fac[nf].lam = 1.0 / GSL_REAL(z);
         fac[nf++].k = k;
     }
+    qsort(fac, (size_t)nf, sizeof *fac, by_magnitude);
+    if (cmax > 0.0 && (nf == 0 || 1.0 / cmax < fabs(fac[0].lam)))
+        bk_warn(info, out->console, m->name, "complex critical factors from |lam| = %.6g on, below every real "
+                "one: the loads are not conservative (follower loads); flutter is beyond a buckling analysis",
+                1.0 / cmax);
     if (nf == 0) {
         snprintf(info->message, sizeof info->message,
-                 "no buckling: the loads do not change the tangent (no compression, no moment)");
+                 "no buckling: no real critical factor (no compression, no moment, or non-conservative loads)");
         goto done;
     }
-    qsort(fac, (size_t)nf, sizeof *fac, by_magnitude);
     int want = nf < m->modal.nmodes ? nf : m->modal.nmodes;
     qsort(fac, (size_t)want, sizeof *fac, by_report_order);
     if (bk_output_modes_begin(out, info->message, sizeof info->message) != 0)
         goto done;
     for (int r = 0; r < want; ++r) {
         double n2r = 0.0;
-        for (int c = 0; c < nz; ++c) {
-            v[c] = GSL_REAL(gsl_matrix_complex_get(V, (size_t)c, (size_t)fac[r].k));
-            n2r += v[c] * v[c];
-        }
+        for (int c = 0; c < nz; ++c)
+            v[c] = GSL_REAL(gsl_matrix_complex_get(V, (size_t)c, (size_t)fac[r].k)), n2r += v[c] * v[c];
         if (n2r == 0.0)                              /* (a real vector scaled by i) */
             for (int c = 0; c < nz; ++c)
                 v[c] = GSL_IMAG(gsl_matrix_complex_get(V, (size_t)c, (size_t)fac[r].k));
         expand(s, w, v, 1, w->phi);
         bk_output_mode(out, r + 1, fac[r].lam, fac[r].lam, q, w->phi);
         if (log)
-            fprintf(log, "  buckling mode %d: load factor %.9g (%d complex dropped)\n", r + 1, fac[r].lam, ncomplex);
+            fprintf(log, "  buckling mode %d: load factor %.9g (%d complex dropped)\n", r + 1, fac[r].lam,
+                    ncomplex);
     }
     info->steps = want;
     rc = 0;

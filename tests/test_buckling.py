@@ -290,3 +290,13 @@ def test_static_stability_refines_the_critical_point_inside_an_increment():
     s0, _ = run_ok(strip("gef"), "bk_ltb_gef_ref2")
     assert abs(crit[8] / s0["buckling"]["critical_load_factor"] - 1) < 2e-3, crit
     assert abs(crit[8] / strip_reference() - 1) < 1e-2, crit
+
+
+def test_follower_load_gives_a_warning_not_a_buckling_load():
+    """Beck's column (a tangential end load) loses stability by flutter: the static
+    problem has complex factors far below any real one, and the run says so."""
+    text = (ROOT / "models" / "column_buckling.toml").read_text().replace(
+        "value = [-1.0, 0.0, 0.0]", "value = [0.0, 0.0, -1.0]\nfollower = true")
+    s, _ = run_ok(text, "bk_beck")
+    assert any("not conservative" in w for w in s["warnings"]), s["warnings"]
+    assert s["buckling"]["critical_load_factor"] > 1e3 * EULER["cantilever"]
