@@ -243,6 +243,8 @@ def test_outputs_of_a_buckling_run():
     tip, mid = math.hypot(*sh["tip"][1:]), math.hypot(*sh["mid"][1:])
     assert abs(mid / tip - (1 - math.cos(math.pi / 4))) < 3e-3, (mid, tip)
     assert abs(sh["tip"][0]) < 1e-6 * tip            # lateral, no axial motion
+    r = run_cli(["plot", str(out)])
+    assert r.returncode == 0 and (out / "modes.png").exists(), r.stderr
 
 
 def check_error(text, key, expected):
