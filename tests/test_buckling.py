@@ -124,7 +124,7 @@ EULER = {"cantilever": math.pi**2 * EI_ST / 4, "pinned": math.pi**2 * EI_ST, "pi
 
 @pytest.mark.parametrize("element,supports", [(e, s) for e in ("gef", "euler_bernoulli") for s in
                                               ("cantilever", "pinned")] +
-                         [("kirchhoff", "cantilever"), ("ancf_cable", "cantilever"),
+                         [("kirchhoff", "cantilever"), ("kirchhoff", "pinned"), ("ancf_cable", "cantilever"),
                           ("ancf_cable", "pinned_cable"), ("ancf3243", "cantilever")])
 def test_euler_columns_10_elements(element, supports):
     """10 elements, a unit compressive end load: the first factor is Euler's load to
@@ -141,7 +141,7 @@ def test_euler_columns_10_elements(element, supports):
     assert s["buckling"]["critical_load_factor"] == lam[0]
 
 
-@pytest.mark.parametrize("element", ["gef", "euler_bernoulli"])
+@pytest.mark.parametrize("element", ["gef", "euler_bernoulli", "kirchhoff", "ancf_cable"])
 def test_clamped_clamped_column_10_elements(element):
     lam = clamped_clamped(element, 10)
     ref = 4 * math.pi**2 * EI_ST / 2.0**2
