@@ -261,4 +261,4 @@ class Run:
     @property
     def frequencies(self):
         m = self.modes
-        return None if m is None else m["frequency_hz"]
+        return None if m is None or "frequency_hz" not in m else m["frequency_hz"]

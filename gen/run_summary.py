@@ -61,6 +61,10 @@ def print_summary(s, out):
               f"displacement [{u[0]:.6e}, {u[1]:.6e}, {u[2]:.6e}] m")
     if s["analysis"] == "modal":
         print_modes(out)
+    if s["analysis"] == "buckling" and s.get("buckling"):
+        print(f"  critical load factors ({s['buckling']['about']} state): "
+              + ", ".join(f"{x:.9g}" for x in s["buckling"]["load_factors"])
+              + "; mode shapes: modes.pvd (mode_NN.vtu)")
     if s.get("warnings"):
         n = len(s["warnings"])
         print(f"  {n} warning{'s' if n > 1 else ''}: the result may be wrong (see above and summary.json)")

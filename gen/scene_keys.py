@@ -7,7 +7,7 @@ the same keys.
 """
 
 TOP = ("scene", "material", "section", "beam", "body", "constraint", "load", "static", "dynamic", "modal",
-       "initial_velocity", "sensor", "output", "amplitude")
+       "buckling", "initial_velocity", "sensor", "output", "amplitude")
 
 SCENE = ("analysis", "description", "name")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -24,11 +24,11 @@ CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
               "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency", "angle",
                                       "angle_amplitude"),
               "point_on_line": ("type", "a", "axis")}
-LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower"),
-        "moment": ("type", "at", "value", "amplitude", "follower"),
-        "gravity": ("type", "value", "amplitude"),
-        "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower"),
-        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude")}
+LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
+        "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
+        "gravity": ("type", "value", "amplitude", "preload"),
+        "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
+        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude", "preload")}
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),
@@ -39,6 +39,7 @@ STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycle
 DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
            "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
 MODAL = ("modes", "about")
+BUCKLING = ("modes",)
 OUTPUT = ("vtk_every",)
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
@@ -56,4 +57,4 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE)}
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING}

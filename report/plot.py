@@ -101,7 +101,7 @@ def fig_sensors(run, summary, length):
     names = list(dict.fromkeys(r["sensor"] for r in rows))
     xlabel = "time (s)" if summary["analysis"] == "dynamic" else "load factor"
     what = "sensor displacements"
-    if summary["analysis"] == "modal":
+    if summary["analysis"] in ("modal", "buckling"):
         what += " on the load path of the static state"
     fig, ax = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     for n in names:
@@ -191,7 +191,9 @@ def mode_panel(ax, vtu, length):
         b = pts[line] - disp[line]
         ax.plot(b @ e1, b @ e2, color="0.6", lw=1, ls="--")
         ax.plot(pts[line] @ e1, pts[line] @ e2, color="C0", lw=1.5)
-    ax.set_title(f"mode {int(fields.get('MODE', 0))}: {fields.get('FREQUENCY_HZ', float('nan')):.5g} Hz, "
+    value = (f"load factor {fields['LOAD_FACTOR']:.6g}" if "LOAD_FACTOR" in fields      # buckling
+             else f"{fields.get('FREQUENCY_HZ', float('nan')):.5g} Hz")
+    ax.set_title(f"mode {int(fields.get('MODE', 0))}: {value}, "
                  f"scale {fields.get('MODE_SCALE', float('nan')):.3g} m", fontsize=9)
     ax.set_xlabel(direction_label(e1), fontsize=8)
     ax.set_ylabel(direction_label(e2), fontsize=8)
@@ -300,13 +302,13 @@ def figures(run):
     length = model_length(run)
     figs = {}
     rows = read_csv(run / "sensors.csv")
-    if summary["analysis"] != "modal" or len({r["step"] for r in rows}) > 1:
+    if summary["analysis"] not in ("modal", "buckling") or len({r["step"] for r in rows}) > 1:
         figs["sensors.png"] = fig_sensors(run, summary, length)
     if (run / "energy.csv").exists():
         figs["energy.png"] = fig_energy(run, summary)
     if "critical_points" in summary:
         figs["path.png"] = fig_path(run, summary)
-    if summary["analysis"] == "modal":
+    if summary["analysis"] in ("modal", "buckling"):
         f = fig_modes(run, summary, length)
         if f is not None:
             figs["modes.png"] = f
@@ -314,7 +316,8 @@ def figures(run):
     if frames:
         vtu, t = frames[-1]
         where = {"dynamic": f"t = {t:.4g} s", "static": f"load factor {t:.4g}",
-                 "modal": f"the state the modes are about (load factor {t:.4g})"}[summary["analysis"]]
+                 "modal": f"the state the modes are about (load factor {t:.4g})",
+                 "buckling": f"the state the modes are about (load factor {t:.4g})"}[summary["analysis"]]
         figs["beam.png"] = fig_beam(vtu, summary, where)
     return figs
 
@@ -333,7 +336,7 @@ def main(argv):
         fig.savefig(run / name, dpi=110)
         plt.close(fig)
     summary = json.loads((run / "summary.json").read_text())
-    if summary["analysis"] == "modal" and "modes.png" not in figs:
+    if summary["analysis"] in ("modal", "buckling") and "modes.png" not in figs:
         print(f"note: {run}: no modes.pvd (ParaView output off: output.vtk_every = 0?): no modes.png",
               file=sys.stderr)
     print(f"wrote {', '.join(str(run / m) for m in figs)}")

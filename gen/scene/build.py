@@ -8,6 +8,7 @@ import os
 import gen.scene_keys as K
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
+from gen.scene.buckling import buckling_options
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -17,7 +18,7 @@ from gen.scene.mesh import mesh_beams
 from gen.scene.options import initial_velocities, options, sensors
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
 
-ANALYSES = ("static", "dynamic", "modal")
+ANALYSES = ("static", "dynamic", "modal", "buckling")
 PLANNED_ANALYSES = ()
 
 
@@ -66,8 +67,10 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
     rows = constraints(ctx, doc, mesh, amps)    # none is allowed: the solver reports the singular tangent
+    buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
+    modal = buckling or modal               # the model file's modal record carries the buckling options
     qd0 = initial_velocities(ctx, doc, mesh)
     load_types = [lt.get("type") for lt in get_array_of_tables(ctx, doc, "load")]
     follower = [i for i, lt in enumerate(get_array_of_tables(ctx, doc, "load")) if lt.get("follower") is True]

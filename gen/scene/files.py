@@ -33,7 +33,7 @@ def apply_overrides(doc, sets, path):
         node = doc
         for depth, p in enumerate(parts[:-1]):
             if isinstance(node, dict):
-                if p not in node and p in ("static", "dynamic", "modal", "output") and depth == 0:
+                if p not in node and p in ("static", "dynamic", "modal", "buckling", "output") and depth == 0:
                     node[p] = {}
                 if p not in node:
                     raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")

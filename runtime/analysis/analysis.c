@@ -3,6 +3,7 @@
 
 #include <stddef.h>
 
+#include "analysis/buckling.h"
 #include "analysis/dynamics.h"
 #include "analysis/modal.h"
 #include "analysis/static.h"
@@ -11,12 +12,14 @@ static int runs_static(const bk_model *m) { return m->analysis == BK_STATIC && !
 static int runs_continuation(const bk_model *m) { return m->analysis == BK_STATIC && m->stat.arc_length; }
 static int runs_dynamic(const bk_model *m) { return m->analysis == BK_DYNAMIC; }
 static int runs_modal(const bk_model *m) { return m->analysis == BK_MODAL; }
+static int runs_buckling(const bk_model *m) { return m->analysis == BK_BUCKLING; }
 
 static const bk_analysis_module table[] = {
     {"static", runs_static, bk_run_static},
     {"continuation", runs_continuation, bk_solve_continuation},
     {"dynamic", runs_dynamic, bk_solve_dynamic},
     {"modal", runs_modal, bk_solve_modal},
+    {"buckling", runs_buckling, bk_solve_buckling},
 };
 
 const bk_analysis_module *bk_analysis_for(const bk_model *m)

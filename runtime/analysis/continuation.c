@@ -255,7 +255,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     lam, dl, a.iters, a.rnorm);
         if (have_stab) {
             bk_static_probe_stability(stab, s, w, q, lam, 0, &sres);
-            bk_static_accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1, w->stability_csv);
+            bk_static_accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1, NAN, w->stability_csv);
         }
         /* a change of the negative-eigenvalue count in the last step without
          * a limit point: a bifurcation candidate (its load factor from the

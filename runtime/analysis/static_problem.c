@@ -229,7 +229,8 @@ int bk_static_probe_stability(bk_stability *st, bk_system *s, work *w, const dou
  * one, records the event with the interpolated critical load factor.
  * matrix: the checker accepts the probed matrix too (0: it did already). */
 void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
-                             bk_run_info *info, FILE *log, double *prev_lam, int matrix, FILE *table)
+                             bk_run_info *info, FILE *log, double *prev_lam, int matrix, double refined,
+                             FILE *table)
 {
     const char *s_name = out->m->name;
     int before = info->negative_eigenvalues;
@@ -238,13 +239,13 @@ void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res
     info->eig_max = res->eig_max;
     bk_stability_event *ev;
     if (res->ok && res->negative != before && info->steps >= 1 && (ev = bk_run_add_stability(info)) != NULL) {
-        double t = bk_stability_crossing(st, before);
+        double t = isnan(refined) ? bk_stability_crossing(st, before) : 0.0;
         ev->step = info->steps;
         ev->lam_before = *prev_lam;
         ev->lam_after = lam;
         ev->neg_before = before;
         ev->neg_after = res->negative;
-        ev->lam_critical = *prev_lam + t * (lam - *prev_lam);
+        ev->lam_critical = isnan(refined) ? *prev_lam + t * (lam - *prev_lam) : refined;
         if (!out->m->stat.arc_length)    /* arc-length: reported as critical points */
             bk_warn(info, out->console, s_name,
                 "the number of negative tangent eigenvalues went from %d to %d between load factors %.6g and "
@@ -377,7 +378,7 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         R->ref.state = 1;                /* on the first Newton matrix (at q0) */
     else if (R->have_stab) {
         bk_static_probe_stability(&R->stab, s, w, q, 0.0, 0, &R->sres);
-        bk_static_accept_stability(&R->stab, &R->sres, 0.0, out, info, log, &R->prev_lam, 1, w->stability_csv);
+        bk_static_accept_stability(&R->stab, &R->sres, 0.0, out, info, log, &R->prev_lam, 1, NAN, w->stability_csv);
     }
     return 0;
 }

@@ -119,6 +119,7 @@ int bk_static_matrix_free_of_load(const bk_system *s);
 int bk_static_probe_stability(bk_stability *st, bk_system *s, work *w, const double *q, double lam,
                               int assembled, bk_stability_result *res);
 void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res, double lam, bk_output *out,
-                                bk_run_info *info, FILE *log, double *prev_lam, int matrix, FILE *table);
+                                bk_run_info *info, FILE *log, double *prev_lam, int matrix, double refined,
+                                FILE *table);
 
 #endif

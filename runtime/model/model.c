@@ -397,8 +397,10 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         m->analysis = BK_DYNAMIC;
     else if (t && strcmp(t, "modal") == 0)
         m->analysis = BK_MODAL;
+    else if (t && strcmp(t, "buckling") == 0)
+        m->analysis = BK_BUCKLING;
     else if (t)
-        fail(r, "analysis '%s' is not supported by this solver (expected static, dynamic, modal)", t);
+        fail(r, "analysis '%s' is not supported by this solver (expected static, dynamic, modal, buckling)", t);
     m->length_scale = fnum(r, "scene", "length_scale");
     expect(r, "static");
     m->stat.load_steps = fint(r, "static", "load_steps", 1, MAXN);

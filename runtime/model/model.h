@@ -12,7 +12,7 @@
 #include "bk_joint.h"
 #include "bk_kernel.h"
 
-enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2 };
+enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2, BK_BUCKLING = 3 };
 
 typedef struct bk_elem {
     int pair;          /* index into model->pairs                          */
@@ -164,9 +164,9 @@ typedef struct bk_dynamic_opts {
     int reuse_jacobian;    /* 1: keep the factorized Jacobian while Newton contracts fast (dynamic.jacobian) */
 } bk_dynamic_opts;
 
-typedef struct bk_modal_opts {
+typedef struct bk_modal_opts {   /* (and of the buckling analysis: buckling.c) */
     int nmodes;
-    int about_static;      /* 1: linearize about the static equilibrium under the loads */
+    int about_static;      /* 1: linearize about the static equilibrium under the loads (the preloads) */
 } bk_modal_opts;
 
 typedef struct bk_model {
@@ -235,7 +235,7 @@ int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nki
  * factor.  The analyses themselves are chosen by analysis/analysis.c. */
 static inline int bk_model_on_path(const bk_model *m)
 {
-    return m->analysis != BK_MODAL;
+    return m->analysis != BK_MODAL && m->analysis != BK_BUCKLING;
 }
 
 static inline int bk_model_in_time(const bk_model *m)
