@@ -147,6 +147,7 @@ def index_data(elements=None, materials=None):
         out["materials"][mname] = material_data(mat, mpath)
     from gen.emit_body import index_entries
     out["body"], out["joints"] = index_entries()
+    out["contact"] = {"files": ["contact.c"]}           # every solver links the contact kernels
     return out
 
 

@@ -59,6 +59,9 @@ def kernel_files(pairs, index):
     for f in index.get("joints", {}).get("files", []):     # every solver binds the joint kernels
         if f not in files:
             files.append(f)
+    for f in index.get("contact", {}).get("files", []):    # and the contact kernels (assembly/contact_force.c)
+        if f not in files:
+            files.append(f)
     return files
 
 

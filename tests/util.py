@@ -92,11 +92,14 @@ def build_program(src, name, variant="sanitize", pairs=None):
 def build_runtime_program(srcs, name, variant="sanitize"):
     """Compile tests/<src> for each of srcs and link them with the runtime objects
     (all but main.c) into a test program; no generated kernels.  Returns its path."""
-    from gen.solver_build import CC, LIBS, VARIANTS, build_lock, compile_object, runtime_headers, runtime_objects
+    from gen.solver_build import (CC, LIBS, VARIANTS, build_lock, compile_object, kernel_objects, runtime_headers,
+                                  runtime_objects)
     flags = VARIANTS[variant]
     deps = runtime_headers() + list((ROOT / "tests").glob("*.h"))
+    _, index = all_pair_symbols()
     with build_lock():
-        objs = [o for o in runtime_objects(variant) if o.name != "main.o"]
+        # the runtime but main.c, and the kernels every solver links (joints, contact)
+        objs = [o for o in runtime_objects(variant) if o.name != "main.o"] + kernel_objects([], index, variant)
         for src in srcs:
             obj = BUILD / variant / (Path(src).stem + ".o")
             compile_object(ROOT / "tests" / src, obj, flags + ["-I" + str(ROOT / "tests")], deps)

@@ -4,6 +4,7 @@
 
 #include <stdlib.h>
 
+#include "assembly/contact_force.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
 
@@ -62,6 +63,7 @@ static const struct {
 } table[] = {
     {&follower_ops, has_moments, make_follower},
     {&loads_ops, bk_loads_present, make_loads},
+    {&bk_contact_ops, bk_contact_present, bk_contact_make},
 };
 
 int bk_interactions_create(bk_system *s)

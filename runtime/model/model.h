@@ -11,6 +11,7 @@
 
 #include "bk_joint.h"
 #include "bk_kernel.h"
+#include "model/contact.h"
 
 enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2, BK_BUCKLING = 3 };
 
@@ -200,6 +201,7 @@ typedef struct bk_model {
     double gravity[3];
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
+    const bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h) */
     int nsensor;
     bk_sensor *sensors;
     int namp;

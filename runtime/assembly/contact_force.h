@@ -1,0 +1,31 @@
+/* contact_force.h -- contact between beams and rigid primitives as an interaction
+ * (interaction.h): for every set of the model's contact data (model/contact.h)
+ * each element's sample points feel the barrier of their distance to the
+ * set's primitive.  Residual and Jacobian are exact (the generated gap,
+ * gradient, Hessian and barrier derivatives of out/kernels/contact.h, the
+ * positions linear in the element coordinates through the element's shape
+ * functions); the step limiter keeps every sample point's distance above a
+ * tenth of what it was (the distances are 1-Lipschitz in the point), so that
+ * no Newton iterate takes a sample point through a surface; a state with a
+ * distance <= 0 is refused (assemble returns -1).  Between sample points the
+ * surface is resolved to the sampling: nsample points per element. */
+#ifndef BK_CONTACT_FORCE_H
+#define BK_CONTACT_FORCE_H
+
+#include "assembly/interaction.h"
+
+struct bk_system;
+struct bk_model;
+
+extern const bk_interaction_ops bk_contact_ops;
+/* 1 when the model has contact data; its data (scratch) into *self, 0 or -1. */
+int bk_contact_present(const struct bk_model *m);
+int bk_contact_make(struct bk_system *s, void **self);
+
+/* The contact state at q: per set, the total force the primitive exerts on
+ * the beams (F[3 nset], N) and the number of sample points within the barrier
+ * (nactive[nset], may be NULL); the smallest distance of any sample point to
+ * its primitive (m).  For the outputs and the tests. */
+void bk_contact_state(const struct bk_system *s, const double *q, double *F, int *nactive, double *min_distance);
+
+#endif

@@ -1,0 +1,43 @@
+/* contact.h -- the contact data of a model: rigid primitives and, per set, the
+ * elements whose centrelines may touch one of them, with the barrier that
+ * keeps them apart (read with the model; used by assembly/contact.c).
+ *
+ * A set's elements are sampled at nsample points each (xi = (k + 1/2) /
+ * nsample, k = 0 .. nsample-1, each standing for 1/nsample of the element's
+ * length L); a point x of the centreline with section radius r (a circle's
+ * radius, or the set's contact radius) has the distance s = g(x) - r to the
+ * primitive, g the primitive's gap (out/kernels/contact.h).  Its barrier
+ * energy is kappa (L / nsample) b(s) with b(s) = -(s - shat)^2 ln(s / shat)
+ * for s < shat, zero beyond. */
+#ifndef BK_CONTACT_MODEL_H
+#define BK_CONTACT_MODEL_H
+
+enum bk_contact_shape {
+    BK_CONTACT_HALF_SPACE = 0,       /* prm: unit normal n (out of the solid), offset d: solid where n.x < d */
+    BK_CONTACT_SPHERE = 1,           /* prm: centre c, radius R */
+    BK_CONTACT_CAPSULE = 2           /* prm: ends a, b, radius R (a segment swept by a sphere) */
+};
+#define BK_CONTACT_MAXPRM 7
+
+typedef struct bk_contact_prim {
+    int shape;                       /* enum bk_contact_shape */
+    double prm[BK_CONTACT_MAXPRM];
+} bk_contact_prim;
+
+typedef struct bk_contact_set {
+    int prim;                        /* index into bk_contact_model.prims */
+    double shat;                     /* barrier reach (m), > 0 */
+    double kappa;                    /* barrier stiffness (N/m per metre of beam), > 0 */
+    int nsample;                     /* sample points per element, >= 1 */
+    int nelem;
+    const int *elems;                /* [nelem] elements of the set */
+    const double *radius;            /* [nelem] their section radii (m) */
+} bk_contact_set;
+
+typedef struct bk_contact_model {
+    int nprim, nset;
+    const bk_contact_prim *prims;
+    const bk_contact_set *sets;
+} bk_contact_model;
+
+#endif

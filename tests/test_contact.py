@@ -1,0 +1,45 @@
+"""The contact interaction of the runtime (runtime/assembly/contact_force.c)
+on in-memory spring chains (tests/contact_runtime_check.c, AddressSanitizer +
+UBSan): its Jacobian against central differences of its residual for a
+half-space, a sphere and a capsule; a chain settling on the ground under its
+weight (Newton with the step limiter: no iterate through the surface, the
+contact force equals the weight); the step limiter against a correction that
+would cross the surface.  Scene-level contact (keys, outputs, friction, the
+closed-form cases of issue 34) is not there yet."""
+import subprocess
+from functools import lru_cache
+
+from util import build_runtime_program
+
+
+@lru_cache(maxsize=None)
+def results():
+    exe = build_runtime_program(["contact_runtime_check.c", "spring_element.c"], "contact_runtime_check", "sanitize")
+    r = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "runtime error" not in r.stderr, r.stderr[-3000:]
+    out = {}
+    for line in r.stdout.splitlines():
+        d = dict(kv.split("=", 1) for kv in line.split())
+        out[d.pop("case")] = d
+    return out
+
+
+def test_jacobian_matches_differences_of_the_residual():
+    for case in ("jacobian_half_space", "jacobian_sphere", "jacobian_capsule"):
+        d = results()[case]
+        assert int(d["active"]) > 0 and float(d["min_distance"]) > 0, (case, d)   # the barrier acts
+        assert float(d["err"]) < 1e-6, (case, d)
+
+
+def test_a_chain_rests_on_the_ground_with_the_contact_force_equal_to_its_weight():
+    d = results()["resting_chain"]
+    assert d["converged"] == "1" and d["crossed"] == "0", d
+    assert float(d["balance_err"]) < 1e-9, d             # sum of contact forces = weight
+    assert 0.0 < float(d["min_distance"]) < float(d["shat"]), d   # inside the barrier, never through
+
+
+def test_step_limiter_keeps_a_tenth_of_the_distance():
+    d = results()["step_limit"]
+    before, after = float(d["distance_before"]), float(d["distance_after"])
+    assert 0.0 < float(d["alpha"]) < 1.0, d
+    assert abs(after - 0.1 * before) < 1e-12, d          # 90 % of the way to the surface, not through it
