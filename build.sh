@@ -172,12 +172,12 @@ case "$cmd" in
             echo "error: run needs a SCENE (./build.sh scenes lists them)" >&2
             exit $EX_USAGE
         fi
-        # gen/cli.py unless an identical run is cached; -S: no site packages (the
-        # run path needs none), frozen modules: the interpreter's own start-up
-        # modules from its binary (1.5 ms of a 10 ms start here); gen.fastrun
-        # imported, not run as a script, so that its bytecode comes from
-        # out/pycache (a script is compiled at every start: 2-7 ms)
-        exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.fastrun import main; sys.exit(main(sys.argv[1:]))' \
+        # gen/cli.py (an identical earlier run is reused without the scene
+        # compiler); -S: no site packages (the run path needs none), frozen
+        # modules: the interpreter's own start-up modules from its binary (1.5 ms
+        # of a 10 ms start here); gen.cli imported, not run as a script, so that
+        # its bytecode comes from out/pycache (a script is compiled at every start: 2-7 ms)
+        exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))' \
             run "$@"
         ;;
     gen)

@@ -7,7 +7,7 @@ no sympy), the same per-scene solver, results as numpy arrays.
     run.converged, run.wall_s, run.sensor("B").displacement[-1]
 
 A run is gen/pipeline.py's run(), the function behind `./build.sh run`, with
-the same solver cache (gen/solver_cache.py).  A scene is a name in models/, a
+the same solver cache (gen/cache.py).  A scene is a name in models/, a
 path to a TOML file, or a dict of the same tables (parsed TOML).  Overrides are the keys of `--set` (a dict or a list of
 "KEY=VALUE" strings).  Bad input raises BeamkitError with the one-line message
 of the command line; a run that does not converge is returned
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gen import pipeline, solver_cache
+from gen import cache, pipeline
 from gen.scene import ROOT, SceneError, build, read_toml
 
 MODELS = ROOT / "models"
@@ -100,11 +100,11 @@ class Scene:
             raise BeamkitError(str(e)) from None
 
     def solver(self, pairs):
-        """The solver for these element x material pairs (gen/solver_cache.py):
+        """The solver for these element x material pairs (gen/cache.py):
         built once and reused while its file is unchanged.  Numeric overrides
         never change the pairs, so they never rebuild it."""
         try:
-            return solver_cache.solver(pairs)
+            return cache.solver(pairs)
         except SceneError as e:
             raise BeamkitError(str(e)) from None
         except Exception as e:             # BuildError: the compiler's messages

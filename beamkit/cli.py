@@ -9,7 +9,7 @@ import argparse
 import os
 import sys
 
-from gen.paths import caller_path
+from gen.pipeline import caller_path
 
 EXIT_OK, EXIT_INPUT, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 64, 130
 

@@ -1,5 +1,12 @@
 """Command-line front end behind build.sh: run, gen, scenes (a run itself is
-gen/pipeline.py's run(); build.sh starts this through gen/fastrun.py).
+gen/pipeline.py's run()).
+
+`./build.sh run` starts it as python3 -S -c 'import sys; from gen.cli import
+main; sys.exit(main(sys.argv[1:]))' run ARGS...: imported, so that its bytecode
+is cached (a script is compiled at every start), but not with -m, which would
+import importlib.util; with -S, no site packages: they are loaded when an
+import needs them (SiteOnDemand), and a repeated run, or one with new --set
+numbers and a built solver, needs none.
 
 Exit status (also in ./build.sh --help and the README):
   0   success (the solve converged)
@@ -14,9 +21,7 @@ import os
 import sys
 
 from gen import pipeline
-from gen.paths import caller_path
-from gen.pipeline import scene_error, scene_names
-from gen.run_summary import print_summary
+from gen.pipeline import caller_path, scene_error, scene_names
 
 EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED, EXIT_USAGE = 0, 1, 2, 64   # 99, 130, 143: gen/pipeline.py
 
@@ -44,7 +49,7 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
     """A run as `./build.sh run` makes it (gen/pipeline.py run(), recorded for an
     identical run later); the reports' entry.  Returns (exit status, out dir as
     a pathlib.Path).  Raises SceneError for bad input.  out: a directory
-    (relative paths are the caller's, see gen/paths.py)."""
+    (relative paths are the caller's, see gen/pipeline.py caller_path)."""
     from pathlib import Path
     res = _run(scene, sets, out, variant, verbose, quiet, memcheck, reuse=False)
     return res.rc, Path(res.out)
@@ -122,6 +127,7 @@ def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck, reuse=Fa
     summ = os.path.join(res.out, "summary.json")
     if not quiet and os.path.exists(summ):
         import json
+        from gen.run_summary import print_summary
         with open(summ, encoding="utf-8") as fh:
             print_summary(json.load(fh), res.out.rstrip("/") if res.reused else res.out)
     return res.rc
@@ -135,7 +141,37 @@ def cmd_scenes(argv):
     return 0
 
 
+class SiteOnDemand:
+    """The last import finder while the site packages are not loaded: the first
+    top-level import that the standard library and the repository cannot
+    satisfy (sympy to generate a kernel, matplotlib to plot, ...) loads them
+    (site.main(), with its .pth files) and is retried; a run that needs none,
+    e.g. a scene with new --set numbers and a built solver, never pays for them."""
+    names = None                       # top-level names in the site directories (listed once)
+
+    @staticmethod
+    def find_spec(name, path=None, target=None):
+        if path is not None:           # a submodule: its package was found without the site
+            return None
+        import site                    # with -S, importing it changes nothing; site.main() does
+        if SiteOnDemand.names is None:
+            SiteOnDemand.names = set()
+            for d in site.getsitepackages() + [site.getusersitepackages()]:
+                try:
+                    SiteOnDemand.names.update(n.split(".", 1)[0] for n in os.listdir(d))
+                except OSError:
+                    pass
+        if name not in SiteOnDemand.names:   # a probe of the standard library (msvcrt, nt, ...)
+            return None
+        sys.meta_path.remove(SiteOnDemand)
+        site.main()
+        from importlib.machinery import PathFinder
+        return PathFinder.find_spec(name)
+
+
 def main(argv):
+    if sys.flags.no_site and SiteOnDemand not in sys.meta_path:   # build.sh run: -S (15 ms less)
+        sys.meta_path.append(SiteOnDemand)
     if not argv:
         print("usage: python3 -m gen.cli {run,gen,scenes} ...", file=sys.stderr)
         return EXIT_USAGE

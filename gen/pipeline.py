@@ -1,14 +1,16 @@
 """Run a scene: the one run pipeline behind `./build.sh run` (gen/cli.py, also
 when it repeats an identical run) and the Python API (beamkit/api.py, and so
-sweeps and fits).  run() is that function:
+sweeps and fits).  run() is that function (with where a run's paths point: the
+caller's paths, the scene file, the run directory it prepares):
 
-    scene + overrides -> model file: an identical earlier run's (gen/run_cache.py,
+    scene + overrides -> model file: an identical earlier run's (gen/cache.py,
         without the scene compiler) or the scene compiler's (gen/scene/)
-    -> the solver of its element x material pairs (gen/solver_cache.py, the one
+    -> the solver of its element x material pairs (gen/cache.py, the one
        solver cache) -> the solver run in the output directory -> results there
 
 At import the standard library's os and sys only (and _signal), so that a
-repeated run imports neither the scene compiler nor sympy; the scene compiler
+repeated run imports neither the scene compiler nor sympy (gen/run_summary.py
+only for a scene with warnings); the scene compiler
 is imported when a model must be built (and to raise its SceneError)."""
 import os
 import sys
@@ -18,9 +20,7 @@ try:                                   # the signal module's enum wrappers cost 
 except ImportError:                    # pragma: no cover
     import signal
 
-from gen import run_cache, solver_cache
-from gen.paths import prepare_run_dir, scene_location
-from gen.run_summary import add_scene_warnings
+from gen import cache
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
@@ -30,6 +30,59 @@ EXIT_SIGNAL = {signal.SIGINT: 130, signal.SIGTERM: 143}
 SIGNAL_NAME = {signal.SIGINT: "SIGINT", signal.SIGTERM: "SIGTERM"}
 VALGRIND_SUPPRESSIONS = os.path.join(ROOT, "runtime", "valgrind.supp")
 REUSED = "  model and solver of an identical earlier run (out/cache/run/)"
+
+
+# Paths given on the command line are the caller's: build.sh changes to the
+# repository and passes the caller's working directory in BK_CALLER_CWD.
+MARKER = ".beamkit-run"            # in every directory made by ./build.sh run
+
+
+def caller_path(p):
+    """p (a str) as the user meant it: absolute, or relative to the caller's directory."""
+    p = os.path.expanduser(str(p))
+    return p if os.path.isabs(p) else os.path.join(os.environ.get("BK_CALLER_CWD") or os.getcwd(), p)
+
+
+def user_path(p):
+    """caller_path as a pathlib.Path."""
+    from pathlib import Path
+    return Path(caller_path(p))
+
+
+def scene_location(spec, models):
+    """(path, is a name in models/) of a scene argument: a `.toml` file or a path
+    with a `/` is the caller's, anything else models/SPEC.toml."""
+    spec = str(spec)
+    if spec.endswith(".toml") or "/" in spec:
+        return caller_path(spec), False
+    return os.path.join(str(models), f"{spec}.toml"), True
+
+
+def prepare_run_dir(out):
+    """Create or clear a results directory (never one with foreign files) and mark
+    it as made by ./build.sh run.  Returns None, or why it cannot be used."""
+    out = str(out)
+    if os.path.exists(out):
+        if not os.path.isdir(out):
+            return f"error: --out {out}: exists and is not a directory"
+        entries = os.listdir(out)
+        if entries and not os.path.exists(os.path.join(out, MARKER)):
+            return (f"error: --out {out}: directory exists, is not empty and was not made by "
+                    f"./build.sh run; choose a new or empty directory")
+        for e in entries:
+            p = os.path.join(out, e)
+            if e == MARKER:
+                continue
+            if os.path.isdir(p) and not os.path.islink(p):
+                import shutil
+                shutil.rmtree(p)
+            else:
+                os.unlink(p)
+    else:
+        os.makedirs(out)
+    with open(os.path.join(out, MARKER), "w") as fh:
+        fh.write("results of ./build.sh run; cleared on the next run into this directory\n")
+    return None
 
 
 def scene_error():
@@ -169,7 +222,7 @@ def _reuse(path, sets, out, quiet, verbose):
     """(entry, out dir) of an identical earlier run, its model file written into
     the output directory; None when there is none or the directory is not
     usable (the full path then says why)."""
-    hit = run_cache.lookup(os.path.realpath(path), sets)
+    hit = cache.lookup(os.path.realpath(path), sets)
     if hit is None:
         return None
     entry, model = hit
@@ -196,7 +249,7 @@ def _build(path, sets, out, doc, name, variant, quiet, console):
     dest = prepare_out_dir(out or os.path.join(RUNS, model["name"]))
     write_model(model, os.path.join(dest, "model.dat"))
     try:
-        exe = solver_cache.solver(model["pairs"], variant, log)
+        exe = cache.solver(model["pairs"], variant, log)
     except _Interrupt:
         raise
     except Exception as e:
@@ -209,7 +262,7 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
     """Run one scene; returns an Outcome, raises SceneError for bad input (the
     one-line `error:` message of the command line).
 
-    scene: a name in models/ or a scene file's path (the caller's, gen/paths.py);
+    scene: a name in models/ or a scene file's path (the caller's, caller_path);
     with doc (the scene's tables, parsed TOML) only its label in messages.
     sets: `--set` strings.  out: the output directory (a str as the caller
     means it; default out/runs/NAME).  variant: the solver build, release or
@@ -239,10 +292,10 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
                 model, dest, exe = _build(path, sets, out, doc, name, variant, quiet, console)
                 run_name, analysis, warnings = model["name"], model["analysis"], model.get("warnings", [])
                 if remember and variant == "release":
-                    run_cache.record(str(path), sets, os.path.join(dest, "model.dat"), exe, run_name, analysis,
+                    cache.record(str(path), sets, os.path.join(dest, "model.dat"), exe, run_name, analysis,
                                      warnings)
             if remember:
-                solver_cache.link_scene(run_name, exe, variant)
+                cache.link_scene(run_name, exe, variant)
         except _Interrupt as e:
             run_name, analysis = (model["name"], model["analysis"]) if model else _scene_name(path)
             if dest is None:                   # interrupted while meshing
@@ -265,7 +318,9 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
             rc = sig.run(cmd)
     if console and rc in EXIT_SIGNAL.values():
         write_interrupted_summary(dest, run_name, analysis, signal.SIGINT if rc == 130 else signal.SIGTERM)
-    add_scene_warnings(dest, warnings)
+    if warnings:                       # (most scenes have none: no module to import)
+        from gen.run_summary import add_scene_warnings
+        add_scene_warnings(dest, warnings)
     return Outcome(rc, dest, run_name, analysis, warnings, stderr, hit is not None)
 
 

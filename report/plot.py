@@ -326,7 +326,7 @@ def main(argv):
     if len(argv) != 1 or argv[0] in ("-h", "--help"):
         print(__doc__.strip(), file=sys.stderr)
         return 0 if argv and argv[0] in ("-h", "--help") else 1
-    from gen.paths import user_path
+    from gen.pipeline import user_path
     run = user_path(argv[0])
     if not (run / "summary.json").exists() or not (run / "sensors.csv").exists():
         print(f"error: {run}: not a run directory (expected summary.json and sensors.csv)", file=sys.stderr)

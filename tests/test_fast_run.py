@@ -1,6 +1,6 @@
 """A repeated `./build.sh run` (same scene file, same --set, nothing rebuilt since)
 reuses the model file and the solver of the earlier run without the scene
-compiler (gen/pipeline.py with gen/run_cache.py), with the same results, warnings and messages; any
+compiler (gen/pipeline.py with gen/cache.py), with the same results, warnings and messages; any
 change to the scene, to a --set, to a source file or to the solver binary takes
 the full path again.  (Its start-up time is measured in ./build.sh bench, not here.)"""
 import json
@@ -63,7 +63,7 @@ def test_another_set_or_an_edited_scene_takes_the_full_path():
 
 
 def test_fingerprint_follows_every_source_file():
-    from gen.run_cache import fingerprint
+    from gen.cache import fingerprint
     d = out_dir()
     (d / "gen" / "sub").mkdir(parents=True)
     (d / "runtime").mkdir()
@@ -80,7 +80,7 @@ def test_fingerprint_follows_every_source_file():
 
 
 def test_another_element_keeps_the_entry_and_a_relinked_solver_is_not_reused():
-    """Solvers are kept by pair set (gen/solver_cache.py): a run of the same scene
+    """Solvers are kept by pair set (gen/cache.py): a run of the same scene
     with another element gets another solver and leaves the first's, so the
     earlier entry still applies (out/bin/SCENE links to the last run's solver:
     other tests may relink it meanwhile, so it is only read after the first); a
@@ -135,7 +135,7 @@ def test_ctrl_c_during_a_reused_run():
 
 
 def test_cache_keeps_the_newest_entries_only(monkeypatch):
-    import gen.run_cache as fr
+    import gen.cache as fr
     d = out_dir()
     monkeypatch.setattr(fr, "CACHE", str(d))
     for i in range(5):

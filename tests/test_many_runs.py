@@ -67,7 +67,7 @@ def test_api_imports_no_sympy_and_reuses_the_solver():
     code = (
         "import sys, os\n"
         "from beamkit import Scene\n"
-        "from gen.solver_cache import _SOLVERS\n"
+        "from gen.cache import _SOLVERS\n"
         "import beamkit.sweep, beamkit.fit, beamkit.cluster\n"
         f"sc = Scene('cantilever_bend_100N')\n"
         f"r1 = sc.run(out={str(tmpdir('ns1'))!r})\n"

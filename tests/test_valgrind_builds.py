@@ -38,7 +38,7 @@ def test_valgrind_is_only_started_through_the_memcheck_build():
 def test_memcheck_solver_has_no_avx512_instructions():
     """The linked memcheck solver and every object in it: built with x86-64-v3 (flag
     stamps) and free of AVX-512 registers (zmm, opmask k0-k7) in the disassembly."""
-    from gen.solver_cache import solver
+    from gen.cache import solver
     from gen.scene import build
     model = build(ROOT / "models" / "cantilever_bend_10N.toml")
     exe = solver(model["pairs"], "memcheck")

@@ -1,16 +1,27 @@
-"""The record of earlier runs that lets an identical `./build.sh run` skip the
-scene compiler: out/cache/run/KEY.dat (the model file that run wrote) and
-KEY.run (its solver, scene name, analysis and scene warnings).  Standard
-library only (os; sha256 from its C module), so that a repeated run imports
-neither the scene compiler nor sympy; gen/pipeline.py looks entries up and
-records them.
+"""What a run reuses instead of redoing: the one solver cache, and the records
+of earlier runs that let an identical `./build.sh run` skip the scene compiler.
+gen/pipeline.py gets every run's solver here (the command line, its repeated
+run, the reports, the Python API, sweeps and fits).  Standard library os only
+at import (sha256 from its C module): a repeated run imports neither the scene
+compiler nor sympy.
 
-A run is "the same" when these are byte-identical: the scene file's path and
-contents, every --set, and the state (name, size, modification time) of every
-file the model and the solver are made from: gen/ (the scene compiler and the
-build rules), runtime/ and out/kernels/.  The solver binary must still be the one
-that run used (same size and modification time: a relinked solver is another
-binary)."""
+Solvers.  A per-scene solver is the runtime plus the kernels of the element x
+material pairs a scene uses, so solvers are kept by pair set and build variant:
+out/bin/solver_HASH (release), solver_HASH-sanitize, solver_HASH-memcheck, HASH
+of the sorted pair names.  One is reused as it is when linked after every file
+it is made from (gen/solver_fresh.py), else built (gen/solver_build.py,
+imported only then).  A process also remembers the solvers it got (a Dask
+worker keeps them across the runs it is given) and takes them again while
+their file is unchanged.  out/bin/SCENE (-sanitize, -memcheck) links to the
+solver of the scene's last `./build.sh run`.
+
+Runs.  out/cache/run/KEY.dat is the model file an earlier run wrote, KEY.run
+its solver, scene name, analysis and scene warnings.  A run is "the same" when
+these are byte-identical: the scene file's path and contents, every --set, and
+the state (name, size, modification time) of every file the model and the
+solver are made from: gen/ (the scene compiler and the build rules), runtime/
+and out/kernels/.  The solver binary must still be the one that run used (same
+size and modification time: a relinked solver is another binary)."""
 import os
 
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import
@@ -19,6 +30,74 @@ except ImportError:                    # pragma: no cover
     from hashlib import sha256
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(ROOT, "out", "bin")
+
+# Solvers this process has got: {(variant, pair, ...): (path, (size, mtime_ns))}.
+_SOLVERS = {}
+
+
+def _suffix(variant):
+    return "" if variant == "release" else f"-{variant}"
+
+
+def solver_path(pairs, variant="release"):
+    """Where the solver of these pairs and this build variant is kept (a str)."""
+    tag = sha256("\n".join(sorted(pairs)).encode()).hexdigest()[:16]
+    return os.path.join(BIN, f"solver_{tag}{_suffix(variant)}")
+
+
+def solver(pairs, variant="release", log=None, index=None):
+    """The solver (a str) for these pair symbols (e.g. 'ancf3243_svk_full'):
+    remembered, found current, or built.  index: out/kernels/index.json as
+    gen/scene.load_index reads it (read here when needed).  Numeric overrides
+    never change the pairs, so they never rebuild it.  Raises BuildError (and
+    SceneError for a missing kernel index)."""
+    pairs = sorted(pairs)
+    key = (variant,) + tuple(pairs)
+    hit = _SOLVERS.get(key)
+    if hit is not None:
+        try:
+            st = os.stat(hit[0])
+            if (st.st_size, st.st_mtime_ns) == hit[1]:
+                return hit[0]
+        except OSError:
+            pass
+    if index is None:
+        from gen.scene import load_index
+        index = load_index()
+    exe = solver_path(pairs, variant)
+    from gen.solver_fresh import linked_after_sources
+    if not linked_after_sources(pairs, exe, index, variant):
+        from gen.solver_build import build_solver
+        exe = str(build_solver(pairs, exe, index, variant, log))
+    st = os.stat(exe)
+    _SOLVERS[key] = (exe, (st.st_size, st.st_mtime_ns))
+    return exe
+
+
+def link_scene(name, exe, variant="release"):
+    """Point out/bin/NAME (-VARIANT) at the solver `exe` (in out/bin), unless it
+    does already: the solver of that scene's last run, under the scene's name."""
+    link = os.path.join(BIN, name + _suffix(variant))
+    target = os.path.basename(exe)
+    try:
+        if os.readlink(link) == target:
+            return
+    except OSError:
+        pass
+    tmp = f"{link}.{os.getpid()}.tmp"
+    try:
+        os.symlink(target, tmp)
+        os.replace(tmp, link)          # atomic: another run may be doing the same
+    except OSError:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+
+
+# Records of earlier runs (out/cache/run/).
+
 CACHE = os.path.join(ROOT, "out", "cache", "run")
 SOURCES = (("gen", True), ("runtime", True), (os.path.join("out", "kernels"), False))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
@@ -117,7 +196,7 @@ def read_entry(text):
     return e
 
 
-def record(scene, sets, model_path, solver, name, analysis, warnings):
+def record(scene, sets, model_path, exe, name, analysis, warnings):
     """The entry a later identical run reuses, written after the model file and
     the solver, before the solve (the fingerprint is of the files that made them)."""
     try:
@@ -129,8 +208,8 @@ def record(scene, sets, model_path, solver, name, analysis, warnings):
         scene = os.path.realpath(scene)
         k = key(scene, text, list(sets), fingerprint_once())
         os.makedirs(CACHE, exist_ok=True)
-        st = os.stat(solver)
-        entry = {"version": "1", "scene": scene, "solver": os.path.abspath(solver), "solver_size": st.st_size,
+        st = os.stat(exe)
+        entry = {"version": "1", "scene": scene, "solver": os.path.abspath(exe), "solver_size": st.st_size,
                  "solver_mtime_ns": st.st_mtime_ns, "name": name, "analysis": analysis,
                  "warnings": list(warnings)}
         for ext, data in ((".dat", None), (".run", write_entry(entry))):
