@@ -1,0 +1,115 @@
+"""[[contact]] tables: rigid primitives the beams may touch (issue 34, first
+part): half-spaces, spheres and capsules fixed in space, frictionless barrier
+contact of the beams' centrelines swept by their sections
+(runtime/assembly/contact_force.c; the model file's contact records).
+
+Keys: shape (half_space, sphere, capsule); normal and point (half_space: the
+solid is where (x - point) . normal < 0); center, radius (sphere); a, b,
+radius (capsule); beams (names; default every beam); distance (the barrier's
+reach, m; default 1e-3 of the model length); stiffness (the barrier's, N/m per
+metre of beam; default 1000 times the heaviest contacting beam's weight per
+metre over the reach); samples (points per element, default 4);
+contact_radius (m; default the section's: a circle's radius, a rectangle's
+half-height h/2).  Friction keys are refused: frictionless only for now."""
+import math
+
+from gen.scene.values import _dot, _norm, _scale, _sub, check_keys, get_array_of_tables, get_int, get_number, get_str, \
+    get_vec3
+
+SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "capsule": ("a", "b", "radius")}
+KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
+        "samples", "contact_radius", "friction", "static_friction", "kinetic_friction")
+CODE = {"half_space": 0, "sphere": 1, "capsule": 2}
+GRAVITY = 9.81
+
+
+def _primitive(ctx, ct, where, shape):
+    """(code, prm[7]) of the primitive, checked."""
+    for k in sum(SHAPES.values(), ()):
+        if k in ct and k not in SHAPES[shape]:
+            ctx.fail(f"{where}.{k}", f"not a key of a {shape} (expected {', '.join(SHAPES[shape])})")
+    if shape == "half_space":
+        n = get_vec3(ctx, ct, "normal", where, nonzero=True)
+        n = _scale(n, 1.0 / _norm(n))
+        p = get_vec3(ctx, ct, "point", where, default=[0.0, 0.0, 0.0])
+        return CODE[shape], n + [_dot(n, p), 0.0, 0.0, 0.0]
+    if shape == "sphere":
+        c = get_vec3(ctx, ct, "center", where)
+        return CODE[shape], c + [get_number(ctx, ct, "radius", where, positive=True), 0.0, 0.0, 0.0]
+    a, b = get_vec3(ctx, ct, "a", where), get_vec3(ctx, ct, "b", where)
+    if not _norm(_sub(b, a)) > 0.0:
+        ctx.fail(f"{where}.b", f"expected an end other than a = {a!r} (a capsule of zero length)")
+    return CODE[shape], a + b + [get_number(ctx, ct, "radius", where, positive=True)]
+
+
+def _distance(code, prm, x):
+    """The primitive's gap at x (as out/kernels/contact.c computes it)."""
+    if code == 0:
+        return _dot(prm[:3], x) - prm[3]
+    if code == 1:
+        return _norm(_sub(x, prm[:3])) - prm[3]
+    a, b = prm[:3], prm[3:6]
+    e = _sub(b, a)
+    t = min(max(_dot(_sub(x, a), e) / _dot(e, e), 0.0), 1.0)
+    return _norm(_sub(x, [a[i] + t * e[i] for i in range(3)])) - prm[6]
+
+
+def _weight_per_length(doc, name, sec):
+    """rho A g of beam `name` (its material's density, its section's area)."""
+    bt = next(b for b in doc.get("beam", []) if b.get("name") == name)
+    rho = float(doc["material"][bt["material"]].get("rho", 0.0))
+    area = sec[1] * sec[2] if sec[0] == "rectangle" else math.pi * sec[2] ** 2 / 4.0
+    return rho * area * GRAVITY
+
+
+def contacts(ctx, doc, beams, length_scale):
+    """(prims, sets) of the model file's contact records: prims [(code, prm)],
+    sets [(prim, reach, stiffness, samples, [(element, radius)])]."""
+    prims, sets = [], []
+    for i, ct in enumerate(get_array_of_tables(ctx, doc, "contact")):
+        where = f"contact[{i}]"
+        check_keys(ctx, ct, set(KEYS), where)
+        for k in ("friction", "static_friction", "kinetic_friction"):
+            if k in ct:
+                ctx.fail(f"{where}.{k}", "friction is not available yet: contact is frictionless for now (issue 34)")
+        shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
+        code, prm = _primitive(ctx, ct, where, shape)
+        names = ct.get("beams", list(beams))
+        if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
+            ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
+        for n in names:
+            if n not in beams:
+                ctx.fail(f"{where}.beams", f"no beam named {n!r} (beams: {', '.join(beams) or 'none'})")
+        reach = get_number(ctx, ct, "distance", where, default=1e-3 * length_scale, positive=True)
+        samples = get_int(ctx, ct, "samples", where, default=4, lo=1, hi=64)
+        weight = max(_weight_per_length(doc, n, beams[n]["section"]) for n in names)
+        kappa = get_number(ctx, ct, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
+        members = []
+        for n in names:
+            beam = beams[n]
+            sec = beam["section"]
+            r = get_number(ctx, ct, "contact_radius", where, default=sec[2] / 2.0, nonneg=True)
+            for k in range(beam["nelem"]):
+                s0, l = beam["elem_start"][k], beam["elem_lens"][k]
+                for j in range(samples):
+                    x = beam["geo"].at(s0 + (j + 0.5) / samples * l)[0]
+                    depth = r - _distance(code, prm, x)
+                    if depth >= 0.0:
+                        ctx.fail(where, f"beam {n!r} element {k} starts {depth:.6g} m into the {shape} "
+                                        f"(its sections must start clear of it: move the beam or the {shape})")
+                members.append((beam["first_elem"] + k, r))
+        prims.append((code, prm))
+        sets.append((len(prims) - 1, reach, kappa, samples, members))
+    return prims, sets
+
+
+def contact_records(prims, sets, fmt):
+    """The model file's lines: 'contacts NPRIM NSET', a 'prim CODE p0..p6' per
+    primitive, a 'cset PRIM REACH STIFFNESS SAMPLES N e r ...' per set."""
+    out = [f"contacts {len(prims)} {len(sets)}"]
+    out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm) for code, prm in prims]
+    for p, reach, kappa, samples, members in sets:
+        out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {samples} {len(members)} " +
+                   " ".join(f"{e} {fmt(r)}" for e, r in members))
+    return out
+
