@@ -90,6 +90,12 @@ int main(int argc, char **argv)
         snprintf(info.message, sizeof info.message, "no analysis module of this solver runs the model's analysis");
     bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
+    for (int k = 0; k < s->ninter; ++k) {        /* the interactions' own summary entries */
+        const bk_interaction *it = &s->inter[k];
+        char text[8192];
+        if (it->ops->summary && it->ops->summary(it->self, s, q, text, sizeof text) == 0)
+            bk_run_summary(&info, it->ops->summary_key, text);
+    }
     /* every table on disk before the summary, and inside wall_s and output_s
      * (a short run writes its tables only now) */
     double tc = bk_clock_s();

@@ -8,7 +8,8 @@ solid is where (x - point) . normal < 0); center, radius (sphere); a, b,
 radius (capsule); beams (names; default every beam); distance (the barrier's
 reach, m; default 1e-3 of the model length); stiffness (the barrier's, N/m per
 metre of beam; default 1000 times the heaviest contacting beam's weight per
-metre over the reach); samples (points per element, default 4);
+metre over the reach); samples (points per element, ends included, default
+4);
 contact_radius (m; default the section's: a circle's radius, a rectangle's
 half-height h/2).  Friction keys are refused: frictionless only for now."""
 import math
@@ -92,7 +93,8 @@ def contacts(ctx, doc, beams, length_scale):
             for k in range(beam["nelem"]):
                 s0, l = beam["elem_start"][k], beam["elem_lens"][k]
                 for j in range(samples):
-                    x = beam["geo"].at(s0 + (j + 0.5) / samples * l)[0]
+                    xi = 0.5 if samples == 1 else j / (samples - 1)      # as runtime/assembly/contact_force.c
+                    x = beam["geo"].at(s0 + xi * l)[0]
                     depth = r - _distance(code, prm, x)
                     if depth >= 0.0:
                         ctx.fail(where, f"beam {n!r} element {k} starts {depth:.6g} m into the {shape} "

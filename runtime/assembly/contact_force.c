@@ -68,15 +68,20 @@ static void gap(const bk_contact_prim *p, const double *x, double *out)
     }
 }
 
-/* Sample point k of element e at q: its shape functions N and position x. */
-static void sample(const bk_model *m, int e, const double *qe, int k, int nsample, double *N, double *x)
+/* Sample point k of element e at q: its shape functions N and position x;
+ * returns its share of the element's length (see model/contact.h). */
+static double sample(const bk_model *m, int e, const double *qe, int k, int nsample, double *N, double *x)
 {
     const bk_element *et = bk_elem_type(m, e);
-    et->shape(m->geoms[m->elems[e].geom], (k + 0.5) / nsample, 0.0, 0.0, N);
+    const double xi = nsample == 1 ? 0.5 : (double)k / (nsample - 1);
+    et->shape(m->geoms[m->elems[e].geom], xi, 0.0, 0.0, N);
     x[0] = x[1] = x[2] = 0.0;
     for (int a = 0; a < et->nshape; ++a)
         for (int i = 0; i < 3; ++i)
             x[i] += N[a] * qe[et->shape_dof[a] + i];
+    if (nsample == 1)
+        return 1.0;
+    return (k == 0 || k == nsample - 1 ? 0.5 : 1.0) / (nsample - 1);
 }
 
 static int contact_assemble(void *self, bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax)
@@ -94,11 +99,11 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
             const int e = set->elems[i];
             const bk_element *et = bk_elem_type(m, e);
             const int nd = et->ndof;
-            const double wl = m->geoms[m->elems[e].geom][BK_GEOM_L] / set->nsample * set->kappa;
+            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
             int touched = 0;
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k) {
-                sample(m, e, qe, k, set->nsample, N, x);
+                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
                 gap(prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 if (!(dist > 0.0)) {
@@ -174,8 +179,33 @@ static double contact_step_limit(void *self, const bk_system *s, const double *q
     return alpha;
 }
 
+/* summary.json "contact": the smallest distance of a sample point to its
+ * primitive, the largest penetration (0: none; a state through a surface is
+ * refused), and per set its primitive, the force on the beams and the sample
+ * points within the barrier. */
+static int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
+{
+    (void)self;
+    const bk_contact_model *cm = s->m->contact;
+    double F[3 * 64], dmin;
+    int nact[64];
+    if (cm->nset > 64)
+        return -1;
+    bk_contact_state(s, q, F, nact, &dmin);
+    int len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"sets\": [", dmin,
+                       dmin < 0.0 ? -dmin : 0.0);
+    for (int c = 0; c < cm->nset && len > 0 && (size_t)len < n; ++c)
+        len += snprintf(buf + len, n - (size_t)len, "%s{\"primitive\": %d, \"force\": [%.17g, %.17g, %.17g], "
+                        "\"active_points\": %d}", c ? ", " : "", cm->sets[c].prim, F[3 * c], F[3 * c + 1],
+                        F[3 * c + 2], nact[c]);
+    if (len > 0 && (size_t)len < n)
+        len += snprintf(buf + len, n - (size_t)len, "]}");
+    return len > 0 && (size_t)len < n ? 0 : -1;
+}
+
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
-                                           .step_limit = contact_step_limit, .free = contact_free};
+                                           .step_limit = contact_step_limit, .summary_key = "contact",
+                                           .summary = contact_summary, .free = contact_free};
 
 void bk_contact_state(const bk_system *s, const double *q, double *F, int *nactive, double *min_distance)
 {
@@ -191,10 +221,10 @@ void bk_contact_state(const bk_system *s, const double *q, double *F, int *nacti
             nactive[c] = 0;
         for (int i = 0; i < set->nelem; ++i) {
             const int e = set->elems[i];
-            const double wl = m->geoms[m->elems[e].geom][BK_GEOM_L] / set->nsample * set->kappa;
+            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k) {
-                sample(m, e, qe, k, set->nsample, N, x);
+                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
                 gap(prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 *min_distance = fmin(*min_distance, dist);

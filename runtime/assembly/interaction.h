@@ -17,10 +17,15 @@
  *               admissible (contact: no gap crosses zero); NULL: 1.
  *   accept      (optional) its per-step state update after an accepted
  *               equilibrium or time step (active sets, friction history).
+ *   summary     (optional) its entry of summary.json at the final state q:
+ *               the JSON value's text into buf[n]; 0, or -1 for none
+ *               (summary_key names the entry).
  *   free        (optional) frees its own data.
  * The constraint rows (multipliers) are not interactions: constraints.c. */
 #ifndef BK_INTERACTION_H
 #define BK_INTERACTION_H
+
+#include <stddef.h>
 
 struct bk_system;
 
@@ -37,6 +42,8 @@ typedef struct bk_interaction_ops {
     int (*assemble)(void *self, struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
     double (*step_limit)(void *self, const struct bk_system *s, const double *q, const double *dx);
     void (*accept)(void *self, const struct bk_system *s, const double *q, const bk_path *p);
+    const char *summary_key;
+    int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
 } bk_interaction_ops;
 

@@ -2,13 +2,15 @@
  * elements whose centrelines may touch one of them, with the barrier that
  * keeps them apart (read with the model; used by assembly/contact.c).
  *
- * A set's elements are sampled at nsample points each (xi = (k + 1/2) /
- * nsample, k = 0 .. nsample-1, each standing for 1/nsample of the element's
- * length L); a point x of the centreline with section radius r (a circle's
- * radius, or the set's contact radius) has the distance s = g(x) - r to the
- * primitive, g the primitive's gap (out/kernels/contact.h).  Its barrier
- * energy is kappa (L / nsample) b(s) with b(s) = -(s - shat)^2 ln(s / shat)
- * for s < shat, zero beyond. */
+ * A set's elements are sampled at nsample points each: the ends and the
+ * points between at equal steps, xi = k / (nsample - 1), with the weights of
+ * the trapezoidal rule (L / (nsample - 1), half at the ends: a node shared by
+ * two elements counts once), or the middle alone (nsample = 1, weight L).  A
+ * point x of the centreline with section radius r (a circle's radius, or the
+ * set's contact radius) has the distance s = g(x) - r to the primitive, g the
+ * primitive's gap (out/kernels/contact.h).  Its barrier energy is kappa w b(s)
+ * with w its weight and b(s) = -(s - shat)^2 ln(s / shat) for s < shat, zero
+ * beyond. */
 #ifndef BK_CONTACT_MODEL_H
 #define BK_CONTACT_MODEL_H
 
