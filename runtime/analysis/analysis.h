@@ -4,8 +4,11 @@
  * problem only through the assembly (assembly/), the nonlinear and linear
  * solvers (solver/, linalg/) and the output (output/): it supplies residuals,
  * Newton matrices and a step controller to the one Newton solver
- * (solver/nonlinear.h) and writes its results through output.h.  Adding one:
- * its module, an entry in the table of analysis.c, its scene keys, its tests.
+ * (solver/nonlinear.h) and writes its results through output.h.  A module
+ * defines its descriptor, `const bk_analysis_module bk_analysis_NAME = {...};`
+ * at the start of a line of a file in runtime/analysis/: the build lists
+ * every such descriptor in the table (gen/solver_build.py), so adding an
+ * analysis is its module, its scene keys and options, its tests.
  */
 #ifndef BK_ANALYSIS_H
 #define BK_ANALYSIS_H
@@ -26,6 +29,10 @@ typedef struct bk_analysis_module {
      * otherwise. */
     int (*run)(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
 } bk_analysis_module;
+
+/* The table of every module (generated; in the order of their files). */
+extern const bk_analysis_module *const bk_analysis_table[];
+extern const int bk_analysis_count;
 
 /* The module that runs the model's analysis, or NULL (then none of the table
  * claims it: a model file of another solver). */

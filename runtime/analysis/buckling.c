@@ -32,6 +32,7 @@
  * negative ones by increasing magnitude (the loads reversed buckle at |lam|).
  * Dense: meant for small models.  Joints nonlinear in q are refused.
  */
+#include "analysis/analysis.h"
 #include "analysis/buckling.h"
 #include "analysis/buckling_impl.h"
 
@@ -385,3 +386,10 @@ int bk_solve_buckling(bk_system *s, double *q, bk_output *out, bk_run_info *info
     }
     return rc;
 }
+
+static int runs_buckling(const bk_model *m)
+{
+    return m->analysis == BK_BUCKLING;
+}
+
+const bk_analysis_module bk_analysis_buckling = {"buckling", runs_buckling, bk_solve_buckling};

@@ -3,6 +3,7 @@
  * points refined and reported, optionally a branch switch at the first
  * bifurcation (method in continuation.h); the analysis module "continuation"
  * (analysis.h). */
+#include "analysis/analysis.h"
 #include "analysis/continuation.h"
 
 #include <math.h>
@@ -394,3 +395,10 @@ int bk_solve_continuation(bk_system *s, double *q, bk_output *out, bk_run_info *
     bk_static_end(&R, info, rc);
     return rc;
 }
+
+static int runs_continuation(const bk_model *m)
+{
+    return m->analysis == BK_STATIC && m->stat.arc_length;
+}
+
+const bk_analysis_module bk_analysis_continuation = {"continuation", runs_continuation, bk_solve_continuation};

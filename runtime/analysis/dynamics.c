@@ -23,6 +23,7 @@
  *   e = h^2 |beta - 1/6| max|a_{n+1} - a_n| / L
  * (L the model's length scale), accepted when e <= tol.
  */
+#include "analysis/analysis.h"
 #include "analysis/dynamics.h"
 #include "analysis/dynamics_impl.h"
 
@@ -410,3 +411,10 @@ done:
     bk_dyn_work_free(&w);
     return rc;
 }
+
+static int runs_dynamic(const bk_model *m)
+{
+    return m->analysis == BK_DYNAMIC;
+}
+
+const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic};

@@ -15,6 +15,7 @@
  * static load steps, or the reference as step 0); each mode to modes.csv,
  * mode_sensors.csv and mode_NN.vtu (bk_output_mode normalizes and scales it).
  */
+#include "analysis/analysis.h"
 #include "analysis/modal.h"
 
 #include <gsl/gsl_blas.h>
@@ -335,3 +336,10 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
     }
     return rc;
 }
+
+static int runs_modal(const bk_model *m)
+{
+    return m->analysis == BK_MODAL;
+}
+
+const bk_analysis_module bk_analysis_modal = {"modal", runs_modal, bk_solve_modal};

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/analysis.h"
 #include "analysis/static_problem.h"
 #include "assembly/quaternion.h"
 #include "base/interrupt.h"
@@ -286,3 +287,10 @@ int bk_run_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FI
 {
     return load_control(s, q, out, info, log, 1);
 }
+
+static int runs_static(const bk_model *m)
+{
+    return m->analysis == BK_STATIC && !m->stat.arc_length;
+}
+
+const bk_analysis_module bk_analysis_static = {"static", runs_static, bk_run_static};
