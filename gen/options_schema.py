@@ -1,5 +1,5 @@
 """The analysis options, declared once: every key of [scene] analysis, [static],
-[dynamic], [modal] and [output] with its type, default, range, unit, one-line
+[dynamic], [modal], [buckling] and [output] with its type, default, range, unit, one-line
 doc and model-file record (sympy-free).
 
 From this table come the scene keys and their validation (gen/scene_keys.py,
@@ -22,7 +22,8 @@ REQUIRED = object()          # default of a key that must be given
 
 # table: (C struct, member of bk_model); the scene keys are members of bk_model itself
 TABLES = {"scene": (None, ""), "static": ("bk_static_opts", "stat."), "dynamic": ("bk_dynamic_opts", "dyn."),
-          "modal": ("bk_modal_opts", "modal."), "output": ("bk_output_opts", "output.")}
+          "modal": ("bk_modal_opts", "modal."), "output": ("bk_output_opts", "output."),
+          "buckling": (None, None)}      # checked by gen/scene/buckling.py, written in the modal record
 # model-file option records, in file order (the record of each key is in its row)
 RECORD_ORDER = ("scene", "static", "continuation", "dynamic", "output", "modal")
 
@@ -85,7 +86,7 @@ OPTIONS = (
     Opt("scene", "name", "str", None, "name of the run (letters, digits, `_ . -`)", record="scene", checked=False,
         default_doc="file name", size=128),
     Opt("scene", "analysis", "choice", "static", "the analysis", record="scene",
-        choices=("static", "dynamic", "modal")),
+        choices=("static", "dynamic", "modal", "buckling")),
     Opt("scene", "description", "str", None, "free text", checked=False, default_doc=""),
     Opt("scene", "length_scale", "float", None, "the model length (the longest beam; bodies: their size), for "
         "increment tolerances and arc lengths", unit="m", record="scene", scene=False, checked=False,
@@ -177,7 +178,10 @@ OPTIONS = (
         default_doc="1 (static, modal); ⌈output steps / 50⌉ (dynamic)"),
     Opt("modal", "modes", "int", 10, "number of modes", record="modal", lo=1, hi=100000),
     Opt("modal", "about", "choice", "reference", "`reference` or `static` (the static equilibrium under the "
-        "loads)", record="modal", choices=("reference", "static")),
+        "loads); a buckling analysis writes `static` when it has preloads", record="modal",
+        choices=("reference", "static")),
+    Opt("buckling", "modes", "int", 4, "number of buckling factors and modes (at most 64), those of least "
+        "magnitude (written as the modal record's `modes` of a buckling analysis)", lo=1, hi=64, checked=False),
 )
 
 

@@ -7,7 +7,7 @@
 
 #define BK_MODEL_VERSION 5       /* model file format */
 
-enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2 };   /* scene.analysis */
+enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2, BK_ANALYSIS_BUCKLING = 3 };   /* scene.analysis */
 enum bk_predictor { BK_PREDICTOR_NONE = 0, BK_PREDICTOR_SECANT = 1 };   /* static.predictor */
 enum bk_step_control { BK_STEP_CONTROL_ADAPTIVE = 0, BK_STEP_CONTROL_FIXED = 1 };   /* static.step_control */
 enum bk_method { BK_METHOD_LOAD_CONTROL = 0, BK_METHOD_ARC_LENGTH = 1 };   /* static.method */
@@ -70,7 +70,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
  * str: a token that fits the member. */
 #define BK_OPTION_FIELDS(X) \
     X("scene", "name", BK_OPT_STR, name, 0.0, 0, 0.0, NULL) \
-    X("scene", "analysis", BK_OPT_CHOICE, analysis, 0.0, 0, 2.0, "static dynamic modal") \
+    X("scene", "analysis", BK_OPT_CHOICE, analysis, 0.0, 0, 3.0, "static dynamic modal buckling") \
     X("scene", "length_scale", BK_OPT_FLOAT, length_scale, 0.0, 1, 1e308, NULL) \
     X("static", "load_steps", BK_OPT_INT, stat.load_steps, 1.0, 0, 10000000.0, NULL) \
     X("static", "max_iterations", BK_OPT_INT, stat.max_iterations, 1.0, 0, 10000.0, NULL) \

@@ -8,11 +8,17 @@
 #include "analysis/modal.h"
 #include "analysis/static.h"
 
-static int runs_static(const bk_model *m) { return m->analysis == BK_STATIC && !m->stat.arc_length; }
-static int runs_continuation(const bk_model *m) { return m->analysis == BK_STATIC && m->stat.arc_length; }
-static int runs_dynamic(const bk_model *m) { return m->analysis == BK_DYNAMIC; }
-static int runs_modal(const bk_model *m) { return m->analysis == BK_MODAL; }
-static int runs_buckling(const bk_model *m) { return m->analysis == BK_BUCKLING; }
+static int runs_static(const bk_model *m)
+{
+    return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_LOAD_CONTROL;
+}
+static int runs_continuation(const bk_model *m)
+{
+    return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_ARC_LENGTH;
+}
+static int runs_dynamic(const bk_model *m) { return m->analysis == BK_ANALYSIS_DYNAMIC; }
+static int runs_modal(const bk_model *m) { return m->analysis == BK_ANALYSIS_MODAL; }
+static int runs_buckling(const bk_model *m) { return m->analysis == BK_ANALYSIS_BUCKLING; }
 
 static const bk_analysis_module table[] = {
     {"static", runs_static, bk_run_static},
