@@ -1,4 +1,6 @@
-"""Generate out/kernels/: every element, every element x material pair, and index.json.
+"""Generate out/kernels/: every element, every element x material pair, and index.json;
+and from the options schema out/kernels/bk_options.h and docs/reference/options.md
+(gen/options_emit.py).
 
 Incremental: a file whose header carries the hash of its current generator
 inputs is not re-derived.  `check` re-derives everything in memory and compares
@@ -218,6 +220,15 @@ def generate(outdir, check=False, force=False, log=print, only=None):
             log(f"  {name}: generated ({dt:.1f} s)")
     if only:
         return stale
+    from gen.options_emit import files as option_files   # the options schema's header and key reference
+    for p, txt in option_files(outdir).items():
+        if check:
+            if not p.exists() or p.read_text(encoding="utf-8") != txt:
+                stale.append(str(p))
+        elif not p.exists() or p.read_text(encoding="utf-8") != txt:     # unchanged: keep its time
+            p.parent.mkdir(parents=True, exist_ok=True)
+            p.write_text(txt, encoding="utf-8")
+            log(f"  {p.name}: generated")
     idx = json.dumps(index_data(), indent=1, sort_keys=True) + "\n"
     ipath = outdir / "index.json"
     if check:
@@ -226,7 +237,7 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     else:
         ipath.write_text(idx, encoding="utf-8")
     # Files on disk that the generator no longer produces.
-    expected = {f"{n}.{x}" for k, n, _ in plan() for x in (("h",) if k == "header" else ("h", "c"))} | {"index.json"}
+    expected = {f"{n}.{x}" for k, n, _ in plan() for x in (("h",) if k == "header" else ("h", "c"))} | {"index.json", "bk_options.h"}
     extra = sorted(p.name for p in outdir.iterdir() if p.name not in expected)
     if check:
         stale += [str(outdir / e) for e in extra]

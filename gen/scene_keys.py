@@ -3,13 +3,16 @@
 The scene reader (gen/scene/) accepts exactly these keys (plus, in
 [material.NAME], the parameter keys of the chosen law: gen/materials/*.py
 INPUTS); tests/test_docs.py checks that the README's scene reference lists
-the same keys.
+the same keys.  The analysis options' keys ([scene] analysis, [static],
+[dynamic], [modal], [buckling], [output]) come from the options schema
+(gen/options_schema.py).
 """
+from gen import options_schema as S
 
 TOP = ("scene", "material", "section", "beam", "body", "constraint", "load", "static", "dynamic", "modal",
        "buckling", "initial_velocity", "sensor", "output", "amplitude")
 
-SCENE = ("analysis", "description", "name")
+SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
 BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
@@ -33,14 +36,11 @@ AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),
              "table": ("type", "points", "file")}
-STATIC = ("load_steps", "max_iterations", "max_cutbacks", "rtol", "utol", "cycles", "predictor", "stability",
-          "eigenvalues", "stable_path", "step_control", "method", "arc_constraint", "target_load_factor",
-          "max_steps", "max_displacement", "arc_iterations", "branch_switch")
-DYNAMIC = ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
-           "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian")
-MODAL = ("modes", "about")
-BUCKLING = ("modes",)
-OUTPUT = ("vtk_every",)
+STATIC = S.scene_keys("static")
+DYNAMIC = S.scene_keys("dynamic")
+MODAL = S.scene_keys("modal")
+BUCKLING = S.scene_keys("buckling")
+OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
 

@@ -55,8 +55,9 @@ def analysis_table_source():
 
 
 def runtime_headers():
-    """Every header of the runtime: an object is stale when one is newer."""
-    return sorted(RUNTIME.rglob("*.h"))
+    """Every header of the runtime, and the generated option header it includes
+    (out/kernels/bk_options.h): an object is stale when one is newer."""
+    return sorted(RUNTIME.rglob("*.h")) + [KERNELS / "bk_options.h"]
 
 
 # Build variants.  The runtime evaluates element kernels in parallel with OpenMP

@@ -108,7 +108,8 @@ def linked_after_sources(pairs, out_path, index, variant, lock=True):
         t = os.stat(out_path).st_mtime
         srcs = [os.path.join(d, n) for d, _, names in os.walk(RUNTIME) for n in names
                 if n.endswith((".c", ".h")) and not n.startswith(".")]
-        srcs += [os.path.join(GEN, "solver_build.py"), os.path.join(KERNELS, "index.json")]
+        srcs += [os.path.join(GEN, "solver_build.py"), os.path.join(KERNELS, "index.json"),
+                 os.path.join(KERNELS, "bk_options.h")]
         for f in kernel_files(pairs, index):
             src = os.path.join(KERNELS, f)
             srcs += [src] + kernel_headers(src)

@@ -45,7 +45,7 @@ static void build(scene *s, double z, double k, bk_contact_prim prim, double r, 
     memset(s, 0, sizeof *s);
     bk_model *m = &s->m;
     snprintf(m->name, sizeof m->name, "contact_check");
-    m->analysis = BK_STATIC;
+    m->analysis = BK_ANALYSIS_STATIC;
     m->length_scale = 1.0;
     m->ndof = 3 * NN;
     for (int n = 0; n < NN; ++n) {

@@ -55,7 +55,7 @@ static void scene_init(scene *s, int nnode, const double (*x)[3])
             s->q0[3 * n + i] = x[n][i];
     bk_model *m = &s->m;
     snprintf(m->name, sizeof m->name, "spring_check");
-    m->analysis = BK_STATIC;
+    m->analysis = BK_ANALYSIS_STATIC;
     m->length_scale = 1.0;
     m->stat.eigenvalues = 1;          /* the eigenvalue estimates are checked too */
     m->ndof = 3 * nnode;

@@ -1,6 +1,8 @@
-"""The README's scene reference lists exactly the keys the scene reader accepts
+"""The README's scene reference and the generated option reference
+(docs/reference/options.md) list exactly the keys the scene reader accepts
 (gen/scene_keys.py and the laws' parameter keys), so a key is never undocumented
-or documented but refused."""
+or documented but refused; the files generated from the options schema are
+fresh."""
 import re
 
 from gen import scene_keys as K
@@ -9,11 +11,15 @@ from util import ROOT
 
 
 def documented_keys():
-    text = (ROOT / "README.md").read_text()
-    start = text.index("### Scene reference")
-    table = text[start:text.index("\n\n", text.index("| key |", start))]
+    return _table_keys((ROOT / "README.md").read_text(), "### Scene reference") | \
+        _table_keys((ROOT / "docs" / "reference" / "options.md").read_text(), "# Analysis options")
+
+
+def _table_keys(text, heading):
+    start = text.index("| key |", text.index(heading))
+    table = text[start:text.index("\n\n", start)]
     keys = set()
-    for row in table.splitlines()[2:]:
+    for row in table.splitlines()[2:]:       # below the header and its rule
         first = row.split("|")[1]
         prefix = None
         for tok in re.findall(r"`([^`]+)`", first):
@@ -45,6 +51,14 @@ def test_readme_scene_reference_matches_the_reader():
     doc, acc = documented_keys(), accepted_keys()
     assert not acc - doc, f"accepted but not in the README's scene reference: {sorted(acc - doc)}"
     assert not doc - acc, f"in the README's scene reference but refused by the reader: {sorted(doc - acc)}"
+
+
+def test_option_header_and_reference_are_generated_from_the_schema():
+    """out/kernels/bk_options.h and docs/reference/options.md as the schema makes
+    them (what `./build.sh gen --check` checks, without the kernels)."""
+    from gen.options_emit import files
+    for path, text in files(ROOT / "out" / "kernels").items():
+        assert path.read_text(encoding="utf-8") == text, f"{path} is stale: run ./build.sh gen"
 
 
 def test_readme_mentions_outputs_and_limits():

@@ -49,3 +49,19 @@ def test_other_version_renamed_field_and_wrong_parameter_names_are_refused():
     assert r.returncode == 1 and "material parameter 1 is 'kappa', kernel ancf3243_svk expects 'lambda'" in r.stderr, \
         r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_option_records_are_checked_by_the_generated_descriptor_table():
+    """runtime/model/options.c reads the option records by out/kernels/bk_options.h
+    (gen/options_schema.py): choices by name, numbers and integers in range."""
+    out, solver = _run()
+    text = (out / "model.dat").read_text()
+    assert " step_control=adaptive\n" in text and " about=reference\n" in text
+    r = _solve(solver, out, text.replace(" step_control=adaptive", " step_control=adaptve", 1))
+    assert r.returncode == 1 and "static.step_control: 'adaptve' is not supported by this solver (expected one of: " \
+                                 "adaptive fixed)" in r.stderr, r.stderr
+    r = _solve(solver, out, text.replace(" rho_inf=0.8 ", " rho_inf=1.5 ", 1))
+    assert r.returncode == 1 and "dynamic.rho_inf: expected a number in [0, 1], found 1.5" in r.stderr, r.stderr
+    r = _solve(solver, out, text.replace(" max_iterations=25 ", " max_iterations=0 ", 1))
+    assert r.returncode == 1 and "static.max_iterations: expected an integer in [1, 10000], found '0'" in r.stderr, \
+        r.stderr

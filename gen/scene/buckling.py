@@ -8,13 +8,14 @@ there, each scaled load is zero up to 1 and reaches its value at 2 (both
 linear on [1, 2]); the static solve to load factor 1 gives the preloaded
 state, the loads at 1 and 2 the scaled loads.  Without preloads the loads keep
 the default (the load factor).  The model file carries the options in the
-modal record: modes, and about = 1 for the preloaded state."""
+modal record: modes, and about = static for the preloaded state (the keys:
+gen/options_schema.py)."""
 import gen.scene_keys as K
+from gen import options_schema as S
 from gen.scene.values import check_keys, get_array_of_tables, get_bool, get_int, get_table
 
 PRELOAD = {"type": "table", "points": [[0.0, 0.0], [1.0, 1.0]]}
 SCALED = {"type": "table", "points": [[1.0, 0.0], [2.0, 1.0]]}
-DEFAULT_MODES = 4
 
 
 def buckling_options(ctx, doc, analysis):
@@ -23,7 +24,8 @@ def buckling_options(ctx, doc, analysis):
     returns the modal record {modes, about}, else None."""
     bt = get_table(ctx, doc, "buckling")
     check_keys(ctx, bt, set(K.BUCKLING), "buckling")
-    modes = get_int(ctx, bt, "modes", "buckling", default=DEFAULT_MODES, lo=1, hi=64)
+    o = next(o for o in S.table_options("buckling") if o.key == "modes")
+    modes = get_int(ctx, bt, "modes", "buckling", default=o.default, lo=o.lo, hi=o.hi)
     loads = get_array_of_tables(ctx, doc, "load")
     pre = [get_bool(ctx, lt, "preload", f"load[{i}]", False) if isinstance(lt, dict) else False
            for i, lt in enumerate(loads)]
@@ -40,4 +42,4 @@ def buckling_options(ctx, doc, analysis):
                                              "factor scales the loads linearly)")
         if any(pre):
             lt["amplitude"] = dict(PRELOAD if pre[i] else SCALED)
-    return {"modes": modes, "about": int(any(pre))}
+    return {"modes": modes, "about": "static" if any(pre) else "reference"}

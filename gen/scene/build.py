@@ -6,6 +6,7 @@ and sensors (options.py); the model file (model_file.py)."""
 import os
 
 import gen.scene_keys as K
+from gen.options_schema import OPTIONS
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
@@ -18,7 +19,7 @@ from gen.scene.mesh import mesh_beams
 from gen.scene.options import initial_velocities, options, sensors
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
 
-ANALYSES = ("static", "dynamic", "modal", "buckling")
+ANALYSES = next(o.choices for o in OPTIONS if o.name == "scene.analysis")
 PLANNED_ANALYSES = ()
 
 
@@ -78,7 +79,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         mesh.warnings.append(f"load[{follower[0]}]: follower loads are not conservative: the stability check "
                              "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
     stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon") or i in follower]
-    if stiff and analysis == "modal" and modal["about"]:
+    if stiff and analysis == "modal" and modal["about"] == "static":
         mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
                              "the elastic forces only, without the load stiffness of moments, follower loads and "
                              "tendons")

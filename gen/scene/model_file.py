@@ -1,24 +1,19 @@
 """The model file the C solver reads (runtime/model/model.c)."""
 
+from gen import options_schema as S
+
+
 def _f(x):
     return repr(float(x))
 
 
-# Model file format: versioned; scalar records are named fields `key=value` in
-# this order, which runtime/model/model.c reads by name (a model file of another
-# version, or with a field renamed, is refused naming the record and field).
-VERSION = 4
-RECORDS = {
-    "scene": ("name", "analysis", "length_scale"),
-    "static": ("load_steps", "max_iterations", "max_cutbacks", "cycles", "rtol", "utol", "predictor",
-               "stability", "eigenvalues", "stable_path", "step_control"),
-    "dynamic": ("t_end", "dt", "dt_min", "rho_inf", "tol", "max_iterations", "max_cutbacks", "output_every",
-                "rayleigh_alpha", "rayleigh_beta", "rtol", "utol", "jacobian"),
-    "continuation": ("method", "arc_constraint", "target_load_factor", "max_steps", "max_displacement",
-                     "arc_iterations", "branch_switch"),
-    "output": ("vtk_every",),
-    "modal": ("modes", "about"),
-}
+# Model file format: versioned; the option records are named fields `key=value`
+# in the order of the options schema (gen/options_schema.py), which
+# runtime/model/options.c reads by its generated descriptor table (a model file
+# of another version, or with a field renamed, is refused naming the record and
+# field).  Choices are written by name, booleans as 0 or 1.
+VERSION = S.MODEL_VERSION
+RECORDS = S.records()
 
 
 def _value(v):
@@ -31,30 +26,28 @@ def _value(v):
     return str(v)
 
 
-def _record(name, values):
-    assert set(values) == set(RECORDS[name]), (name, sorted(values))
-    return name + " " + " ".join(f"{k}={_value(values[k])}" for k in RECORDS[name])
+def _option_records(model):
+    """The option records, each `record key=value ...`, from the model's values
+    (scene and output keys at its top level, the others in model[table])."""
+    out = []
+    for rec in S.RECORD_ORDER:
+        fields = []
+        for o in S.record_fields(rec):
+            values = model if o.table in ("scene", "output") else model[o.table]
+            rule = S.RECORD_VALUE_RULES.get(o.name)
+            v = rule(values) if rule else values[o.key]
+            if o.type == "float":
+                v = float(v)
+            elif o.type == "bool":
+                v = bool(v)
+            fields.append(f"{o.key}={_value(v)}")
+        out.append(rec + " " + " ".join(fields))
+    return out
 
 
 def write_model(model, path):
     """Write the model file read by runtime/model/model.c."""
-    s, d = model["static"], model["dynamic"]
-    out = [f"beamkit-model {VERSION}",
-           _record("scene", {"name": model["name"], "analysis": model["analysis"],
-                             "length_scale": float(model["length_scale"])}),
-           _record("static", {**{k: s[k] for k in ("load_steps", "max_iterations", "max_cutbacks", "cycles",
-                                                   "rtol", "utol", "stable_path")},
-                              "predictor": int(s["predictor"] == "secant"),
-                              "stability": int(s["stability"] or s["stable_path"] or s["eigenvalues"]),
-                              "eigenvalues": int(s["eigenvalues"]),
-                              "step_control": int(s["step_control"] == "adaptive")}),
-           _record("continuation", {**{k: s[k] for k in RECORDS["continuation"]},
-                                    "method": int(s["method"] == "arc_length"),
-                                    "arc_constraint": int(s["arc_constraint"] == "spherical")}),
-           _record("dynamic", {**{k: d[k] for k in RECORDS["dynamic"] if k != "jacobian"},
-                               "jacobian": int(d["jacobian"] == "reuse")}),
-           _record("output", {"vtk_every": model["vtk_every"]}),
-           _record("modal", {"modes": model["modal"]["modes"], "about": model["modal"]["about"]})]
+    out = [f"beamkit-model {VERSION}"] + _option_records(model)
     out.append(f"ndof {model['ndof']}")
     out.append("q0")
     q0 = model["q0"]

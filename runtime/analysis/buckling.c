@@ -130,7 +130,7 @@ static int base_state(bk_system *s, double *q, bk_output *out, bk_run_info *info
 {
     const bk_model *m = s->m;
     *x0 = 0.0;
-    if (!m->modal.about_static) {
+    if (m->modal.about != BK_ABOUT_STATIC) {
         memcpy(q, m->q0, (size_t)m->ndof * sizeof *q);
         bk_output_step(out, 0, 0.0, q);
         return 0;
@@ -222,7 +222,7 @@ static int modes(bk_system *s, work *w, const double *q, bk_output *out, bk_run_
                  "no buckling: no real critical factor (no compression, no moment, or non-conservative loads)");
         goto done;
     }
-    int want = nf < m->modal.nmodes ? nf : m->modal.nmodes;
+    int want = nf < m->modal.modes ? nf : m->modal.modes;
     qsort(fac, (size_t)want, sizeof *fac, by_report_order);
     static const char *const names[] = {"load_factor"};
     if (bk_output_modes_begin(out, 1, names, info->message, sizeof info->message) != 0)
@@ -373,7 +373,7 @@ int bk_solve_buckling(bk_system *s, double *q, bk_output *out, bk_run_info *info
     /* summary.json "buckling": about what, the factors, the critical one (null: none positive) */
     char text[BK_REPORTED * 26 + 128];
     int len = snprintf(text, sizeof text, "{\"about\": \"%s\", \"load_factors\": [",
-                       s->m->modal.about_static ? "preloaded" : "reference");
+                       s->m->modal.about == BK_ABOUT_STATIC ? "preloaded" : "reference");
     for (int k = 0; k < rep.n; ++k)
         len += snprintf(text + len, sizeof text - (size_t)len, "%s%.17g", k ? ", " : "", rep.lam[k]);
     if (rep.n > 0 && rep.lam[0] > 0.0 && isfinite(rep.lam[0]))
@@ -389,7 +389,7 @@ int bk_solve_buckling(bk_system *s, double *q, bk_output *out, bk_run_info *info
 
 static int runs_buckling(const bk_model *m)
 {
-    return m->analysis == BK_BUCKLING;
+    return m->analysis == BK_ANALYSIS_BUCKLING;
 }
 
 const bk_analysis_module bk_analysis_buckling = {"buckling", runs_buckling, bk_solve_buckling};

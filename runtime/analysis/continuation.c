@@ -71,7 +71,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
-    double lam = 0.0, target = o->target, dl = 0.0, dl0 = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
+    double lam = 0.0, target = o->target_load_factor, dl = 0.0, dl0 = 0.0, sigma_prev = 1.0, dl_prev = 0.0;
     double prev_lam = 0.0;
     int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
     int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
@@ -95,7 +95,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             goto done;
         }
         if (info->steps == 0) {
-            c.psi2 = o->arc_spherical ? tWt : 0.0;
+            c.psi2 = o->arc_constraint == BK_ARC_CONSTRAINT_SPHERICAL ? tWt : 0.0;
             dl = dl0 = target / o->load_steps * sqrt(tWt + c.psi2);
         }
         double sigma = have_dir ? bk_arc_orientation(s, &c, q, lam, A.q, A.lam) : 1.0;
@@ -344,7 +344,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             }
         }
         /* the next arc length from the iteration count */
-        double f = sqrt((double)o->arc_iters / (a.iters > 1 ? a.iters : 1));
+        double f = sqrt((double)o->arc_iterations / (a.iters > 1 ? a.iters : 1));
         f = fmin(fmax(f, 0.5), 2.0);
         if (calm < 2) {
             f = fmin(f, 1.0);
@@ -398,7 +398,7 @@ int bk_solve_continuation(bk_system *s, double *q, bk_output *out, bk_run_info *
 
 static int runs_continuation(const bk_model *m)
 {
-    return m->analysis == BK_STATIC && m->stat.arc_length;
+    return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_ARC_LENGTH;
 }
 
 const bk_analysis_module bk_analysis_continuation = {"continuation", runs_continuation, bk_solve_continuation};

@@ -210,9 +210,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     /* Newton: rotation-invariant tests; converged when the residual is within
      * rtol (or far below it), the constraints hold to 1e-12 L and the last
      * correction is small in length or energy */
-    const bk_nl_opts nlo = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol,
+    const bk_nl_opts nlo = {.max_iter = o->max_iterations, .rtol = o->rtol, .utol = o->utol,
                             .ctol = 1e-12 * fmax(m->length_scale, 1.0), .accept_far_below = 1,
-                            .stagnation = 0, .divergence = 0, .reuse = o->reuse_jacobian,
+                            .stagnation = 0, .divergence = 0, .reuse = o->jacobian == BK_JACOBIAN_REUSE,
                             .lazy_matrix = 1};
     int full_retry = 0;                         /* this step failed with kept factors: full Newton */
 
@@ -414,7 +414,7 @@ done:
 
 static int runs_dynamic(const bk_model *m)
 {
-    return m->analysis == BK_DYNAMIC;
+    return m->analysis == BK_ANALYSIS_DYNAMIC;
 }
 
 const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic};

@@ -101,7 +101,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
     /* The state the modes are about: sensors.csv rows and step_*.vtu frames (the
      * static load steps, or the reference as step 0); the modes go to their own
      * files (bk_output_mode). */
-    if (m->modal.about_static) {
+    if (m->modal.about == BK_ABOUT_STATIC) {
         bk_run_info sinfo = {0};
         int st = bk_solve_static(s, q, out, &sinfo, log);
         bk_output_last_frame(out, sinfo.steps, sinfo.load_factor, q);
@@ -188,7 +188,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         /* Joints nonlinear in q carry a geometric stiffness sum_k lam_k d2 g_k/dq2
          * in a loaded state: the multipliers from G^T lam = f_ext - f_int at the
          * static equilibrium (least squares on the QR above; independent rows). */
-        if (m->nnlcon > 0 && m->modal.about_static && r == nc && nc <= n) {
+        if (m->nnlcon > 0 && m->modal.about == BK_ABOUT_STATIC && r == nc && nc <= n) {
             gsl_vector *b = gsl_vector_calloc((size_t)n), *lam = gsl_vector_alloc((size_t)nc);
             gsl_vector *res = gsl_vector_alloc((size_t)n);
             double *fext = calloc((size_t)m->ndof, sizeof *fext);
@@ -256,7 +256,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
     }
     gsl_eigen_gensymmv_sort(mu, V, GSL_EIGEN_SORT_VAL_DESC);
     /* outputs */
-    int want = m->modal.nmodes, got = 0;
+    int want = m->modal.modes, got = 0;
     double *shape = calloc((size_t)m->ndof, sizeof *shape);
     if (!shape) {
         snprintf(info->message, sizeof info->message, "out of memory");
@@ -339,7 +339,7 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
 
 static int runs_modal(const bk_model *m)
 {
-    return m->analysis == BK_MODAL;
+    return m->analysis == BK_ANALYSIS_MODAL;
 }
 
 const bk_analysis_module bk_analysis_modal = {"modal", runs_modal, bk_solve_modal};

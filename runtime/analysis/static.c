@@ -25,7 +25,7 @@
 #define TARGET_ITERS 6
 static double next_increment(const bk_static_opts *o, double dlam, double dlam0, int iters, int calm)
 {
-    if (!o->adaptive || o->max_cutbacks == 0)
+    if (o->step_control != BK_STEP_CONTROL_ADAPTIVE || o->max_cutbacks == 0)
         return iters <= 6 && dlam < dlam0 ? fmin(2.0 * dlam, dlam0) : dlam;
     double f = iters <= 3 ? 2.0 : iters <= TARGET_ITERS ? 1.5 : 1.0;
     if (calm < 2)
@@ -132,7 +132,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
             memcpy(w->nusave, w->nu, (size_t)nc * sizeof *w->nu);
             /* Secant predictor: extrapolate the last two equilibria of this
              * leg to the target load. */
-            if (o->predictor && have_prev && lam != lam_prev) {
+            if (o->predictor == BK_PREDICTOR_SECANT && have_prev && lam != lam_prev) {
                 double c = (target - lam) / (lam - lam_prev);
                 for (int i = 0; i < nd; ++i)
                     q[i] += c * (q[i] - w->qprev[i]);
@@ -144,7 +144,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
              * equilibrium; then the increment is cut back. */
             int st = NEWTON_MAXIT;
             for (int k = 0; k < 2 && st != NEWTON_OK && st != NEWTON_INTERRUPTED; ++k) {
-                int predicted = k == 0 && o->predictor && have_prev;
+                int predicted = k == 0 && o->predictor == BK_PREDICTOR_SECANT && have_prev;
                 if (k == 0 && !predicted)
                     continue;
                 if (k > 0) {
@@ -235,7 +235,8 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
             /* A tangent singular at the last equilibrium itself (iteration 0
              * without predictor) does not depend on the increment: cutting
              * back cannot help. */
-            int hopeless = st == NEWTON_SINGULAR && a.singular_at_start && !(o->predictor && have_prev);
+            int hopeless = st == NEWTON_SINGULAR && a.singular_at_start &&
+                           !(o->predictor == BK_PREDICTOR_SECANT && have_prev);
             if (cuts_in_row >= o->max_cutbacks || hopeless) {
                 char what[600], incr[64];
                 bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
@@ -290,7 +291,7 @@ int bk_run_static(bk_system *s, double *q, bk_output *out, bk_run_info *info, FI
 
 static int runs_static(const bk_model *m)
 {
-    return m->analysis == BK_STATIC && !m->stat.arc_length;
+    return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_LOAD_CONTROL;
 }
 
 const bk_analysis_module bk_analysis_static = {"static", runs_static, bk_run_static};

@@ -146,7 +146,7 @@ double bk_sp_step_limit(void *ctx, const double *dx)
 
 bk_nl_opts bk_static_nl_opts(const bk_static_opts *o)
 {
-    bk_nl_opts no = {.max_iter = o->max_iter, .rtol = o->rtol, .utol = o->utol, .ctol = 0.0,
+    bk_nl_opts no = {.max_iter = o->max_iterations, .rtol = o->rtol, .utol = o->utol, .ctol = 0.0,
                      .accept_far_below = 0, .stagnation = 1, .divergence = 1, .reuse = 0};
     return no;
 }
@@ -246,7 +246,7 @@ void bk_static_accept_stability(bk_stability *st, const bk_stability_result *res
         ev->neg_before = before;
         ev->neg_after = res->negative;
         ev->lam_critical = isnan(refined) ? *prev_lam + t * (lam - *prev_lam) : refined;
-        if (!out->m->stat.arc_length)    /* arc-length: reported as critical points */
+        if (out->m->stat.method != BK_METHOD_ARC_LENGTH)    /* arc-length: reported as critical points */
             bk_warn(info, out->console, s_name,
                 "the number of negative tangent eigenvalues went from %d to %d between load factors %.6g and "
                 "%.6g (critical load factor %.6g): a %s was passed%s", before, res->negative, *prev_lam, lam,

@@ -1,6 +1,6 @@
 /* model.h -- the discretized scene the solver works on.
  *
- * A model is read from the model file that gen/scene.py writes (the scene's
+ * A model is read from the model file that gen/scene/model_file.py writes (the scene's
  * TOML, validated and meshed).  The runtime never sees TOML.  All arrays are
  * owned by the model and released by bk_model_free().
  */
@@ -11,9 +11,8 @@
 
 #include "bk_joint.h"
 #include "bk_kernel.h"
+#include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
 #include "model/contact.h"
-
-enum bk_analysis { BK_STATIC = 0, BK_DYNAMIC = 1, BK_MODAL = 2, BK_BUCKLING = 3 };
 
 typedef struct bk_elem {
     int pair;          /* index into model->pairs                          */
@@ -22,7 +21,6 @@ typedef struct bk_elem {
     int *dofs;         /* [ndof of the element] global DOF of each local DOF */
 } bk_elem;
 
-#define BK_MODEL_VERSION 4       /* model file format (gen/scene/model_file.py VERSION) */
 #define BK_MAT_MAXPARAM 8
 
 typedef struct bk_mat {
@@ -135,45 +133,10 @@ typedef struct bk_nlcon {
     double prm[BK_JOINT_NPARAM];
 } bk_nlcon;
 
-typedef struct bk_static_opts {
-    int load_steps;
-    int max_iter;
-    int max_cutbacks;
-    int cycles;        /* load-unload cycles after the first loading */
-    double rtol;       /* residual tolerance relative to the load        */
-    double utol;       /* increment tolerance relative to the displacement */
-    int predictor;     /* 1: secant predictor from the last two equilibria */
-    int stability;     /* 1: inertia of the tangent at every equilibrium   */
-    int eigenvalues;   /* 1: also the extreme eigenvalues at every check (static.eigenvalues) */
-    int stable_path;   /* 1: cut back increments that lose stability       */
-    int adaptive;      /* 1: adaptive load increments (static.step_control) */
-    int arc_length;    /* 1: arc-length continuation (static.method) */
-    int arc_spherical; /* 1: spherical constraint, 0: cylindrical (static.arc_constraint) */
-    double target;     /* load-factor target of the path (static.target_load_factor) */
-    int max_steps;     /* step budget of the path */
-    double max_displacement;   /* > 0: stop when a sensor moved this far (m) */
-    int arc_iters;     /* Newton iterations per step the arc length aims at */
-    int branch_switch; /* 1: onto the secondary branch at the first bifurcation */
-} bk_static_opts;
-
-typedef struct bk_dynamic_opts {
-    double t_end, dt, dt_min, rho_inf;
-    double tol;            /* > 0: error-controlled step size with this local error */
-    int max_iter, max_cutbacks, output_every;
-    double rayleigh_alpha, rayleigh_beta;
-    double rtol, utol;
-    int reuse_jacobian;    /* 1: keep the factorized Jacobian while Newton contracts fast (dynamic.jacobian) */
-} bk_dynamic_opts;
-
-typedef struct bk_modal_opts {   /* (and of the buckling analysis: buckling.c) */
-    int nmodes;
-    int about_static;      /* 1: linearize about the static equilibrium under the loads (the preloads) */
-} bk_modal_opts;
-
 typedef struct bk_model {
     char name[128];
-    enum bk_analysis analysis;
-    double length_scale;         /* m, for increment tolerances         */
+    int analysis;                /* enum bk_analysis (scene.analysis) */
+    double length_scale;         /* m, for increment tolerances (scene record) */
     int ndof;
     double *q0;                  /* [ndof] reference configuration       */
     int npair;
@@ -216,9 +179,9 @@ typedef struct bk_model {
     bk_section_rec *sections;
     bk_static_opts stat;
     bk_dynamic_opts dyn;
-    bk_modal_opts modal;
+    bk_modal_opts modal;         /* (and of the buckling analysis: buckling.c) */
     double *qd0;                 /* [ndof] initial velocities (dynamic) */
-    int vtk_every;               /* a ParaView frame every n-th output step; 0: none */
+    bk_output_opts output;
 } bk_model;
 
 /* Reads a model file.  `avail` lists the kernel descriptors linked into this
@@ -237,12 +200,12 @@ int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nki
  * factor.  The analyses themselves are chosen by analysis/analysis.c. */
 static inline int bk_model_on_path(const bk_model *m)
 {
-    return m->analysis != BK_MODAL && m->analysis != BK_BUCKLING;
+    return m->analysis != BK_ANALYSIS_MODAL && m->analysis != BK_ANALYSIS_BUCKLING;
 }
 
 static inline int bk_model_in_time(const bk_model *m)
 {
-    return m->analysis == BK_DYNAMIC;
+    return m->analysis == BK_ANALYSIS_DYNAMIC;
 }
 
 /* A path in the load factor (statics: load control or continuation). */

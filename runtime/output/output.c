@@ -79,10 +79,10 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
      * them (a static run: its load steps, which the step control may change) */
     const int known = bk_model_in_time(m)
                           ? (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) /
-                                               (m->vtk_every > 0 ? m->vtk_every : 1)) + 1
+                                               (m->output.vtk_every > 0 ? m->output.vtk_every : 1)) + 1
                           : 0;
     const int frames = known ? known + 3 : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
-    if (bk_vtk_open(&o->vtk, m, dir, m->vtk_every, frames, known) != 0) {
+    if (bk_vtk_open(&o->vtk, m, dir, m->output.vtk_every, frames, known) != 0) {
         fprintf(err, "error: out of memory for the ParaView frames\n");
         return -1;
     }
@@ -108,8 +108,8 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     /* section forces at the steps that get a ParaView frame; without frames at
      * the stride their default would have (gen/scene/options.py: about 100
      * frames in dynamics, every equilibrium in statics) */
-    if (m->vtk_every > 0)
-        o->sections_every = m->vtk_every;
+    if (m->output.vtk_every > 0)
+        o->sections_every = m->output.vtk_every;
     else if (bk_model_in_time(m))
         o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
     else

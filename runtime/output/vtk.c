@@ -448,7 +448,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     double frac = -1.0;
     if (bk_model_in_time(m) && m->dyn.t_end > 0.0)
         frac = t / m->dyn.t_end;
-    else if (bk_model_in_load(m) && !m->stat.arc_length && m->stat.cycles == 0)
+    else if (bk_model_in_load(m) && m->stat.method != BK_METHOD_ARC_LENGTH && m->stat.cycles == 0)
         frac = t;                                    /* the load factor, 0 -> 1 */
     maybe_background(v, frac);
     static const char *const names[] = {"TIME"};
@@ -494,7 +494,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const d
     }
     fname[nf] = "MODE_SCALE", fval[nf++] = scale;
     mode_view mv = {qp, qm, eps, norm, scale};
-    maybe_background(v, v->m->modal.nmodes > 0 ? (double)mode / v->m->modal.nmodes : -1.0);
+    maybe_background(v, v->m->modal.modes > 0 ? (double)mode / v->m->modal.modes : -1.0);
     if (write_vtu(v, path, nf, fname, fval, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)

@@ -1,0 +1,41 @@
+/* reader.h -- the model file's tokens (private to model/): a reader holds the
+ * whole file and reports the first error, naming the file, as one line; every
+ * reading function does nothing once an error was reported. */
+#ifndef BK_READER_H
+#define BK_READER_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "model/model.h"
+
+#define MAXN 100000000
+
+typedef struct bk_reader {
+    char *buf;               /* owned: the whole file, NUL-terminated */
+    size_t len, pos;         /* its length; where the next token starts */
+    const char *path;
+    FILE *err;
+    int failed;
+    char tok[256];
+} bk_reader;
+
+int rd_load(bk_reader *r);                   /* r->path into r->buf; 0, or -1 after a message */
+void rd_fail(bk_reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+const char *rd_next_tok(bk_reader *r);      /* the next token, NULL at the end */
+const char *rd_next(bk_reader *r, const char *what);   /* ... and an error naming `what` there */
+void rd_expect(bk_reader *r, const char *kw);
+const char *rd_field(bk_reader *r, const char *rec, const char *key);  /* value of "key=value" */
+double rd_parse_num(bk_reader *r, const char *what, const char *t);
+double rd_fnum(bk_reader *r, const char *rec, const char *key);
+int rd_fint(bk_reader *r, const char *rec, const char *key, int lo, int hi);
+double rd_num(bk_reader *r, const char *what);
+int rd_inum(bk_reader *r, const char *what, int lo, int hi);
+void *rd_xcalloc(bk_reader *r, size_t n, size_t size);
+void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what);
+
+/* The records after the header, by job (options.c, extras.c). */
+void bk_model_read_options(bk_reader *r, bk_model *m);
+void bk_model_read_extras(bk_reader *r, bk_model *m);
+
+#endif
