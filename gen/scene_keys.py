@@ -10,7 +10,7 @@ the same keys.  The analysis options' keys ([scene] analysis, [static],
 from gen import options_schema as S
 
 TOP = ("scene", "material", "section", "beam", "body", "constraint", "load", "static", "dynamic", "modal",
-       "buckling", "initial_velocity", "sensor", "output", "amplitude")
+       "buckling", "initial_velocity", "sensor", "output", "amplitude", "contact")
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -43,6 +43,8 @@ BUCKLING = S.scene_keys("buckling")
 OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
+CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
+           "samples", "contact_radius", "friction", "static_friction", "kinetic_friction")
 
 
 def union(by_type):
@@ -57,4 +59,4 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING}
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "contact": CONTACT}

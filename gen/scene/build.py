@@ -10,6 +10,7 @@ from gen.options_schema import OPTIONS
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
+from gen.scene.contact import contacts
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
@@ -83,10 +84,12 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
                              "the elastic forces only, without the load stiffness of moments, follower loads and "
                              "tendons")
+    length_scale = max([b["length"] for b in mesh.beams.values()] +
+                       [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
+    contact_prims, contact_sets = contacts(ctx, doc, mesh.beams, length_scale)
     return {
-        "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0,
-        "length_scale": max([b["length"] for b in mesh.beams.values()] +
-                            [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()]),
+        "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
+        "contact_prims": contact_prims, "contact_sets": contact_sets,
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,

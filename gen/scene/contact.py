@@ -14,12 +14,12 @@ contact_radius (m; default the section's: a circle's radius, a rectangle's
 half-height h/2).  Friction keys are refused: frictionless only for now."""
 import math
 
+import gen.scene_keys as K
 from gen.scene.values import _dot, _norm, _scale, _sub, check_keys, get_array_of_tables, get_int, get_number, get_str, \
     get_vec3
 
 SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "capsule": ("a", "b", "radius")}
-KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
-        "samples", "contact_radius", "friction", "static_friction", "kinetic_friction")
+KEYS = K.CONTACT
 CODE = {"half_space": 0, "sphere": 1, "capsule": 2}
 GRAVITY = 9.81
 

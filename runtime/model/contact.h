@@ -32,14 +32,17 @@ typedef struct bk_contact_set {
     double kappa;                    /* barrier stiffness (N/m per metre of beam), > 0 */
     int nsample;                     /* sample points per element, >= 1 */
     int nelem;
-    const int *elems;                /* [nelem] elements of the set */
-    const double *radius;            /* [nelem] their section radii (m) */
+    int *elems;                      /* [nelem] elements of the set */
+    double *radius;                  /* [nelem] their section radii (m) */
 } bk_contact_set;
 
 typedef struct bk_contact_model {
     int nprim, nset;
-    const bk_contact_prim *prims;
-    const bk_contact_set *sets;
+    bk_contact_prim *prims;
+    bk_contact_set *sets;
 } bk_contact_model;
+
+/* Frees a contact model read from a model file (model/contact_read.c). */
+void bk_contact_model_free(bk_contact_model *cm);
 
 #endif

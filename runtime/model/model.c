@@ -274,6 +274,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         s->xi = rd_num(r, "sensor xi");
     }
     bk_model_read_extras(r, m);
+    bk_model_read_contacts(r, m);
     rd_expect(r, "end");
     free(r->buf);
     if (r->failed) {
@@ -287,6 +288,7 @@ void bk_model_free(bk_model *m)
 {
     if (!m)
         return;
+    bk_contact_model_free(m->contact);
     free(m->q0);
     free(m->qd0);
     free(m->pairs);

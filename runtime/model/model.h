@@ -164,7 +164,7 @@ typedef struct bk_model {
     double gravity[3];
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
-    const bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h) */
+    bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h); owned when read from a file */
     int nsensor;
     bk_sensor *sensors;
     int namp;

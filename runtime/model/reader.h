@@ -37,5 +37,6 @@ void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what);
 /* The records after the header, by job (options.c, extras.c). */
 void bk_model_read_options(bk_reader *r, bk_model *m);
 void bk_model_read_extras(bk_reader *r, bk_model *m);
+void bk_model_read_contacts(bk_reader *r, bk_model *m);      /* contact_read.c */
 
 #endif

@@ -1,0 +1,69 @@
+/* contact_read.c -- the contact records of the model file (model/contact.h),
+ * written by gen/scene/contact.py:
+ *   contacts NPRIM NSET
+ *   prim SHAPE p0 .. p6                        (NPRIM times; enum bk_contact_shape)
+ *   cset PRIM REACH STIFFNESS SAMPLES N e r .. (NSET times: N elements, radii) */
+#include <stdlib.h>
+
+#include "model/reader.h"
+
+void bk_model_read_contacts(bk_reader *r, bk_model *m)
+{
+    rd_expect(r, "contacts");
+    int np = rd_inum(r, "contact primitives", 0, MAXN), ns = rd_inum(r, "contact sets", 0, MAXN);
+    if (r->failed || ns == 0)
+        return;
+    bk_contact_model *cm = rd_xcalloc(r, 1, sizeof *cm);
+    if (!cm)
+        return;
+    m->contact = cm;
+    cm->prims = rd_xcalloc(r, (size_t)np, sizeof *cm->prims);
+    cm->sets = rd_xcalloc(r, (size_t)ns, sizeof *cm->sets);
+    if (r->failed)
+        return;
+    cm->nprim = np;
+    for (int i = 0; i < np && !r->failed; ++i) {
+        rd_expect(r, "prim");
+        cm->prims[i].shape = rd_inum(r, "contact primitive shape", 0, BK_CONTACT_CAPSULE);
+        for (int k = 0; k < BK_CONTACT_MAXPRM; ++k)
+            cm->prims[i].prm[k] = rd_num(r, "contact primitive parameter");
+    }
+    for (int c = 0; c < ns && !r->failed; ++c) {
+        bk_contact_set *set = &cm->sets[c];
+        rd_expect(r, "cset");
+        set->prim = rd_inum(r, "contact set primitive", 0, np - 1);
+        set->shat = rd_num(r, "contact reach");
+        set->kappa = rd_num(r, "contact stiffness");
+        set->nsample = rd_inum(r, "contact samples", 1, 64);
+        int n = rd_inum(r, "contact elements", 1, m->nelem > 0 ? m->nelem : 1);
+        if (r->failed)
+            break;
+        cm->nset = c + 1;                  /* (freed from here on) */
+        if (!(set->shat > 0.0) || !(set->kappa > 0.0))
+            rd_fail(r, "contact set %d: reach and stiffness must be positive (%g, %g)", c, set->shat, set->kappa);
+        set->elems = rd_xcalloc(r, (size_t)n, sizeof *set->elems);
+        set->radius = rd_xcalloc(r, (size_t)n, sizeof *set->radius);
+        if (r->failed)
+            break;
+        set->nelem = n;
+        for (int i = 0; i < n && !r->failed; ++i) {
+            set->elems[i] = rd_inum(r, "contact element", 0, m->nelem - 1);
+            set->radius[i] = rd_num(r, "contact radius");
+            if (!(set->radius[i] >= 0.0))
+                rd_fail(r, "contact set %d: negative section radius %g", c, set->radius[i]);
+        }
+    }
+}
+
+void bk_contact_model_free(bk_contact_model *cm)
+{
+    if (!cm)
+        return;
+    for (int c = 0; c < cm->nset; ++c) {
+        free(cm->sets[c].elems);
+        free(cm->sets[c].radius);
+    }
+    free(cm->sets);
+    free(cm->prims);
+    free(cm);
+}
