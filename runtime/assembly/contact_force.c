@@ -8,11 +8,14 @@
 #include <string.h>
 
 #include "assembly/system.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
 #include "contact.h"
 
 /* Scratch of the interaction: one element's force and matrix. */
 typedef struct contact_work {
     double *fe, *Ke;                 /* [maxdof], [maxdof^2] */
+    FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
 } contact_work;
 
 int bk_contact_present(const bk_model *m)
@@ -203,8 +206,64 @@ static int contact_summary(void *self, const bk_system *s, const double *q, char
     return len > 0 && (size_t)len < n ? 0 : -1;
 }
 
+/* contacts.csv: one row per sample point within a barrier's reach and output
+ * step: step, time (or load factor), set, primitive, element, point, its
+ * position, distance and the force on the beam there (N). */
+static int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
+{
+    (void)s;
+    contact_work *w = self;
+    w->table = bk_tables_open(ts, dir, "contacts.csv", "step,time,set,primitive,element,point,x,y,z,distance,"
+                              "normal_force,fx,fy,fz\n", 1, err);
+    return w->table ? 0 : -1;
+}
+
+static void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
+{
+    contact_work *w = self;
+    const bk_model *m = s->m;
+    const bk_contact_model *cm = m->contact;
+    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
+    if (!w->table)
+        return;
+    for (int c = 0; c < cm->nset; ++c) {
+        const bk_contact_set *set = &cm->sets[c];
+        const bk_contact_prim *prim = &cm->prims[set->prim];
+        for (int i = 0; i < set->nelem; ++i) {
+            const int e = set->elems[i];
+            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
+            bk_gather(m, e, q, qe);
+            for (int k = 0; k < set->nsample; ++k) {
+                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
+                gap(prim, x, g);
+                const double dist = g[0] - set->radius[i];
+                if (!(dist > 0.0) || dist >= set->shat)
+                    continue;
+                bk_contact_barrier(dist, set->shat, b);
+                const double fn = -wl * b[1];
+                bk_row r;
+                bk_row_begin(&r, w->table, rq);
+                bk_row_int(&r, step);
+                bk_row_num(&r, t);
+                bk_row_int(&r, c);
+                bk_row_int(&r, set->prim);
+                bk_row_int(&r, e);
+                bk_row_int(&r, k);
+                for (int d = 0; d < 3; ++d)
+                    bk_row_num(&r, x[d]);
+                bk_row_num(&r, dist);
+                bk_row_num(&r, fn);
+                for (int d = 0; d < 3; ++d)
+                    bk_row_num(&r, fn * g[1 + d]);
+                bk_row_end(&r);
+            }
+        }
+    }
+}
+
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
-                                           .step_limit = contact_step_limit, .summary_key = "contact",
+                                           .step_limit = contact_step_limit, .tables = contact_tables,
+                                           .rows = contact_rows, .summary_key = "contact",
                                            .summary = contact_summary, .free = contact_free};
 
 void bk_contact_state(const bk_system *s, const double *q, double *F, int *nactive, double *min_distance)

@@ -17,6 +17,10 @@
  *               admissible (contact: no gap crosses zero); NULL: 1.
  *   accept      (optional) its per-step state update after an accepted
  *               equilibrium or time step (active sets, friction history).
+ *   tables      (optional) registers its result tables in ts (base/tables.h)
+ *               in the output directory dir; 0, or -1 with a message on err.
+ *   rows        (optional) its rows of an output step (step, t: the time or
+ *               the load factor) at q, through the rows' queue rq (csvrow.h).
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -26,6 +30,10 @@
 #define BK_INTERACTION_H
 
 #include <stddef.h>
+#include <stdio.h>
+
+struct bk_tables;
+struct bk_rowqueue;
 
 struct bk_system;
 
@@ -42,6 +50,8 @@ typedef struct bk_interaction_ops {
     int (*assemble)(void *self, struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
     double (*step_limit)(void *self, const struct bk_system *s, const double *q, const double *dx);
     void (*accept)(void *self, const struct bk_system *s, const double *q, const bk_path *p);
+    int (*tables)(void *self, const struct bk_system *s, struct bk_tables *ts, const char *dir, FILE *err);
+    void (*rows)(void *self, const struct bk_system *s, int step, double t, const double *q, struct bk_rowqueue *rq);
     const char *summary_key;
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);

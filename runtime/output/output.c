@@ -198,8 +198,19 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
                       const double *qdd, const double *nu)
 {
     double t0 = bk_clock_s();
+    if (o->forces_calls == 0)            /* the interactions' tables, at the first output step */
+        for (int k = 0; k < s->ninter; ++k) {
+            const bk_interaction *it = &s->inter[k];
+            if (it->ops->tables && it->ops->tables(it->self, s, &o->tables, o->dir, stderr) != 0)
+                o->write_failed = 1;
+        }
     int with_sections = o->forces_calls++ % o->sections_every == 0;
     bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu, with_sections);
+    for (int k = 0; k < s->ninter; ++k) {
+        const bk_interaction *it = &s->inter[k];
+        if (it->ops->rows)
+            it->ops->rows(it->self, s, step, t, q, &o->rq);
+    }
     spent(o, t0);
 }
 
