@@ -477,22 +477,10 @@ int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const d
         return 0;
     char path[1200];
     snprintf(path, sizeof path, "%s/mode_%02d.vtu", v->dir, mode);
-    enum { MAXF = 8, NAMELEN = 48 };
-    char caps[MAXF][NAMELEN];
-    const char *fname[MAXF];
-    double fval[MAXF];
-    int nf = 0;
-    fname[nf] = "TIME", fval[nf++] = (double)mode;
-    fname[nf] = "MODE", fval[nf++] = (double)mode;
-    for (int k = 0; k < nval && nf < MAXF - 1; ++k, ++nf) {
-        int i = 0;
-        for (; names[k][i] && i < NAMELEN - 1; ++i)
-            caps[nf][i] = (char)(names[k][i] >= 'a' && names[k][i] <= 'z' ? names[k][i] - 'a' + 'A' : names[k][i]);
-        caps[nf][i] = 0;
-        fname[nf] = caps[nf];
-        fval[nf] = vals[k];
-    }
-    fname[nf] = "MODE_SCALE", fval[nf++] = scale;
+    char caps[BK_VTK_MODE_FIELDS][BK_VTK_NAME];
+    const char *fname[BK_VTK_MODE_FIELDS];
+    double fval[BK_VTK_MODE_FIELDS];
+    int nf = bk_vtk_mode_fields(mode, nval, names, vals, scale, caps, fname, fval);
     mode_view mv = {qp, qm, eps, norm, scale};
     maybe_background(v, v->m->modal.modes > 0 ? (double)mode / v->m->modal.modes : -1.0);
     if (write_vtu(v, path, nf, fname, fval, q, &mv, NULL, NULL, 0) != 0)

@@ -292,3 +292,20 @@ size_t bk_vtk_topology(const bk_model *m, unsigned char *buf)
     return size;
 }
 
+int bk_vtk_mode_fields(int mode, int nval, const char *const *names, const double *vals, double scale,
+                       char caps[][BK_VTK_NAME], const char **fname, double *fval)
+{
+    int nf = 0;
+    fname[nf] = "TIME", fval[nf++] = (double)mode;
+    fname[nf] = "MODE", fval[nf++] = (double)mode;
+    for (int k = 0; k < nval && nf < BK_VTK_MODE_FIELDS - 1; ++k, ++nf) {
+        int i = 0;
+        for (; names[k][i] && i < BK_VTK_NAME - 1; ++i)
+            caps[nf][i] = (char)(names[k][i] >= 'a' && names[k][i] <= 'z' ? names[k][i] - 'a' + 'A' : names[k][i]);
+        caps[nf][i] = 0;
+        fname[nf] = caps[nf];
+        fval[nf] = vals[k];
+    }
+    fname[nf] = "MODE_SCALE", fval[nf++] = scale;
+    return nf;
+}

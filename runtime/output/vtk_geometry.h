@@ -29,4 +29,12 @@ void bk_vtk_frame_cells(const bk_model *m, long *ncell, long *nconn);
 size_t bk_vtk_index_size(long npts);
 size_t bk_vtk_topology(const bk_model *m, unsigned char *buf);
 
+/* The field data of a mode frame: TIME and MODE (the mode number), the nval
+ * values under their names in capitals (caps: their storage), MODE_SCALE;
+ * into fname, fval (at most BK_VTK_MODE_FIELDS); returns their count. */
+#define BK_VTK_MODE_FIELDS 8
+#define BK_VTK_NAME 48
+int bk_vtk_mode_fields(int mode, int nval, const char *const *names, const double *vals, double scale,
+                       char caps[][BK_VTK_NAME], const char **fname, double *fval);
+
 #endif
