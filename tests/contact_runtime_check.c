@@ -40,7 +40,8 @@ typedef struct scene {
 
 /* A chain of NN nodes along x at height z, springs of stiffness k; contact of
  * every element with `prim` (radius r, reach shat, stiffness kappa). */
-static void build(scene *s, double z, double k, bk_contact_prim prim, double r, double shat, double kappa)
+static void build_xy(scene *s, double z, double k, bk_contact_prim prim, double r, double shat, double kappa,
+                     int free_xy)
 {
     memset(s, 0, sizeof *s);
     bk_model *m = &s->m;
@@ -74,15 +75,20 @@ static void build(scene *s, double z, double k, bk_contact_prim prim, double r, 
         bk_gather(m, e, s->q0, q0e);
         spring_pair.tabulate(s->geoms[e], q0e, s->tabs[e]);
     }
-    for (int n = 0; n < NN; ++n) {             /* x and y held: the chain moves in z only */
+    for (int n = 0; n < NN && !free_xy; ++n) {  /* x and y held: the chain moves in z only */
         s->fixed[m->nfixed++] = 3 * n;
         s->fixed[m->nfixed++] = 3 * n + 1;
     }
     s->prim = prim;
-    s->set = (bk_contact_set){.prim = 0, .shat = shat, .kappa = kappa, .nsample = 4, .nelem = NE,
+    s->set = (bk_contact_set){.prim = 0, .shat = shat, .kappa = kappa, .slip = 1e-6, .nsample = 4, .nelem = NE,
                               .elems = s->celems, .radius = s->radius};
     s->cm = (bk_contact_model){.nprim = 1, .nset = 1, .prims = &s->prim, .sets = &s->set};
     m->contact = &s->cm;
+}
+
+static void build(scene *s, double z, double k, bk_contact_prim prim, double r, double shat, double kappa)
+{
+    build_xy(s, z, k, prim, r, shat, kappa, 0);
 }
 
 /* The interaction's residual over all DOFs at q (nothing else). */
@@ -152,6 +158,43 @@ static void check_jacobians(void)
         printf("case=%s err=%.3e active=%d min_distance=%.4g\n", names[c], jacobian_error(sys, q), nact, dmin);
         bk_system_free(sys);
     }
+}
+
+/* Friction: the lagged state taken at a wavy chain (normal forces of the
+ * barrier), then every node moved sideways by a different amount, some below
+ * the slip tolerance (sticking: the spring part), some beyond (sliding); the
+ * Jacobian against central differences there, and the friction force of a
+ * sliding point against mu times its lagged normal force. */
+static void check_friction(void)
+{
+    scene s;
+    build_xy(&s, 0.0, 100.0, (bk_contact_prim){BK_CONTACT_HALF_SPACE, {0.0, 0.0, 1.0, 0.0}}, 0.01, 0.05, 1e3, 1);
+    s.set.mu = 0.4;
+    s.set.slip = 1e-3;
+    double q[3 * NN];
+    memcpy(q, s.q0, sizeof q);
+    for (int n = 0; n < NN; ++n)
+        q[3 * n + 2] = 0.01 + 0.012 + 0.008 * sin(1.7 * n);
+    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_interactions_accept(sys, q, &(bk_path){.factor = 1.0, .x = 1.0});
+    double F0[3], d0;
+    int n0;
+    bk_contact_state(sys, q, F0, &n0, &d0);
+    for (int n = 0; n < NN; ++n) {             /* slips from 0.1 to 4 tolerances, in x and y */
+        q[3 * n] += 1e-4 * (1 + 5 * n) * cos(0.9 * n);
+        q[3 * n + 1] += 1e-4 * (1 + 5 * n) * sin(0.9 * n);
+    }
+    double err = jacobian_error(sys, q);
+    /* all slid far (100 tolerances along x): the tangential force is mu times the normal force */
+    double qs[3 * NN], F[3], d;
+    int nact;
+    memcpy(qs, q, sizeof qs);
+    for (int n = 0; n < NN; ++n)
+        qs[3 * n] += 0.1;
+    bk_contact_state(sys, qs, F, &nact, &d);
+    double ratio = -F[0] / F0[2];          /* the friction opposes the slip along +x */
+    printf("case=jacobian_friction err=%.3e active=%d coulomb_ratio=%.12f mu=%.3f\n", err, n0, ratio, s.set.mu);
+    bk_system_free(sys);
 }
 
 /* Newton on the free DOFs (z of every node) from a chain held just above the
@@ -238,6 +281,7 @@ int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
     check_jacobians();
+    check_friction();
     check_resting_chain();
     check_step_limit();
     return 0;

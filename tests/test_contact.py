@@ -43,3 +43,13 @@ def test_step_limiter_keeps_a_tenth_of_the_distance():
     before, after = float(d["distance_before"]), float(d["distance_after"])
     assert 0.0 < float(d["alpha"]) < 1.0, d
     assert abs(after - 0.1 * before) < 1e-12, d          # 90 % of the way to the surface, not through it
+
+
+def test_friction_jacobian_and_coulomb_limit():
+    """The lagged friction (sticking below the slip tolerance, sliding beyond)
+    against central differences of its force, and, sliding far, the
+    tangential force mu times the normal force of the lagged state."""
+    d = results()["jacobian_friction"]
+    assert int(d["active"]) > 0, d
+    assert float(d["err"]) < 1e-6, d
+    assert abs(float(d["coulomb_ratio"]) - float(d["mu"])) < 1e-3 * float(d["mu"]), d

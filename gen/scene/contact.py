@@ -11,7 +11,10 @@ metre of beam; default 1000 times the heaviest contacting beam's weight per
 metre over the reach); samples (points per element, ends included, default
 4);
 contact_radius (m; default the section's: a circle's radius, a rectangle's
-half-height h/2).  Friction keys are refused: frictionless only for now."""
+half-height h/2); friction (the Coulomb coefficient mu, default 0) and slip (the
+slip per step below which friction sticks, m; default 1e-7 of the model
+length).  One coefficient: separate static and kinetic ones are refused for
+now."""
 import math
 
 import gen.scene_keys as K
@@ -65,14 +68,16 @@ def _weight_per_length(doc, name, sec):
 
 def contacts(ctx, doc, beams, length_scale):
     """(prims, sets) of the model file's contact records: prims [(code, prm)],
-    sets [(prim, reach, stiffness, samples, [(element, radius)])]."""
+    sets [(prim, reach, stiffness, friction, slip, samples, [(element, radius)])]."""
     prims, sets = [], []
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "contact")):
         where = f"contact[{i}]"
         check_keys(ctx, ct, set(KEYS), where)
-        for k in ("friction", "static_friction", "kinetic_friction"):
+        for k in ("static_friction", "kinetic_friction"):
             if k in ct:
-                ctx.fail(f"{where}.{k}", "friction is not available yet: contact is frictionless for now (issue 34)")
+                ctx.fail(f"{where}.{k}", "separate static and kinetic coefficients are not available yet: give one "
+                                         "`friction` coefficient (issue 34)")
+        mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
         shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
         code, prm = _primitive(ctx, ct, where, shape)
         names = ct.get("beams", list(beams))
@@ -83,6 +88,7 @@ def contacts(ctx, doc, beams, length_scale):
                 ctx.fail(f"{where}.beams", f"no beam named {n!r} (beams: {', '.join(beams) or 'none'})")
         reach = get_number(ctx, ct, "distance", where, default=1e-3 * length_scale, positive=True)
         samples = get_int(ctx, ct, "samples", where, default=4, lo=1, hi=64)
+        slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
         weight = max(_weight_per_length(doc, n, beams[n]["section"]) for n in names)
         kappa = get_number(ctx, ct, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
         members = []
@@ -101,17 +107,17 @@ def contacts(ctx, doc, beams, length_scale):
                                         f"(its sections must start clear of it: move the beam or the {shape})")
                 members.append((beam["first_elem"] + k, r))
         prims.append((code, prm))
-        sets.append((len(prims) - 1, reach, kappa, samples, members))
+        sets.append((len(prims) - 1, reach, kappa, mu, slip, samples, members))
     return prims, sets
 
 
 def contact_records(prims, sets, fmt):
     """The model file's lines: 'contacts NPRIM NSET', a 'prim CODE p0..p6' per
-    primitive, a 'cset PRIM REACH STIFFNESS SAMPLES N e r ...' per set."""
+    primitive, a 'cset PRIM REACH STIFFNESS MU SLIP SAMPLES N e r ...' per set."""
     out = [f"contacts {len(prims)} {len(sets)}"]
     out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm) for code, prm in prims]
-    for p, reach, kappa, samples, members in sets:
-        out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {samples} {len(members)} " +
+    for p, reach, kappa, mu, slip, samples, members in sets:
+        out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {fmt(mu)} {fmt(slip)} {samples} {len(members)} " +
                    " ".join(f"{e} {fmt(r)}" for e, r in members))
     return out
 

@@ -247,9 +247,9 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
         lam = lam_new;
         info->steps++;
         info->load_factor = lam;
-        bk_interactions_accept(s, q, &(bk_path){.factor = lam, .x = lam});
         bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w->nu);
         bk_output_step(out, info->steps, lam, q);
+        bk_interactions_accept(s, q, &(bk_path){.factor = lam, .x = lam});
         bk_checks_state(chk, s, q, "load factor", lam, info, out->console);
         if (log)
             fprintf(log, "  step %d: load factor %.6g, arc length %.3g, %d iterations, residual %.3e\n", info->steps,

@@ -261,6 +261,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
     }
     double U0 = bk_strain_energy(s, q);
+    bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = 0.0});   /* the lagged states (friction) */
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
     {
@@ -366,7 +367,6 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         t = tn;
         step++;
         info->steps = step;
-        bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});
         info->load_factor = t;
         double cr = bk_constraint_residual(s, q, t);
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
@@ -386,6 +386,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             bk_load_potentials(s, q, t, &Vg, &Vf);
             energy_row(out, energy, step, t, T, U, Vg, Vf, cr);
         }
+        bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});   /* after the step's outputs */
         if (log)
             fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
         bk_output_progress(out, t / o->t_end, step, t, it, rnorm);

@@ -194,9 +194,9 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 lam = target;
                 info->steps++;
                 info->load_factor = lam;
-                bk_interactions_accept(s, q, &(bk_path){.factor = lam, .x = lam});
                 bk_output_forces(out, s, info->steps, lam, q, NULL, NULL, w->nu);
                 bk_output_step(out, info->steps, lam, q);
+                bk_interactions_accept(s, q, &(bk_path){.factor = lam, .x = lam});
                 bk_checks_state(&R.chk, s, q, "load factor", lam, info, out->console);
                 cuts_in_row = 0;
                 if (cuts_since_growth_ok < 2)

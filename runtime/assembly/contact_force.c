@@ -16,6 +16,8 @@
 typedef struct contact_work {
     double *fe, *Ke;                 /* [maxdof], [maxdof^2] */
     FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
+    int npoint;                      /* sample points of every set */
+    double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, position */
 } contact_work;
 
 int bk_contact_present(const bk_model *m)
@@ -28,11 +30,18 @@ int bk_contact_make(bk_system *s, void **self)
     size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     contact_work *w = calloc(1, sizeof *w);
     if (w) {
+        const bk_contact_model *cm = s->m->contact;
+        for (int c = 0; c < cm->nset; ++c)
+            w->npoint += cm->sets[c].nelem * cm->sets[c].nsample;
+        size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1);
         w->fe = malloc(md * sizeof *w->fe);
         w->Ke = malloc(md * md * sizeof *w->Ke);
+        w->lam = calloc(np, sizeof *w->lam);
+        w->nrm = calloc(3 * np, sizeof *w->nrm);
+        w->xprev = calloc(3 * np, sizeof *w->xprev);
     }
     *self = w;
-    return w && w->fe && w->Ke ? 0 : -1;
+    return w && w->fe && w->Ke && w->lam && w->nrm && w->xprev ? 0 : -1;
 }
 
 static void contact_free(void *self)
@@ -41,6 +50,9 @@ static void contact_free(void *self)
     if (w) {
         free(w->fe);
         free(w->Ke);
+        free(w->lam);
+        free(w->nrm);
+        free(w->xprev);
     }
     free(w);
 }
@@ -87,14 +99,49 @@ static double sample(const bk_model *m, int e, const double *qe, int k, int nsam
     return (k == 0 || k == nsample - 1 ? 0.5 : 1.0) / (nsample - 1);
 }
 
-static int contact_assemble(void *self, bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax)
+/* Force fp[3] (internal sign: what fint gains) and stiffness Kp[9] = dfp/dx of
+ * sample point p at x: the barrier's and, with friction, the lagged friction's. */
+static void point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *x,
+                        const double *g, double dist, double *fp, double *Kp)
 {
-    (void)p;
+    double b[3];
+    memset(fp, 0, 3 * sizeof *fp);
+    memset(Kp, 0, 9 * sizeof *Kp);
+    if (dist < set->shat) {            /* E = wl b(s): dE/dx = wl b' grad g; d2E = wl (b'' grad grad^T + b' H) */
+        bk_contact_barrier(dist, set->shat, b);
+        for (int r = 0; r < 3; ++r) {
+            fp[r] += wl * b[1] * g[1 + r];
+            for (int j = 0; j < 3; ++j)
+                Kp[3 * r + j] += wl * (b[2] * g[1 + r] * g[1 + j] + b[1] * g[4 + 3 * r + j]);
+        }
+    }
+    if (set->mu > 0.0 && w->lam[p] > 0.0) {   /* D = mu lam f0(|u_t|), u_t = P (x - x_prev), P = I - n n^T */
+        const double *n = w->nrm + 3 * p, *xp = w->xprev + 3 * p;
+        double u[3], ut[3], f[4];
+        for (int r = 0; r < 3; ++r)
+            u[r] = x[r] - xp[r];
+        const double un = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+        for (int r = 0; r < 3; ++r)
+            ut[r] = u[r] - un * n[r];
+        const double y = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]), c = set->mu * w->lam[p];
+        bk_contact_friction(y, set->slip, f);
+        for (int r = 0; r < 3; ++r) {
+            fp[r] += c * f[2] * ut[r];
+            for (int j = 0; j < 3; ++j)
+                Kp[3 * r + j] += c * (f[2] * ((r == j) - n[r] * n[j]) + (y > 0.0 ? f[3] / y * ut[r] * ut[j] : 0.0));
+        }
+    }
+}
+
+static int contact_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint,
+                            double *Ax)
+{
+    (void)path;
     contact_work *w = self;
     const bk_model *m = s->m;
     const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
-    int bad = 0;
+    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
+    int bad = 0, p = 0;
     for (int c = 0; c < cm->nset; ++c) {
         const bk_contact_set *set = &cm->sets[c];
         const bk_contact_prim *prim = &cm->prims[set->prim];
@@ -105,7 +152,7 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
             const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
             int touched = 0;
             bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k) {
+            for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
                 gap(prim, x, g);
                 const double dist = g[0] - set->radius[i];
@@ -113,26 +160,24 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
                     bad = 1;                 /* through the surface: not an admissible state */
                     continue;
                 }
-                if (dist >= set->shat)
+                if (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0))
                     continue;
-                bk_contact_barrier(dist, set->shat, b);
+                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
                 if (!touched) {
                     memset(w->fe, 0, (size_t)nd * sizeof *w->fe);
                     if (Ax)
                         memset(w->Ke, 0, (size_t)nd * (size_t)nd * sizeof *w->Ke);
                     touched = 1;
                 }
-                /* E = wl b(s): fint += dE/dq = wl b' N^T grad g; K += wl N^T (b'' grad grad^T + b' H) N */
-                for (int a = 0; a < et->nshape; ++a)
+                for (int a = 0; a < et->nshape; ++a)      /* x = sum N_a r_a: fe += N^T fp, Ke += N^T Kp N */
                     for (int r = 0; r < 3; ++r) {
                         const int row = et->shape_dof[a] + r;
-                        w->fe[row] += wl * b[1] * N[a] * g[1 + r];
+                        w->fe[row] += N[a] * fp[r];
                         if (!Ax)
                             continue;
                         for (int cc = 0; cc < et->nshape; ++cc)
                             for (int j = 0; j < 3; ++j)
-                                w->Ke[row * nd + et->shape_dof[cc] + j] +=
-                                    wl * N[a] * N[cc] * (b[2] * g[1 + r] * g[1 + j] + b[1] * g[4 + 3 * r + j]);
+                                w->Ke[row * nd + et->shape_dof[cc] + j] += N[a] * N[cc] * Kp[3 * r + j];
                     }
             }
             if (touched) {
@@ -143,6 +188,52 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
         }
     }
     return bad ? -1 : 0;
+}
+
+/* The lagged friction state of every sample point from the accepted state q:
+ * its barrier force's magnitude and its unit normal; its anchor, the point
+ * its slip is measured from, moves to x only when the point slid (a slip of
+ * the slip tolerance or more since the anchor) or was not in contact: a
+ * sticking point keeps its anchor, so that a load below the friction limit
+ * holds it within the tolerance however many steps it acts (no creep). */
+static void contact_accept(void *self, const bk_system *s, const double *q, const bk_path *path)
+{
+    (void)path;
+    contact_work *w = self;
+    const bk_model *m = s->m;
+    const bk_contact_model *cm = m->contact;
+    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
+    int p = 0;
+    for (int c = 0; c < cm->nset; ++c) {
+        const bk_contact_set *set = &cm->sets[c];
+        const bk_contact_prim *prim = &cm->prims[set->prim];
+        for (int i = 0; i < set->nelem; ++i) {
+            const int e = set->elems[i];
+            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
+            bk_gather(m, e, q, qe);
+            for (int k = 0; k < set->nsample; ++k, ++p) {
+                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
+                gap(prim, x, g);
+                const double dist = g[0] - set->radius[i];
+                double *xa = w->xprev + 3 * p, *n = w->nrm + 3 * p, u[3], un = 0.0, ut2 = 0.0;
+                for (int r = 0; r < 3; ++r)
+                    u[r] = x[r] - xa[r], un += u[r] * n[r];
+                for (int r = 0; r < 3; ++r)
+                    ut2 += (u[r] - un * n[r]) * (u[r] - un * n[r]);
+                const int sticks = w->lam[p] > 0.0 && sqrt(ut2) < set->slip;
+                w->lam[p] = 0.0;
+                if (dist > 0.0 && dist < set->shat) {
+                    bk_contact_barrier(dist, set->shat, b);
+                    w->lam[p] = -wl * b[1];
+                }
+                for (int r = 0; r < 3; ++r) {
+                    n[r] = g[1 + r];
+                    if (!sticks)
+                        xa[r] = x[r];
+                }
+            }
+        }
+    }
 }
 
 /* The fraction of dx[neq] that keeps every sample point at more than a tenth
@@ -208,13 +299,15 @@ static int contact_summary(void *self, const bk_system *s, const double *q, char
 
 /* contacts.csv: one row per sample point within a barrier's reach and output
  * step: step, time (or load factor), set, primitive, element, point, its
- * position, distance and the force on the beam there (N). */
+ * position, distance, the normal force, the tangential force, the friction
+ * state (none, stick: slip since the last step below the tolerance, slip) and
+ * the force on the beam there (N). */
 static int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     contact_work *w = self;
     w->table = bk_tables_open(ts, dir, "contacts.csv", "step,time,set,primitive,element,point,x,y,z,distance,"
-                              "normal_force,fx,fy,fz\n", 1, err);
+                              "normal_force,tangential_force,state,fx,fy,fz\n", 1, err);
     return w->table ? 0 : -1;
 }
 
@@ -223,9 +316,10 @@ static void contact_rows(void *self, const bk_system *s, int step, double t, con
     contact_work *w = self;
     const bk_model *m = s->m;
     const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
+    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3], fp[3], Kp[9];
     if (!w->table)
         return;
+    int p = 0;
     for (int c = 0; c < cm->nset; ++c) {
         const bk_contact_set *set = &cm->sets[c];
         const bk_contact_prim *prim = &cm->prims[set->prim];
@@ -233,14 +327,26 @@ static void contact_rows(void *self, const bk_system *s, int step, double t, con
             const int e = set->elems[i];
             const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
             bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k) {
+            for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
                 gap(prim, x, g);
                 const double dist = g[0] - set->radius[i];
-                if (!(dist > 0.0) || dist >= set->shat)
+                const int rubs = set->mu > 0.0 && w->lam[p] > 0.0;
+                if (!(dist > 0.0) || (dist >= set->shat && !rubs))
                     continue;
-                bk_contact_barrier(dist, set->shat, b);
-                const double fn = -wl * b[1];
+                double fn = 0.0;
+                if (dist < set->shat) {
+                    bk_contact_barrier(dist, set->shat, b);
+                    fn = -wl * b[1];
+                }
+                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
+                const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
+                double ft2 = 0.0, slip2 = 0.0;
+                for (int r = 0; r < 3; ++r) {
+                    const double tr = -fp[r] - fg * g[1 + r], u = x[r] - w->xprev[3 * p + r];
+                    ft2 += tr * tr;
+                    slip2 += u * u;
+                }
                 bk_row r;
                 bk_row_begin(&r, w->table, rq);
                 bk_row_int(&r, step);
@@ -253,8 +359,10 @@ static void contact_rows(void *self, const bk_system *s, int step, double t, con
                     bk_row_num(&r, x[d]);
                 bk_row_num(&r, dist);
                 bk_row_num(&r, fn);
+                bk_row_num(&r, sqrt(ft2));
+                bk_row_str(&r, !rubs ? "none" : sqrt(slip2) < set->slip ? "stick" : "slip");
                 for (int d = 0; d < 3; ++d)
-                    bk_row_num(&r, fn * g[1 + d]);
+                    bk_row_num(&r, -fp[d]);
                 bk_row_end(&r);
             }
         }
@@ -262,7 +370,8 @@ static void contact_rows(void *self, const bk_system *s, int step, double t, con
 }
 
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
-                                           .step_limit = contact_step_limit, .tables = contact_tables,
+                                           .step_limit = contact_step_limit, .accept = contact_accept,
+                                           .tables = contact_tables,
                                            .rows = contact_rows, .summary_key = "contact",
                                            .summary = contact_summary, .free = contact_free};
 
@@ -270,8 +379,13 @@ void bk_contact_state(const bk_system *s, const double *q, double *F, int *nacti
 {
     const bk_model *m = s->m;
     const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
+    const contact_work *w = NULL;
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &bk_contact_ops)
+            w = s->inter[k].self;
+    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
     *min_distance = INFINITY;
+    int p = 0;
     for (int c = 0; cm && c < cm->nset; ++c) {
         const bk_contact_set *set = &cm->sets[c];
         const bk_contact_prim *prim = &cm->prims[set->prim];
@@ -282,17 +396,17 @@ void bk_contact_state(const bk_system *s, const double *q, double *F, int *nacti
             const int e = set->elems[i];
             const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
             bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k) {
+            for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
                 gap(prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 *min_distance = fmin(*min_distance, dist);
-                if (!(dist > 0.0) || dist >= set->shat)
+                if (!(dist > 0.0) || !w || (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0)))
                     continue;
-                bk_contact_barrier(dist, set->shat, b);
+                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
                 for (int r = 0; r < 3; ++r)
-                    F[3 * c + r] -= wl * b[1] * g[1 + r];      /* the force on the beam: -dE/dx */
-                if (nactive)
+                    F[3 * c + r] -= fp[r];          /* the force on the beam */
+                if (nactive && dist < set->shat)
                     nactive[c]++;
             }
         }

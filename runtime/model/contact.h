@@ -10,7 +10,12 @@
  * set's contact radius) has the distance s = g(x) - r to the primitive, g the
  * primitive's gap (out/kernels/contact.h).  Its barrier energy is kappa w b(s)
  * with w its weight and b(s) = -(s - shat)^2 ln(s / shat) for s < shat, zero
- * beyond. */
+ * beyond.  Friction (mu > 0) is lagged over a step (incremental potential
+ * contact): with the normal force lam and the unit normal n of the last
+ * accepted state and the slip u_t = (I - n n^T)(x - x_prev) since then, the
+ * point's friction energy is mu lam f0(|u_t|), f0' = f1 the smoothed slip
+ * function of out/kernels/contact.h (2 y/eps - y^2/eps^2 below eps, 1 beyond):
+ * Coulomb's mu lam beyond a slip of eps per step, a stiff spring below. */
 #ifndef BK_CONTACT_MODEL_H
 #define BK_CONTACT_MODEL_H
 
@@ -30,6 +35,8 @@ typedef struct bk_contact_set {
     int prim;                        /* index into bk_contact_model.prims */
     double shat;                     /* barrier reach (m), > 0 */
     double kappa;                    /* barrier stiffness (N/m per metre of beam), > 0 */
+    double mu;                       /* Coulomb friction coefficient, >= 0 (0: frictionless) */
+    double slip;                     /* slip tolerance eps (m), > 0: sticking up to eps of slip per step */
     int nsample;                     /* sample points per element, >= 1 */
     int nelem;
     int *elems;                      /* [nelem] elements of the set */

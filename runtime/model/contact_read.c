@@ -2,7 +2,7 @@
  * written by gen/scene/contact.py:
  *   contacts NPRIM NSET
  *   prim SHAPE p0 .. p6                        (NPRIM times; enum bk_contact_shape)
- *   cset PRIM REACH STIFFNESS SAMPLES N e r .. (NSET times: N elements, radii) */
+ *   cset PRIM REACH STIFFNESS MU SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
 #include <stdlib.h>
 
 #include "model/reader.h"
@@ -34,13 +34,16 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m)
         set->prim = rd_inum(r, "contact set primitive", 0, np - 1);
         set->shat = rd_num(r, "contact reach");
         set->kappa = rd_num(r, "contact stiffness");
+        set->mu = rd_num(r, "contact friction");
+        set->slip = rd_num(r, "contact slip tolerance");
         set->nsample = rd_inum(r, "contact samples", 1, 64);
         int n = rd_inum(r, "contact elements", 1, m->nelem > 0 ? m->nelem : 1);
         if (r->failed)
             break;
         cm->nset = c + 1;                  /* (freed from here on) */
-        if (!(set->shat > 0.0) || !(set->kappa > 0.0))
-            rd_fail(r, "contact set %d: reach and stiffness must be positive (%g, %g)", c, set->shat, set->kappa);
+        if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu >= 0.0) || !(set->slip > 0.0))
+            rd_fail(r, "contact set %d: reach, stiffness and slip tolerance must be positive, friction >= 0 (%g, %g, "
+                    "%g, %g)", c, set->shat, set->kappa, set->slip, set->mu);
         set->elems = rd_xcalloc(r, (size_t)n, sizeof *set->elems);
         set->radius = rd_xcalloc(r, (size_t)n, sizeof *set->radius);
         if (r->failed)
