@@ -44,7 +44,8 @@ OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
-           "samples", "contact_radius", "friction", "slip", "static_friction", "kinetic_friction")
+           "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
+           "kinetic_friction")
 
 
 def union(by_type):

@@ -13,8 +13,9 @@ metre over the reach); samples (points per element, ends included, default
 contact_radius (m; default the section's: a circle's radius, a rectangle's
 half-height h/2); friction (the Coulomb coefficient mu, default 0) and slip (the
 slip per step below which friction sticks, m; default 1e-7 of the model
-length).  One coefficient: separate static and kinetic ones are refused for
-now."""
+length); motion (m: a prescribed translation, times the load factor in statics
+or the factor of `amplitude`, which dynamics requires).  One coefficient:
+separate static and kinetic ones are refused for now."""
 import math
 
 import gen.scene_keys as K
@@ -66,8 +67,9 @@ def _weight_per_length(doc, name, sec):
     return rho * area * GRAVITY
 
 
-def contacts(ctx, doc, beams, length_scale):
-    """(prims, sets) of the model file's contact records: prims [(code, prm)],
+def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
+    """(prims, sets) of the model file's contact records: prims [(code, prm,
+    motion, amplitude)],
     sets [(prim, reach, stiffness, friction, slip, samples, [(element, radius)])]."""
     prims, sets = [], []
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "contact")):
@@ -80,6 +82,13 @@ def contacts(ctx, doc, beams, length_scale):
         mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
         shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
         code, prm = _primitive(ctx, ct, where, shape)
+        motion = get_vec3(ctx, ct, "motion", where, default=[0.0, 0.0, 0.0])
+        amp = amps.ref(ct, "amplitude", where) if amps is not None else -1
+        if "amplitude" in ct and not any(motion):
+            ctx.fail(f"{where}.amplitude", "expected with `motion` (the amplitude scales the primitive's motion)")
+        if any(motion) and analysis == "dynamic" and amp < 0:
+            ctx.fail(f"{where}.amplitude", "missing; a moving primitive in dynamics needs an amplitude (a ramp, ...) "
+                                           "of its motion")
         names = ct.get("beams", list(beams))
         if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
             ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
@@ -106,16 +115,18 @@ def contacts(ctx, doc, beams, length_scale):
                         ctx.fail(where, f"beam {n!r} element {k} starts {depth:.6g} m into the {shape} "
                                         f"(its sections must start clear of it: move the beam or the {shape})")
                 members.append((beam["first_elem"] + k, r))
-        prims.append((code, prm))
+        prims.append((code, prm, motion, amp))
         sets.append((len(prims) - 1, reach, kappa, mu, slip, samples, members))
     return prims, sets
 
 
 def contact_records(prims, sets, fmt):
     """The model file's lines: 'contacts NPRIM NSET', a 'prim CODE p0..p6' per
-    primitive, a 'cset PRIM REACH STIFFNESS MU SLIP SAMPLES N e r ...' per set."""
+    primitive (its motion and amplitude after the parameters), a 'cset PRIM
+    REACH STIFFNESS MU SLIP SAMPLES N e r ...' per set."""
     out = [f"contacts {len(prims)} {len(sets)}"]
-    out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm) for code, prm in prims]
+    out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm + motion) + f" {amp}"
+            for code, prm, motion, amp in prims]
     for p, reach, kappa, mu, slip, samples, members in sets:
         out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {fmt(mu)} {fmt(slip)} {samples} {len(members)} " +
                    " ".join(f"{e} {fmt(r)}" for e, r in members))

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "assembly/system.h"
+#include "model/amplitude.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
 #include "contact.h"
@@ -18,6 +19,7 @@ typedef struct contact_work {
     FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
     int npoint;                      /* sample points of every set */
     double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, position */
+    double *shift;                   /* [3 nprim] each primitive's translation at the path point last assembled */
 } contact_work;
 
 int bk_contact_present(const bk_model *m)
@@ -39,9 +41,10 @@ int bk_contact_make(bk_system *s, void **self)
         w->lam = calloc(np, sizeof *w->lam);
         w->nrm = calloc(3 * np, sizeof *w->nrm);
         w->xprev = calloc(3 * np, sizeof *w->xprev);
+        w->shift = calloc(3 * (size_t)(cm->nprim > 0 ? cm->nprim : 1), sizeof *w->shift);
     }
     *self = w;
-    return w && w->fe && w->Ke && w->lam && w->nrm && w->xprev ? 0 : -1;
+    return w && w->fe && w->Ke && w->lam && w->nrm && w->xprev && w->shift ? 0 : -1;
 }
 
 static void contact_free(void *self)
@@ -53,33 +56,54 @@ static void contact_free(void *self)
         free(w->lam);
         free(w->nrm);
         free(w->xprev);
+        free(w->shift);
     }
     free(w);
 }
 
-/* The distance function of primitive p at x: out[0] = g, out[1..3] its
- * gradient, out[4..12] its Hessian (the gap kernels of out/kernels/contact.h;
- * a capsule's ends are spheres). */
-static void gap(const bk_contact_prim *p, const double *x, double *out)
+/* The distance function of primitive p translated by d[3] at x: out[0] = g,
+ * out[1..3] its gradient, out[4..12] its Hessian (the gap kernels of
+ * out/kernels/contact.h; a capsule's ends are spheres). */
+static void gap(const bk_contact_prim *p, const double *d, const double *x, double *out)
 {
+    double prm[BK_CONTACT_MAXPRM];
+    memcpy(prm, p->prm, sizeof prm);
     switch (p->shape) {
     case BK_CONTACT_HALF_SPACE:
-        bk_contact_gap_half_space(x, p->prm, out);
+        prm[3] += prm[0] * d[0] + prm[1] * d[1] + prm[2] * d[2];
+        bk_contact_gap_half_space(x, prm, out);
         return;
     case BK_CONTACT_SPHERE:
-        bk_contact_gap_sphere(x, p->prm, out);
+        for (int i = 0; i < 3; ++i)
+            prm[i] += d[i];
+        bk_contact_gap_sphere(x, prm, out);
         return;
     default: {
+        for (int i = 0; i < 3; ++i)
+            prm[i] += d[i], prm[3 + i] += d[i];
         double seg[14];
-        bk_contact_gap_segment(x, p->prm, seg);
+        bk_contact_gap_segment(x, prm, seg);
         if (seg[13] > 0.0 && seg[13] < 1.0) {
             memcpy(out, seg, 13 * sizeof *out);
             return;
         }
-        const double *end = seg[13] <= 0.0 ? p->prm : p->prm + 3;
-        const double sph[4] = {end[0], end[1], end[2], p->prm[6]};
+        const double *end = seg[13] <= 0.0 ? prm : prm + 3;
+        const double sph[4] = {end[0], end[1], end[2], prm[6]};
         bk_contact_gap_sphere(x, sph, out);
     }
+    }
+}
+
+/* Each primitive's translation at the path point (the amplitude's variable x). */
+static void set_shift(contact_work *w, const bk_model *m, double x)
+{
+    const bk_contact_model *cm = m->contact;
+    for (int i = 0; i < cm->nprim; ++i) {
+        const bk_contact_prim *p = &cm->prims[i];
+        const double f = p->motion[0] != 0.0 || p->motion[1] != 0.0 || p->motion[2] != 0.0
+                             ? bk_load_factor(m, p->amp, x) : 0.0;
+        for (int k = 0; k < 3; ++k)
+            w->shift[3 * i + k] = f * p->motion[k];
     }
 }
 
@@ -136,9 +160,9 @@ static void point_terms(const contact_work *w, const bk_contact_set *set, int p,
 static int contact_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint,
                             double *Ax)
 {
-    (void)path;
     contact_work *w = self;
     const bk_model *m = s->m;
+    set_shift(w, m, path->x);
     const bk_contact_model *cm = m->contact;
     double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
     int bad = 0, p = 0;
@@ -154,7 +178,7 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, x, g);
+                gap(prim, w->shift + 3 * set->prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 if (!(dist > 0.0)) {
                     bad = 1;                 /* through the surface: not an admissible state */
@@ -198,9 +222,9 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
  * holds it within the tolerance however many steps it acts (no creep). */
 static void contact_accept(void *self, const bk_system *s, const double *q, const bk_path *path)
 {
-    (void)path;
     contact_work *w = self;
     const bk_model *m = s->m;
+    set_shift(w, m, path->x);
     const bk_contact_model *cm = m->contact;
     double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
     int p = 0;
@@ -213,7 +237,7 @@ static void contact_accept(void *self, const bk_system *s, const double *q, cons
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, x, g);
+                gap(prim, w->shift + 3 * set->prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 double *xa = w->xprev + 3 * p, *n = w->nrm + 3 * p, u[3], un = 0.0, ut2 = 0.0;
                 for (int r = 0; r < 3; ++r)
@@ -240,7 +264,7 @@ static void contact_accept(void *self, const bk_system *s, const double *q, cons
  * of its distance: |grad g| = 1, so g moves by at most |dx_point|. */
 static double contact_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
 {
-    (void)self;
+    const contact_work *w = self;        /* (its shift: the path point of the last residual, this iterate's) */
     const bk_model *m = s->m;
     const bk_contact_model *cm = m->contact;
     double qe[BK_MAX_ELEMENT_DOF], de[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], alpha = 1.0;
@@ -263,7 +287,7 @@ static double contact_step_limit(void *self, const bk_system *s, const double *q
                 const double move = sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2]);
                 if (!(move > 0.0))
                     continue;
-                gap(prim, x, g);
+                gap(prim, w->shift + 3 * set->prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 if (move * alpha > 0.9 * dist)
                     alpha = dist > 0.0 ? 0.9 * dist / move : 0.0;
@@ -329,7 +353,7 @@ static void contact_rows(void *self, const bk_system *s, int step, double t, con
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, x, g);
+                gap(prim, w->shift + 3 * set->prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 const int rubs = set->mu > 0.0 && w->lam[p] > 0.0;
                 if (!(dist > 0.0) || (dist >= set->shat && !rubs))
@@ -386,7 +410,7 @@ void bk_contact_state(const bk_system *s, const double *q, double *F, int *nacti
     double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
     *min_distance = INFINITY;
     int p = 0;
-    for (int c = 0; cm && c < cm->nset; ++c) {
+    for (int c = 0; cm && w && c < cm->nset; ++c) {
         const bk_contact_set *set = &cm->sets[c];
         const bk_contact_prim *prim = &cm->prims[set->prim];
         F[3 * c] = F[3 * c + 1] = F[3 * c + 2] = 0.0;
@@ -398,10 +422,10 @@ void bk_contact_state(const bk_system *s, const double *q, double *F, int *nacti
             bk_gather(m, e, q, qe);
             for (int k = 0; k < set->nsample; ++k, ++p) {
                 const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, x, g);
+                gap(prim, w->shift + 3 * set->prim, x, g);
                 const double dist = g[0] - set->radius[i];
                 *min_distance = fmin(*min_distance, dist);
-                if (!(dist > 0.0) || !w || (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0)))
+                if (!(dist > 0.0) || (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0)))
                     continue;
                 point_terms(w, set, p, wl, x, g, dist, fp, Kp);
                 for (int r = 0; r < 3; ++r)

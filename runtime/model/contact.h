@@ -28,7 +28,9 @@ enum bk_contact_shape {
 
 typedef struct bk_contact_prim {
     int shape;                       /* enum bk_contact_shape */
-    double prm[BK_CONTACT_MAXPRM];
+    double prm[BK_CONTACT_MAXPRM];   /* in the reference position */
+    double motion[3];                /* prescribed translation (m), times the factor of amplitude amp */
+    int amp;                         /* amplitude index (amplitude.h bk_load_factor), -1: the load factor */
 } bk_contact_prim;
 
 typedef struct bk_contact_set {

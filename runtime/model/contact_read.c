@@ -1,7 +1,7 @@
 /* contact_read.c -- the contact records of the model file (model/contact.h),
  * written by gen/scene/contact.py:
  *   contacts NPRIM NSET
- *   prim SHAPE p0 .. p6                        (NPRIM times; enum bk_contact_shape)
+ *   prim SHAPE p0 .. p6 MX MY MZ AMP          (NPRIM times; enum bk_contact_shape, motion, amplitude)
  *   cset PRIM REACH STIFFNESS MU SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
 #include <stdlib.h>
 
@@ -27,6 +27,9 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m)
         cm->prims[i].shape = rd_inum(r, "contact primitive shape", 0, BK_CONTACT_CAPSULE);
         for (int k = 0; k < BK_CONTACT_MAXPRM; ++k)
             cm->prims[i].prm[k] = rd_num(r, "contact primitive parameter");
+        for (int k = 0; k < 3; ++k)
+            cm->prims[i].motion[k] = rd_num(r, "contact primitive motion");
+        cm->prims[i].amp = rd_inum(r, "contact primitive amplitude", -1, m->namp - 1);
     }
     for (int c = 0; c < ns && !r->failed; ++c) {
         bk_contact_set *set = &cm->sets[c];
