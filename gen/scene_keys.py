@@ -26,7 +26,8 @@ CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
               "prismatic": ("type", "a", "b", "axis", "at"),
               "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency", "angle",
                                       "angle_amplitude"),
-              "point_on_line": ("type", "a", "axis")}
+              "point_on_line": ("type", "a", "axis"),
+              "prescribed_motion": ("type", "a", "motion", "amplitude")}
 LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
         "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "value", "amplitude", "preload"),

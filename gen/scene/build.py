@@ -68,7 +68,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     mesh = mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log)
     mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
-    rows = constraints(ctx, doc, mesh, amps)    # none is allowed: the solver reports the singular tangent
+    rows = constraints(ctx, doc, mesh, amps, analysis)    # none is allowed: the solver reports the singular tangent
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)

@@ -24,18 +24,21 @@ class Rows:
         self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side)
         self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
 
-    def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1):
-        """terms: [(dof, c0, cc, cs)]: sum (c0 + cc cos phi + cs sin phi) q = r0 + rc cos phi + rs sin phi,
-        phi(t) = kappa (rate t + amp sin(2 pi freq t) + angle a(t)), a the amplitude ampid (-1: none).
-        A static single-DOF row is a fixed DOF."""
+    def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1,
+            ru=0.0, uampid=-1):
+        """terms: [(dof, c0, cc, cs)]: sum (c0 + cc cos phi + cs sin phi) q = r0 + rc cos phi + rs sin phi
+        + ru u(t), phi(t) = kappa (rate t + amp sin(2 pi freq t) + angle a(t)), a the amplitude ampid (-1:
+        none), u the amplitude uampid (-1: t itself, the load factor in statics).  A static single-DOF row is
+        a fixed DOF."""
         terms = [t_ for t_ in terms if any(abs(c) > 1e-15 for c in t_[1:])]
         if not terms:
             return
-        if len(terms) == 1 and terms[0][2] == 0 and terms[0][3] == 0 and rc == 0 and rs == 0 \
+        if len(terms) == 1 and terms[0][2] == 0 and terms[0][3] == 0 and rc == 0 and rs == 0 and ru == 0 \
                 and abs(r0 - terms[0][1] * self.q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
             self.fixed.add(terms[0][0])
             return
-        self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq, angle, float(ampid))))
+        self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq, angle, float(ampid), ru,
+                                                   float(uampid))))
 
 
 def _axis_frame(ctx, ct, where):
@@ -131,6 +134,19 @@ def spherical(ctx, ct, where, mesh, rows, beam, s, gid):
         row([(fd["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
 
 
+def prescribed_motion(ctx, ct, where, mesh, rows, beam, s, gid):
+    """The point moved by `motion` (m) times the load factor in statics, or
+    times `amplitude` (required in dynamics): three rows, one per component."""
+    fd, q0 = mesh.field_dofs(gid), mesh.q0
+    motion = get_vec3(ctx, ct, "motion", where)
+    uamp = rows.amps.ref(ct, "amplitude", where) if rows.amps is not None else -1
+    if uamp < 0 and getattr(rows, "analysis", "static") == "dynamic":
+        ctx.fail(f"{where}.amplitude", "missing; a prescribed motion in dynamics needs an amplitude (a ramp, ...)")
+    for i in range(3):
+        d = fd["r"][i]
+        rows.row([(d, 1.0, 0.0, 0.0)], r0=q0[d], ru=motion[i], uampid=uamp)
+
+
 def _axis_joint(ctx, ct, where, mesh, rows, beam, s, gid, ctype):
     fd, fixed, row, q0 = mesh.field_dofs(gid), rows.fixed, rows.row, mesh.q0
     axis, n1, n2 = _axis_frame(ctx, ct, where)
@@ -210,6 +226,7 @@ def point_on_line(ctx, ct, where, mesh, rows, beam, s, gid):
 
 
 JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescribed_rotation": prescribed_rotation,
+          "prescribed_motion": prescribed_motion,
           "point_on_line": point_on_line}
 
 
@@ -333,12 +350,13 @@ def _is_linear(ct, mesh, ctype):
     return False
 
 
-def constraints(ctx, doc, mesh, amps=None):
+def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     """Rows of every [[constraint]] table, and which rows each one added (its
     reaction: rows.reactions, the last field the index of its joint nonlinear
     in q in rows.nlcons, -1 for the linear rows)."""
     from gen.scene.mesh import locate
     rows = Rows(mesh.q0, amps)
+    rows.analysis = analysis
     rows.nlcons = []
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"

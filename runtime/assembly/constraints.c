@@ -43,12 +43,23 @@ static void angle_factors(const bk_lincon *c, double t, int k, double *C, double
     }
 }
 
+/* The k-th time derivative of the prescribed-motion part of row c's
+ * right-hand side, ru u(t) (u: its amplitude, else t itself). */
+static double motion_rhs(const bk_lincon *c, double t, int k)
+{
+    if (c->ru == 0.0)
+        return 0.0;
+    if (c->uampl)
+        return c->ru * bk_amp_eval(c->uampl, t, k);
+    return c->ru * (k == 0 ? t : k == 1 ? 1.0 : 0.0);
+}
+
 double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs)
 {
     double C, S, sum = 0.0;
     angle_factors(c, t, k, &C, &S);
     if (with_rhs)
-        sum = -(k == 0 ? c->r0 : 0.0) - c->rc * C - c->rs * S;
+        sum = -(k == 0 ? c->r0 : 0.0) - c->rc * C - c->rs * S - motion_rhs(c, t, k);
     for (int j = 0; j < c->nterm; ++j)
         sum += ((k == 0 ? c->c0[j] : 0.0) + c->cc[j] * C + c->cs[j] * S) * x[c->dof[j]];
     return sum;
@@ -200,7 +211,7 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
         const int *sl = s->cslot + s->cslot_off[c];
         double C, S;
         angle_factors(lc, t, 0, &C, &S);
-        double g = -(lc->r0 + lc->rc * C + lc->rs * S);
+        double g = -(lc->r0 + lc->rc * C + lc->rs * S) - motion_rhs(lc, t, 0);
         for (int k = 0; k < lc->nterm; ++k) {
             double coef = lc->c0[k] + lc->cc[k] * C + lc->cs[k] * S;
             g += coef * q[lc->dof[k]];

@@ -49,6 +49,10 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         if (ai >= m->namp)
             rd_fail(r, "constraint %d: amplitude %d of %d", i, ai, m->namp);
         m->lincons[i].ampl = ai >= 0 && ai < m->namp ? &m->amps[ai] : NULL;
+        int ui = m->lincons[i].uampid;
+        if (ui >= m->namp)
+            rd_fail(r, "constraint %d: motion amplitude %d of %d", i, ui, m->namp);
+        m->lincons[i].uampl = ui >= 0 && ui < m->namp ? &m->amps[ui] : NULL;
     }
     if (m->gravity_ampid >= m->namp)
         rd_fail(r, "gravity: amplitude %d of %d", m->gravity_ampid, m->namp);

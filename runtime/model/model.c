@@ -198,6 +198,9 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         c->angle = rd_num(r, "constraint angle");
         c->ampl = NULL;                       /* resolved with the amplitudes */
         c->ampid = (int)rd_num(r, "constraint angle amplitude index");
+        c->ru = rd_num(r, "constraint motion");
+        c->uampid = (int)rd_num(r, "constraint motion amplitude index");
+        c->uampl = NULL;
     }
 
     rd_expect(r, "nlcons");

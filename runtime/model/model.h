@@ -119,6 +119,9 @@ typedef struct bk_lincon {
     double angle;                 /* phi += kappa angle a(t) with a = *ampl (NULL: none) */
     int ampid;                    /* index of *ampl in the model's amplitudes, -1: none */
     const bk_amplitude *ampl;
+    double ru;                    /* a prescribed motion: the right-hand side gains ru u(t), u = *uampl, */
+    int uampid;                   /*   or the path parameter itself when uampid = -1 (statics: the load factor) */
+    const bk_amplitude *uampl;
 } bk_lincon;
 
 /* A joint between two frames (beam nodes with a rotation, rigid bodies, the
