@@ -81,6 +81,18 @@ def header():
             seen.add(o.key)
             items = ", ".join(f"{constant(o, c)} = {i}" for i, c in enumerate(o.choices))
             out.append(f"enum {enum_name(o)} {{ {items} }};   /* {o.name} */")
+    an = next(o for o in S.OPTIONS if o.name == "scene.analysis")
+    assert set(S.ANALYSIS_PATHS) == set(an.choices), "every analysis needs its path kind (ANALYSIS_PATHS)"
+    out += ["", "/* scene.analysis: the name of an analysis and what its states form a path in",
+            " * (gen/options_schema.py ANALYSIS_PATHS). */",
+            "enum bk_path_kind { BK_PATH_NONE = 0, BK_PATH_LOAD = 1, BK_PATH_TIME = 2 };",
+            "static inline const char *bk_analysis_name(int a)", "{", "    switch (a) {"]
+    out += [f"    case {constant(an, c)}: return \"{c}\";" for c in an.choices]
+    out += ["    default: return \"unknown\";", "    }", "}", "",
+            "static inline int bk_analysis_path(int a)", "{", "    switch (a) {"]
+    kinds = {"none": "BK_PATH_NONE", "load": "BK_PATH_LOAD", "time": "BK_PATH_TIME"}
+    out += [f"    case {constant(an, c)}: return {kinds[S.ANALYSIS_PATHS[c]]};" for c in an.choices]
+    out += ["    default: return BK_PATH_NONE;", "    }", "}"]
     out.append("")
     for table, (struct, _member) in S.TABLES.items():
         if struct is None:

@@ -82,6 +82,13 @@ def _vtk_every(v):
     return max(1, math.ceil(n_out / DYNAMIC_FRAMES))
 
 
+# What the states of each analysis (a choice of scene.analysis) form a path in:
+# "load" (the load factor: sensors, sections and frames per equilibrium),
+# "time" (dynamics), "none" (modes about one state).  The runtime's layers
+# below the analyses know an analysis by this alone (bk_options.h
+# bk_analysis_path); adding an analysis adds its choice and its entry here.
+ANALYSIS_PATHS = {"static": "load", "dynamic": "time", "modal": "none", "buckling": "none"}
+
 OPTIONS = (
     Opt("scene", "name", "str", None, "name of the run (letters, digits, `_ . -`)", record="scene", checked=False,
         default_doc="file name", size=128),

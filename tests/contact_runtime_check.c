@@ -91,6 +91,12 @@ static void build(scene *s, double z, double k, bk_contact_prim prim, double r, 
     build_xy(s, z, k, prim, r, shat, kappa, 0);
 }
 
+/* The half-space z < 0, fixed. */
+static bk_contact_prim ground(void)
+{
+    return (bk_contact_prim){.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1};
+}
+
 /* The interaction's residual over all DOFs at q (nothing else). */
 static int contact_force(bk_system *sys, const double *q, double *f, double *Ax)
 {
@@ -140,9 +146,9 @@ static void check_jacobians(void)
 {
     const char *names[3] = {"jacobian_half_space", "jacobian_sphere", "jacobian_capsule"};
     bk_contact_prim prims[3] = {
-        {BK_CONTACT_HALF_SPACE, {0.0, 0.0, 1.0, 0.0}},
-        {BK_CONTACT_SPHERE, {0.5, 0.0, -0.3, 0.3}},
-        {BK_CONTACT_CAPSULE, {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}},
+        {.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1},
+        {.shape = BK_CONTACT_SPHERE, .prm = {0.5, 0.0, -0.3, 0.3}, .amp = -1},
+        {.shape = BK_CONTACT_CAPSULE, .prm = {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}, .amp = -1},
     };
     for (int c = 0; c < 3; ++c) {
         scene s;
@@ -168,7 +174,7 @@ static void check_jacobians(void)
 static void check_friction(void)
 {
     scene s;
-    build_xy(&s, 0.0, 100.0, (bk_contact_prim){BK_CONTACT_HALF_SPACE, {0.0, 0.0, 1.0, 0.0}}, 0.01, 0.05, 1e3, 1);
+    build_xy(&s, 0.0, 100.0, ground(), 0.01, 0.05, 1e3, 1);
     s.set.mu = 0.4;
     s.set.slip = 1e-3;
     double q[3 * NN];
@@ -203,7 +209,7 @@ static void check_resting_chain(void)
 {
     scene s;
     const double r = 0.01, shat = 1e-3, g = 9.81;
-    build(&s, r + 0.8 * shat, 1e4, (bk_contact_prim){BK_CONTACT_HALF_SPACE, {0.0, 0.0, 1.0, 0.0}}, r, shat, 1e4);
+    build(&s, r + 0.8 * shat, 1e4, ground(), r, shat, 1e4);
     bk_system *sys = bk_system_create(&s.m, stderr);
     const int nd = s.m.ndof, n = sys->neq;
     double q[3 * NN], fint[3 * NN], fc[3 * NN], fext[3 * NN], rr[3 * NN], weight = 0.0;
@@ -260,7 +266,7 @@ static void check_step_limit(void)
 {
     scene s;
     const double r = 0.01, shat = 1e-3;
-    build(&s, r + 0.5 * shat, 1e4, (bk_contact_prim){BK_CONTACT_HALF_SPACE, {0.0, 0.0, 1.0, 0.0}}, r, shat, 1e4);
+    build(&s, r + 0.5 * shat, 1e4, ground(), r, shat, 1e4);
     bk_system *sys = bk_system_create(&s.m, stderr);
     double dx[3 * NN] = {0}, q[3 * NN], F[3], d0, d1;
     int nact;

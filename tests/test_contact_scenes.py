@@ -116,8 +116,8 @@ def _pulled_rod(force):
     import re
     text = (ROOT / "models" / "contact_rod_ground.toml").read_text()
     text = text.replace('analysis = "static"', 'analysis = "dynamic"').replace("0.0055]", "0.005981850356113462]")
-    text = re.sub(r'\[\[constraint\]\]\ntype = "point_on_line"\na = "rod:(start|end)"\naxis = \[0.0, 0.0, 1.0\]\n\n', "",
-                  text)
+    held = r'\[\[constraint\]\]\ntype = "point_on_line"\na = "rod:(start|end)"\naxis = \[0.0, 0.0, 1.0\]\n\n'
+    text = re.sub(held, "", text)
     text = text.replace("distance = 0.001\n", "distance = 0.001\nfriction = 0.3\n")
     text = text.replace("[static]", f'[[load]]\ntype = "force"\nat = "rod:end"\nvalue = [{force!r}, 0.0, 0.0]\n\n'
                                      "[dynamic]\nt_end = 0.1\ndt = 0.001\n\n[static]")

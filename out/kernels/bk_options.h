@@ -15,6 +15,31 @@ enum bk_arc_constraint { BK_ARC_CONSTRAINT_CYLINDRICAL = 0, BK_ARC_CONSTRAINT_SP
 enum bk_jacobian { BK_JACOBIAN_REUSE = 0, BK_JACOBIAN_EVERY_ITERATION = 1 };   /* dynamic.jacobian */
 enum bk_about { BK_ABOUT_REFERENCE = 0, BK_ABOUT_STATIC = 1 };   /* modal.about */
 
+/* scene.analysis: the name of an analysis and what its states form a path in
+ * (gen/options_schema.py ANALYSIS_PATHS). */
+enum bk_path_kind { BK_PATH_NONE = 0, BK_PATH_LOAD = 1, BK_PATH_TIME = 2 };
+static inline const char *bk_analysis_name(int a)
+{
+    switch (a) {
+    case BK_ANALYSIS_STATIC: return "static";
+    case BK_ANALYSIS_DYNAMIC: return "dynamic";
+    case BK_ANALYSIS_MODAL: return "modal";
+    case BK_ANALYSIS_BUCKLING: return "buckling";
+    default: return "unknown";
+    }
+}
+
+static inline int bk_analysis_path(int a)
+{
+    switch (a) {
+    case BK_ANALYSIS_STATIC: return BK_PATH_LOAD;
+    case BK_ANALYSIS_DYNAMIC: return BK_PATH_TIME;
+    case BK_ANALYSIS_MODAL: return BK_PATH_NONE;
+    case BK_ANALYSIS_BUCKLING: return BK_PATH_NONE;
+    default: return BK_PATH_NONE;
+    }
+}
+
 typedef struct bk_static_opts {
     int load_steps;                 /* static.load_steps */
     int max_iterations;             /* static.max_iterations */

@@ -200,21 +200,23 @@ int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nki
 /* What the layers below the analyses may know of the analysis: whether its
  * states form a path (load steps or time steps: sensors, sections and frames
  * per state) and whether the path's parameter is time (dynamics) or the load
- * factor.  The analyses themselves are chosen by analysis/analysis.c. */
+ * factor: the kind of path the options schema gives each analysis
+ * (bk_options.h bk_analysis_path).  The analyses themselves are chosen by
+ * their modules (analysis/analysis.h). */
 static inline int bk_model_on_path(const bk_model *m)
 {
-    return m->analysis != BK_ANALYSIS_MODAL && m->analysis != BK_ANALYSIS_BUCKLING;
+    return bk_analysis_path(m->analysis) != BK_PATH_NONE;
 }
 
 static inline int bk_model_in_time(const bk_model *m)
 {
-    return m->analysis == BK_ANALYSIS_DYNAMIC;
+    return bk_analysis_path(m->analysis) == BK_PATH_TIME;
 }
 
 /* A path in the load factor (statics: load control or continuation). */
 static inline int bk_model_in_load(const bk_model *m)
 {
-    return bk_model_on_path(m) && !bk_model_in_time(m);
+    return bk_analysis_path(m->analysis) == BK_PATH_LOAD;
 }
 
 #endif

@@ -380,8 +380,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     const bk_model *m = o->m;
     fprintf(fp, "{\n  \"scene\": ");
     json_string(fp, m->name);
-    static const char *const kind[] = {"static", "dynamic", "modal", "buckling"};
-    fprintf(fp, ",\n  \"analysis\": \"%s\",\n", kind[m->analysis]);
+    fprintf(fp, ",\n  \"analysis\": \"%s\",\n", bk_analysis_name(m->analysis));
     fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
     fprintf(fp, "  \"interrupted\": %s,\n", info->interrupted ? "true" : "false");
     if (info->interrupted)
