@@ -9,8 +9,10 @@ the same keys.  The analysis options' keys ([scene] analysis, [static],
 """
 from gen import options_schema as S
 
-TOP = ("scene", "material", "section", "beam", "body", "constraint", "load", "static", "dynamic", "modal",
-       "buckling", "initial_velocity", "sensor", "output", "amplitude", "contact")
+# the top-level tables: the scene's, then the option tables of the schema (an
+# analysis's options table comes with its schema rows)
+TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
+       "contact") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
