@@ -157,144 +157,197 @@ static void point_terms(const contact_work *w, const bk_contact_set *set, int p,
     }
 }
 
+/* A sample point as the visitor sees it (each_point). */
+typedef struct point {
+    const bk_contact_set *set;
+    int c, i, e, k, p;               /* set, member of the set, element, sample, index over every set */
+    const bk_element *et;
+    double wl;                       /* kappa times the point's share of the element's length */
+    double N[BK_MAX_SHAPE], x[3];    /* shape functions, position */
+    double g[13], dist;              /* the primitive's gap with derivatives; the section's distance */
+} point;
+
+/* Calls fn(ctx, pt) for every sample point of every set at q (sets, their
+ * elements, their samples, in order), and, when not NULL, element(ctx, pt,
+ * 0) before an element's first point and element(ctx, pt, 1) after its last. */
+static void each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
+                       void (*element)(void *, point *, int), void *ctx)
+{
+    const bk_model *m = s->m;
+    const bk_contact_model *cm = m->contact;
+    double qe[BK_MAX_ELEMENT_DOF];
+    point pt;
+    pt.p = 0;
+    for (pt.c = 0; pt.c < cm->nset; ++pt.c) {
+        pt.set = &cm->sets[pt.c];
+        const bk_contact_prim *prim = &cm->prims[pt.set->prim];
+        for (pt.i = 0; pt.i < pt.set->nelem; ++pt.i) {
+            pt.e = pt.set->elems[pt.i];
+            pt.et = bk_elem_type(m, pt.e);
+            const double kl = m->geoms[m->elems[pt.e].geom][BK_GEOM_L] * pt.set->kappa;
+            bk_gather(m, pt.e, q, qe);
+            if (element)
+                element(ctx, &pt, 0);
+            for (pt.k = 0; pt.k < pt.set->nsample; ++pt.k, ++pt.p) {
+                pt.wl = kl * sample(m, pt.e, qe, pt.k, pt.set->nsample, pt.N, pt.x);
+                gap(prim, w->shift + 3 * pt.set->prim, pt.x, pt.g);
+                pt.dist = pt.g[0] - pt.set->radius[pt.i];
+                fn(ctx, &pt);
+            }
+            if (element)
+                element(ctx, &pt, 1);
+        }
+    }
+}
+
+/* Whether point pt feels the contact: within the barrier's reach, or rubbing. */
+static int acts(const contact_work *w, const point *pt)
+{
+    return pt->dist < pt->set->shat || (pt->set->mu > 0.0 && w->lam[pt->p] > 0.0);
+}
+
+/* ---- assemble: the element's force and matrix, scattered after its points ---- */
+
+typedef struct assembly {
+    contact_work *w;
+    bk_system *s;
+    double *fint, *Ax;
+    int touched, bad;
+} assembly;
+
+static void assemble_element(void *ctx, point *pt, int end)
+{
+    assembly *a = ctx;
+    if (!end) {
+        a->touched = 0;
+        return;
+    }
+    if (!a->touched)
+        return;
+    a->bad |= bk_scatter(a->s->m, pt->e, a->w->fe, 1.0, a->fint);
+    if (a->Ax)
+        bk_scatter_matrix(a->s, pt->e, a->w->Ke, 1.0, a->Ax);
+}
+
+static void assemble_point(void *ctx, point *pt)
+{
+    assembly *a = ctx;
+    contact_work *w = a->w;
+    const bk_element *et = pt->et;
+    const int nd = et->ndof;
+    double fp[3], Kp[9];
+    if (!(pt->dist > 0.0)) {
+        a->bad = 1;                          /* through the surface: not an admissible state */
+        return;
+    }
+    if (!acts(w, pt))
+        return;
+    point_terms(w, pt->set, pt->p, pt->wl, pt->x, pt->g, pt->dist, fp, Kp);
+    if (!a->touched) {
+        memset(w->fe, 0, (size_t)nd * sizeof *w->fe);
+        if (a->Ax)
+            memset(w->Ke, 0, (size_t)nd * (size_t)nd * sizeof *w->Ke);
+        a->touched = 1;
+    }
+    for (int i = 0; i < et->nshape; ++i)     /* x = sum N_i r_i: fe += N^T fp, Ke += N^T Kp N */
+        for (int r = 0; r < 3; ++r) {
+            const int row = et->shape_dof[i] + r;
+            w->fe[row] += pt->N[i] * fp[r];
+            if (!a->Ax)
+                continue;
+            for (int j = 0; j < et->nshape; ++j)
+                for (int c = 0; c < 3; ++c)
+                    w->Ke[row * nd + et->shape_dof[j] + c] += pt->N[i] * pt->N[j] * Kp[3 * r + c];
+        }
+}
+
 static int contact_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint,
                             double *Ax)
 {
     contact_work *w = self;
-    const bk_model *m = s->m;
-    set_shift(w, m, path->x);
-    const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
-    int bad = 0, p = 0;
-    for (int c = 0; c < cm->nset; ++c) {
-        const bk_contact_set *set = &cm->sets[c];
-        const bk_contact_prim *prim = &cm->prims[set->prim];
-        for (int i = 0; i < set->nelem; ++i) {
-            const int e = set->elems[i];
-            const bk_element *et = bk_elem_type(m, e);
-            const int nd = et->ndof;
-            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
-            int touched = 0;
-            bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k, ++p) {
-                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, w->shift + 3 * set->prim, x, g);
-                const double dist = g[0] - set->radius[i];
-                if (!(dist > 0.0)) {
-                    bad = 1;                 /* through the surface: not an admissible state */
-                    continue;
-                }
-                if (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0))
-                    continue;
-                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
-                if (!touched) {
-                    memset(w->fe, 0, (size_t)nd * sizeof *w->fe);
-                    if (Ax)
-                        memset(w->Ke, 0, (size_t)nd * (size_t)nd * sizeof *w->Ke);
-                    touched = 1;
-                }
-                for (int a = 0; a < et->nshape; ++a)      /* x = sum N_a r_a: fe += N^T fp, Ke += N^T Kp N */
-                    for (int r = 0; r < 3; ++r) {
-                        const int row = et->shape_dof[a] + r;
-                        w->fe[row] += N[a] * fp[r];
-                        if (!Ax)
-                            continue;
-                        for (int cc = 0; cc < et->nshape; ++cc)
-                            for (int j = 0; j < 3; ++j)
-                                w->Ke[row * nd + et->shape_dof[cc] + j] += N[a] * N[cc] * Kp[3 * r + j];
-                    }
-            }
-            if (touched) {
-                bad |= bk_scatter(m, e, w->fe, 1.0, fint);
-                if (Ax)
-                    bk_scatter_matrix(s, e, w->Ke, 1.0, Ax);
-            }
-        }
-    }
-    return bad ? -1 : 0;
+    set_shift(w, s->m, path->x);
+    assembly a = {.w = w, .s = s, .fint = fint, .Ax = Ax};
+    each_point(w, s, q, assemble_point, assemble_element, &a);
+    return a.bad ? -1 : 0;
 }
 
-/* The lagged friction state of every sample point from the accepted state q:
- * its barrier force's magnitude and its unit normal; its anchor, the point
- * its slip is measured from, moves to x only when the point slid (a slip of
- * the slip tolerance or more since the anchor) or was not in contact: a
- * sticking point keeps its anchor, so that a load below the friction limit
- * holds it within the tolerance however many steps it acts (no creep). */
+/* ---- accept: the lagged friction state ---- */
+
+/* The lagged friction state of a sample point from the accepted state: its
+ * barrier force's magnitude and its unit normal; its anchor, the point its
+ * slip is measured from, moves to x only when the point slid (a slip of the
+ * slip tolerance or more since the anchor) or was not in contact: a sticking
+ * point keeps its anchor, so that a load below the friction limit holds it
+ * within the tolerance however many steps it acts (no creep). */
+static void accept_point(void *ctx, point *pt)
+{
+    contact_work *w = ctx;
+    const int p = pt->p;
+    double *xa = w->xprev + 3 * p, *n = w->nrm + 3 * p, u[3], un = 0.0, ut2 = 0.0, b[3];
+    for (int r = 0; r < 3; ++r)
+        u[r] = pt->x[r] - xa[r], un += u[r] * n[r];
+    for (int r = 0; r < 3; ++r)
+        ut2 += (u[r] - un * n[r]) * (u[r] - un * n[r]);
+    const int sticks = w->lam[p] > 0.0 && sqrt(ut2) < pt->set->slip;
+    w->lam[p] = 0.0;
+    if (pt->dist > 0.0 && pt->dist < pt->set->shat) {
+        bk_contact_barrier(pt->dist, pt->set->shat, b);
+        w->lam[p] = -pt->wl * b[1];
+    }
+    for (int r = 0; r < 3; ++r) {
+        n[r] = pt->g[1 + r];
+        if (!sticks)
+            xa[r] = pt->x[r];
+    }
+}
+
 static void contact_accept(void *self, const bk_system *s, const double *q, const bk_path *path)
 {
     contact_work *w = self;
-    const bk_model *m = s->m;
-    set_shift(w, m, path->x);
-    const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3];
-    int p = 0;
-    for (int c = 0; c < cm->nset; ++c) {
-        const bk_contact_set *set = &cm->sets[c];
-        const bk_contact_prim *prim = &cm->prims[set->prim];
-        for (int i = 0; i < set->nelem; ++i) {
-            const int e = set->elems[i];
-            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
-            bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k, ++p) {
-                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, w->shift + 3 * set->prim, x, g);
-                const double dist = g[0] - set->radius[i];
-                double *xa = w->xprev + 3 * p, *n = w->nrm + 3 * p, u[3], un = 0.0, ut2 = 0.0;
-                for (int r = 0; r < 3; ++r)
-                    u[r] = x[r] - xa[r], un += u[r] * n[r];
-                for (int r = 0; r < 3; ++r)
-                    ut2 += (u[r] - un * n[r]) * (u[r] - un * n[r]);
-                const int sticks = w->lam[p] > 0.0 && sqrt(ut2) < set->slip;
-                w->lam[p] = 0.0;
-                if (dist > 0.0 && dist < set->shat) {
-                    bk_contact_barrier(dist, set->shat, b);
-                    w->lam[p] = -wl * b[1];
-                }
-                for (int r = 0; r < 3; ++r) {
-                    n[r] = g[1 + r];
-                    if (!sticks)
-                        xa[r] = x[r];
-                }
-            }
-        }
-    }
+    set_shift(w, s->m, path->x);
+    each_point(w, s, q, accept_point, NULL, w);
+}
+
+/* ---- step limit: every sample point keeps a tenth of its distance ---- */
+
+typedef struct limiter {
+    const bk_system *s;
+    const double *dx;
+    double de[BK_MAX_ELEMENT_DOF];   /* the correction on the element's DOFs */
+    double alpha;
+} limiter;
+
+static void limit_element(void *ctx, point *pt, int end)
+{
+    limiter *l = ctx;
+    const int *dofs = l->s->m->elems[pt->e].dofs;
+    if (end)
+        return;
+    for (int k = 0; k < pt->et->ndof; ++k)
+        l->de[k] = l->s->eq[dofs[k]] >= 0 ? l->dx[l->s->eq[dofs[k]]] : 0.0;
+}
+
+/* |grad g| = 1, so the distance moves by at most the point's motion. */
+static void limit_point(void *ctx, point *pt)
+{
+    limiter *l = ctx;
+    double dp[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < pt->et->nshape; ++i)
+        for (int r = 0; r < 3; ++r)
+            dp[r] += pt->N[i] * l->de[pt->et->shape_dof[i] + r];
+    const double move = sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2]);
+    if (move > 0.0 && move * l->alpha > 0.9 * pt->dist)
+        l->alpha = pt->dist > 0.0 ? 0.9 * pt->dist / move : 0.0;
 }
 
 /* The fraction of dx[neq] that keeps every sample point at more than a tenth
- * of its distance: |grad g| = 1, so g moves by at most |dx_point|. */
+ * of its distance (the primitives where the last residual had them: this
+ * iterate's path point). */
 static double contact_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
 {
-    const contact_work *w = self;        /* (its shift: the path point of the last residual, this iterate's) */
-    const bk_model *m = s->m;
-    const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], de[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], alpha = 1.0;
-    for (int c = 0; c < cm->nset; ++c) {
-        const bk_contact_set *set = &cm->sets[c];
-        const bk_contact_prim *prim = &cm->prims[set->prim];
-        for (int i = 0; i < set->nelem; ++i) {
-            const int e = set->elems[i];
-            const bk_element *et = bk_elem_type(m, e);
-            const int *dofs = m->elems[e].dofs;
-            bk_gather(m, e, q, qe);
-            for (int k = 0; k < et->ndof; ++k)
-                de[k] = s->eq[dofs[k]] >= 0 ? dx[s->eq[dofs[k]]] : 0.0;
-            for (int k = 0; k < set->nsample; ++k) {
-                sample(m, e, qe, k, set->nsample, N, x);
-                double dp[3] = {0.0, 0.0, 0.0};
-                for (int a = 0; a < et->nshape; ++a)
-                    for (int r = 0; r < 3; ++r)
-                        dp[r] += N[a] * de[et->shape_dof[a] + r];
-                const double move = sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2]);
-                if (!(move > 0.0))
-                    continue;
-                gap(prim, w->shift + 3 * set->prim, x, g);
-                const double dist = g[0] - set->radius[i];
-                if (move * alpha > 0.9 * dist)
-                    alpha = dist > 0.0 ? 0.9 * dist / move : 0.0;
-            }
-        }
-    }
-    return alpha;
+    limiter l = {.s = s, .dx = dx, .alpha = 1.0};
+    each_point(self, s, q, limit_point, limit_element, &l);
+    return l.alpha;
 }
 
 /* summary.json "contact": the smallest distance of a sample point to its
@@ -335,104 +388,104 @@ static int contact_tables(void *self, const bk_system *s, bk_tables *ts, const c
     return w->table ? 0 : -1;
 }
 
+typedef struct rows {
+    contact_work *w;
+    int step;
+    double t;
+    bk_rowqueue *rq;
+} rows;
+
+static void row_point(void *ctx, point *pt)
+{
+    rows *rw = ctx;
+    contact_work *w = rw->w;
+    const bk_contact_set *set = pt->set;
+    const double *g = pt->g;
+    double b[3], fp[3], Kp[9];
+    const int rubs = set->mu > 0.0 && w->lam[pt->p] > 0.0;
+    if (!(pt->dist > 0.0) || !acts(w, pt))
+        return;
+    double fn = 0.0;
+    if (pt->dist < set->shat) {
+        bk_contact_barrier(pt->dist, set->shat, b);
+        fn = -pt->wl * b[1];
+    }
+    point_terms(w, set, pt->p, pt->wl, pt->x, g, pt->dist, fp, Kp);
+    const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
+    double ft2 = 0.0, slip2 = 0.0;
+    for (int r = 0; r < 3; ++r) {
+        const double tr = -fp[r] - fg * g[1 + r], u = pt->x[r] - w->xprev[3 * pt->p + r];
+        ft2 += tr * tr;
+        slip2 += u * u;
+    }
+    bk_row r;
+    bk_row_begin(&r, w->table, rw->rq);
+    bk_row_int(&r, rw->step);
+    bk_row_num(&r, rw->t);
+    bk_row_int(&r, pt->c);
+    bk_row_int(&r, set->prim);
+    bk_row_int(&r, pt->e);
+    bk_row_int(&r, pt->k);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, pt->x[d]);
+    bk_row_num(&r, pt->dist);
+    bk_row_num(&r, fn);
+    bk_row_num(&r, sqrt(ft2));
+    bk_row_str(&r, !rubs ? "none" : sqrt(slip2) < set->slip ? "stick" : "slip");
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, -fp[d]);
+    bk_row_end(&r);
+}
+
 static void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
 {
     contact_work *w = self;
-    const bk_model *m = s->m;
-    const bk_contact_model *cm = m->contact;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], b[3], fp[3], Kp[9];
-    if (!w->table)
-        return;
-    int p = 0;
-    for (int c = 0; c < cm->nset; ++c) {
-        const bk_contact_set *set = &cm->sets[c];
-        const bk_contact_prim *prim = &cm->prims[set->prim];
-        for (int i = 0; i < set->nelem; ++i) {
-            const int e = set->elems[i];
-            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
-            bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k, ++p) {
-                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, w->shift + 3 * set->prim, x, g);
-                const double dist = g[0] - set->radius[i];
-                const int rubs = set->mu > 0.0 && w->lam[p] > 0.0;
-                if (!(dist > 0.0) || (dist >= set->shat && !rubs))
-                    continue;
-                double fn = 0.0;
-                if (dist < set->shat) {
-                    bk_contact_barrier(dist, set->shat, b);
-                    fn = -wl * b[1];
-                }
-                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
-                const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
-                double ft2 = 0.0, slip2 = 0.0;
-                for (int r = 0; r < 3; ++r) {
-                    const double tr = -fp[r] - fg * g[1 + r], u = x[r] - w->xprev[3 * p + r];
-                    ft2 += tr * tr;
-                    slip2 += u * u;
-                }
-                bk_row r;
-                bk_row_begin(&r, w->table, rq);
-                bk_row_int(&r, step);
-                bk_row_num(&r, t);
-                bk_row_int(&r, c);
-                bk_row_int(&r, set->prim);
-                bk_row_int(&r, e);
-                bk_row_int(&r, k);
-                for (int d = 0; d < 3; ++d)
-                    bk_row_num(&r, x[d]);
-                bk_row_num(&r, dist);
-                bk_row_num(&r, fn);
-                bk_row_num(&r, sqrt(ft2));
-                bk_row_str(&r, !rubs ? "none" : sqrt(slip2) < set->slip ? "stick" : "slip");
-                for (int d = 0; d < 3; ++d)
-                    bk_row_num(&r, -fp[d]);
-                bk_row_end(&r);
-            }
-        }
-    }
+    rows rw = {.w = w, .step = step, .t = t, .rq = rq};
+    if (w->table)
+        each_point(w, s, q, row_point, NULL, &rw);
 }
 
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
                                            .step_limit = contact_step_limit, .accept = contact_accept,
-                                           .tables = contact_tables,
-                                           .rows = contact_rows, .summary_key = "contact",
+                                           .tables = contact_tables, .rows = contact_rows, .summary_key = "contact",
                                            .summary = contact_summary, .free = contact_free};
+
+/* ---- the state for the outputs and the tests ---- */
+
+typedef struct state {
+    const contact_work *w;
+    double *F, *min_distance;
+    int *nactive;
+} state;
+
+static void state_point(void *ctx, point *pt)
+{
+    state *st = ctx;
+    double fp[3], Kp[9];
+    *st->min_distance = fmin(*st->min_distance, pt->dist);
+    if (!(pt->dist > 0.0) || !acts(st->w, pt))
+        return;
+    point_terms(st->w, pt->set, pt->p, pt->wl, pt->x, pt->g, pt->dist, fp, Kp);
+    for (int r = 0; r < 3; ++r)
+        st->F[3 * pt->c + r] -= fp[r];       /* the force on the beam */
+    if (st->nactive && pt->dist < pt->set->shat)
+        st->nactive[pt->c]++;
+}
 
 void bk_contact_state(const bk_system *s, const double *q, double *F, int *nactive, double *min_distance)
 {
-    const bk_model *m = s->m;
-    const bk_contact_model *cm = m->contact;
+    const bk_contact_model *cm = s->m->contact;
     const contact_work *w = NULL;
     for (int k = 0; k < s->ninter; ++k)
         if (s->inter[k].ops == &bk_contact_ops)
             w = s->inter[k].self;
-    double qe[BK_MAX_ELEMENT_DOF], N[BK_MAX_SHAPE], x[3], g[13], fp[3], Kp[9];
     *min_distance = INFINITY;
-    int p = 0;
-    for (int c = 0; cm && w && c < cm->nset; ++c) {
-        const bk_contact_set *set = &cm->sets[c];
-        const bk_contact_prim *prim = &cm->prims[set->prim];
+    for (int c = 0; cm && c < cm->nset; ++c) {
         F[3 * c] = F[3 * c + 1] = F[3 * c + 2] = 0.0;
         if (nactive)
             nactive[c] = 0;
-        for (int i = 0; i < set->nelem; ++i) {
-            const int e = set->elems[i];
-            const double kl = m->geoms[m->elems[e].geom][BK_GEOM_L] * set->kappa;
-            bk_gather(m, e, q, qe);
-            for (int k = 0; k < set->nsample; ++k, ++p) {
-                const double wl = kl * sample(m, e, qe, k, set->nsample, N, x);
-                gap(prim, w->shift + 3 * set->prim, x, g);
-                const double dist = g[0] - set->radius[i];
-                *min_distance = fmin(*min_distance, dist);
-                if (!(dist > 0.0) || (dist >= set->shat && !(set->mu > 0.0 && w->lam[p] > 0.0)))
-                    continue;
-                point_terms(w, set, p, wl, x, g, dist, fp, Kp);
-                for (int r = 0; r < 3; ++r)
-                    F[3 * c + r] -= fp[r];          /* the force on the beam */
-                if (nactive && dist < set->shat)
-                    nactive[c]++;
-            }
-        }
     }
+    state st = {.w = w, .F = F, .min_distance = min_distance, .nactive = nactive};
+    if (w)
+        each_point(w, s, q, state_point, NULL, &st);
 }
