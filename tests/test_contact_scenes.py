@@ -107,6 +107,12 @@ def test_dropped_rod_never_passes_through_and_gains_no_energy():
         with open(out / "energy.csv", newline="") as fh:
             total = [float(r["total"]) for r in csv.DictReader(fh)]
         assert max(total) <= total[0] + 0.01 * m_g_h, (dt, max(total), total[0])
+        assert not [w for w in s["warnings"] if "energy grew" in w], s["warnings"]
+    # dt = 1e-2 with the default rho_inf = 0.8: the bounce gains energy, and the run says so
+    p = out_dir() / "drop.toml"
+    p.write_text(text.replace("[static]", "[dynamic]\nt_end = 0.1\ndt = 0.01\n\n[static]"))
+    s, _ = run_scene(p)
+    assert [w for w in s["warnings"] if "total energy grew" in w and "rho_inf = 0" in w], s["warnings"]
 
 
 def _pulled_rod(force):

@@ -261,6 +261,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.a, w.qdd, (size_t)nd * sizeof *q);
     }
     double U0 = bk_strain_energy(s, q);
+    double e_start = 0.0, e_scale = 0.0;   /* the total energy at t = 0, the largest of its parts since */
+    int e_warned = 0;
     bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = 0.0});   /* the lagged states (friction) */
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
@@ -268,6 +270,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
         double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
         energy_row(out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
+        e_start = T, e_scale = fabs(T);
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
 
@@ -385,6 +388,16 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             }
             bk_load_potentials(s, q, t, &Vg, &Vf);
             energy_row(out, energy, step, t, T, U, Vg, Vf, cr);
+            /* contact with a step too long for its barrier can create energy (the
+             * barrier's own energy is not in the total: a bounce gains) */
+            e_scale = fmax(e_scale, fmax(fmax(fabs(T), fabs(U)), fmax(fabs(Vg), fabs(Vf))));
+            if (m->contact && !e_warned && T + U + Vg + Vf > e_start + 0.01 * e_scale) {
+                e_warned = 1;
+                bk_warn(info, out->console, m->name, "the total energy grew by %.3g J (%.3g %% of the largest of its "
+                        "parts) by t = %.6g s: contact at this step size creates energy; use a shorter dt or "
+                        "rho_inf = 0 (work of prescribed motions is not counted)", T + U + Vg + Vf - e_start,
+                        100.0 * (T + U + Vg + Vf - e_start) / e_scale, t);
+            }
         }
         bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});   /* after the step's outputs */
         if (log)
