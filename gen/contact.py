@@ -95,6 +95,16 @@ def friction():
     return lower(p, ())
 
 
+def transition():
+    y, eps = sp.symbols("y eps", positive=True)
+    z = (y - eps) / eps
+    h = 3 * z ** 2 - 2 * z ** 3
+    p = Program()
+    p.output("out[0]", h, op="=")
+    p.output("out[1]", sp.diff(h, y), op="=")
+    return lower(p, ())
+
+
 def _ops(low):
     pro, bod = count_lowered(low)
     return pro.total() + bod.total()
@@ -130,5 +140,15 @@ def functions():
             "    friction_inside(y, eps, out);", "}", ""]
     out.append(("bk_contact_friction", wrap[0],
                 f"slip function f1, f1', f1/y, (f1/y)' at the slip y >= 0 (tolerance eps); {_ops(low)} operations",
+                body + wrap))
+    low = transition()
+    sig = "static void transition_inside(double y, double eps, double *restrict out)"
+    body = _function(sig, low)
+    wrap = ["void bk_contact_transition(double y, double eps, double *restrict out)", "{",
+            "    if (y <= eps || y >= 2.0 * eps) {",
+            "        out[0] = y <= eps ? 0.0 : 1.0;", "        out[1] = 0.0;", "        return;", "    }",
+            "    transition_inside(y, eps, out);", "}", ""]
+    out.append(("bk_contact_transition", wrap[0],
+                f"static-to-kinetic step h, h' at the slip y >= 0 (tolerance eps); {_ops(low)} operations",
                 body + wrap))
     return out

@@ -107,10 +107,24 @@ int main(void)
     bk_contact_friction(eps * (1 - 1e-12), eps, fl);
     bk_contact_friction(eps, eps, fr);
     bk_contact_friction(0.0, eps, f0);
+    /* static-to-kinetic step: h' against differences, h = 3 z^2 - 2 z^3 (closed form), C1 at eps and 2 eps */
+    double et = 0;
+    for (int k = 1; k < 300; ++k) {
+        double y = 3.0 * eps * k / 300.0, h = 1e-7 * eps, s[2], sp[2], sm[2];
+        bk_contact_transition(y, eps, s);
+        bk_contact_transition(y + h, eps, sp);
+        bk_contact_transition(y - h, eps, sm);
+        const double z = fmin(fmax((y - eps) / eps, 0.0), 1.0);
+        et = fmax(et, fabs((sp[0] - sm[0]) / (2 * h) - s[1]) * eps);
+        et = fmax(et, fabs(s[0] - z * z * (3 - 2 * z)));
+    }
+    double t1[2], t2[2];
+    bk_contact_transition(eps * (1 + 1e-12), eps, t1);
+    bk_contact_transition(2 * eps * (1 - 1e-12), eps, t2);
     printf("gap_grad_err=%.3e gap_hess_err=%.3e closed_err=%.3e hess_sym_err=%.3e barrier_err=%.3e "
            "barrier_at_shat=%.3e,%.3e,%.3e barrier_near_0=%.3e friction_err=%.3e friction_jump=%.3e,%.3e "
-           "friction_f1y_at_0=%.17g\n",
+           "friction_f1y_at_0=%.17g transition_err=%.3e transition_ends=%.3e,%.3e\n",
            eg, eh, eclosed, esym, eb, bl[0], bl[1], bl[2], bz[0], ef, fabs(fl[0] - fr[0]), fabs(fl[1] - fr[1]),
-           f0[2] * eps);
+           f0[2] * eps, et, fabs(t1[0]) + fabs(t1[1]) * eps, fabs(t2[0] - 1) + fabs(t2[1]) * eps);
     return 0;
 }

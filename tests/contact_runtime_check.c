@@ -175,7 +175,7 @@ static void check_friction(void)
 {
     scene s;
     build_xy(&s, 0.0, 100.0, ground(), 0.01, 0.05, 1e3, 1);
-    s.set.mu = 0.4;
+    s.set.mu = s.set.mu_k = 0.4;
     s.set.slip = 1e-3;
     double q[3 * NN];
     memcpy(q, s.q0, sizeof q);

@@ -1,15 +1,18 @@
 """The generated contact kernels (gen/contact.py -> out/kernels/contact.c):
 gaps to a half-space, a sphere and a segment's line with their gradients and
-Hessians, the barrier and the friction profile, against central differences
+Hessians, the barrier, the friction profile and the static-to-kinetic step, against central differences
 and against closed forms written independently in tests/contact_check.c
 (built with AddressSanitizer + UBSan)."""
+import functools
+import os
 import subprocess
 
 from util import BUILD, ROOT, ensure_dir
 
 
+@functools.lru_cache(maxsize=None)
 def results():
-    exe = ensure_dir(BUILD / "contact") / "contact_check"
+    exe = ensure_dir(BUILD / "contact") / f"contact_check.{os.getpid()}"     # one per test worker
     r = subprocess.run(["cc", "-std=c11", "-O1", "-g", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
                         "-fno-sanitize-recover=all", f"-I{ROOT / 'out' / 'kernels'}", f"-I{ROOT / 'runtime'}",
                         str(ROOT / "tests" / "contact_check.c"), str(ROOT / "out" / "kernels" / "contact.c"),
@@ -43,3 +46,10 @@ def test_friction_profile_is_c1_and_regular_at_zero_slip():
     jump0, jump1 = (float(v) for v in d["friction_jump"].split(","))
     assert jump0 < 1e-10 and jump1 < 1e-6, d             # f1 = 1, f1' = 0 at eps from both sides
     assert abs(float(d["friction_f1y_at_0"]) - 2.0) < 1e-15, d   # f1/y -> 2/eps
+
+
+def test_static_to_kinetic_step_is_c1_and_matches_its_closed_form():
+    d = results()
+    assert float(d["transition_err"]) < 1e-6, d          # h' against differences; h against 3 z^2 - 2 z^3
+    a, b = (float(v) for v in d["transition_ends"].split(","))
+    assert a < 1e-9 and b < 1e-9, d                      # h = 0, h' = 0 at eps; h = 1, h' = 0 at 2 eps

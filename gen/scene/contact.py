@@ -11,11 +11,10 @@ metre of beam; default 1000 times the heaviest contacting beam's weight per
 metre over the reach); samples (points per element, ends included, default
 4);
 contact_radius (m; default the section's: a circle's radius, a rectangle's
-half-height h/2); friction (the Coulomb coefficient mu, default 0) and slip (the
-slip per step below which friction sticks, m; default 1e-7 of the model
-length); motion (m: a prescribed translation, times the load factor in statics
-or the factor of `amplitude`, which dynamics requires).  One coefficient:
-separate static and kinetic ones are refused for now."""
+half-height h/2); friction (the Coulomb coefficient mu, default 0; or static_friction and
+kinetic_friction apart) and slip (the slip per step below which friction
+sticks, m; default 1e-7 of the model length); motion (m: a prescribed translation, times the load factor in statics
+or the factor of `amplitude`, which dynamics requires)."""
 import math
 
 import gen.scene_keys as K
@@ -59,6 +58,22 @@ def _distance(code, prm, x):
     return _norm(_sub(x, [a[i] + t * e[i] for i in range(3)])) - prm[6]
 
 
+def _friction(ctx, ct, where):
+    """(mu_s, mu_k): `friction` gives both; `static_friction` and
+    `kinetic_friction` give them apart (mu_k <= mu_s)."""
+    both = "friction" in ct
+    for k in ("static_friction", "kinetic_friction"):
+        if both and k in ct:
+            ctx.fail(f"{where}.{k}", "expected either `friction` (one coefficient) or `static_friction` and "
+                                     "`kinetic_friction`, not both")
+    mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
+    mu_s = get_number(ctx, ct, "static_friction", where, default=mu, nonneg=True, hi=100.0)
+    mu_k = get_number(ctx, ct, "kinetic_friction", where, default=mu_s, nonneg=True, hi=100.0)
+    if mu_k > mu_s:
+        ctx.fail(f"{where}.kinetic_friction", f"expected at most static_friction = {mu_s!r} (got {mu_k!r})")
+    return mu_s, mu_k
+
+
 def _weight_per_length(doc, name, sec):
     """rho A g of beam `name` (its material's density, its section's area)."""
     bt = next(b for b in doc.get("beam", []) if b.get("name") == name)
@@ -75,11 +90,7 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "contact")):
         where = f"contact[{i}]"
         check_keys(ctx, ct, set(KEYS), where)
-        for k in ("static_friction", "kinetic_friction"):
-            if k in ct:
-                ctx.fail(f"{where}.{k}", "separate static and kinetic coefficients are not available yet: give one "
-                                         "`friction` coefficient (issue 34)")
-        mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
+        mu_s, mu_k = _friction(ctx, ct, where)
         shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
         code, prm = _primitive(ctx, ct, where, shape)
         motion = get_vec3(ctx, ct, "motion", where, default=[0.0, 0.0, 0.0])
@@ -116,19 +127,19 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
                                         f"(its sections must start clear of it: move the beam or the {shape})")
                 members.append((beam["first_elem"] + k, r))
         prims.append((code, prm, motion, amp))
-        sets.append((len(prims) - 1, reach, kappa, mu, slip, samples, members))
+        sets.append((len(prims) - 1, reach, kappa, (mu_s, mu_k), slip, samples, members))
     return prims, sets
 
 
 def contact_records(prims, sets, fmt):
     """The model file's lines: 'contacts NPRIM NSET', a 'prim CODE p0..p6' per
     primitive (its motion and amplitude after the parameters), a 'cset PRIM
-    REACH STIFFNESS MU SLIP SAMPLES N e r ...' per set."""
+    REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ...' per set."""
     out = [f"contacts {len(prims)} {len(sets)}"]
     out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm + motion) + f" {amp}"
             for code, prm, motion, amp in prims]
-    for p, reach, kappa, mu, slip, samples, members in sets:
-        out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {fmt(mu)} {fmt(slip)} {samples} {len(members)} " +
+    for p, reach, kappa, (mu_s, mu_k), slip, samples, members in sets:
+        out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {fmt(mu_s)} {fmt(mu_k)} {fmt(slip)} {samples} {len(members)} " +
                    " ".join(f"{e} {fmt(r)}" for e, r in members))
     return out
 

@@ -147,12 +147,17 @@ static void point_terms(const contact_work *w, const bk_contact_set *set, int p,
         const double un = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
         for (int r = 0; r < 3; ++r)
             ut[r] = u[r] - un * n[r];
-        const double y = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]), c = set->mu * w->lam[p];
+        const double y = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
+        double h[2];
         bk_contact_friction(y, set->slip, f);
+        bk_contact_transition(y, set->slip, h);
+        /* force lam phi(y) u_t / y, phi = mu(y) f1(y), mu(y) = mu_s - (mu_s - mu_k) h(y) */
+        const double mu = set->mu - (set->mu - set->mu_k) * h[0], dmu = -(set->mu - set->mu_k) * h[1];
+        const double py = mu * f[2], dpy = dmu * f[2] + mu * f[3], c = w->lam[p];
         for (int r = 0; r < 3; ++r) {
-            fp[r] += c * f[2] * ut[r];
+            fp[r] += c * py * ut[r];
             for (int j = 0; j < 3; ++j)
-                Kp[3 * r + j] += c * (f[2] * ((r == j) - n[r] * n[j]) + (y > 0.0 ? f[3] / y * ut[r] * ut[j] : 0.0));
+                Kp[3 * r + j] += c * (py * ((r == j) - n[r] * n[j]) + (y > 0.0 ? dpy / y * ut[r] * ut[j] : 0.0));
         }
     }
 }
@@ -275,10 +280,13 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
 
 /* The lagged friction state of a sample point from the accepted state: its
  * barrier force's magnitude and its unit normal; its anchor, the point its
- * slip is measured from, moves to x only when the point slid (a slip of the
- * slip tolerance or more since the anchor) or was not in contact: a sticking
- * point keeps its anchor, so that a load below the friction limit holds it
- * within the tolerance however many steps it acts (no creep). */
+ * slip is measured from: a sticking point (slip since the anchor below the
+ * tolerance eps) keeps it, so that a load below the friction limit holds it
+ * within eps however many steps it acts (no creep); a sliding one drags it to
+ * eps behind itself along the slip (the friction spring stays at its limit,
+ * as in elastic-plastic friction: a step that goes on sliding by eps rubs
+ * with the kinetic coefficient, one that stops holds with the static); a
+ * point that was not in contact puts it where it is. */
 static void accept_point(void *ctx, point *pt)
 {
     contact_work *w = ctx;
@@ -288,17 +296,18 @@ static void accept_point(void *ctx, point *pt)
         u[r] = pt->x[r] - xa[r], un += u[r] * n[r];
     for (int r = 0; r < 3; ++r)
         ut2 += (u[r] - un * n[r]) * (u[r] - un * n[r]);
-    const int sticks = w->lam[p] > 0.0 && sqrt(ut2) < pt->set->slip;
+    const double y = sqrt(ut2), eps = pt->set->slip;
+    const int rubbed = w->lam[p] > 0.0;
     w->lam[p] = 0.0;
     if (pt->dist > 0.0 && pt->dist < pt->set->shat) {
         bk_contact_barrier(pt->dist, pt->set->shat, b);
         w->lam[p] = -pt->wl * b[1];
     }
-    for (int r = 0; r < 3; ++r) {
-        n[r] = pt->g[1 + r];
-        if (!sticks)
+    for (int r = 0; r < 3; ++r)
+        if (!rubbed || y >= eps)
             xa[r] = pt->x[r];
-    }
+    for (int r = 0; r < 3; ++r)
+        n[r] = pt->g[1 + r];
 }
 
 static void contact_accept(void *self, const bk_system *s, const double *q, const bk_path *path)

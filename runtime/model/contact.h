@@ -15,7 +15,12 @@
  * accepted state and the slip u_t = (I - n n^T)(x - x_prev) since then, the
  * point's friction energy is mu lam f0(|u_t|), f0' = f1 the smoothed slip
  * function of out/kernels/contact.h (2 y/eps - y^2/eps^2 below eps, 1 beyond):
- * Coulomb's mu lam beyond a slip of eps per step, a stiff spring below. */
+ * Coulomb's mu lam beyond a slip of eps, a stiff spring below.  The
+ * coefficient passes smoothly from the static mu to the kinetic mu_k between a
+ * slip of eps and 2 eps since the anchor (bk_contact_transition), and the
+ * anchor of a sliding point trails it by eps: a point that stops holds with
+ * mu, one that goes on sliding by eps a step rubs with mu_k.  The friction
+ * energy stays a function of the slip, so the Jacobian is exact. */
 #ifndef BK_CONTACT_MODEL_H
 #define BK_CONTACT_MODEL_H
 
@@ -37,7 +42,8 @@ typedef struct bk_contact_set {
     int prim;                        /* index into bk_contact_model.prims */
     double shat;                     /* barrier reach (m), > 0 */
     double kappa;                    /* barrier stiffness (N/m per metre of beam), > 0 */
-    double mu;                       /* Coulomb friction coefficient, >= 0 (0: frictionless) */
+    double mu;                       /* static Coulomb coefficient mu_s, >= 0 (0: frictionless) */
+    double mu_k;                     /* kinetic coefficient, 0 <= mu_k <= mu_s */
     double slip;                     /* slip tolerance eps (m), > 0: sticking up to eps of slip per step */
     int nsample;                     /* sample points per element, >= 1 */
     int nelem;

@@ -2,7 +2,7 @@
  * written by gen/scene/contact.py:
  *   contacts NPRIM NSET
  *   prim SHAPE p0 .. p6 MX MY MZ AMP          (NPRIM times; enum bk_contact_shape, motion, amplitude)
- *   cset PRIM REACH STIFFNESS MU SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
+ *   cset PRIM REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
 #include <stdlib.h>
 
 #include "model/reader.h"
@@ -37,16 +37,18 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m)
         set->prim = rd_inum(r, "contact set primitive", 0, np - 1);
         set->shat = rd_num(r, "contact reach");
         set->kappa = rd_num(r, "contact stiffness");
-        set->mu = rd_num(r, "contact friction");
+        set->mu = rd_num(r, "contact static friction");
+        set->mu_k = rd_num(r, "contact kinetic friction");
         set->slip = rd_num(r, "contact slip tolerance");
         set->nsample = rd_inum(r, "contact samples", 1, 64);
         int n = rd_inum(r, "contact elements", 1, m->nelem > 0 ? m->nelem : 1);
         if (r->failed)
             break;
         cm->nset = c + 1;                  /* (freed from here on) */
-        if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu >= 0.0) || !(set->slip > 0.0))
-            rd_fail(r, "contact set %d: reach, stiffness and slip tolerance must be positive, friction >= 0 (%g, %g, "
-                    "%g, %g)", c, set->shat, set->kappa, set->slip, set->mu);
+        if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu_k >= 0.0) || !(set->mu >= set->mu_k) ||
+            !(set->slip > 0.0))
+            rd_fail(r, "contact set %d: reach, stiffness and slip tolerance must be positive, 0 <= kinetic <= static "
+                    "friction (%g, %g, %g, %g, %g)", c, set->shat, set->kappa, set->slip, set->mu_k, set->mu);
         set->elems = rd_xcalloc(r, (size_t)n, sizeof *set->elems);
         set->radius = rd_xcalloc(r, (size_t)n, sizeof *set->radius);
         if (r->failed)
