@@ -19,6 +19,16 @@ growing without bound as s -> 0, so an iterate that keeps s > 0 (the step
 limiter's job) feels a force that grows as it approaches.  out[0..2] = b, b',
 b''.
 
+Primitives of rigid bodies: a primitive is given in the reference
+configuration; a point y of a beam is taken to the body's reference
+coordinates, z = X + R0 R(p)^T (y - r), with (r, p) the body's centre and
+quaternion (R(p) the rotation of p/|p|), X and R0 its reference centre and
+rotation (prm[12]: X, then R0 row-major), and the gap is the reference
+primitive's at z.  bk_contact_body_frame writes z (out[0..2]), dz/dv
+(out[3..32], 3 x 10 row-major, v = (y, r, p)) and d2z_k/dv2 (out[33 + 100 k
+..], 10 x 10 row-major): the chain rule then gives the gap's derivatives in v.
+Friction is measured in z too, so it acts on the slip relative to the body.
+
 Friction (the same paper's smoothed slip function): for a slip magnitude
 y >= 0 and tolerance eps, f1(y) = 2 y/eps - y^2/eps^2 below eps, 1 beyond, so
 the friction force mu N f1(y) t/|t| is exact Coulomb past eps and a stiff
@@ -29,6 +39,7 @@ import sympy as sp
 
 from gen.c_functions import _function
 from gen.program import Program, count_lowered, lower
+from gen.rod import rotation
 
 _D = "const double *restrict"
 _W = "double *restrict"
@@ -71,6 +82,25 @@ def segment():
     t = (x - a).dot(e) / e.dot(e)
     r = x - a - t * e
     return _gap_program(sp.sqrt(r.dot(r)) - R, x, extra=(t,))
+
+
+def body_frame():
+    y, r = _vec("y"), _vec("qb")
+    s, v = sp.Symbol("qb[3]", real=True), _vec("qb", 4)
+    X = _vec("prm")
+    R0 = sp.Matrix(3, 3, [sp.Symbol(f"prm[{3 + k}]", real=True) for k in range(9)])
+    z = X + R0 * rotation(s, v).T * (y - r)
+    var = list(y) + list(r) + [s] + list(v)
+    p = Program()
+    for k in range(3):
+        p.output(f"out[{k}]", z[k], op="=")
+    for k in range(3):
+        dk = [sp.diff(z[k], a) for a in var]
+        for i in range(10):
+            p.output(f"out[{3 + 10 * k + i}]", dk[i], op="=")
+            for j in range(10):
+                p.output(f"out[{33 + 100 * k + 10 * i + j}]", sp.diff(dk[i], var[j]), op="=")
+    return lower(p, ())
 
 
 def barrier():
@@ -121,6 +151,11 @@ def functions():
         sig = (f"void bk_contact_gap_{name}({_D} x, {_D} prm, {_W} out)")
         out.append((f"bk_contact_gap_{name}", sig,
                     f"{doc}: x[3], prm[{nprm}] in; out[{nout}]; {_ops(low)} operations", _function(sig, low)))
+    low = body_frame()
+    sig = f"void bk_contact_body_frame({_D} y, {_D} qb, {_D} prm, {_W} out)"
+    out.append(("bk_contact_body_frame", sig,
+                f"reference coordinates z of y on a body (r, p) and their derivatives: y[3], qb[7], prm[12] in; "
+                f"out[333]; {_ops(low)} operations", _function(sig, low)))
     low = barrier()
     sig = "static void barrier_inside(double s, double shat, double *restrict out)"
     body = _function(sig, low)

@@ -9,7 +9,7 @@ from gen.descriptor import version_guard
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
-CONTACT_FILES = ("contact.py", "emit_contact.py")
+CONTACT_FILES = ("contact.py", "emit_contact.py", "rod.py", "rodmath.py")
 UNIT = "contact"
 
 

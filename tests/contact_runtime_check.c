@@ -94,7 +94,7 @@ static void build(scene *s, double z, double k, bk_contact_prim prim, double r, 
 /* The half-space z < 0, fixed. */
 static bk_contact_prim ground(void)
 {
-    return (bk_contact_prim){.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1};
+    return (bk_contact_prim){.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1, .body = -1};
 }
 
 /* The interaction's residual over all DOFs at q (nothing else). */
@@ -146,9 +146,9 @@ static void check_jacobians(void)
 {
     const char *names[3] = {"jacobian_half_space", "jacobian_sphere", "jacobian_capsule"};
     bk_contact_prim prims[3] = {
-        {.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1},
-        {.shape = BK_CONTACT_SPHERE, .prm = {0.5, 0.0, -0.3, 0.3}, .amp = -1},
-        {.shape = BK_CONTACT_CAPSULE, .prm = {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}, .amp = -1},
+        {.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1, .body = -1},
+        {.shape = BK_CONTACT_SPHERE, .prm = {0.5, 0.0, -0.3, 0.3}, .amp = -1, .body = -1},
+        {.shape = BK_CONTACT_CAPSULE, .prm = {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}, .amp = -1, .body = -1},
     };
     for (int c = 0; c < 3; ++c) {
         scene s;

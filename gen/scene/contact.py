@@ -136,8 +136,10 @@ def contact_records(prims, sets, fmt):
     primitive (its motion and amplitude after the parameters), a 'cset PRIM
     REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ...' per set."""
     out = [f"contacts {len(prims)} {len(sets)}"]
-    out += ["prim " + str(code) + " " + " ".join(fmt(v) for v in prm + motion) + f" {amp}"
-            for code, prm, motion, amp in prims]
+    for code, prm, motion, amp in prims:
+        turn, pivot, body, ref = [0.0] * 3, [0.0] * 3, -1, []
+        out.append("prim " + str(code) + " " + " ".join(fmt(v) for v in prm + [0.0] * (15 - len(prm)) + motion + turn +
+                                                         pivot) + f" {amp} {body}" + "".join(" " + fmt(v) for v in ref))
     for p, reach, kappa, (mu_s, mu_k), slip, samples, members in sets:
         out.append(f"cset {p} {fmt(reach)} {fmt(kappa)} {fmt(mu_s)} {fmt(mu_k)} {fmt(slip)} {samples} {len(members)} " +
                    " ".join(f"{e} {fmt(r)}" for e, r in members))

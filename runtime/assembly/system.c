@@ -27,9 +27,46 @@ static int cmp_int(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+#define find_slot bk_system_slot
+
+/* The couplings besides the elements' own blocks and the constraints: the
+ * DOFs of each element of a contact set whose primitive belongs to a rigid
+ * body with the body's (both ways).  With rows NULL counts them into cnt,
+ * else writes them at off + cnt. */
+static void contact_couplings(const bk_system *s, long *cnt, const long *off, int *rows)
+{
+    const bk_model *m = s->m;
+    const bk_contact_model *cm = m->contact;
+    for (int c = 0; cm && c < cm->nset; ++c) {
+        const int body = cm->prims[cm->sets[c].prim].body;
+        if (body < 0)
+            continue;
+        const bk_elem *eb = &m->elems[body];
+        const int nb = bk_elem_type(m, body)->ndof;
+        for (int i = 0; i < cm->sets[c].nelem; ++i) {
+            const int e = cm->sets[c].elems[i];
+            const bk_elem *ee = &m->elems[e];
+            const int nd = bk_elem_type(m, e)->ndof;
+            for (int a = 0; a < nd; ++a)
+                for (int b = 0; b < nb; ++b) {
+                    const int ra = s->eq[ee->dofs[a]], rb = s->eq[eb->dofs[b]];
+                    if (ra < 0 || rb < 0)
+                        continue;
+                    if (rows) {
+                        rows[off[rb] + cnt[rb]++] = ra;
+                        rows[off[ra] + cnt[ra]++] = rb;
+                    } else {
+                        cnt[rb]++;
+                        cnt[ra]++;
+                    }
+                }
+        }
+    }
+}
+
 /* Equation of joint coordinate k (-1: constant or fixed). */
 
-static int find_slot(const bk_system *s, int row, int col)
+int bk_system_slot(const bk_system *s, int row, int col)
 {
     int lo = s->Ap[col], hi = s->Ap[col + 1];      /* bisection over the sorted rows of col */
     while (lo < hi) {
@@ -111,6 +148,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         for (int r = 0; r < nr; ++r)
             cnt[s->nfree + s->jrow[j] + r] += nf;
     }
+    contact_couplings(s, cnt, NULL, NULL);
     /* Fill buckets, then sort and deduplicate each column. */
     long *off = calloc((size_t)s->neq + 1, sizeof *off);
     if (!off) {
@@ -168,6 +206,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             }
         }
     }
+    contact_couplings(s, cnt, off, rows);
     s->Ap = malloc(((size_t)s->neq + 1) * sizeof *s->Ap);
     if (!s->Ap) {
         free(cnt);

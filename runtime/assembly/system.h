@@ -83,6 +83,10 @@ void bk_system_free(bk_system *s);
  * kernel produced a non-finite value. */
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax);
 
+/* The slot of the Newton matrix's entry (row, col) (equations) in Ax, or -1
+ * where the pattern has none. */
+int bk_system_slot(const bk_system *s, int row, int col);
+
 /* Strain energy of the configuration q (J). */
 double bk_strain_energy(const bk_system *s, const double *q);
 

@@ -27,15 +27,27 @@
 enum bk_contact_shape {
     BK_CONTACT_HALF_SPACE = 0,       /* prm: unit normal n (out of the solid), offset d: solid where n.x < d */
     BK_CONTACT_SPHERE = 1,           /* prm: centre c, radius R */
-    BK_CONTACT_CAPSULE = 2           /* prm: ends a, b, radius R (a segment swept by a sphere) */
+    BK_CONTACT_CAPSULE = 2,          /* prm: ends a, b, radius R (a segment swept by a sphere) */
+    BK_CONTACT_BOX = 3               /* prm: centre c, half-sizes h, axes A (row k: axis k): |A (x - c)|_k <= h_k */
 };
-#define BK_CONTACT_MAXPRM 7
+#define BK_CONTACT_MAXPRM 15
 
+/* A primitive in the reference configuration and how it moves: with the
+ * factor f of its amplitude (or the load factor), by the translation f motion
+ * and the rotation of the vector f turn (rad) about pivot; or, when body >= 0,
+ * with the rigid body of element body (its reference centre and rotation in
+ * body_ref: X, then R0 row-major).  A point y of a beam is taken back to the
+ * primitive's reference coordinates z (assembly/contact_geometry.h), where
+ * the gap is the reference primitive's. */
 typedef struct bk_contact_prim {
     int shape;                       /* enum bk_contact_shape */
     double prm[BK_CONTACT_MAXPRM];   /* in the reference position */
     double motion[3];                /* prescribed translation (m), times the factor of amplitude amp */
+    double turn[3];                  /* prescribed rotation vector (rad), times the same factor */
+    double pivot[3];                 /* the point it turns about (m) */
     int amp;                         /* amplitude index (amplitude.h bk_load_factor), -1: the load factor */
+    int body;                        /* element of the rigid body it belongs to, -1: none */
+    double body_ref[12];             /* that body's reference centre X and rotation R0 (row-major) */
 } bk_contact_prim;
 
 typedef struct bk_contact_set {

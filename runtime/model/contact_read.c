@@ -1,7 +1,10 @@
 /* contact_read.c -- the contact records of the model file (model/contact.h),
  * written by gen/scene/contact.py:
  *   contacts NPRIM NSET
- *   prim SHAPE p0 .. p6 MX MY MZ AMP          (NPRIM times; enum bk_contact_shape, motion, amplitude)
+ *   prim SHAPE p0 .. p14 MX MY MZ TX TY TZ OX OY OZ AMP BODY [X R0]
+ *        (NPRIM times; enum bk_contact_shape, translation, rotation vector,
+ *        pivot, amplitude, the rigid body's element or -1, and for a body its
+ *        reference centre and rotation, 12 numbers)
  *   cset PRIM REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
 #include <stdlib.h>
 
@@ -24,12 +27,21 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m)
     cm->nprim = np;
     for (int i = 0; i < np && !r->failed; ++i) {
         rd_expect(r, "prim");
-        cm->prims[i].shape = rd_inum(r, "contact primitive shape", 0, BK_CONTACT_CAPSULE);
+        bk_contact_prim *p = &cm->prims[i];
+        p->shape = rd_inum(r, "contact primitive shape", 0, BK_CONTACT_BOX);
         for (int k = 0; k < BK_CONTACT_MAXPRM; ++k)
-            cm->prims[i].prm[k] = rd_num(r, "contact primitive parameter");
+            p->prm[k] = rd_num(r, "contact primitive parameter");
         for (int k = 0; k < 3; ++k)
-            cm->prims[i].motion[k] = rd_num(r, "contact primitive motion");
-        cm->prims[i].amp = rd_inum(r, "contact primitive amplitude", -1, m->namp - 1);
+            p->motion[k] = rd_num(r, "contact primitive motion");
+        for (int k = 0; k < 3; ++k)
+            p->turn[k] = rd_num(r, "contact primitive rotation");
+        for (int k = 0; k < 3; ++k)
+            p->pivot[k] = rd_num(r, "contact primitive pivot");
+        p->amp = rd_inum(r, "contact primitive amplitude", -1, m->namp - 1);
+        p->body = rd_inum(r, "contact primitive body", -1, m->nelem - 1);
+        if (p->body >= 0)
+            for (int k = 0; k < 12; ++k)
+                p->body_ref[k] = rd_num(r, "contact primitive body placement");
     }
     for (int c = 0; c < ns && !r->failed; ++c) {
         bk_contact_set *set = &cm->sets[c];

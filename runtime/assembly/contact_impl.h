@@ -1,0 +1,66 @@
+/* contact_impl.h -- what the contact interaction's files share (private to
+ * assembly/): its scratch, a sample point as the visitor sees it, the visitor
+ * and the point's force (contact_points.c), the output hooks
+ * (contact_output.c). */
+#ifndef BK_CONTACT_IMPL_H
+#define BK_CONTACT_IMPL_H
+
+#include <stdio.h>
+
+#include "assembly/contact_force.h"
+#include "assembly/contact_geometry.h"
+#include "assembly/system.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
+
+/* Scratch of the interaction: one element's force and matrix, the lagged
+ * friction state, the primitives' placements. */
+typedef struct contact_work {
+    double *fe, *Ke;                 /* [maxdof + 7], [(maxdof + 7)^2]: the element's and its body's coordinates */
+    FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
+    int npoint;                      /* sample points of every set */
+    double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, anchor (in z) */
+    double *place;                   /* [BK_CONTACT_PLACEMENT nprim] each primitive's placement at the path point
+                                      * last assembled */
+} contact_work;
+
+/* A sample point as the visitor sees it (each_point). */
+typedef struct point {
+    const bk_contact_set *set;
+    const bk_contact_prim *prim;
+    int c, i, e, k, p;               /* set, member of the set, element, sample, index over every set */
+    const bk_element *et;
+    double wl;                       /* kappa times the point's share of the element's length */
+    double N[BK_MAX_SHAPE], x[3];    /* shape functions, position */
+    double qb[7];                    /* the primitive's body's coordinates (when it has one) */
+    bk_contact_map mp;               /* x in the primitive's reference coordinates, mp.z, with derivatives */
+    double g[13], dist;              /* the primitive's gap at mp.z with derivatives; the section's distance */
+} point;
+
+/* Each primitive's placement at the path point x (the amplitudes' variable). */
+void contact_set_placement(contact_work *w, const bk_model *m, double x);
+
+/* Calls fn(ctx, pt) for every sample point of every set at q (sets, their
+ * elements, their samples, in order), and, when not NULL, element(ctx, pt,
+ * 0) before an element's first point and element(ctx, pt, 1) after its last. */
+void contact_each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
+                        void (*element)(void *, point *, int), void *ctx);
+
+/* Whether point pt feels the contact: within the barrier's reach, or rubbing. */
+int contact_acts(const contact_work *w, const point *pt);
+
+/* Force fp[3] (internal sign) and stiffness Kp[9] of sample point p at z, its
+ * position in the primitive's reference coordinates (g: the gap there). */
+void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *z,
+                         const double *g, double dist, double *fp, double *Kp);
+
+/* The force fv[nv] and (Kv not NULL) stiffness Kv[nv^2] of point pt on its
+ * variables v (mp.nv: the point's position, then its body's coordinates). */
+void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv);
+
+/* The interaction's outputs (interaction.h: tables, rows, summary). */
+int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err);
+void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq);
+int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n);
+
+#endif

@@ -1,0 +1,148 @@
+/* contact_output.c -- the contact interaction's outputs: contacts.csv rows,
+ * summary.json "contact", and the state the tests read (contact_force.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/contact_impl.h"
+#include "assembly/system.h"
+#include "model/amplitude.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
+#include "contact.h"
+
+/* summary.json "contact": the smallest distance of a sample point to its
+ * primitive, the largest penetration (0: none; a state through a surface is
+ * refused), and per set its primitive, the force on the beams and the sample
+ * points within the barrier. */
+int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
+{
+    (void)self;
+    const bk_contact_model *cm = s->m->contact;
+    double F[3 * 64], dmin;
+    int nact[64];
+    if (cm->nset > 64)
+        return -1;
+    bk_contact_state(s, q, F, nact, &dmin);
+    int len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"sets\": [", dmin,
+                       dmin < 0.0 ? -dmin : 0.0);
+    for (int c = 0; c < cm->nset && len > 0 && (size_t)len < n; ++c)
+        len += snprintf(buf + len, n - (size_t)len, "%s{\"primitive\": %d, \"force\": [%.17g, %.17g, %.17g], "
+                        "\"active_points\": %d}", c ? ", " : "", cm->sets[c].prim, F[3 * c], F[3 * c + 1],
+                        F[3 * c + 2], nact[c]);
+    if (len > 0 && (size_t)len < n)
+        len += snprintf(buf + len, n - (size_t)len, "]}");
+    return len > 0 && (size_t)len < n ? 0 : -1;
+}
+
+/* contacts.csv: one row per sample point within a barrier's reach and output
+ * step: step, time (or load factor), set, primitive, element, point, its
+ * position, distance, the normal force, the tangential force, the friction
+ * state (none, stick: slip since the last step below the tolerance, slip) and
+ * the force on the beam there (N). */
+int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
+{
+    (void)s;
+    contact_work *w = self;
+    w->table = bk_tables_open(ts, dir, "contacts.csv", "step,time,set,primitive,element,point,x,y,z,distance,"
+                              "normal_force,tangential_force,state,fx,fy,fz\n", 1, err);
+    return w->table ? 0 : -1;
+}
+
+typedef struct rows {
+    contact_work *w;
+    int step;
+    double t;
+    bk_rowqueue *rq;
+} rows;
+
+static void row_point(void *ctx, point *pt)
+{
+    rows *rw = ctx;
+    contact_work *w = rw->w;
+    const bk_contact_set *set = pt->set;
+    const double *g = pt->g;
+    double b[3], fp[3], Kp[9];
+    const int rubs = set->mu > 0.0 && w->lam[pt->p] > 0.0;
+    if (!(pt->dist > 0.0) || !contact_acts(w, pt))
+        return;
+    double fn = 0.0;
+    if (pt->dist < set->shat) {
+        bk_contact_barrier(pt->dist, set->shat, b);
+        fn = -pt->wl * b[1];
+    }
+    contact_point_terms(w, set, pt->p, pt->wl, pt->mp.z, g, pt->dist, fp, Kp);
+    const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
+    double ft2 = 0.0, slip2 = 0.0, fv[10];
+    for (int r = 0; r < 3; ++r) {                /* split in z, where the normal is g's gradient */
+        const double tr = -fp[r] - fg * g[1 + r], u = pt->mp.z[r] - w->xprev[3 * pt->p + r];
+        ft2 += tr * tr;
+        slip2 += u * u;
+    }
+    bk_contact_chain(&pt->mp, fp, Kp, fv, NULL);
+    bk_row r;
+    bk_row_begin(&r, w->table, rw->rq);
+    bk_row_int(&r, rw->step);
+    bk_row_num(&r, rw->t);
+    bk_row_int(&r, pt->c);
+    bk_row_int(&r, set->prim);
+    bk_row_int(&r, pt->e);
+    bk_row_int(&r, pt->k);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, pt->x[d]);
+    bk_row_num(&r, pt->dist);
+    bk_row_num(&r, fn);
+    bk_row_num(&r, sqrt(ft2));
+    bk_row_str(&r, !rubs ? "none" : sqrt(slip2) < set->slip ? "stick" : "slip");
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, -fv[d]);
+    bk_row_end(&r);
+}
+
+void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
+{
+    contact_work *w = self;
+    rows rw = {.w = w, .step = step, .t = t, .rq = rq};
+    if (w->table)
+        contact_each_point(w, s, q, row_point, NULL, &rw);
+}
+
+/* ---- the state for the outputs and the tests ---- */
+
+typedef struct state {
+    const contact_work *w;
+    double *F, *min_distance;
+    int *nactive;
+} state;
+
+static void state_point(void *ctx, point *pt)
+{
+    state *st = ctx;
+    double fv[10];
+    *st->min_distance = fmin(*st->min_distance, pt->dist);
+    if (!(pt->dist > 0.0) || !contact_acts(st->w, pt))
+        return;
+    contact_point_force(st->w, pt, fv, NULL);
+    for (int r = 0; r < 3; ++r)
+        st->F[3 * pt->c + r] -= fv[r];       /* the force on the beam */
+    if (st->nactive && pt->dist < pt->set->shat)
+        st->nactive[pt->c]++;
+}
+
+void bk_contact_state(const bk_system *s, const double *q, double *F, int *nactive, double *min_distance)
+{
+    const bk_contact_model *cm = s->m->contact;
+    const contact_work *w = NULL;
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &bk_contact_ops)
+            w = s->inter[k].self;
+    *min_distance = INFINITY;
+    for (int c = 0; cm && c < cm->nset; ++c) {
+        F[3 * c] = F[3 * c + 1] = F[3 * c + 2] = 0.0;
+        if (nactive)
+            nactive[c] = 0;
+    }
+    state st = {.w = w, .F = F, .min_distance = min_distance, .nactive = nactive};
+    if (w)
+        contact_each_point(w, s, q, state_point, NULL, &st);
+}

@@ -1,0 +1,135 @@
+/* contact_points.c -- the contact interaction's sample points: where they
+ * are, their distance to their primitive, the barrier's and the lagged
+ * friction's force and stiffness at each (contact_impl.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/contact_impl.h"
+#include "assembly/system.h"
+#include "model/amplitude.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
+#include "contact.h"
+
+/* Each primitive's placement at the path point (the amplitude's variable x). */
+void contact_set_placement(contact_work *w, const bk_model *m, double x)
+{
+    const bk_contact_model *cm = m->contact;
+    for (int i = 0; i < cm->nprim; ++i) {
+        const bk_contact_prim *p = &cm->prims[i];
+        int moves = 0;
+        for (int k = 0; k < 3; ++k)
+            moves |= p->motion[k] != 0.0 || p->turn[k] != 0.0;
+        bk_contact_placement(p, moves ? bk_load_factor(m, p->amp, x) : 0.0, w->place + BK_CONTACT_PLACEMENT * i);
+    }
+}
+
+/* Sample point k of element e at q: its shape functions N and position x;
+ * returns its share of the element's length (see model/contact.h). */
+static double sample(const bk_model *m, int e, const double *qe, int k, int nsample, double *N, double *x)
+{
+    const bk_element *et = bk_elem_type(m, e);
+    const double xi = nsample == 1 ? 0.5 : (double)k / (nsample - 1);
+    et->shape(m->geoms[m->elems[e].geom], xi, 0.0, 0.0, N);
+    x[0] = x[1] = x[2] = 0.0;
+    for (int a = 0; a < et->nshape; ++a)
+        for (int i = 0; i < 3; ++i)
+            x[i] += N[a] * qe[et->shape_dof[a] + i];
+    if (nsample == 1)
+        return 1.0;
+    return (k == 0 || k == nsample - 1 ? 0.5 : 1.0) / (nsample - 1);
+}
+
+/* Force fp[3] (internal sign: what fint gains) and stiffness Kp[9] = dfp/dz of
+ * sample point p at z, the point in the primitive's reference coordinates:
+ * the barrier's and, with friction, the lagged friction's. */
+void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *x,
+                        const double *g, double dist, double *fp, double *Kp)
+{
+    double b[3];
+    memset(fp, 0, 3 * sizeof *fp);
+    memset(Kp, 0, 9 * sizeof *Kp);
+    if (dist < set->shat) {            /* E = wl b(s): dE/dx = wl b' grad g; d2E = wl (b'' grad grad^T + b' H) */
+        bk_contact_barrier(dist, set->shat, b);
+        for (int r = 0; r < 3; ++r) {
+            fp[r] += wl * b[1] * g[1 + r];
+            for (int j = 0; j < 3; ++j)
+                Kp[3 * r + j] += wl * (b[2] * g[1 + r] * g[1 + j] + b[1] * g[4 + 3 * r + j]);
+        }
+    }
+    if (set->mu > 0.0 && w->lam[p] > 0.0) {   /* D = mu lam f0(|u_t|), u_t = P (x - x_prev), P = I - n n^T */
+        const double *n = w->nrm + 3 * p, *xp = w->xprev + 3 * p;
+        double u[3], ut[3], f[4];
+        for (int r = 0; r < 3; ++r)
+            u[r] = x[r] - xp[r];
+        const double un = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+        for (int r = 0; r < 3; ++r)
+            ut[r] = u[r] - un * n[r];
+        const double y = sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
+        double h[2];
+        bk_contact_friction(y, set->slip, f);
+        bk_contact_transition(y, set->slip, h);
+        /* force lam phi(y) u_t / y, phi = mu(y) f1(y), mu(y) = mu_s - (mu_s - mu_k) h(y) */
+        const double mu = set->mu - (set->mu - set->mu_k) * h[0], dmu = -(set->mu - set->mu_k) * h[1];
+        const double py = mu * f[2], dpy = dmu * f[2] + mu * f[3], c = w->lam[p];
+        for (int r = 0; r < 3; ++r) {
+            fp[r] += c * py * ut[r];
+            for (int j = 0; j < 3; ++j)
+                Kp[3 * r + j] += c * (py * ((r == j) - n[r] * n[j]) + (y > 0.0 ? dpy / y * ut[r] * ut[j] : 0.0));
+        }
+    }
+}
+
+
+/* Calls fn(ctx, pt) for every sample point of every set at q (sets, their
+ * elements, their samples, in order), and, when not NULL, element(ctx, pt,
+ * 0) before an element's first point and element(ctx, pt, 1) after its last. */
+void contact_each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
+                       void (*element)(void *, point *, int), void *ctx)
+{
+    const bk_model *m = s->m;
+    const bk_contact_model *cm = m->contact;
+    double qe[BK_MAX_ELEMENT_DOF];
+    point pt;
+    pt.p = 0;
+    for (pt.c = 0; pt.c < cm->nset; ++pt.c) {
+        pt.set = &cm->sets[pt.c];
+        pt.prim = &cm->prims[pt.set->prim];
+        const double *pl = w->place + BK_CONTACT_PLACEMENT * pt.set->prim;
+        if (pt.prim->body >= 0)
+            bk_gather(m, pt.prim->body, q, pt.qb);
+        for (pt.i = 0; pt.i < pt.set->nelem; ++pt.i) {
+            pt.e = pt.set->elems[pt.i];
+            pt.et = bk_elem_type(m, pt.e);
+            const double kl = m->geoms[m->elems[pt.e].geom][BK_GEOM_L] * pt.set->kappa;
+            bk_gather(m, pt.e, q, qe);
+            if (element)
+                element(ctx, &pt, 0);
+            for (pt.k = 0; pt.k < pt.set->nsample; ++pt.k, ++pt.p) {
+                pt.wl = kl * sample(m, pt.e, qe, pt.k, pt.set->nsample, pt.N, pt.x);
+                bk_contact_map_point(pt.prim, pl, pt.qb, pt.x, &pt.mp);
+                bk_contact_gap_ref(pt.prim, pt.mp.z, pt.g);
+                pt.dist = pt.g[0] - pt.set->radius[pt.i];
+                fn(ctx, &pt);
+            }
+            if (element)
+                element(ctx, &pt, 1);
+        }
+    }
+}
+
+/* Whether point pt feels the contact: within the barrier's reach, or rubbing. */
+int contact_acts(const contact_work *w, const point *pt)
+{
+    return pt->dist < pt->set->shat || (pt->set->mu > 0.0 && w->lam[pt->p] > 0.0);
+}
+
+/* The force fv[nv] and (Kv not NULL) stiffness Kv[nv^2] of point pt on its
+ * variables v (mp.nv: the point's position, then its body's coordinates). */
+void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv)
+{
+    double fz[3], Kz[9];
+    contact_point_terms(w, pt->set, pt->p, pt->wl, pt->mp.z, pt->g, pt->dist, fz, Kz);
+    bk_contact_chain(&pt->mp, fz, Kz, fv, Kv);
+}
