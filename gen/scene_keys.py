@@ -48,7 +48,7 @@ INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
            "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
-           "kinetic_friction")
+           "kinetic_friction", "size", "axes", "turn", "pivot", "body")
 
 
 def union(by_type):

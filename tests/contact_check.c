@@ -118,13 +118,44 @@ int main(void)
         et = fmax(et, fabs((sp[0] - sm[0]) / (2 * h) - s[1]) * eps);
         et = fmax(et, fabs(s[0] - z * z * (3 - 2 * z)));
     }
+    /* a body's frame: z = X + R0 R(p)^T (y - r): dz/dv and d2z/dv2 against differences, z = y at the reference */
+    double eJ = 0, eT = 0, eref;
+    {
+        const double R0[9] = {0.36, 0.48, -0.8, -0.8, 0.6, 0.0, 0.48, 0.64, 0.6};   /* a rotation, row-major */
+        double prm[12] = {0.3, -0.2, 0.5}, v[10] = {0.7, 0.1, -0.4, 0.25, -0.15, 0.45, 0.8, 0.3, -0.2, 0.5};
+        double o[333], op[333], om[333], o0[333];
+        memcpy(prm + 3, R0, sizeof R0);
+        bk_contact_body_frame(v, v + 3, prm, o);
+        for (int j = 0; j < 10; ++j) {
+            double vp[10], vm[10], hh = 1e-6;
+            memcpy(vp, v, sizeof v);
+            memcpy(vm, v, sizeof v);
+            vp[j] += hh;
+            vm[j] -= hh;
+            bk_contact_body_frame(vp, vp + 3, prm, op);
+            bk_contact_body_frame(vm, vm + 3, prm, om);
+            for (int k = 0; k < 3; ++k) {
+                eJ = fmax(eJ, fabs((op[k] - om[k]) / (2 * hh) - o[3 + 10 * k + j]));
+                for (int i = 0; i < 10; ++i)
+                    eT = fmax(eT, fabs((op[3 + 10 * k + i] - om[3 + 10 * k + i]) / (2 * hh) -
+                                       o[33 + 100 * k + 10 * i + j]));
+            }
+        }
+        /* the reference: r = X, p the quaternion of R0 (trace form), any y: z = y */
+        const double w = 0.5 * sqrt(1.0 + R0[0] + R0[4] + R0[8]);
+        double ref[10] = {0.1, 0.9, -0.3, prm[0], prm[1], prm[2], w, (R0[7] - R0[5]) / (4 * w),
+                          (R0[2] - R0[6]) / (4 * w), (R0[3] - R0[1]) / (4 * w)};
+        bk_contact_body_frame(ref, ref + 3, prm, o0);
+        eref = fabs(o0[0] - ref[0]) + fabs(o0[1] - ref[1]) + fabs(o0[2] - ref[2]);
+    }
     double t1[2], t2[2];
     bk_contact_transition(eps * (1 + 1e-12), eps, t1);
     bk_contact_transition(2 * eps * (1 - 1e-12), eps, t2);
     printf("gap_grad_err=%.3e gap_hess_err=%.3e closed_err=%.3e hess_sym_err=%.3e barrier_err=%.3e "
            "barrier_at_shat=%.3e,%.3e,%.3e barrier_near_0=%.3e friction_err=%.3e friction_jump=%.3e,%.3e "
-           "friction_f1y_at_0=%.17g transition_err=%.3e transition_ends=%.3e,%.3e\n",
+           "friction_f1y_at_0=%.17g transition_err=%.3e transition_ends=%.3e,%.3e body_J_err=%.3e body_T_err=%.3e "
+           "body_ref_err=%.3e\n",
            eg, eh, eclosed, esym, eb, bl[0], bl[1], bl[2], bz[0], ef, fabs(fl[0] - fr[0]), fabs(fl[1] - fr[1]),
-           f0[2] * eps, et, fabs(t1[0]) + fabs(t1[1]) * eps, fabs(t2[0] - 1) + fabs(t2[1]) * eps);
+           f0[2] * eps, et, fabs(t1[0]) + fabs(t1[1]) * eps, fabs(t2[0] - 1) + fabs(t2[1]) * eps, eJ, eT, eref);
     return 0;
 }

@@ -144,13 +144,21 @@ static double jacobian_error(bk_system *sys, const double *q0)
 
 static void check_jacobians(void)
 {
-    const char *names[3] = {"jacobian_half_space", "jacobian_sphere", "jacobian_capsule"};
-    bk_contact_prim prims[3] = {
+    const char *names[5] = {"jacobian_half_space", "jacobian_sphere", "jacobian_capsule", "jacobian_box",
+                            "jacobian_turned_capsule"};
+    /* the box's x faces at 0.05 and 0.95: the chain's ends (x = 0, 1) feel its edges, the rest its top; the
+     * turned capsule is the capsule turned by 0.3 rad about z through (0.5, 0, -0.1) and moved 1 cm along y
+     * (at the factor 1 of the residual) */
+    bk_contact_prim prims[5] = {
         {.shape = BK_CONTACT_HALF_SPACE, .prm = {0.0, 0.0, 1.0, 0.0}, .amp = -1, .body = -1},
         {.shape = BK_CONTACT_SPHERE, .prm = {0.5, 0.0, -0.3, 0.3}, .amp = -1, .body = -1},
         {.shape = BK_CONTACT_CAPSULE, .prm = {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}, .amp = -1, .body = -1},
+        {.shape = BK_CONTACT_BOX, .prm = {0.5, 0.0, -0.1, 0.45, 0.3, 0.1, 1, 0, 0, 0, 1, 0, 0, 0, 1}, .amp = -1,
+         .body = -1},
+        {.shape = BK_CONTACT_CAPSULE, .prm = {0.2, -0.5, -0.1, 0.8, 0.5, -0.1, 0.1}, .turn = {0.0, 0.0, 0.3},
+         .pivot = {0.5, 0.0, -0.1}, .motion = {0.0, 0.01, 0.0}, .amp = -1, .body = -1},
     };
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 5; ++c) {
         scene s;
         build(&s, 0.0, 100.0, prims[c], 0.01, 0.05, 1e3);
         double q[3 * NN];

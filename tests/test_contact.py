@@ -25,7 +25,8 @@ def results():
 
 
 def test_jacobian_matches_differences_of_the_residual():
-    for case in ("jacobian_half_space", "jacobian_sphere", "jacobian_capsule"):
+    for case in ("jacobian_half_space", "jacobian_sphere", "jacobian_capsule", "jacobian_box",
+                 "jacobian_turned_capsule"):
         d = results()[case]
         assert int(d["active"]) > 0 and float(d["min_distance"]) > 0, (case, d)   # the barrier acts
         assert float(d["err"]) < 1e-6, (case, d)

@@ -53,3 +53,10 @@ def test_static_to_kinetic_step_is_c1_and_matches_its_closed_form():
     assert float(d["transition_err"]) < 1e-6, d          # h' against differences; h against 3 z^2 - 2 z^3
     a, b = (float(v) for v in d["transition_ends"].split(","))
     assert a < 1e-9 and b < 1e-9, d                      # h = 0, h' = 0 at eps; h = 1, h' = 0 at 2 eps
+
+
+def test_a_body_frame_map_has_the_derivatives_of_its_differences_and_is_the_identity_in_the_reference():
+    d = results()
+    assert float(d["body_J_err"]) < 1e-8, d              # dz/dv against central differences of z
+    assert float(d["body_T_err"]) < 1e-7, d              # d2z/dv2 against differences of dz/dv
+    assert float(d["body_ref_err"]) < 1e-14, d           # at r = X, p = quaternion of R0: z = y

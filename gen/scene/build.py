@@ -86,7 +86,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
                              "tendons")
     length_scale = max([b["length"] for b in mesh.beams.values()] +
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
-    contact_prims, contact_sets = contacts(ctx, doc, mesh.beams, length_scale, amps, analysis)
+    contact_prims, contact_sets = contacts(ctx, doc, mesh.beams, length_scale, amps, analysis, mesh.bodies)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
         "contact_prims": contact_prims, "contact_sets": contact_sets,

@@ -1,11 +1,14 @@
 """[[contact]] tables: rigid primitives the beams may touch (issue 34, first
-part): half-spaces, spheres and capsules fixed in space, frictionless barrier
+part): half-spaces, spheres, capsules and boxes, fixed, moved (translated and
+turned) by an amplitude, or parts of a rigid body; barrier
 contact of the beams' centrelines swept by their sections
 (runtime/assembly/contact_force.c; the model file's contact records).
 
-Keys: shape (half_space, sphere, capsule); normal and point (half_space: the
+Keys: shape (half_space, sphere, capsule, box); normal and point (half_space: the
 solid is where (x - point) . normal < 0); center, radius (sphere); a, b,
-radius (capsule); beams (names; default every beam); distance (the barrier's
+radius (capsule); center, size (edge lengths), axes ([x axis, y axis]; box);
+turn (a rotation vector, rad, times the amplitude's factor) about pivot
+(default the primitive's centre); body (the name of a [[body]] it belongs to); beams (names; default every beam); distance (the barrier's
 reach, m; default 1e-3 of the model length); stiffness (the barrier's, N/m per
 metre of beam; default 1000 times the heaviest contacting beam's weight per
 metre over the reach); samples (points per element, ends included, default
@@ -21,9 +24,10 @@ import gen.scene_keys as K
 from gen.scene.values import _dot, _norm, _scale, _sub, check_keys, get_array_of_tables, get_int, get_number, get_str, \
     get_vec3
 
-SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "capsule": ("a", "b", "radius")}
+SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "capsule": ("a", "b", "radius"),
+          "box": ("center", "size", "axes")}
 KEYS = K.CONTACT
-CODE = {"half_space": 0, "sphere": 1, "capsule": 2}
+CODE = {"half_space": 0, "sphere": 1, "capsule": 2, "box": 3}
 GRAVITY = 9.81
 
 
@@ -40,10 +44,35 @@ def _primitive(ctx, ct, where, shape):
     if shape == "sphere":
         c = get_vec3(ctx, ct, "center", where)
         return CODE[shape], c + [get_number(ctx, ct, "radius", where, positive=True), 0.0, 0.0, 0.0]
+    if shape == "box":
+        c = get_vec3(ctx, ct, "center", where)
+        size = get_vec3(ctx, ct, "size", where)
+        if not all(s > 0.0 for s in size):
+            ctx.fail(f"{where}.size", f"expected three positive edge lengths (got {size!r})")
+        return CODE[shape], c + [s / 2.0 for s in size] + sum(_axes(ctx, ct, where), [])
     a, b = get_vec3(ctx, ct, "a", where), get_vec3(ctx, ct, "b", where)
     if not _norm(_sub(b, a)) > 0.0:
         ctx.fail(f"{where}.b", f"expected an end other than a = {a!r} (a capsule of zero length)")
     return CODE[shape], a + b + [get_number(ctx, ct, "radius", where, positive=True)]
+
+
+def _axes(ctx, ct, where):
+    """A box's axes (rows): `axes` = [x axis, y axis] (orthogonalized, the
+    third their cross product), default the global axes."""
+    if "axes" not in ct:
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    ax = ct["axes"]
+    if not (isinstance(ax, list) and len(ax) == 2):
+        ctx.fail(f"{where}.axes", "expected two vectors [[x axis], [y axis]] (the box's edges' directions)")
+    e1 = get_vec3(ctx, {"x": ax[0]}, "x", f"{where}.axes[0]", nonzero=True)
+    e2 = get_vec3(ctx, {"y": ax[1]}, "y", f"{where}.axes[1]", nonzero=True)
+    e1 = _scale(e1, 1.0 / _norm(e1))
+    e2 = _sub(e2, _scale(e1, _dot(e1, e2)))
+    if not _norm(e2) > 1e-9:
+        ctx.fail(f"{where}.axes", "expected two axes that are not parallel")
+    e2 = _scale(e2, 1.0 / _norm(e2))
+    e3 = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    return [e1, e2, e3]
 
 
 def _distance(code, prm, x):
@@ -52,6 +81,13 @@ def _distance(code, prm, x):
         return _dot(prm[:3], x) - prm[3]
     if code == 1:
         return _norm(_sub(x, prm[:3])) - prm[3]
+    if code == 3:
+        c, h, A = prm[:3], prm[3:6], [prm[6:9], prm[9:12], prm[12:15]]
+        w = [_dot(A[k], _sub(x, c)) for k in range(3)]
+        out = [max(abs(w[k]) - h[k], 0.0) for k in range(3)]
+        if any(out):
+            return _norm(out)
+        return -min(h[k] - abs(w[k]) for k in range(3))
     a, b = prm[:3], prm[3:6]
     e = _sub(b, a)
     t = min(max(_dot(_sub(x, a), e) / _dot(e, e), 0.0), 1.0)
@@ -82,9 +118,43 @@ def _weight_per_length(doc, name, sec):
     return rho * area * GRAVITY
 
 
-def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
+def _pivot(code, prm):
+    """The point a primitive turns about by default: its centre (a capsule's
+    middle, a half-space's point nearest the origin)."""
+    if code == 0:
+        return _scale(prm[:3], prm[3])
+    if code == 2:
+        return [(prm[i] + prm[3 + i]) / 2.0 for i in range(3)]
+    return prm[:3]
+
+
+def _placement(ctx, ct, where, code, prm, amps, analysis, bodies):
+    """(motion, turn, pivot, amplitude, body element, body reference [X, R0 row-major]) of a primitive."""
+    motion = get_vec3(ctx, ct, "motion", where, default=[0.0, 0.0, 0.0])
+    turn = get_vec3(ctx, ct, "turn", where, default=[0.0, 0.0, 0.0])
+    pivot = get_vec3(ctx, ct, "pivot", where, default=_pivot(code, prm))
+    amp = amps.ref(ct, "amplitude", where) if amps is not None else -1
+    moves = any(motion) or any(turn)
+    if "amplitude" in ct and not moves:
+        ctx.fail(f"{where}.amplitude", "expected with `motion` or `turn` (the amplitude scales the primitive's motion)")
+    if moves and analysis == "dynamic" and amp < 0:
+        ctx.fail(f"{where}.amplitude", "missing; a moving primitive in dynamics needs an amplitude (a ramp, ...) "
+                                       "of its motion")
+    if "body" not in ct:
+        return motion, turn, pivot, amp, -1, []
+    name = ct["body"]
+    if not isinstance(name, str) or name not in bodies:
+        ctx.fail(f"{where}.body", f"expected the name of a [[body]] (bodies: {', '.join(bodies) or 'none'})")
+    for k in ("motion", "turn", "amplitude"):
+        if k in ct:
+            ctx.fail(f"{where}.{k}", "a primitive of a body moves with the body (drive the body instead)")
+    b = bodies[name]
+    return motion, turn, pivot, amp, b["elem"], list(b["X"]) + [b["R"][i][j] for i in range(3) for j in range(3)]
+
+
+def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static", bodies=None):
     """(prims, sets) of the model file's contact records: prims [(code, prm,
-    motion, amplitude)],
+    (motion, turn, pivot, amplitude, body, body reference))],
     sets [(prim, reach, stiffness, friction, slip, samples, [(element, radius)])]."""
     prims, sets = [], []
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "contact")):
@@ -93,13 +163,7 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
         mu_s, mu_k = _friction(ctx, ct, where)
         shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
         code, prm = _primitive(ctx, ct, where, shape)
-        motion = get_vec3(ctx, ct, "motion", where, default=[0.0, 0.0, 0.0])
-        amp = amps.ref(ct, "amplitude", where) if amps is not None else -1
-        if "amplitude" in ct and not any(motion):
-            ctx.fail(f"{where}.amplitude", "expected with `motion` (the amplitude scales the primitive's motion)")
-        if any(motion) and analysis == "dynamic" and amp < 0:
-            ctx.fail(f"{where}.amplitude", "missing; a moving primitive in dynamics needs an amplitude (a ramp, ...) "
-                                           "of its motion")
+        place = _placement(ctx, ct, where, code, prm, amps, analysis, bodies or {})
         names = ct.get("beams", list(beams))
         if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
             ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
@@ -126,7 +190,7 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static"):
                         ctx.fail(where, f"beam {n!r} element {k} starts {depth:.6g} m into the {shape} "
                                         f"(its sections must start clear of it: move the beam or the {shape})")
                 members.append((beam["first_elem"] + k, r))
-        prims.append((code, prm, motion, amp))
+        prims.append((code, prm, place))
         sets.append((len(prims) - 1, reach, kappa, (mu_s, mu_k), slip, samples, members))
     return prims, sets
 
@@ -136,8 +200,7 @@ def contact_records(prims, sets, fmt):
     primitive (its motion and amplitude after the parameters), a 'cset PRIM
     REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ...' per set."""
     out = [f"contacts {len(prims)} {len(sets)}"]
-    for code, prm, motion, amp in prims:
-        turn, pivot, body, ref = [0.0] * 3, [0.0] * 3, -1, []
+    for code, prm, (motion, turn, pivot, amp, body, ref) in prims:
         out.append("prim " + str(code) + " " + " ".join(fmt(v) for v in prm + [0.0] * (15 - len(prm)) + motion + turn +
                                                          pivot) + f" {amp} {body}" + "".join(" " + fmt(v) for v in ref))
     for p, reach, kappa, (mu_s, mu_k), slip, samples, members in sets:

@@ -1,0 +1,67 @@
+"""Contact with primitives that are not fixed spheres, capsules or planes
+(gen/scene/contact.py; runtime/assembly/contact_geometry.c) against closed
+forms: a sphere that belongs to a rigid body (models/contact_ball_on_cantilever.toml)
+passes the body's whole weight to the beam it rests on, and the beam's tip
+sags by the cantilever's closed form; a narrow box as the prop of a
+propped cantilever carries 3 q L / 8 like the ball of
+models/contact_propped_cantilever.toml, and so does the same box given
+tilted by 0.2 rad and 1 mm low, turned level about its centre (`turn`) and
+lifted (`motion`) by the load factor.""" 
+import math
+
+from test_contact_scenes import _contact, out_dir, run_scene_expect_error
+from util import ROOT, run_scene
+
+Q, L, EI = 2700.0 * 1e-4 * 9.81, 1.0, 7.0e10 * 0.01 ** 4 / 12
+
+
+def test_a_ball_body_on_a_cantilever_passes_its_weight_and_bends_it_by_the_closed_form():
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_ball_on_cantilever.toml", out=out)
+    c = _contact(s)
+    P = 0.2 * 9.81
+    fz = c["sets"][0]["force"][2]
+    assert abs(-fz / P - 1) < 1e-9, fz                      # the body's vertical balance: all through the contact
+    import csv
+    with open(out / "sensors.csv", newline="") as fh:
+        tip = [r for r in csv.DictReader(fh) if r["sensor"] == "tip"][-1]
+    ref = P * L ** 3 / (3 * EI) + Q * L ** 4 / (8 * EI)
+    assert abs(-float(tip["uz"]) / ref - 1) < 1e-3, (tip["uz"], ref)
+
+
+def _box_prop(extra, drop=0.0):
+    """The propped cantilever with a box (4 mm along the beam) for the ball,
+    its top where the ball's was (lowered by `drop` in the reference)."""
+    text = (ROOT / "models" / "contact_propped_cantilever.toml").read_text()
+    ball = 'shape = "sphere"\ncenter = [1.0, 0.0, -0.015001]\nradius = 0.01\n'
+    assert ball in text
+    p = out_dir() / "box.toml"
+    p.write_text(text.replace(ball, f'shape = "box"\ncenter = [1.0, 0.0, {-0.015001 - drop!r}]\n'
+                                    'size = [0.004, 0.05, 0.02]\n' + extra))
+    return run_scene(p)[0]
+
+
+def test_a_narrow_box_props_a_cantilever_with_three_eighths_of_the_load():
+    fz = _contact(_box_prop(""))["sets"][0]["force"][2]
+    assert abs(fz / (3 * Q * L / 8) - 1) < 5e-3, fz
+
+
+def test_a_tilted_box_turned_level_by_the_load_factor_props_it_the_same():
+    th, drop = 0.2, 0.001
+    extra = (f"axes = [[{math.cos(th)!r}, 0.0, {-math.sin(th)!r}], [0.0, 1.0, 0.0]]\n"
+             f"turn = [0.0, {-th!r}, 0.0]\nmotion = [0.0, 0.0, {drop!r}]\n")
+    fz = _contact(_box_prop(extra, drop))["sets"][0]["force"][2]
+    assert abs(fz / (3 * Q * L / 8) - 1) < 5e-3, fz
+
+
+def test_bad_primitives_are_one_clear_line():
+    text = (ROOT / "models" / "contact_ball_on_cantilever.toml").read_text()
+    for old, new, msg in (('body = "ball"', 'body = "bowl"', "contact[0].body: expected the name of a [[body]]"),
+                          ('body = "ball"', 'body = "ball"\nmotion = [0.0, 0.0, 0.1]',
+                           "contact[0].motion: a primitive of a body moves with the body"),
+                          ('radius = 0.02', 'size = [0.1, 0.0, 0.1]', "contact[0].size: not a key of a sphere"),
+                          ('shape = "sphere"', 'shape = "box"\nsize = [0.1, 0.0, 0.1]',
+                           "contact[0].radius: not a key of a box")):
+        p = out_dir() / "bad.toml"
+        p.write_text(text.replace(old, new))
+        assert msg in run_scene_expect_error(p)
