@@ -65,3 +65,53 @@ def test_bad_primitives_are_one_clear_line():
         p = out_dir() / "bad.toml"
         p.write_text(text.replace(old, new))
         assert msg in run_scene_expect_error(p)
+
+
+PVSCRIPT = r"""
+import json, sys
+import numpy as np
+from paraview.simple import PVDReader
+from paraview import servermanager as sm
+from vtk.numpy_interface import dataset_adapter as dsa
+reader = PVDReader(FileName=sys.argv[1])
+out = {"times": list(reader.TimestepValues), "frames": []}
+for t in reader.TimestepValues:
+    reader.UpdatePipeline(t)
+    d = dsa.WrapDataObject(sm.Fetch(reader))
+    out["frames"].append({"points": np.asarray(d.Points).tolist() if d.GetNumberOfPoints() else [],
+                          "force": np.asarray(d.PointData["force"]).tolist() if d.GetNumberOfPoints() else [],
+                          "normal_force": np.asarray(d.PointData["normal_force"]).tolist()
+                          if d.GetNumberOfPoints() else []})
+json.dump(out, open(sys.argv[2], "w"))
+"""
+
+
+def test_contact_points_and_forces_are_in_the_paraview_frames():
+    """contacts.pvd (one contacts_NNNNNN.vtp per step_NNNNNN.vtu frame) read by
+    ParaView's pvpython: the load factors of the frames; in the last the
+    contact points' forces sum to summary.json's force on the beam and their
+    points are those of contacts.csv."""
+    import csv
+    import json
+    import shutil
+    import subprocess
+    pvpython = shutil.which("pvpython")
+    assert pvpython, "pvpython not found: ./build.sh deps installs the Debian package paraview"
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_ball_on_cantilever.toml", out=out)
+    script, dump = out / "read_contacts.py", out / "contacts.json"
+    script.write_text(PVSCRIPT)
+    r = subprocess.run([pvpython, str(script), str(out / "contacts.pvd"), str(dump)], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    data = json.loads(dump.read_text())
+    assert data["times"] == [0.0, 0.25, 0.5, 0.875, 1.0], data["times"]
+    last = data["frames"][-1]
+    total = [sum(f[k] for f in last["force"]) for k in range(3)]
+    ref = s["contact"]["sets"][0]["force"]
+    assert all(abs(a - b) <= 1e-8 * 2.0 for a, b in zip(total, ref)), (total, ref)
+    with open(out / "contacts.csv", newline="") as fh:
+        rows = [r for r in csv.DictReader(fh) if r["step"] == "4"]
+    assert len(rows) == len(last["points"]) >= 1
+    for row, p in zip(rows, last["points"]):
+        assert all(abs(float(row[k]) - v) < 1e-8 for k, v in zip("xyz", p)), (row, p)

@@ -42,7 +42,11 @@ int bk_contact_make(bk_system *s, void **self)
 static void contact_free(void *self)
 {
     contact_work *w = self;
+    if (w && w->nframe > 0)
+        contact_pvd(w);                  /* the collection complete (a failure was reported with the frames) */
     if (w) {
+        free(w->frames);
+        free(w->times);
         free(w->fe);
         free(w->Ke);
         free(w->lam);
@@ -258,6 +262,7 @@ static double contact_step_limit(void *self, const bk_system *s, const double *q
 
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
                                            .step_limit = contact_step_limit, .accept = contact_accept,
-                                           .tables = contact_tables, .rows = contact_rows, .summary_key = "contact",
+                                           .tables = contact_tables, .rows = contact_rows, .frame = contact_frame,
+                                           .summary_key = "contact",
                                            .summary = contact_summary, .free = contact_free};
 

@@ -22,6 +22,11 @@ typedef struct contact_work {
     double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, anchor (in z) */
     double *place;                   /* [BK_CONTACT_PLACEMENT nprim] each primitive's placement at the path point
                                       * last assembled */
+    int nframe, cap;                 /* ParaView frames written (contacts_NNNNNN.vtp) and room for */
+    int *frames;                     /* [cap] their numbers */
+    double *times;                   /* [cap] their times or load factors */
+    char dir[1024];                  /* where they are */
+    double t_pvd;                    /* wall clock of the last contacts.pvd */
 } contact_work;
 
 /* A sample point as the visitor sees it (each_point). */
@@ -58,7 +63,10 @@ void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p
  * variables v (mp.nv: the point's position, then its body's coordinates). */
 void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv);
 
-/* The interaction's outputs (interaction.h: tables, rows, summary). */
+/* The interaction's outputs (interaction.h: tables, rows, frame, summary;
+ * contact_pvd: contacts.pvd, the collection of the frames so far). */
+int contact_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
+int contact_pvd(contact_work *w);
 int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err);
 void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq);
 int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n);

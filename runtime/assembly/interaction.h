@@ -21,10 +21,14 @@
  *               in the output directory dir; 0, or -1 with a message on err.
  *   rows        (optional) its rows of an output step (step, t: the time or
  *               the load factor) at q, through the rows' queue rq (csvrow.h).
+ *   frame       (optional) its part of ParaView frame number `frame` (time or
+ *               load factor t) at q: files of its own in dir next to the
+ *               frame's step_NNNNNN.vtu; 0, or -1 with a message on err.
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
- *   free        (optional) frees its own data.
+ *   free        (optional) frees its own data (and completes the files its
+ *               frames began: a collection of them).
  * The constraint rows (multipliers) are not interactions: constraints.c. */
 #ifndef BK_INTERACTION_H
 #define BK_INTERACTION_H
@@ -52,6 +56,8 @@ typedef struct bk_interaction_ops {
     void (*accept)(void *self, const struct bk_system *s, const double *q, const bk_path *p);
     int (*tables)(void *self, const struct bk_system *s, struct bk_tables *ts, const char *dir, FILE *err);
     void (*rows)(void *self, const struct bk_system *s, int step, double t, const double *q, struct bk_rowqueue *rq);
+    int (*frame)(void *self, const struct bk_system *s, const char *dir, int frame, double t, const double *q,
+                 FILE *err);
     const char *summary_key;
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
@@ -74,6 +80,8 @@ int bk_assemble_interactions(struct bk_system *s, const double *q, const bk_path
 /* The smallest step limit of the interactions for the correction dx (1 when
  * none limits it). */
 double bk_interactions_step_limit(const struct bk_system *s, const double *q, const double *dx);
+/* Every interaction's frame (see frame above); 0, or -1 when one failed. */
+int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
 /* Every interaction's accept after an accepted state. */
 void bk_interactions_accept(const struct bk_system *s, const double *q, const bk_path *p);
 

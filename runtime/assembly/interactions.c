@@ -120,3 +120,12 @@ void bk_interactions_accept(const bk_system *s, const double *q, const bk_path *
         if (s->inter[k].ops->accept)
             s->inter[k].ops->accept(s->inter[k].self, s, q, p);
 }
+
+int bk_interactions_frame(const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err)
+{
+    int bad = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops->frame)
+            bad |= s->inter[k].ops->frame(s->inter[k].self, s, dir, frame, t, q, err) != 0;
+    return bad ? -1 : 0;
+}

@@ -146,7 +146,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
-        bk_vtk_frame(&o->vtk, NULL, -step, t, q);
+        bk_vtk_frame(&o->vtk, o->sys, -step, t, q);
     rows_to_writer(o);
     spent(o, t0);
 }
@@ -167,7 +167,7 @@ void bk_output_final(bk_output *o, int step, double t, const double *q)
 void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
-    bk_vtk_frame(&o->vtk, NULL, step, t, q);
+    bk_vtk_frame(&o->vtk, o->sys, step, t, q);
     rows_to_writer(o);
     if (!o->sensors) {
         spent(o, t0);
@@ -198,6 +198,7 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
                       const double *qdd, const double *nu)
 {
     double t0 = bk_clock_s();
+    o->sys = s;
     if (o->forces_calls == 0)            /* the interactions' tables, at the first output step */
         for (int k = 0; k < s->ninter; ++k) {
             const bk_interaction *it = &s->inter[k];

@@ -33,6 +33,7 @@ typedef struct bk_output {
     bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
     int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
     int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
+    const bk_system *sys;    /* the system of the last bk_output_forces: its interactions add to the frames */
     bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
 } bk_output;
 

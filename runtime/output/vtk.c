@@ -423,7 +423,6 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
 
 int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double *q)
 {
-    (void)s;
     if (v->every <= 0)
         return 0;
     if (v->calls++ % v->every != 0 && step >= 0)
@@ -453,6 +452,8 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     maybe_background(v, frac);
     static const char *const names[] = {"TIME"};
     if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
+        return -1;
+    if (s && bk_interactions_frame(s, v->dir, frame, t, q, stderr) != 0)     /* contact points, ... */
         return -1;
     v->times[v->nframe] = t;
     v->frames[v->nframe] = frame;
