@@ -102,6 +102,7 @@ def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
         if set(f) != {"r", "p"}:
             ctx.fail(f"{where}.b", "a rigid beam-to-beam joint needs gef-family nodes (position and quaternion) "
                      f"at both points; {name} has fields {sorted(f)}")
+    rows.side = list(fa["r"]) + list(fa["p"])                 # the reaction on beam a (as `fixed`)
     for i in range(3):
         rows.row([(fa["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
     pa0 = [q0[d] for d in fa["p"]]

@@ -262,6 +262,19 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
     }
 }
 
+/* The joint point of frame a of a joint nonlinear in q at xj: o_a = r_a + R(p_a/|p_a|) c_a
+ * (bk_joint.h). */
+static void joint_point(const double *xj, const double *prm, double *o)
+{
+    const double *p = xj + 3, *c = prm;
+    double n = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+    double w = p[0], v[3] = {p[1], p[2], p[3]};
+    double vc[3] = {v[1] * c[2] - v[2] * c[1], v[2] * c[0] - v[0] * c[2], v[0] * c[1] - v[1] * c[0]};
+    double vvc[3] = {v[1] * vc[2] - v[2] * vc[1], v[2] * vc[0] - v[0] * vc[2], v[0] * vc[1] - v[1] * vc[0]};
+    for (int i = 0; i < 3; ++i)                 /* R c = c + 2 (w v x c + v x (v x c)) / |p|^2 */
+        o[i] = xj[i] + c[i] + 2.0 * (w * vc[i] + vvc[i]) / n;
+}
+
 static void write_reactions(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *nu)
 {
     const bk_model *m = s->m;
@@ -269,6 +282,13 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
         const bk_reaction *rc = &m->reactions[c];
         double x0[3], F[3] = {0.0, 0.0, 0.0}, M[3] = {0.0, 0.0, 0.0};
         bk_eval_point(m, q, rc->elem, rc->xi, x0, NULL);
+        if (rc->nlcon >= 0) {             /* about the joint point of frame a */
+            const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+            double xj[7];
+            for (int i = 0; i < 7; ++i)
+                xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
+            joint_point(xj, jc->prm, x0);
+        }
         for (int k = 0; k < rc->nfixed; ++k)
             bk_forces_map_dof(f, q, rc->fixed[k], f->res[rc->fixed[k]], x0, F, M);
         for (int k = 0; k < rc->nlin; ++k) {

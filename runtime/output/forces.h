@@ -16,7 +16,8 @@
  * Reactions: per [[constraint]], R = f_int - f_ext (+ M q'' + damping +
  * rotary inertia in dynamics) at the DOFs it holds fixed, and -s G^T nu for its
  * linear constraints: the force and moment the support exerts on the
- * structure (on body a for a joint between bodies), about the constraint point.
+ * structure (on body a for a joint between bodies), about the constraint point
+ * (a joint nonlinear in q: about its joint point on frame a, r_a + R_a c_a).
  * Section forces: at each element end, from the element's nodal forces
  * g_e = f_int,e (+ inertia, damping) - (the loads the element carries itself):
  * at the start node n = -F, m = -M (the action of the part before on the part
