@@ -94,7 +94,9 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
     }
     if (m->nreaction > 0 &&
         !(f->reactions = bk_tables_open(ts, dir, "reactions.csv",
-                                        "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
+                                        "step,time,constraint,name,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
+        return -1;
+    if (bk_joints_open(f, m, dir, ts, err) != 0)
         return -1;
     if (m->nsection > 0 && bk_model_on_path(m) &&
         !(f->sections = bk_tables_open(ts, dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,"
@@ -105,7 +107,8 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
 
 void bk_forces_close(bk_forces *f)
 {
-    f->reactions = f->sections = NULL;   /* the run's tables close them */
+    f->reactions = f->sections = f->joints = NULL;   /* the run's tables close them */
+    free(f->jstate);
     free(f->fld);
     free(f->kind);
     free(f->comp);
@@ -305,10 +308,11 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
         }
         if (rc->nlcon >= 0) {             /* a joint nonlinear in q: -s G^T nu on frame a's (r, p) */
             const bk_nlcon *jc = &m->nlcons[rc->nlcon];
-            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
             for (int i = 0; i < BK_JOINT_NX; ++i)
                 xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
-            jc->kind->eval(xj, jc->prm, g, G);
+            bk_joint_params(jc, x, 0, prm);
+            jc->kind->eval(xj, prm, g, G);
             const int row0 = s->jrow[rc->nlcon];
             for (int i = 0; i < 7; ++i) {
                 const int d = jc->dof[i];
@@ -329,6 +333,7 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
             bk_row_int(&r, step);
             bk_row_num(&r, x);
             bk_row_int(&r, rc->index);
+            bk_row_str(&r, rc->name);
             bk_row_str(&r, rc->type);
             bk_row_str(&r, rc->at);
             for (int i = 0; i < 9; ++i)
@@ -348,6 +353,7 @@ void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double
         if (f->nrelem > 0)
             full_residual(f, s, x, q, qd, qdd);
         write_reactions(f, s, step, x, q, nu);
+        bk_joints_step(f, step, x, q, qd);
     }
     if (f->sections && with_sections)
         bk_forces_sections(f, s, step, x, q, qd, qdd);
@@ -369,8 +375,8 @@ void bk_forces_summary(const bk_forces *f, FILE *fp)
     for (int c = 0; c < f->m->nreaction; ++c) {
         const bk_reaction *rc = &f->m->reactions[c];
         const double *L = f->last[c];
-        fprintf(fp, "%s\n    {\"constraint\": %d, \"type\": \"%s\", \"at\": \"%s\", \"point\": [", c ? "," : "",
-                rc->index, rc->type, rc->at);
+        fprintf(fp, "%s\n    {\"constraint\": %d, \"name\": \"%s\", \"type\": \"%s\", \"at\": \"%s\", \"point\": [",
+                c ? "," : "", rc->index, rc->name, rc->type, rc->at);
         for (int i = 0; i < 3; ++i)
             json_num(fp, L[6 + i]), fprintf(fp, i < 2 ? ", " : "], \"force\": [");
         for (int i = 0; i < 3; ++i)
@@ -379,4 +385,5 @@ void bk_forces_summary(const bk_forces *f, FILE *fp)
             json_num(fp, L[3 + i]), fprintf(fp, i < 2 ? ", " : "]}");
     }
     fprintf(fp, "\n  ],\n");
+    bk_joints_summary(f, fp);
 }
