@@ -184,3 +184,20 @@ at = "disc"
     Mz = np.array([float(r["Mz"]) for r in rows])
     ref = 0.1 * cs(t, 2)
     assert np.abs(Mz - ref)[1:].max() < 1e-3 * np.abs(ref).max(), np.abs(Mz - ref).max()
+
+
+def test_bad_driven_joints_one_line_each():
+    """A driven joint with a zero axis, a drive amplitude without its distance, two
+    constraints of one name, a name with a space, a spline of one point: one error line
+    naming the key, exit 1."""
+    from test_bad_input import check_error
+    base = (ROOT / "models" / "two_link_arm.toml").read_text()
+    check_error(base.replace('axis = [0.0, 0.0, 1.0]\nangle = -0.9', 'axis = [0.0, 0.0, 0.0]\nangle = -0.9'),
+                "constraint[1].axis", "nonzero|zero")
+    check_error(base.replace('name = "elbow"', 'name = "shoulder"'), "constraint[1].name", "two constraints")
+    check_error(base.replace('name = "elbow"', 'name = "the elbow"'), "constraint[1].name", "letters, digits")
+    check_error(base.replace('type = "cycloidal"\nt0 = 0.0\nt1 = 1.0', 'type = "spline"\npoints = [[0.0, 1.0]]'),
+                "amplitude.move.points", "at least 2 points")
+    check_error(base.replace('angle = -0.9\n', '').replace('angle_amplitude = "move"\n\n[[load]]',
+                                                             'distance_amplitude = "move"\n\n[[load]]'),
+                "constraint[1].distance_amplitude", "unknown key")
