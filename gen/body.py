@@ -27,6 +27,17 @@ the same point and axes (the joint axis is the third).  With R = R(p/|p|):
 (the orientation rows hold the relative rotation at its reference value, to
 first order exactly; they are gauge invariant in p).  Each type gives g(x), its
 Jacobian G = dg/dx and the Hessian term H = sum_k nu_k d2 g_k / dx2.
+
+Driven joints: frame a moved relative to frame b by a prescribed function of
+time; prm[24], prm[25] = (c, s) are filled by the runtime at each time, and the
+last row is linear and homogeneous in them, so that its k-th time derivative
+is the same row with (c, s) replaced by their k-th derivatives:
+  prescribed_rotation     d = 0, u_1.v_3 = u_2.v_3 = 0,
+                          c (v_2.u_1) - s (v_1.u_1) = 0          (6), c, s = cos th, sin th:
+                          a turned about axis 3 by th relative to b (sin(phi - th) = 0)
+  prescribed_translation  u_2.v_3 = u_3.v_1 = u_1.v_2 = 0, d.u_1 = d.u_2 = 0,
+                          -c d.u_3 - s = 0                       (6), c, s = 1, x:
+                          a moved along axis 3 by x relative to b (d = o_b - o_a)
 """
 import sympy as sp
 
@@ -35,7 +46,8 @@ from gen.rod import _sym, _syms, rotation
 from gen.rod_inertia import rotary_node_program
 
 NX = 14
-NPARAM = 24
+NPARAM = 26
+NDRIVE = 2          # prm[24], prm[25]: the drive's (c, s) at the time (driven joints)
 
 
 def _frames(x, prm):
@@ -67,14 +79,22 @@ def joint_rows(name, x, prm):
         return list(d) + _orientation(u, v)
     if name == "prismatic":
         return _orientation(u, v) + [d.dot(u[0]), d.dot(u[1])]
+    c, s = prm[24], prm[25]
+    if name == "prescribed_rotation":
+        return list(d) + [u[0].dot(v[2]), u[1].dot(v[2]), c * v[1].dot(u[0]) - s * v[0].dot(u[0])]
+    if name == "prescribed_translation":
+        return _orientation(u, v) + [d.dot(u[0]), d.dot(u[1]), -c * d.dot(u[2]) - s]
     raise KeyError(name)
 
 
-JOINT_TYPES = ("spherical", "revolute", "universal", "fixed", "prismatic")
+JOINT_TYPES = ("spherical", "revolute", "universal", "fixed", "prismatic", "prescribed_rotation",
+               "prescribed_translation")
+DRIVEN = {"prescribed_rotation": 1, "prescribed_translation": 2}   # bk_joint_kind.driven
 
 
 def joint_nrow(name):
-    return {"spherical": 3, "revolute": 5, "universal": 4, "fixed": 6, "prismatic": 5}[name]
+    return {"spherical": 3, "revolute": 5, "universal": 4, "fixed": 6, "prismatic": 5,
+            "prescribed_rotation": 6, "prescribed_translation": 6}[name]
 
 
 def joint_program(name, order):

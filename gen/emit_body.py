@@ -126,8 +126,8 @@ extern const int bk_njoint_kinds;
 #endif
 """
     c = [f"/* {BANNER} (see joints.h) */", '#include "joints.h"'] + version_guard() + [
-         f"#if !defined(BK_JOINT_VERSION) || BK_JOINT_VERSION != 1",
-         '#error "generated for runtime/bk_joint.h version 1: regenerate out/kernels with ./build.sh gen"',
+         f"#if !defined(BK_JOINT_VERSION) || BK_JOINT_VERSION != 2",
+         '#error "generated for runtime/bk_joint.h version 2: regenerate out/kernels with ./build.sh gen"',
          "#endif", ""]
     for name in body.JOINT_TYPES:
         c += _function(f"static void {name}_eval({_D} x, {_D} prm, {_W} g, {_W} G)",
@@ -139,7 +139,7 @@ extern const int bk_njoint_kinds;
         c += fn[:-2] + mirror + fn[-2:]
         c += [f"static const bk_joint_kind kind_{name} = {{", f'    .name = "{name}",',
               f"    .nrow = {body.joint_nrow(name)},", f"    .eval = {name}_eval,",
-              f"    .hessian = {name}_hessian,", "};", ""]
+              f"    .hessian = {name}_hessian,", f"    .driven = {body.DRIVEN.get(name, 0)},", "};", ""]
     c += ["const bk_joint_kind *const bk_joint_kinds[] = {" +
           ", ".join(f"&kind_{n}" for n in body.JOINT_TYPES) + "};",
           f"const int bk_njoint_kinds = {len(body.JOINT_TYPES)};", ""]

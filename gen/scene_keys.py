@@ -20,16 +20,18 @@ SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
 BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
         "arc_center", "arc_axis", "arc_angle", "grading", "element_lengths")
 BODY = ("name", "mass", "center", "inertia", "axes")
-CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
-              "spherical": ("type", "a", "b", "at"),
-              "revolute": ("type", "a", "b", "axis", "at"),
-              "fixed": ("type", "a", "b", "at"),
-              "universal": ("type", "a", "b", "axis", "axis_b", "at"),
-              "prismatic": ("type", "a", "b", "axis", "at"),
-              "prescribed_rotation": ("type", "a", "axis", "rate", "amplitude", "frequency", "angle",
-                                      "angle_amplitude"),
-              "point_on_line": ("type", "a", "axis"),
-              "prescribed_motion": ("type", "a", "motion", "amplitude")}
+CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
+              "spherical": ("type", "name", "a", "b", "at"),
+              "revolute": ("type", "name", "a", "b", "axis", "at"),
+              "fixed": ("type", "name", "a", "b", "at"),
+              "universal": ("type", "name", "a", "b", "axis", "axis_b", "at"),
+              "prismatic": ("type", "name", "a", "b", "axis", "at"),
+              "prescribed_rotation": ("type", "name", "a", "b", "at", "axis", "rate", "amplitude", "frequency",
+                                      "angle", "angle_amplitude"),
+              "prescribed_translation": ("type", "name", "a", "b", "at", "axis", "rate", "amplitude", "frequency",
+                                         "distance", "distance_amplitude"),
+              "point_on_line": ("type", "name", "a", "axis"),
+              "prescribed_motion": ("type", "name", "a", "motion", "amplitude")}
 LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
         "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "value", "amplitude", "preload"),
@@ -38,7 +40,10 @@ LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower"
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),
-             "table": ("type", "points", "file")}
+             "table": ("type", "points", "file"),
+             "cycloidal": ("type", "t0", "t1"),
+             "quintic": ("type", "t0", "t1"),
+             "spline": ("type", "points", "file")}
 STATIC = S.scene_keys("static")
 DYNAMIC = S.scene_keys("dynamic")
 MODAL = S.scene_keys("modal")

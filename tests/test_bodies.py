@@ -13,7 +13,7 @@ import pytest
 from util import ROOT, build_shared_kernels, run_scene
 from test_bad_input import check_error
 
-NX, NPARAM = 14, 24
+NX, NPARAM = 14, 26
 
 
 class JointKind(ctypes.Structure):
@@ -42,9 +42,11 @@ def _p(a):
 def test_joint_kernels_match_finite_differences():
     """G = dg/dx and H = sum nu_k d2g_k/dx2 of every generated joint against central
     differences of g and of G^T nu, at random frames (quaternions not of unit
-    length), offsets and axes; g is invariant under rescaling either quaternion."""
+    length), offsets, axes and drive values (c, s); g is invariant under rescaling either
+    quaternion."""
     _, kinds = _joint_kinds()
-    assert set(kinds) == {"spherical", "revolute", "universal", "fixed", "prismatic"}
+    assert set(kinds) == {"spherical", "revolute", "universal", "fixed", "prismatic", "prescribed_rotation",
+                          "prescribed_translation"}
     rng = np.random.default_rng(7)
     for name, (nrow, ev, he) in sorted(kinds.items()):
         for trial in range(3):

@@ -10,7 +10,12 @@ Types (gen/scene_keys.py AMPLITUDE), x the time or the load factor:
   table  piecewise linear through points [[x, a], ...] (x strictly increasing),
          inline or from a CSV file of two columns (path relative to the scene),
          constant beyond the first and last point
-Model-file form: (type, [parameters]) -- runtime/model/amplitude.c evaluates it.
+  cycloidal  rest to rest from 0 at t0 to 1 at t1: u - sin(2 pi u)/(2 pi), u = (x - t0)/(t1 - t0)
+  quintic    rest to rest: 10 u^3 - 15 u^4 + 6 u^5
+  spline     the natural cubic spline through points (as table; at least 2), constant
+             beyond its ends; its second derivatives at the knots are solved here
+Model-file form: (type, [parameters]) -- runtime/model/amplitude.c evaluates it
+(and its first two derivatives, exactly).
 """
 import math
 
@@ -54,7 +59,7 @@ class Amplitudes:
             ctx.fail(where, f"expected a table, found {_typename(tbl)}")
         atype = get_str(ctx, tbl, "type", where, choices=TYPES)
         check_keys(ctx, tbl, set(K.AMPLITUDE[atype]), where)
-        if atype == "ramp":
+        if atype in ("ramp", "cycloidal", "quintic"):
             t0 = get_number(ctx, tbl, "t0", where, default=0.0)
             t1 = get_number(ctx, tbl, "t1", where, default=1.0)
             if not t1 > t0:
@@ -67,6 +72,8 @@ class Amplitudes:
                       get_number(ctx, tbl, "frequency", where, nonneg=True),
                       get_number(ctx, tbl, "phase", where, default=0.0),
                       get_number(ctx, tbl, "offset", where, default=0.0)]
+        elif atype == "spline":
+            params = _spline(ctx, self._table(tbl, where), where)
         else:
             params = self._table(tbl, where)
         self.rows.append((atype, params))
@@ -125,3 +132,24 @@ class Amplitudes:
                 ctx.fail(key, f"points out of time order: x = {x:g} (point {i}) after x = {rows[i - 1][0]:g}; "
                          "expected strictly increasing x")
         return [v for p in rows for v in p]
+
+
+def _spline(ctx, flat, where):
+    """x, a, m per knot of the natural cubic spline through (x, a) (m = a'' at the
+    knot, zero at both ends): the tridiagonal system solved by elimination."""
+    x, a = flat[0::2], flat[1::2]
+    n = len(x)
+    if n < 2:
+        ctx.fail(f"{where}.points", f"a spline needs at least 2 points, found {n}")
+    m = [0.0] * n
+    if n > 2:
+        h = [x[i + 1] - x[i] for i in range(n - 1)]
+        diag = [2.0 * (h[i - 1] + h[i]) for i in range(1, n - 1)]
+        rhs = [6.0 * ((a[i + 1] - a[i]) / h[i] - (a[i] - a[i - 1]) / h[i - 1]) for i in range(1, n - 1)]
+        for i in range(1, n - 2):               # forward elimination (sub- and superdiagonal h[i])
+            f = h[i] / diag[i - 1]
+            diag[i] -= f * h[i]
+            rhs[i] -= f * rhs[i - 1]
+        for i in range(n - 3, -1, -1):
+            m[i + 1] = (rhs[i] - (h[i + 1] * m[i + 2] if i + 1 < n - 2 else 0.0)) / diag[i]
+    return [v for i in range(n) for v in (x[i], a[i], m[i])]

@@ -21,7 +21,7 @@ class Rows:
         self.amps = amps
         self.fixed = set()
         self.lincons = []
-        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side)
+        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint, name)
         self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
 
     def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1,
@@ -102,6 +102,7 @@ def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
         if set(f) != {"r", "p"}:
             ctx.fail(f"{where}.b", "a rigid beam-to-beam joint needs gef-family nodes (position and quaternion) "
                      f"at both points; {name} has fields {sorted(f)}")
+    rows.side = list(fa["r"]) + list(fa["p"])                 # the reaction on beam a (as `fixed`)
     for i in range(3):
         rows.row([(fa["r"][i], 1.0, 0.0, 0.0), (fb["r"][i], -1.0, 0.0, 0.0)])
     pa0 = [q0[d] for d in fa["p"]]
@@ -233,8 +234,29 @@ JOINTS = {"clamp": clamp, "spherical": spherical, "revolute": revolute, "prescri
 # ----------------------------------------------------------------------------
 # Joints between two frames, nonlinear in q (generated: gen/body.py, out/kernels/joints.c)
 
-NONLINEAR = ("spherical", "revolute", "universal", "fixed", "prismatic")
-_ROTATIONAL = ("revolute", "universal", "fixed", "prismatic")
+NONLINEAR = ("spherical", "revolute", "universal", "fixed", "prismatic", "prescribed_rotation",
+             "prescribed_translation")
+_ROTATIONAL = ("revolute", "universal", "fixed", "prismatic", "prescribed_rotation", "prescribed_translation")
+_DRIVE_KEYS = {"prescribed_rotation": ("angle", "angle_amplitude", "rad"),
+               "prescribed_translation": ("distance", "distance_amplitude", "m")}
+
+
+def _drive(ctx, ct, where, rows, ctype):
+    """(rate, amplitude, frequency, scale, amplitude index) of a driven joint's
+    th(t) = rate t + amplitude sin(2 pi frequency t) + scale a(t); no drive: zeros."""
+    if ctype not in _DRIVE_KEYS:
+        return (0.0, 0.0, 0.0, 0.0, -1)
+    key, akey, unit = _DRIVE_KEYS[ctype]
+    rate = get_number(ctx, ct, "rate", where, default=0.0)
+    amp = get_number(ctx, ct, "amplitude", where, default=0.0)
+    freq = get_number(ctx, ct, "frequency", where, default=0.0, nonneg=True)
+    scale = get_number(ctx, ct, key, where, default=0.0)
+    ampid = rows.amps.ref(ct, akey, where) if rows.amps else -1
+    if ampid >= 0 and key not in ct:
+        ctx.fail(f"{where}.{key}", f"missing; `{akey}` scales the {key} `{key}` ({unit})")
+    if key in ct and ampid < 0:
+        ampid = rows.amps.ref({"a": {"type": "ramp"}}, "a", where) if rows.amps else -1
+    return (rate, amp, freq, scale, ampid)
 
 
 def _quat_rotation(p):
@@ -292,8 +314,9 @@ def _joint_axes(ctx, ct, where, ctype):
     return [n1, n2, axis]
 
 
-def nonlinear_joint(ctx, ct, where, mesh, ctype):
-    """(type, dofs[14], x0[14], prm[24]) of a joint between a and b (b omitted: the ground)."""
+def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None):
+    """(type, dofs[14], x0[14], prm[24], drive[5]) of a joint between a and b (b omitted:
+    the ground); a driven joint moves a relative to b (_drive)."""
     if "a" not in ct:
         ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start' or a body name")
     a = _endpoint(ctx, f"{where}.a", ct["a"], mesh, ctype)
@@ -332,7 +355,7 @@ def nonlinear_joint(ctx, ct, where, mesh, ctype):
             x0 += [mesh.q0[d] if d >= 0 else (1.0 if k == 3 else 0.0) for k, d in enumerate(e["dofs"])]
             prm_c += _mtv(e["R"], _sub(X, e["X"]))
             prm_A += [c for col in E for c in _mtv(e["R"], col)]
-    return (ctype, dofs, x0, prm_c + prm_A), a["where"]
+    return (ctype, dofs, x0, prm_c + prm_A, _drive(ctx, ct, where, rows, ctype)), a["where"]
 
 
 def _is_linear(ct, mesh, ctype):
@@ -345,9 +368,21 @@ def _is_linear(ct, mesh, ctype):
         return False
     if ctype == "spherical":
         return True
-    if ctype == "revolute":
+    if ctype in ("revolute", "prescribed_rotation"):
         return "b" not in ct
     return False
+
+
+def _name(ctx, ct, where, ci, names):
+    """The constraint's `name` (letters, digits, _ . -; unique), default constraintN."""
+    import re
+    name = get_str(ctx, ct, "name", where, default=f"constraint{ci}")
+    if not re.fullmatch(r"[A-Za-z0-9_.\-]{1,63}", name):
+        ctx.fail(f"{where}.name", f"expected 1 to 63 letters, digits, '_', '.' or '-', found {name!r}")
+    if name in names:
+        ctx.fail(f"{where}.name", f"the name {name!r} is given to two constraints")
+    names.add(name)
+    return name
 
 
 def constraints(ctx, doc, mesh, amps=None, analysis="static"):
@@ -358,15 +393,18 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     rows = Rows(mesh.q0, amps)
     rows.analysis = analysis
     rows.nlcons = []
+    names = set()
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
-        ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS) + ("fixed", "universal", "prismatic"))
+        ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS) + ("fixed", "universal", "prismatic",
+                                                                         "prescribed_translation"))
         check_keys(ctx, ct, set(K.CONSTRAINT[ctype]), where)
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
+        name = _name(ctx, ct, where, ci, names)
         if not _is_linear(ct, mesh, ctype):
-            joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype)
-            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons)))
+            joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows)
+            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name))
             rows.nlcons.append(joint)
             continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
@@ -375,5 +413,5 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
         e, xi = locate(beam, s)
         rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
-                               list(range(nlin0, len(rows.lincons))), rows.side, -1))
+                               list(range(nlin0, len(rows.lincons))), rows.side, -1, name))
     return rows

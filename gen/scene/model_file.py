@@ -78,9 +78,10 @@ def write_model(model, path):
                    + " " + " ".join(_f(x) for x in rhs) + " " + " ".join(_f(x) for x in tf))
     nl = model.get("nlcons", [])
     out.append(f"nlcons {len(nl)}")
-    for jtype, dofs, x0, prm in nl:
+    for jtype, dofs, x0, prm, drive in nl:
         out.append(f"nlcon {jtype} " + " ".join(map(str, dofs)) + " " + " ".join(_f(x) for x in x0)
-                   + " " + " ".join(_f(x) for x in prm))
+                   + " " + " ".join(_f(x) for x in prm) + " " + " ".join(_f(x) for x in drive[:4])
+                   + f" {drive[4]}")
     out.append(f"forces {len(model['forces'])}")
     for e, xi, y, z, dist, v, amp, fol in model["forces"]:
         out.append(f"force {e} {_f(xi)} {_f(y)} {_f(z)} {dist} " + " ".join(_f(x) for x in v) + f" {amp} {fol}")
@@ -103,9 +104,9 @@ def write_model(model, path):
         out.append(f"tendon {amp} {_f(T)} {len(pieces)}")
         out += [f"piece {e} {_f(x0)} {_f(x1)} {_f(dy)} {_f(dz)}" for e, x0, x1, dy, dz in pieces]
     out.append(f"reactions {len(model['reactions'])}")
-    for ci, ctype, at, e, xi, fixed, lins, side, nlcon in model["reactions"]:
+    for ci, ctype, at, e, xi, fixed, lins, side, nlcon, name in model["reactions"]:
         side = side or []
-        out.append(f"reaction {ci} {ctype} {at} {e} {_f(xi)} {len(fixed)} " + " ".join(map(str, fixed))
+        out.append(f"reaction {ci} {ctype} {name} {at} {e} {_f(xi)} {len(fixed)} " + " ".join(map(str, fixed))
                    + f" {len(lins)} " + " ".join(map(str, lins)) + f" {len(side)} " + " ".join(map(str, side))
                    + f" {nlcon}")
     out.append(f"sections {len(model['sections'])}")

@@ -205,7 +205,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
                     gsl_vector_set(b, (size_t)s->eq[i], fext[i] - fint[i]);
             gsl_set_error_handler_off();
             if (gsl_linalg_QR_lssolve(GT, tau, b, lam, res) == 0)
-                bk_constraint_hessian(s, q, lam->data, k_add, K);
+                bk_constraint_hessian(s, q, 1.0, lam->data, k_add, K);   /* the static state: load factor 1 */
             gsl_vector_free(b), gsl_vector_free(lam), gsl_vector_free(res), free(fext);
         }
     }

@@ -54,6 +54,35 @@ static double motion_rhs(const bk_lincon *c, double t, int k)
     return c->ru * (k == 0 ? t : k == 1 ? 1.0 : 0.0);
 }
 
+double bk_joint_params(const bk_nlcon *c, double t, int k, double *prm)
+{
+    memcpy(prm, c->prm, BK_JOINT_NGEOM * sizeof *prm);
+    prm[BK_JOINT_NGEOM] = prm[BK_JOINT_NGEOM + 1] = 0.0;
+    const int kind = c->kind ? c->kind->driven : 0;
+    if (!kind)
+        return 0.0;
+    double w = 2.0 * M_PI * c->freq;
+    double th[3] = {c->rate * t + c->amp * sin(w * t), c->rate + c->amp * w * cos(w * t),
+                    -c->amp * w * w * sin(w * t)};
+    if (c->dampl)
+        for (int i = 0; i < 3; ++i)
+            th[i] += c->scale * bk_amp_eval(c->dampl, t, i);
+    double *cs = prm + BK_JOINT_NGEOM;
+    if (kind == 2) {                       /* translation: (1, x) */
+        cs[0] = k == 0 ? 1.0 : 0.0;
+        cs[1] = th[k];
+    } else {                               /* rotation: (cos th, sin th) */
+        double co = cos(th[0]), si = sin(th[0]);
+        if (k == 0)
+            cs[0] = co, cs[1] = si;
+        else if (k == 1)
+            cs[0] = -si * th[1], cs[1] = co * th[1];
+        else
+            cs[0] = -co * th[1] * th[1] - si * th[2], cs[1] = -si * th[1] * th[1] + co * th[2];
+    }
+    return th[0];
+}
+
 double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, int with_rhs)
 {
     double C, S, sum = 0.0;
@@ -67,17 +96,20 @@ double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, i
 
 /* The joints' part of bk_assemble_constraints: rows s g, s G^T nu into the
  * free rows, s G, s G^T and the Hessian term s sum_k nu_k d2 g_k/dq2. */
-static void assemble_joints(const bk_system *s, const double *q, const double *nu, double *r, double *Ax)
+static void assemble_joints(const bk_system *s, const double *q, const double *nu, double t, double *r,
+                            double *Ax)
 {
     const bk_model *m = s->m;
     const int nx = BK_JOINT_NX;
     double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX];
+    double prm[BK_JOINT_NPARAM];
     for (int j = 0; j < m->nnlcon; ++j) {
         const bk_nlcon *c = &m->nlcons[j];
         const int nr = s->jrow[j + 1] - s->jrow[j], row0 = s->jrow[j];
         const int *sl = s->jslot + s->jslot_off[j];
         joint_x(c, q, 0, x);
-        c->kind->eval(x, c->prm, g, G);
+        bk_joint_params(c, t, 0, prm);
+        c->kind->eval(x, prm, g, G);
         for (int i = 0; i < nr; ++i) {
             if (r)
                 r[s->nfree + row0 + i] = s->cscale * g[i];
@@ -94,7 +126,7 @@ static void assemble_joints(const bk_system *s, const double *q, const double *n
             }
         }
         if (Ax && nu) {
-            c->kind->hessian(x, c->prm, nu + row0, H);
+            c->kind->hessian(x, prm, nu + row0, H);
             for (int k = 0; k < nx * nx; ++k)
                 if (sl[k] >= 0)
                     Ax[sl[k]] += s->cscale * H[k];
@@ -110,20 +142,34 @@ void bk_constraint_accel_rhs(const bk_system *s, const double *q, const double *
         r[s->nfree + c] = -s->cscale * (2.0 * bk_constraint_row(&m->lincons[c], qd, t, 1, 0)
                                         + bk_constraint_row(&m->lincons[c], q, t, 2, 1));
     double x[BK_JOINT_NX], xd[BK_JOINT_NX], nu[BK_JOINT_MAXROW], H[BK_JOINT_NX * BK_JOINT_NX];
+    double prm[BK_JOINT_NPARAM], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
     for (int j = 0; j < m->nnlcon; ++j) {
         const bk_nlcon *c = &m->nlcons[j];
         const int nr = s->jrow[j + 1] - s->jrow[j];
         joint_x(c, q, 0, x);
         joint_x(c, qd, 1, xd);
+        bk_joint_params(c, t, 0, prm);
         for (int i = 0; i < nr; ++i) {
             for (int k = 0; k < nr; ++k)
                 nu[k] = k == i;
-            c->kind->hessian(x, c->prm, nu, H);
+            c->kind->hessian(x, prm, nu, H);
             double v = 0.0;
             for (int a = 0; a < nx; ++a)
                 for (int b = 0; b < nx; ++b)
                     v += xd[a] * H[nx * a + b] * xd[b];
             r[s->nfree + s->jrow[j] + i] = -s->cscale * v;
+        }
+        if (c->kind->driven) {   /* the drive row: + 2 (dG/dt) q' + d2g/dt2 (bk_joint.h) */
+            const int last = nr - 1;
+            double v = 0.0;
+            bk_joint_params(c, t, 1, prm);
+            c->kind->eval(x, prm, g, G);
+            for (int a = 0; a < nx; ++a)
+                v += 2.0 * G[nx * last + a] * xd[a];
+            bk_joint_params(c, t, 2, prm);
+            c->kind->eval(x, prm, g, G);
+            v += g[last];
+            r[s->nfree + s->jrow[j] + last] -= s->cscale * v;
         }
     }
 }
@@ -145,9 +191,10 @@ void bk_constraint_jacobian_row(const bk_system *s, const double *q, double t, i
     while (j + 1 < m->nnlcon && s->jrow[j + 1] <= c)
         ++j;
     const bk_nlcon *jc = &m->nlcons[j];
-    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
     joint_x(jc, q, 0, x);
-    jc->kind->eval(x, jc->prm, g, G);
+    bk_joint_params(jc, t, 0, prm);
+    jc->kind->eval(x, prm, g, G);
     for (int k = 0; k < BK_JOINT_NX; ++k)
         if (joint_eq(s, jc, k) >= 0)
             add(ctx, joint_eq(s, jc, k), G[BK_JOINT_NX * (c - s->jrow[j]) + k]);
@@ -186,15 +233,16 @@ out:
     return rc;
 }
 
-void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+void bk_constraint_hessian(const bk_system *s, const double *q, double t, const double *lam,
                            void (*add)(void *ctx, int i, int j, double v), void *ctx)
 {
     const int nx = BK_JOINT_NX;
-    double x[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX];
+    double x[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
     for (int j = 0; j < s->m->nnlcon; ++j) {
         const bk_nlcon *c = &s->m->nlcons[j];
         joint_x(c, q, 0, x);
-        c->kind->hessian(x, c->prm, lam + s->jrow[j], H);
+        bk_joint_params(c, t, 0, prm);
+        c->kind->hessian(x, prm, lam + s->jrow[j], H);
         for (int a = 0; a < nx; ++a)
             for (int b = 0; b < nx; ++b)
                 if (joint_eq(s, c, a) >= 0 && joint_eq(s, c, b) >= 0 && H[nx * a + b] != 0.0)
@@ -226,7 +274,7 @@ void bk_assemble_constraints(const bk_system *s, const double *q, const double *
         if (r)
             r[s->nfree + c] = s->cscale * g;
     }
-    assemble_joints(s, q, nu, r, Ax);
+    assemble_joints(s, q, nu, t, r, Ax);
 }
 
 double bk_constraint_coef(const bk_lincon *c, int k, double t)
@@ -241,11 +289,12 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t)
     double worst = 0.0;
     for (int c = 0; c < s->m->nlincon; ++c)
         worst = fmax(worst, fabs(bk_constraint_row(&s->m->lincons[c], q, t, 0, 1)));
-    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+    double x[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
     for (int j = 0; j < s->m->nnlcon; ++j) {
         const bk_nlcon *c = &s->m->nlcons[j];
         joint_x(c, q, 0, x);
-        c->kind->eval(x, c->prm, g, G);
+        bk_joint_params(c, t, 0, prm);
+        c->kind->eval(x, prm, g, G);
         for (int i = 0; i < c->kind->nrow; ++i)
             worst = fmax(worst, fabs(g[i]));
     }

@@ -134,7 +134,7 @@ int bk_constraint_multipliers(bk_system *s, const double *q, double t, const dou
 /* The joints' Hessian term sum_k lam_k d2 g_k/dq2 at q for unscaled
  * multipliers lam[ncon] (the constraint force is G^T lam; the linear rows have
  * none): calls add(ctx, equation i, equation j, value) for each free pair. */
-void bk_constraint_hessian(const bk_system *s, const double *q, const double *lam,
+void bk_constraint_hessian(const bk_system *s, const double *q, double t, const double *lam,
                            void (*add)(void *ctx, int i, int j, double v), void *ctx);
 
 /* k-th time derivative (k = 0, 1, 2) at fixed x of one constraint row:
@@ -143,6 +143,12 @@ double bk_constraint_row(const bk_lincon *c, const double *x, double t, int k, i
 
 /* Coefficient of term k of a constraint row at time t (the entry of G(t)). */
 double bk_constraint_coef(const bk_lincon *c, int k, double t);
+
+/* The parameters prm[BK_JOINT_NPARAM] of joint c at time (or load factor) t:
+ * its geometry and the k-th time derivative (k = 0, 1, 2) of its drive's
+ * (c, s) (bk_joint.h; zero for a joint that is not driven).  Returns the
+ * drive's th(t) (0 when not driven). */
+double bk_joint_params(const bk_nlcon *c, double t, int k, double *prm);
 
 /* Largest |G(t) q - g(t)| over the constraint rows. */
 double bk_constraint_residual(const bk_system *s, const double *q, double t);

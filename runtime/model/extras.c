@@ -27,22 +27,26 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         const char *t = rd_next(r, "amplitude type");
         if (!t)
             break;
-        static const char *names[] = {"ramp", "step", "sine", "table"};
-        for (int k = 0; k < 4; ++k)
+        static const char *names[] = {"ramp", "step", "sine", "table", "cycloidal", "quintic", "spline"};
+        for (int k = 0; k < 7; ++k)
             if (strcmp(t, names[k]) == 0)
                 a->type = BK_AMP_RAMP + k;
         if (!a->type)
-            rd_fail(r, "amplitude %d: unknown type '%s' (expected ramp, step, sine, table)", i, t);
+            rd_fail(r, "amplitude %d: unknown type '%s' (expected ramp, step, sine, table, cycloidal, quintic, "
+                    "spline)", i, t);
         a->npar = rd_inum(r, "amplitude parameter count", 1, MAXN);
-        static const int need[] = {2, 1, 4, 0};
-        if (!r->failed && a->type && (a->type == BK_AMP_TABLE ? a->npar % 2 != 0 : a->npar != need[a->type - 1]))
+        static const int need[] = {2, 1, 4, 0, 2, 2, 0};
+        const int stride = a->type == BK_AMP_TABLE ? 2 : a->type == BK_AMP_SPLINE ? 3 : 0;
+        if (!r->failed && a->type && (stride ? a->npar % stride != 0 : a->npar != need[a->type - 1]))
             rd_fail(r, "amplitude %d: %d parameters for type '%s'", i, a->npar, t);
         a->par = rd_xcalloc(r, (size_t)a->npar, sizeof *a->par);
         for (int k = 0; k < a->npar && !r->failed; ++k)
             a->par[k] = rd_num(r, "amplitude parameter");
-        for (int k = 2; a->type == BK_AMP_TABLE && k < a->npar && !r->failed; k += 2)
-            if (!(a->par[k] > a->par[k - 2]))
+        for (int k = stride; stride && k < a->npar && !r->failed; k += stride)
+            if (!(a->par[k] > a->par[k - stride]))
                 rd_fail(r, "amplitude %d: table points out of time order", i);
+        if ((a->type == BK_AMP_CYCLOID || a->type == BK_AMP_QUINTIC) && !r->failed && !(a->par[1] > a->par[0]))
+            rd_fail(r, "amplitude %d: expected t1 > t0", i);
     }
     for (int i = 0; i < m->nlincon && !r->failed; ++i) {
         int ai = m->lincons[i].ampid;
@@ -53,6 +57,12 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         if (ui >= m->namp)
             rd_fail(r, "constraint %d: motion amplitude %d of %d", i, ui, m->namp);
         m->lincons[i].uampl = ui >= 0 && ui < m->namp ? &m->amps[ui] : NULL;
+    }
+    for (int i = 0; i < m->nnlcon && !r->failed; ++i) {
+        int ai = m->nlcons[i].dampid;
+        if (ai >= m->namp)
+            rd_fail(r, "joint %d: drive amplitude %d of %d", i, ai, m->namp);
+        m->nlcons[i].dampl = ai >= 0 && ai < m->namp ? &m->amps[ai] : NULL;
     }
     if (m->gravity_ampid >= m->namp)
         rd_fail(r, "gravity: amplitude %d of %d", m->gravity_ampid, m->namp);
@@ -118,6 +128,7 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         rd_expect(r, "reaction");
         c->index = rd_inum(r, "reaction index", 0, MAXN);
         rd_copy_token(r, c->type, sizeof c->type, "reaction type");
+        rd_copy_token(r, c->name, sizeof c->name, "reaction name");
         rd_copy_token(r, c->at, sizeof c->at, "reaction point");
         c->elem = rd_inum(r, "reaction element", 0, m->nelem - 1);
         c->xi = rd_num(r, "reaction xi");

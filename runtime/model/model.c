@@ -218,8 +218,14 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
             c->dof[k] = rd_inum(r, "joint DOF", -1, m->ndof - 1);
         for (int k = 0; k < BK_JOINT_NX; ++k)
             c->x0[k] = rd_num(r, "joint coordinate");
-        for (int k = 0; k < BK_JOINT_NPARAM; ++k)
+        for (int k = 0; k < BK_JOINT_NGEOM; ++k)
             c->prm[k] = rd_num(r, "joint parameter");
+        c->rate = rd_num(r, "joint drive rate");
+        c->amp = rd_num(r, "joint drive amplitude");
+        c->freq = rd_num(r, "joint drive frequency");
+        c->scale = rd_num(r, "joint drive scale");
+        c->dampid = rd_inum(r, "joint drive amplitude index", -1, MAXN);
+        c->dampl = NULL;                      /* resolved with the amplitudes */
     }
 
     rd_expect(r, "forces");

@@ -35,8 +35,11 @@ typedef struct bk_mat {
 /* Amplitude: the history a load or a prescribed angle is multiplied by, as a
  * function of the time (dynamics) or the load factor (statics); see
  * runtime/model/amplitude.h.  par: ramp t0, t1; step t0; sine amplitude, frequency,
- * phase, offset; table x0, a0, x1, a1, ... */
-enum bk_amplitude_type { BK_AMP_RAMP = 1, BK_AMP_STEP, BK_AMP_SINE, BK_AMP_TABLE };
+ * phase, offset; table x0, a0, x1, a1, ...; cycloidal and quintic (rest to rest
+ * from 0 to 1) t0, t1; spline x0, a0, m0, x1, a1, m1, ... (m: the second
+ * derivatives of the cubic spline at its knots) */
+enum bk_amplitude_type { BK_AMP_RAMP = 1, BK_AMP_STEP, BK_AMP_SINE, BK_AMP_TABLE, BK_AMP_CYCLOID, BK_AMP_QUINTIC,
+                         BK_AMP_SPLINE };
 typedef struct bk_amplitude {
     int type;
     int npar;
@@ -83,7 +86,7 @@ typedef struct bk_tendon {       /* a tendon pulled with tension amp(x) T: poten
  * reaction is reported as one force and moment (about the point `elem`, `xi`). */
 typedef struct bk_reaction {
     int index;         /* of the [[constraint]] table */
-    char type[32], at[64];
+    char type[32], name[64], at[64];   /* name: constraint.name (default constraintN) */
     int elem;
     double xi;
     int nfixed, nlin, nside;
@@ -133,7 +136,11 @@ typedef struct bk_nlcon {
     const bk_joint_kind *kind;
     int dof[BK_JOINT_NX];
     double x0[BK_JOINT_NX];
-    double prm[BK_JOINT_NPARAM];
+    double prm[BK_JOINT_NPARAM];  /* the geometry prm[0 .. BK_JOINT_NGEOM - 1]; the drive's at a time: bk_joint_params */
+    /* a driven joint (kind->driven): th(t) = rate t + amp sin(2 pi freq t) + scale a(t), a = *dampl (NULL: none) */
+    double rate, amp, freq, scale;
+    int dampid;                   /* index of *dampl in the model's amplitudes, -1: none */
+    const bk_amplitude *dampl;
 } bk_nlcon;
 
 typedef struct bk_model {

@@ -94,7 +94,9 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
     }
     if (m->nreaction > 0 &&
         !(f->reactions = bk_tables_open(ts, dir, "reactions.csv",
-                                        "step,time,constraint,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
+                                        "step,time,constraint,name,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
+        return -1;
+    if (bk_joints_open(f, m, dir, ts, err) != 0)
         return -1;
     if (m->nsection > 0 && bk_model_on_path(m) &&
         !(f->sections = bk_tables_open(ts, dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,"
@@ -105,7 +107,8 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
 
 void bk_forces_close(bk_forces *f)
 {
-    f->reactions = f->sections = NULL;   /* the run's tables close them */
+    f->reactions = f->sections = f->joints = NULL;   /* the run's tables close them */
+    free(f->jstate);
     free(f->fld);
     free(f->kind);
     free(f->comp);
@@ -262,6 +265,19 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
     }
 }
 
+/* The joint point of frame a of a joint nonlinear in q at xj: o_a = r_a + R(p_a/|p_a|) c_a
+ * (bk_joint.h). */
+static void joint_point(const double *xj, const double *prm, double *o)
+{
+    const double *p = xj + 3, *c = prm;
+    double n = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+    double w = p[0], v[3] = {p[1], p[2], p[3]};
+    double vc[3] = {v[1] * c[2] - v[2] * c[1], v[2] * c[0] - v[0] * c[2], v[0] * c[1] - v[1] * c[0]};
+    double vvc[3] = {v[1] * vc[2] - v[2] * vc[1], v[2] * vc[0] - v[0] * vc[2], v[0] * vc[1] - v[1] * vc[0]};
+    for (int i = 0; i < 3; ++i)                 /* R c = c + 2 (w v x c + v x (v x c)) / |p|^2 */
+        o[i] = xj[i] + c[i] + 2.0 * (w * vc[i] + vvc[i]) / n;
+}
+
 static void write_reactions(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *nu)
 {
     const bk_model *m = s->m;
@@ -269,6 +285,13 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
         const bk_reaction *rc = &m->reactions[c];
         double x0[3], F[3] = {0.0, 0.0, 0.0}, M[3] = {0.0, 0.0, 0.0};
         bk_eval_point(m, q, rc->elem, rc->xi, x0, NULL);
+        if (rc->nlcon >= 0) {             /* about the joint point of frame a */
+            const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+            double xj[7];
+            for (int i = 0; i < 7; ++i)
+                xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
+            joint_point(xj, jc->prm, x0);
+        }
         for (int k = 0; k < rc->nfixed; ++k)
             bk_forces_map_dof(f, q, rc->fixed[k], f->res[rc->fixed[k]], x0, F, M);
         for (int k = 0; k < rc->nlin; ++k) {
@@ -285,10 +308,11 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
         }
         if (rc->nlcon >= 0) {             /* a joint nonlinear in q: -s G^T nu on frame a's (r, p) */
             const bk_nlcon *jc = &m->nlcons[rc->nlcon];
-            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX];
+            double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
             for (int i = 0; i < BK_JOINT_NX; ++i)
                 xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
-            jc->kind->eval(xj, jc->prm, g, G);
+            bk_joint_params(jc, x, 0, prm);
+            jc->kind->eval(xj, prm, g, G);
             const int row0 = s->jrow[rc->nlcon];
             for (int i = 0; i < 7; ++i) {
                 const int d = jc->dof[i];
@@ -309,6 +333,7 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
             bk_row_int(&r, step);
             bk_row_num(&r, x);
             bk_row_int(&r, rc->index);
+            bk_row_str(&r, rc->name);
             bk_row_str(&r, rc->type);
             bk_row_str(&r, rc->at);
             for (int i = 0; i < 9; ++i)
@@ -328,6 +353,7 @@ void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double
         if (f->nrelem > 0)
             full_residual(f, s, x, q, qd, qdd);
         write_reactions(f, s, step, x, q, nu);
+        bk_joints_step(f, step, x, q, qd);
     }
     if (f->sections && with_sections)
         bk_forces_sections(f, s, step, x, q, qd, qdd);
@@ -349,8 +375,8 @@ void bk_forces_summary(const bk_forces *f, FILE *fp)
     for (int c = 0; c < f->m->nreaction; ++c) {
         const bk_reaction *rc = &f->m->reactions[c];
         const double *L = f->last[c];
-        fprintf(fp, "%s\n    {\"constraint\": %d, \"type\": \"%s\", \"at\": \"%s\", \"point\": [", c ? "," : "",
-                rc->index, rc->type, rc->at);
+        fprintf(fp, "%s\n    {\"constraint\": %d, \"name\": \"%s\", \"type\": \"%s\", \"at\": \"%s\", \"point\": [",
+                c ? "," : "", rc->index, rc->name, rc->type, rc->at);
         for (int i = 0; i < 3; ++i)
             json_num(fp, L[6 + i]), fprintf(fp, i < 2 ? ", " : "], \"force\": [");
         for (int i = 0; i < 3; ++i)
@@ -359,4 +385,5 @@ void bk_forces_summary(const bk_forces *f, FILE *fp)
             json_num(fp, L[3 + i]), fprintf(fp, i < 2 ? ", " : "]}");
     }
     fprintf(fp, "\n  ],\n");
+    bk_joints_summary(f, fp);
 }

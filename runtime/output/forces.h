@@ -16,7 +16,8 @@
  * Reactions: per [[constraint]], R = f_int - f_ext (+ M q'' + damping +
  * rotary inertia in dynamics) at the DOFs it holds fixed, and -s G^T nu for its
  * linear constraints: the force and moment the support exerts on the
- * structure (on body a for a joint between bodies), about the constraint point.
+ * structure (on body a for a joint between bodies), about the constraint point
+ * (a joint nonlinear in q: about its joint point on frame a, r_a + R_a c_a).
  * Section forces: at each element end, from the element's nodal forces
  * g_e = f_int,e (+ inertia, damping) - (the loads the element carries itself):
  * at the start node n = -F, m = -M (the action of the part before on the part
@@ -50,6 +51,9 @@ typedef struct bk_forces {
     double *rmass;                /* owned, dynamics: their mass matrices (maxdof^2 apart; bk_element_mass) */
     double (*last)[9];            /* [nreaction] force, moment, point at the last output step */
     int have_last;
+    FILE *joints;                 /* joints.csv (joint_out.c), registered in the run's tables, or NULL */
+    double *jstate;               /* owned: [4 nreaction] raw and unwrapped angle, peak |effort|, its time */
+    int have_joints;
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
                                    * element at output step sec_step (for the ParaView frames) */
     int sec_step;
@@ -69,7 +73,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
  * the elements that touch them only. */
 void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
                     const double *qdd, const double *nu, int with_sections);
-/* The "reactions" member of summary.json (with a trailing comma). */
+/* The "reactions" and "joints" members of summary.json (with a trailing comma). */
 void bk_forces_summary(const bk_forces *f, FILE *fp);
 void bk_forces_close(bk_forces *f);
 
