@@ -31,7 +31,7 @@ CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
               "prescribed_translation": ("type", "name", "a", "b", "at", "axis", "rate", "amplitude", "frequency",
                                          "distance", "distance_amplitude"),
               "point_on_line": ("type", "name", "a", "axis"),
-              "prescribed_motion": ("type", "name", "a", "motion", "amplitude")}
+              "prescribed_motion": ("type", "name", "a", "motion", "amplitude", "clamped")}
 LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
         "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "value", "amplitude", "preload"),

@@ -137,8 +137,15 @@ def spherical(ctx, ct, where, mesh, rows, beam, s, gid):
 
 def prescribed_motion(ctx, ct, where, mesh, rows, beam, s, gid):
     """The point moved by `motion` (m) times the load factor in statics, or
-    times `amplitude` (required in dynamics): three rows, one per component."""
+    times `amplitude` (required in dynamics): three rows, one per component;
+    with `clamped = true` the node's other coordinates (ANCF gradients, a
+    rod's quaternion) are held too: a clamp that translates."""
     fd, q0 = mesh.field_dofs(gid), mesh.q0
+    clamped = ct.get("clamped", False)
+    if not isinstance(clamped, bool):
+        ctx.fail(f"{where}.clamped", f"expected true or false (got {clamped!r})")
+    if clamped:
+        rows.fixed.update(d for f, ds in fd.items() if f != "r" for d in ds)
     motion = get_vec3(ctx, ct, "motion", where)
     uamp = rows.amps.ref(ct, "amplitude", where) if rows.amps is not None else -1
     if uamp < 0 and getattr(rows, "analysis", "static") == "dynamic":
