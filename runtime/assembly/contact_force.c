@@ -28,6 +28,12 @@ int bk_contact_make(bk_system *s, void **self)
         size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1);
         w->fe = malloc(md * sizeof *w->fe);
         w->Ke = malloc(md * md * sizeof *w->Ke);
+        size_t ns = 1;
+        for (int c = 0; c < cm->nset; ++c)
+            for (int i = 0; i < cm->sets[c].nelem; ++i)
+                if ((size_t)bk_elem_type(s->m, cm->sets[c].elems[i])->nshape > ns)
+                    ns = (size_t)bk_elem_type(s->m, cm->sets[c].elems[i])->nshape;
+        w->Kc = malloc(9 * (ns + 1) * ns * sizeof *w->Kc);   /* the blocks, and one row of them */
         w->lam = calloc(np, sizeof *w->lam);
         w->nrm = calloc(3 * np, sizeof *w->nrm);
         w->xprev = calloc(3 * np, sizeof *w->xprev);
@@ -35,8 +41,9 @@ int bk_contact_make(bk_system *s, void **self)
         for (int i = 0; w->place && i < cm->nprim; ++i)    /* in place until a path point is assembled */
             bk_contact_placement(&cm->prims[i], 0.0, w->place + BK_CONTACT_PLACEMENT * i);
     }
+    const int shapes = w ? contact_sample_shapes(w, s->m) : -1;
     *self = w;
-    return w && w->fe && w->Ke && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
+    return w && shapes == 0 && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
 }
 
 static void contact_free(void *self)
@@ -45,6 +52,9 @@ static void contact_free(void *self)
     if (w && w->nframe > 0)
         contact_pvd(w);                  /* the collection complete (a failure was reported with the frames) */
     if (w) {
+        free(w->Kc);
+        free(w->Nc);
+        free(w->Noff);
         free(w->frames);
         free(w->times);
         free(w->fe);
@@ -86,8 +96,21 @@ static void assemble_element(void *ctx, point *pt, int end)
     contact_work *w = a->w;
     a->bad |= bk_scatter(a->s->m, pt->e, w->fe, 1.0, a->fint);
     if (pt->prim->body < 0) {
-        if (a->Ax)
-            bk_scatter_matrix(a->s, pt->e, w->Ke, 1.0, a->Ax);
+        if (!a->Ax)
+            return;
+        const bk_element *et = pt->et;      /* Ke from the blocks: the N_i N_j Kv of every point */
+        const int ns = et->nshape, nd = et->ndof;
+        if (ns * 3 != nd)
+            memset(w->Ke, 0, (size_t)nd * (size_t)nd * sizeof *w->Ke);   /* DOFs no position reaches */
+        for (int i = 0; i < ns; ++i)
+            for (int j = 0; j < ns; ++j) {
+                const double *blk = w->Kc + 9 * (i * ns + j);
+                double *Kij = w->Ke + (size_t)et->shape_dof[i] * nd + et->shape_dof[j];
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c)
+                        Kij[r * nd + c] = blk[3 * r + c];
+            }
+        bk_scatter_matrix(a->s, pt->e, w->Ke, 1.0, a->Ax);
         return;
     }
     const int nd = pt->et->ndof, nb = nd + 7;
@@ -127,7 +150,9 @@ static void assemble_point(void *ctx, point *pt)
     contact_point_force(w, pt, fv, a->Ax ? Kv : NULL);
     if (!a->touched) {
         memset(w->fe, 0, (size_t)nb * sizeof *w->fe);
-        if (a->Ax)
+        if (a->Ax && nv == 3)
+            memset(w->Kc, 0, 9 * (size_t)et->nshape * (size_t)et->nshape * sizeof *w->Kc);
+        else if (a->Ax)
             memset(w->Ke, 0, (size_t)nb * (size_t)nb * sizeof *w->Ke);
         a->touched = 1;
     }
@@ -139,6 +164,21 @@ static void assemble_point(void *ctx, point *pt)
         w->fe[nd + k - 3] += fv[k];
     if (!a->Ax)
         return;
+    if (nv == 3) {                           /* the blocks N_i N_j Kv, expanded into Ke after the last point */
+        const int ns = et->nshape, nrow = 9 * ns;
+        double *restrict v = w->Kc + 9 * ns * ns;   /* v = (N_j Kv)_j, then each row of blocks += N_i v */
+        for (int j = 0; j < ns; ++j)
+            for (int k = 0; k < 9; ++k)
+                v[9 * j + k] = pt->N[j] * Kv[k];
+        for (int i = 0; i < ns; ++i) {
+            double *restrict row = w->Kc + (size_t)nrow * i;
+            const double ni = pt->N[i];
+#pragma omp simd
+            for (int m = 0; m < nrow; ++m)
+                row[m] += ni * v[m];
+        }
+        return;
+    }
     for (int av = 0; av < nv; ++av)
         for (int bv = 0; bv < nv; ++bv) {
             const double kab = Kv[nv * av + bv];
@@ -241,8 +281,8 @@ static void limit_point(void *ctx, point *pt)
     for (int k = 3; k < nv; ++k)
         dv[k] = l->de[pt->et->ndof + k - 3];
     for (int r = 0; r < 3; ++r) {
-        dp[r] = 0.0;
-        for (int k = 0; k < nv; ++k)
+        dp[r] = pt->mp.identity ? dv[r] : 0.0;
+        for (int k = 0; k < nv && !pt->mp.identity; ++k)
             dp[r] += pt->mp.J[nv * r + k] * dv[k];
     }
     const double move = sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2]);

@@ -40,6 +40,7 @@ void bk_contact_map_point(const bk_contact_prim *p, const double *pl, const doub
         double out[333];
         bk_contact_body_frame(y, qb, p->body_ref, out);
         mp->nv = 10;
+        mp->identity = 0;
         memcpy(mp->z, out, 3 * sizeof *out);
         memcpy(mp->J, out + 3, 30 * sizeof *out);
         memcpy(mp->T, out + 33, 300 * sizeof *out);
@@ -47,6 +48,11 @@ void bk_contact_map_point(const bk_contact_prim *p, const double *pl, const doub
     }
     const double *Q = pl, *c = pl + 9, *o = pl + 12;
     mp->nv = 3;
+    mp->identity = Q[0] == 1.0 && Q[4] == 1.0 && Q[8] == 1.0 && c[0] == o[0] && c[1] == o[1] && c[2] == o[2];
+    if (mp->identity) {               /* a rotation with a unit diagonal is the identity */
+        mp->z[0] = y[0], mp->z[1] = y[1], mp->z[2] = y[2];
+        return;
+    }
     for (int i = 0; i < 3; ++i) {     /* z = Q^T (y - c) + o, J = Q^T */
         mp->z[i] = o[i];
         for (int k = 0; k < 3; ++k) {
@@ -147,6 +153,12 @@ void bk_contact_chain(const bk_contact_map *mp, const double *fz, const double *
 {
     const int nv = mp->nv;
     const double *J = mp->J;
+    if (mp->identity) {
+        memcpy(fv, fz, 3 * sizeof *fv);
+        if (Kv)
+            memcpy(Kv, Kz, 9 * sizeof *Kv);
+        return;
+    }
     for (int a = 0; a < nv; ++a)
         fv[a] = J[a] * fz[0] + J[nv + a] * fz[1] + J[2 * nv + a] * fz[2];
     if (!Kv)

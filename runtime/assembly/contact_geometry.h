@@ -20,6 +20,7 @@ void bk_contact_placement(const bk_contact_prim *p, double f, double *pl);
  * body, T = d2 z_k/dv2 (T + 100 k: 10 x 10 row-major; zero without a body). */
 typedef struct bk_contact_map {
     int nv;
+    int identity;                    /* 1: z = y (a primitive in its reference place): J = I, T = 0 */
     double z[3];
     double J[30];
     double T[300];

@@ -17,11 +17,14 @@
  * friction state, the primitives' placements. */
 typedef struct contact_work {
     double *fe, *Ke;                 /* [maxdof + 7], [(maxdof + 7)^2]: the element's and its body's coordinates */
+    double *Kc;                      /* [9 nshape (nshape + 1)] the element's position blocks (points without a body) */
     FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
     int npoint;                      /* sample points of every set */
     double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, anchor (in z) */
     double *place;                   /* [BK_CONTACT_PLACEMENT nprim] each primitive's placement at the path point
                                       * last assembled */
+    double *Nc;                      /* the sample points' shape functions, each point's nshape of them */
+    long *Noff;                      /* [npoint + 1] where each point's are in Nc */
     int nframe, cap;                 /* ParaView frames written (contacts_NNNNNN.vtp) and room for */
     int *frames;                     /* [cap] their numbers */
     double *times;                   /* [cap] their times or load factors */
@@ -36,11 +39,16 @@ typedef struct point {
     int c, i, e, k, p;               /* set, member of the set, element, sample, index over every set */
     const bk_element *et;
     double wl;                       /* kappa times the point's share of the element's length */
-    double N[BK_MAX_SHAPE], x[3];    /* shape functions, position */
+    const double *N;                 /* shape functions (the element type's nshape, in contact_work.Nc) */
+    double x[3];                     /* position */
     double qb[7];                    /* the primitive's body's coordinates (when it has one) */
     bk_contact_map mp;               /* x in the primitive's reference coordinates, mp.z, with derivatives */
     double g[13], dist;              /* the primitive's gap at mp.z with derivatives; the section's distance */
 } point;
+
+/* The shape functions of every sample point into w->Nc, w->Noff (allocated
+ * here; they depend on the reference geometry only).  0, or -1 out of memory. */
+int contact_sample_shapes(contact_work *w, const bk_model *m);
 
 /* Each primitive's placement at the path point x (the amplitudes' variable). */
 void contact_set_placement(contact_work *w, const bk_model *m, double x);

@@ -25,20 +25,48 @@ void contact_set_placement(contact_work *w, const bk_model *m, double x)
     }
 }
 
-/* Sample point k of element e at q: its shape functions N and position x;
- * returns its share of the element's length (see model/contact.h). */
-static double sample(const bk_model *m, int e, const double *qe, int k, int nsample, double *N, double *x)
+/* The parameter xi of sample k of nsample and its share of the element's
+ * length (see model/contact.h). */
+static double sample_at(int k, int nsample, double *xi)
 {
-    const bk_element *et = bk_elem_type(m, e);
-    const double xi = nsample == 1 ? 0.5 : (double)k / (nsample - 1);
-    et->shape(m->geoms[m->elems[e].geom], xi, 0.0, 0.0, N);
-    x[0] = x[1] = x[2] = 0.0;
-    for (int a = 0; a < et->nshape; ++a)
-        for (int i = 0; i < 3; ++i)
-            x[i] += N[a] * qe[et->shape_dof[a] + i];
+    *xi = nsample == 1 ? 0.5 : (double)k / (nsample - 1);
     if (nsample == 1)
         return 1.0;
     return (k == 0 || k == nsample - 1 ? 0.5 : 1.0) / (nsample - 1);
+}
+
+int contact_sample_shapes(contact_work *w, const bk_model *m)
+{
+    const bk_contact_model *cm = m->contact;
+    double N[BK_MAX_SHAPE], xi;
+    long tot = 0;
+    int p = 0;
+    w->Noff = malloc(((size_t)w->npoint + 1) * sizeof *w->Noff);
+    if (!w->Noff)
+        return -1;
+    for (int c = 0; c < cm->nset; ++c)
+        for (int i = 0; i < cm->sets[c].nelem; ++i)
+            for (int k = 0; k < cm->sets[c].nsample; ++k, ++p) {
+                w->Noff[p] = tot;
+                tot += bk_elem_type(m, cm->sets[c].elems[i])->nshape;
+            }
+    w->Noff[p] = tot;
+    w->Nc = malloc((size_t)(tot > 0 ? tot : 1) * sizeof *w->Nc);
+    if (!w->Nc)
+        return -1;
+    p = 0;
+    for (int c = 0; c < cm->nset; ++c)
+        for (int i = 0; i < cm->sets[c].nelem; ++i) {
+            const int e = cm->sets[c].elems[i];
+            const bk_element *et = bk_elem_type(m, e);
+            for (int k = 0; k < cm->sets[c].nsample; ++k, ++p) {
+                sample_at(k, cm->sets[c].nsample, &xi);
+                et->shape(m->geoms[m->elems[e].geom], xi, 0.0, 0.0, N);
+                for (int a = 0; a < et->nshape; ++a)
+                    w->Nc[w->Noff[p] + a] = N[a];
+            }
+        }
+    return 0;
 }
 
 /* Force fp[3] (internal sign: what fint gains) and stiffness Kp[9] = dfp/dz of
@@ -107,7 +135,13 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
             if (element)
                 element(ctx, &pt, 0);
             for (pt.k = 0; pt.k < pt.set->nsample; ++pt.k, ++pt.p) {
-                pt.wl = kl * sample(m, pt.e, qe, pt.k, pt.set->nsample, pt.N, pt.x);
+                double xi;
+                pt.wl = kl * sample_at(pt.k, pt.set->nsample, &xi);
+                pt.N = w->Nc + w->Noff[pt.p];
+                pt.x[0] = pt.x[1] = pt.x[2] = 0.0;
+                for (int a = 0; a < pt.et->nshape; ++a)
+                    for (int r = 0; r < 3; ++r)
+                        pt.x[r] += pt.N[a] * qe[pt.et->shape_dof[a] + r];
                 bk_contact_map_point(pt.prim, pl, pt.qb, pt.x, &pt.mp);
                 bk_contact_gap_ref(pt.prim, pt.mp.z, pt.g);
                 pt.dist = pt.g[0] - pt.set->radius[pt.i];
