@@ -16,7 +16,7 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 7
+MODEL_VERSION = 8
 
 REQUIRED = object()          # default of a key that must be given
 

@@ -1,0 +1,321 @@
+/* beam_contact_force.c -- the beam contact interaction's forces and Jacobian,
+ * step limiter, beam_contacts.csv, summary.json "beam_contact" and state, and
+ * its operations (beam_contact.h; the broad phase and the geometry:
+ * beam_contact.c). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/beam_contact.h"
+#include "assembly/beam_contact_impl.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
+#include "contact.h"
+
+/* ---- assemble: per candidate, the two elements' forces and four blocks ---- */
+
+typedef struct assembly {
+    bc_work *w;
+    bk_system *s;
+    double *fint, *Ax;
+    int touched, bad;
+} assembly;
+
+static void assemble_candidate(void *ctx, seg_pair *sp, int end)
+{
+    assembly *a = ctx;
+    bc_work *w = a->w;
+    if (!end) {
+        a->touched = 0;
+        return;
+    }
+    if (!a->touched)
+        return;
+    a->bad |= bk_scatter(a->s->m, sp->ei, w->fe[0], 1.0, a->fint);
+    a->bad |= bk_scatter(a->s->m, sp->ej, w->fe[1], 1.0, a->fint);
+    if (!a->Ax)
+        return;
+    const int el[2] = {sp->ei, sp->ej};
+    for (int b = 0; b < 4; ++b)
+        bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+}
+
+/* E = kappa w b(s), s = d - rA - rB: dE/dx = kappa w b' grad d; d2E = kappa w (b'' grad grad^T + b' H),
+ * on the 12 coordinates of the segments' ends, then through each end's shape functions to its element. */
+static void assemble_pair(void *ctx, seg_pair *sp)
+{
+    assembly *a = ctx;
+    bc_work *w = a->w;
+    const bk_model *m = a->s->m;
+    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    if (!(sp->dist > 0.0)) {
+        a->bad = 1;                          /* through a beam: not an admissible state */
+        return;
+    }
+    if (sp->dist >= set->shat)
+        return;
+    const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
+    const int nd[2] = {et[0]->ndof, et[1]->ndof};
+    if (!a->touched) {
+        for (int k = 0; k < 2; ++k)
+            memset(w->fe[k], 0, (size_t)nd[k] * sizeof *w->fe[k]);
+        for (int b = 0; b < 4; ++b)
+            memset(w->Kb[b], 0, (size_t)nd[b / 2] * (size_t)nd[b % 2] * sizeof *w->Kb[b]);
+        a->touched = 1;
+    }
+    double g[12], H[144], bar[3];
+    bc_distance_derivs(sp->pts, sp->sg, sp->tau, g, H);
+    bk_contact_barrier(sp->dist, set->shat, bar);
+    for (int P = 0; P < 4; ++P) {
+        const int sP = P / 2;
+        const double *NP = w->N + (size_t)sp->pidx[P] * BK_MAX_SHAPE;
+        for (int i = 0; i < et[sP]->nshape; ++i)
+            for (int r = 0; r < 3; ++r) {
+                const int row = et[sP]->shape_dof[i] + r;
+                w->fe[sP][row] += NP[i] * sp->wl * bar[1] * g[3 * P + r];
+                if (!a->Ax)
+                    continue;
+                for (int Q = 0; Q < 4; ++Q) {
+                    const int sQ = Q / 2;
+                    const double *NQ = w->N + (size_t)sp->pidx[Q] * BK_MAX_SHAPE;
+                    double *K = w->Kb[2 * sP + sQ] + (size_t)row * (size_t)nd[sQ];
+                    for (int c = 0; c < 3; ++c) {
+                        const int A = 3 * P + r, B = 3 * Q + c;
+                        const double k = sp->wl * (bar[2] * g[A] * g[B] + bar[1] * H[12 * A + B]) * NP[i];
+                        for (int j = 0; j < et[sQ]->nshape; ++j)
+                            K[et[sQ]->shape_dof[j] + c] += k * NQ[j];
+                    }
+                }
+            }
+    }
+}
+
+static int bc_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint, double *Ax)
+{
+    (void)path;
+    bc_work *w = self;
+    bc_points(w, s, q, 0, w->X);
+    assembly a = {.w = w, .s = s, .fint = fint, .Ax = Ax};
+    bc_each_pair(w, s->m, assemble_pair, assemble_candidate, &a);
+    return a.bad ? -1 : 0;
+}
+
+/* ---- step limit: no point moves more than M/4; every pair keeps a tenth of its distance ---- */
+
+typedef struct limiter {
+    const bc_work *w;
+    double alpha;
+} limiter;
+
+static double norm3(const double *x)
+{
+    return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+}
+
+/* A segment moves no point of it further than its farther end moves, so the
+ * distance of two changes by at most the sum of those. */
+static void limit_pair(void *ctx, seg_pair *sp)
+{
+    limiter *l = ctx;
+    const double *D = l->w->D;
+    const double move = fmax(norm3(D + 3 * sp->pidx[0]), norm3(D + 3 * sp->pidx[1])) +
+                        fmax(norm3(D + 3 * sp->pidx[2]), norm3(D + 3 * sp->pidx[3]));
+    if (move > 0.0 && move * l->alpha > 0.9 * sp->dist)
+        l->alpha = sp->dist > 0.0 ? 0.9 * sp->dist / move : 0.0;
+}
+
+static double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
+{
+    bc_work *w = self;
+    const bk_beam_contact_model *bm = s->m->beam_contact;
+    bc_points(w, s, q, 0, w->X);
+    bc_points(w, s, dx, 1, w->D);
+    limiter l = {.w = w, .alpha = 1.0};
+    for (int c = 0; c < bm->nset; ++c)
+        for (int p = w->base[c]; p < w->base[c] + bm->sets[c].nelem * bm->sets[c].nsample; ++p) {
+            const double move = norm3(w->D + 3 * p);
+            if (move * l.alpha > 0.25 * w->margin[c])
+                l.alpha = 0.25 * w->margin[c] / move;
+        }
+    bc_each_pair(w, s->m, limit_pair, NULL, &l);
+    return l.alpha;
+}
+
+/* ---- the state: forces on the beams, pairs in reach, smallest distance ---- */
+
+typedef struct state {
+    const bc_work *w;
+    const bk_model *m;
+    int c;
+    double *F, dmin;
+    int nactive;
+} state;
+
+/* The barrier force on the segment pair's first segment (fa) and its
+ * magnitude along the normal (0 beyond the reach). */
+static double pair_force(const bk_model *m, const seg_pair *sp, double *fa)
+{
+    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    double g[12], H[144], bar[3];
+    fa[0] = fa[1] = fa[2] = 0.0;
+    if (!(sp->dist > 0.0) || sp->dist >= set->shat)
+        return 0.0;
+    bc_distance_derivs(sp->pts, sp->sg, sp->tau, g, H);
+    bk_contact_barrier(sp->dist, set->shat, bar);
+    for (int r = 0; r < 3; ++r)
+        fa[r] = -sp->wl * bar[1] * (g[r] + g[3 + r]);
+    return -sp->wl * bar[1];
+}
+
+static void state_pair(void *ctx, seg_pair *sp)
+{
+    state *st = ctx;
+    if (sp->c != st->c)
+        return;
+    st->dmin = fmin(st->dmin, sp->dist);
+    double fa[3];
+    if (pair_force(st->m, sp, fa) <= 0.0)
+        return;
+    st->nactive++;
+    const int ca = st->w->chain[st->w->ebase[sp->c] + sp->i], cb = st->w->chain[st->w->ebase[sp->c] + sp->j];
+    for (int r = 0; r < 3; ++r) {
+        st->F[3 * ca + r] += fa[r];
+        st->F[3 * cb + r] -= fa[r];
+    }
+}
+
+static bc_work *work_of(const bk_system *s)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &bk_beam_contact_ops)
+            return s->inter[k].self;
+    return NULL;
+}
+
+int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F, int *nactive, double *min_distance)
+{
+    bc_work *w = work_of(s);
+    if (!w || c < 0 || c >= s->m->beam_contact->nset)
+        return -1;
+    memset(F, 0, 3 * (size_t)s->m->beam_contact->sets[c].nchain * sizeof *F);
+    bc_points(w, s, q, 0, w->X);
+    state st = {.w = w, .m = s->m, .c = c, .F = F, .dmin = INFINITY};
+    bc_each_pair(w, s->m, state_pair, NULL, &st);
+    if (nactive)
+        *nactive = st.nactive;
+    *min_distance = st.dmin;
+    return 0;
+}
+
+/* ---- outputs ---- */
+
+/* The name of the beam element e belongs to (sections.csv's records), or "?". */
+static const char *beam_name(const bk_model *m, int e)
+{
+    for (int k = 0; k < m->nsection; ++k)
+        if (m->sections[k].elem == e)
+            return m->sections[k].beam;
+    return "?";
+}
+
+/* summary.json "beam_contact": the smallest distance between the sections of
+ * segments that may touch (null: none near), the largest penetration (0: a
+ * state through a beam is refused), and per set its beams, the contact force
+ * on each and the pairs of segments within the barrier's reach. */
+static int bc_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
+{
+    (void)self;
+    const bk_beam_contact_model *bm = s->m->beam_contact;
+    double dmin = INFINITY, F[3 * 64];
+    int len = 0;
+    for (int c = 0; c < bm->nset; ++c) {
+        double d;
+        if (bm->sets[c].nchain > 64 || bk_beam_contact_state(s, q, c, F, NULL, &d) != 0)
+            return -1;
+        dmin = fmin(dmin, d);
+    }
+    if (isfinite(dmin))
+        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"sets\": [", dmin,
+                       dmin < 0.0 ? -dmin : 0.0);
+    else
+        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"sets\": [");
+    for (int c = 0; c < bm->nset && len > 0 && (size_t)len < n; ++c) {
+        const bk_beam_contact_set *set = &bm->sets[c];
+        int nact;
+        double d;
+        bk_beam_contact_state(s, q, c, F, &nact, &d);
+        len += snprintf(buf + len, n - (size_t)len, "%s{\"active_pairs\": %d, \"beams\": {", c ? ", " : "", nact);
+        for (int b = 0; b < set->nchain && len > 0 && (size_t)len < n; ++b)
+            len += snprintf(buf + len, n - (size_t)len, "%s\"%s\": [%.17g, %.17g, %.17g]", b ? ", " : "",
+                            beam_name(s->m, set->elems[set->chain_off[b]]), F[3 * b], F[3 * b + 1], F[3 * b + 2]);
+        if (len > 0 && (size_t)len < n)
+            len += snprintf(buf + len, n - (size_t)len, "}}");
+    }
+    if (len > 0 && (size_t)len < n)
+        len += snprintf(buf + len, n - (size_t)len, "]}");
+    return len > 0 && (size_t)len < n ? 0 : -1;
+}
+
+/* beam_contacts.csv: per output step every pair of segments within the
+ * barrier's reach: the two beams, elements and segments, the midpoint of the
+ * closest points, the sections' distance, the normal force and the force on
+ * the first beam there (N; the second gets its opposite). */
+static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
+{
+    (void)s;
+    bc_work *w = self;
+    w->table = bk_tables_open(ts, dir, "beam_contacts.csv", "step,time,set,beam_a,element_a,segment_a,beam_b,"
+                              "element_b,segment_b,x,y,z,distance,normal_force,fx,fy,fz\n", 1, err);
+    return w->table ? 0 : -1;
+}
+
+typedef struct rows {
+    const bc_work *w;
+    const bk_model *m;
+    int step;
+    double t;
+    bk_rowqueue *rq;
+} rows;
+
+static void row_pair(void *ctx, seg_pair *sp)
+{
+    rows *rw = ctx;
+    double fa[3];
+    const double fn = pair_force(rw->m, sp, fa);
+    if (fn <= 0.0)
+        return;
+    bk_row r;
+    bk_row_begin(&r, rw->w->table, rw->rq);
+    bk_row_int(&r, rw->step);
+    bk_row_num(&r, rw->t);
+    bk_row_int(&r, sp->c);
+    bk_row_str(&r, beam_name(rw->m, sp->ei));
+    bk_row_int(&r, sp->ei);
+    bk_row_int(&r, sp->k);
+    bk_row_str(&r, beam_name(rw->m, sp->ej));
+    bk_row_int(&r, sp->ej);
+    bk_row_int(&r, sp->l);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, 0.5 * (sp->pts[0][d] + sp->sg * (sp->pts[1][d] - sp->pts[0][d]) + sp->pts[2][d] +
+                              sp->tau * (sp->pts[3][d] - sp->pts[2][d])));
+    bk_row_num(&r, sp->dist);
+    bk_row_num(&r, fn);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, fa[d]);
+    bk_row_end(&r);
+}
+
+static void bc_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
+{
+    bc_work *w = self;
+    if (!w->table)
+        return;
+    bc_points(w, s, q, 0, w->X);
+    rows rw = {.w = w, .m = s->m, .step = step, .t = t, .rq = rq};
+    bc_each_pair(w, s->m, row_pair, NULL, &rw);
+}
+
+const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
+                                                .prepare = bc_prepare, .step_limit = bc_step_limit,
+                                                .tables = bc_tables, .rows = bc_rows, .summary_key = "beam_contact",
+                                                .summary = bc_summary, .free = bc_free};

@@ -1,0 +1,63 @@
+/* beam_contact_impl.h -- what the beam contact interaction's files share
+ * (private to assembly/): its work data, the candidate segment pairs' visitor
+ * and the distance of two segments (beam_contact.c), used by the forces,
+ * the step limiter and the outputs (beam_contact_force.c). */
+#ifndef BK_BEAM_CONTACT_IMPL_H
+#define BK_BEAM_CONTACT_IMPL_H
+
+#include <stdio.h>
+
+#include "assembly/contact_broad.h"
+#include "assembly/system.h"
+
+/* Below this sin^2 of their angle two segments count as parallel: their
+ * distance is then the smallest of an end's to the other segment (the lines'
+ * formula is undefined). */
+#define PARALLEL_SIN2 1e-12
+
+typedef struct bc_work {
+    int npt;                         /* sample points of every set */
+    int *base, *ebase;               /* [nset] each set's first point, first element entry */
+    int *chain;                      /* [entries] the beam of each element entry of each set */
+    double *N;                       /* [npt BK_MAX_SHAPE] shape functions of each point (constant) */
+    double *X, *Xref, *D;            /* [3 npt] positions; where the last broad phase saw them; a motion */
+    double *margin;                  /* [nset] the broad phase's margin M (m) */
+    int have_ref;
+    int ncand, capcand;
+    int *cand;                       /* [3 ncand] set, i, j: element entries to compare */
+    int npair, cappair;
+    int *pairs;                      /* the broad phase's pairs (scratch) */
+    bk_box *box;                     /* [largest set's nelem] */
+    double *fe[2], *Kb[4];           /* [maxdof], [maxdof^2]: forces of elements i, j; blocks ii ij ji jj */
+    FILE *table;                     /* beam_contacts.csv, or NULL */
+} bc_work;
+
+typedef struct seg_pair {
+    int c, i, j, k, l;               /* set, entries, segments */
+    int ei, ej;                      /* their elements */
+    const double *pts[4];            /* x0, x1 (of i), y0, y1 (of j) */
+    int pidx[4];                     /* their point indices */
+    double sg, tau, d, dist, wl;     /* closest points, distance of the centrelines, of the sections; kappa w */
+} seg_pair;
+
+void bc_free(void *self);
+/* The broad phase again when a sample point moved more than M/4 since the
+ * last one (or there was none): 0, or -1 when out of memory. */
+int bc_prepare(void *self, bk_system *s, const double *q);
+/* Every sample point's position from the DOF values v into X[3 npt], or,
+ * with on_eq, its motion by the correction v[neq] on the equations. */
+void bc_points(bc_work *w, const bk_system *s, const double *v, int on_eq, double *X);
+/* Calls fn(ctx, sp) for every allowed segment pair of every candidate, and,
+ * when not NULL, cand(ctx, sp, 0) before a candidate's first and cand(ctx,
+ * sp, 1) after its last (at the positions w->X). */
+void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
+                  void (*cand)(void *, seg_pair *, int), void *ctx);
+/* The closest points x0 + sg (x1 - x0), y0 + tau (y1 - y0) of two segments
+ * (pts[4] = x0, x1, y0, y1); returns their distance. */
+double bc_closest(const double *const *pts, double *sg, double *tau);
+/* The distance of the two segments' closest points with its gradient g[12]
+ * and Hessian H[144] in (x0, x1, y0, y1), from the generated kernel of their
+ * kind (point-point, point-edge, edge-edge: sg, tau from bc_closest). */
+void bc_distance_derivs(const double *const *pts, double sg, double tau, double *g, double *H);
+
+#endif
