@@ -15,7 +15,11 @@ functions depending on where those points lie (the runtime classifies):
                its magnitude; undefined for parallel lines, where the runtime
                uses the point-edge distances instead)
 Each kernel writes out[0] = d, out[1..n] = dd/dx, out[n+1..n+n^2] = d2d/dx2
-(row-major), n its coordinate count.  The barrier and the friction profile
+(row-major), n its coordinate count.  One more, of the same layout, measures
+how parallel two segments are (the runtime blends a crossing's energy into
+that of segments lying along each other by it):
+  cos2         ((a1 - a0).(b1 - b0))^2 / (|a1 - a0|^2 |b1 - b0|^2)
+                                                     x = (a0, a1, b0, b1): 12  The barrier and the friction profile
 are those of out/kernels/contact.h (the same energy as beam-to-primitive
 contact)."""
 import sympy as sp
@@ -67,6 +71,12 @@ def edge_edge():
     return _program((b0 - a0).dot(n) / sp.sqrt(n.dot(n)), x)
 
 
+def cos2():
+    x, (a0, a1, b0, b1) = _points(4)
+    u, v = a1 - a0, b1 - b0
+    return _program(u.dot(v) ** 2 / (u.dot(u) * v.dot(v)), x)
+
+
 def _ops(low):
     pro, bod = count_lowered(low)
     return pro.total() + bod.total()
@@ -78,7 +88,8 @@ def functions():
     for name, make, npt, doc in (
             ("point_point", point_point, 2, "distance |p - q| of two points"),
             ("point_edge", point_edge, 3, "distance of the point p to the line of e0 e1"),
-            ("edge_edge", edge_edge, 4, "signed distance of the lines of a0 a1 and b0 b1")):
+            ("edge_edge", edge_edge, 4, "signed distance of the lines of a0 a1 and b0 b1"),
+            ("cos2", cos2, 4, "squared cosine of the angle between a1 - a0 and b1 - b0")):
         low = make()
         n = 3 * npt
         sig = f"void bk_pair_dist_{name}({_D} x, {_W} out)"

@@ -3,7 +3,8 @@
  * (distance -> gradient -> Hessian) and against distances computed here
  * another way: the point-edge distance by the cross product |w x e| / |e|,
  * the edge-edge distance from the closest points of the two lines (a 2 x 2
- * linear system) as the length of the vector between them.  Prints the
+ * linear system) as the length of the vector between them, the squared
+ * cosine of two segments' angle from their cross product.  Prints the
  * largest errors for tests/test_contact_pairs_kernels.py. */
 #include <math.h>
 #include <stdio.h>
@@ -80,6 +81,12 @@ int main(void)
         for (int i = 0; i < 3; ++i)
             gap[i] = x[6 + i] + t * v[i] - x[i] - s * u[i];
         eclosed = fmax(eclosed, fabs(fabs(o[0]) - sqrt(dot(gap, gap))));
+
+        fd_check(bk_pair_dist_cos2, 12, x, &eg, &eh, &esym);
+        bk_pair_dist_cos2(x, o);
+        /* cos^2 = 1 - |u x v|^2 / (|u|^2 |v|^2) */
+        double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        eclosed = fmax(eclosed, fabs(o[0] - (1.0 - dot(cr, cr) / (A * C))));
     }
     printf("grad_err=%.3e hess_err=%.3e hess_sym_err=%.3e closed_err=%.3e\n", eg, eh, esym, eclosed);
     return 0;

@@ -1,6 +1,6 @@
 """The generated beam-to-beam distance kernels (gen/contact_pairs.py ->
 out/kernels/contact_pairs.c): point-point, point-edge and edge-edge distances
-with their gradients and Hessians against central differences and against
+and the squared cosine of two segments' angle, with their gradients and Hessians against central differences and against
 distances computed another way in tests/contact_pairs_check.c (the cross
 product; the closest points of two lines), built with AddressSanitizer +
 UBSan."""
@@ -24,7 +24,7 @@ def results():
 
 def test_distances_match_another_computation_and_their_differences():
     d = results()
-    assert float(d["closed_err"]) < 1e-12, d         # |p - q|, |w x e| / |e|, |closest points of two lines|
+    assert float(d["closed_err"]) < 1e-12, d         # |p - q|, |w x e| / |e|, |closest points of two lines|, 1 - |u x v|^2/(|u| |v|)^2
     assert float(d["grad_err"]) < 1e-6, d            # gradient against differences of the distance
     assert float(d["hess_err"]) < 1e-5, d            # Hessian against differences of the gradient
     assert float(d["hess_sym_err"]) == 0.0, d        # written symmetric

@@ -12,6 +12,7 @@
 #include "assembly/beam_contact_impl.h"
 #include "assembly/contact_broad.h"
 #include "assembly/system.h"
+#include "contact.h"
 #include "contact_pairs.h"
 
 int bk_beam_contact_present(const bk_model *m)
@@ -273,30 +274,18 @@ double bc_closest(const double *const *pts, double *sg, double *tau)
     return sqrt(dot3(g, g));
 }
 
-void bc_distance_derivs(const double *const *pts, double sg, double tau, double *g, double *H)
+/* A generated kernel of n points (indices ip[n] into the pair's four):
+ * its value, and its gradient and Hessian added times c into the pair's
+ * coordinates (x0, x1, y0, y1): g[12], H[144]. */
+static double kernel(void (*fn)(const double *, double *), int n, const int *ip, const double *const *pts,
+                     double *g, double *H)
 {
-    const int send = sg == 0.0 || sg == 1.0, tend = tau == 0.0 || tau == 1.0;
-    int ip[4], n;
     double x[12], o[1 + 12 + 144];
-    if (!send && !tend) {
-        n = 4, ip[0] = 0, ip[1] = 1, ip[2] = 2, ip[3] = 3;
-    } else if (send && !tend) {
-        n = 3, ip[0] = sg == 0.0 ? 0 : 1, ip[1] = 2, ip[2] = 3;
-    } else if (!send) {
-        n = 3, ip[0] = tau == 0.0 ? 2 : 3, ip[1] = 0, ip[2] = 1;
-    } else {
-        n = 2, ip[0] = sg == 0.0 ? 0 : 1, ip[1] = tau == 0.0 ? 2 : 3;
-    }
     for (int k = 0; k < n; ++k)
         memcpy(x + 3 * k, pts[ip[k]], 3 * sizeof *x);
-    if (n == 4)
-        bk_pair_dist_edge_edge(x, o);
-    else if (n == 3)
-        bk_pair_dist_point_edge(x, o);
-    else
-        bk_pair_dist_point_point(x, o);
+    fn(x, o);
     const int nx = 3 * n;
-    const double sign = o[0] < 0.0 ? -1.0 : 1.0;
+    const double sign = o[0] < 0.0 ? -1.0 : 1.0;  /* (the edge-edge distance is signed) */
     memset(g, 0, 12 * sizeof *g);
     memset(H, 0, 144 * sizeof *H);
     for (int a = 0; a < nx; ++a) {
@@ -305,6 +294,82 @@ void bc_distance_derivs(const double *const *pts, double sg, double tau, double 
         for (int b = 0; b < nx; ++b)
             H[12 * A + 3 * ip[b / 3] + b % 3] = sign * o[1 + nx + nx * a + b];
     }
+    return sign * o[0];
+}
+
+/* The distance of the segments' closest points (their kind from sg, tau). */
+static double segment_distance(const double *const *pts, double sg, double tau, double *g, double *H)
+{
+    const int send = sg == 0.0 || sg == 1.0, tend = tau == 0.0 || tau == 1.0;
+    if (!send && !tend)
+        return kernel(bk_pair_dist_edge_edge, 4, (const int[]){0, 1, 2, 3}, pts, g, H);
+    if (send && !tend)
+        return kernel(bk_pair_dist_point_edge, 3, (const int[]){sg == 0.0 ? 0 : 1, 2, 3}, pts, g, H);
+    if (!send)
+        return kernel(bk_pair_dist_point_edge, 3, (const int[]){tau == 0.0 ? 2 : 3, 0, 1}, pts, g, H);
+    return kernel(bk_pair_dist_point_point, 2, (const int[]){sg == 0.0 ? 0 : 1, tau == 0.0 ? 2 : 3}, pts, g, H);
+}
+
+/* The distance of end p of one segment to the other segment (q0, q1). */
+static double end_distance(const double *const *pts, int p, int q0, int q1, double *g, double *H)
+{
+    double e[3], w[3];
+    for (int d = 0; d < 3; ++d)
+        e[d] = pts[q1][d] - pts[q0][d], w[d] = pts[p][d] - pts[q0][d];
+    const double h = dot3(w, e) / dot3(e, e);
+    if (h > 0.0 && h < 1.0)
+        return kernel(bk_pair_dist_point_edge, 3, (const int[]){p, q0, q1}, pts, g, H);
+    return kernel(bk_pair_dist_point_point, 2, (const int[]){p, h <= 0.0 ? q0 : q1}, pts, g, H);
+}
+
+/* e += c b(s), s = d - R, with its gradient and Hessian from those of d. */
+static void add_barrier(double c, double d, const double *gd, const double *Hd, double R, double shat, double *e,
+                        double *g, double *H)
+{
+    double b[3];
+    if (d - R >= shat)
+        return;
+    bk_contact_barrier(d - R, shat, b);
+    *e += c * b[0];
+    for (int i = 0; i < 12; ++i) {
+        g[i] += c * b[1] * gd[i];
+        for (int j = 0; j < 12; ++j)
+            H[12 * i + j] += c * (b[2] * gd[i] * gd[j] + b[1] * Hd[12 * i + j]);
+    }
+}
+
+double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, double hb, double *g, double *H)
+{
+    double gd[12], Hd[144], ess = 0.0, eps = 0.0, gss[12] = {0}, gps[12] = {0}, gc[12], Hc[144];
+    static const int ends[4][3] = {{0, 2, 3}, {1, 2, 3}, {2, 0, 1}, {3, 0, 1}};
+    const double c = kernel(bk_pair_dist_cos2, 4, (const int[]){0, 1, 2, 3}, sp->pts, gc, Hc);
+    const double t = c <= BC_BLEND_C1 ? 0.0 : c >= BC_BLEND_C2 ? 1.0 : (c - BC_BLEND_C1) / (BC_BLEND_C2 - BC_BLEND_C1);
+    const double S = t * t * t * (10.0 - 15.0 * t + 6.0 * t * t), xi = 1.0 - S;
+    double Hss[144] = {0}, Hps[144] = {0};
+    if (xi > 0.0) {                              /* crossing: the closest points, weight (ha + hb) / 2 */
+        const double d = segment_distance(sp->pts, sp->sg, sp->tau, gd, Hd);
+        add_barrier(0.5 * (ha + hb), d, gd, Hd, R, shat, &ess, gss, Hss);
+    }
+    if (xi < 1.0)                                /* along each other: each end to the other segment */
+        for (int k = 0; k < 4; ++k) {
+            const double d = end_distance(sp->pts, ends[k][0], ends[k][1], ends[k][2], gd, Hd);
+            add_barrier(0.25 * (k < 2 ? ha : hb), d, gd, Hd, R, shat, &eps, gps, Hps);
+        }
+    /* E = xi Ess + (1 - xi) Eps: the blend's derivatives where 0 < t < 1 */
+    const double k1 = t > 0.0 && t < 1.0 ? -30.0 * t * t * (t - 1.0) * (t - 1.0) / (BC_BLEND_C2 - BC_BLEND_C1) : 0.0;
+    const double k2 = t > 0.0 && t < 1.0 ? -60.0 * t * (2.0 * t - 1.0) * (t - 1.0) /
+                                                ((BC_BLEND_C2 - BC_BLEND_C1) * (BC_BLEND_C2 - BC_BLEND_C1)) : 0.0;
+    const double de = ess - eps;                 /* dxi = k1 grad c; d2xi = k2 grad c grad c^T + k1 H c */
+    for (int i = 0; i < 12; ++i) {
+        g[i] = xi * gss[i] + (1.0 - xi) * gps[i] + de * k1 * gc[i];
+        if (!H)
+            continue;
+        for (int j = 0; j < 12; ++j)
+            H[12 * i + j] = xi * Hss[12 * i + j] + (1.0 - xi) * Hps[12 * i + j] +
+                            k1 * (gc[i] * (gss[j] - gps[j]) + (gss[i] - gps[i]) * gc[j]) +
+                            de * (k2 * gc[i] * gc[j] + k1 * Hc[12 * i + j]);
+    }
+    return xi * ess + (1.0 - xi) * eps;
 }
 
 /* ---- the visitor of the candidate segment pairs (beam_contact_impl.h) ---- */
@@ -333,7 +398,7 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
                     sp.pts[a] = w->X + 3 * sp.pidx[a];
                 sp.d = bc_closest(sp.pts, &sp.sg, &sp.tau);
                 sp.dist = sp.d - set->radius[sp.i] - set->radius[sp.j];
-                sp.wl = set->kappa * 0.5 * (hi + hj);
+                sp.hi = hi, sp.hj = hj;
                 fn(ctx, &sp);
             }
         if (cand)

@@ -10,7 +10,6 @@
 #include "assembly/beam_contact_impl.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
-#include "contact.h"
 
 /* ---- assemble: per candidate, the two elements' forces and four blocks ---- */
 
@@ -40,8 +39,8 @@ static void assemble_candidate(void *ctx, seg_pair *sp, int end)
         bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
 }
 
-/* E = kappa w b(s), s = d - rA - rB: dE/dx = kappa w b' grad d; d2E = kappa w (b'' grad grad^T + b' H),
- * on the 12 coordinates of the segments' ends, then through each end's shape functions to its element. */
+/* E = kappa e(x) (bc_pair_energy) on the 12 coordinates of the segments' ends, then through each end's
+ * shape functions to its element. */
 static void assemble_pair(void *ctx, seg_pair *sp)
 {
     assembly *a = ctx;
@@ -63,16 +62,16 @@ static void assemble_pair(void *ctx, seg_pair *sp)
             memset(w->Kb[b], 0, (size_t)nd[b / 2] * (size_t)nd[b % 2] * sizeof *w->Kb[b]);
         a->touched = 1;
     }
-    double g[12], H[144], bar[3];
-    bc_distance_derivs(sp->pts, sp->sg, sp->tau, g, H);
-    bk_contact_barrier(sp->dist, set->shat, bar);
+    double g[12], H[144];
+    const double R = set->radius[sp->i] + set->radius[sp->j], kap = set->kappa;
+    bc_pair_energy(sp, R, set->shat, sp->hi, sp->hj, g, H);
     for (int P = 0; P < 4; ++P) {
         const int sP = P / 2;
         const double *NP = w->N + (size_t)sp->pidx[P] * BK_MAX_SHAPE;
         for (int i = 0; i < et[sP]->nshape; ++i)
             for (int r = 0; r < 3; ++r) {
                 const int row = et[sP]->shape_dof[i] + r;
-                w->fe[sP][row] += NP[i] * sp->wl * bar[1] * g[3 * P + r];
+                w->fe[sP][row] += NP[i] * kap * g[3 * P + r];
                 if (!a->Ax)
                     continue;
                 for (int Q = 0; Q < 4; ++Q) {
@@ -80,8 +79,7 @@ static void assemble_pair(void *ctx, seg_pair *sp)
                     const double *NQ = w->N + (size_t)sp->pidx[Q] * BK_MAX_SHAPE;
                     double *K = w->Kb[2 * sP + sQ] + (size_t)row * (size_t)nd[sQ];
                     for (int c = 0; c < 3; ++c) {
-                        const int A = 3 * P + r, B = 3 * Q + c;
-                        const double k = sp->wl * (bar[2] * g[A] * g[B] + bar[1] * H[12 * A + B]) * NP[i];
+                        const double k = kap * H[12 * (3 * P + r) + 3 * Q + c] * NP[i];
                         for (int j = 0; j < et[sQ]->nshape; ++j)
                             K[et[sQ]->shape_dof[j] + c] += k * NQ[j];
                     }
@@ -112,16 +110,43 @@ static double norm3(const double *x)
     return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
 }
 
-/* A segment moves no point of it further than its farther end moves, so the
- * distance of two changes by at most the sum of those. */
+/* The distance of two segments is a minimum over their points of |P - Q|,
+ * and P - Q moves by a function bilinear in the two segments' parameters:
+ * so along a correction the distance changes at most by the largest
+ * relative motion L of an end of one and an end of the other (a common
+ * motion does not count).  A fraction alpha keeps the pair at a tenth of its
+ * distance s0 or more when alpha L <= 0.9 s0; beyond that (a pair sliding
+ * along the other moves far without approaching) the distance at the end of
+ * the step is computed, the fraction halved until it keeps a tenth, and
+ * alpha L held below twice the sum of the radii, so that no step takes a
+ * centreline through the other and out beyond it (that needs a relative
+ * motion of twice the radii at least). */
 static void limit_pair(void *ctx, seg_pair *sp)
 {
     limiter *l = ctx;
     const double *D = l->w->D;
-    const double move = fmax(norm3(D + 3 * sp->pidx[0]), norm3(D + 3 * sp->pidx[1])) +
-                        fmax(norm3(D + 3 * sp->pidx[2]), norm3(D + 3 * sp->pidx[3]));
-    if (move > 0.0 && move * l->alpha > 0.9 * sp->dist)
-        l->alpha = sp->dist > 0.0 ? 0.9 * sp->dist / move : 0.0;
+    double L = 0.0;
+    for (int a = 0; a < 2; ++a)
+        for (int b = 2; b < 4; ++b) {
+            const double *da = D + 3 * sp->pidx[a], *db = D + 3 * sp->pidx[b];
+            const double r[3] = {da[0] - db[0], da[1] - db[1], da[2] - db[2]};
+            L = fmax(L, norm3(r));
+        }
+    if (!(L > 0.0) || L * l->alpha <= 0.9 * sp->dist)
+        return;
+    const double safe = sp->dist > 0.0 ? 0.9 * sp->dist / L : 0.0, radii = sp->d - sp->dist;
+    double alpha = fmin(l->alpha, 2.0 * radii / L);
+    while (alpha > safe) {
+        double x[4][3], sg, tau;
+        const double *pts[4] = {x[0], x[1], x[2], x[3]};
+        for (int a = 0; a < 4; ++a)
+            for (int r = 0; r < 3; ++r)
+                x[a][r] = sp->pts[a][r] + alpha * D[3 * sp->pidx[a] + r];
+        if (bc_closest(pts, &sg, &tau) - radii >= 0.1 * sp->dist)
+            break;
+        alpha *= 0.5;
+    }
+    l->alpha = fmax(alpha, safe);
 }
 
 static double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
@@ -137,7 +162,13 @@ static double bc_step_limit(void *self, const bk_system *s, const double *q, con
             if (move * l.alpha > 0.25 * w->margin[c])
                 l.alpha = 0.25 * w->margin[c] / move;
         }
-    bc_each_pair(w, s->m, limit_pair, NULL, &l);
+    /* again until no pair lowers it: each pair then holds at the final fraction */
+    for (int round = 0; round < 20; ++round) {
+        const double before = l.alpha;
+        bc_each_pair(w, s->m, limit_pair, NULL, &l);
+        if (l.alpha == before)
+            break;
+    }
     return l.alpha;
 }
 
@@ -151,20 +182,19 @@ typedef struct state {
     int nactive;
 } state;
 
-/* The barrier force on the segment pair's first segment (fa) and its
- * magnitude along the normal (0 beyond the reach). */
+/* The barrier force on the segment pair's first segment (fa; the second
+ * gets its opposite) and its magnitude (0 beyond the reach). */
 static double pair_force(const bk_model *m, const seg_pair *sp, double *fa)
 {
     const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
-    double g[12], H[144], bar[3];
+    double g[12], H[144];
     fa[0] = fa[1] = fa[2] = 0.0;
     if (!(sp->dist > 0.0) || sp->dist >= set->shat)
         return 0.0;
-    bc_distance_derivs(sp->pts, sp->sg, sp->tau, g, H);
-    bk_contact_barrier(sp->dist, set->shat, bar);
+    bc_pair_energy(sp, set->radius[sp->i] + set->radius[sp->j], set->shat, sp->hi, sp->hj, g, H);
     for (int r = 0; r < 3; ++r)
-        fa[r] = -sp->wl * bar[1] * (g[r] + g[3 + r]);
-    return -sp->wl * bar[1];
+        fa[r] = -set->kappa * (g[r] + g[3 + r]);
+    return norm3(fa);
 }
 
 static void state_pair(void *ctx, seg_pair *sp)

@@ -14,6 +14,10 @@
  * distance is then the smallest of an end's to the other segment (the lines'
  * formula is undefined). */
 #define PARALLEL_SIN2 1e-12
+/* The blend of crossing and parallel contact (bc_pair_energy): squared
+ * cosines of 20 and 10 degrees. */
+#define BC_BLEND_C1 0.88302222155948895
+#define BC_BLEND_C2 0.96984631039295421
 
 typedef struct bc_work {
     int npt;                         /* sample points of every set */
@@ -37,7 +41,8 @@ typedef struct seg_pair {
     int ei, ej;                      /* their elements */
     const double *pts[4];            /* x0, x1 (of i), y0, y1 (of j) */
     int pidx[4];                     /* their point indices */
-    double sg, tau, d, dist, wl;     /* closest points, distance of the centrelines, of the sections; kappa w */
+    double sg, tau, d, dist;         /* closest points, distance of the centrelines, of the sections */
+    double hi, hj;                   /* the segments' reference lengths */
 } seg_pair;
 
 void bc_free(void *self);
@@ -55,9 +60,17 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
 /* The closest points x0 + sg (x1 - x0), y0 + tau (y1 - y0) of two segments
  * (pts[4] = x0, x1, y0, y1); returns their distance. */
 double bc_closest(const double *const *pts, double *sg, double *tau);
-/* The distance of the two segments' closest points with its gradient g[12]
- * and Hessian H[144] in (x0, x1, y0, y1), from the generated kernel of their
- * kind (point-point, point-edge, edge-edge: sg, tau from bc_closest). */
-void bc_distance_derivs(const double *const *pts, double sg, double tau, double *g, double *H);
+/* The barrier energy of a segment pair over kappa (R the sum of the radii,
+ * shat the reach, ha, hb the segments' lengths), with its gradient g[12] and
+ * Hessian H[144] (H may be NULL) in (x0, x1, y0, y1).  Two energies blended by
+ * the squared cosine c of their angle (a quintic smoothstep from c = C1 to
+ * C2, C2 when 10 degrees apart): crossing, (ha + hb)/2 b(s) of the closest
+ * points' distance s; along each other, the mean over the four ends of the
+ * end's share of its segment (h/2) times b of its distance to the other
+ * segment (one barrier per length of beam where two lie along each other,
+ * smooth as an end passes from one segment to the next).  Distances from the
+ * generated kernels (out/kernels/contact_pairs.h), the barrier from
+ * out/kernels/contact.h. */
+double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, double hb, double *g, double *H);
 
 #endif

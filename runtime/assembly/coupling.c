@@ -17,7 +17,7 @@ static int cmp_pair(const void *a, const void *b)
 static int has_pair(const bk_system *s, int a, int b)
 {
     const int key[2] = {a, b};
-    return bsearch(key, s->couple, (size_t)s->ncouple, 2 * sizeof *s->couple, cmp_pair) != NULL;
+    return s->ncouple > 0 && bsearch(key, s->couple, (size_t)s->ncouple, 2 * sizeof *s->couple, cmp_pair) != NULL;
 }
 
 /* 1 when the pattern has every entry of the block rows of ea, columns of eb. */
