@@ -1,0 +1,143 @@
+"""Beam-to-beam contact (issue 35; [[beam_contact]], gen/scene/beam_contact.py;
+runtime/assembly/beam_contact*.c).
+
+The interaction on in-memory spring chains (tests/beam_contact_check.c,
+AddressSanitizer + UBSan): its forces and Jacobian against central
+differences of its residual, action = reaction, the broad phase against a
+comparison of every pair of boxes, the Newton matrix's pattern growing when
+chains that started apart come near.  Scenes against closed forms: two
+crossed cantilevers (Euler-Bernoulli superposition with the crossing a rigid
+link), two stacked strips (the contact carries the whole load); bad input
+refused with one line."""
+import csv
+import math
+import subprocess
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+
+from util import BUILD, ROOT, build_runtime_program, ensure_dir, run_cli, run_memcheck, run_scene
+
+
+@lru_cache(maxsize=None)
+def check():
+    exe = build_runtime_program(["beam_contact_check.c", "spring_element.c"], "beam_contact_check", "sanitize")
+    r = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and "runtime error" not in r.stderr, r.stderr[-3000:]
+    out = {}
+    for line in r.stdout.splitlines():
+        d = dict(kv.split("=", 1) for kv in line.split())
+        out[d.pop("case")] = d
+    return out
+
+
+def test_forces_and_jacobian_match_differences_and_balance():
+    d = check()["jacobian"]
+    assert int(d["active"]) > 20 and 0 < float(d["min_distance"]) < float(d["shat"]), d   # the barrier acts
+    assert float(d["err"]) < 1e-6, d                                   # Jacobian against central differences
+    assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d    # action = reaction
+
+
+def test_broad_phase_finds_exactly_the_overlapping_boxes():
+    d = check()["broad"]
+    assert int(d["brute"]) > 500 and d["pairs"] == d["brute"], d
+    assert d["missing"] == "0" and d["extra"] == "0", d
+
+
+def test_pattern_grows_when_chains_come_near():
+    d = check()["growth"]
+    assert d["couple0"] == "0" and int(d["couple1"]) > 0, d
+    assert int(d["gen1"]) == int(d["gen0"]) + 1 and int(d["nnz1"]) > int(d["nnz0"]), d
+    assert int(d["active"]) > 0, d
+
+
+def out_dir():
+    return Path(tempfile.mkdtemp(prefix="bk-bcontact-", dir=ensure_dir(BUILD / "runs")))
+
+
+def _beam_contact(summary):
+    c = summary["beam_contact"]
+    assert c["max_penetration"] == 0 and c["min_distance"] > 0, c
+    return c
+
+
+@lru_cache(maxsize=None)
+def crossed():
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_crossed_beams.toml", out=out)
+    return s, out
+
+
+def test_crossed_beams_against_the_closed_form():
+    """P at the upper's tip (L = 1 m), the crossing a = 0.91 m from its clamp
+    and b = 0.915 m from the lower's: the lower carries R = P a^2 (3L - a) / 6
+    / ((a^3 + b^3) / 3), the tip moves w = (P L^3 / 3 - R a^2 (3L - a) / 6) / EI
+    (small deflection, Euler-Bernoulli; gef's shear is 1e-4 of it)."""
+    s, _ = crossed()
+    c = _beam_contact(s)
+    P, L, a, b, EI = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    w = (P * L ** 3 / 3 - R * a * a * (3 * L - a) / 6) / EI
+    k_ref, k = P / w, P / -s["sensors"]["tip"]["displacement"][2]
+    assert abs(k / k_ref - 1) < 0.01, (k, k_ref)
+    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    assert abs(low[2] / -R - 1) < 0.01, (low, R)
+    assert all(abs(up[i] + low[i]) <= 1e-12 * abs(up[2]) for i in range(3)), (up, low)   # action = reaction
+    assert c["min_distance"] < 1e-5                                   # within the barrier's reach
+
+
+def test_crossed_beams_contact_rows_name_both_beams():
+    s, out = crossed()
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    last = [r for r in rows if int(r["step"]) == s["steps"]]
+    assert last and {(r["beam_a"], r["beam_b"]) for r in last} == {("upper", "lower")}, last
+    assert all(float(r["distance"]) > 0 for r in rows)
+    assert abs(sum(float(r["fz"]) for r in last) - s["beam_contact"]["sets"][0]["beams"]["upper"][2]) < 1e-9
+
+
+def test_stacked_strips_carry_the_load_on_the_contact():
+    s, _ = run_scene(ROOT / "models" / "contact_stacked_strips.toml", out=out_dir())
+    c = _beam_contact(s)
+    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    assert abs(up[2] / 20.0 - 1) < 1e-9, up                          # the distributed load: 20 N/m over 1 m
+    assert all(abs(up[i] + low[i]) <= 1e-12 * 20.0 for i in range(3)), (up, low)
+    assert c["sets"][0]["active_pairs"] > 10
+
+
+def test_crossed_beams_under_valgrind():
+    """valgrind memcheck on the solver (exit 99 on an error or a leak)."""
+    r, out = run_memcheck("contact_crossed_beams")
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert (out / "summary.json").exists()
+
+
+def _error(text):
+    d = out_dir()
+    p = d / "bad.toml"
+    p.write_text(text)
+    r = run_cli(["run", str(p), "--quiet", "--out", str(d / "out")])
+    assert r.returncode == 1, (r.returncode, r.stderr[-2000:])
+    lines = [ln for ln in r.stderr.splitlines() if ln.startswith("error:")]
+    assert len(lines) == 1, r.stderr
+    assert not (d / "out" / "summary.json").exists()
+    return lines[0]
+
+
+
+
+def test_bad_beam_contact_input_is_refused_with_one_line():
+    base = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
+    cases = [
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = 0.3'), "beam_contact[0].friction"),
+        (base.replace('stability = false\n', ''), "stability = false"),
+        (base.replace('beams = ["upper", "lower"]', 'beams = ["upper", "nosuch"]'), "no beam named 'nosuch'"),
+        (base.replace('beams = ["upper", "lower"]', 'beams = ["upper"]'), "two beams or more"),
+        (base.replace('start = [0.0, 0.0, 0.01001]', 'start = [0.0, 0.0, 0.009]')
+             .replace('end = [1.0, 0.0, 0.01001]', 'end = [1.0, 0.0, 0.009]'), "start 0.001 m into each other"),
+        (base.replace('samples = ', 'x = ').replace('distance = 1e-5', 'distance = 1e-5\nsamples = 1'),
+         "beam_contact[0].samples"),
+    ]
+    for text, expect in cases:
+        line = _error(text)
+        assert expect in line and "beam_contact" in line, (expect, line)
