@@ -151,7 +151,7 @@ static void check_jacobian(void)
     }
     double F[3 * NC], dmin;
     int nact;
-    bk_beam_contact_state(sys, q, 0, F, &nact, &dmin);
+    bk_beam_contact_state(sys, q, 0, F, &nact, NULL, &dmin);
     printf("case=jacobian err=%.3e amax=%.4g active=%d min_distance=%.4g shat=%.4g force_sum=%.3e force_max=%.4g\n",
            amax > 0.0 ? err / amax : err, amax, nact, dmin, shat,
            sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]), fmax_);
@@ -177,7 +177,7 @@ static void check_growth(void)
     bk_interactions_prepare(sys, q);
     double F[3 * NC], dmin;
     int nact;
-    bk_beam_contact_state(sys, q, 0, F, &nact, &dmin);
+    bk_beam_contact_state(sys, q, 0, F, &nact, NULL, &dmin);
     printf("case=growth nnz0=%ld nnz1=%ld gen0=%d gen1=%d couple0=%d couple1=%d active=%d\n", nnz0, sys->nnz, gen0,
            sys->pattern_gen, ncouple0, sys->ncouple, nact);
     bk_system_free(sys);

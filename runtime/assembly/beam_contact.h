@@ -34,10 +34,11 @@ int bk_beam_contact_make(struct bk_system *s, void **self);
 
 /* The state at q (for the outputs and the tests), of set c: the total force
  * on each of its beams (F[3 nchain], N), the pairs of segments within the
- * barrier's reach, and the smallest distance (section to section, m) of the
- * pairs the broad phase keeps (INFINITY: none).  Returns 0, or -1 when the
- * system has no beam contact. */
+ * barrier's reach and the sum of their forces' magnitudes (N; both may be
+ * NULL), and the smallest distance (section to section, m) of the pairs the
+ * broad phase keeps (INFINITY: none).  Returns 0, or -1 when the system has
+ * no beam contact. */
 int bk_beam_contact_state(const struct bk_system *s, const double *q, int c, double *F, int *nactive,
-                           double *min_distance);
+                          double *normal, double *min_distance);
 
 #endif

@@ -178,7 +178,7 @@ typedef struct state {
     const bc_work *w;
     const bk_model *m;
     int c;
-    double *F, dmin;
+    double *F, dmin, normal;
     int nactive;
 } state;
 
@@ -204,9 +204,11 @@ static void state_pair(void *ctx, seg_pair *sp)
         return;
     st->dmin = fmin(st->dmin, sp->dist);
     double fa[3];
-    if (pair_force(st->m, sp, fa) <= 0.0)
+    const double fn = pair_force(st->m, sp, fa);
+    if (fn <= 0.0)
         return;
     st->nactive++;
+    st->normal += fn;
     const int ca = st->w->chain[st->w->ebase[sp->c] + sp->i], cb = st->w->chain[st->w->ebase[sp->c] + sp->j];
     for (int r = 0; r < 3; ++r) {
         st->F[3 * ca + r] += fa[r];
@@ -222,7 +224,8 @@ static bc_work *work_of(const bk_system *s)
     return NULL;
 }
 
-int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F, int *nactive, double *min_distance)
+int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F, int *nactive, double *normal,
+                          double *min_distance)
 {
     bc_work *w = work_of(s);
     if (!w || c < 0 || c >= s->m->beam_contact->nset)
@@ -233,6 +236,8 @@ int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F,
     bc_each_pair(w, s->m, state_pair, NULL, &st);
     if (nactive)
         *nactive = st.nactive;
+    if (normal)
+        *normal = st.normal;
     *min_distance = st.dmin;
     return 0;
 }
@@ -250,8 +255,10 @@ static const char *beam_name(const bk_model *m, int e)
 
 /* summary.json "beam_contact": the smallest distance between the sections of
  * segments that may touch (null: none near), the largest penetration (0: a
- * state through a beam is refused), and per set its beams, the contact force
- * on each and the pairs of segments within the barrier's reach. */
+ * state through a beam is refused), the element pairs the pattern couples,
+ * and per set the pairs of segments within the barrier's reach, the sum of
+ * their forces' magnitudes and the total contact force on each beam (zero
+ * for a beam touching only itself). */
 static int bc_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
 {
     (void)self;
@@ -260,21 +267,23 @@ static int bc_summary(void *self, const bk_system *s, const double *q, char *buf
     int len = 0;
     for (int c = 0; c < bm->nset; ++c) {
         double d;
-        if (bm->sets[c].nchain > 64 || bk_beam_contact_state(s, q, c, F, NULL, &d) != 0)
+        if (bm->sets[c].nchain > 64 || bk_beam_contact_state(s, q, c, F, NULL, NULL, &d) != 0)
             return -1;
         dmin = fmin(dmin, d);
     }
     if (isfinite(dmin))
-        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"sets\": [", dmin,
-                       dmin < 0.0 ? -dmin : 0.0);
+        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"element_pairs\": %d, "
+                       "\"sets\": [", dmin, dmin < 0.0 ? -dmin : 0.0, s->ncouple);
     else
-        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"sets\": [");
+        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"element_pairs\": %d, \"sets\": [",
+                       s->ncouple);
     for (int c = 0; c < bm->nset && len > 0 && (size_t)len < n; ++c) {
         const bk_beam_contact_set *set = &bm->sets[c];
         int nact;
-        double d;
-        bk_beam_contact_state(s, q, c, F, &nact, &d);
-        len += snprintf(buf + len, n - (size_t)len, "%s{\"active_pairs\": %d, \"beams\": {", c ? ", " : "", nact);
+        double d, fn;
+        bk_beam_contact_state(s, q, c, F, &nact, &fn, &d);
+        len += snprintf(buf + len, n - (size_t)len, "%s{\"active_pairs\": %d, \"normal_force\": %.17g, \"beams\": {",
+                        c ? ", " : "", nact, fn);
         for (int b = 0; b < set->nchain && len > 0 && (size_t)len < n; ++b)
             len += snprintf(buf + len, n - (size_t)len, "%s\"%s\": [%.17g, %.17g, %.17g]", b ? ", " : "",
                             beam_name(s->m, set->elems[set->chain_off[b]]), F[3 * b], F[3 * b + 1], F[3 * b + 2]);
