@@ -49,7 +49,8 @@ SENSOR = ("name", "at")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
            "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
            "kinetic_friction")
-BEAM_CONTACT = ("name", "beams", "self", "exclude", "distance", "stiffness", "samples", "contact_radius", "friction")
+BEAM_CONTACT = ("name", "beams", "self", "exclude", "distance", "stiffness", "samples", "contact_radius", "friction",
+                "slip", "static_friction", "kinetic_friction")
 
 
 def union(by_type):

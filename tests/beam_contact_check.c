@@ -221,11 +221,60 @@ static void check_broad(void)
     free(pairs);
 }
 
+/* Friction: the lagged states taken at the wavy configuration, then every
+ * node moved sideways by a different amount (slips from a tenth of the
+ * tolerance to many: sticking and sliding pairs); the Jacobian against
+ * central differences there. */
+static void check_friction(void)
+{
+    scene s;
+    const double r = 0.01, shat = 0.01;
+    build(&s, 2 * r + 0.6 * shat, r, shat, 1e3, 3);
+    s.set.mu = 0.4;
+    s.set.slip = 1e-4;
+    bk_system *sys = bk_system_create(&s.m, stderr);
+    double q[NDOF], f[NDOF], fp[NDOF], fm[NDOF], h = 1e-8;
+    wavy(&s, shat, q);
+    bk_interactions_prepare(sys, q);
+    bk_interactions_accept(sys, q, &(bk_path){.factor = 1.0, .x = 1.0});
+    for (int n = 0; n < NC * NN; ++n) {
+        q[3 * n] += 2e-5 * (1 + n % 7) * cos(0.9 * n);
+        q[3 * n + 1] += 2e-5 * (1 + n % 5) * sin(0.7 * n);
+    }
+    double *Ax = calloc((size_t)sys->nnz, sizeof *Ax);
+    contact_force(sys, q, f, Ax);
+    double amax = 0.0, err = 0.0, sum[3] = {0.0, 0.0, 0.0}, fmx = 0.0;
+    for (long k = 0; k < sys->nnz; ++k)
+        amax = fmax(amax, fabs(Ax[k]));
+    for (int i = 0; i < NDOF; ++i)
+        sum[i % 3] += f[i], fmx = fmax(fmx, fabs(f[i]));
+    for (int j = 0; j < NDOF; ++j) {
+        const double qj = q[j];
+        q[j] = qj + h;
+        contact_force(sys, q, fp, NULL);
+        q[j] = qj - h;
+        contact_force(sys, q, fm, NULL);
+        q[j] = qj;
+        for (int i = 0; i < NDOF; ++i) {
+            double a = 0.0;
+            for (int k = sys->Ap[sys->eq[j]]; k < sys->Ap[sys->eq[j] + 1]; ++k)
+                if (sys->Ai[k] == sys->eq[i])
+                    a = Ax[k];
+            err = fmax(err, fabs((fp[i] - fm[i]) / (2 * h) - a));
+        }
+    }
+    printf("case=friction err=%.3e amax=%.4g force_sum=%.3e force_max=%.4g\n", amax > 0.0 ? err / amax : err, amax,
+           sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]), fmx);
+    free(Ax);
+    bk_system_free(sys);
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
     check_broad();
     check_growth();
     check_jacobian();
+    check_friction();
     return 0;
 }

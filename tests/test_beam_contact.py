@@ -7,8 +7,10 @@ differences of its residual, action = reaction, the broad phase against a
 comparison of every pair of boxes, the Newton matrix's pattern growing when
 chains that started apart come near.  Scenes against closed forms: two
 crossed cantilevers (Euler-Bernoulli superposition with the crossing a rigid
-link), two stacked strips (the contact carries the whole load); bad input
-refused with one line."""
+link), two stacked strips (the contact carries the whole load), a roll-up on
+itself, friction between the crossed beams (sliding: Coulomb's force and the
+closed-form deflection; sticking below the limit); bad input refused with one
+line."""
 import csv
 import math
 import subprocess
@@ -129,7 +131,8 @@ def _error(text):
 def test_bad_beam_contact_input_is_refused_with_one_line():
     base = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
     cases = [
-        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = 0.3'), "beam_contact[0].friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3'), "beam_contact[0].static_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = -0.3'), "beam_contact[0].friction"),
         (base.replace('stability = false\n', ''), "stability = false"),
         (base.replace('beams = ["upper", "lower"]', 'beams = ["upper", "nosuch"]'), "no beam named 'nosuch'"),
         (base.replace('beams = ["upper", "lower"]', 'beams = ["upper"]'), "two beams or more"),
@@ -191,3 +194,74 @@ def test_self_contact_rollup_lies_on_itself_and_never_passes_through():
     out2 = out_dir()
     run_scene(free, out=out2)
     assert min(_min_far_distance(out2 / "sections.csv", 0.05).values()) < 0.001
+
+
+def test_friction_jacobian_matches_differences():
+    """The lagged friction between beams (sticking and sliding pairs) with the
+    barrier: the Jacobian against central differences, action = reaction."""
+    d = check()["friction"]
+    assert float(d["err"]) < 1e-6, d
+    assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d
+
+
+def _crossed_with_friction(pull):
+    """The crossed cantilevers with friction 0.3: pressed by P over the first
+    half of the load path, then the upper's tip pulled sideways (along the
+    lower, y) by `pull` over the second.  Returns (summary, out)."""
+    text = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
+    text = text.replace("distance = 1e-5", "distance = 1e-5\nfriction = 0.3")
+    text = text.replace('value = [0.0, 0.0, -2.0]\n', 'value = [0.0, 0.0, -2.0]\namplitude = {type = "ramp", t0 = 0.0, '
+                        't1 = 0.5}\n\n[[load]]\ntype = "force"\nat = "upper:end"\nvalue = [0.0, ' + repr(pull) +
+                        ', 0.0]\namplitude = {type = "ramp", t0 = 0.5, t1 = 1.0}\n')
+    text = text.replace("load_steps = 4", "load_steps = 8")
+    d = out_dir()
+    (d / "friction.toml").write_text(text)
+    s, _ = run_scene(d / "friction.toml", out=d / "out")
+    return s, d / "out"
+
+
+def _sensor_y(out):
+    with open(out / "sensors.csv", newline="") as fh:
+        return [(float(r["time"]), r["sensor"], float(r["uy"])) for r in csv.DictReader(fh)]
+
+
+def _crossing_slip(out):
+    """The upper's crossing point relative to the lower's along y, at the last
+    state of the pressing half (load factor <= 0.5) and at the end."""
+    rows = _sensor_y(out)
+    def rel(t):
+        u = {n: y for tt, n, y in rows if tt == t}
+        return u["crossing"] - u["lower_crossing"]
+    t_press = max(t for t, _, _ in rows if t <= 0.5)
+    return rel(t_press), rel(1.0)
+
+
+def test_crossed_beams_slide_with_coulomb_friction():
+    """Pulled by 1 N (beyond the friction limit mu R = 0.342 N: a prop at the
+    crossing would need 1.15 N): the upper slides along the lower, the friction
+    on it is mu times the lagged normal force, and its tip moves
+    (T L^3 / 3 - mu R a^2 (3L - a) / 6) / EI sideways."""
+    s, out = _crossed_with_friction(1.0)
+    P, L, a, b, EI, mu, T = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12, 0.3, 1.0
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    ref = (T * L ** 3 / 3 - mu * R * a * a * (3 * L - a) / 6) / EI
+    tip = s["sensors"]["tip"]["displacement"][1]
+    assert abs(tip / ref - 1) < 0.02, (tip, ref)
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    fy = sum(float(r["fy"]) for r in last)                   # on the upper: against its slip (+y)
+    assert abs(fy / (-mu * R) - 1) < 0.05, (fy, mu * R)
+    before, after = _crossing_slip(out)
+    assert after - before > 1e-3, (before, after)            # it slid (millimetres)
+    assert _beam_contact(s)["sets"][0]["active_pairs"] > 0
+
+
+def test_crossed_beams_stick_below_the_friction_limit():
+    """Pulled by -0.2 N, within the limit whatever the friction the pressing
+    left (at most mu R = 0.342 N against the 0.23 N the prop takes): the
+    crossing sticks, moving less than ten slip tolerances (1e-7 m) relative to
+    the lower while the tip is pulled."""
+    s, out = _crossed_with_friction(-0.2)
+    before, after = _crossing_slip(out)
+    assert abs(after - before) < 1e-6, (before, after)
+    assert s["sensors"]["tip"]["displacement"][1] < 0

@@ -10,8 +10,10 @@ barrier's reach, m, default 1e-3 of the model length), stiffness (N/m per
 metre, default 1000 times the heaviest listed beam's weight per metre over
 the reach), samples (points per element, ends included, >= 2, default 4: the
 centreline is the polyline through them), contact_radius (m, default the
-section's: a circle's radius, a rectangle's half-height h/2).  Friction
-between beams is not available yet (`friction` is refused).  The runtime grows
+section's: a circle's radius, a rectangle's half-height h/2), friction (the
+Coulomb coefficient mu, one for sticking and sliding, default 0) and slip (the
+relative slip per step below which two beams stick, m; default 1e-7 of the
+model length).  The runtime grows
 the Newton matrix's pattern as contacts are found, so only static analyses
 with load control and `stability = false` take beam contact."""
 import math
@@ -101,8 +103,12 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
         if stat.get("stability"):
             ctx.fail(where, "expected [static] stability = false (the stability check keeps the first pattern of "
                             "the Newton matrix, which beam contact grows)")
-        if "friction" in ct:
-            ctx.fail(f"{where}.friction", "friction between beams is not available yet (issue 35): frictionless only")
+        for k in ("static_friction", "kinetic_friction"):
+            if k in ct:
+                ctx.fail(f"{where}.{k}", "separate static and kinetic coefficients are not available yet: give one "
+                                         "`friction` coefficient")
+        mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
+        slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
         names = ct.get("beams", list(beams))
         if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
             ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
@@ -130,7 +136,7 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
             segs += s
             beam_of += [n] * len(s)
         _check_start(ctx, where, segs, reach, exclude, self_contact, beam_of)
-        sets.append((reach, kappa, 0.0, 1e-7 * length_scale, samples, exclude, int(self_contact), chains))
+        sets.append((reach, kappa, mu, slip, samples, exclude, int(self_contact), chains))
     return sets
 
 

@@ -26,7 +26,7 @@ void bc_free(void *self)
     if (!w)
         return;
     free(w->base), free(w->ebase), free(w->chain), free(w->N), free(w->X), free(w->Xref), free(w->D);
-    free(w->margin), free(w->cand), free(w->pairs), free(w->box);
+    free(w->margin), free(w->cand), free(w->pairs), free(w->box), free(w->lag);
     for (int k = 0; k < 2; ++k)
         free(w->fe[k]);
     for (int k = 0; k < 4; ++k)

@@ -17,7 +17,9 @@
  * broad phase saw it, and a pair that was no candidate then stays beyond the
  * barrier's reach until the next one.  The step limiter also keeps every
  * candidate pair at more than a tenth of its distance (no iterate through a
- * beam); a state with a distance <= 0 is refused (assemble returns -1). */
+ * beam); a state with a distance <= 0 is refused (assemble returns -1).
+ * Friction (mu > 0): lagged per pair of segments, updated by accept
+ * (beam_contact_friction.c). */
 #ifndef BK_BEAM_CONTACT_H
 #define BK_BEAM_CONTACT_H
 

@@ -39,6 +39,26 @@ static void assemble_candidate(void *ctx, seg_pair *sp, int end)
         bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
 }
 
+/* The pair's energy gradient g[12] and Hessian H[144] (H may be NULL) in its
+ * ends' coordinates: the barrier's, kappa e(x) (bc_pair_energy), within the
+ * reach, and the lagged friction's where the pair has a lagged state lg. */
+static void pair_terms(const bk_beam_contact_set *set, const seg_pair *sp, const bc_lag *lg, double *g, double *H)
+{
+    double Hb[144];
+    memset(g, 0, 12 * sizeof *g);
+    if (H)
+        memset(H, 0, 144 * sizeof *H);
+    if (sp->dist < set->shat) {
+        bc_pair_energy(sp, set->radius[sp->i] + set->radius[sp->j], set->shat, sp->hi, sp->hj, g, H ? Hb : NULL);
+        for (int i = 0; i < 12; ++i)
+            g[i] *= set->kappa;
+        for (int i = 0; H && i < 144; ++i)
+            H[i] = set->kappa * Hb[i];
+    }
+    if (lg)
+        bc_friction(set, lg, sp, g, H);
+}
+
 /* E = kappa e(x) (bc_pair_energy) on the 12 coordinates of the segments' ends, then through each end's
  * shape functions to its element. */
 static void assemble_pair(void *ctx, seg_pair *sp)
@@ -51,7 +71,8 @@ static void assemble_pair(void *ctx, seg_pair *sp)
         a->bad = 1;                          /* through a beam: not an admissible state */
         return;
     }
-    if (sp->dist >= set->shat)
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
+    if (sp->dist >= set->shat && !lg)
         return;
     const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
     const int nd[2] = {et[0]->ndof, et[1]->ndof};
@@ -63,15 +84,14 @@ static void assemble_pair(void *ctx, seg_pair *sp)
         a->touched = 1;
     }
     double g[12], H[144];
-    const double R = set->radius[sp->i] + set->radius[sp->j], kap = set->kappa;
-    bc_pair_energy(sp, R, set->shat, sp->hi, sp->hj, g, H);
+    pair_terms(set, sp, lg, g, a->Ax ? H : NULL);
     for (int P = 0; P < 4; ++P) {
         const int sP = P / 2;
         const double *NP = w->N + (size_t)sp->pidx[P] * BK_MAX_SHAPE;
         for (int i = 0; i < et[sP]->nshape; ++i)
             for (int r = 0; r < 3; ++r) {
                 const int row = et[sP]->shape_dof[i] + r;
-                w->fe[sP][row] += NP[i] * kap * g[3 * P + r];
+                w->fe[sP][row] += NP[i] * g[3 * P + r];
                 if (!a->Ax)
                     continue;
                 for (int Q = 0; Q < 4; ++Q) {
@@ -79,7 +99,7 @@ static void assemble_pair(void *ctx, seg_pair *sp)
                     const double *NQ = w->N + (size_t)sp->pidx[Q] * BK_MAX_SHAPE;
                     double *K = w->Kb[2 * sP + sQ] + (size_t)row * (size_t)nd[sQ];
                     for (int c = 0; c < 3; ++c) {
-                        const double k = kap * H[12 * (3 * P + r) + 3 * Q + c] * NP[i];
+                        const double k = H[12 * (3 * P + r) + 3 * Q + c] * NP[i];
                         for (int j = 0; j < et[sQ]->nshape; ++j)
                             K[et[sQ]->shape_dof[j] + c] += k * NQ[j];
                     }
@@ -182,18 +202,19 @@ typedef struct state {
     int nactive;
 } state;
 
-/* The barrier force on the segment pair's first segment (fa; the second
- * gets its opposite) and its magnitude (0 beyond the reach). */
-static double pair_force(const bk_model *m, const seg_pair *sp, double *fa)
+/* The contact force (barrier and friction) on the segment pair's first
+ * segment (fa; the second gets its opposite) and its magnitude (0: none). */
+static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa)
 {
     const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
-    double g[12], H[144];
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
+    double g[12];
     fa[0] = fa[1] = fa[2] = 0.0;
-    if (!(sp->dist > 0.0) || sp->dist >= set->shat)
+    if (!(sp->dist > 0.0) || (sp->dist >= set->shat && !lg))
         return 0.0;
-    bc_pair_energy(sp, set->radius[sp->i] + set->radius[sp->j], set->shat, sp->hi, sp->hj, g, H);
+    pair_terms(set, sp, lg, g, NULL);
     for (int r = 0; r < 3; ++r)
-        fa[r] = -set->kappa * (g[r] + g[3 + r]);
+        fa[r] = -(g[r] + g[3 + r]);
     return norm3(fa);
 }
 
@@ -204,7 +225,7 @@ static void state_pair(void *ctx, seg_pair *sp)
         return;
     st->dmin = fmin(st->dmin, sp->dist);
     double fa[3];
-    const double fn = pair_force(st->m, sp, fa);
+    const double fn = pair_force(st->w, st->m, sp, fa);
     if (fn <= 0.0)
         return;
     st->nactive++;
@@ -320,7 +341,7 @@ static void row_pair(void *ctx, seg_pair *sp)
 {
     rows *rw = ctx;
     double fa[3];
-    const double fn = pair_force(rw->m, sp, fa);
+    const double fn = pair_force(rw->w, rw->m, sp, fa);
     if (fn <= 0.0)
         return;
     bk_row r;
@@ -355,6 +376,6 @@ static void bc_rows(void *self, const bk_system *s, int step, double t, const do
 }
 
 const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
-                                                .prepare = bc_prepare, .step_limit = bc_step_limit,
+                                                .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
                                                 .tables = bc_tables, .rows = bc_rows, .summary_key = "beam_contact",
                                                 .summary = bc_summary, .free = bc_free};

@@ -19,6 +19,15 @@
 #define BC_BLEND_C1 0.88302222155948895
 #define BC_BLEND_C2 0.96984631039295421
 
+/* The lagged friction state of a pair of segments (beam_contact_friction.c). */
+typedef struct bc_lag {
+    int key[5];                      /* set, i, k, j, l: the pair */
+    double lam;                      /* normal force (N) */
+    double n[3];                     /* unit normal: the direction of the force on the first segment */
+    double sg, tau;                  /* the closest points' parameters the slip follows */
+    double anchor[3];                /* their relative position P(sg) - Q(tau) where the slip counts from */
+} bc_lag;
+
 typedef struct bc_work {
     int npt;                         /* sample points of every set */
     int *base, *ebase;               /* [nset] each set's first point, first element entry */
@@ -34,6 +43,8 @@ typedef struct bc_work {
     bk_box *box;                     /* [largest set's nelem] */
     double *fe[2], *Kb[4];           /* [maxdof], [maxdof^2]: forces of elements i, j; blocks ii ij ji jj */
     FILE *table;                     /* beam_contacts.csv, or NULL */
+    int nlag;
+    bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
 } bc_work;
 
 typedef struct seg_pair {
@@ -72,5 +83,12 @@ double bc_closest(const double *const *pts, double *sg, double *tau);
  * generated kernels (out/kernels/contact_pairs.h), the barrier from
  * out/kernels/contact.h. */
 double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, double hb, double *g, double *H);
+
+/* Friction (beam_contact_friction.c): the lagged state of the pair, or NULL;
+ * the friction energy's gradient and Hessian (H may be NULL) added into g[12],
+ * H[144] (N, N/m; not over kappa); accept: the lagged states at q. */
+const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp);
+void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H);
+void bc_accept(void *self, const bk_system *s, const double *q, const bk_path *p);
 
 #endif
