@@ -43,6 +43,8 @@ def plan(elements=None, materials=None):
     units += [("body", u, body_paths()) for u in BODY_UNITS]
     from gen.emit_contact import UNIT as CONTACT_UNIT, paths as contact_paths
     units.append(("contact", CONTACT_UNIT, contact_paths()))
+    from gen.emit_contact_pairs import UNIT as PAIRS_UNIT, paths as pairs_paths
+    units.append(("contact_pairs", PAIRS_UNIT, pairs_paths()))
     for ename, (elem, epath) in elements.items():
         fam = family_paths(elem)
         units.append(("element", ename, [epath] + fam))
@@ -100,6 +102,9 @@ def produce(unit):
     elif kind == "contact":
         from gen.emit_contact import unit_source
         h, c = unit_source()
+    elif kind == "contact_pairs":
+        from gen.emit_contact_pairs import unit_source
+        h, c = unit_source()
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = _emitter(elem).element_source(elem, epath)[:2]
@@ -149,7 +154,7 @@ def index_data(elements=None, materials=None):
         out["materials"][mname] = material_data(mat, mpath)
     from gen.emit_body import index_entries
     out["body"], out["joints"] = index_entries()
-    out["contact"] = {"files": ["contact.c"]}           # every solver links the contact kernels
+    out["contact"] = {"files": ["contact.c", "contact_pairs.c"]}   # every solver links the contact kernels
     return out
 
 

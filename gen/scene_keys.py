@@ -12,7 +12,7 @@ from gen import options_schema as S
 # the top-level tables: the scene's, then the option tables of the schema (an
 # analysis's options table comes with its schema rows)
 TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
-       "contact") + tuple(S.TABLES)
+       "contact", "beam_contact") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -54,6 +54,8 @@ SENSOR = ("name", "at")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
            "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
            "kinetic_friction", "size", "axes", "turn", "pivot", "body")
+BEAM_CONTACT = ("name", "beams", "self", "exclude", "distance", "stiffness", "samples", "contact_radius", "friction",
+                "slip", "static_friction", "kinetic_friction")
 
 
 def union(by_type):
@@ -68,4 +70,5 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "contact": CONTACT}
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "contact": CONTACT,
+            "beam_contact": BEAM_CONTACT}

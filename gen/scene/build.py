@@ -10,6 +10,7 @@ from gen.options_schema import OPTIONS
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
+from gen.scene.beam_contact import beam_contacts
 from gen.scene.contact import contacts
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
@@ -90,6 +91,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
         "contact_prims": contact_prims, "contact_sets": contact_sets,
+        "beam_contacts": beam_contacts(ctx, doc, mesh.beams, length_scale, analysis, stat),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,

@@ -114,6 +114,8 @@ def write_model(model, path):
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
     from gen.scene.contact import contact_records
     out += contact_records(model.get("contact_prims", []), model.get("contact_sets", []), _f)
+    from gen.scene.beam_contact import beam_contact_records
+    out += beam_contact_records(model.get("beam_contacts", []), _f)
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

@@ -87,7 +87,8 @@ int bk_sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
     bk_system *s = p->s;
     work *w = p->w;
     const bk_model *m = s->m;
-    (void)r, (void)Ax;               /* w->r, w->Ax are the solver's buffers */
+    (void)r;                         /* w->r is the solver's buffer */
+    w->Ax = Ax;                      /* the solver's, made anew when the pattern grew (nonlinear.h) */
     if (p->ref && p->ref->state == 3) {  /* w->Ax: still the reference state's matrix */
         bk_stability_check(p->ref->st, w->Ax, &p->ref->res);
         if (p->ref->res.ok)

@@ -7,6 +7,7 @@
 
 #include "assembly/contact_impl.h"
 #include "assembly/system.h"
+#include "assembly/system_impl.h"
 #include "model/amplitude.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
@@ -15,6 +16,30 @@
 int bk_contact_present(const bk_model *m)
 {
     return m->contact && m->contact->nset > 0;
+}
+
+/* The coupling blocks of every element of a set whose primitive belongs to a
+ * rigid body with the body's element (the Newton pattern grows by them once,
+ * before any analysis has used it).  0 or 1, or -1 when out of memory. */
+static int body_couplings(bk_system *s)
+{
+    const bk_contact_model *cm = s->m->contact;
+    int n = 0, r = 0;
+    for (int c = 0; c < cm->nset; ++c)
+        n += cm->prims[cm->sets[c].prim].body >= 0 ? cm->sets[c].nelem : 0;
+    if (n == 0)
+        return 0;
+    int *pairs = malloc(2 * (size_t)n * sizeof *pairs), k = 0;
+    if (!pairs)
+        return -1;
+    for (int c = 0; c < cm->nset; ++c)
+        for (int i = 0; cm->prims[cm->sets[c].prim].body >= 0 && i < cm->sets[c].nelem; ++i, ++k) {
+            pairs[2 * k] = cm->sets[c].elems[i];
+            pairs[2 * k + 1] = cm->prims[cm->sets[c].prim].body;
+        }
+    r = bk_system_couple(s, n, pairs);
+    free(pairs);
+    return r;
 }
 
 int bk_contact_make(bk_system *s, void **self)
@@ -43,6 +68,8 @@ int bk_contact_make(bk_system *s, void **self)
     }
     const int shapes = w ? contact_sample_shapes(w, s->m) : -1;
     *self = w;
+    if (body_couplings(s) < 0)
+        return -1;
     return w && shapes == 0 && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
 }
 
@@ -127,7 +154,7 @@ static void assemble_element(void *ctx, point *pt, int end)
             continue;
         for (int r = 0; r < nb; ++r) {
             const int row = block_eq(a->s, pt, r);
-            const long slot = row >= 0 ? bk_system_slot(a->s, row, col) : -1;
+            const long slot = row >= 0 ? bk_find_slot(a->s, row, col) : -1;
             if (slot >= 0)
                 a->Ax[slot] += w->Ke[r * nb + c];
         }

@@ -12,6 +12,11 @@
  *               external forces), and, when Ax is not NULL, its Jacobian
  *               d(-Q)/dq added to the Newton matrix values Ax (system.h's
  *               pattern: the element blocks).  0, or -1 on a non-finite value.
+ *   prepare     (optional) called by the Newton solver before each iteration
+ *               at q: an interaction whose Jacobian couples elements the
+ *               pattern may not couple yet (beam-to-beam contact) asks for
+ *               their blocks here (system.h bk_system_couple); 0, or -1 when
+ *               out of memory.
  *   step_limit  (optional) the largest fraction in (0, 1] of the correction
  *               dx[neq] (on the equations, system.h) that keeps its state
  *               admissible (contact: no gap crosses zero); NULL: 1.
@@ -52,6 +57,7 @@ typedef struct bk_path {
 typedef struct bk_interaction_ops {
     const char *name;
     int (*assemble)(void *self, struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
+    int (*prepare)(void *self, struct bk_system *s, const double *q);
     double (*step_limit)(void *self, const struct bk_system *s, const double *q, const double *dx);
     void (*accept)(void *self, const struct bk_system *s, const double *q, const bk_path *p);
     int (*tables)(void *self, const struct bk_system *s, struct bk_tables *ts, const char *dir, FILE *err);
@@ -77,6 +83,9 @@ void bk_interactions_free(struct bk_system *s);
  * from fint and adds their Jacobians to Ax (when not NULL).  0, or -1 when
  * one gave a non-finite value. */
 int bk_assemble_interactions(struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
+/* Every interaction's prepare at q (before a Newton iteration): 0, or -1
+ * when out of memory. */
+int bk_interactions_prepare(struct bk_system *s, const double *q);
 /* The smallest step limit of the interactions for the correction dx (1 when
  * none limits it). */
 double bk_interactions_step_limit(const struct bk_system *s, const double *q, const double *dx);

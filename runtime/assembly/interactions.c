@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "assembly/contact_force.h"
+#include "assembly/beam_contact.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
 
@@ -64,6 +65,7 @@ static const struct {
     {&follower_ops, has_moments, make_follower},
     {&loads_ops, bk_loads_present, make_loads},
     {&bk_contact_ops, bk_contact_present, bk_contact_make},
+    {&bk_beam_contact_ops, bk_beam_contact_present, bk_beam_contact_make},
 };
 
 int bk_interactions_create(bk_system *s)
@@ -99,6 +101,15 @@ int bk_assemble_interactions(bk_system *s, const double *q, const bk_path *p, do
     int bad = 0;
     for (int k = 0; k < s->ninter; ++k)
         bad |= s->inter[k].ops->assemble(s->inter[k].self, s, q, p, fint, Ax) != 0;
+    return bad ? -1 : 0;
+}
+
+int bk_interactions_prepare(bk_system *s, const double *q)
+{
+    int bad = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops->prepare)
+            bad |= s->inter[k].ops->prepare(s->inter[k].self, s, q) != 0;
     return bad ? -1 : 0;
 }
 

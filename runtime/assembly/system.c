@@ -27,99 +27,20 @@ static int cmp_int(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-#define find_slot bk_system_slot
-
-/* The couplings besides the elements' own blocks and the constraints: the
- * DOFs of each element of a contact set whose primitive belongs to a rigid
- * body with the body's (both ways).  With rows NULL counts them into cnt,
- * else writes them at off + cnt. */
-static void contact_couplings(const bk_system *s, long *cnt, const long *off, int *rows)
+/* The pattern of the Newton matrix (element blocks, the coupling blocks of
+ * s->couple, constraint rows, joints) and every scatter map into it: Ap, Ai,
+ * nnz, eslot*, efirst, zslot, cslot*, jslot*, diag.  0, or -1 when out of
+ * memory (what was made is freed by bk_free_pattern). */
+int bk_make_pattern(bk_system *s)
 {
     const bk_model *m = s->m;
-    const bk_contact_model *cm = m->contact;
-    for (int c = 0; cm && c < cm->nset; ++c) {
-        const int body = cm->prims[cm->sets[c].prim].body;
-        if (body < 0)
-            continue;
-        const bk_elem *eb = &m->elems[body];
-        const int nb = bk_elem_type(m, body)->ndof;
-        for (int i = 0; i < cm->sets[c].nelem; ++i) {
-            const int e = cm->sets[c].elems[i];
-            const bk_elem *ee = &m->elems[e];
-            const int nd = bk_elem_type(m, e)->ndof;
-            for (int a = 0; a < nd; ++a)
-                for (int b = 0; b < nb; ++b) {
-                    const int ra = s->eq[ee->dofs[a]], rb = s->eq[eb->dofs[b]];
-                    if (ra < 0 || rb < 0)
-                        continue;
-                    if (rows) {
-                        rows[off[rb] + cnt[rb]++] = ra;
-                        rows[off[ra] + cnt[ra]++] = rb;
-                    } else {
-                        cnt[rb]++;
-                        cnt[ra]++;
-                    }
-                }
-        }
-    }
-}
-
-/* Equation of joint coordinate k (-1: constant or fixed). */
-
-int bk_system_slot(const bk_system *s, int row, int col)
-{
-    int lo = s->Ap[col], hi = s->Ap[col + 1];      /* bisection over the sorted rows of col */
-    while (lo < hi) {
-        int mid = lo + (hi - lo) / 2;
-        if (s->Ai[mid] < row)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < s->Ap[col + 1] && s->Ai[lo] == row ? lo : -1;
-}
-
-bk_system *bk_system_create(const bk_model *m, FILE *err)
-{
-    bk_system *s = calloc(1, sizeof *s);
-    if (!s)
-        goto oom;
-    s->m = m;
-    s->eq = malloc((size_t)m->ndof * sizeof *s->eq);
-    if (!s->eq)
-        goto oom;
-    for (int i = 0; i < m->ndof; ++i)
-        s->eq[i] = 0;
-    for (int i = 0; i < m->nfixed; ++i)
-        s->eq[m->fixed[i]] = -1;
-    for (int i = 0; i < m->ndof; ++i)
-        s->eq[i] = s->eq[i] < 0 ? -1 : s->nfree++;
-    s->ncon = m->nlincon;
-    s->jrow = malloc(((size_t)m->nnlcon + 1) * sizeof *s->jrow);
-    if (!s->jrow)
-        goto oom;
-    for (int j = 0; j < m->nnlcon; ++j) {
-        if (!m->nlcons[j].kind) {
-            fprintf(err, "error: %s: joint %d (%s) has no kernel bound\n", m->name, j, m->nlcons[j].type);
-            bk_system_free(s);
-            return NULL;
-        }
-        s->jrow[j] = s->ncon;
-        s->ncon += m->nlcons[j].kind->nrow;
-    }
-    s->jrow[m->nnlcon] = s->ncon;
-    s->neq = s->nfree + s->ncon;
-    s->cscale = 1.0;
-
     /* Count entries per column (duplicates included). */
     long *cnt = calloc((size_t)s->neq + 1, sizeof *cnt);
     if (!cnt)
-        goto oom;
+        return -1;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         int nd = m->pairs[el->pair]->element->ndof;
-        if (nd > s->maxdof)
-            s->maxdof = nd;
         int nf = 0;
         for (int k = 0; k < nd; ++k)
             nf += s->eq[el->dofs[k]] >= 0;
@@ -148,12 +69,22 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         for (int r = 0; r < nr; ++r)
             cnt[s->nfree + s->jrow[j] + r] += nf;
     }
-    contact_couplings(s, cnt, NULL, NULL);
+    for (int k = 0; k < s->ncouple; ++k)           /* coupling blocks of element pairs (both ways) */
+        for (int side = 0; side < 2; ++side) {
+            const bk_elem *ea = &m->elems[s->couple[2 * k + side]], *eb = &m->elems[s->couple[2 * k + 1 - side]];
+            const int na = m->pairs[ea->pair]->element->ndof, nb = m->pairs[eb->pair]->element->ndof;
+            int nf = 0;
+            for (int a = 0; a < na; ++a)
+                nf += s->eq[ea->dofs[a]] >= 0;
+            for (int b = 0; b < nb; ++b)
+                if (s->eq[eb->dofs[b]] >= 0)
+                    cnt[s->eq[eb->dofs[b]]] += nf;
+        }
     /* Fill buckets, then sort and deduplicate each column. */
     long *off = calloc((size_t)s->neq + 1, sizeof *off);
     if (!off) {
         free(cnt);
-        goto oom;
+        return -1;
     }
     for (int j = 0; j < s->neq; ++j)
         off[j + 1] = off[j] + cnt[j];
@@ -161,7 +92,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     if (!rows) {
         free(cnt);
         free(off);
-        goto oom;
+        return -1;
     }
     memset(cnt, 0, ((size_t)s->neq + 1) * sizeof *cnt);
     for (int e = 0; e < m->nelem; ++e) {
@@ -206,13 +137,23 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             }
         }
     }
-    contact_couplings(s, cnt, off, rows);
+    for (int k = 0; k < s->ncouple; ++k)
+        for (int side = 0; side < 2; ++side) {
+            const bk_elem *ea = &m->elems[s->couple[2 * k + side]], *eb = &m->elems[s->couple[2 * k + 1 - side]];
+            const int na = m->pairs[ea->pair]->element->ndof, nb = m->pairs[eb->pair]->element->ndof;
+            for (int b = 0; b < nb; ++b) {
+                const int col = s->eq[eb->dofs[b]];
+                for (int a = 0; a < na && col >= 0; ++a)
+                    if (s->eq[ea->dofs[a]] >= 0)
+                        rows[off[col] + cnt[col]++] = s->eq[ea->dofs[a]];
+            }
+        }
     s->Ap = malloc(((size_t)s->neq + 1) * sizeof *s->Ap);
     if (!s->Ap) {
         free(cnt);
         free(off);
         free(rows);
-        goto oom;
+        return -1;
     }
     /* each column's rows without repeats (seen: the last column a row was
      * seen in), then sorted: they come as a few ascending runs, one per
@@ -223,7 +164,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         free(cnt);
         free(off);
         free(rows);
-        goto oom;
+        return -1;
     }
     for (int j = 0; j < s->neq; ++j)
         seen[j] = -1;
@@ -258,13 +199,13 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->Ai = realloc(rows, (size_t)(nnz ? nnz : 1) * sizeof *rows);
     if (!s->Ai) {
         free(rows);
-        goto oom;
+        return -1;
     }
 
     /* Scatter maps. */
     s->eslot_off = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_off);
     if (!s->eslot_off)
-        goto oom;
+        return -1;
     long tot = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int nd = m->pairs[m->elems[e].pair]->element->ndof;
@@ -274,14 +215,14 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->eslot_off[m->nelem] = (int)tot;
     s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
     if (!s->eslot)
-        goto oom;
+        return -1;
     {
         /* at[row]: the slot of row in the column at hand (one pass over the
          * column instead of a bisection per entry); a slot outside that
          * column's range is another column's */
         int *at = malloc(((size_t)s->neq + 1) * sizeof *at);
         if (!at)
-            goto oom;
+            return -1;
         for (int j = 0; j < s->neq; ++j)
             at[j] = -1;
         for (int e = 0; e < m->nelem; ++e) {
@@ -308,7 +249,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         unsigned char *seen = calloc((size_t)(s->nnz ? s->nnz : 1), 1);
         if (!s->efirst || !seen) {
             free(seen);
-            goto oom;
+            return -1;
         }
         long nz = 0;
         for (long k = 0; k < tot; ++k)
@@ -319,7 +260,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         s->zslot = malloc((size_t)(nz ? nz : 1) * sizeof *s->zslot);
         if (!s->zslot) {
             free(seen);
-            goto oom;
+            return -1;
         }
         for (long k = 0; k < s->nnz; ++k)
             if (!seen[k])
@@ -328,7 +269,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     }
     s->cslot_off = malloc(((size_t)m->nlincon + 1) * sizeof *s->cslot_off);
     if (!s->cslot_off)
-        goto oom;
+        return -1;
     tot = 0;
     for (int c = 0; c < m->nlincon; ++c) {
         s->cslot_off[c] = (int)tot;
@@ -337,19 +278,19 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->cslot_off[m->nlincon] = (int)tot;
     s->cslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->cslot);
     if (!s->cslot)
-        goto oom;
+        return -1;
     for (int c = 0; c < m->nlincon; ++c) {
         const bk_lincon *lc = &m->lincons[c];
         int *sl = s->cslot + s->cslot_off[c];
         for (int k = 0; k < lc->nterm; ++k) {
             int q = s->eq[lc->dof[k]];
-            sl[2 * k] = q >= 0 ? find_slot(s, s->nfree + c, q) : -1;
-            sl[2 * k + 1] = q >= 0 ? find_slot(s, q, s->nfree + c) : -1;
+            sl[2 * k] = q >= 0 ? bk_find_slot(s, s->nfree + c, q) : -1;
+            sl[2 * k + 1] = q >= 0 ? bk_find_slot(s, q, s->nfree + c) : -1;
         }
     }
     s->jslot_off = malloc(((size_t)m->nnlcon + 1) * sizeof *s->jslot_off);
     if (!s->jslot_off)
-        goto oom;
+        return -1;
     tot = 0;
     for (int j = 0; j < m->nnlcon; ++j) {
         s->jslot_off[j] = (int)tot;
@@ -358,7 +299,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     s->jslot_off[m->nnlcon] = (int)tot;
     s->jslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->jslot);
     if (!s->jslot)
-        goto oom;
+        return -1;
     for (int j = 0; j < m->nnlcon; ++j) {
         const bk_nlcon *jc = &m->nlcons[j];
         const int nx = BK_JOINT_NX, nr = s->jrow[j + 1] - s->jrow[j];
@@ -366,20 +307,80 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         for (int a = 0; a < nx; ++a)
             for (int b = 0; b < nx; ++b) {
                 int ra = joint_eq(s, jc, a), cb = joint_eq(s, jc, b);
-                sl[nx * a + b] = ra >= 0 && cb >= 0 ? find_slot(s, ra, cb) : -1;
+                sl[nx * a + b] = ra >= 0 && cb >= 0 ? bk_find_slot(s, ra, cb) : -1;
             }
         for (int r = 0; r < nr; ++r)
             for (int k = 0; k < nx; ++k) {
                 int qk = joint_eq(s, jc, k), cc = s->nfree + s->jrow[j] + r;
-                sl[nx * nx + nx * r + k] = qk >= 0 ? find_slot(s, cc, qk) : -1;
-                sl[nx * nx + nx * nr + nx * r + k] = qk >= 0 ? find_slot(s, qk, cc) : -1;
+                sl[nx * nx + nx * r + k] = qk >= 0 ? bk_find_slot(s, cc, qk) : -1;
+                sl[nx * nx + nx * nr + nx * r + k] = qk >= 0 ? bk_find_slot(s, qk, cc) : -1;
             }
     }
     s->diag = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *s->diag);
     if (!s->diag)
-        goto oom;
+        return -1;
     for (int j = 0; j < s->nfree; ++j)
-        s->diag[j] = find_slot(s, j, j);
+        s->diag[j] = bk_find_slot(s, j, j);
+    return 0;
+}
+
+void bk_free_pattern(bk_system *s)
+{
+    free(s->Ap);
+    free(s->Ai);
+    free(s->eslot_off);
+    free(s->eslot);
+    free(s->efirst);
+    free(s->zslot);
+    free(s->cslot);
+    free(s->cslot_off);
+    free(s->jslot);
+    free(s->jslot_off);
+    free(s->diag);
+    s->Ap = s->Ai = s->eslot_off = s->eslot = s->cslot = s->cslot_off = s->jslot = s->jslot_off = s->diag = NULL;
+    s->efirst = NULL;
+    s->zslot = NULL;
+    s->nzslot = 0;
+    s->nnz = 0;
+}
+
+bk_system *bk_system_create(const bk_model *m, FILE *err)
+{
+    bk_system *s = calloc(1, sizeof *s);
+    if (!s)
+        goto oom;
+    s->m = m;
+    s->eq = malloc((size_t)m->ndof * sizeof *s->eq);
+    if (!s->eq)
+        goto oom;
+    for (int i = 0; i < m->ndof; ++i)
+        s->eq[i] = 0;
+    for (int i = 0; i < m->nfixed; ++i)
+        s->eq[m->fixed[i]] = -1;
+    for (int i = 0; i < m->ndof; ++i)
+        s->eq[i] = s->eq[i] < 0 ? -1 : s->nfree++;
+    s->ncon = m->nlincon;
+    s->jrow = malloc(((size_t)m->nnlcon + 1) * sizeof *s->jrow);
+    if (!s->jrow)
+        goto oom;
+    for (int j = 0; j < m->nnlcon; ++j) {
+        if (!m->nlcons[j].kind) {
+            fprintf(err, "error: %s: joint %d (%s) has no kernel bound\n", m->name, j, m->nlcons[j].type);
+            bk_system_free(s);
+            return NULL;
+        }
+        s->jrow[j] = s->ncon;
+        s->ncon += m->nlcons[j].kind->nrow;
+    }
+    s->jrow[m->nnlcon] = s->ncon;
+    s->neq = s->nfree + s->ncon;
+    s->cscale = 1.0;
+
+    for (int e = 0; e < m->nelem; ++e)
+        if (m->pairs[m->elems[e].pair]->element->ndof > s->maxdof)
+            s->maxdof = m->pairs[m->elems[e].pair]->element->ndof;
+    if (bk_make_pattern(s) != 0)
+        goto oom;
     s->fe = malloc((size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->fe);
     s->Ke = malloc((size_t)(s->maxdof ? s->maxdof : 1) * (size_t)(s->maxdof ? s->maxdof : 1) * sizeof *s->Ke);
     if (!s->fe || !s->Ke)
@@ -442,17 +443,10 @@ void bk_system_free(bk_system *s)
     if (!s)
         return;
     bk_interactions_free(s);
+    bk_free_pattern(s);
+    free(s->couple);
     free(s->eq);
-    free(s->Ap);
-    free(s->Ai);
-    free(s->eslot_off);
-    free(s->eslot);
-    free(s->cslot);
-    free(s->cslot_off);
-    free(s->diag);
     free(s->jrow);
-    free(s->jslot);
-    free(s->jslot_off);
     free(s->fe);
     free(s->Ke);
     free(s->bq);
@@ -461,8 +455,6 @@ void bk_system_free(bk_system *s)
     free(s->btab);
     free(s->bmat);
     free(s->group);
-    free(s->efirst);
-    free(s->zslot);
     free(s->part);
     free(s->pel);
     free(s->pmap);

@@ -71,6 +71,15 @@ typedef struct bk_system {
     int *sh_ptr, *sh_idx;
     long *sh_to;
     int nthreads;            /* OpenMP threads for element evaluation (1: serial) */
+    /* Coupling blocks (bk_system_couple): element pairs a < b whose blocks
+     * (rows of a, columns of b and the transpose) the pattern holds besides
+     * what elements, constraints and joints couple; sorted, owned.  The
+     * pattern grows when they do, and pattern_gen counts its versions: who
+     * keeps anything made from the pattern (the Newton solver's matrix and
+     * linear-solver plan) makes it anew when pattern_gen changed. */
+    int ncouple, capcouple;
+    int *couple;             /* [2 ncouple] */
+    int pattern_gen;
     bk_interaction *inter;   /* owned: [ninter] the model's interactions (interaction.h) */
     int ninter;
 } bk_system;
@@ -82,10 +91,6 @@ void bk_system_free(bk_system *s);
  * tangent, written into Ax (nnz values, zeroed here).  Returns 0, or -1 when a
  * kernel produced a non-finite value. */
 int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax);
-
-/* The slot of the Newton matrix's entry (row, col) (equations) in Ax, or -1
- * where the pattern has none. */
-int bk_system_slot(const bk_system *s, int row, int col);
 
 /* Strain energy of the configuration q (J). */
 double bk_strain_energy(const bk_system *s, const double *q);
@@ -156,6 +161,19 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t);
 /* Centreline point xi of element e: position and (if d != NULL) the section
  * frame d1, d2, d3 (NaN where the element defines none). */
 void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d);
+
+/* Adds the coupling blocks of n element pairs pairs[2 n] (any order, repeats
+ * and a == b allowed) to the pattern.  When that needs entries the pattern
+ * lacks, the pattern, its scatter maps and the parallel assembly's parts are
+ * made anew (their sizes and slot numbers change) and pattern_gen grows.
+ * Returns 1 when the pattern changed, 0 when not, -1 when out of memory (the
+ * system is then unusable). */
+int bk_system_couple(bk_system *s, int n, const int *pairs);
+
+/* Adds c K to the Newton matrix values Ax on the block of rows of element ea
+ * and columns of element eb (K[nd_a x nd_b] row-major; fixed DOFs skipped):
+ * entries the pattern lacks are skipped, and their count returned. */
+int bk_scatter_coupling(const bk_system *s, int ea, int eb, const double *K, double c, double *Ax);
 
 /* Element e of the model: its descriptor and DOF count. */
 static inline const bk_element *bk_elem_type(const bk_model *m, int e)

@@ -46,6 +46,26 @@ static inline void joint_x(const bk_nlcon *c, const double *q, int rates, double
         x[k] = c->dof[k] >= 0 ? q[c->dof[k]] : rates ? 0.0 : c->x0[k];
 }
 
+/* The CSC index of entry (row, col) of the pattern, or -1 when the pattern
+ * has none (a bisection over the column's sorted rows). */
+static inline int bk_find_slot(const bk_system *s, int row, int col)
+{
+    int lo = s->Ap[col], hi = s->Ap[col + 1];
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (s->Ai[mid] < row)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < s->Ap[col + 1] && s->Ai[lo] == row ? lo : -1;
+}
+
+/* The pattern and its scatter maps (system.c): made from the model and
+ * s->couple; freed (and the pointers cleared). */
+int bk_make_pattern(bk_system *s);
+void bk_free_pattern(bk_system *s);
+
 /* Splits the element groups into parts for the parallel assembly (partition.c;
  * system.h: npart, part, pel, pmap, stage, sh_*).  Returns 0, or -1 when out
  * of memory. */

@@ -38,5 +38,6 @@ void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what);
 void bk_model_read_options(bk_reader *r, bk_model *m);
 void bk_model_read_extras(bk_reader *r, bk_model *m);
 void bk_model_read_contacts(bk_reader *r, bk_model *m);      /* contact_read.c */
+void bk_model_read_beam_contacts(bk_reader *r, bk_model *m); /* beam_contact_read.c */
 
 #endif

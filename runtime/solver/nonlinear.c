@@ -38,7 +38,29 @@ int bk_nl_init(bk_nl *nl, bk_system *s, char *msg, size_t nmsg)
         snprintf(msg, nmsg, "linear-solver set-up (ordering, band plan or KLU analysis) failed");
         return -1;
     }
+    nl->pattern_gen = s->pattern_gen;
     return 0;
+}
+
+/* The interactions' prepare at q, and, when the pattern grew, the matrix
+ * values and the linear solver's plan for the new one (no factors kept).
+ * 0, or -1 when out of memory or the plan failed. */
+static int prepare(bk_nl *nl, const double *q)
+{
+    bk_system *s = nl->s;
+    if (bk_interactions_prepare(s, q) != 0)
+        return -1;
+    if (nl->pattern_gen == s->pattern_gen)
+        return 0;
+    double *Ax = realloc(nl->Ax, (size_t)(s->nnz > 0 ? s->nnz : 1) * sizeof *Ax);
+    if (!Ax)
+        return -1;
+    nl->Ax = Ax;
+    memset(Ax, 0, (size_t)(s->nnz > 0 ? s->nnz : 1) * sizeof *Ax);
+    bk_lin_free(&nl->ls);
+    nl->have_factors = 0;
+    nl->pattern_gen = s->pattern_gen;
+    return bk_lin_init(&nl->ls, s->neq, s->Ap, s->Ai) == BK_LIN_OK ? 0 : -1;
 }
 
 void bk_nl_free(bk_nl *nl)
@@ -77,6 +99,11 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
                 break;
             }
         }
+        if (prepare(nl, p->q) != 0) {
+            code = BK_NL_LINERR;
+            break;
+        }
+        Ax = nl->Ax;
         const int want = !o->reuse || fresh_all || !nl->have_factors || nl->factors_key != key ||
                          nl->krate > BK_REUSE_MAX_RATE;
         int fresh = want && !(o->lazy_matrix && it > 0);

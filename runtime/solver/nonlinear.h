@@ -30,7 +30,10 @@
  * Ownership: the solver owns its buffers (r, dx, Ax), the linear solver and
  * the norms; the provider may read and write them between solves (e.g. for a
  * stability probe or a predictor solve with nl->ls).  No allocation in
- * bk_nl_solve.
+ * bk_nl_solve, but when an interaction's prepare (interaction.h: beam-to-beam
+ * contact) grew the system's pattern before an iteration: then Ax is made
+ * anew for it and the linear solver planned again (the providers take Ax
+ * from the residual callback's argument, never from an earlier copy).
  */
 #ifndef BK_NONLINEAR_H
 #define BK_NONLINEAR_H
@@ -126,6 +129,7 @@ typedef struct bk_nl {
                          double increment, double alpha, double rcond);
     void *iteration_ctx;
     double t_poll;        /* when SIGINT / SIGTERM were last polled (bk_clock_s) */
+    int pattern_gen;      /* the system's pattern version Ax and ls were made for (system.h) */
 } bk_nl;
 
 /* Returns 0, or -1 with a message in msg. */

@@ -1,0 +1,381 @@
+/* beam_contact_force.c -- the beam contact interaction's forces and Jacobian,
+ * step limiter, beam_contacts.csv, summary.json "beam_contact" and state, and
+ * its operations (beam_contact.h; the broad phase and the geometry:
+ * beam_contact.c). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/beam_contact.h"
+#include "assembly/beam_contact_impl.h"
+#include "base/csvrow.h"
+#include "base/tables.h"
+
+/* ---- assemble: per candidate, the two elements' forces and four blocks ---- */
+
+typedef struct assembly {
+    bc_work *w;
+    bk_system *s;
+    double *fint, *Ax;
+    int touched, bad;
+} assembly;
+
+static void assemble_candidate(void *ctx, seg_pair *sp, int end)
+{
+    assembly *a = ctx;
+    bc_work *w = a->w;
+    if (!end) {
+        a->touched = 0;
+        return;
+    }
+    if (!a->touched)
+        return;
+    a->bad |= bk_scatter(a->s->m, sp->ei, w->fe[0], 1.0, a->fint);
+    a->bad |= bk_scatter(a->s->m, sp->ej, w->fe[1], 1.0, a->fint);
+    if (!a->Ax)
+        return;
+    const int el[2] = {sp->ei, sp->ej};
+    for (int b = 0; b < 4; ++b)
+        bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+}
+
+/* The pair's energy gradient g[12] and Hessian H[144] (H may be NULL) in its
+ * ends' coordinates: the barrier's, kappa e(x) (bc_pair_energy), within the
+ * reach, and the lagged friction's where the pair has a lagged state lg. */
+static void pair_terms(const bk_beam_contact_set *set, const seg_pair *sp, const bc_lag *lg, double *g, double *H)
+{
+    double Hb[144];
+    memset(g, 0, 12 * sizeof *g);
+    if (H)
+        memset(H, 0, 144 * sizeof *H);
+    if (sp->dist < set->shat) {
+        bc_pair_energy(sp, set->radius[sp->i] + set->radius[sp->j], set->shat, sp->hi, sp->hj, g, H ? Hb : NULL);
+        for (int i = 0; i < 12; ++i)
+            g[i] *= set->kappa;
+        for (int i = 0; H && i < 144; ++i)
+            H[i] = set->kappa * Hb[i];
+    }
+    if (lg)
+        bc_friction(set, lg, sp, g, H);
+}
+
+/* E = kappa e(x) (bc_pair_energy) on the 12 coordinates of the segments' ends, then through each end's
+ * shape functions to its element. */
+static void assemble_pair(void *ctx, seg_pair *sp)
+{
+    assembly *a = ctx;
+    bc_work *w = a->w;
+    const bk_model *m = a->s->m;
+    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    if (!(sp->dist > 0.0)) {
+        a->bad = 1;                          /* through a beam: not an admissible state */
+        return;
+    }
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
+    if (sp->dist >= set->shat && !lg)
+        return;
+    const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
+    const int nd[2] = {et[0]->ndof, et[1]->ndof};
+    if (!a->touched) {
+        for (int k = 0; k < 2; ++k)
+            memset(w->fe[k], 0, (size_t)nd[k] * sizeof *w->fe[k]);
+        for (int b = 0; b < 4; ++b)
+            memset(w->Kb[b], 0, (size_t)nd[b / 2] * (size_t)nd[b % 2] * sizeof *w->Kb[b]);
+        a->touched = 1;
+    }
+    double g[12], H[144];
+    pair_terms(set, sp, lg, g, a->Ax ? H : NULL);
+    for (int P = 0; P < 4; ++P) {
+        const int sP = P / 2;
+        const double *NP = w->N + (size_t)sp->pidx[P] * BK_MAX_SHAPE;
+        for (int i = 0; i < et[sP]->nshape; ++i)
+            for (int r = 0; r < 3; ++r) {
+                const int row = et[sP]->shape_dof[i] + r;
+                w->fe[sP][row] += NP[i] * g[3 * P + r];
+                if (!a->Ax)
+                    continue;
+                for (int Q = 0; Q < 4; ++Q) {
+                    const int sQ = Q / 2;
+                    const double *NQ = w->N + (size_t)sp->pidx[Q] * BK_MAX_SHAPE;
+                    double *K = w->Kb[2 * sP + sQ] + (size_t)row * (size_t)nd[sQ];
+                    for (int c = 0; c < 3; ++c) {
+                        const double k = H[12 * (3 * P + r) + 3 * Q + c] * NP[i];
+                        for (int j = 0; j < et[sQ]->nshape; ++j)
+                            K[et[sQ]->shape_dof[j] + c] += k * NQ[j];
+                    }
+                }
+            }
+    }
+}
+
+static int bc_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint, double *Ax)
+{
+    (void)path;
+    bc_work *w = self;
+    bc_points(w, s, q, 0, w->X);
+    assembly a = {.w = w, .s = s, .fint = fint, .Ax = Ax};
+    bc_each_pair(w, s->m, assemble_pair, assemble_candidate, &a);
+    return a.bad ? -1 : 0;
+}
+
+/* ---- step limit: no point moves more than M/4; every pair keeps a tenth of its distance ---- */
+
+typedef struct limiter {
+    const bc_work *w;
+    double alpha;
+} limiter;
+
+static double norm3(const double *x)
+{
+    return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+}
+
+/* The distance of two segments is a minimum over their points of |P - Q|,
+ * and P - Q moves by a function bilinear in the two segments' parameters:
+ * so along a correction the distance changes at most by the largest
+ * relative motion L of an end of one and an end of the other (a common
+ * motion does not count).  A fraction alpha keeps the pair at a tenth of its
+ * distance s0 or more when alpha L <= 0.9 s0; beyond that (a pair sliding
+ * along the other moves far without approaching) the distance at the end of
+ * the step is computed, the fraction halved until it keeps a tenth, and
+ * alpha L held below twice the sum of the radii, so that no step takes a
+ * centreline through the other and out beyond it (that needs a relative
+ * motion of twice the radii at least). */
+static void limit_pair(void *ctx, seg_pair *sp)
+{
+    limiter *l = ctx;
+    const double *D = l->w->D;
+    double L = 0.0;
+    for (int a = 0; a < 2; ++a)
+        for (int b = 2; b < 4; ++b) {
+            const double *da = D + 3 * sp->pidx[a], *db = D + 3 * sp->pidx[b];
+            const double r[3] = {da[0] - db[0], da[1] - db[1], da[2] - db[2]};
+            L = fmax(L, norm3(r));
+        }
+    if (!(L > 0.0) || L * l->alpha <= 0.9 * sp->dist)
+        return;
+    const double safe = sp->dist > 0.0 ? 0.9 * sp->dist / L : 0.0, radii = sp->d - sp->dist;
+    double alpha = fmin(l->alpha, 2.0 * radii / L);
+    while (alpha > safe) {
+        double x[4][3], sg, tau;
+        const double *pts[4] = {x[0], x[1], x[2], x[3]};
+        for (int a = 0; a < 4; ++a)
+            for (int r = 0; r < 3; ++r)
+                x[a][r] = sp->pts[a][r] + alpha * D[3 * sp->pidx[a] + r];
+        if (bc_closest(pts, &sg, &tau) - radii >= 0.1 * sp->dist)
+            break;
+        alpha *= 0.5;
+    }
+    l->alpha = fmax(alpha, safe);
+}
+
+static double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
+{
+    bc_work *w = self;
+    const bk_beam_contact_model *bm = s->m->beam_contact;
+    bc_points(w, s, q, 0, w->X);
+    bc_points(w, s, dx, 1, w->D);
+    limiter l = {.w = w, .alpha = 1.0};
+    for (int c = 0; c < bm->nset; ++c)
+        for (int p = w->base[c]; p < w->base[c] + bm->sets[c].nelem * bm->sets[c].nsample; ++p) {
+            const double move = norm3(w->D + 3 * p);
+            if (move * l.alpha > 0.25 * w->margin[c])
+                l.alpha = 0.25 * w->margin[c] / move;
+        }
+    /* again until no pair lowers it: each pair then holds at the final fraction */
+    for (int round = 0; round < 20; ++round) {
+        const double before = l.alpha;
+        bc_each_pair(w, s->m, limit_pair, NULL, &l);
+        if (l.alpha == before)
+            break;
+    }
+    return l.alpha;
+}
+
+/* ---- the state: forces on the beams, pairs in reach, smallest distance ---- */
+
+typedef struct state {
+    const bc_work *w;
+    const bk_model *m;
+    int c;
+    double *F, dmin, normal;
+    int nactive;
+} state;
+
+/* The contact force (barrier and friction) on the segment pair's first
+ * segment (fa; the second gets its opposite) and its magnitude (0: none). */
+static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa)
+{
+    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
+    double g[12];
+    fa[0] = fa[1] = fa[2] = 0.0;
+    if (!(sp->dist > 0.0) || (sp->dist >= set->shat && !lg))
+        return 0.0;
+    pair_terms(set, sp, lg, g, NULL);
+    for (int r = 0; r < 3; ++r)
+        fa[r] = -(g[r] + g[3 + r]);
+    return norm3(fa);
+}
+
+static void state_pair(void *ctx, seg_pair *sp)
+{
+    state *st = ctx;
+    if (sp->c != st->c)
+        return;
+    st->dmin = fmin(st->dmin, sp->dist);
+    double fa[3];
+    const double fn = pair_force(st->w, st->m, sp, fa);
+    if (fn <= 0.0)
+        return;
+    st->nactive++;
+    st->normal += fn;
+    const int ca = st->w->chain[st->w->ebase[sp->c] + sp->i], cb = st->w->chain[st->w->ebase[sp->c] + sp->j];
+    for (int r = 0; r < 3; ++r) {
+        st->F[3 * ca + r] += fa[r];
+        st->F[3 * cb + r] -= fa[r];
+    }
+}
+
+static bc_work *work_of(const bk_system *s)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &bk_beam_contact_ops)
+            return s->inter[k].self;
+    return NULL;
+}
+
+int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F, int *nactive, double *normal,
+                          double *min_distance)
+{
+    bc_work *w = work_of(s);
+    if (!w || c < 0 || c >= s->m->beam_contact->nset)
+        return -1;
+    memset(F, 0, 3 * (size_t)s->m->beam_contact->sets[c].nchain * sizeof *F);
+    bc_points(w, s, q, 0, w->X);
+    state st = {.w = w, .m = s->m, .c = c, .F = F, .dmin = INFINITY};
+    bc_each_pair(w, s->m, state_pair, NULL, &st);
+    if (nactive)
+        *nactive = st.nactive;
+    if (normal)
+        *normal = st.normal;
+    *min_distance = st.dmin;
+    return 0;
+}
+
+/* ---- outputs ---- */
+
+/* The name of the beam element e belongs to (sections.csv's records), or "?". */
+static const char *beam_name(const bk_model *m, int e)
+{
+    for (int k = 0; k < m->nsection; ++k)
+        if (m->sections[k].elem == e)
+            return m->sections[k].beam;
+    return "?";
+}
+
+/* summary.json "beam_contact": the smallest distance between the sections of
+ * segments that may touch (null: none near), the largest penetration (0: a
+ * state through a beam is refused), the element pairs the pattern couples,
+ * and per set the pairs of segments within the barrier's reach, the sum of
+ * their forces' magnitudes and the total contact force on each beam (zero
+ * for a beam touching only itself). */
+static int bc_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
+{
+    (void)self;
+    const bk_beam_contact_model *bm = s->m->beam_contact;
+    double dmin = INFINITY, F[3 * 64];
+    int len = 0;
+    for (int c = 0; c < bm->nset; ++c) {
+        double d;
+        if (bm->sets[c].nchain > 64 || bk_beam_contact_state(s, q, c, F, NULL, NULL, &d) != 0)
+            return -1;
+        dmin = fmin(dmin, d);
+    }
+    if (isfinite(dmin))
+        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"element_pairs\": %d, "
+                       "\"sets\": [", dmin, dmin < 0.0 ? -dmin : 0.0, s->ncouple);
+    else
+        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"element_pairs\": %d, \"sets\": [",
+                       s->ncouple);
+    for (int c = 0; c < bm->nset && len > 0 && (size_t)len < n; ++c) {
+        const bk_beam_contact_set *set = &bm->sets[c];
+        int nact;
+        double d, fn;
+        bk_beam_contact_state(s, q, c, F, &nact, &fn, &d);
+        len += snprintf(buf + len, n - (size_t)len, "%s{\"active_pairs\": %d, \"normal_force\": %.17g, \"beams\": {",
+                        c ? ", " : "", nact, fn);
+        for (int b = 0; b < set->nchain && len > 0 && (size_t)len < n; ++b)
+            len += snprintf(buf + len, n - (size_t)len, "%s\"%s\": [%.17g, %.17g, %.17g]", b ? ", " : "",
+                            beam_name(s->m, set->elems[set->chain_off[b]]), F[3 * b], F[3 * b + 1], F[3 * b + 2]);
+        if (len > 0 && (size_t)len < n)
+            len += snprintf(buf + len, n - (size_t)len, "}}");
+    }
+    if (len > 0 && (size_t)len < n)
+        len += snprintf(buf + len, n - (size_t)len, "]}");
+    return len > 0 && (size_t)len < n ? 0 : -1;
+}
+
+/* beam_contacts.csv: per output step every pair of segments within the
+ * barrier's reach: the two beams, elements and segments, the midpoint of the
+ * closest points, the sections' distance, the normal force and the force on
+ * the first beam there (N; the second gets its opposite). */
+static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
+{
+    (void)s;
+    bc_work *w = self;
+    w->table = bk_tables_open(ts, dir, "beam_contacts.csv", "step,time,set,beam_a,element_a,segment_a,beam_b,"
+                              "element_b,segment_b,x,y,z,distance,normal_force,fx,fy,fz\n", 1, err);
+    return w->table ? 0 : -1;
+}
+
+typedef struct rows {
+    const bc_work *w;
+    const bk_model *m;
+    int step;
+    double t;
+    bk_rowqueue *rq;
+} rows;
+
+static void row_pair(void *ctx, seg_pair *sp)
+{
+    rows *rw = ctx;
+    double fa[3];
+    const double fn = pair_force(rw->w, rw->m, sp, fa);
+    if (fn <= 0.0)
+        return;
+    bk_row r;
+    bk_row_begin(&r, rw->w->table, rw->rq);
+    bk_row_int(&r, rw->step);
+    bk_row_num(&r, rw->t);
+    bk_row_int(&r, sp->c);
+    bk_row_str(&r, beam_name(rw->m, sp->ei));
+    bk_row_int(&r, sp->ei);
+    bk_row_int(&r, sp->k);
+    bk_row_str(&r, beam_name(rw->m, sp->ej));
+    bk_row_int(&r, sp->ej);
+    bk_row_int(&r, sp->l);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, 0.5 * (sp->pts[0][d] + sp->sg * (sp->pts[1][d] - sp->pts[0][d]) + sp->pts[2][d] +
+                              sp->tau * (sp->pts[3][d] - sp->pts[2][d])));
+    bk_row_num(&r, sp->dist);
+    bk_row_num(&r, fn);
+    for (int d = 0; d < 3; ++d)
+        bk_row_num(&r, fa[d]);
+    bk_row_end(&r);
+}
+
+static void bc_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
+{
+    bc_work *w = self;
+    if (!w->table)
+        return;
+    bc_points(w, s, q, 0, w->X);
+    rows rw = {.w = w, .m = s->m, .step = step, .t = t, .rq = rq};
+    bc_each_pair(w, s->m, row_pair, NULL, &rw);
+}
+
+const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
+                                                .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
+                                                .tables = bc_tables, .rows = bc_rows, .summary_key = "beam_contact",
+                                                .summary = bc_summary, .free = bc_free};

@@ -1,0 +1,148 @@
+/* beam_contact_friction.c -- Coulomb friction between beams, lagged over a
+ * step as for rigid primitives (model/contact.h): per pair of segments in
+ * contact at the last accepted state, its normal force lam, unit normal n,
+ * the parameters sg, tau of its closest points and the anchor, their relative
+ * position where the slip is measured from.  The slip is
+ * u_t = (I - n n^T) (P(sg) - Q(tau) - anchor), P and Q linear in the segments'
+ * ends at the lagged parameters, and the friction energy mu lam f0(|u_t|),
+ * f0' = f1 the smoothed slip function of out/kernels/contact.h: Coulomb's
+ * mu lam beyond the slip tolerance, a stiff spring below it.  A pair that
+ * sticks keeps its anchor and parameters (no creep under a load below the
+ * limit); one that slid, or came into contact, takes the present ones. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/beam_contact_impl.h"
+#include "contact.h"
+
+static int cmp_key(const void *a, const void *b)
+{
+    const int *x = a, *y = b;
+    for (int k = 0; k < 5; ++k)
+        if (x[k] != y[k])
+            return (x[k] > y[k]) - (x[k] < y[k]);
+    return 0;
+}
+
+static void key_of(const seg_pair *sp, int *key)
+{
+    key[0] = sp->c, key[1] = sp->i, key[2] = sp->k, key[3] = sp->j, key[4] = sp->l;
+}
+
+const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp)
+{
+    int key[5];
+    key_of(sp, key);
+    return w->nlag > 0 ? bsearch(key, w->lag, (size_t)w->nlag, sizeof *w->lag, cmp_key) : NULL;
+}
+
+/* The weights of the pair's four ends in P(sg) - Q(tau). */
+static void weights(double sg, double tau, double *c)
+{
+    c[0] = 1.0 - sg, c[1] = sg, c[2] = -(1.0 - tau), c[3] = -tau;
+}
+
+/* The slip u_t of the pair since its anchor (y = |u_t|). */
+static double slip(const bc_lag *lg, const seg_pair *sp, double *ut)
+{
+    double c[4], u[3] = {0.0, 0.0, 0.0};
+    weights(lg->sg, lg->tau, c);
+    for (int a = 0; a < 4; ++a)
+        for (int r = 0; r < 3; ++r)
+            u[r] += c[a] * sp->pts[a][r];
+    for (int r = 0; r < 3; ++r)
+        u[r] -= lg->anchor[r];
+    const double un = u[0] * lg->n[0] + u[1] * lg->n[1] + u[2] * lg->n[2];
+    for (int r = 0; r < 3; ++r)
+        ut[r] = u[r] - un * lg->n[r];
+    return sqrt(ut[0] * ut[0] + ut[1] * ut[1] + ut[2] * ut[2]);
+}
+
+void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H)
+{
+    double ut[3], f[4], c[4];
+    const double y = slip(lg, sp, ut), k = set->mu * lg->lam;
+    bk_contact_friction(y, set->slip, f);
+    weights(lg->sg, lg->tau, c);
+    /* d/du: k (f1/y) u_t; d2/du2: k ((f1/y) (I - n n^T) + (f1/y)'/y u_t u_t^T); u = sum c_a x_a */
+    for (int a = 0; a < 4; ++a)
+        for (int r = 0; r < 3; ++r) {
+            g[3 * a + r] += c[a] * k * f[2] * ut[r];
+            if (!H)
+                continue;
+            for (int b = 0; b < 4; ++b)
+                for (int s = 0; s < 3; ++s)
+                    H[12 * (3 * a + r) + 3 * b + s] +=
+                        c[a] * c[b] * k * (f[2] * ((r == s) - lg->n[r] * lg->n[s]) +
+                                           (y > 0.0 ? f[3] / y * ut[r] * ut[s] : 0.0));
+        }
+}
+
+/* accept: the lagged state of every pair within the barrier's reach now. */
+typedef struct lagger {
+    bc_work *w;
+    const bk_model *m;
+    bc_lag *next;
+    int n, cap, bad;
+} lagger;
+
+static void lag_pair(void *ctx, seg_pair *sp)
+{
+    lagger *l = ctx;
+    const bk_beam_contact_set *set = &l->m->beam_contact->sets[sp->c];
+    if (!(set->mu > 0.0) || !(sp->dist > 0.0) || sp->dist >= set->shat)
+        return;
+    double g[12], fa[3];
+    bc_pair_energy(sp, set->radius[sp->i] + set->radius[sp->j], set->shat, sp->hi, sp->hj, g, NULL);
+    for (int r = 0; r < 3; ++r)
+        fa[r] = -set->kappa * (g[r] + g[3 + r]);        /* the barrier's force on the first segment */
+    const double lam = sqrt(fa[0] * fa[0] + fa[1] * fa[1] + fa[2] * fa[2]);
+    if (!(lam > 0.0))
+        return;
+    if (l->n + 1 > l->cap) {
+        int cap = 2 * l->cap + 64;
+        bc_lag *p = realloc(l->next, (size_t)cap * sizeof *p);
+        if (!p) {
+            l->bad = 1;
+            return;
+        }
+        l->next = p, l->cap = cap;
+    }
+    bc_lag *lg = &l->next[l->n++];
+    const bc_lag *old = bc_lag_find(l->w, sp);
+    double ut[3];
+    if (old && slip(old, sp, ut) < set->slip) {
+        *lg = *old;                                      /* sticks: the same material points, the same anchor */
+    } else {
+        key_of(sp, lg->key);
+        lg->sg = sp->sg, lg->tau = sp->tau;
+        double c[4];
+        weights(lg->sg, lg->tau, c);
+        for (int r = 0; r < 3; ++r) {
+            lg->anchor[r] = 0.0;
+            for (int a = 0; a < 4; ++a)
+                lg->anchor[r] += c[a] * sp->pts[a][r];
+        }
+    }
+    lg->lam = lam;
+    for (int r = 0; r < 3; ++r)
+        lg->n[r] = fa[r] / lam;
+}
+
+void bc_accept(void *self, const bk_system *s, const double *q, const bk_path *p)
+{
+    (void)p;
+    bc_work *w = self;
+    bc_points(w, s, q, 0, w->X);
+    lagger l = {.w = w, .m = s->m};
+    bc_each_pair(w, s->m, lag_pair, NULL, &l);
+    if (l.bad) {                                         /* out of memory: no friction from this state on */
+        free(l.next);
+        l.next = NULL, l.n = 0;
+    }
+    if (l.n > 1)
+        qsort(l.next, (size_t)l.n, sizeof *l.next, cmp_key);
+    free(w->lag);
+    w->lag = l.next, w->nlag = l.n;
+}

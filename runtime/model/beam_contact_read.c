@@ -1,0 +1,83 @@
+/* beam_contact_read.c -- the beam-to-beam contact records of the model file
+ * (model/beam_contact.h), written by gen/scene/beam_contact.py:
+ *   beam_contacts NSET
+ *   bcset REACH STIFFNESS MU SLIP SAMPLES EXCLUDE SELF NCHAIN   (NSET times, each followed by)
+ *   chain N e r s0 ..                                           (NCHAIN times: N elements in order) */
+#include <stdlib.h>
+
+#include "model/reader.h"
+
+static void read_set(bk_reader *r, bk_model *m, bk_beam_contact_set *set, int c)
+{
+    rd_expect(r, "bcset");
+    set->shat = rd_num(r, "beam contact reach");
+    set->kappa = rd_num(r, "beam contact stiffness");
+    set->mu = rd_num(r, "beam contact friction");
+    set->slip = rd_num(r, "beam contact slip tolerance");
+    set->nsample = rd_inum(r, "beam contact samples", 2, 64);
+    set->exclude = rd_num(r, "beam contact exclusion");
+    set->self = rd_inum(r, "beam contact self flag", 0, 1);
+    int nc = rd_inum(r, "beam contact beams", 1, m->nelem > 0 ? m->nelem : 1);
+    if (r->failed)
+        return;
+    if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu >= 0.0) || !(set->slip > 0.0) ||
+        !(set->exclude >= 0.0))
+        rd_fail(r, "beam contact set %d: reach, stiffness and slip tolerance must be positive, friction and "
+                "exclusion >= 0 (%g, %g, %g, %g, %g)", c, set->shat, set->kappa, set->slip, set->mu, set->exclude);
+    set->chain_off = rd_xcalloc(r, (size_t)nc + 1, sizeof *set->chain_off);
+    set->elems = rd_xcalloc(r, (size_t)m->nelem + 1, sizeof *set->elems);
+    set->radius = rd_xcalloc(r, (size_t)m->nelem + 1, sizeof *set->radius);
+    set->s0 = rd_xcalloc(r, (size_t)m->nelem + 1, sizeof *set->s0);
+    for (int k = 0; k < nc && !r->failed; ++k) {
+        rd_expect(r, "chain");
+        int n = rd_inum(r, "beam contact chain elements", 1, m->nelem - set->nelem);
+        for (int i = 0; i < n && !r->failed; ++i) {
+            set->elems[set->nelem] = rd_inum(r, "beam contact element", 0, m->nelem - 1);
+            set->radius[set->nelem] = rd_num(r, "beam contact radius");
+            set->s0[set->nelem] = rd_num(r, "beam contact arc length");
+            if (!(set->radius[set->nelem] >= 0.0))
+                rd_fail(r, "beam contact set %d: negative section radius %g", c, set->radius[set->nelem]);
+            set->nelem++;
+        }
+        set->nchain = k + 1;
+        set->chain_off[k + 1] = set->nelem;
+    }
+}
+
+void bk_model_read_beam_contacts(bk_reader *r, bk_model *m)
+{
+    rd_expect(r, "beam_contacts");
+    int ns = rd_inum(r, "beam contact sets", 0, MAXN);
+    if (r->failed || ns == 0)
+        return;
+    /* the Newton matrix's pattern grows as contacts are found (assembly/
+     * beam_contact.h): the static analysis without stability checks follows
+     * it; the others keep arrays made from the first pattern */
+    if (!bk_model_in_load(m) || m->stat.method != BK_METHOD_LOAD_CONTROL || m->stat.stability) {
+        rd_fail(r, "beam contact is available in static analyses with load control and stability = false only");
+        return;
+    }
+    bk_beam_contact_model *bm = rd_xcalloc(r, 1, sizeof *bm);
+    if (!bm)
+        return;
+    m->beam_contact = bm;
+    bm->sets = rd_xcalloc(r, (size_t)ns, sizeof *bm->sets);
+    for (int c = 0; c < ns && !r->failed; ++c) {
+        bm->nset = c + 1;                  /* (freed from here on) */
+        read_set(r, m, &bm->sets[c], c);
+    }
+}
+
+void bk_beam_contact_model_free(bk_beam_contact_model *bm)
+{
+    if (!bm)
+        return;
+    for (int c = 0; c < bm->nset; ++c) {
+        free(bm->sets[c].chain_off);
+        free(bm->sets[c].elems);
+        free(bm->sets[c].radius);
+        free(bm->sets[c].s0);
+    }
+    free(bm->sets);
+    free(bm);
+}

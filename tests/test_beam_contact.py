@@ -1,0 +1,267 @@
+"""Beam-to-beam contact (issue 35; [[beam_contact]], gen/scene/beam_contact.py;
+runtime/assembly/beam_contact*.c).
+
+The interaction on in-memory spring chains (tests/beam_contact_check.c,
+AddressSanitizer + UBSan): its forces and Jacobian against central
+differences of its residual, action = reaction, the broad phase against a
+comparison of every pair of boxes, the Newton matrix's pattern growing when
+chains that started apart come near.  Scenes against closed forms: two
+crossed cantilevers (Euler-Bernoulli superposition with the crossing a rigid
+link), two stacked strips (the contact carries the whole load), a roll-up on
+itself, friction between the crossed beams (sliding: Coulomb's force and the
+closed-form deflection; sticking below the limit); bad input refused with one
+line."""
+import csv
+import math
+import subprocess
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+
+from util import BUILD, ROOT, build_runtime_program, ensure_dir, run_cli, run_memcheck, run_scene
+
+
+@lru_cache(maxsize=None)
+def check():
+    exe = build_runtime_program(["beam_contact_check.c", "spring_element.c"], "beam_contact_check", "sanitize")
+    r = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and "runtime error" not in r.stderr, r.stderr[-3000:]
+    out = {}
+    for line in r.stdout.splitlines():
+        d = dict(kv.split("=", 1) for kv in line.split())
+        out[d.pop("case")] = d
+    return out
+
+
+def test_forces_and_jacobian_match_differences_and_balance():
+    d = check()["jacobian"]
+    assert int(d["active"]) > 20 and 0 < float(d["min_distance"]) < float(d["shat"]), d   # the barrier acts
+    assert float(d["err"]) < 1e-6, d                                   # Jacobian against central differences
+    assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d    # action = reaction
+
+
+def test_broad_phase_finds_exactly_the_overlapping_boxes():
+    d = check()["broad"]
+    assert int(d["brute"]) > 500 and d["pairs"] == d["brute"], d
+    assert d["missing"] == "0" and d["extra"] == "0", d
+
+
+def test_pattern_grows_when_chains_come_near():
+    d = check()["growth"]
+    assert d["couple0"] == "0" and int(d["couple1"]) > 0, d
+    assert int(d["gen1"]) == int(d["gen0"]) + 1 and int(d["nnz1"]) > int(d["nnz0"]), d
+    assert int(d["active"]) > 0, d
+
+
+def out_dir():
+    return Path(tempfile.mkdtemp(prefix="bk-bcontact-", dir=ensure_dir(BUILD / "runs")))
+
+
+def _beam_contact(summary):
+    c = summary["beam_contact"]
+    assert c["max_penetration"] == 0 and c["min_distance"] > 0, c
+    return c
+
+
+@lru_cache(maxsize=None)
+def crossed():
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_crossed_beams.toml", out=out)
+    return s, out
+
+
+def test_crossed_beams_against_the_closed_form():
+    """P at the upper's tip (L = 1 m), the crossing a = 0.91 m from its clamp
+    and b = 0.915 m from the lower's: the lower carries R = P a^2 (3L - a) / 6
+    / ((a^3 + b^3) / 3), the tip moves w = (P L^3 / 3 - R a^2 (3L - a) / 6) / EI
+    (small deflection, Euler-Bernoulli; gef's shear is 1e-4 of it)."""
+    s, _ = crossed()
+    c = _beam_contact(s)
+    P, L, a, b, EI = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    w = (P * L ** 3 / 3 - R * a * a * (3 * L - a) / 6) / EI
+    k_ref, k = P / w, P / -s["sensors"]["tip"]["displacement"][2]
+    assert abs(k / k_ref - 1) < 0.01, (k, k_ref)
+    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    assert abs(low[2] / -R - 1) < 0.01, (low, R)
+    assert all(abs(up[i] + low[i]) <= 1e-12 * abs(up[2]) for i in range(3)), (up, low)   # action = reaction
+    assert c["min_distance"] < 1e-5                                   # within the barrier's reach
+
+
+def test_crossed_beams_contact_rows_name_both_beams():
+    s, out = crossed()
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    last = [r for r in rows if int(r["step"]) == s["steps"]]
+    assert last and {(r["beam_a"], r["beam_b"]) for r in last} == {("upper", "lower")}, last
+    assert all(float(r["distance"]) > 0 for r in rows)
+    assert abs(sum(float(r["fz"]) for r in last) - s["beam_contact"]["sets"][0]["beams"]["upper"][2]) < 1e-9
+
+
+def test_stacked_strips_carry_the_load_on_the_contact():
+    s, _ = run_scene(ROOT / "models" / "contact_stacked_strips.toml", out=out_dir())
+    c = _beam_contact(s)
+    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    assert abs(up[2] / 20.0 - 1) < 1e-9, up                          # the distributed load: 20 N/m over 1 m
+    assert all(abs(up[i] + low[i]) <= 1e-12 * 20.0 for i in range(3)), (up, low)
+    assert c["sets"][0]["active_pairs"] > 10
+
+
+def test_crossed_beams_under_valgrind():
+    """valgrind memcheck on the solver (exit 99 on an error or a leak)."""
+    r, out = run_memcheck("contact_crossed_beams")
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert (out / "summary.json").exists()
+
+
+def _error(text):
+    d = out_dir()
+    p = d / "bad.toml"
+    p.write_text(text)
+    r = run_cli(["run", str(p), "--quiet", "--out", str(d / "out")])
+    assert r.returncode == 1, (r.returncode, r.stderr[-2000:])
+    lines = [ln for ln in r.stderr.splitlines() if ln.startswith("error:")]
+    assert len(lines) == 1, r.stderr
+    assert not (d / "out" / "summary.json").exists()
+    return lines[0]
+
+
+
+
+def test_bad_beam_contact_input_is_refused_with_one_line():
+    base = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
+    cases = [
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3'), "beam_contact[0].static_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = -0.3'), "beam_contact[0].friction"),
+        (base.replace('stability = false\n', ''), "stability = false"),
+        (base.replace('beams = ["upper", "lower"]', 'beams = ["upper", "nosuch"]'), "no beam named 'nosuch'"),
+        (base.replace('beams = ["upper", "lower"]', 'beams = ["upper"]'), "two beams or more"),
+        (base.replace('start = [0.0, 0.0, 0.01001]', 'start = [0.0, 0.0, 0.009]')
+             .replace('end = [1.0, 0.0, 0.01001]', 'end = [1.0, 0.0, 0.009]'), "start 0.001 m into each other"),
+        (base.replace('samples = ', 'x = ').replace('distance = 1e-5', 'distance = 1e-5\nsamples = 1'),
+         "beam_contact[0].samples"),
+    ]
+    for text, expect in cases:
+        line = _error(text)
+        assert expect in line and "beam_contact" in line, (expect, line)
+
+
+def _min_far_distance(sections_csv, gap):
+    """Per output step, the smallest distance between the chords of nodal
+    points (sections.csv) more than `gap` apart along the beam, by a search over
+    41 x 41 points of each pair of chords (independent of the runtime's
+    closest-point formulas)."""
+    import numpy as np
+    with open(sections_csv, newline="") as fh:
+        rows = [r for r in csv.DictReader(fh) if r["source"] == "nodal"]
+    out = {}
+    for step in sorted({int(r["step"]) for r in rows}):
+        pts = {float(r["s"]): (float(r["x"]), float(r["y"]), float(r["z"])) for r in rows if int(r["step"]) == step}
+        s = sorted(pts)
+        X = np.array([pts[k] for k in s])
+        t = np.linspace(0.0, 1.0, 41)[:, None]
+        best = math.inf
+        for i in range(len(s) - 1):
+            P = X[i] + t * (X[i + 1] - X[i])
+            for j in range(i + 1, len(s) - 1):
+                if s[j] - s[i + 1] <= gap:
+                    continue
+                Q = X[j] + t * (X[j + 1] - X[j])
+                best = min(best, float(np.min(np.linalg.norm(P[:, None, :] - Q[None, :, :], axis=2))))
+        out[step] = best
+    return out
+
+
+def test_self_contact_rollup_lies_on_itself_and_never_passes_through():
+    """The roll-up past one turn (models/self_contact_rollup.toml): at every
+    output step the beam's parts more than 5 cm apart along it stay a section
+    (10 mm) apart, less the chords' sag between the nodes (1 mm); the same
+    scene without contact runs its second turn through the first.  The contact
+    acts between the first turn and the second."""
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "self_contact_rollup.toml", out=out)
+    c = _beam_contact(s)
+    assert c["sets"][0]["normal_force"] > 10.0 and c["sets"][0]["active_pairs"] > 0, c
+    far = _min_far_distance(out / "sections.csv", 0.05)
+    assert len(far) > 10 and min(far.values()) > 0.009, far
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    assert any(min(int(r["element_a"]), int(r["element_b"])) < 10 and max(int(r["element_a"]),
+               int(r["element_b"])) > 28 for r in last), last
+    text = (ROOT / "models" / "self_contact_rollup.toml").read_text()
+    free = out_dir() / "free.toml"
+    free.write_text(text.replace("[[beam_contact]]\nbeams = [\"arm\"]\nself = true\n", ""))
+    out2 = out_dir()
+    run_scene(free, out=out2)
+    assert min(_min_far_distance(out2 / "sections.csv", 0.05).values()) < 0.001
+
+
+def test_friction_jacobian_matches_differences():
+    """The lagged friction between beams (sticking and sliding pairs) with the
+    barrier: the Jacobian against central differences, action = reaction."""
+    d = check()["friction"]
+    assert float(d["err"]) < 1e-6, d
+    assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d
+
+
+def _crossed_with_friction(pull):
+    """The crossed cantilevers with friction 0.3: pressed by P over the first
+    half of the load path, then the upper's tip pulled sideways (along the
+    lower, y) by `pull` over the second.  Returns (summary, out)."""
+    text = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
+    text = text.replace("distance = 1e-5", "distance = 1e-5\nfriction = 0.3")
+    text = text.replace('value = [0.0, 0.0, -2.0]\n', 'value = [0.0, 0.0, -2.0]\namplitude = {type = "ramp", t0 = 0.0, '
+                        't1 = 0.5}\n\n[[load]]\ntype = "force"\nat = "upper:end"\nvalue = [0.0, ' + repr(pull) +
+                        ', 0.0]\namplitude = {type = "ramp", t0 = 0.5, t1 = 1.0}\n')
+    text = text.replace("load_steps = 4", "load_steps = 8")
+    d = out_dir()
+    (d / "friction.toml").write_text(text)
+    s, _ = run_scene(d / "friction.toml", out=d / "out")
+    return s, d / "out"
+
+
+def _sensor_y(out):
+    with open(out / "sensors.csv", newline="") as fh:
+        return [(float(r["time"]), r["sensor"], float(r["uy"])) for r in csv.DictReader(fh)]
+
+
+def _crossing_slip(out):
+    """The upper's crossing point relative to the lower's along y, at the last
+    state of the pressing half (load factor <= 0.5) and at the end."""
+    rows = _sensor_y(out)
+    def rel(t):
+        u = {n: y for tt, n, y in rows if tt == t}
+        return u["crossing"] - u["lower_crossing"]
+    t_press = max(t for t, _, _ in rows if t <= 0.5)
+    return rel(t_press), rel(1.0)
+
+
+def test_crossed_beams_slide_with_coulomb_friction():
+    """Pulled by 1 N (beyond the friction limit mu R = 0.342 N: a prop at the
+    crossing would need 1.15 N): the upper slides along the lower, the friction
+    on it is mu times the lagged normal force, and its tip moves
+    (T L^3 / 3 - mu R a^2 (3L - a) / 6) / EI sideways."""
+    s, out = _crossed_with_friction(1.0)
+    P, L, a, b, EI, mu, T = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12, 0.3, 1.0
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    ref = (T * L ** 3 / 3 - mu * R * a * a * (3 * L - a) / 6) / EI
+    tip = s["sensors"]["tip"]["displacement"][1]
+    assert abs(tip / ref - 1) < 0.02, (tip, ref)
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    fy = sum(float(r["fy"]) for r in last)                   # on the upper: against its slip (+y)
+    assert abs(fy / (-mu * R) - 1) < 0.05, (fy, mu * R)
+    before, after = _crossing_slip(out)
+    assert after - before > 1e-3, (before, after)            # it slid (millimetres)
+    assert _beam_contact(s)["sets"][0]["active_pairs"] > 0
+
+
+def test_crossed_beams_stick_below_the_friction_limit():
+    """Pulled by -0.2 N, within the limit whatever the friction the pressing
+    left (at most mu R = 0.342 N against the 0.23 N the prop takes): the
+    crossing sticks, moving less than ten slip tolerances (1e-7 m) relative to
+    the lower while the tip is pulled."""
+    s, out = _crossed_with_friction(-0.2)
+    before, after = _crossing_slip(out)
+    assert abs(after - before) < 1e-6, (before, after)
+    assert s["sensors"]["tip"]["displacement"][1] < 0
