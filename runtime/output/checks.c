@@ -114,3 +114,36 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
             return;
     }
 }
+
+int bk_checks_admissible(bk_checks *c, const bk_system *s, const double *q, char *why, size_t n)
+{
+    const bk_model *m = s->m;
+    for (int i = 0; i < m->ndof; ++i)
+        if (!isfinite(q[i])) {
+            snprintf(why, n, "coordinate %d is not finite", i);
+            return 0;
+        }
+    int worst = -1;
+    double jworst = INFINITY;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        if (!p->invariants)
+            continue;
+        bk_gather(m, e, q, c->qe);
+        p->invariants(c->qe, m->tabs[el->geom], c->inv);
+        for (int k = 0; k < p->nqp; ++k)
+            if (!(c->inv[3 * k] > 0.0) && !(c->inv[3 * k] >= jworst)) {
+                jworst = c->inv[3 * k];
+                worst = e;
+            }
+    }
+    if (worst < 0)
+        return 1;
+    const bk_pair *p = m->pairs[m->elems[worst].pair];
+    double pos[3] = {NAN, NAN, NAN};
+    bk_eval_point(m, q, worst, 0.5, pos, NULL);
+    snprintf(why, n, "element %d (%s x %s) near (%.4g, %.4g, %.4g) m turned inside out: J = det F = %.3g <= 0 "
+             "at a quadrature point", worst + 1, p->element->name, p->material, pos[0], pos[1], pos[2], jworst);
+    return 0;
+}

@@ -12,6 +12,7 @@
 #ifndef BK_CHECKS_H
 #define BK_CHECKS_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 #include "output/output.h"
@@ -32,6 +33,13 @@ void bk_checks_free(bk_checks *c);
 /* Checks the state q at load factor / time t ("load factor" or "t" in `what`). */
 void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const char *what, double t,
                      bk_run_info *info, FILE *console);
+
+/* Is the state q admissible: every coordinate finite and J = det F > 0 at
+ * every quadrature point of the elements whose kernels offer invariants?
+ * Returns 1, or 0 with a one-line reason in why[n] (the element, where it is,
+ * its least J; or the first non-finite coordinate).  Analyses accept a step or
+ * load increment only at an admissible state. */
+int bk_checks_admissible(bk_checks *c, const bk_system *s, const double *q, char *why, size_t n);
 
 /* Principal values of the symmetric positive semi-definite tensor with
  * invariants I1, I2, I3 (e.g. C = F^T F, I3 = J^2), ascending, into x[3]. */
