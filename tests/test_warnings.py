@@ -90,3 +90,32 @@ def test_locking_element_choice_is_a_warning():
     assert not any("locking" in x for x in s["warnings"]), s["warnings"]
     r, s = run("cantilever_bend_100N_nu03", ["beam.arm.integration=full"], quiet=True)
     assert any("Poisson locking" in x for x in s["warnings"]), s["warnings"]
+
+
+def test_displacement_beyond_a_hundred_model_sizes_is_flagged():
+    """1e15 N stretches the 1 m svk bar past 100 m: flagged as not credible
+    (units, or a load beyond the structure), with the element and the factor."""
+    r, s = run("cantilever_axial_10kN", ["load.0.value.0=1e15"], quiet=True)
+    w = [x for x in s["warnings"] if "times the model's size" in x]
+    assert len(w) == 1 and "not credible" in w[0] and "check the units" in w[0], s["warnings"]
+    assert float(w[0].split(" m, ")[0].split("moved ")[1]) > 100, w[0]
+    r, s = run("cantilever_axial_10kN", ["load.0.value.0=1e9"], quiet=True)     # stretched 6 times: no flag
+    assert not any("times the model's size" in x for x in s["warnings"]), s["warnings"]
+
+
+def test_implausible_units_are_named_before_the_solve():
+    """The finger written in millimetres with E in MPa and rho in t/mm^3: each
+    value outside what solids and structures have gets a warning naming the
+    likely mistake; the run still goes (the values may be meant)."""
+    sets = ["material.silicone.E=1.2", "material.silicone.rho=1.1e-9", "beam.f.end.0=2e4",
+            "section.finger.b=2e4"]
+    r, s = run("tendon_finger", sets + ["static.max_iterations=1", "static.max_cutbacks=0"], quiet=True)
+    w = "\n".join(s["warnings"])
+    assert "E = 1.2 Pa is below 1 kPa" in w and "MPa" in w, w
+    assert "rho = 1.1e-09 kg/m^3 is below 1 kg/m^3" in w and "g/cm^3" in w, w
+    assert "length 2e+04 m is above 10 km" in w and "in mm?" in w, w
+    r, s = run("tendon_finger", ["section.finger.b=0.2", "static.max_iterations=1", "static.max_cutbacks=0"],
+               quiet=True)
+    assert any("larger than the beam's length 0.1 m" in x for x in s["warnings"]), s["warnings"]
+    r, s = run("tendon_finger", ["static.max_iterations=1", "static.max_cutbacks=0"], quiet=True)
+    assert not any("kPa" in x or "kg/m^3" in x or "length" in x for x in s["warnings"]), s["warnings"]

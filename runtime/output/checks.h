@@ -5,6 +5,9 @@
  *   - a volume ratio J outside [BK_J_MIN, BK_J_MAX];
  *   - principal Green strains outside the range the material law is meant for
  *     (bk_pair green_strain_min/max; St. Venant-Kirchhoff: [-0.2, 0.5]).
+ *   - a displacement of a node beyond BK_FAR_FACTOR times the model's size
+ *     (its length scale): not credible (units, or a load far beyond what the
+ *     structure carries).
  * Each kind is reported once, at its first occurrence (element, position, load
  * factor or time, value), on the console and in summary.json "warnings".
  * Elements whose kernels offer no invariants (rod elements) are not checked.
@@ -20,11 +23,12 @@
 
 #define BK_J_MIN 0.2
 #define BK_J_MAX 5.0
+#define BK_FAR_FACTOR 100.0
 
 typedef struct bk_checks {
     double *inv;             /* [3 * largest nqp] invariants of one element (owned) */
     double *qe;              /* [largest element ndof] (owned)                        */
-    int inverted, volume, strain;   /* reported already */
+    int inverted, volume, strain, far;   /* reported already */
 } bk_checks;
 
 int bk_checks_init(bk_checks *c, const bk_system *s);
