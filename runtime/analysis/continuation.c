@@ -304,7 +304,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 switch_mult = ev->neg_after - ev->neg_before;
             }
         }
-        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
+        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, dl, a.iters, a.rnorm);
         if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
             rc = 0;
             goto done;

@@ -421,7 +421,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});   /* after the step's outputs */
         if (log)
             fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
-        bk_output_progress(out, t / o->t_end, step, t, it, rnorm);
+        bk_output_progress(out, t / o->t_end, step, t, h, it, rnorm);
         if (o->tol > 0.0 && err > 0.0)
             h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
         else if (h < o->dt)

@@ -224,7 +224,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                         max_negative = info->negative_eigenvalues;
                 }
                 bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
-                                   a.iters, a.rnorm);
+                                   fabs(lam - lam_prev), a.iters, a.rnorm);
                 continue;
             }
             memcpy(q, w->qsave, (size_t)nd * sizeof *q);

@@ -67,7 +67,7 @@ static void rows_to_writer(bk_output *o)
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
 {
     memset(o, 0, sizeof *o);
-    o->progress = progress && isatty(2);
+    o->progress = !progress ? 0 : isatty(2) ? 1 : 2;
     o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
     int rc = output_open(o, m, dir, err);
     spent(o, o->t_start);
@@ -128,18 +128,21 @@ static void sensor_state(const bk_output *o, int k, const double *q, double *pos
         disp[i] = pos[i] - o->sensor_p0[3 * k + i];
 }
 
-void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual)
+void bk_output_progress(bk_output *o, double frac, int step, double t, double dt, int iters, double residual)
 {
     if (!o->progress)
         return;
-    double now = bk_clock_s();
-    if (now - o->t_start < 1.0 || now - o->t_last < 0.25)
+    o->progress_iters += iters;
+    double now = bk_clock_s(), every = o->progress == 1 ? BK_PROGRESS_TTY_S : BK_PROGRESS_LOG_S;
+    if (now - o->t_start < every || now - o->t_last < every)
         return;
     o->t_last = now;
+    o->progress_shown = 1;
     double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
-    fprintf(stderr, "\r%s: step %d, %s %.6g, %d Newton it., residual %.2e, %3.0f %%, %.0f s left   ",
-            o->m->name, step, bk_model_in_time(o->m) ? "t" : "load", t, iters, residual,
-            100.0 * frac, eta);
+    fprintf(stderr, "%s%s: %s %.6g (%.0f %%), step %d, %s %.3g, %.0f iterations/s, residual %.1e, %.0f s left%s",
+            o->progress == 1 ? "\r" : "", o->m->name, bk_model_in_time(o->m) ? "t" : "load factor", t,
+            100.0 * frac, step, bk_model_in_time(o->m) ? "dt" : "increment", dt, o->progress_iters / el, residual,
+            eta, o->progress == 1 ? "   " : "\n");
     fflush(stderr);
 }
 
@@ -161,7 +164,7 @@ void bk_output_final(bk_output *o, int step, double t, const double *q)
     if (bk_vtk_finish(&o->vtk, stderr) != 0)       /* every frame on disk before the summary */
         o->write_failed = 1;
     spent(o, t0);
-    if (o->progress && bk_clock_s() - o->t_start >= 1.0)
+    if (o->progress == 1 && o->progress_shown)
         fprintf(stderr, "\n");
 }
 
