@@ -491,11 +491,13 @@ def test_load_jacobians_against_central_differences():
     """dQ/dq of follower forces, moments, distributed follower loads and
     tendons (runtime/assembly/loads.c) against central differences of Q itself; the
     follower tip loads also on a continuum element (its section frame is the
-    Gram-Schmidt frame of its slopes)."""
+    Gram-Schmidt frame of its slopes); the tendon also on ancf3363 (its line
+    rides on the affine part of sections that can deform)."""
     exe = build_loads_check()
     ancf = ["beam.arm.element=ancf3243", "material.alu.law=svk"]
     for scene, x, el, more in (("cantilever_follower", 0.7, "arm", []), ("ring_pressure", 1.0, "ring", []),
-                               ("tendon_ancf", 1.0, "arm", []), ("cantilever_follower", 0.7, "arm", ancf)):
+                               ("tendon_ancf", 1.0, "arm", []), ("cantilever_follower", 0.7, "arm", ancf),
+                               ("tendon_finger", 1.0, "f", [])):
         _, out = run(scene, [f"beam.{el}.elements=4"] + more)
         r = subprocess.run([str(exe), str(out / "model.dat"), str(x)], capture_output=True, text=True)
         assert r.returncode == 0, r.stderr
@@ -507,7 +509,7 @@ def build_loads_check():
     from gen.solver_build import VARIANTS, build_solver, compile_object, runtime_headers, runtime_objects
     from util import all_pair_symbols
     pairs, index = all_pair_symbols()
-    pairs = [p for p in pairs if p.startswith(("gef_resultant", "ancf3243_svk"))]
+    pairs = [p for p in pairs if p.startswith(("gef_resultant", "ancf3243_svk", "ancf3363_neo_hookean"))]
     obj = BUILD / "sanitize" / "loads_check.o"
     compile_object(ROOT / "tests" / "loads_check.c", obj, VARIANTS["sanitize"], runtime_headers())
     objs = [o for o in runtime_objects("sanitize") if o.name != "main.o"] + [obj]

@@ -8,6 +8,7 @@ import time
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
 from gen.scene.materials import locking_warnings, small_strain
+from gen.scene.plausible import beam_warnings
 from gen.scene.values import _typename, check_keys, get_int, get_name, get_number, get_str, get_vec3
 
 MAX_ELEMENTS = 1000000          # per beam (the model file and the solver use int indices)
@@ -181,6 +182,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             end = get_vec3(ctx, bt, "end", where, bound=1e9)
             geo = line_geometry(ctx, bt, where, start, end)
         length = geo.length
+        warnings += [w for w in beam_warnings(where, mname, law, params, materials[mname][1], sec, length, index)
+                     if w not in warnings]
 
         if pair not in pairs:
             pairs.append(pair)

@@ -75,6 +75,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     double prev_lam = 0.0;
     int have_dir = 0, calm = 2, claimed = -1;    /* claimed: the step of the last critical point */
     int switching = 0, switched = 0, after_switch = 0;   /* static.branch_switch: pending, done, last step */
+    char inadm[320] = "";                /* why the last inadmissible state was refused */
     int switch_mult = 0;                                 /* eigenvalues crossing at the switched bifurcation */
     attempt a = {0};
     bk_stability_result sres;
@@ -157,6 +158,12 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             }
             st = bk_arc_step(s, nl, &c, q, lam, switching ? 1.0 : sigma, tWt, dls, o, &a, info->steps + 1, info,
                           switching ? 0.0 : 1.0);
+            /* a step is accepted only at an admissible state (no element inverted) */
+            if (st == BK_NL_OK && !switching && !bk_checks_admissible(chk, s, q, inadm, sizeof inadm)) {
+                double l0 = lam;
+                bk_arc_restore(s, w, q, &l0, &A);
+                st = NEWTON_INADMISSIBLE;
+            }
             if (switching && st == BK_NL_OK) {
                 /* on the secondary branch the step is across the primary tangent */
                 double tt = 0.0, dd = 0.0, td = 0.0;
@@ -196,7 +203,10 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 break;
             if (cuts >= o->max_cutbacks) {
                 char what[600];
-                bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                if (st == NEWTON_INADMISSIBLE)
+                    snprintf(what, sizeof what, "the equilibrium reached is not physical: %s", inadm);
+                else
+                    bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
                 snprintf(info->message, sizeof info->message,
                          "arc-length failed at step %d from load factor %.6g (arc length %.3e): %s; residual %.3e "
                          "(tolerance %.3e) after %d iterations, %d cut-backs; the path is kept up to step %d",
@@ -208,7 +218,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             calm = 0;
             dl *= 0.5;
             if (log)
-                fprintf(log, "  cut-back at load factor %.6g (%s): new arc length %.3g\n", lam, bk_nl_why(st), dl);
+                fprintf(log, "  cut-back at load factor %.6g (%s): new arc length %.3g\n", lam, bk_static_why(st), dl);
             if ((st = bk_arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
                 snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
                          info->steps, bk_nl_why(st));
@@ -294,7 +304,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 switch_mult = ev->neg_after - ev->neg_before;
             }
         }
-        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, a.iters, a.rnorm);
+        bk_output_progress(out, fmin(fabs(lam / target), 1.0), info->steps, lam, dl, a.iters, a.rnorm);
         if (reached && !switching) {    /* (a pending branch switch goes on from the target) */
             rc = 0;
             goto done;

@@ -89,7 +89,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
 }
 
 enum { DYN_OK = BK_NL_OK, DYN_MAXIT = BK_NL_MAXIT, DYN_NONFINITE = BK_NL_NONFINITE, DYN_SINGULAR = BK_NL_SINGULAR,
-       DYN_LINERR = BK_NL_LINERR };
+       DYN_LINERR = BK_NL_LINERR, DYN_INADMISSIBLE = BK_NL_NCODES };
 
 /* One step's Newton problem for the nonlinear solver (nonlinear.h): the
  * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
@@ -150,6 +150,7 @@ static const char *dyn_why(int c)
     case DYN_NONFINITE: return "non-finite force or increment (an element inverted, J <= 0, or a value overflowed)";
     case DYN_SINGULAR: return "singular iteration matrix: is every rigid motion constrained or given mass?";
     case DYN_LINERR: return "linear solver error";
+    case DYN_INADMISSIBLE: return "Newton converged to a state that is not physical (an element inverted)";
     default: return "converged";
     }
 }
@@ -215,6 +216,11 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                             .stagnation = 0, .divergence = 0, .reuse = o->jacobian == BK_JACOBIAN_REUSE,
                             .lazy_matrix = 1};
     int full_retry = 0;                         /* this step failed with kept factors: full Newton */
+    /* the predictor (bk_dyn_predict): constant acceleration, but the position
+     * held once it failed at this step and, with memory, for the next
+     * pred_hold steps (4, doubled while it keeps being needed, up to 64) */
+    int retry_position = 0, pred_hold = 0, hold_len = 4;
+    char inadm[320] = "";                       /* why the last inadmissible state was refused */
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
@@ -285,15 +291,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.qdd_s, w.qdd, (size_t)nd * sizeof *q);
         memcpy(w.a_s, w.a, (size_t)nd * sizeof *q);
         memcpy(w.nu_s, w.nu, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
-        /* predictor with constant acceleration, q''_{n+1} = q''_n */
-        for (int i = 0; i < nd; ++i) {
-            if (s->eq[i] < 0)
-                continue;
-            double an = (w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
-            q[i] = w.q_s[i] + h * w.qd_s[i] + h * h * ((0.5 - bet) * w.a_s[i] + bet * an);
-            w.qd[i] = w.qd_s[i] + h * ((1.0 - gam) * w.a_s[i] + gam * an);
-            w.qdd[i] = w.qdd_s[i];
-        }
+        const int pred_position = retry_position || pred_hold > 0;
+        bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
         bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update,
                               .step_limit = dp_step_limit};
@@ -311,6 +310,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             goto done;
         }
         double err = 0.0;
+        /* a step is accepted only at an admissible state (finite, no element
+         * inverted): else it is retried and cut back like a failed one */
+        if (st == DYN_OK && !bk_checks_admissible(&chk, s, q, inadm, sizeof inadm))
+            st = DYN_INADMISSIBLE;
         if (st == DYN_OK) {
             for (int i = 0; i < nd; ++i) {
                 double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
@@ -326,6 +329,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             memcpy(w.qdd, w.qdd_s, (size_t)nd * sizeof *q);
             memcpy(w.a, w.a_s, (size_t)nd * sizeof *q);
             memcpy(w.nu, w.nu_s, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
+            if (st != DYN_OK && st != DYN_SINGULAR && !pred_position) {
+                /* first: the same step from the held position, with full Newton */
+                retry_position = full_retry = 1;
+                if (log)
+                    fprintf(log, "  t = %.6g: step %.3g failed from the constant-acceleration predictor (%s), "
+                            "retried from the held position\n", t, h, dyn_why(st));
+                continue;
+            }
             if (st != DYN_OK && step_reused && st != DYN_SINGULAR) {
                 /* the fallback: the same step again with full Newton, before any halving */
                 full_retry = 1;
@@ -344,7 +355,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 snprintf(info->message, sizeof info->message,
                          "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e%s after "
                          "%d iteration%s, %d cut-back%s in a row%s",
-                         step + 1, tn, h, st != DYN_OK ? dyn_why(st) : "local error above tol at the smallest step",
+                         step + 1, tn, h, st == DYN_INADMISSIBLE ? inadm : st != DYN_OK ? dyn_why(st)
+                         : "local error above tol at the smallest step",
                          rnorm, incr, it, it == 1 ? "" : "s", cuts, cuts == 1 ? "" : "s",
                          hn < o->dt_min ? " (the next step would be below dynamic.dt_min)" : "");
                 goto done;
@@ -359,6 +371,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         }
         cuts = 0;
         full_retry = 0;
+        if (retry_position)
+            pred_hold = hold_len, hold_len = hold_len < 64 ? 2 * hold_len : 64;
+        else if (pred_position)
+            pred_hold--;
+        else
+            hold_len = 4;
+        retry_position = 0;
         /* Quaternions back to unit length, their velocities without the gauge
          * component, their accelerations with that of a unit quaternion: the
          * rotations and angular velocities are unchanged,
@@ -402,7 +421,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = t});   /* after the step's outputs */
         if (log)
             fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
-        bk_output_progress(out, t / o->t_end, step, t, it, rnorm);
+        bk_output_progress(out, t / o->t_end, step, t, h, it, rnorm);
         if (o->tol > 0.0 && err > 0.0)
             h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
         else if (h < o->dt)

@@ -30,6 +30,15 @@ void bk_dyn_compact_mass(const bk_system *s, dyn_work *w, const double *Mx);
 void bk_dyn_mass_matvec(const bk_system *s, const dyn_work *w, const int *fdof, const double *x, double *y);
 double bk_dyn_dot_free(const bk_system *s, const int *fdof, const double *a, const double *b);
 int *bk_dyn_free_dofs(const bk_system *s);
+/* The predictor of a step of length h from the state saved in w (q_s, qd_s,
+ * qdd_s, a_s) into q, w->qd, w->qdd: position = 0, constant acceleration
+ * (q''_{n+1} = q''_n: the best guess for smooth motion); position = 1, the
+ * position held (q_{n+1} = q_n, velocities and accelerations from the
+ * Newmark relations: after a sudden load the stiff local modes carry
+ * accelerations that, extrapolated over a step many times their period, put
+ * the guess far outside the admissible states). */
+void bk_dyn_predict(const bk_system *s, dyn_work *w, double *q, double h, double am, double af, double bet,
+                    double gam, int position);
 double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
                                double kp, double *fint, double *Ax);
 

@@ -1,8 +1,8 @@
 /* dynamics_work.c -- the work arrays of the time integration, the mass
  * matrix of the free DOFs (assembled once, compressed) and its products, and
  * the velocity- and acceleration-dependent element forces (Kelvin-Voigt
- * damping, rotary inertia) with their Newton-matrix terms (see
- * dynamics_impl.h). */
+ * damping, rotary inertia) with their Newton-matrix terms, and the step
+ * predictors (see dynamics_impl.h). */
 #include "analysis/dynamics_impl.h"
 
 #include <math.h>
@@ -173,3 +173,23 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
     return Trot;
 }
 
+
+void bk_dyn_predict(const bk_system *s, dyn_work *w, double *q, double h, double am, double af, double bet,
+                    double gam, int position)
+{
+    for (int i = 0; i < s->m->ndof; ++i) {
+        if (s->eq[i] < 0)
+            continue;
+        double an;                                 /* the algorithmic acceleration a_{n+1} */
+        if (position) {
+            an = -(w->qd_s[i] / h + (0.5 - bet) * w->a_s[i]) / bet;
+            q[i] = w->q_s[i];
+            w->qdd[i] = ((1.0 - am) * an + am * w->a_s[i] - af * w->qdd_s[i]) / (1.0 - af);
+        } else {
+            an = (w->qdd_s[i] - am * w->a_s[i]) / (1.0 - am);
+            q[i] = w->q_s[i] + h * w->qd_s[i] + h * h * ((0.5 - bet) * w->a_s[i] + bet * an);
+            w->qdd[i] = w->qdd_s[i];
+        }
+        w->qd[i] = w->qd_s[i] + h * ((1.0 - gam) * w->a_s[i] + gam * an);
+    }
+}

@@ -120,6 +120,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
     int cuts_in_row = 0, nleg = 1 + 2 * o->cycles, have_prev = 0, max_negative = 0, warned_singular = 0;
     int cuts_since_growth_ok = 2;      /* converged increments since the last cut-back (at most 2) */
     attempt a = {0};
+    char inadm[320] = "";              /* why the last inadmissible state was refused */
     for (int leg = 0; leg < nleg; ++leg) {
         double goal = leg % 2 == 0 ? 1.0 : 0.0, dir = goal > lam ? 1.0 : -1.0;
         dlam = dlam0;
@@ -155,6 +156,10 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 st = bk_static_newton(s, &R.nl, w, q, target, lam, &a, o, m->length_scale, info->steps + 1, &R.ref);
                 info->newton_iterations += a.iters;
             }
+            /* an increment is accepted only at an admissible state (finite,
+             * no element inverted): else it is cut back like a failed one */
+            if (st == NEWTON_OK && !bk_checks_admissible(&R.chk, s, q, inadm, sizeof inadm))
+                st = NEWTON_INADMISSIBLE;
             int assembled = 1;           /* w->Ax: the matrix at q (a converged solve ends on it) */
             if (R.ref.state != 0) {         /* the reference state's check, before this step's */
                 const int probe = R.ref.state != 2;   /* no Newton matrix was made at it, or not checked */
@@ -219,7 +224,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                         max_negative = info->negative_eigenvalues;
                 }
                 bk_output_progress(out, (leg + (goal > 0.5 ? lam : 1.0 - lam)) / nleg, info->steps, lam,
-                                   a.iters, a.rnorm);
+                                   fabs(lam - lam_prev), a.iters, a.rnorm);
                 continue;
             }
             memcpy(q, w->qsave, (size_t)nd * sizeof *q);
@@ -239,7 +244,10 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                            !(o->predictor == BK_PREDICTOR_SECANT && have_prev);
             if (cuts_in_row >= o->max_cutbacks || hopeless) {
                 char what[600], incr[64];
-                bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                if (st == NEWTON_INADMISSIBLE)
+                    snprintf(what, sizeof what, "the equilibrium reached is not physical: %s", inadm);
+                else
+                    bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
                 if (a.iters > 0 && isfinite(a.dnorm))
                     snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
                 else
@@ -266,7 +274,8 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): the load "
                          "increment fell below round-off after repeated cut-backs (last: %s); residual %.3e, "
                          "last increment %.3e after %d iterations",
-                         info->steps + 1, target, lam, bk_static_why(st), a.rnorm, a.dnorm, a.iters);
+                         info->steps + 1, target, lam, st == NEWTON_INADMISSIBLE ? inadm : bk_static_why(st),
+                         a.rnorm, a.dnorm, a.iters);
                 goto done;
             }
             if (log)

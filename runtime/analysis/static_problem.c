@@ -21,6 +21,7 @@ const char *bk_static_why(int code)
     case NEWTON_DIVERGED: return "residual grew without bound";
     case NEWTON_LINERR: return "linear solver error";
     case NEWTON_UNSTABLE: return "the equilibrium reached is unstable (more negative tangent eigenvalues)";
+    case NEWTON_INADMISSIBLE: return "the equilibrium reached is not physical (an element turned inside out)";
     case NEWTON_INTERRUPTED: return "interrupted";
     default: return "converged";
     }

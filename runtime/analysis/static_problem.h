@@ -44,7 +44,8 @@ typedef struct attempt {
 
 enum { NEWTON_OK = BK_NL_OK, NEWTON_MAXIT = BK_NL_MAXIT, NEWTON_NONFINITE = BK_NL_NONFINITE,
        NEWTON_SINGULAR = BK_NL_SINGULAR, NEWTON_DIVERGED = BK_NL_DIVERGED, NEWTON_LINERR = BK_NL_LINERR,
-       NEWTON_INTERRUPTED = BK_NL_INTERRUPTED, NEWTON_UNSTABLE = BK_NL_NCODES };
+       NEWTON_INTERRUPTED = BK_NL_INTERRUPTED, NEWTON_UNSTABLE = BK_NL_NCODES,
+       NEWTON_INADMISSIBLE };         /* converged to a state bk_checks_admissible refuses */
 
 /* The stability check of the reference state made on the first Newton matrix
  * of the first load step, when that matrix is the reference state's

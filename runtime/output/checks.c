@@ -15,7 +15,7 @@ int bk_checks_init(bk_checks *c, const bk_system *s)
             nqp = m->pairs[k]->nqp;
     c->inv = malloc((size_t)(3 * nqp) * sizeof *c->inv);
     c->qe = malloc((size_t)(s->maxdof > 0 ? s->maxdof : 1) * sizeof *c->qe);
-    c->inverted = c->volume = c->strain = 0;
+    c->inverted = c->volume = c->strain = c->far = 0;
     if (!c->inv || !c->qe) {
         bk_checks_free(c);
         return -1;
@@ -52,10 +52,45 @@ void bk_principal_from_invariants(double I1, double I2, double I3, double *x)
     x[1] = s + (y0 + y1 + y2 - lo - hi);
 }
 
+/* The largest displacement of a node (position fields) against the model's size. */
+static void far_check(bk_checks *c, const bk_system *s, const double *q, const char *what, double t,
+                      bk_run_info *info, FILE *console)
+{
+    const bk_model *m = s->m;
+    double umax = 0.0;
+    int ebig = -1;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_element *et = bk_elem_type(m, e);
+        const int *d = m->elems[e].dofs;
+        for (int f = 0; f < et->nfield; ++f) {
+            if (et->field_role[f] != BK_FIELD_POSITION)
+                continue;
+            const int k0 = et->field_dof[f];
+            double u2 = 0.0;
+            for (int k = 0; k < 3; ++k)
+                u2 += (q[d[k0 + k]] - m->q0[d[k0 + k]]) * (q[d[k0 + k]] - m->q0[d[k0 + k]]);
+            if (u2 > umax * umax)
+                umax = sqrt(u2), ebig = e;
+        }
+    }
+    if (ebig < 0 || !(umax > BK_FAR_FACTOR * m->length_scale))
+        return;
+    c->far = 1;
+    double pos[3] = {NAN, NAN, NAN};
+    bk_eval_point(m, q, ebig, 0.5, pos, NULL);
+    bk_warn(info, console, m->name,
+            "element %d has moved %.3g m, %.0f times the model's size (%.3g m), by %s %.6g (now near (%.4g, %.4g, "
+            "%.4g) m): not credible; check the units (lengths in m, E in Pa, loads in N) and whether the load is "
+            "far beyond what the structure carries", ebig + 1, umax, umax / m->length_scale, m->length_scale, what,
+            t, pos[0], pos[1], pos[2]);
+}
+
 void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const char *what, double t,
                      bk_run_info *info, FILE *console)
 {
     const bk_model *m = s->m;
+    if (!c->far)
+        far_check(c, s, q, what, t, info, console);
     if (c->inverted && c->volume && c->strain)
         return;
     for (int e = 0; e < m->nelem; ++e) {
@@ -113,4 +148,37 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
         if (c->inverted && c->volume && c->strain)
             return;
     }
+}
+
+int bk_checks_admissible(bk_checks *c, const bk_system *s, const double *q, char *why, size_t n)
+{
+    const bk_model *m = s->m;
+    for (int i = 0; i < m->ndof; ++i)
+        if (!isfinite(q[i])) {
+            snprintf(why, n, "coordinate %d is not finite", i);
+            return 0;
+        }
+    int worst = -1;
+    double jworst = INFINITY;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        if (!p->invariants)
+            continue;
+        bk_gather(m, e, q, c->qe);
+        p->invariants(c->qe, m->tabs[el->geom], c->inv);
+        for (int k = 0; k < p->nqp; ++k)
+            if (!(c->inv[3 * k] > 0.0) && !(c->inv[3 * k] >= jworst)) {
+                jworst = c->inv[3 * k];
+                worst = e;
+            }
+    }
+    if (worst < 0)
+        return 1;
+    const bk_pair *p = m->pairs[m->elems[worst].pair];
+    double pos[3] = {NAN, NAN, NAN};
+    bk_eval_point(m, q, worst, 0.5, pos, NULL);
+    snprintf(why, n, "element %d (%s x %s) near (%.4g, %.4g, %.4g) m turned inside out: J = det F = %.3g <= 0 "
+             "at a quadrature point", worst + 1, p->element->name, p->material, pos[0], pos[1], pos[2], jworst);
+    return 0;
 }

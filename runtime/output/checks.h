@@ -5,6 +5,9 @@
  *   - a volume ratio J outside [BK_J_MIN, BK_J_MAX];
  *   - principal Green strains outside the range the material law is meant for
  *     (bk_pair green_strain_min/max; St. Venant-Kirchhoff: [-0.2, 0.5]).
+ *   - a displacement of a node beyond BK_FAR_FACTOR times the model's size
+ *     (its length scale): not credible (units, or a load far beyond what the
+ *     structure carries).
  * Each kind is reported once, at its first occurrence (element, position, load
  * factor or time, value), on the console and in summary.json "warnings".
  * Elements whose kernels offer no invariants (rod elements) are not checked.
@@ -12,6 +15,7 @@
 #ifndef BK_CHECKS_H
 #define BK_CHECKS_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 #include "output/output.h"
@@ -19,11 +23,12 @@
 
 #define BK_J_MIN 0.2
 #define BK_J_MAX 5.0
+#define BK_FAR_FACTOR 100.0
 
 typedef struct bk_checks {
     double *inv;             /* [3 * largest nqp] invariants of one element (owned) */
     double *qe;              /* [largest element ndof] (owned)                        */
-    int inverted, volume, strain;   /* reported already */
+    int inverted, volume, strain, far;   /* reported already */
 } bk_checks;
 
 int bk_checks_init(bk_checks *c, const bk_system *s);
@@ -32,6 +37,13 @@ void bk_checks_free(bk_checks *c);
 /* Checks the state q at load factor / time t ("load factor" or "t" in `what`). */
 void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const char *what, double t,
                      bk_run_info *info, FILE *console);
+
+/* Is the state q admissible: every coordinate finite and J = det F > 0 at
+ * every quadrature point of the elements whose kernels offer invariants?
+ * Returns 1, or 0 with a one-line reason in why[n] (the element, where it is,
+ * its least J; or the first non-finite coordinate).  Analyses accept a step or
+ * load increment only at an admissible state. */
+int bk_checks_admissible(bk_checks *c, const bk_system *s, const double *q, char *why, size_t n);
 
 /* Principal values of the symmetric positive semi-definite tensor with
  * invariants I1, I2, I3 (e.g. C = F^T F, I3 = J^2), ascending, into x[3]. */

@@ -8,6 +8,7 @@
 
 #include "model/amplitude.h"
 #include "base/csvrow.h"
+#include "base/json.h"
 #include "assembly/loads.h"
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
@@ -359,14 +360,6 @@ void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double
         bk_forces_sections(f, s, step, x, q, qd, qdd);
 }
 
-static void json_num(FILE *fp, double v)
-{
-    if (isfinite(v))
-        fprintf(fp, "%.17g", v);
-    else
-        fprintf(fp, "null");
-}
-
 void bk_forces_summary(const bk_forces *f, FILE *fp)
 {
     if (!f->m || !f->have_last || f->m->nreaction == 0)
@@ -378,11 +371,11 @@ void bk_forces_summary(const bk_forces *f, FILE *fp)
         fprintf(fp, "%s\n    {\"constraint\": %d, \"name\": \"%s\", \"type\": \"%s\", \"at\": \"%s\", \"point\": [",
                 c ? "," : "", rc->index, rc->name, rc->type, rc->at);
         for (int i = 0; i < 3; ++i)
-            json_num(fp, L[6 + i]), fprintf(fp, i < 2 ? ", " : "], \"force\": [");
+            bk_json_num(fp, L[6 + i]), fprintf(fp, i < 2 ? ", " : "], \"force\": [");
         for (int i = 0; i < 3; ++i)
-            json_num(fp, L[i]), fprintf(fp, i < 2 ? ", " : "], \"moment\": [");
+            bk_json_num(fp, L[i]), fprintf(fp, i < 2 ? ", " : "], \"moment\": [");
         for (int i = 0; i < 3; ++i)
-            json_num(fp, L[3 + i]), fprintf(fp, i < 2 ? ", " : "]}");
+            bk_json_num(fp, L[3 + i]), fprintf(fp, i < 2 ? ", " : "]}");
     }
     fprintf(fp, "\n  ],\n");
     bk_joints_summary(f, fp);

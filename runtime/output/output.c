@@ -10,6 +10,7 @@
 
 #include "base/clock.h"
 #include "base/csvrow.h"
+#include "base/json.h"
 #include "base/interrupt.h"
 #include "assembly/system.h"
 
@@ -66,7 +67,7 @@ static void rows_to_writer(bk_output *o)
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
 {
     memset(o, 0, sizeof *o);
-    o->progress = progress && isatty(2);
+    o->progress = !progress ? 0 : isatty(2) ? 1 : 2;
     o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
     int rc = output_open(o, m, dir, err);
     spent(o, o->t_start);
@@ -127,18 +128,21 @@ static void sensor_state(const bk_output *o, int k, const double *q, double *pos
         disp[i] = pos[i] - o->sensor_p0[3 * k + i];
 }
 
-void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual)
+void bk_output_progress(bk_output *o, double frac, int step, double t, double dt, int iters, double residual)
 {
     if (!o->progress)
         return;
-    double now = bk_clock_s();
-    if (now - o->t_start < 1.0 || now - o->t_last < 0.25)
+    o->progress_iters += iters;
+    double now = bk_clock_s(), every = o->progress == 1 ? BK_PROGRESS_TTY_S : BK_PROGRESS_LOG_S;
+    if (now - o->t_start < every || now - o->t_last < every)
         return;
     o->t_last = now;
+    o->progress_shown = 1;
     double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
-    fprintf(stderr, "\r%s: step %d, %s %.6g, %d Newton it., residual %.2e, %3.0f %%, %.0f s left   ",
-            o->m->name, step, bk_model_in_time(o->m) ? "t" : "load", t, iters, residual,
-            100.0 * frac, eta);
+    fprintf(stderr, "%s%s: %s %.6g (%.0f %%), step %d, %s %.3g, %.0f iterations/s, residual %.1e, %.0f s left%s",
+            o->progress == 1 ? "\r" : "", o->m->name, bk_model_in_time(o->m) ? "t" : "load factor", t,
+            100.0 * frac, step, bk_model_in_time(o->m) ? "dt" : "increment", dt, o->progress_iters / el, residual,
+            eta, o->progress == 1 ? "   " : "\n");
     fflush(stderr);
 }
 
@@ -160,7 +164,7 @@ void bk_output_final(bk_output *o, int step, double t, const double *q)
     if (bk_vtk_finish(&o->vtk, stderr) != 0)       /* every frame on disk before the summary */
         o->write_failed = 1;
     spent(o, t0);
-    if (o->progress && bk_clock_s() - o->t_start >= 1.0)
+    if (o->progress == 1 && o->progress_shown)
         fprintf(stderr, "\n");
 }
 
@@ -333,41 +337,6 @@ double bk_output_mode(bk_output *o, int mode, const double *vals, const double *
     return scale;
 }
 
-static void json_string(FILE *fp, const char *s)
-{
-    fputc('"', fp);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(fp, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(fp, "\\u%04x", c);
-        else
-            fputc(c, fp);
-    }
-    fputc('"', fp);
-}
-
-static void json_num(FILE *fp, double v)
-{
-    if (isfinite(v))
-        fprintf(fp, "%.17g", v);
-    else
-        fprintf(fp, "null");
-}
-
-static void json_vec(FILE *fp, const double *v)
-{
-    fputc('[', fp);
-    for (int i = 0; i < 3; ++i) {
-        if (isfinite(v[i]))
-            fprintf(fp, "%s%.17g", i ? ", " : "", v[i]);
-        else
-            fprintf(fp, "%snull", i ? ", " : "");
-    }
-    fputc(']', fp);
-}
-
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err)
 {
     char path[1200], tmp[1210];
@@ -380,7 +349,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     }
     const bk_model *m = o->m;
     fprintf(fp, "{\n  \"scene\": ");
-    json_string(fp, m->name);
+    bk_json_string(fp, m->name);
     fprintf(fp, ",\n  \"analysis\": \"%s\",\n", bk_analysis_name(m->analysis));
     fprintf(fp, "  \"converged\": %s,\n", info->converged ? "true" : "false");
     fprintf(fp, "  \"interrupted\": %s,\n", info->interrupted ? "true" : "false");
@@ -389,7 +358,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"warnings\": [");
     for (int k = 0; k < info->nwarning; ++k) {
         fprintf(fp, "%s\n    ", k ? "," : "");
-        json_string(fp, info->warnings[k]);
+        bk_json_string(fp, info->warnings[k]);
     }
     fprintf(fp, "%s],\n", info->nwarning ? "\n  " : "");
     if (info->warnings_dropped)
@@ -403,27 +372,35 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"cutbacks\": %d,\n", info->cutbacks);
     fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
     fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
-    fprintf(fp, "  \"%s\": %.17g,\n", bk_model_in_time(m) ? "time" : "load_factor", info->load_factor);
-    fprintf(fp, "  \"max_constraint_residual\": %.3e,\n", info->max_constraint_residual);
-    fprintf(fp, "  \"strain_energy\": %.17g,\n", info->strain_energy);
+    /* every number through json_num: a non-finite value is null (JSON has no NaN) */
+    fprintf(fp, "  \"%s\": ", bk_model_in_time(m) ? "time" : "load_factor");
+    bk_json_num(fp, info->load_factor);
+    fprintf(fp, ",\n  \"max_constraint_residual\": ");
+    bk_json_num(fp, info->max_constraint_residual);
+    fprintf(fp, ",\n  \"strain_energy\": ");
+    bk_json_num(fp, info->strain_energy);
+    fprintf(fp, ",\n");
     fprintf(fp, "  \"dofs\": %d,\n  \"elements\": %d,\n", m->ndof, m->nelem);
     for (int k = 0; k < info->nsummary; ++k) {          /* the analysis's own entries */
         fprintf(fp, "  ");
-        json_string(fp, info->summary_key[k]);
+        bk_json_string(fp, info->summary_key[k]);
         fprintf(fp, ": %s,\n", info->summary_json[k]);
     }
     if (info->stability_checked) {
         fprintf(fp, "  \"stability\": {\"negative_eigenvalues\": %d, \"eig_min\": ", info->negative_eigenvalues);
-        json_num(fp, info->eig_min);
+        bk_json_num(fp, info->eig_min);
         fprintf(fp, ", \"eig_max\": ");
-        json_num(fp, info->eig_max);
+        bk_json_num(fp, info->eig_max);
         fprintf(fp, ", \"events\": [");
         for (int k = 0; k < info->nstability; ++k) {
             const bk_stability_event *ev = &info->stability[k];
-            fprintf(fp, "%s\n    {\"step\": %d, \"load_factor_before\": %.17g, \"load_factor_after\": %.17g, "
-                        "\"negative_before\": %d, \"negative_after\": %d, \"critical_load_factor\": ",
-                    k ? "," : "", ev->step, ev->lam_before, ev->lam_after, ev->neg_before, ev->neg_after);
-            json_num(fp, ev->lam_critical);
+            fprintf(fp, "%s\n    {\"step\": %d, \"load_factor_before\": ", k ? "," : "", ev->step);
+            bk_json_num(fp, ev->lam_before);
+            fprintf(fp, ", \"load_factor_after\": ");
+            bk_json_num(fp, ev->lam_after);
+            fprintf(fp, ", \"negative_before\": %d, \"negative_after\": %d, \"critical_load_factor\": ",
+                    ev->neg_before, ev->neg_after);
+            bk_json_num(fp, ev->lam_critical);
             fprintf(fp, "}");
         }
         fprintf(fp, "%s]},\n", info->nstability ? "\n  " : "");
@@ -434,13 +411,13 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
             const bk_critical_point *c = &info->critical[k];
             fprintf(fp, "%s\n    {\"type\": \"%s\", \"step\": %d, \"load_factor\": ", k ? "," : "",
                     c->limit ? "limit_point" : "bifurcation", c->step);
-            json_num(fp, c->lam);
+            bk_json_num(fp, c->lam);
             fprintf(fp, ", \"displacement\": {");
             for (int j = 0; j < c->nsensor; ++j) {
                 fprintf(fp, "%s", j ? ", " : "");
-                json_string(fp, m->sensors[j].name);
+                bk_json_string(fp, m->sensors[j].name);
                 fprintf(fp, ": ");
-                json_vec(fp, c->u[j]);
+                bk_json_vec3(fp, c->u[j]);
             }
             fprintf(fp, "}}");
         }
@@ -449,7 +426,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     bk_forces_summary(&o->forces, fp);
     fprintf(fp, "  \"error\": ");
     if (info->message[0])
-        json_string(fp, info->message);
+        bk_json_string(fp, info->message);
     else
         fprintf(fp, "null");
     fprintf(fp, ",\n  \"sensors\": {");
@@ -458,17 +435,17 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         double pos[3], disp[3], g[9];
         sensor_state(o, k, q, pos, disp, g);
         fprintf(fp, "%s\n    ", k ? "," : "");
-        json_string(fp, s->name);
+        bk_json_string(fp, s->name);
         fprintf(fp, ": {\"position\": ");
-        json_vec(fp, pos);
+        bk_json_vec3(fp, pos);
         fprintf(fp, ", \"displacement\": ");
-        json_vec(fp, disp);
+        bk_json_vec3(fp, disp);
         fprintf(fp, ", \"d1\": ");
-        json_vec(fp, g);
+        bk_json_vec3(fp, g);
         fprintf(fp, ", \"d2\": ");
-        json_vec(fp, g + 3);
+        bk_json_vec3(fp, g + 3);
         fprintf(fp, ", \"d3\": ");
-        json_vec(fp, g + 6);
+        bk_json_vec3(fp, g + 6);
         fprintf(fp, "}");
     }
     fprintf(fp, "%s}\n}\n", m->nsensor ? "\n  " : "");

@@ -25,7 +25,10 @@ typedef struct bk_output {
     const char *const *mode_names;
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
     bk_vtk vtk;              /* ParaView frames */
-    int progress;            /* 1: an updating progress line on stderr */
+    int progress;            /* 1: an updating progress line on stderr (a terminal), 2: a line
+                              * every BK_PROGRESS_LOG_S (a log), 0: none */
+    long progress_iters;     /* Newton iterations reported to bk_output_progress */
+    int progress_shown;      /* a progress line was written */
     FILE *console;           /* warnings are printed here (NULL: --quiet) */
     double t_start, t_last;  /* wall clock of the start and of the last progress line */
     double t_flush;          /* wall clock of the last flush of the result tables */
@@ -38,11 +41,17 @@ typedef struct bk_output {
 } bk_output;
 
 
-/* progress: show an updating line on stderr (only if it is a terminal). */
+/* progress: report long runs on stderr: on a terminal one updating line at
+ * most every BK_PROGRESS_TTY_S, else (a log) one line every BK_PROGRESS_LOG_S;
+ * nothing before the first interval has passed. */
+#define BK_PROGRESS_TTY_S 2.0
+#define BK_PROGRESS_LOG_S 10.0
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
 /* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
  * only after the first second, only on a terminal. */
-void bk_output_progress(bk_output *o, double frac, int step, double t, int iters, double residual);
+/* After an accepted step: the fraction done, the step, the time or load
+ * factor t, the step's length dt, its Newton iterations and residual. */
+void bk_output_progress(bk_output *o, double frac, int step, double t, double dt, int iters, double residual);
 /* Writes the ParaView frame of the last state if the stride skipped it (not
  * for modal analyses: bk_solve_modal writes the frames of the state the modes
  * are about itself, with bk_output_last_frame), waits until every frame is on

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/json.h"
+
 /* Room for n + 1 items of size sz in *p (capacity *cap); 0, or -1 when out of memory. */
 static int room(void **p, int *cap, int n, size_t sz)
 {
@@ -71,14 +73,14 @@ int bk_run_summary(bk_run_info *info, const char *key, const char *json)
     if (!js)
         return -1;
     info->summary_json = js;
-    char *k = malloc(strlen(key) + 1), *v = malloc(strlen(json) + 1);
+    char *k = malloc(strlen(key) + 1), *v = malloc(2 * strlen(json) + 1);
     if (!k || !v) {
         free(k);
         free(v);
         return -1;
     }
     strcpy(k, key);
-    strcpy(v, json);
+    bk_json_repair(json, v);          /* summary.json stays JSON whatever the text held (nan: null) */
     info->summary_key[info->nsummary] = k;
     info->summary_json[info->nsummary++] = v;
     return 0;

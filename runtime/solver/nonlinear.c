@@ -115,7 +115,7 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
             /* a kept-factor correction that led to a non-finite force or
              * diverged is taken back and this iteration redone from the
              * previous point with a new matrix */
-            p->update(p->ctx, dx, -1.0);
+            p->update(p->ctx, dx, -alpha);
             dnorm = dnorm_prev, enorm = enorm_prev;
             if (eref_it == it - 1)
                 eref_it = -1;                    /* the energy scale came from the undone one */
