@@ -273,3 +273,40 @@ def test_capstan_reaction_is_ten_e_to_the_mu_theta():
     r = next(x for x in s["reactions"] if x["type"] == "prescribed_motion")
     ref = 10.0 * math.exp(0.3 * math.pi)
     assert abs(r["force"][0] / ref - 1) < 1e-2, (r["force"], ref)
+
+
+def _capstan_held(hold):
+    """models/contact_capstan.toml with a rope of 0.25 mm radius (its bending
+    stiffness negligible: the 1 mm rope's, sqrt(EI/T) = 9-14 mm at the wrap's
+    ends, adds enough friction there to hold 10/3.8) and the tail held by a
+    dead force `hold` along it instead of the prescribed motion; the lead is
+    pulled by 10 N, both ramped together over the first fifth of the load."""
+    text = (ROOT / "models" / "contact_capstan.toml").read_text()
+    drawn = '[[constraint]]\ntype = "prescribed_motion"\na = "tail:end"\nmotion = [0.002, 0.0, 0.0]\n'
+    lead = '[[load]]\ntype = "force"\nat = "lead:start"'
+    assert drawn in text and lead in text and "radius = 0.001\n" in text
+    text = text.replace(drawn, "").replace("radius = 0.001\n", "radius = 0.00025\n").replace("0.05108", "0.05033")
+    text = text.replace(lead, f'[[load]]\ntype = "force"\nat = "tail:end"\nvalue = [{hold!r}, 0.0, 0.0]\n'
+                              f'amplitude = "pull"\n\n' + lead)
+    p = out_dir() / "capstan_held.toml"
+    p.write_text(text)
+    return p
+
+
+def test_capstan_holds_above_ten_e_to_the_minus_mu_theta_and_slides_below():
+    """The sticking side of the capstan: the lead pulled by 10 N, the tail
+    held by H.  10 e^(-mu pi) = 3.897 N: held by 4.0 N (ratio 2.50, 2.6 % below
+    e^(mu pi) = 2.566) the rope is in equilibrium and, once the loads stop
+    growing, does not move (the lead's end within 1e-6 m over 80 % of the
+    load steps); held by 3.8 N (ratio 2.63, 2.5 % above) there is no
+    equilibrium: the rope slides and the static solve fails (exit 2)."""
+    import csv
+    out = out_dir()
+    s, _ = run_scene(_capstan_held(4.0), out=out)
+    assert s["converged"] and _contact(s)
+    with open(out / "sensors.csv", newline="") as fh:
+        ux = [(float(r["time"]), float(r["ux"])) for r in csv.DictReader(fh)]
+    after = [u for t, u in ux if t >= 0.2 + 1e-9]
+    assert len(after) > 10 and max(after) - min(after) < 1e-6, (min(after), max(after))
+    r = run_cli(["run", str(_capstan_held(3.8)), "--quiet", "--out", str(out_dir())])
+    assert r.returncode == 2 and "static solve failed" in r.stderr, (r.returncode, r.stderr[-500:])
