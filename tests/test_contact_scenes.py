@@ -222,7 +222,7 @@ a = [1.0, -0.05, 0.0151]
 b = [1.0, 0.05, 0.0151]
 radius = 0.01
 distance = 1e-4
-stiffness = 1e7
+stiffness = 1e9
 motion = [0.0, 0.0, -0.0005]
 [static]
 load_steps = 100
@@ -237,9 +237,10 @@ def test_indentation_by_a_moving_cylinder_is_resisted_with_three_ei_over_l_cubed
     a cantilever's tip, its surface starting at the barrier's reach: the force
     on the cylinder against the tip's deflection is the cantilever's stiffness
     3 E I / L^3 = 175 N/m within 1 % at every step (gef's shear flexibility
-    makes it 7.6e-5 less), and against the cylinder's own motion within 1 %
-    once the barrier is pressed (its compliance is in series: 5 % at the first
-    micrometres, 0.6 % at 0.5 mm)."""
+    makes it 7.6e-5 less), and its slope against the cylinder's own motion
+    (the indentation) within 1 % from the first contact on: 0.5 % at the first
+    step, 0.07 % at 0.3 mm (the barrier's compliance is in series: with the
+    stiffness 1e7 instead of 1e9 it was 5 % at first)."""
     import collections
     import csv
     p = out_dir() / "indent.toml"
@@ -258,8 +259,8 @@ def test_indentation_by_a_moving_cylinder_is_resisted_with_three_ei_over_l_cubed
     assert len(pts) >= 5
     for _, tip, f in pts:
         assert abs(f / tip / k - 1) < 1e-2, (f, tip)
-    (i1, _, f1), (i2, _, f2) = pts[-2], pts[-1]
-    assert abs((f2 - f1) / (i2 - i1) / k - 1) < 1e-2
+    for (i1, _, f1), (i2, _, f2) in zip(pts, pts[1:]):
+        assert abs((f2 - f1) / (i2 - i1) / k - 1) < 1e-2, (i1, (f2 - f1) / (i2 - i1) / k)
 
 
 def test_capstan_reaction_is_ten_e_to_the_mu_theta():
