@@ -42,7 +42,7 @@ LANE_TARGET = """
 # ----------------------------------------------------------------------------
 # Element file
 
-CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_MOMENT_ANYWHERE")
+CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_CURVED", "BK_CAP_MOMENT_ANYWHERE")
 
 
 def describe(elem):
@@ -212,7 +212,7 @@ extern const bk_element bk_element_{name};
     for rname in elem.rule_names:
         tprog, ntab = tabulate_program(elem, rname)
         c += _function(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
-                       "double *restrict tab)", lower(tprog, ()), ["(void)q0;"])
+                       "double *restrict tab)", lower(tprog, ()), ["(void)geom;"])
     # Strain invariants at every point of each integration (state checks).
     ilow = lower(invariants_program(elem), ())
     for rname in elem.rule_names:
