@@ -95,6 +95,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
+        "inputs": list(ctx.inputs),
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

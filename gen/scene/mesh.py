@@ -7,6 +7,7 @@ import time
 
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
+from gen.scene.path import path_geometry
 from gen.scene.materials import locking_warnings, small_strain
 from gen.scene.values import _typename, check_keys, get_int, get_name, get_number, get_str, get_vec3
 
@@ -119,6 +120,28 @@ def locate(beam, s):
     return beam["first_elem"] + k, xi
 
 
+def beam_geometry(ctx, bt, where, ename, einfo, index):
+    """The centreline and section frame of a beam: straight (start, end), an arc
+    (start, arc_center, arc_axis, arc_angle) or a spline through points (path)."""
+    arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
+    curved = arc_keys + (["path"] if "path" in bt else [])
+    if curved and not einfo["curved"]:
+        ok = ", ".join(sorted(e for e, v in index["elements"].items() if v["curved"]))
+        ctx.fail(f"{where}.{curved[0]}", f"element {ename} supports straight beams only; curved beams need {ok}")
+    if "path" in bt:
+        for k in ["start", "end"] + arc_keys:
+            if k in bt:
+                ctx.fail(f"{where}.{k}", "give either path (a centreline through points) or start with end or an arc")
+        return path_geometry(ctx, bt, where)
+    start = get_vec3(ctx, bt, "start", where, bound=1e9)
+    if arc_keys:
+        if "end" in bt:
+            ctx.fail(f"{where}.end", "give either end (straight beam) or arc_center, arc_axis, arc_angle")
+        return arc_geometry(ctx, bt, where, start)
+    end = get_vec3(ctx, bt, "end", where, bound=1e9)
+    return line_geometry(ctx, bt, where, start, end)
+
+
 def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
     """Every [[beam]]: validated, meshed, numbered.  Returns a Mesh."""
     m = Mesh()
@@ -167,19 +190,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
             ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
                      f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
-        start = get_vec3(ctx, bt, "start", where, bound=1e9)
         nel = get_int(ctx, bt, "elements", where, lo=1, hi=MAX_ELEMENTS)
-        arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
-        if arc_keys:
-            if "end" in bt:
-                ctx.fail(f"{where}.end", "give either end (straight beam) or arc_center, arc_axis, arc_angle")
-            if not einfo["curved"]:
-                ctx.fail(f"{where}.{arc_keys[0]}", f"element {ename} supports straight beams only; curved "
-                         f"beams need gef, euler_bernoulli or kirchhoff")
-            geo = arc_geometry(ctx, bt, where, start)
-        else:
-            end = get_vec3(ctx, bt, "end", where, bound=1e9)
-            geo = line_geometry(ctx, bt, where, start, end)
+        geo = beam_geometry(ctx, bt, where, ename, einfo, index)
         length = geo.length
 
         if pair not in pairs:
@@ -246,7 +258,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             q0.extend([0.0] * nint)
             ndof += nint
             prev_end = end_node
-            gkey = (pidx, l, sec, geo.shape_key)     # congruent elements share a table
+            gkey = (pidx, l, sec, geo.shape_key if geo.shape_key is not None else geo.element_key(k))
+            # congruent elements share a table
             if gkey not in geom_index:
                 geom_index[gkey] = len(geoms)
                 geoms.append((pidx, len(elements), section_geometry(sec, l)))
