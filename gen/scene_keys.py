@@ -17,7 +17,7 @@ TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_vel
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
-BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
+BEAM = ("name", "element", "material", "section", "section_end", "sections", "start", "end", "up", "elements", "integration",
         "arc_center", "arc_axis", "arc_angle", "path", "grading", "element_lengths")
 BODY = ("name", "mass", "center", "inertia", "axes")
 CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),

@@ -72,7 +72,8 @@ def loads(ctx, doc, beams, amps):
                     or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
                 ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, along the section axes d1, d2), found "
                          f"{_typename(off) if not isinstance(off, list) else off}")
-            _shape, b, h = beam["section"]
+            b = min(sec[1] for sec in beam["sections"])       # the smallest section along the beam
+            h = min(sec[2] for sec in beam["sections"])
             if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
                 ctx.fail(f"{where}.offset", f"the tendon at {list(map(float, off))} m lies outside the section of "
                          f"beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
