@@ -34,7 +34,8 @@ LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower"
         "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "value", "amplitude", "preload"),
         "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
-        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude", "preload")}
+        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude", "preload"),
+        "chamber": ("type", "beam", "from", "to", "offset", "area", "pressure", "amplitude", "preload")}
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),

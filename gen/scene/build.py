@@ -79,7 +79,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     if follower and analysis == "static" and stat["stability"]:
         mesh.warnings.append(f"load[{follower[0]}]: follower loads are not conservative: the stability check "
                              "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
-    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon") or i in follower]
+    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon", "chamber") or i in follower]
     if stiff and analysis == "modal" and modal["about"] == "static":
         mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
                              "the elastic forces only, without the load stiffness of moments, follower loads and "

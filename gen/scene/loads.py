@@ -45,6 +45,36 @@ def _follower(ctx, lt, where, beam):
     return int(fol)
 
 
+def _chamber(ctx, lt, where, beams, amps):
+    """A pneumatic chamber along (part of) a continuum ANCF beam: cross-section area
+    A, centroid at the offset (dy, dz), pressure p (times the amplitude).  Its loads
+    are those of the potential -p A l(q), l the length of the material line through
+    the chamber's centroid (the tendon's line, with tension -p A): at each end cap the
+    force p A outward along that line (an axial force p A and a moment p A e that
+    turn with the section), along a curved chamber the walls' pressure."""
+    beam, pieces = _span(ctx, lt, where, beams)
+    if beam["kind"] != "continuum":
+        ctx.fail(f"{where}.beam", f"chambers act on continuum ANCF beams only (ancf3243, ancf3333, ancf3273, "
+                 f"ancf3363), beam {beam['name']!r} is {beam['element']}")
+    off = lt.get("offset")
+    if (not isinstance(off, list) or len(off) != 2
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
+        ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, the chamber's centroid along the section axes d1, d2), "
+                 f"found {_typename(off) if not isinstance(off, list) else off}")
+    area = get_number(ctx, lt, "area", where, positive=True)
+    p = get_number(ctx, lt, "pressure", where)
+    b = min(sec[1] for sec in beam["sections"])
+    h = min(sec[2] for sec in beam["sections"])
+    if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
+        ctx.fail(f"{where}.offset", f"the chamber's centroid at {list(map(float, off))} m lies outside the section "
+                 f"of beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
+    if area >= b * h:
+        ctx.fail(f"{where}.area", f"a chamber of {area:g} m^2 does not fit in the section of beam "
+                 f"{beam['name']!r} ({b:g} x {h:g} m = {b * h:g} m^2)")
+    amp = amps.ref(lt, "amplitude", where)
+    return (amp, -p * area, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces])
+
+
 def loads(ctx, doc, beams, amps):
     """(forces, moments, gravity, distributed, tendons) of the scene."""
     forces = []
@@ -80,6 +110,9 @@ def loads(ctx, doc, beams, amps):
             T = get_number(ctx, lt, "tension", where, nonneg=True)
             amp = amps.ref(lt, "amplitude", where)
             tendons.append((amp, T, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces]))
+        elif ltype == "chamber":
+            check_keys(ctx, lt, set(K.LOAD[ltype]), where)
+            tendons.append(_chamber(ctx, lt, where, beams, amps))
         elif ltype in ("force", "moment"):
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             if "at" not in lt:
