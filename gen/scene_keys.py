@@ -30,12 +30,12 @@ CONSTRAINT = {"clamp": ("type", "a", "cross_section", "b"),
                                       "angle_amplitude"),
               "point_on_line": ("type", "a", "axis"),
               "prescribed_motion": ("type", "a", "motion", "amplitude")}
-LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
-        "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
-        "gravity": ("type", "value", "amplitude", "preload"),
-        "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
-        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude", "preload"),
-        "chamber": ("type", "beam", "from", "to", "offset", "area", "pressure", "amplitude", "preload")}
+LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload"),
+        "moment": ("type", "name", "at", "value", "amplitude", "follower", "preload"),
+        "gravity": ("type", "name", "value", "amplitude", "preload"),
+        "distributed": ("type", "name", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
+        "tendon": ("type", "name", "beam", "from", "to", "offset", "tension", "amplitude", "preload"),
+        "chamber": ("type", "name", "beam", "from", "to", "offset", "area", "pressure", "amplitude", "preload")}
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),

@@ -4,8 +4,8 @@ distributed loads along beams, tendons, gravity; each with an amplitude
 dynamics)."""
 import gen.scene_keys as K
 from gen.scene.mesh import locate, locate_node, parse_point
-from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_number,
-                              get_str, get_vec3)
+from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_name,
+                              get_number, get_str, get_vec3)
 
 
 def _span(ctx, lt, where, beams):
@@ -82,8 +82,15 @@ def loads(ctx, doc, beams, amps):
     dloads = []
     tendons = []
     gravity = None
+    names = {}
     for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
         where = f"load[{li}]"
+        if "name" in lt:                # a label: --set load.NAME.KEY=..., unique among the loads
+            nm = get_name(ctx, lt, "name", where)
+            if nm in names:
+                ctx.fail(f"{where}.name", f"the name {nm!r} is used twice (load[{names[nm]}] has it); "
+                         "expected a unique name per load")
+            names[nm] = li
         ltype = get_str(ctx, lt, "type", where, choices=tuple(K.LOAD))
         if ltype == "distributed":
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
