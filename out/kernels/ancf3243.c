@@ -1668,6 +1668,21 @@ void ancf3243_full_tabulate(const double *restrict geom, const double *restrict 
     tab[165] = x141;
     tab[166] = -R12_0_11*x141*x173;
     tab[167] = x173;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 12; ++p) {
+        static const double wq[12] = {0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445};
+        double *restrict wt = tab + 0 + 14 * p;
+        double *restrict m = wt + 8;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
@@ -2397,6 +2412,33 @@ void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q
     tab[207] = x159;
     tab[208] = -R12_1_2*x159*x198;
     tab[209] = x198;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 12; ++p) {
+        static const double wq[12] = {0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445};
+        double *restrict wt = tab + 0 + 14 * p;
+        double *restrict m = wt + 8;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
+    for (int p = 0; p < 3; ++p) {
+        static const double wq[3] = {0.2777777777777778, 0.4444444444444444, 0.2777777777777778};
+        double *restrict wt = tab + 168 + 14 * p;
+        double *restrict m = wt + 8;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3243_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)

@@ -3121,6 +3121,21 @@ void ancf3273_full_tabulate(const double *restrict geom, const double *restrict 
     tab[564] = x475;
     tab[565] = -R12_0_26*x475*x548;
     tab[566] = x548;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 27; ++p) {
+        static const double wq[27] = {0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.05486968449931413, 0.0877914951989026, 0.05486968449931413, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586};
+        double *restrict wt = tab + 0 + 21 * p;
+        double *restrict m = wt + 15;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
@@ -3989,6 +4004,21 @@ void ancf3273_reduced_tabulate(const double *restrict geom, const double *restri
     tab[249] = x315;
     tab[250] = -R12_0_11*x315*x358;
     tab[251] = x358;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 12; ++p) {
+        static const double wq[12] = {0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445};
+        double *restrict wt = tab + 0 + 21 * p;
+        double *restrict m = wt + 15;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
@@ -5981,6 +6011,33 @@ void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q
     tab[648] = x595;
     tab[649] = -R12_1_3*x595*x684;
     tab[650] = x684;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 27; ++p) {
+        static const double wq[27] = {0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.05486968449931413, 0.0877914951989026, 0.05486968449931413, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586};
+        double *restrict wt = tab + 0 + 21 * p;
+        double *restrict m = wt + 15;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
+    for (int p = 0; p < 4; ++p) {
+        static const double wq[4] = {0.25, 0.25, 0.25, 0.25};
+        double *restrict wt = tab + 567 + 21 * p;
+        double *restrict m = wt + 15;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3273_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)

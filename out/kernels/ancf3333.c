@@ -2099,6 +2099,21 @@ void ancf3333_full_tabulate(const double *restrict geom, const double *restrict 
     tab[225] = x202;
     tab[226] = -R12_0_11*x202*x241;
     tab[227] = x241;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 12; ++p) {
+        static const double wq[12] = {0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445};
+        double *restrict wt = tab + 0 + 19 * p;
+        double *restrict m = wt + 13;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3333_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)

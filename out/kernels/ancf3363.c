@@ -4110,6 +4110,21 @@ void ancf3363_full_tabulate(const double *restrict geom, const double *restrict 
     tab[915] = x584;
     tab[916] = -R12_0_26*x584*x679;
     tab[917] = x679;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 27; ++p) {
+        static const double wq[27] = {0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.05486968449931413, 0.0877914951989026, 0.05486968449931413, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.05486968449931412, 0.03429355281207133, 0.021433470507544586, 0.03429355281207133, 0.021433470507544586};
+        double *restrict wt = tab + 0 + 34 * p;
+        double *restrict m = wt + 28;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab)
@@ -5303,6 +5318,21 @@ void ancf3363_reduced_tabulate(const double *restrict geom, const double *restri
     tab[405] = x464;
     tab[406] = -R12_0_11*x464*x527;
     tab[407] = x527;
+    /* a reference map within round-off of the identity is the identity, and the weight
+     * of a point whose det J0 is within round-off of 1 that of the straight box */
+    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];
+    for (int p = 0; p < 12; ++p) {
+        static const double wq[12] = {0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.1111111111111111, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445, 0.06944444444444445};
+        double *restrict wt = tab + 0 + 34 * p;
+        double *restrict m = wt + 28;
+        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;
+        if (fabs(m[0] - 1.0) <= 1e-12) m[0] = 1.0;
+        if (fabs(m[1] - 0.0) <= 1e-12) m[1] = 0.0;
+        if (fabs(m[2] - 0.0) <= 1e-12) m[2] = 0.0;
+        if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
+        if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
+        if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+    }
 }
 
 void ancf3363_full_invariants(const double *restrict q, const double *restrict tab, double *restrict out)
