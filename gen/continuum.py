@@ -1,15 +1,25 @@
 """Derivation of continuum (ANCF) element kernels: element x material x rule.
 
 At a quadrature point the deformation gradient is linear in the element
-coordinates, F = sum_a q_a g_a^T, with g_a = grad N_a a constant of the point
-(tabulated once per element geometry, only the entries that are not identically
-zero, equal or opposite entries sharing one slot).  For an isotropic energy
-W(I1, I2, J):
+coordinates, F = sum_a q_a g_a^T M, with g_a = grad N_a over the element box (x
+along the axis, y, z across; tabulated once per element geometry, only the
+entries that are not identically zero, equal or opposite entries sharing one
+slot) and M = J0^-1 Q0 the point's reference map: J0 = sum_a q0_a g_a^T the
+gradient of the reference configuration over the box and Q0 its orthonormal
+frame (Gram-Schmidt of J0's columns: the reference tangent first), so that
+J0 = Q0 R and M = R^-1 is upper triangular (6 table entries).  F is thus
+the deformation gradient from the reference configuration, whatever its shape,
+in the local frame (tangent, d1, d2) there: a curved element is stress free in
+its curved reference, and C11 is the stretch along the reference tangent.  The
+point weight carries det J0.  A straight reference gives M = I exactly (the
+products by 1 and 0 round nothing).  For an isotropic energy W(I1, I2, J):
 
   P = dW/dF  = sum_m W_m dI_m/dF
   A = d2W/dF2 = sum_mn W_mn dI_m/dF (x) dI_n/dF + sum_m W_m d2I_m/dF2
-  f_a   = sum_qp w P g_a                         (internal force, 3 per node)
-  K_ab  = sum_qp w sum_JL g_aJ g_bL A[:,J,:,L]   (tangent block, 3x3 per pair)
+  f_a   = sum_qp w (P M^T) g_a                   (internal force, 3 per node)
+  K_ab  = sum_qp w sum_JL g_aJ g_bL A'[:,J,:,L]  (tangent block, 3x3 per pair)
+
+with A' = A transformed by M on its second and fourth index.
 
 with the invariant derivatives of gen/invariants.py.  Only the upper triangle of
 K is computed; the kernel mirrors it.  The material part A is a 3x3x3x3 tensor
@@ -27,6 +37,8 @@ from gen.program import Program, lower
 from gen.quadrature import box_rule
 
 INVARIANTS = ("I1", "I2", "J")
+MAP_ENTRIES = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))   # upper triangle of M
+NMAP = len(MAP_ENTRIES)   # table entries of the reference map M per point, after the gradient slots
 
 
 @dataclass
@@ -73,25 +85,93 @@ def rule_parts(elem, integration):
     parts, off = [], 0
     for rp in elem.rule(integration):
         rule = box_rule(rp.points)
-        stride = 1 + len(slots.exprs)
+        stride = 1 + len(slots.exprs) + NMAP
         parts.append(PartSpec(rp.energy, rule, off, stride))
         off += stride * len(rule)
     return slots, parts, off
 
 
 def tabulate_program(elem, integration):
-    """Program filling tab[] from geom[BK_GEOM_L, _B, _H]: per point w*l*b*h, then g slots."""
+    """Program filling tab[] from geom[BK_GEOM_L, _B, _H] and the reference
+    coordinates q0: per point w*l*b*h*det J0, the gradient slots, then the
+    reference map M = J0^-1 Q0 = R^-1 (its upper triangle, MAP_ENTRIES)."""
     slots, parts, ntab = rule_parts(elem, integration)
     geom = geom_subs()
+    nsh = elem.nshape
+    q0 = [sp.Symbol(f"q0[{i}]", real=True) for i in range(elem.ndof)]
+    grads = shape_gradients(elem)
     prog = Program()
-    for part in parts:
+    for ip, part in enumerate(parts):
         for p, (s, w) in enumerate(part.rule):
             base = part.tab_offset + p * part.stride
-            prog.output(f"tab[{base}]", (sp.Float(w) * L * B * H).subs(geom), op="=")
             sub = qp_coords(s)
+            gp = [[sp.expand(grads[a][J].subs(sub)).subs(geom) for J in range(3)] for a in range(nsh)]
+            J0 = sp.Matrix(3, 3, lambda i, J: prog.define(
+                f"J{ip}_{p}_{i}{J}", sum(q0[3 * a + i] * gp[a][J] for a in range(nsh))))
+            det, Mmap = reference_map(prog, J0, f"{ip}_{p}")
+            prog.output(f"tab[{base}]", (sp.Float(w) * L * B * H).subs(geom) * det, op="=")
             for k, e in enumerate(slots.exprs):
                 prog.output(f"tab[{base + 1 + k}]", sp.expand(e.subs(sub)).subs(geom), op="=")
+            for k, m in enumerate(Mmap):
+                prog.output(f"tab[{base + 1 + len(slots.exprs) + k}]", m, op="=")
     return prog, ntab
+
+
+def reference_map(prog, J0, tag):
+    """(det J0, the entries MAP_ENTRIES of M = R^-1), J0 = Q0 R the Gram-Schmidt
+    (QR) factorization of J0's columns, e1 along the first (the reference tangent)."""
+    c = [J0[:, j] for j in range(3)]
+    R00 = prog.define(f"R00_{tag}", sp.sqrt(c[0].dot(c[0])))
+    e1 = sp.Matrix([prog.define(f"e1{i}_{tag}", c[0][i] / R00) for i in range(3)])
+    R01 = prog.define(f"R01_{tag}", e1.dot(c[1]))
+    u = c[1] - e1 * R01
+    R11 = prog.define(f"R11_{tag}", sp.sqrt(u.dot(u)))
+    e2 = sp.Matrix([prog.define(f"e2{i}_{tag}", u[i] / R11) for i in range(3)])
+    e3 = e1.cross(e2)
+    R02, R12, R22 = (prog.define(f"R{k}2_{tag}", e.dot(c[2])) for k, e in enumerate((e1, e2, e3)))
+    Rm = sp.Matrix([[R00, R01, R02], [0, R11, R12], [0, 0, R22]])
+    Mi = Rm.inv()
+    return R00 * R11 * R22, [sp.simplify(Mi[J, K]) for J, K in MAP_ENTRIES]
+
+
+def deformation_gradient(prog, elem, q, t, name="F"):
+    """F = (sum_a q_a g_a^T) M at a point (t: its table row); returns (F, M, g)
+    with g(a, J) the gradient slot of shape function a."""
+    slots = gradient_slots(elem)
+    nsl, nsh = len(slots.exprs), elem.nshape
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
+
+    M = sp.zeros(3, 3)
+    for k, (J, K) in enumerate(MAP_ENTRIES):
+        M[J, K] = t[1 + nsl + k]
+    Fp = sp.zeros(3, 3)
+    for i in range(3):
+        for J in range(3):
+            Fp[i, J] = prog.define(f"{name}p{i}{J}", sp.collect(
+                sp.expand(sum(q[3 * a + i] * g(a, J) for a in range(nsh))), t[1:1 + nsl]))
+    F = sp.Matrix(3, 3, lambda i, J: prog.define(f"{name}{i}{J}", sum(Fp[i, K] * M[K, J] for K in range(3))))
+    return F, M, g
+
+
+def table_symbols(elem):
+    return [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(gradient_slots(elem).exprs) + NMAP)]
+
+
+def mapped_tangent(prog, A, M, prefix="A"):
+    """Outputs prefix[x] = A'[iJkL] = sum_PQ M_JP M_LQ A[i,P,k,Q] for (iJkL) in
+    A_INDEX; A(i, P, k, Q) gives the untransformed entries."""
+    Bt = {}
+    for i in range(3):
+        for J in range(3):
+            for k in range(3):
+                for Q in range(3):
+                    Bt[(i, J, k, Q)] = prog.define(f"{prefix}m{i}{J}{k}{Q}",
+                                                   sum(M[J, P] * A(i, P, k, Q) for P in range(3)))
+    for x, (i, J, k, Ll) in enumerate(A_INDEX):
+        prog.output(f"{prefix}[{x}]", sum(M[Ll, Q] * Bt[(i, J, k, Q)] for Q in range(3)), op="=")
 
 
 def sri_split(mat, I1, I2, J, C, params):
@@ -130,25 +210,14 @@ def body_program(elem, mat, part, want):
     "traction" (tr[3] = w P N0 with N0 = e_x, the reference section normal:
     the point's weighted first Piola-Kirchhoff traction, for the section
     resultants)."""
-    slots = gradient_slots(elem)
     ndof, nsh = elem.ndof, elem.nshape
     prog = Program()
     q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
-    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    t = table_symbols(elem)
     params = {name: sp.Symbol(f"mat[{k}]", real=True) for k, name in enumerate(mat.PARAMS)}
     w = t[0]
-
-    def g(a, J):
-        r = slots.ref.get((a, J))
-        return 0 if r is None else r[1] * t[1 + r[0]]
-
-    # Deformation gradient, collected per gradient slot (sum over slots of slot * q-combination).
-    Fm = sp.zeros(3, 3)
-    for i in range(3):
-        for J in range(3):
-            expr = sum(q[3 * a + i] * g(a, J) for a in range(nsh))
-            expr = sp.collect(sp.expand(expr), t[1:])
-            Fm[i, J] = prog.define(f"F{i}{J}", expr)
+    # Deformation gradient in the local reference frame (box gradient, then the map M).
+    Fm, Mm, g = deformation_gradient(prog, elem, q, t)
     Cm = sp.zeros(3, 3)
     bm = sp.zeros(3, 3)
     for I in range(3):
@@ -202,17 +271,20 @@ def body_program(elem, mat, part, want):
         for i in range(3):
             prog.output(f"tr[{i}]", P[i, 0], op="=")
         return prog, params
+    Pb = sp.Matrix(3, 3, lambda i, J: prog.define(f"Pb{i}{J}", sum(P[i, K] * Mm[J, K] for K in range(3))))
     for a in range(nsh):
         for i in range(3):
-            prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
+            prog.output(f"f[{3 * a + i}]", sum(Pb[i, J] * g(a, J) for J in range(3)))
     if want == "force":
         return prog, params
 
     d2I = d2var
+    At = {}
     for x, (i, J, k, Ll) in enumerate(A_INDEX):
         expr = sum(Wmn[(m, n)] * dI[m][i, J] * dI[n][k, Ll] for (m, n) in Wmn)
         expr += sum(Wm[m] * d2I[m](i, J, k, Ll) for m in Wm)
-        prog.output(f"A[{x}]", sp.expand(expr), op="=")
+        At[(i, J, k, Ll)] = At[(k, Ll, i, J)] = prog.define(f"At{x}", sp.expand(expr))
+    mapped_tangent(prog, lambda i, P_, k, Q: At[(i, P_, k, Q)], Mm)
     return prog, params
 
 
@@ -264,21 +336,9 @@ def invariants_program(elem):
     """J = det F, I1 = tr C, I2 of C = F^T F at one quadrature point (t: its table
     row), into inv[0..2]: what the runtime checks a state against (inverted or
     over-compressed elements, strains beyond the range of a law)."""
-    slots = gradient_slots(elem)
-    nsh = elem.nshape
     prog = Program()
     q = [sp.Symbol(f"q[{i}]", real=True) for i in range(elem.ndof)]
-    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
-
-    def g(a, J):
-        r = slots.ref.get((a, J))
-        return 0 if r is None else r[1] * t[1 + r[0]]
-
-    F = sp.zeros(3, 3)
-    for i in range(3):
-        for J in range(3):
-            F[i, J] = prog.define(f"F{i}{J}", sp.collect(sp.expand(sum(q[3 * a + i] * g(a, J) for a in range(nsh))),
-                                                        t[1:]))
+    F, _, _ = deformation_gradient(prog, elem, q, table_symbols(elem))
     C = sp.zeros(3, 3)
     for I in range(3):
         for Jj in range(I, 3):
@@ -303,37 +363,27 @@ def viscous_body_program(elem):
     Outputs f += w F S_v g_a, A[45] = w dP_v/d(dF/dt) (for C = df/dqd) and
     G[45] = w delta_ik S_v,JL (the stress part of df/dq; the variation of dE/dt
     with F is left out of this approximate derivative)."""
-    slots = gradient_slots(elem)
     ndof, nsh = elem.ndof, elem.nshape
     prog = Program()
     q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
     qd = [sp.Symbol(f"qd[{i}]", real=True) for i in range(ndof)]
-    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    t = table_symbols(elem)
     lam, mu = sp.Symbol("visc[0]", real=True), sp.Symbol("visc[1]", real=True)
     w = t[0]
-
-    def g(a, J):
-        r = slots.ref.get((a, J))
-        return 0 if r is None else r[1] * t[1 + r[0]]
-
-    F = sp.zeros(3, 3)
-    Fd = sp.zeros(3, 3)
-    for i in range(3):
-        for J in range(3):
-            F[i, J] = prog.define(f"F{i}{J}", sp.collect(sp.expand(sum(q[3 * a + i] * g(a, J) for a in range(nsh))), t[1:]))
-            Fd[i, J] = prog.define(f"Fd{i}{J}", sp.collect(sp.expand(sum(qd[3 * a + i] * g(a, J) for a in range(nsh))), t[1:]))
+    F, Mm, g = deformation_gradient(prog, elem, q, t)
+    Fd, _, _ = deformation_gradient(prog, elem, qd, t, name="Fd")
     Ed = (F.T * Fd + Fd.T * F) / 2
     Ed = sp.Matrix(3, 3, lambda I, J: prog.define(f"Ed{min(I, J)}{max(I, J)}", Ed[min(I, J), max(I, J)]))
     tr = Ed[0, 0] + Ed[1, 1] + Ed[2, 2]
     S = sp.Matrix(3, 3, lambda I, J: prog.define(f"Sv{min(I, J)}{max(I, J)}",
                                                  w * (lam * tr * (1 if I == J else 0) + 2 * mu * Ed[min(I, J), max(I, J)])))
-    P = F * S
+    P = F * S * Mm.T
     for a in range(nsh):
         for i in range(3):
             prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
     b = F * F.T
-    for x, (i, J, k, L) in enumerate(A_INDEX):
-        d = lambda u, v: 1 if u == v else 0
-        prog.output(f"A[{x}]", w * (lam * F[i, J] * F[k, L] + mu * (F[i, L] * F[k, J] + b[i, k] * d(J, L))), op="=")
-        prog.output(f"G[{x}]", d(i, k) * S[J, L], op="=")
+    d = lambda u, v: 1 if u == v else 0
+    mapped_tangent(prog, lambda i, J, k, L_: w * (lam * F[i, J] * F[k, L_] + mu * (F[i, L_] * F[k, J]
+                                                                                   + b[i, k] * d(J, L_))), Mm)
+    mapped_tangent(prog, lambda i, J, k, L_: d(i, k) * S[J, L_], Mm, prefix="G")
     return prog

@@ -42,7 +42,7 @@ LANE_TARGET = """
 # ----------------------------------------------------------------------------
 # Element file
 
-CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_MOMENT_ANYWHERE")
+CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_CURVED", "BK_CAP_MOMENT_ANYWHERE")
 
 
 def describe(elem):
@@ -212,7 +212,7 @@ extern const bk_element bk_element_{name};
     for rname in elem.rule_names:
         tprog, ntab = tabulate_program(elem, rname)
         c += _function(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
-                       "double *restrict tab)", lower(tprog, ()), ["(void)q0;"])
+                       "double *restrict tab)", lower(tprog, ()), ["(void)geom;"])[:-2] + snap_map_lines(elem, rname)
     # Strain invariants at every point of each integration (state checks).
     ilow = lower(invariants_program(elem), ())
     for rname in elem.rule_names:
@@ -273,6 +273,31 @@ extern const bk_element bk_element_{name};
     c += ["}", ""]
     c += element_descriptor(describe(elem))
     return htxt, "\n".join(c)
+
+
+def snap_map_lines(elem, rname):
+    """The end of a tabulate(): reference-map entries within 1e-12 of the identity's
+    are the identity's, so that a straight element's map is exactly I (the sums that
+    make J0 round; off the diagonal that noise would couple directions a symmetric
+    problem keeps apart)."""
+    from gen.continuum import MAP_ENTRIES, gradient_slots
+    nsl = len(gradient_slots(elem).exprs)
+    _, parts, _ = rule_parts(elem, rname)
+    from gen.program import c_double
+    lines = ["    /* a reference map within round-off of the identity is the identity, and the weight",
+             "     * of a point whose det J0 is within round-off of 1 that of the straight box */",
+             "    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];"]
+    for part in parts:
+        lines += [f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+                  f"        static const double wq[{len(part.rule)}] = {{{', '.join(c_double(w) for _, w in part.rule)}}};",
+                  f"        double *restrict wt = tab + {part.tab_offset} + {part.stride} * p;",
+                  f"        double *restrict m = wt + {1 + nsl};",
+                  "        if (fabs(*wt - wq[p] * box) <= 1e-12 * wq[p] * box) *wt = wq[p] * box;"]
+        for k, (J, K) in enumerate(MAP_ENTRIES):
+            ref = "1.0" if J == K else "0.0"
+            lines.append(f"        if (fabs(m[{k}] - {ref}) <= 1e-12) m[{k}] = {ref};")
+        lines.append("    }")
+    return lines + ["}", ""]
 
 
 @lru_cache(maxsize=None)

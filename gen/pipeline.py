@@ -291,7 +291,9 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
             else:
                 model, dest, exe = _build(path, sets, out, doc, name, variant, quiet, console)
                 run_name, analysis, warnings = model["name"], model["analysis"], model.get("warnings", [])
-                if remember and variant == "release":
+                # a scene that reads data files (CSV paths, tables) is compiled anew each run:
+                # the run cache keys on the scene file and the --sets alone
+                if remember and variant == "release" and not model.get("inputs"):
                     cache.record(str(path), sets, os.path.join(dest, "model.dat"), exe, run_name, analysis,
                                      warnings)
             if remember:

@@ -17,8 +17,8 @@ TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_vel
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
-BEAM = ("name", "element", "material", "section", "start", "end", "up", "elements", "integration",
-        "arc_center", "arc_axis", "arc_angle", "grading", "element_lengths")
+BEAM = ("name", "element", "material", "section", "section_end", "sections", "start", "end", "up", "elements", "integration",
+        "arc_center", "arc_axis", "arc_angle", "path", "grading", "element_lengths")
 BODY = ("name", "mass", "center", "inertia", "axes")
 CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
               "spherical": ("type", "name", "a", "b", "at"),
@@ -32,11 +32,12 @@ CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
                                          "distance", "distance_amplitude"),
               "point_on_line": ("type", "name", "a", "axis"),
               "prescribed_motion": ("type", "name", "a", "motion", "amplitude", "clamped")}
-LOAD = {"force": ("type", "at", "value", "distribution", "amplitude", "follower", "preload"),
-        "moment": ("type", "at", "value", "amplitude", "follower", "preload"),
-        "gravity": ("type", "value", "amplitude", "preload"),
-        "distributed": ("type", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
-        "tendon": ("type", "beam", "from", "to", "offset", "tension", "amplitude", "preload")}
+LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload"),
+        "moment": ("type", "name", "at", "value", "amplitude", "follower", "preload"),
+        "gravity": ("type", "name", "value", "amplitude", "preload"),
+        "distributed": ("type", "name", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
+        "tendon": ("type", "name", "beam", "from", "to", "offset", "tension", "amplitude", "preload"),
+        "chamber": ("type", "name", "beam", "from", "to", "offset", "area", "pressure", "amplitude", "preload")}
 AMPLITUDE = {"ramp": ("type", "t0", "t1"),
              "step": ("type", "t0"),
              "sine": ("type", "amplitude", "frequency", "phase", "offset"),

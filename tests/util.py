@@ -143,6 +143,7 @@ class Kernel:
         idx = json.loads((ROOT / "out" / "kernels" / "index.json").read_text())
         e = idx["elements"][element]
         self.ndof = e["ndof"]
+        self.nodes = e["nodes"]
         self.ntab = e["integrations"][integration]["ntab"]
         D = ctypes.POINTER(ctypes.c_double)
         self._tab = getattr(self.lib, f"{element}_{integration}_tabulate")
@@ -163,10 +164,24 @@ class Kernel:
         from gen import contract
         geom = list(geom) + [0.0] * (contract.ngeom() - len(geom))
         g, gp = self._arr(geom)
-        q0, q0p = self._arr(np.zeros(self.ndof) if q0 is None else q0)
+        q0, q0p = self._arr(self.straight_reference(geom[0]) if q0 is None else q0)
         t, tp = self._arr(tab)
         self._tab(gp, q0p, tp)
         return t
+
+    def straight_reference(self, length):
+        """Reference coordinates of the straight element along +x, section axes +y, +z
+        (continuum elements read their reference map from them)."""
+        from fractions import Fraction
+        unit = {"r_x": [1.0, 0.0, 0.0], "r_y": [0.0, 1.0, 0.0], "r_z": [0.0, 0.0, 1.0]}
+        q0 = []
+        for nd in self.nodes:
+            for f, dim in nd["fields"]:
+                if f == "r":
+                    q0 += [float(Fraction(nd["xi"])) * length, 0.0, 0.0]
+                else:
+                    q0 += unit.get(f, [0.0] * dim)
+        return q0 + [0.0] * (self.ndof - len(q0))
 
     def eval(self, q, tab, mat):
         import numpy as np

@@ -108,6 +108,7 @@ class Amplitudes:
                 text = path.read_text(encoding="utf-8")
             except OSError as e:
                 ctx.fail(key, f"cannot read {str(path)!r}: {e.strerror}")
+            ctx.inputs.append(str(path))
             rows = []
             import csv                 # only for table amplitudes from a file
             for ln, rec in enumerate(csv.reader(text.splitlines()), 1):

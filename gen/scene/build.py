@@ -80,7 +80,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     if follower and analysis == "static" and stat["stability"]:
         mesh.warnings.append(f"load[{follower[0]}]: follower loads are not conservative: the stability check "
                              "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
-    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon") or i in follower]
+    stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon", "chamber") or i in follower]
     if stiff and analysis == "modal" and modal["about"] == "static":
         mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
                              "the elastic forces only, without the load stiffness of moments, follower loads and "
@@ -97,6 +97,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
+        "inputs": list(ctx.inputs),
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

@@ -18,7 +18,9 @@ def __getattr__(name):
 
 
 def apply_overrides(doc, sets, path):
-    """Apply KEY=VALUE overrides (numbers only) to the parsed TOML document."""
+    """Apply KEY=VALUE overrides to the parsed TOML document: numbers, booleans,
+    strings where the scene has a string, TOML arrays and inline tables; arrays of
+    tables are addressed by an entry's `name` or its index."""
     for item in sets:
         if "=" not in item:
             raise SceneError(f"error: --set {item}: expected KEY=VALUE")
@@ -59,6 +61,12 @@ def apply_overrides(doc, sets, path):
         if not isinstance(node, dict):
             raise SceneError(f"error: {path}: --set {key}: '{'.'.join(parts[:-1])}' is not a table")
         old = node.get(parts[-1])
+        if val.lstrip()[:1] in ("[", "{"):           # an array or an inline table, in TOML
+            if old is not None and not isinstance(old, (list, dict)):
+                raise SceneError(f"error: {path}: --set {key}: the scene's value is {_typename(old)}, "
+                                 f"not an array or a table")
+            node[parts[-1]] = _toml_value(key, val)
+            continue
         if val in ("true", "false") and (old is None or isinstance(old, bool)):
             node[parts[-1]] = val == "true"
             continue
@@ -73,6 +81,15 @@ def apply_overrides(doc, sets, path):
             raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
         node[parts[-1]] = val if num is None else num
     return doc
+
+
+def _toml_value(key, val):
+    """The value of `--set KEY=VAL` when VAL is a TOML array or inline table."""
+    import tomllib
+    try:
+        return tomllib.loads("v = " + val)["v"]
+    except tomllib.TOMLDecodeError as e:
+        raise SceneError(f"error: --set {key}: expected a TOML array [..] or inline table {{..}}: {e}")
 
 
 def _parse_json(data):

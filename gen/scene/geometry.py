@@ -9,7 +9,7 @@ class LineGeometry:
 
     def __init__(self, start, t, d1, d2, length):
         self.start, self.t, self.d1, self.d2, self.length = start, t, d1, d2, length
-        self.shape_key = ("straight",)
+        self.shape_key = ("straight",)      # elements of equal length are congruent
 
     def at(self, s):
         return [self.start[i] + s * self.t[i] for i in range(3)], self.t, self.d1, self.d2

@@ -86,7 +86,7 @@ def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
     """clamp with b: the sections at a and b (coinciding points of two beams)
     move as one: equal positions and p_b = p_a r with the constant relative
     rotation r = conj(p_a0) p_b0 (rows linear in the quaternions; gef-family
-    nodes only)."""
+    nodes), or, between continuum ANCF nodes, equal nodal vectors (_ancf_weld)."""
     q0 = mesh.q0
     if "cross_section" in ct:
         ctx.fail(f"{where}.cross_section", "expected no cross_section with b (a rigid beam-to-beam joint)")
@@ -98,6 +98,9 @@ def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
     if gid_b == gid:
         ctx.fail(f"{where}.b", "a and b are the same node")
     fa, fb = mesh.field_dofs(gid), mesh.field_dofs(gid_b)
+    if "p" not in fa and "p" not in fb:
+        _ancf_weld(ctx, ct, where, rows, q0, fa, fb)
+        return
     for f, name in ((fa, ct["a"]), (fb, ct["b"])):
         if set(f) != {"r", "p"}:
             ctx.fail(f"{where}.b", "a rigid beam-to-beam joint needs gef-family nodes (position and quaternion) "
@@ -113,6 +116,24 @@ def _rigid_joint(ctx, ct, where, mesh, rows, beam, gid):
     cols = [_quat_mul([1.0 if k == j else 0.0 for k in range(4)], rel) for j in range(4)]   # p -> p r
     for k in range(4):
         rows.row([(fb["p"][k], 1.0, 0.0, 0.0)] + [(fa["p"][j], -cols[j][k], 0.0, 0.0) for j in range(4)])
+
+
+def _ancf_weld(ctx, ct, where, rows, q0, fa, fb):
+    """clamp with b between two nodes of continuum ANCF beams: every nodal vector of
+    b equal to a's (the two nodes move as one, as a shared node would), which needs
+    the same nodal fields with the same reference values (sections aligned: a beam
+    continued by a segment of another section or material)."""
+    if sorted(fa) != sorted(fb):
+        ctx.fail(f"{where}.b", f"a weld of ANCF nodes needs the same nodal fields at both points; "
+                 f"{ct['a']} has {sorted(fa)}, {ct['b']} has {sorted(fb)}")
+    for f in fa:
+        va, vb = [q0[d] for d in fa[f]], [q0[d] for d in fb[f]]
+        if f != "r" and max(abs(x - y) for x, y in zip(va, vb)) > 1e-9:
+            ctx.fail(f"{where}.b", f"a weld of ANCF nodes needs aligned sections (equal reference {f}: "
+                     f"{va} at {ct['a']}, {vb} at {ct['b']})")
+    for f in fa:
+        for da, db in zip(fa[f], fb[f]):
+            rows.row([(da, 1.0, 0.0, 0.0), (db, -1.0, 0.0, 0.0)])
 
 
 def spherical(ctx, ct, where, mesh, rows, beam, s, gid):

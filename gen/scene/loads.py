@@ -4,8 +4,8 @@ distributed loads along beams, tendons, gravity; each with an amplitude
 dynamics)."""
 import gen.scene_keys as K
 from gen.scene.mesh import locate, locate_node, parse_point
-from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_number,
-                              get_str, get_vec3)
+from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_name,
+                              get_number, get_str, get_vec3)
 
 
 def _span(ctx, lt, where, beams):
@@ -45,6 +45,36 @@ def _follower(ctx, lt, where, beam):
     return int(fol)
 
 
+def _chamber(ctx, lt, where, beams, amps):
+    """A pneumatic chamber along (part of) a continuum ANCF beam: cross-section area
+    A, centroid at the offset (dy, dz), pressure p (times the amplitude).  Its loads
+    are those of the potential -p A l(q), l the length of the material line through
+    the chamber's centroid (the tendon's line, with tension -p A): at each end cap the
+    force p A outward along that line (an axial force p A and a moment p A e that
+    turn with the section), along a curved chamber the walls' pressure."""
+    beam, pieces = _span(ctx, lt, where, beams)
+    if beam["kind"] != "continuum":
+        ctx.fail(f"{where}.beam", f"chambers act on continuum ANCF beams only (ancf3243, ancf3333, ancf3273, "
+                 f"ancf3363), beam {beam['name']!r} is {beam['element']}")
+    off = lt.get("offset")
+    if (not isinstance(off, list) or len(off) != 2
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
+        ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, the chamber's centroid along the section axes d1, d2), "
+                 f"found {_typename(off) if not isinstance(off, list) else off}")
+    area = get_number(ctx, lt, "area", where, positive=True)
+    p = get_number(ctx, lt, "pressure", where)
+    b = min(sec[1] for sec in beam["sections"])
+    h = min(sec[2] for sec in beam["sections"])
+    if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
+        ctx.fail(f"{where}.offset", f"the chamber's centroid at {list(map(float, off))} m lies outside the section "
+                 f"of beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
+    if area >= b * h:
+        ctx.fail(f"{where}.area", f"a chamber of {area:g} m^2 does not fit in the section of beam "
+                 f"{beam['name']!r} ({b:g} x {h:g} m = {b * h:g} m^2)")
+    amp = amps.ref(lt, "amplitude", where)
+    return (amp, -p * area, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces])
+
+
 def loads(ctx, doc, beams, amps):
     """(forces, moments, gravity, distributed, tendons) of the scene."""
     forces = []
@@ -52,8 +82,15 @@ def loads(ctx, doc, beams, amps):
     dloads = []
     tendons = []
     gravity = None
+    names = {}
     for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
         where = f"load[{li}]"
+        if "name" in lt:                # a label: --set load.NAME.KEY=..., unique among the loads
+            nm = get_name(ctx, lt, "name", where)
+            if nm in names:
+                ctx.fail(f"{where}.name", f"the name {nm!r} is used twice (load[{names[nm]}] has it); "
+                         "expected a unique name per load")
+            names[nm] = li
         ltype = get_str(ctx, lt, "type", where, choices=tuple(K.LOAD))
         if ltype == "distributed":
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
@@ -72,13 +109,17 @@ def loads(ctx, doc, beams, amps):
                     or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
                 ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, along the section axes d1, d2), found "
                          f"{_typename(off) if not isinstance(off, list) else off}")
-            _shape, b, h = beam["section"]
+            b = min(sec[1] for sec in beam["sections"])       # the smallest section along the beam
+            h = min(sec[2] for sec in beam["sections"])
             if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
                 ctx.fail(f"{where}.offset", f"the tendon at {list(map(float, off))} m lies outside the section of "
                          f"beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
             T = get_number(ctx, lt, "tension", where, nonneg=True)
             amp = amps.ref(lt, "amplitude", where)
             tendons.append((amp, T, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces]))
+        elif ltype == "chamber":
+            check_keys(ctx, lt, set(K.LOAD[ltype]), where)
+            tendons.append(_chamber(ctx, lt, where, beams, amps))
         elif ltype in ("force", "moment"):
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             if "at" not in lt:

@@ -7,6 +7,7 @@ import time
 
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
+from gen.scene.path import path_geometry
 from gen.scene.materials import locking_warnings, small_strain
 from gen.scene.plausible import beam_warnings
 from gen.scene.values import _typename, check_keys, get_int, get_name, get_number, get_str, get_vec3
@@ -120,6 +121,55 @@ def locate(beam, s):
     return beam["first_elem"] + k, xi
 
 
+def element_sections(ctx, bt, where, sections, sec, mids):
+    """The section of each element: the beam's `section`; a linear taper from it to
+    `section_end` (each element takes the section at its middle, mids: fractions of
+    the beam length); or one name per element in `sections`."""
+    if "section_end" in bt and "sections" in bt:
+        ctx.fail(f"{where}.sections", "give either section_end (a linear taper) or sections (one per element)")
+    if "section_end" in bt:
+        name = get_str(ctx, bt, "section_end", where)
+        if name not in sections:
+            ctx.fail(f"{where}.section_end", f"no [section.{name}] in the scene (sections: {', '.join(sections)})")
+        end = sections[name]
+        if end[0] != sec[0]:
+            ctx.fail(f"{where}.section_end", f"a taper needs sections of one shape: {sec[0]} at the start, "
+                     f"{end[0]} at the end")
+        return [(sec[0], sec[1] + f * (end[1] - sec[1]), sec[2] + f * (end[2] - sec[2])) for f in mids]
+    if "sections" in bt:
+        v = bt["sections"]
+        if not isinstance(v, list) or len(v) != len(mids) or not all(isinstance(x, str) for x in v):
+            ctx.fail(f"{where}.sections", f"expected an array of {len(mids)} section names (one per element), "
+                     f"found {_typename(v) if not isinstance(v, list) else repr(v)}")
+        for x in v:
+            if x not in sections:
+                ctx.fail(f"{where}.sections", f"no [section.{x}] in the scene (sections: {', '.join(sections)})")
+        return [sections[x] for x in v]
+    return [sec] * len(mids)
+
+
+def beam_geometry(ctx, bt, where, ename, einfo, index):
+    """The centreline and section frame of a beam: straight (start, end), an arc
+    (start, arc_center, arc_axis, arc_angle) or a spline through points (path)."""
+    arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
+    curved = arc_keys + (["path"] if "path" in bt else [])
+    if curved and not einfo["curved"]:
+        ok = ", ".join(sorted(e for e, v in index["elements"].items() if v["curved"]))
+        ctx.fail(f"{where}.{curved[0]}", f"element {ename} supports straight beams only; curved beams need {ok}")
+    if "path" in bt:
+        for k in ["start", "end"] + arc_keys:
+            if k in bt:
+                ctx.fail(f"{where}.{k}", "give either path (a centreline through points) or start with end or an arc")
+        return path_geometry(ctx, bt, where)
+    start = get_vec3(ctx, bt, "start", where, bound=1e9)
+    if arc_keys:
+        if "end" in bt:
+            ctx.fail(f"{where}.end", "give either end (straight beam) or arc_center, arc_axis, arc_angle")
+        return arc_geometry(ctx, bt, where, start)
+    end = get_vec3(ctx, bt, "end", where, bound=1e9)
+    return line_geometry(ctx, bt, where, start, end)
+
+
 def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
     """Every [[beam]]: validated, meshed, numbered.  Returns a Mesh."""
     m = Mesh()
@@ -160,49 +210,50 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             ctx.fail(f"{where}.element", f"no generated kernel for element {ename!r} x law {law!r} "
                      f"x integration {integ!r}")
         sec = sections[secname]
-        if einfo["section"] == "rectangle" and sec[0] != "rectangle":
-            ctx.fail(f"{where}.section", f"element {ename} needs a rectangle section, found {sec[0]}")
-        params = materials[mname][2](sec)
-        if einfo["kind"] == "continuum":
-            warnings += locking_warnings(where, ename, integ, law, params, index)
-        if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
-            ctx.fail(f"{where}.section", f"element ancf_cable has no section orientation and needs equal "
-                     f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
-        start = get_vec3(ctx, bt, "start", where, bound=1e9)
         nel = get_int(ctx, bt, "elements", where, lo=1, hi=MAX_ELEMENTS)
-        arc_keys = [k for k in ("arc_center", "arc_axis", "arc_angle") if k in bt]
-        if arc_keys:
-            if "end" in bt:
-                ctx.fail(f"{where}.end", "give either end (straight beam) or arc_center, arc_axis, arc_angle")
-            if not einfo["curved"]:
-                ctx.fail(f"{where}.{arc_keys[0]}", f"element {ename} supports straight beams only; curved "
-                         f"beams need gef, euler_bernoulli or kirchhoff")
-            geo = arc_geometry(ctx, bt, where, start)
-        else:
-            end = get_vec3(ctx, bt, "end", where, bound=1e9)
-            geo = line_geometry(ctx, bt, where, start, end)
+        geo = beam_geometry(ctx, bt, where, ename, einfo, index)
         length = geo.length
-        warnings += [w for w in beam_warnings(where, mname, law, params, materials[mname][1], sec, length, index)
-                     if w not in warnings]
-
+        lens = element_lengths(ctx, bt, where, nel, length)
+        starts = [0.0] + list(itertools.accumulate(lens))[:-1]
+        esecs = element_sections(ctx, bt, where, sections, sec, [(s0 + l / 2) / length for s0, l in zip(starts, lens)])
         if pair not in pairs:
             pairs.append(pair)
         pidx = pairs.index(pair)
-        visc = []
         tau = float(mats_doc[mname].get("kelvin_voigt", 0.0))
         if tau > 0 and einfo["kind"] != "continuum":
             ctx.fail(f"material.{mname}.kelvin_voigt", f"Kelvin-Voigt damping is offered by the ANCF continuum "
                      f"elements; for element {ename} use [dynamic] rayleigh_alpha / rayleigh_beta")
-        if tau > 0:
-            if mkind == "resultant":
-                visc = [tau * v for v in params]
-            else:
-                E_, nu_ = small_strain(index, law, params)
-                visc = [tau * E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)), tau * E_ / (2 * (1 + nu_))]
-        mkey = (tuple(params), materials[mname][1], tuple(visc), tuple(index["materials"][law]["params"]))
-        if mkey not in mats_used:
-            mats_used.append(mkey)
-        midx = mats_used.index(mkey)
+        midx_of = {}
+
+        def material_index(sec):
+            """The model's material record of the beam's material with section sec (the
+            resultant laws' stiffnesses depend on it)."""
+            if sec in midx_of:
+                return midx_of[sec]
+            key = "section" if sec == esecs[0] else "sections"
+            if einfo["section"] == "rectangle" and sec[0] != "rectangle":
+                ctx.fail(f"{where}.{key}", f"element {ename} needs a rectangle section, found {sec[0]}")
+            params = materials[mname][2](sec)
+            if not midx_of:
+                warnings.extend(w for w in beam_warnings(where, mname, law, params, materials[mname][1], sec, length,
+                                                         index) if w not in warnings)
+            if einfo["kind"] == "continuum" and not midx_of:
+                warnings.extend(locking_warnings(where, ename, integ, law, params, index))
+            if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
+                ctx.fail(f"{where}.{key}", f"element ancf_cable has no section orientation and needs equal "
+                         f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
+            visc = []
+            if tau > 0:
+                if mkind == "resultant":
+                    visc = [tau * v for v in params]
+                else:
+                    E_, nu_ = small_strain(index, law, params)
+                    visc = [tau * E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)), tau * E_ / (2 * (1 + nu_))]
+            mkey = (tuple(params), materials[mname][1], tuple(visc), tuple(index["materials"][law]["params"]))
+            if mkey not in mats_used:
+                mats_used.append(mkey)
+            midx_of[sec] = mats_used.index(mkey)
+            return midx_of[sec]
         lens = element_lengths(ctx, bt, where, nel, length)
         starts = [0.0] + list(itertools.accumulate(lens))[:-1]
 
@@ -249,16 +300,19 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             q0.extend([0.0] * nint)
             ndof += nint
             prev_end = end_node
-            gkey = (pidx, l, sec, geo.shape_key)     # congruent elements share a table
+            sec_k = esecs[k]
+            midx = material_index(sec_k)
+            gkey = (pidx, l, sec_k, geo.shape_key if geo.shape_key is not None else geo.element_key(k))
+            # congruent elements share a table
             if gkey not in geom_index:
                 geom_index[gkey] = len(geoms)
-                geoms.append((pidx, len(elements), section_geometry(sec, l)))
+                geoms.append((pidx, len(elements), section_geometry(sec_k, l)))
             elements.append((pidx, geom_index[gkey], midx, edofs))
         t_progress[1] += nel
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
                         "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
                         "node_at": node_ids_of_beam,
-                        "kind": einfo["kind"], "moments": einfo["moments"], "section": sec,
+                        "kind": einfo["kind"], "moments": einfo["moments"], "section": sec, "sections": esecs,
                         "section_frame": einfo["section_frame"]}
 
     m.ndof = ndof

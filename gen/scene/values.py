@@ -29,6 +29,7 @@ class Ctx:
 
     def __init__(self, path):
         self.path = str(path)
+        self.inputs = []        # data files the scene reads (paths from CSV files)
 
     def fail(self, key, msg):
         raise SceneError(f"error: {self.path}: {key}: {msg}")

@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:d6c35415e26c805ff81e41fa48906fd8f5299c7beb9cebe2ce8d4f39a39162e7
+ * input hash: sha256:a11f01539596ae0c71d3716e48aeca43b31e5ca61e4bccdc2256246f47da4d76
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -26,12 +26,12 @@
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_ancf3243;
-/* integration "full": 12 points (all); tab[96] */
+/* integration "full": 12 points (all); tab[168] */
 void ancf3243_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3243_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
-/* integration "sri": 12 points (full_order), 3 points (centreline); tab[120] */
+/* integration "sri": 12 points (full_order), 3 points (centreline); tab[210] */
 void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 15 points of "sri" (all parts, in order): inv[3 p + 0..2] */
 void ancf3243_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);

@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:22a65db3187e660bafb907863f9677e399b596262a28e7397ef7f3f378d74494
+ * input hash: sha256:484af5554b4d3c68b7149f50dbc8f525f61519a017e1c06bfafcbd72680e4875
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -32,17 +32,17 @@
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_ancf3273;
-/* integration "full": 27 points (all); tab[405] */
+/* integration "full": 27 points (all); tab[567] */
 void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
-/* integration "reduced": 12 points (all); tab[180] */
+/* integration "reduced": 12 points (all); tab[252] */
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
-/* integration "sri": 27 points (full_order), 4 points (centreline); tab[465] */
+/* integration "sri": 27 points (full_order), 4 points (centreline); tab[651] */
 void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 31 points of "sri" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);

@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:766c1c96fbc6d6926384834c0047f3bc98fc068267d70fc031e125f63a733ff4
+ * input hash: sha256:2c8d2a558189e0e90544bab367059af13bc4c6811046192a2de0b355700fe98d
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -27,7 +27,7 @@
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_ancf3333;
-/* integration "full": 12 points (all); tab[156] */
+/* integration "full": 12 points (all); tab[228] */
 void ancf3333_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3333_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);

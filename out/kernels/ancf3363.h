@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:14fb8272a26bda62e6f4b65fefc93901215757f6a83f9ec9e3913ea9901ed28b
+ * input hash: sha256:2cd62b72b6919898f0d4372c95814ce105ae147a773ce855aef623a4006ecd70
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -36,12 +36,12 @@
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_ancf3363;
-/* integration "full": 27 points (all); tab[756] */
+/* integration "full": 27 points (all); tab[918] */
 void ancf3363_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3363_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
-/* integration "reduced": 12 points (all); tab[336] */
+/* integration "reduced": 12 points (all); tab[408] */
 void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
 void ancf3363_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
