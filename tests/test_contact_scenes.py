@@ -55,6 +55,21 @@ def test_propped_cantilever_reaction_is_three_eighths_of_the_load():
     assert abs(fz / (3 * q * L / 8) - 1) < 5e-3, fz
 
 
+def test_propped_cantilever_by_arc_length_continuation():
+    """The same propped cantilever followed by arc-length continuation (the
+    predictor kept from crossing the ball by the contact's step limit): 3qL/8
+    within 0.5 % at load factor 1."""
+    text = (ROOT / "models" / "contact_propped_cantilever.toml").read_text()
+    assert "load_steps = 4\n" in text
+    p = out_dir() / "propped_arc.toml"
+    p.write_text(text.replace("load_steps = 4\n", 'method = "arc_length"\n'))
+    s = run_scene(p)[0]
+    q, L = 2700.0 * 1e-4 * 9.81, 1.0
+    assert s["converged"] and abs(s["load_factor"] - 1.0) < 1e-9, s["load_factor"]
+    fz = _contact(s)["sets"][0]["force"][2]
+    assert abs(fz / (3 * q * L / 8) - 1) < 5e-3, fz
+
+
 def test_propped_cantilever_with_a_gap():
     q, L, EI, g = 2700.0 * 1e-4 * 9.81, 1.0, 7.0e10 * 0.01 ** 4 / 12, 0.002
     ref = 3 * q * L / 8 - 3 * EI * g / L ** 3
