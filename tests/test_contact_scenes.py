@@ -31,12 +31,25 @@ def _contact(summary):
 
 
 def test_rod_on_the_ground_carries_its_weight():
-    s, _ = run_scene(ROOT / "models" / "contact_rod_ground.toml")
+    """The ground's force on the rod is its weight to 1e-6 (summary.json and
+    contact_totals.csv at the last step, where the normal force is the same:
+    the ground is flat), and the totals are the sums of contacts.csv's rows."""
+    import csv
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_rod_ground.toml", out=out)
     c = _contact(s)
     weight = 7850.0 * math.pi * 0.005 ** 2 * 1.0 * 9.81
     fz = c["sets"][0]["force"][2]
     assert abs(fz - weight) <= 1e-6 * weight, (fz, weight)
     assert c["min_distance"] < 0.001                         # within the barrier's reach
+    with open(out / "contact_totals.csv", newline="") as fh:
+        last = list(csv.DictReader(fh))[-1]
+    with open(out / "contacts.csv", newline="") as fh:
+        rows = [r for r in csv.DictReader(fh) if r["step"] == last["step"]]
+    for key in ("fz", "normal_force"):
+        assert abs(float(last[key]) - weight) <= 1e-6 * weight, (key, last)
+        assert abs(float(last[key]) - sum(float(r[key]) for r in rows)) <= 1e-12 * weight
+    assert int(last["active_points"]) == len(rows) and abs(float(last["min_distance"]) - c["min_distance"]) < 1e-15
 
 
 def _propped(gap):

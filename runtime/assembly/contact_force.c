@@ -62,6 +62,7 @@ int bk_contact_make(bk_system *s, void **self)
         w->lam = calloc(np, sizeof *w->lam);
         w->nrm = calloc(3 * np, sizeof *w->nrm);
         w->xprev = calloc(3 * np, sizeof *w->xprev);
+        w->tot = calloc(6 * (size_t)(cm->nset > 0 ? cm->nset : 1), sizeof *w->tot);
         w->place = calloc(BK_CONTACT_PLACEMENT * (size_t)(cm->nprim > 0 ? cm->nprim : 1), sizeof *w->place);
         for (int i = 0; w->place && i < cm->nprim; ++i)    /* in place until a path point is assembled */
             bk_contact_placement(&cm->prims[i], 0.0, w->place + BK_CONTACT_PLACEMENT * i);
@@ -70,7 +71,7 @@ int bk_contact_make(bk_system *s, void **self)
     *self = w;
     if (body_couplings(s) < 0)
         return -1;
-    return w && shapes == 0 && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
+    return w && shapes == 0 && w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
 }
 
 static void contact_free(void *self)
@@ -80,6 +81,7 @@ static void contact_free(void *self)
         contact_pvd(w);                  /* the collection complete (a failure was reported with the frames) */
     if (w) {
         free(w->Kc);
+        free(w->tot);
         free(w->Nc);
         free(w->Noff);
         free(w->frames);

@@ -19,6 +19,8 @@ typedef struct contact_work {
     double *fe, *Ke;                 /* [maxdof + 7], [(maxdof + 7)^2]: the element's and its body's coordinates */
     double *Kc;                      /* [9 nshape (nshape + 1)] the element's position blocks (points without a body) */
     FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */
+    FILE *totals;                    /* contact_totals.csv, or NULL */
+    double *tot;                     /* [6 nset] the sets' sums of an output step */
     int npoint;                      /* sample points of every set */
     double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, anchor (in z) */
     double *place;                   /* [BK_CONTACT_PLACEMENT nprim] each primitive's placement at the path point

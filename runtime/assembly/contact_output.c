@@ -40,14 +40,18 @@ int contact_summary(void *self, const bk_system *s, const double *q, char *buf, 
  * step: step, time (or load factor), set, primitive, element, point, its
  * position, distance, the normal force, the tangential force, the friction
  * state (none, stick: slip since the last step below the tolerance, slip) and
- * the force on the beam there (N). */
+ * the force on the beam there (N).  contact_totals.csv: per output step and
+ * set, the sums over its points: the normal force, the force on the beams,
+ * the points within the barrier's reach, and the smallest distance. */
 int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     contact_work *w = self;
     w->table = bk_tables_open(ts, dir, "contacts.csv", "step,time,set,primitive,element,point,x,y,z,distance,"
                               "normal_force,tangential_force,state,fx,fy,fz\n", 1, err);
-    return w->table ? 0 : -1;
+    w->totals = bk_tables_open(ts, dir, "contact_totals.csv", "step,time,set,primitive,normal_force,fx,fy,fz,"
+                               "active_points,min_distance\n", 1, err);
+    return w->table && w->totals ? 0 : -1;
 }
 
 typedef struct rows {
@@ -55,6 +59,7 @@ typedef struct rows {
     int step;
     double t;
     bk_rowqueue *rq;
+    double *tot;                     /* [6 nset]: normal force, force (3), active points, smallest distance */
 } rows;
 
 static void row_point(void *ctx, point *pt)
@@ -63,15 +68,18 @@ static void row_point(void *ctx, point *pt)
     contact_work *w = rw->w;
     const bk_contact_set *set = pt->set;
     const double *g = pt->g;
-    double b[3], fp[3], Kp[9];
+    double b[3], fp[3], Kp[9], *tot = rw->tot + 6 * pt->c;
     const int rubs = set->mu > 0.0 && w->lam[pt->p] > 0.0;
+    tot[5] = fmin(tot[5], pt->dist);
     if (!(pt->dist > 0.0) || !contact_acts(w, pt))
         return;
     double fn = 0.0;
     if (pt->dist < set->shat) {
         bk_contact_barrier(pt->dist, set->shat, b);
         fn = -pt->wl * b[1];
+        tot[4] += 1.0;
     }
+    tot[0] += fn;
     contact_point_terms(w, set, pt->p, pt->wl, pt->mp.z, g, pt->dist, fp, Kp);
     const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
     double ft2 = 0.0, slip2 = 0.0, fv[10];
@@ -95,17 +103,39 @@ static void row_point(void *ctx, point *pt)
     bk_row_num(&r, fn);
     bk_row_num(&r, sqrt(ft2));
     bk_row_str(&r, !rubs ? "none" : sqrt(slip2) < set->slip ? "stick" : "slip");
-    for (int d = 0; d < 3; ++d)
+    for (int d = 0; d < 3; ++d) {
         bk_row_num(&r, -fv[d]);
+        tot[1 + d] -= fv[d];
+    }
     bk_row_end(&r);
 }
 
 void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
 {
     contact_work *w = self;
-    rows rw = {.w = w, .step = step, .t = t, .rq = rq};
-    if (w->table)
-        contact_each_point(w, s, q, row_point, NULL, &rw);
+    const bk_contact_model *cm = s->m->contact;
+    rows rw = {.w = w, .step = step, .t = t, .rq = rq, .tot = w->tot};
+    if (!w->table || !w->totals)
+        return;
+    for (int c = 0; c < cm->nset; ++c) {
+        memset(w->tot + 6 * c, 0, 5 * sizeof *w->tot);
+        w->tot[6 * c + 5] = INFINITY;
+    }
+    contact_each_point(w, s, q, row_point, NULL, &rw);
+    for (int c = 0; c < cm->nset; ++c) {
+        const double *tot = w->tot + 6 * c;
+        bk_row r;
+        bk_row_begin(&r, w->totals, rq);
+        bk_row_int(&r, step);
+        bk_row_num(&r, t);
+        bk_row_int(&r, c);
+        bk_row_int(&r, cm->sets[c].prim);
+        for (int k = 0; k < 4; ++k)
+            bk_row_num(&r, tot[k]);
+        bk_row_int(&r, (int)tot[4]);
+        bk_row_num(&r, tot[5]);
+        bk_row_end(&r);
+    }
 }
 
 /* ---- ParaView: contacts_NNNNNN.vtp per frame, contacts.pvd ---- */
