@@ -160,7 +160,8 @@ def test_contact_with_bodies_boxes_and_turning_primitives_is_clean_under_sanitiz
     """The ball body, the gripper (a capsule of a body touched by continuum
     elements: the body-frame chain rule and the coupling blocks) and the
     tilted, turned box run with AddressSanitizer and UBSan (--sanitize): exit
-    0 and no report."""
+    0 and no report; the ball body under valgrind's memcheck too (exit 0, not
+    99)."""
     scenes = [ROOT / "models" / "contact_ball_on_cantilever.toml", ROOT / "models" / "gripper_lift.toml"]
     th = 0.2
     text = (ROOT / "models" / "contact_propped_cantilever.toml").read_text()
@@ -173,3 +174,5 @@ def test_contact_with_bodies_boxes_and_turning_primitives_is_clean_under_sanitiz
         r = run_cli(["run", str(scene), "--sanitize", "--quiet", "--out", str(out_dir())])
         assert r.returncode == 0 and "runtime error" not in r.stderr and "Sanitizer" not in r.stderr, \
             (scene, r.returncode, r.stderr[-2000:])
+    r = run_cli(["run", str(scenes[0]), "--memcheck", "--quiet", "--out", str(out_dir())])   # and valgrind's
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])                                # memcheck: 99
