@@ -110,6 +110,9 @@ OPTIONS = (
     static("predictor", "choice", "secant", "start of each increment: `secant` extrapolates the last two "
            "equilibria of the current load leg (retried from the last equilibrium if Newton fails), `none` starts "
            "from the last equilibrium", choices=("none", "secant")),
+    Opt("static", "free_rigid_motion", "bool", False, "a static model that no constraint holds against a rigid "
+        "motion is refused, naming the motion; true lets it run (the tangent is then singular, or round-off picks "
+        "one of its equilibria)", record=None),
     static("stability", "bool", True, "at every equilibrium, the number of negative eigenvalues of the tangent on "
            "the constraints (LDLᵀ inertia, one factorization; `stability.csv`); a change is reported as a "
            "bifurcation or limit point with the critical load factor (on in the model file also with "

@@ -112,8 +112,26 @@ def test_newton_failure_keeps_converged_steps():
     assert 0.9 * limit <= summary["load_factor"] <= limit, (summary["load_factor"], limit)
 
 
-def test_unconstrained_beam_reports_singular_tangent():
+def test_unconstrained_beam_is_refused_naming_its_free_motion():
+    """A cantilever without its clamp, in statics: refused before the solve
+    (exit 1, one line) naming the six free rigid motions; with [static]
+    free_rigid_motion = true the solver meets the singular tangent (exit 2)."""
     text = BASE.split("[[constraint]]")[0] + "[[load]]" + BASE.split("[[load]]")[1]
     r, p, out = run_text(text, "floating")
+    assert r.returncode == 1, r.stderr
+    assert "free to move as a rigid body in statics (a translation along x; a translation along y; " \
+           "a translation along z (and 3 more))" in r.stderr, r.stderr
+    r, p, out = run_text(text.replace("[static]", "[static]\nfree_rigid_motion = true"), "floating")
     assert r.returncode == 2, r.stderr
     assert "singular tangent" in r.stderr and "constrained" in r.stderr, r.stderr
+
+
+def test_a_pinned_beam_is_refused_naming_its_rotations():
+    """Held by a spherical joint at its start only, the beam can turn about
+    the pin: the three rotations (about axes through the model's centre, so
+    two come with a translation) are named; a clamp instead runs."""
+    text = BASE.replace('type = "clamp"', 'type = "spherical"')
+    assert text != BASE
+    r, p, out = run_text(text, "pinned")
+    assert r.returncode == 1 and "a rotation about x" in r.stderr and "rotation about y" in r.stderr \
+        and "rotation about z" in r.stderr, r.stderr

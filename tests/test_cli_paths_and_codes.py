@@ -67,6 +67,8 @@ a = "arm:start"
 type = "force"
 at = "arm:end"
 value = FORCE
+[static]
+free_rigid_motion = true   # the spin about the axis is a rigid motion: let the solver meet it
 """
 
 

@@ -19,6 +19,7 @@ from gen.scene.loads import loads
 from gen.scene.materials import material_params, sections as parse_sections
 from gen.scene.mesh import mesh_beams
 from gen.scene.options import initial_velocities, options, sensors
+from gen.scene.rigid_modes import check_static
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
 
 ANALYSES = next(o.choices for o in OPTIONS if o.name == "scene.analysis")
@@ -88,6 +89,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     length_scale = max([b["length"] for b in mesh.beams.values()] +
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
     contact_prims, contact_sets = contacts(ctx, doc, mesh.beams, length_scale, amps, analysis, mesh.bodies)
+    check_static(ctx, mesh, rows, analysis, bool(contact_sets) or "beam_contact" in doc, stat)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
         "contact_prims": contact_prims, "contact_sets": contact_sets,

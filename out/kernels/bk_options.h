@@ -48,6 +48,7 @@ typedef struct bk_static_opts {
     double rtol;                    /* static.rtol */
     double utol;                    /* static.utol */
     int predictor;                  /* static.predictor: enum bk_predictor */
+    int free_rigid_motion;          /* static.free_rigid_motion: 0 or 1 */
     int stability;                  /* static.stability: 0 or 1 */
     int eigenvalues;                /* static.eigenvalues: 0 or 1 */
     int stable_path;                /* static.stable_path: 0 or 1 */
