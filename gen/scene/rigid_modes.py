@@ -14,61 +14,62 @@ NAMES = ("a translation along x", "a translation along y", "a translation along 
          "a rotation about x", "a rotation about y", "a rotation about z")
 
 
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
 def rigid_velocities(mesh):
-    """The six rigid motions' velocities of every coordinate: [6][ndof]."""
-    q0 = mesh.q0
-    pos = [q0[mesh.field_dofs(g)["r"][0]:mesh.field_dofs(g)["r"][0] + 3]
-           for g in range(len(mesh.nodes)) if "r" in mesh.field_dofs(g)]
-    c = [sum(p[i] for p in pos) / max(1, len(pos)) for i in range(3)]
-    modes = [[0.0] * len(q0) for _ in range(6)]
+    """The six rigid motions' velocities of every coordinate: an array 6 x ndof."""
+    import numpy as np
+    q0 = np.asarray(mesh.q0, dtype=float)
+    modes = np.zeros((6, len(q0)))
+    groups = {"r": [], "p": [], "v": []}               # first DOFs of positions, quaternions, other vectors
     for g in range(len(mesh.nodes)):
         for f, dofs in mesh.field_dofs(g).items():
-            v = [q0[d] for d in dofs]
-            for k in range(6):
-                if f == "p":                           # (0, w) p / 2
-                    if k < 3:
-                        continue
-                    w = [1.0 if i == k - 3 else 0.0 for i in range(3)]
-                    s, u = v[0], v[1:]
-                    wu = _cross(w, u)
-                    dp = [-0.5 * sum(w[i] * u[i] for i in range(3))] + [0.5 * (s * w[i] + wu[i]) for i in range(3)]
-                elif len(dofs) != 3:
-                    continue
-                elif k < 3:                            # translation: positions only
-                    dp = [1.0 if i == k else 0.0 for i in range(3)] if f == "r" else [0.0] * 3
-                else:
-                    w = [1.0 if i == k - 3 else 0.0 for i in range(3)]
-                    dp = _cross(w, [v[i] - c[i] for i in range(3)] if f == "r" else v)
-                for d, x in zip(dofs, dp):
-                    modes[k][d] = x
+            if f == "p":
+                groups["p"].append(dofs[0])
+            elif len(dofs) == 3:
+                groups["r" if f == "r" else "v"].append(dofs[0])
+    r = np.array(groups["r"], dtype=int)
+    c = q0[r[:, None] + np.arange(3)].mean(axis=0) if len(r) else np.zeros(3)
+    for k in range(3):
+        modes[k, r + k] = 1.0                          # translations move the positions
+    for k in range(3):
+        w = np.eye(3)[k]
+        for key, rel in (("r", True), ("v", False)):
+            d = np.array(groups[key], dtype=int)
+            if not len(d):
+                continue
+            v = q0[d[:, None] + np.arange(3)] - (c if rel else 0.0)
+            modes[3 + k][d[:, None] + np.arange(3)] = np.cross(w, v)
+        d = np.array(groups["p"], dtype=int)
+        if len(d):                                     # (0, w) p / 2
+            s, u = q0[d], q0[d[:, None] + 1 + np.arange(3)]
+            modes[3 + k, d] = -0.5 * u @ w
+            modes[3 + k][d[:, None] + 1 + np.arange(3)] = 0.5 * (s[:, None] * w + np.cross(w, u))
     return modes
 
 
 def free_motions(mesh, fixed, lincons):
-    """Descriptions of the rigid motions no constraint holds (empty: none)."""
+    """Descriptions of the rigid motions no constraint holds (empty: none).
+    Only motions that move some coordinate count (a straight cable turning
+    about its own axis moves none)."""
     import numpy as np
-    modes = np.array(rigid_velocities(mesh))             # 6 x ndof
-    norms = np.linalg.norm(modes, axis=1)
-    scale = 1.0 / np.where(norms > 0.0, norms, 1.0)      # each motion of unit size over the whole model
+    modes = rigid_velocities(mesh)                       # 6 x ndof
+    _u, s, vt = np.linalg.svd(modes.T, full_matrices=False)
+    keep = s > 1e-12 * max(s[0], 1e-300)
+    V = vt[keep].T / s[keep]                             # 6 x r: combinations of unit velocity field
     rows = [modes[:, d] for d in sorted(fixed)]
     for terms, _rhs, _tf in lincons:
         rows.append(sum(c0 * modes[:, d] for d, c0, _cc, _cs in terms))
-    if not rows:
-        basis = np.eye(6)
-    else:
-        A = np.array(rows) * scale
-        _u, sv, vt = np.linalg.svd(A)
-        tol = 1e-9 * max(1.0, sv[0] if len(sv) else 1.0)
-        rank = int(np.sum(sv > tol))
-        basis = vt[rank:]
+    if not rows:                                         # nothing holds it: every motion that moves something
+        return [NAMES[i] for i in range(6) if np.linalg.norm(modes[i]) > 1e-12 * max(s[0], 1e-300)]
+    A = np.array(rows) @ V
+    _u2, sv, vt2 = np.linalg.svd(A)
+    rank = int(np.sum(sv > 1e-9 * max(1.0, sv[0] if len(sv) else 1.0)))
+    basis = vt2[rank:]
     out = []
     for b in basis:
-        k = int(np.argmax(np.abs(b)))
-        parts = [NAMES[i] for i in range(6) if abs(b[i]) > 0.2 * abs(b[k])]
+        m = V @ b                                          # the motion's six components
+        m = m / np.linalg.norm(m)
+        k = int(np.argmax(np.abs(m)))
+        parts = [NAMES[i] for i in range(6) if abs(m[i]) > 0.2 * abs(m[k])]
         out.append(" with ".join(parts))
     return out
 
