@@ -148,7 +148,8 @@ static const char *dyn_why(int c)
     switch (c) {
     case DYN_MAXIT: return "Newton did not converge within the iteration limit";
     case DYN_NONFINITE: return "non-finite force or increment (an element inverted, J <= 0, or a value overflowed)";
-    case DYN_SINGULAR: return "singular iteration matrix: is every rigid motion constrained or given mass?";
+    case DYN_SINGULAR: return "singular iteration matrix: a motion with neither mass nor constraint, or a step "
+                              "too large for the transient (try a smaller dt or a larger rho_inf)";
     case DYN_LINERR: return "linear solver error";
     case DYN_INADMISSIBLE: return "Newton converged to a state that is not physical (an element inverted)";
     default: return "converged";
