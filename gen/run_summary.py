@@ -52,8 +52,11 @@ def add_scene_warnings(out, warnings):
 
 def print_summary(s, out):
     status = "converged" if s["converged"] else "NOT converged"
-    print(f"scene {s['scene']} ({s['analysis']}): {status}; {s['steps']} steps, "
-          f"{s['newton_iterations']} Newton iterations, {s['dofs']} DOFs, {s['elements']} elements, "
+    def n(k, word):
+        return f"{k} {word}" + ("" if k == 1 else "s")
+
+    print(f"scene {s['scene']} ({s['analysis']}): {status}; {n(s['steps'], 'step')}, "
+          f"{n(s['newton_iterations'], 'Newton iteration')}, {s['dofs']} DOFs, {n(s['elements'], 'element')}, "
           f"wall {s['wall_s']:.3f} s")
     for name, v in s["sensors"].items():
         p, u = v["position"], v["displacement"]

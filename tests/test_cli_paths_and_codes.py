@@ -116,3 +116,14 @@ def test_cutback_counts_are_the_cutbacks_made():
     assert r.returncode == 2
     s = json.loads((d / "summary.json").read_text())
     assert s["error"].endswith("1 cut-back") and s["cutbacks"] == 1, s
+
+
+def test_the_run_line_counts_in_the_singular_for_one():
+    """Before: "1 steps" (issue 39).  One load step of one element: "1 step,"
+    and "1 element,"; the default run: "2 steps," and "10 elements,"."""
+    r = run_cli(["run", "cantilever_bend_10N", "--set", "static.load_steps=1", "--set", "beam.arm.elements=1",
+                 "--out", str(Path(tempfile.mkdtemp(prefix="bk-one-", dir=ensure_dir(BUILD / "runs"))))])
+    assert r.returncode == 0 and "converged; 1 step, " in r.stdout and " 1 element, " in r.stdout, r.stdout
+    r = run_cli(["run", "cantilever_bend_10N", "--out",
+                 str(Path(tempfile.mkdtemp(prefix="bk-two-", dir=ensure_dir(BUILD / "runs"))))])
+    assert r.returncode == 0 and "converged; 2 steps, " in r.stdout and " 10 elements, " in r.stdout, r.stdout
