@@ -140,6 +140,16 @@ def _ops(low):
     return pro.total() + bod.total()
 
 
+def _guarded(name, args, low, guard, doc):
+    """(name, signature, doc, C lines) of bk_contact_NAME(a, b, out): the C
+    lines `guard` (the closed-form ranges), else the generated NAME_inside."""
+    a, b = args
+    inner = f"static void {name}_inside(double {a}, double {b}, double *restrict out)"
+    wrap = [f"void bk_contact_{name}(double {a}, double {b}, double *restrict out)", "{"]
+    wrap += ["    " + line for line in guard] + [f"    {name}_inside({a}, {b}, out);", "}", ""]
+    return f"bk_contact_{name}", wrap[0], f"{doc}; {_ops(low)} operations", _function(inner, low) + wrap
+
+
 def functions():
     """(name, signature, doc, C lines) of every contact kernel, in file order."""
     out = []
@@ -156,34 +166,15 @@ def functions():
     out.append(("bk_contact_body_frame", sig,
                 f"reference coordinates z of y on a body (r, p) and their derivatives: y[3], qb[7], prm[12] in; "
                 f"out[333]; {_ops(low)} operations", _function(sig, low)))
-    low = barrier()
-    sig = "static void barrier_inside(double s, double shat, double *restrict out)"
-    body = _function(sig, low)
-    wrap = ["void bk_contact_barrier(double s, double shat, double *restrict out)", "{",
-            "    if (s >= shat) {", "        out[0] = out[1] = out[2] = 0.0;", "        return;", "    }",
-            "    barrier_inside(s, shat, out);", "}", ""]
-    out.append(("bk_contact_barrier", wrap[0],
-                f"barrier b, b', b'' at the distance s (0 < s; zero from shat on); {_ops(low)} operations",
-                body + wrap))
-    low = friction()
-    sig = "static void friction_inside(double y, double eps, double *restrict out)"
-    body = _function(sig, low)
-    wrap = ["void bk_contact_friction(double y, double eps, double *restrict out)", "{",
-            "    if (y >= eps) {",
-            "        out[0] = 1.0;", "        out[1] = 0.0;", "        out[2] = 1.0 / y;",
-            "        out[3] = -1.0 / (y * y);", "        return;", "    }",
-            "    friction_inside(y, eps, out);", "}", ""]
-    out.append(("bk_contact_friction", wrap[0],
-                f"slip function f1, f1', f1/y, (f1/y)' at the slip y >= 0 (tolerance eps); {_ops(low)} operations",
-                body + wrap))
-    low = transition()
-    sig = "static void transition_inside(double y, double eps, double *restrict out)"
-    body = _function(sig, low)
-    wrap = ["void bk_contact_transition(double y, double eps, double *restrict out)", "{",
-            "    if (y <= eps || y >= 2.0 * eps) {",
-            "        out[0] = y <= eps ? 0.0 : 1.0;", "        out[1] = 0.0;", "        return;", "    }",
-            "    transition_inside(y, eps, out);", "}", ""]
-    out.append(("bk_contact_transition", wrap[0],
-                f"static-to-kinetic step h, h' at the slip y >= 0 (tolerance eps); {_ops(low)} operations",
-                body + wrap))
+    out.append(_guarded("barrier", ("s", "shat"), barrier(),
+                        ["if (s >= shat) {", "    out[0] = out[1] = out[2] = 0.0;", "    return;", "}"],
+                        "barrier b, b', b'' at the distance s (0 < s; zero from shat on)"))
+    out.append(_guarded("friction", ("y", "eps"), friction(),
+                        ["if (y >= eps) {", "    out[0] = 1.0;", "    out[1] = 0.0;", "    out[2] = 1.0 / y;",
+                         "    out[3] = -1.0 / (y * y);", "    return;", "}"],
+                        "slip function f1, f1', f1/y, (f1/y)' at the slip y >= 0 (tolerance eps)"))
+    out.append(_guarded("transition", ("y", "eps"), transition(),
+                        ["if (y <= eps || y >= 2.0 * eps) {", "    out[0] = y <= eps ? 0.0 : 1.0;", "    out[1] = 0.0;",
+                         "    return;", "}"],
+                        "static-to-kinetic step h, h' at the slip y >= 0 (tolerance eps)"))
     return out

@@ -19,10 +19,10 @@ with load control and `stability = false` take beam contact."""
 import math
 
 import gen.scene_keys as K
+from gen.scene.contact import beam_names, weight_per_length
 from gen.scene.values import _dot, _norm, _sub, check_keys, get_array_of_tables, get_bool, get_int, get_number
 
 KEYS = K.BEAM_CONTACT
-GRAVITY = 9.81
 
 
 def _segments(beam, first, samples, radius):
@@ -55,13 +55,6 @@ def _seg_distance(p0, p1, q0, q1):
         g = [p0[i] + s * u[i] - q0[i] - t * v[i] for i in range(3)]
         best = min(best, _norm(g))
     return best
-
-
-def _weight_per_length(doc, name, sec):
-    bt = next(b for b in doc.get("beam", []) if b.get("name") == name)
-    rho = float(doc["material"][bt["material"]].get("rho", 0.0))
-    area = sec[1] * sec[2] if sec[0] == "rectangle" else math.pi * sec[2] ** 2 / 4.0
-    return rho * area * GRAVITY
 
 
 def _check_start(ctx, where, segs, reach, exclude, self_contact, beam_of):
@@ -109,12 +102,7 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
                                          "`friction` coefficient")
         mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
         slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
-        names = ct.get("beams", list(beams))
-        if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
-            ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
-        for n in names:
-            if n not in beams:
-                ctx.fail(f"{where}.beams", f"no beam named {n!r} (beams: {', '.join(beams) or 'none'})")
+        names = beam_names(ctx, ct, where, beams)
         if len(set(names)) != len(names):
             ctx.fail(f"{where}.beams", "expected each beam once")
         self_contact = get_bool(ctx, ct, "self", where, False)
@@ -122,7 +110,7 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
             ctx.fail(f"{where}.beams", "expected two beams or more, or self = true")
         reach = get_number(ctx, ct, "distance", where, default=1e-3 * length_scale, positive=True)
         samples = get_int(ctx, ct, "samples", where, default=4, lo=2, hi=64)
-        weight = max(_weight_per_length(doc, n, beams[n]["section"]) for n in names)
+        weight = max(weight_per_length(doc, n, beams[n]["section"]) for n in names)
         kappa = get_number(ctx, ct, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
         radii = {n: get_number(ctx, ct, "contact_radius", where, default=beams[n]["section"][2] / 2.0, nonneg=True)
                  for n in names}

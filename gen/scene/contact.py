@@ -110,7 +110,18 @@ def _friction(ctx, ct, where):
     return mu_s, mu_k
 
 
-def _weight_per_length(doc, name, sec):
+def beam_names(ctx, ct, where, beams):
+    """The table's `beams` (default every beam), each an existing beam."""
+    names = ct.get("beams", list(beams))
+    if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
+        ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
+    for n in names:
+        if n not in beams:
+            ctx.fail(f"{where}.beams", f"no beam named {n!r} (beams: {', '.join(beams) or 'none'})")
+    return names
+
+
+def weight_per_length(doc, name, sec):
     """rho A g of beam `name` (its material's density, its section's area)."""
     bt = next(b for b in doc.get("beam", []) if b.get("name") == name)
     rho = float(doc["material"][bt["material"]].get("rho", 0.0))
@@ -164,16 +175,11 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static", bodies
         shape = get_str(ctx, ct, "shape", where, choices=tuple(SHAPES))
         code, prm = _primitive(ctx, ct, where, shape)
         place = _placement(ctx, ct, where, code, prm, amps, analysis, bodies or {})
-        names = ct.get("beams", list(beams))
-        if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
-            ctx.fail(f"{where}.beams", "expected a non-empty list of beam names")
-        for n in names:
-            if n not in beams:
-                ctx.fail(f"{where}.beams", f"no beam named {n!r} (beams: {', '.join(beams) or 'none'})")
+        names = beam_names(ctx, ct, where, beams)
         reach = get_number(ctx, ct, "distance", where, default=1e-3 * length_scale, positive=True)
         samples = get_int(ctx, ct, "samples", where, default=4, lo=1, hi=64)
         slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
-        weight = max(_weight_per_length(doc, n, beams[n]["section"]) for n in names)
+        weight = max(weight_per_length(doc, n, beams[n]["section"]) for n in names)
         kappa = get_number(ctx, ct, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
         members = []
         for n in names:

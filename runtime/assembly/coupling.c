@@ -36,20 +36,6 @@ static int block_present(const bk_system *s, int ea, int eb)
     return 1;
 }
 
-static void free_parts(bk_system *s)
-{
-    free(s->part);
-    free(s->pel);
-    free(s->pmap);
-    free(s->stage);
-    free(s->sh_ptr);
-    free(s->sh_idx);
-    free(s->sh_to);
-    s->part = NULL, s->pel = NULL, s->pmap = NULL, s->stage = NULL;
-    s->sh_ptr = s->sh_idx = NULL, s->sh_to = NULL;
-    s->nshared = s->nshared_dof = 0;
-}
-
 int bk_system_couple(bk_system *s, int n, const int *pairs)
 {
     int grow = 0, added = 0;
@@ -84,7 +70,7 @@ int bk_system_couple(bk_system *s, int n, const int *pairs)
     if (!grow)
         return 0;
     bk_free_pattern(s);
-    free_parts(s);
+    bk_free_parts(s);
     if (bk_make_pattern(s) != 0 || bk_make_parts(s) != 0)
         return -1;
     s->pattern_gen++;

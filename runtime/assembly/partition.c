@@ -167,3 +167,16 @@ fail:
     return -1;
 }
 
+void bk_free_parts(bk_system *s)
+{
+    free(s->part);
+    free(s->pel);
+    free(s->pmap);
+    free(s->stage);
+    free(s->sh_ptr);
+    free(s->sh_idx);
+    free(s->sh_to);
+    s->part = NULL, s->pel = NULL, s->pmap = NULL, s->stage = NULL;
+    s->sh_ptr = s->sh_idx = NULL, s->sh_to = NULL;
+    s->nshared = s->nshared_dof = 0;
+}

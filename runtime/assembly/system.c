@@ -455,13 +455,7 @@ void bk_system_free(bk_system *s)
     free(s->btab);
     free(s->bmat);
     free(s->group);
-    free(s->part);
-    free(s->pel);
-    free(s->pmap);
-    free(s->stage);
-    free(s->sh_ptr);
-    free(s->sh_idx);
-    free(s->sh_to);
+    bk_free_parts(s);
     free(s);
 }
 

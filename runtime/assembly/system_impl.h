@@ -70,5 +70,7 @@ void bk_free_pattern(bk_system *s);
  * system.h: npart, part, pel, pmap, stage, sh_*).  Returns 0, or -1 when out
  * of memory. */
 int bk_make_parts(bk_system *s);
+/* Frees what bk_make_parts made (the pointers cleared, no parts shared). */
+void bk_free_parts(bk_system *s);
 
 #endif
