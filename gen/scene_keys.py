@@ -2,7 +2,8 @@
 
 The scene reader (gen/scene/) accepts exactly these keys (plus, in
 [material.NAME], the parameter keys of the chosen law: gen/materials/*.py
-INPUTS); tests/test_docs.py checks that the README's scene reference lists
+INPUTS, and the tables of the interaction modules, each with its keys in its
+own module: gen/scene/interactions.py); tests/test_docs.py checks that the README's scene reference lists
 the same keys.  The analysis options' keys ([scene] analysis, [static],
 [dynamic], [modal], [buckling], [output]) come from the options schema
 (gen/options_schema.py).
@@ -12,7 +13,7 @@ from gen import options_schema as S
 # the top-level tables: the scene's, then the option tables of the schema (an
 # analysis's options table comes with its schema rows)
 TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
-       "contact", "beam_contact") + tuple(S.TABLES)
+       "beam_contact") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -52,9 +53,6 @@ BUCKLING = S.scene_keys("buckling")
 OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at")
-CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
-           "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
-           "kinetic_friction", "size", "axes", "turn", "pivot", "body")
 BEAM_CONTACT = ("name", "beams", "self", "exclude", "distance", "stiffness", "samples", "contact_radius", "friction",
                 "slip", "static_friction", "kinetic_friction")
 
@@ -71,5 +69,4 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "contact": CONTACT,
-            "beam_contact": BEAM_CONTACT}
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "beam_contact": BEAM_CONTACT}

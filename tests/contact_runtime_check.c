@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "assembly/contact_force.h"
+#include "assembly/contact_model.h"
 #include "assembly/system.h"
 #include "linalg/linsolve.h"
 #include "spring_element.h"
@@ -33,7 +34,8 @@ typedef struct scene {
     double q0[3 * NN], qd0[3 * NN];
     bk_contact_prim prim;
     bk_contact_set set;
-    bk_contact_model cm;
+    bk_model_record rec;                 /* the contact data as the model file's record holds it */
+    char text[8192], where[32];
     int celems[NE];
     double radius[NE];
 } scene;
@@ -82,8 +84,29 @@ static void build_xy(scene *s, double z, double k, bk_contact_prim prim, double 
     s->prim = prim;
     s->set = (bk_contact_set){.prim = 0, .shat = shat, .kappa = kappa, .slip = 1e-6, .nsample = 4, .nelem = NE,
                               .elems = s->celems, .radius = s->radius};
-    s->cm = (bk_contact_model){.nprim = 1, .nset = 1, .prims = &s->prim, .sets = &s->set};
-    m->contact = &s->cm;
+}
+
+/* The scene's primitive and set as the record "contact" of the model file
+ * (runtime/assembly/contact_read.c), then its system. */
+static bk_system *create(scene *s)
+{
+    const bk_contact_prim *p = &s->prim;
+    const bk_contact_set *c = &s->set;
+    int n = snprintf(s->text, sizeof s->text, "contacts 1 1\nprim %d", p->shape);
+    for (int k = 0; k < BK_CONTACT_MAXPRM; ++k)
+        n += snprintf(s->text + n, sizeof s->text - (size_t)n, " %.17g", p->prm[k]);
+    for (int k = 0; k < 9; ++k)
+        n += snprintf(s->text + n, sizeof s->text - (size_t)n, " %.17g", k < 3 ? p->motion[k] : k < 6 ? p->turn[k - 3]
+                      : p->pivot[k - 6]);
+    n += snprintf(s->text + n, sizeof s->text - (size_t)n, " %d -1\ncset 0 %.17g %.17g %.17g %.17g %.17g %d %d",
+                  p->amp, c->shat, c->kappa, c->mu, c->mu_k, c->slip, c->nsample, c->nelem);
+    for (int i = 0; i < c->nelem; ++i)
+        n += snprintf(s->text + n, sizeof s->text - (size_t)n, " %d %.17g", c->elems[i], c->radius[i]);
+    snprintf(s->where, sizeof s->where, "contact_check");
+    s->rec = (bk_model_record){.name = "contact", .text = s->text, .where = s->where};
+    s->m.records = &s->rec;
+    s->m.nrecord = 1;
+    return bk_system_create(&s->m, stderr);
 }
 
 static void build(scene *s, double z, double k, bk_contact_prim prim, double r, double shat, double kappa)
@@ -165,7 +188,7 @@ static void check_jacobians(void)
         memcpy(q, s.q0, sizeof q);
         for (int n = 0; n < NN; ++n)               /* a wavy chain: every point within the barrier's reach */
             q[3 * n + 2] = 0.01 + 0.012 + 0.008 * sin(1.7 * n);
-        bk_system *sys = bk_system_create(&s.m, stderr);
+        bk_system *sys = create(&s);
         double F[3], dmin;
         int nact;
         bk_contact_state(sys, q, F, &nact, &dmin);
@@ -189,7 +212,7 @@ static void check_friction(void)
     memcpy(q, s.q0, sizeof q);
     for (int n = 0; n < NN; ++n)
         q[3 * n + 2] = 0.01 + 0.012 + 0.008 * sin(1.7 * n);
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = create(&s);
     bk_interactions_accept(sys, q, &(bk_path){.factor = 1.0, .x = 1.0});
     double F0[3], d0;
     int n0;
@@ -218,7 +241,7 @@ static void check_resting_chain(void)
     scene s;
     const double r = 0.01, shat = 1e-3, g = 9.81;
     build(&s, r + 0.8 * shat, 1e4, ground(), r, shat, 1e4);
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = create(&s);
     const int nd = s.m.ndof, n = sys->neq;
     double q[3 * NN], fint[3 * NN], fc[3 * NN], fext[3 * NN], rr[3 * NN], weight = 0.0;
     double *Ax = calloc((size_t)sys->nnz, sizeof *Ax), *Ac = calloc((size_t)sys->nnz, sizeof *Ac);
@@ -275,7 +298,7 @@ static void check_step_limit(void)
     scene s;
     const double r = 0.01, shat = 1e-3;
     build(&s, r + 0.5 * shat, 1e4, ground(), r, shat, 1e4);
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = create(&s);
     double dx[3 * NN] = {0}, q[3 * NN], F[3], d0, d1;
     int nact;
     for (int i = 0; i < sys->neq; ++i)

@@ -39,6 +39,8 @@ def _table_keys(text, heading):
 
 def accepted_keys():
     out = {f"{t}.{k}" for t, ks in K.all_keys().items() for k in ks}
+    from gen.scene.interactions import modules
+    out |= {f"{it.table}.{k}" for it in modules() for k in it.keys}
     for mod, _ in all_materials().values():
         for keys, _fn in mod.INPUTS:
             out |= {f"material.{k}" for k in keys}

@@ -11,13 +11,14 @@ from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
 from gen.scene.beam_contact import beam_contacts
-from gen.scene.contact import contacts
+from gen.scene import interactions
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
 from gen.scene.joints import constraints
 from gen.scene.loads import loads
 from gen.scene.materials import material_params, sections as parse_sections
 from gen.scene.mesh import mesh_beams
+from gen.scene.model_file import _f
 from gen.scene.options import initial_velocities, options, sensors
 from gen.scene.rigid_modes import check_static
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
@@ -41,7 +42,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     if sets:
         apply_overrides(doc, sets, path)
     index = load_index()
-    check_keys(ctx, doc, set(K.TOP), "(top level)")
+    check_keys(ctx, doc, set(K.TOP) | {it.table for it in interactions.modules()}, "(top level)")
     scene = get_table(ctx, doc, "scene")
     check_keys(ctx, scene, set(K.SCENE), "scene")
     analysis = get_str(ctx, scene, "analysis", "scene", default="static",
@@ -88,11 +89,12 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
                              "tendons")
     length_scale = max([b["length"] for b in mesh.beams.values()] +
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
-    contact_prims, contact_sets = contacts(ctx, doc, mesh.beams, length_scale, amps, analysis, mesh.bodies)
-    check_static(ctx, mesh, rows, analysis, bool(contact_sets) or "beam_contact" in doc, stat)
+    scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat)
+    inter = interactions.records(ctx, doc, scene_parts)
+    check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter) or "beam_contact" in doc, stat)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
-        "contact_prims": contact_prims, "contact_sets": contact_sets,
+        "records": [(it.record, it.lines(data, _f)) for it, data in inter],
         "beam_contacts": beam_contacts(ctx, doc, mesh.beams, length_scale, analysis, stat),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,

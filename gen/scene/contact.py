@@ -20,13 +20,15 @@ sticks, m; default 1e-7 of the model length); motion (m: a prescribed translatio
 or the factor of `amplitude`, which dynamics requires)."""
 import math
 
-import gen.scene_keys as K
+from gen.scene.interactions import Interaction
 from gen.scene.values import _dot, _norm, _scale, _sub, check_keys, get_array_of_tables, get_int, get_number, get_str, \
     get_vec3
 
 SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "capsule": ("a", "b", "radius"),
           "box": ("center", "size", "axes")}
-KEYS = K.CONTACT
+KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
+        "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
+        "kinetic_friction", "size", "axes", "turn", "pivot", "body")
 CODE = {"half_space": 0, "sphere": 1, "capsule": 2, "box": 3}
 GRAVITY = 9.81
 
@@ -214,3 +216,16 @@ def contact_records(prims, sets, fmt):
                    " ".join(f"{e} {fmt(r)}" for e, r in members))
     return out
 
+
+
+def _build(ctx, doc, scene):
+    prims, sets = contacts(ctx, doc, scene.beams, scene.length_scale, scene.amps, scene.analysis, scene.bodies)
+    return (prims, sets) if sets else None
+
+
+def _lines(data, fmt):
+    return contact_records(data[0], data[1], fmt)
+
+
+INTERACTION = Interaction(table="contact", keys=KEYS, record="contact", build=_build, lines=_lines, holds=True,
+                          order=30)

@@ -112,10 +112,12 @@ def write_model(model, path):
     out.append(f"sections {len(model['sections'])}")
     for bname, e, s0, s1 in model["sections"]:
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
-    from gen.scene.contact import contact_records
-    out += contact_records(model.get("contact_prims", []), model.get("contact_sets", []), _f)
     from gen.scene.beam_contact import beam_contact_records
     out += beam_contact_records(model.get("beam_contacts", []), _f)
+    records = model.get("records", [])       # the interaction modules' (gen/scene/interactions.py)
+    out.append(f"records {len(records)}")
+    for name, lines in records:
+        out += [f"record {name}"] + lines + ["end_record"]
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

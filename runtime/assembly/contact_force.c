@@ -13,17 +13,11 @@
 #include "base/tables.h"
 #include "contact.h"
 
-int bk_contact_present(const bk_model *m)
-{
-    return m->contact && m->contact->nset > 0;
-}
-
 /* The coupling blocks of every element of a set whose primitive belongs to a
  * rigid body with the body's element (the Newton pattern grows by them once,
  * before any analysis has used it).  0 or 1, or -1 when out of memory. */
-static int body_couplings(bk_system *s)
+static int body_couplings(bk_system *s, const bk_contact_model *cm)
 {
-    const bk_contact_model *cm = s->m->contact;
     int n = 0, r = 0;
     for (int c = 0; c < cm->nset; ++c)
         n += cm->prims[cm->sets[c].prim].body >= 0 ? cm->sets[c].nelem : 0;
@@ -42,12 +36,17 @@ static int body_couplings(bk_system *s)
     return r;
 }
 
-int bk_contact_make(bk_system *s, void **self)
+static int contact_make(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
+    bk_contact_model *cm = bk_contact_model_read(s->m, rec, err);
+    if (!cm)
+        return -1;
     size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1) + 7;
     contact_work *w = calloc(1, sizeof *w);
+    if (!w)
+        bk_contact_model_free(cm);
     if (w) {
-        const bk_contact_model *cm = s->m->contact;
+        w->cm = cm;
         for (int c = 0; c < cm->nset; ++c)
             w->npoint += cm->sets[c].nelem * cm->sets[c].nsample;
         size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1);
@@ -69,9 +68,12 @@ int bk_contact_make(bk_system *s, void **self)
     }
     const int shapes = w ? contact_sample_shapes(w, s->m) : -1;
     *self = w;
-    if (body_couplings(s) < 0)
+    if (!w || shapes != 0 || body_couplings(s, cm) < 0 ||
+        !(w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place)) {
+        fprintf(err, "error: contact: out of memory\n");
         return -1;
-    return w && shapes == 0 && w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place ? 0 : -1;
+    }
+    return 0;
 }
 
 static void contact_free(void *self)
@@ -92,6 +94,7 @@ static void contact_free(void *self)
         free(w->nrm);
         free(w->xprev);
         free(w->place);
+        bk_contact_model_free(w->cm);
     }
     free(w);
 }
@@ -332,6 +335,10 @@ static double contact_step_limit(void *self, const bk_system *s, const double *q
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
                                            .step_limit = contact_step_limit, .accept = contact_accept,
                                            .tables = contact_tables, .rows = contact_rows, .frame = contact_frame,
-                                           .summary_key = "contact",
+                                           .summary_key = "contact", .uncounted_energy = 1,
                                            .summary = contact_summary, .free = contact_free};
+
+/* The interaction module: made when the model has the record "contact". */
+const bk_interaction_module bk_interaction_contact = {.ops = &bk_contact_ops, .order = 30, .record = "contact",
+                                                      .make = contact_make};
 

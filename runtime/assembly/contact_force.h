@@ -1,5 +1,5 @@
 /* contact_force.h -- contact between beams and rigid primitives as an interaction
- * (interaction.h): for every set of the model's contact data (model/contact.h)
+ * (interaction.h): for every set of the contact data (contact_model.h)
  * each element's sample points feel the barrier of their distance to the
  * set's primitive.  Residual and Jacobian are exact (the generated gap,
  * gradient, Hessian and barrier derivatives of out/kernels/contact.h, the
@@ -18,9 +18,6 @@ struct bk_system;
 struct bk_model;
 
 extern const bk_interaction_ops bk_contact_ops;
-/* 1 when the model has contact data; its data (scratch) into *self, 0 or -1. */
-int bk_contact_present(const struct bk_model *m);
-int bk_contact_make(struct bk_system *s, void **self);
 
 /* The contact state at q: per set, the total force the primitive exerts on
  * the beams (F[3 nset], N) and the number of sample points within the barrier

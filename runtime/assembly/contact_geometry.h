@@ -7,7 +7,7 @@
 #ifndef BK_CONTACT_GEOMETRY_H
 #define BK_CONTACT_GEOMETRY_H
 
-#include "model/contact.h"
+#include "assembly/contact_model.h"
 
 /* The placement of a primitive that is not on a body at one path point:
  * Q (rotation, row-major) and the translated pivot c = pivot + f motion, so

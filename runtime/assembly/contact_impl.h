@@ -16,6 +16,7 @@
 /* Scratch of the interaction: one element's force and matrix, the lagged
  * friction state, the primitives' placements. */
 typedef struct contact_work {
+    bk_contact_model *cm;            /* owned: the primitives and sets (the model's record "contact") */
     double *fe, *Ke;                 /* [maxdof + 7], [(maxdof + 7)^2]: the element's and its body's coordinates */
     double *Kc;                      /* [9 nshape (nshape + 1)] the element's position blocks (points without a body) */
     FILE *table;                     /* contacts.csv (registered in the run's tables), or NULL */

@@ -18,8 +18,7 @@
  * points within the barrier. */
 int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
 {
-    (void)self;
-    const bk_contact_model *cm = s->m->contact;
+    const bk_contact_model *cm = ((const contact_work *)self)->cm;
     double F[3 * 64], dmin;
     int nact[64];
     if (cm->nset > 64)
@@ -113,7 +112,7 @@ static void row_point(void *ctx, point *pt)
 void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
 {
     contact_work *w = self;
-    const bk_contact_model *cm = s->m->contact;
+    const bk_contact_model *cm = w->cm;
     rows rw = {.w = w, .step = step, .t = t, .rq = rq, .tot = w->tot};
     if (!w->table || !w->totals)
         return;
@@ -274,11 +273,11 @@ static void state_point(void *ctx, point *pt)
 
 void bk_contact_state(const bk_system *s, const double *q, double *F, int *nactive, double *min_distance)
 {
-    const bk_contact_model *cm = s->m->contact;
     const contact_work *w = NULL;
     for (int k = 0; k < s->ninter; ++k)
         if (s->inter[k].ops == &bk_contact_ops)
             w = s->inter[k].self;
+    const bk_contact_model *cm = w ? w->cm : NULL;
     *min_distance = INFINITY;
     for (int c = 0; cm && c < cm->nset; ++c) {
         F[3 * c] = F[3 * c + 1] = F[3 * c + 2] = 0.0;

@@ -15,7 +15,7 @@
 /* Each primitive's placement at the path point (the amplitude's variable x). */
 void contact_set_placement(contact_work *w, const bk_model *m, double x)
 {
-    const bk_contact_model *cm = m->contact;
+    const bk_contact_model *cm = w->cm;
     for (int i = 0; i < cm->nprim; ++i) {
         const bk_contact_prim *p = &cm->prims[i];
         int moves = 0;
@@ -37,7 +37,7 @@ static double sample_at(int k, int nsample, double *xi)
 
 int contact_sample_shapes(contact_work *w, const bk_model *m)
 {
-    const bk_contact_model *cm = m->contact;
+    const bk_contact_model *cm = w->cm;
     double N[BK_MAX_SHAPE], xi;
     long tot = 0;
     int p = 0;
@@ -117,7 +117,7 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
                        void (*element)(void *, point *, int), void *ctx)
 {
     const bk_model *m = s->m;
-    const bk_contact_model *cm = m->contact;
+    const bk_contact_model *cm = w->cm;
     double qe[BK_MAX_ELEMENT_DOF];
     point pt;
     pt.p = 0;

@@ -1,10 +1,19 @@
 /* interaction.h -- everything that adds to the force residual besides the
  * elements' internal forces, behind one interface: follower moments on
  * sections, loads with amplitudes, follower and distributed loads and tendons
- * (loads.c), and next contact.  The system holds the model's interactions in
- * a fixed order (interactions.c), made once by bk_system_create; the analyses
- * reach them only through the loops below, so a new interaction is a module
- * and a line in the table of interactions.c.
+ * (loads.c), contact with rigid primitives, contact between beams.  The
+ * system holds the model's interactions in a fixed order, made once by
+ * bk_system_create; the analyses reach them only through the loops below.
+ *
+ * An interaction is a module: a file of assembly/ that defines, at the start
+ * of a line,
+ *   const bk_interaction_module bk_interaction_NAME = {...};
+ * The build finds every such definition and makes the table of them
+ * (gen/solver_build.py interaction_table_source), so a new interaction is its
+ * module, the scene module that writes its record (gen/scene/, see
+ * gen/scene/interactions.py) and its tests: nothing else names it.  A module
+ * that reads a record of the model file (model/records.c) is made when the
+ * model has that record; make reads it (model/reader.h rd_open_record).
  *
  * An interaction gives:
  *   assemble    (required) its generalized forces at q on the path point p,
@@ -29,6 +38,9 @@
  *   frame       (optional) its part of ParaView frame number `frame` (time or
  *               load factor t) at q: files of its own in dir next to the
  *               frame's step_NNNNNN.vtu; 0, or -1 with a message on err.
+ *   uncounted_energy  1 when it stores energy that the dynamic energy balance
+ *               does not count (a contact barrier: a step too long for it
+ *               can create energy, which dynamics then warns of).
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -65,18 +77,39 @@ typedef struct bk_interaction_ops {
     int (*frame)(void *self, const struct bk_system *s, const char *dir, int frame, double t, const double *q,
                  FILE *err);
     const char *summary_key;
+    int uncounted_energy;            /* 1: it stores energy the energy balance does not count (a barrier) */
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
 } bk_interaction_ops;
+
+/* An interaction module: its operations; its place in every sum (ascending
+ * order; the built-in ones first); the name of the model record it reads, or
+ * NULL for one whose data the model has in its own records (then present
+ * says whether the model has any); make builds its data into *self (the
+ * record: NULL for a built-in one): 0, or -1 after one line to err (*self is
+ * freed through ops->free either way). */
+struct bk_model;
+struct bk_model_record;
+typedef struct bk_interaction_module {
+    const bk_interaction_ops *ops;
+    int order;
+    const char *record;
+    int (*present)(const struct bk_model *m);
+    int (*make)(struct bk_system *s, const struct bk_model_record *rec, void **self, FILE *err);
+} bk_interaction_module;
+
+/* The table of every module of assembly/ (generated at build time). */
+extern const bk_interaction_module *const bk_interaction_table[];
+extern const int bk_interaction_count;
 
 typedef struct bk_interaction {
     const bk_interaction_ops *ops;
     void *self;                      /* owned through ops->free (may be NULL) */
 } bk_interaction;
 
-/* The interactions the model has, in the table's order, into s->inter
- * (allocated here; s->ninter of them).  0, or -1 when out of memory. */
-int bk_interactions_create(struct bk_system *s);
+/* The interactions the model has, in the modules' order, into s->inter
+ * (allocated here; s->ninter of them).  0, or -1 after one line to err. */
+int bk_interactions_create(struct bk_system *s, FILE *err);
 void bk_interactions_free(struct bk_system *s);
 
 /* Every interaction's assemble, in order: subtracts their forces at (q, p)
@@ -91,6 +124,8 @@ int bk_interactions_prepare(struct bk_system *s, const double *q);
 double bk_interactions_step_limit(const struct bk_system *s, const double *q, const double *dx);
 /* Every interaction's frame (see frame above); 0, or -1 when one failed. */
 int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
+/* 1 when an interaction of s stores energy the energy balance does not count. */
+int bk_interactions_uncounted_energy(const struct bk_system *s);
 /* Every interaction's accept after an accepted state. */
 void bk_interactions_accept(const struct bk_system *s, const double *q, const bk_path *p);
 

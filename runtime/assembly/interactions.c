@@ -1,10 +1,11 @@
-/* interactions.c -- the table of interactions and the loops over them (see
- * interaction.h). */
+/* interactions.c -- the built-in interaction modules (follower moments, loads),
+ * the module of beam-to-beam contact, making the model's interactions in
+ * the modules' order, and the loops over them (see interaction.h). */
 #include "assembly/interaction.h"
 
 #include <stdlib.h>
+#include <string.h>
 
-#include "assembly/contact_force.h"
 #include "assembly/beam_contact.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
@@ -26,12 +27,15 @@ static int has_moments(const bk_model *m)
     return m->nmoment > 0;
 }
 
-static int make_follower(bk_system *s, void **self)
+static int make_follower(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
-    (void)s;
+    (void)s, (void)rec, (void)err;
     *self = NULL;                    /* no data of its own */
     return 0;
 }
+
+const bk_interaction_module bk_interaction_moments = {.ops = &follower_ops, .order = 10, .present = has_moments,
+                                                      .make = make_follower};
 
 /* ---- loads with amplitudes, follower and distributed loads, tendons (loads.c), at p->x ---- */
 
@@ -48,40 +52,78 @@ static void loads_free(void *self)
 
 static const bk_interaction_ops loads_ops = {.name = "loads", .assemble = loads_assemble, .free = loads_free};
 
-static int make_loads(bk_system *s, void **self)
+static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
+    (void)rec;
     *self = bk_loads_scratch_new(s->maxdof);     /* assembly without allocation */
+    if (!*self)
+        fprintf(err, "error: loads: out of memory\n");
     return *self ? 0 : -1;
 }
 
-/* The table: what each interaction is, whether the model has it, and how its
- * data is made (0, or -1 when out of memory).  The order is the order of
- * every sum. */
-static const struct {
-    const bk_interaction_ops *ops;
-    int (*present)(const bk_model *m);
-    int (*make)(bk_system *s, void **self);
-} table[] = {
-    {&follower_ops, has_moments, make_follower},
-    {&loads_ops, bk_loads_present, make_loads},
-    {&bk_contact_ops, bk_contact_present, bk_contact_make},
-    {&bk_beam_contact_ops, bk_beam_contact_present, bk_beam_contact_make},
-};
+const bk_interaction_module bk_interaction_loads = {.ops = &loads_ops, .order = 20, .present = bk_loads_present,
+                                                    .make = make_loads};
 
-int bk_interactions_create(bk_system *s)
+/* ---- contact between beams (beam_contact.c; its data is the model's own) ---- */
+
+static int make_beam_contact(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
-    const int n = (int)(sizeof table / sizeof table[0]);
-    s->inter = calloc((size_t)n, sizeof *s->inter);
+    (void)rec;
+    if (bk_beam_contact_make(s, self) == 0)
+        return 0;
+    fprintf(err, "error: beam contact: out of memory\n");
+    return -1;
+}
+
+const bk_interaction_module bk_interaction_beam_contact = {.ops = &bk_beam_contact_ops, .order = 40,
+                                                           .present = bk_beam_contact_present,
+                                                           .make = make_beam_contact};
+
+/* Whether the model has the module's interaction, and the record it reads. */
+static int module_present(const bk_interaction_module *im, const bk_model *m, const bk_model_record **rec)
+{
+    *rec = im->record ? bk_model_record_find(m, im->record) : NULL;
+    return im->record ? *rec != NULL : im->present(m);
+}
+
+int bk_interactions_create(bk_system *s, FILE *err)
+{
+    const int n = bk_interaction_count;
+    s->inter = calloc((size_t)(n > 0 ? n : 1), sizeof *s->inter);
     s->ninter = 0;
-    if (!s->inter)
+    if (!s->inter) {
+        fprintf(err, "error: out of memory while building the system of '%s'\n", s->m->name);
         return -1;
-    for (int k = 0; k < n; ++k) {
-        if (!table[k].present(s->m))
+    }
+    /* the modules in ascending order (a handful: by selection) */
+    int last = -2147483647 - 1;
+    for (int made = 0; made < n; ++made) {
+        const bk_interaction_module *next = NULL;
+        for (int k = 0; k < n; ++k)
+            if (bk_interaction_table[k]->order > last && (!next || bk_interaction_table[k]->order < next->order))
+                next = bk_interaction_table[k];
+        if (!next)
+            break;
+        last = next->order;
+        const bk_model_record *rec;
+        if (!module_present(next, s->m, &rec))
             continue;
-        void *self;
-        if (table[k].make(s, &self) != 0)
+        void *self = NULL;
+        const int r = next->make(s, rec, &self, err);
+        s->inter[s->ninter++] = (bk_interaction){next->ops, self};
+        if (r != 0)
             return -1;
-        s->inter[s->ninter++] = (bk_interaction){table[k].ops, self};
+    }
+    for (int i = 0; i < s->m->nrecord; ++i) {          /* a record no module reads: another beamkit's */
+        int known = 0;
+        for (int k = 0; k < n; ++k)
+            known |= bk_interaction_table[k]->record && strcmp(bk_interaction_table[k]->record,
+                                                               s->m->records[i].name) == 0;
+        if (!known) {
+            fprintf(err, "error: %s: no interaction module of this solver reads it (a model file of another "
+                    "beamkit version? rerun ./build.sh run)\n", s->m->records[i].where);
+            return -1;
+        }
     }
     return 0;
 }
@@ -139,4 +181,12 @@ int bk_interactions_frame(const bk_system *s, const char *dir, int frame, double
         if (s->inter[k].ops->frame)
             bad |= s->inter[k].ops->frame(s->inter[k].self, s, dir, frame, t, q, err) != 0;
     return bad ? -1 : 0;
+}
+
+int bk_interactions_uncounted_energy(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        any |= s->inter[k].ops->uncounted_energy;
+    return any;
 }

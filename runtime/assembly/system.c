@@ -429,8 +429,10 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
         if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
             goto oom;
     }
-    if (bk_interactions_create(s) != 0)
-        goto oom;
+    if (bk_interactions_create(s, err) != 0) {      /* (its message written) */
+        bk_system_free(s);
+        return NULL;
+    }
     return s;
 oom:
     fprintf(err, "error: out of memory while building the system of '%s'\n", m->name);

@@ -283,8 +283,8 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
         s->xi = rd_num(r, "sensor xi");
     }
     bk_model_read_extras(r, m);
-    bk_model_read_contacts(r, m);
     bk_model_read_beam_contacts(r, m);
+    bk_model_read_records(r, m);
     rd_expect(r, "end");
     free(r->buf);
     if (r->failed) {
@@ -298,7 +298,7 @@ void bk_model_free(bk_model *m)
 {
     if (!m)
         return;
-    bk_contact_model_free(m->contact);
+    bk_model_records_free(m);
     bk_beam_contact_model_free(m->beam_contact);
     free(m->q0);
     free(m->qd0);

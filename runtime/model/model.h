@@ -13,7 +13,15 @@
 #include "bk_kernel.h"
 #include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
 #include "model/beam_contact.h"
-#include "model/contact.h"
+
+/* An interaction module's record (model/records.c): its name, and its text,
+ * which the model keeps unread; the module reads it (model/reader.h
+ * rd_open_record) when the system makes the interaction. */
+typedef struct bk_model_record {
+    char name[32];
+    char *text;                /* owned: the tokens between "record NAME" and "end_record" */
+    char *where;               /* owned: "MODEL FILE, record NAME", for messages */
+} bk_model_record;
 
 typedef struct bk_elem {
     int pair;          /* index into model->pairs                          */
@@ -175,7 +183,6 @@ typedef struct bk_model {
     double gravity[3];
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
-    bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h); owned when read from a file */
     bk_beam_contact_model *beam_contact;   /* NULL: no beam touches a beam (beam_contact.h); owned likewise */
     int nsensor;
     bk_sensor *sensors;
@@ -194,7 +201,12 @@ typedef struct bk_model {
     bk_modal_opts modal;         /* (and of the buckling analysis: buckling.c) */
     double *qd0;                 /* [ndof] initial velocities (dynamic) */
     bk_output_opts output;
+    int nrecord;
+    bk_model_record *records;    /* the interaction modules' records, in the file's order */
 } bk_model;
+
+/* The record named `name`, or NULL when the model has none. */
+const bk_model_record *bk_model_record_find(const bk_model *m, const char *name);
 
 /* Reads a model file.  `avail` lists the kernel descriptors linked into this
  * solver.  On error returns NULL and writes one line to `err` naming the file

@@ -1,6 +1,8 @@
-/* reader.h -- the model file's tokens (private to model/): a reader holds the
- * whole file and reports the first error, naming the file, as one line; every
- * reading function does nothing once an error was reported. */
+/* reader.h -- the model file's tokens: a reader holds the whole file (or one
+ * interaction record of it, rd_open_record) and reports the first error,
+ * naming the file, as one line; every reading function does nothing once an
+ * error was reported.  model/ reads the file with it, and an interaction
+ * module (assembly/interaction.h) its own record. */
 #ifndef BK_READER_H
 #define BK_READER_H
 
@@ -37,7 +39,16 @@ void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what);
 /* The records after the header, by job (options.c, extras.c). */
 void bk_model_read_options(bk_reader *r, bk_model *m);
 void bk_model_read_extras(bk_reader *r, bk_model *m);
-void bk_model_read_contacts(bk_reader *r, bk_model *m);      /* contact_read.c */
+void bk_model_read_records(bk_reader *r, bk_model *m);       /* records.c */
+void bk_model_records_free(bk_model *m);
+
+/* A reader of the record rec's text (a copy, owned by r until
+ * rd_close_record); messages name the model file and the record.  0, or -1
+ * after one line to err. */
+int rd_open_record(bk_reader *r, const bk_model_record *rec, FILE *err);
+/* Ends reading a record: an error when tokens are left; frees r's text.  0, or
+ * -1 when reading failed (the message was written). */
+int rd_close_record(bk_reader *r);
 void bk_model_read_beam_contacts(bk_reader *r, bk_model *m); /* beam_contact_read.c */
 
 #endif

@@ -1,6 +1,7 @@
-/* contact.h -- the contact data of a model: rigid primitives and, per set, the
- * elements whose centrelines may touch one of them, with the barrier that
- * keeps them apart (read with the model; used by assembly/contact.c).
+/* contact_model.h -- the contact interaction's data: rigid primitives and, per
+ * set, the elements whose centrelines may touch one of them, with the barrier
+ * that keeps them apart (read from the model's record "contact",
+ * contact_read.c; used by contact_force.c).
  *
  * A set's elements are sampled at nsample points each: the ends and the
  * points between at equal steps, xi = k / (nsample - 1), with the weights of
@@ -23,6 +24,10 @@
  * energy stays a function of the slip, so the Jacobian is exact. */
 #ifndef BK_CONTACT_MODEL_H
 #define BK_CONTACT_MODEL_H
+
+#include <stdio.h>
+
+#include "model/model.h"
 
 enum bk_contact_shape {
     BK_CONTACT_HALF_SPACE = 0,       /* prm: unit normal n (out of the solid), offset d: solid where n.x < d */
@@ -69,7 +74,10 @@ typedef struct bk_contact_model {
     bk_contact_set *sets;
 } bk_contact_model;
 
-/* Frees a contact model read from a model file (model/contact_read.c). */
+/* The contact data of the model's record rec (contact_read.c), or NULL after
+ * one line to err. */
+bk_contact_model *bk_contact_model_read(const bk_model *m, const bk_model_record *rec, FILE *err);
+/* Frees what bk_contact_model_read returned (NULL: nothing). */
 void bk_contact_model_free(bk_contact_model *cm);
 
 #endif

@@ -1,5 +1,6 @@
-/* contact_read.c -- the contact records of the model file (model/contact.h),
- * written by gen/scene/contact.py:
+/* contact_read.c -- the contact interaction's record of the model file
+ * (assembly/contact_model.h), written by gen/scene/contact.py:
+ *   record contact
  *   contacts NPRIM NSET
  *   prim SHAPE p0 .. p14 MX MY MZ TX TY TZ OX OY OZ AMP BODY [X R0]
  *        (NPRIM times; enum bk_contact_shape, translation, rotation vector,
@@ -8,18 +9,15 @@
  *   cset PRIM REACH STIFFNESS MU_S MU_K SLIP SAMPLES N e r ..  (NSET times: N elements, radii) */
 #include <stdlib.h>
 
+#include "assembly/contact_model.h"
 #include "model/reader.h"
 
-void bk_model_read_contacts(bk_reader *r, bk_model *m)
+static void read_contacts(bk_reader *r, const bk_model *m, bk_contact_model *cm)
 {
     rd_expect(r, "contacts");
     int np = rd_inum(r, "contact primitives", 0, MAXN), ns = rd_inum(r, "contact sets", 0, MAXN);
-    if (r->failed || ns == 0)
+    if (r->failed)
         return;
-    bk_contact_model *cm = rd_xcalloc(r, 1, sizeof *cm);
-    if (!cm)
-        return;
-    m->contact = cm;
     cm->prims = rd_xcalloc(r, (size_t)np, sizeof *cm->prims);
     cm->sets = rd_xcalloc(r, (size_t)ns, sizeof *cm->sets);
     if (r->failed)
@@ -73,6 +71,21 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m)
                 rd_fail(r, "contact set %d: negative section radius %g", c, set->radius[i]);
         }
     }
+}
+
+bk_contact_model *bk_contact_model_read(const bk_model *m, const bk_model_record *rec, FILE *err)
+{
+    bk_reader r;
+    if (rd_open_record(&r, rec, err) != 0)
+        return NULL;
+    bk_contact_model *cm = rd_xcalloc(&r, 1, sizeof *cm);
+    if (cm)
+        read_contacts(&r, m, cm);
+    if (rd_close_record(&r) != 0) {
+        bk_contact_model_free(cm);
+        return NULL;
+    }
+    return cm;
 }
 
 void bk_contact_model_free(bk_contact_model *cm)
