@@ -181,4 +181,5 @@ def reference():
 
 def files(kernels_dir):
     """{path: text} of every file generated from the schema."""
-    return {Path(kernels_dir) / HEADER: header(), REFERENCE: reference()}
+    from gen.scene.interactions import files as interaction_files   # (the interaction tables' key reference)
+    return {Path(kernels_dir) / HEADER: header(), REFERENCE: reference(), **interaction_files()}

@@ -12,7 +12,16 @@ from util import ROOT
 
 def documented_keys():
     return _table_keys((ROOT / "README.md").read_text(), "### Scene reference") | \
-        _table_keys((ROOT / "docs" / "reference" / "options.md").read_text(), "# Analysis options")
+        _table_keys((ROOT / "docs" / "reference" / "options.md").read_text(), "# Analysis options") | \
+        _interaction_keys((ROOT / "docs" / "reference" / "interactions.md").read_text())
+
+
+def _interaction_keys(text):
+    """The keys of every table of docs/reference/interactions.md."""
+    out = set()
+    for part in text.split("\n## ")[1:]:
+        out |= _table_keys("## " + part + "\n\n", "## ")
+    return out
 
 
 def _table_keys(text, heading):

@@ -29,6 +29,45 @@ SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "ca
 KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
         "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
         "kinetic_friction", "size", "axes", "turn", "pivot", "body")
+# The reference of the keys (docs/reference/interactions.md): (keys, unit, default, meaning).
+DOC = (
+    (('shape',), '', 'required',
+     '`half_space`, `sphere`, `capsule` (a segment swept by a sphere) or `box`: a rigid primitive that the beams may touch ([docs/contact.md](docs/contact.md))'),
+    (('name',), '', '',
+     'a label'),
+    (('normal', 'point'), 'm', 'point [0, 0, 0]',
+     '`half_space`: its outward normal and a point of its surface (the solid is where (x − point)·normal < 0)'),
+    (('center', 'radius'), 'm', 'required',
+     '`sphere`: centre and radius; `capsule`: `.radius` of the swept sphere'),
+    (('a', 'b'), 'm', 'required',
+     '`capsule`: the ends of its segment (distinct)'),
+    (('size', 'axes'), 'm,', 'required, the global axes',
+     '`box` (with `.center`): its three edge lengths, and the directions of its first two edges `[[x axis], [y axis]]` (the third is their cross product)'),
+    (('turn', 'pivot'), 'rad, m', "0, the primitive's centre",
+     'a prescribed rotation (rotation vector) of the primitive about `.pivot`, times the load factor or the factor of `.amplitude`, after which `.motion` translates it'),
+    (('body',), '', 'none',
+     'the name of a `[[body]]` the primitive belongs to (given where it is in the reference configuration; it moves with the body, and its contact forces act on the body; no `.motion` or `.turn`)'),
+    (('beams',), '', 'every beam',
+     'names of the beams that may touch it'),
+    (('distance',), 'm', '1e-3 × the model length',
+     'reach ŝ of the barrier −(s − ŝ)² ln(s/ŝ): the distance s between a section and the primitive at which it starts to push'),
+    (('stiffness',), 'N/m per m', "1000 × the heaviest beam's weight per metre / reach",
+     'barrier stiffness κ (the energy of a stretch of beam of length w is κ w b(s))'),
+    (('samples',), '', '4',
+     'points per element at which contact is sought (the ends and the points between at equal steps); contact between them is not resolved'),
+    (('contact_radius',), 'm', "the section's",
+     "the swept section's radius: a circle's radius, a rectangle's half-height h/2 by default"),
+    (('friction',), '', '0',
+     'Coulomb coefficient μ (one for sticking and sliding)'),
+    (('static_friction', 'kinetic_friction'), '', '`friction`',
+     'μs and μk apart (0 ≤ μk ≤ μs; not with `friction`): μ passes from μs to μk between a slip of ε and 2ε since the anchor'),
+    (('motion',), 'm', '[0, 0, 0]',
+     'a prescribed translation of the primitive: times the load factor in statics, or the factor of `.amplitude`'),
+    (('amplitude',), '', 'the load factor',
+     'the history of `.motion` and `.turn` (required in dynamics when either is given): an `[amplitude.NAME]` or inline table'),
+    (('slip',), 'm', '1e-7 × the model length',
+     'slip tolerance ε: below it a point sticks (a spring of stiffness 2μN/ε about where it stuck, which stays put while it sticks), beyond it slides with μN'),
+)
 CODE = {"half_space": 0, "sphere": 1, "capsule": 2, "box": 3}
 GRAVITY = 9.81
 
@@ -228,4 +267,5 @@ def _lines(data, fmt):
 
 
 INTERACTION = Interaction(table="contact", keys=KEYS, record="contact", build=_build, lines=_lines, holds=True,
-                          order=30)
+                          order=30, doc=DOC,
+                          title="rigid primitives the beams may touch (docs/contact.md)")
