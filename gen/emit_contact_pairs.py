@@ -11,6 +11,7 @@ from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 GEN_DIR = Path(__file__).resolve().parent
 FILES = ("contact_pairs.py", "emit_contact_pairs.py")
 UNIT = "contact_pairs"
+RUNTIME_UNIT = True             # linked into every solver (gen/generate.py runtime_units)
 
 
 def paths():

@@ -41,10 +41,8 @@ def plan(elements=None, materials=None):
         units += [("shared", u, shared_paths()) for u in SHARED_UNITS]
     from gen.emit_body import UNITS as BODY_UNITS, paths as body_paths
     units += [("body", u, body_paths()) for u in BODY_UNITS]
-    from gen.emit_contact import UNIT as CONTACT_UNIT, paths as contact_paths
-    units.append(("contact", CONTACT_UNIT, contact_paths()))
-    from gen.emit_contact_pairs import UNIT as PAIRS_UNIT, paths as pairs_paths
-    units.append(("contact_pairs", PAIRS_UNIT, pairs_paths()))
+    for mod in runtime_units():
+        units.append(("runtime", mod.UNIT, mod.paths()))
     for ename, (elem, epath) in elements.items():
         fam = family_paths(elem)
         units.append(("element", ename, [epath] + fam))
@@ -52,6 +50,21 @@ def plan(elements=None, materials=None):
             if compatible(elem, mat):
                 units.append(("pair", f"{ename}_{mname}", [epath, mpath] + fam))
     return units
+
+
+_RUNTIME_UNIT = re.compile(r"^RUNTIME_UNIT = True", re.M)
+
+
+def runtime_units():
+    """The emitters of kernels that the runtime's own modules call (contact
+    gaps, segment distances, ...): every gen/emit_*.py with a line
+    `RUNTIME_UNIT = True`, sorted by name; each gives UNIT (the file name),
+    paths() (its inputs) and unit_source() (header and source text).  Every
+    solver links them, so a new one needs no edit here."""
+    import importlib
+    here = Path(__file__).resolve().parent
+    return [importlib.import_module(f"gen.{p.stem}") for p in sorted(here.glob("emit_*.py"))
+            if _RUNTIME_UNIT.search(p.read_text(encoding="utf-8"))]
 
 
 def compatible(elem, mat):
@@ -99,12 +112,8 @@ def produce(unit):
     elif kind == "body":
         from gen.emit_body import unit_source
         h, c = unit_source(name)
-    elif kind == "contact":
-        from gen.emit_contact import unit_source
-        h, c = unit_source()
-    elif kind == "contact_pairs":
-        from gen.emit_contact_pairs import unit_source
-        h, c = unit_source()
+    elif kind == "runtime":
+        h, c = next(m for m in runtime_units() if m.UNIT == name).unit_source()
     elif kind == "element":
         elem, epath = all_elements()[name]
         h, c = _emitter(elem).element_source(elem, epath)[:2]
@@ -154,7 +163,8 @@ def index_data(elements=None, materials=None):
         out["materials"][mname] = material_data(mat, mpath)
     from gen.emit_body import index_entries
     out["body"], out["joints"] = index_entries()
-    out["contact"] = {"files": ["contact.c", "contact_pairs.c"]}   # every solver links the contact kernels
+    # every solver links the kernels of the runtime's own modules (contact, ...)
+    out["runtime"] = {"files": [f"{m.UNIT}.c" for m in runtime_units()]}
     return out
 
 

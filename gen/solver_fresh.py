@@ -59,7 +59,7 @@ def kernel_files(pairs, index):
     for f in index.get("joints", {}).get("files", []):     # every solver binds the joint kernels
         if f not in files:
             files.append(f)
-    for f in index.get("contact", {}).get("files", []):    # and the contact kernels (assembly/contact_force.c)
+    for f in index.get("runtime", {}).get("files", []):    # and the runtime modules' kernels (contact, ...)
         if f not in files:
             files.append(f)
     return files
