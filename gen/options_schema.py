@@ -192,6 +192,10 @@ OPTIONS = (
     Opt("modal", "about", "choice", "reference", "`reference` or `static` (the static equilibrium under the "
         "loads); a buckling analysis writes `static` when it has preloads", record="modal",
         choices=("reference", "static")),
+    Opt("modal", "solver", "choice", "auto", "`dense` (every eigenpair of the constrained problem, up to 4,000 "
+        "free DOFs), `sparse` (the lowest `modes` by shift-invert Lanczos with the Newton solver's sparse "
+        "factorization; linear constraints of full rank, no element multipliers) or `auto` (dense up to 4,000 "
+        "free DOFs, sparse above)", record="modal", choices=("auto", "dense", "sparse")),
     Opt("buckling", "modes", "int", 4, "number of buckling factors and modes (at most 64), those of least "
         "magnitude (written as the modal record's `modes` of a buckling analysis)", lo=1, hi=64, checked=False),
 )

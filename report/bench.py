@@ -11,7 +11,8 @@
     quadrature loop (bench/plain.c);
   * contact: a 1,000-element rod on the ground against the same rod without
     contact (cost per Newton iteration, the contact's share), the gripper's
-    wall time per simulated second (report/bench_contact.py);
+    wall time per simulated second (report/bench_contact.py); the sparse modal
+    solve of a 10,000-element beam (report/bench_modal.py);
   * scaling: time per Newton iteration and peak memory for 10 ... 100,000
     elements, fitted exponent;
   * toolchain: regeneration time per kernel, per-scene solver compile time and size.
@@ -41,6 +42,7 @@ from report.bench_markdown import bench_markdown  # noqa: E402
 from report.bench_pareto import pareto, plot_wp  # noqa: E402
 from report.bench_runs import OUT, WORK  # noqa: E402
 from report import bench_contact  # noqa: E402
+from report import bench_modal  # noqa: E402
 from report.bench_scaling import plot_scaling, scaling  # noqa: E402
 from report.bench_statics import statics  # noqa: E402
 from report.bench_toolchain import toolchain  # noqa: E402
@@ -88,6 +90,8 @@ def main(argv):
     srows = scaling(quick, log)
     log(" contact")
     crows, grip = bench_contact.contact_cost(quick, log), bench_contact.gripper_wall(log)
+    log(" sparse modes")
+    modal_row = bench_modal.sparse_modes(quick, log)
     log(" toolchain")
     tc = toolchain(quick, log)
     log(" targets around the solve")
@@ -123,6 +127,7 @@ def main(argv):
     L = bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, problems, pngs, srows, tc, targets,
                        t_all)
     L += [""] + bench_contact.markdown(crows, grip)
+    L += bench_modal.markdown(modal_row)
     (OUT / "bench.md").write_text("\n".join(L))
     log(f" wrote {OUT / 'bench.md'}")
     print(f"bench: {OUT / 'bench.md'} ({time.time() - t_all:.0f} s)")

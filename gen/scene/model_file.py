@@ -35,7 +35,12 @@ def _option_records(model):
         for o in S.record_fields(rec):
             values = model if o.table in ("scene", "output") else model[o.table]
             rule = S.RECORD_VALUE_RULES.get(o.name)
-            v = rule(values) if rule else values[o.key]
+            if rule:
+                v = rule(values)
+            elif o.key not in values and not callable(o.default) and o.default is not S.REQUIRED:
+                v = o.default          # a record another analysis writes in part (buckling: modal)
+            else:
+                v = values[o.key]
             if o.type == "float":
                 v = float(v)
             elif o.type == "bool":

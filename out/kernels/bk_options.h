@@ -14,6 +14,7 @@ enum bk_method { BK_METHOD_LOAD_CONTROL = 0, BK_METHOD_ARC_LENGTH = 1 };   /* st
 enum bk_arc_constraint { BK_ARC_CONSTRAINT_CYLINDRICAL = 0, BK_ARC_CONSTRAINT_SPHERICAL = 1 };   /* static.arc_constraint */
 enum bk_jacobian { BK_JACOBIAN_REUSE = 0, BK_JACOBIAN_EVERY_ITERATION = 1 };   /* dynamic.jacobian */
 enum bk_about { BK_ABOUT_REFERENCE = 0, BK_ABOUT_STATIC = 1 };   /* modal.about */
+enum bk_solver { BK_SOLVER_AUTO = 0, BK_SOLVER_DENSE = 1, BK_SOLVER_SPARSE = 2 };   /* modal.solver */
 
 /* scene.analysis: the name of an analysis and what its states form a path in
  * (gen/options_schema.py ANALYSIS_PATHS). */
@@ -81,6 +82,7 @@ typedef struct bk_dynamic_opts {
 typedef struct bk_modal_opts {
     int modes;                      /* modal.modes */
     int about;                      /* modal.about: enum bk_about */
+    int solver;                     /* modal.solver: enum bk_solver */
 } bk_modal_opts;
 
 typedef struct bk_output_opts {
@@ -131,6 +133,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
     X("dynamic", "output_every", BK_OPT_INT, dyn.output_every, 1.0, 0, 1000000000.0, NULL) \
     X("output", "vtk_every", BK_OPT_INT, output.vtk_every, 0.0, 0, 1000000000.0, NULL) \
     X("modal", "modes", BK_OPT_INT, modal.modes, 1.0, 0, 100000.0, NULL) \
-    X("modal", "about", BK_OPT_CHOICE, modal.about, 0.0, 0, 1.0, "reference static")
+    X("modal", "about", BK_OPT_CHOICE, modal.about, 0.0, 0, 1.0, "reference static") \
+    X("modal", "solver", BK_OPT_CHOICE, modal.solver, 0.0, 0, 2.0, "auto dense sparse")
 
 #endif

@@ -9,7 +9,10 @@
  * solved with GSL (gsl_eigen_gensymmv); omega^2 = 1/mu - sigma.  The shift
  * sigma makes the right-hand matrix definite for free structures (rigid modes
  * have omega = 0) and massless directions (quaternion scale) give mu = 0, i.e.
- * infinite frequency, and are dropped.  Dense: meant for small models.
+ * infinite frequency, and are dropped.  Dense: meant for small models; above
+ * BK_MODAL_MAXDOF free DOFs (or with modal.solver = "sparse") the lowest modes
+ * come from shift-invert Lanczos on the sparse Newton matrix instead
+ * (modal_sparse.c).
  *
  * Output: the state the modes are about goes to sensors.csv and step_*.vtu (the
  * static load steps, or the reference as step 0); each mode to modes.csv,
@@ -72,6 +75,49 @@ static void k_add(void *ctx, int i, int j, double v)
 /* The frequencies summary.json lists (every mode is in modes.csv). */
 #define BK_SUMMARY_FREQUENCIES 64
 
+/* Writes mode number k (from 1) of angular frequency omega, its vector x on
+ * the free DOFs (equation order), through shape[ndof] (scratch). */
+static void put_mode(const bk_system *s, bk_output *out, const double *q, int k, double omega, const double *x,
+                     double *shape, double *freqs, int *nfreq)
+{
+    for (int i = 0; i < s->m->ndof; ++i)
+        shape[i] = s->eq[i] >= 0 ? x[s->eq[i]] : 0.0;     /* fixed DOFs 0; bk_output_mode normalizes */
+    const double vals[2] = {omega / (2.0 * M_PI), omega};
+    bk_output_mode(out, k, vals, q, shape);
+    if (*nfreq < BK_SUMMARY_FREQUENCIES)
+        freqs[(*nfreq)++] = omega / (2.0 * M_PI);
+}
+
+static const char *const mode_values[] = {"frequency_hz", "omega"};
+
+/* The sparse path (modal_sparse.c) and its outputs. */
+static int modal_sparse(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, double *freqs,
+                        int *nfreq)
+{
+    const int n = s->nfree, want = s->m->modal.modes;
+    double *om = malloc((size_t)want * sizeof *om), *X = malloc((size_t)want * (size_t)n * sizeof *X);
+    double *shape = malloc((size_t)s->m->ndof * sizeof *shape);
+    int got = 0, steps = 0, rc = 1;
+    if (!om || !X || !shape)
+        snprintf(info->message, sizeof info->message, "out of memory for %d modes of %d free DOFs", want, n);
+    else if (bk_modal_sparse(s, q, want, om, X, &got, &steps, info->message, sizeof info->message) == 0 &&
+             bk_output_modes_begin(out, 2, mode_values, info->message, sizeof info->message) == 0) {
+        for (int k = 0; k < got; ++k)
+            put_mode(s, out, q, k + 1, om[k], X + (size_t)k * (size_t)n, shape, freqs, nfreq);
+        info->steps = got;
+        if (got < want)
+            bk_warn(info, log, s->m->name, "only %d of the %d modes asked for converged (sparse modal solver)", got,
+                    want);
+        if (log)
+            fprintf(log, "  %d modes (%d free DOFs, %d constraints; sparse: %d shift-invert Lanczos steps)\n", got,
+                    n, s->ncon, steps);
+        rc = 0;
+    }
+    info->converged = rc == 0;
+    free(om), free(X), free(shape);
+    return rc;
+}
+
 static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, double *freqs, int *nfreq)
 {
     const bk_model *m = s->m;
@@ -84,9 +130,11 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         snprintf(info->message, sizeof info->message, "every DOF is fixed: no modes");
         return 1;
     }
-    if (n > BK_MODAL_MAXDOF) {
-        snprintf(info->message, sizeof info->message,
-                 "modal analysis is dense and limited to %d free DOFs; this model has %d", BK_MODAL_MAXDOF, n);
+    const int sparse = m->modal.solver == BK_SOLVER_SPARSE || (m->modal.solver == BK_SOLVER_AUTO &&
+                                                                 n > BK_MODAL_MAXDOF);
+    if (n > BK_MODAL_MAXDOF && !sparse) {
+        snprintf(info->message, sizeof info->message, "the dense modal solver is limited to %d free DOFs; this "
+                 "model has %d (modal.solver = \"sparse\" or \"auto\")", BK_MODAL_MAXDOF, n);
         return 1;
     }
     for (int e = 0; e < m->nelem; ++e) {
@@ -120,6 +168,8 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         memcpy(q, m->q0, (size_t)m->ndof * sizeof *q);
         bk_output_step(out, 0, 0.0, q);
     }
+    if (sparse)
+        return modal_sparse(s, q, out, info, log, freqs, nfreq);
     int md = s->maxdof;
     K = gsl_matrix_calloc((size_t)n, (size_t)n);
     M = gsl_matrix_calloc((size_t)n, (size_t)n);
@@ -262,9 +312,11 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
-    static const char *const names[] = {"frequency_hz", "omega"};
-    if (bk_output_modes_begin(out, 2, names, info->message, sizeof info->message) != 0) {
-        free(shape);
+    double *x = calloc((size_t)n, sizeof *x);
+    if (!x || bk_output_modes_begin(out, 2, mode_values, info->message, sizeof info->message) != 0) {
+        if (!x)
+            snprintf(info->message, sizeof info->message, "out of memory");
+        free(shape), free(x);
         goto done;
     }
     for (int k = 0; k < nz && got < want; ++k) {
@@ -273,27 +325,18 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
             break;                              /* massless directions: infinite frequency */
         double w2 = 1.0 / muk - sigma;
         double omega = w2 > 0.0 ? sqrt(w2) : 0.0;
-        /* mode vector on all DOFs (fixed DOFs 0); bk_output_mode normalizes and scales it */
-        memset(shape, 0, (size_t)m->ndof * sizeof *shape);
-        for (int i = 0; i < m->ndof; ++i) {
-            int j = s->eq[i];
-            if (j < 0)
-                continue;
+        for (int j = 0; j < n; ++j) {          /* the mode on the free DOFs */
             double v = 0.0;
             if (Z)
                 for (int c = 0; c < nz; ++c)
                     v += gsl_matrix_get(Z, j, c) * gsl_matrix_get(V, c, k);
             else
                 v = gsl_matrix_get(V, j, k);
-            shape[i] = v;
+            x[j] = v;
         }
-        got++;
-        const double vals[2] = {omega / (2.0 * M_PI), omega};
-        bk_output_mode(out, got, vals, q, shape);
-        if (*nfreq < BK_SUMMARY_FREQUENCIES)
-            freqs[(*nfreq)++] = omega / (2.0 * M_PI);
+        put_mode(s, out, q, ++got, omega, x, shape, freqs, nfreq);
     }
-    free(shape);
+    free(shape), free(x);
     info->steps = got;
     if (log)
         fprintf(log, "  %d modes (%d free DOFs, %d constraints of rank %d)\n", got, n, nc, r);

@@ -12,4 +12,12 @@
  * holds the linearization state on return.  Returns 0 on success. */
 int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
 
+/* The lowest `want` modes at the state q by shift-invert Lanczos on the sparse
+ * Newton matrix (modal_sparse.c): omega[want] (out, rad/s, ascending),
+ * X[want nfree] (out, row k the k-th mode on the free DOFs), *got (out) how
+ * many converged, *steps (out) the Lanczos steps.  0, or 1 with a message in
+ * msg[nmsg]. */
+int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, double *X, int *got, int *steps,
+                    char *msg, size_t nmsg);
+
 #endif
