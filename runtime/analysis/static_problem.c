@@ -349,7 +349,7 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         return 1;
     }
     if (o->stability) {
-        if (bk_stability_init(&R->stab, s, bk_lin_band(&R->nl.ls)) != 0) {
+        if (bk_stability_init(&R->stab, s, &R->nl.ls) != 0) {
             snprintf(info->message, sizeof info->message, "out of memory (stability analysis)");
             return 1;
         }

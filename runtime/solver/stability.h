@@ -9,8 +9,9 @@
  *                        Kirchhoff beams)
  * with m multiplier unknowns.  Its symmetric part, regularized with -delta_i on
  * the multiplier diagonals (delta_i = 1e-8 |b_i|^2 / kmax), is factored as
- * L D L^T (SuiteSparse LDL) with the multipliers eliminated first and AMD
- * ordering for the rest.  Eliminating the multipliers first leaves K + B^T
+ * L D L^T (the symmetric solver object, linalg/symsolve.h: a band, or
+ * SuiteSparse LDL with the multipliers eliminated first and AMD ordering for
+ * the rest).  Eliminating the multipliers first leaves K + B^T
  * delta^-1 B, so by Sylvester's law of inertia
  *     negative pivots of D = m + negative eigenvalues of (K + B^T delta^-1 B),
  * and for small delta the latter are the negative eigenvalues of K on the
@@ -24,25 +25,23 @@
  * The critical load between two equilibria with different counts is found by
  * bisection on the inertia of the linearly interpolated matrix.
  *
- * Storage: for a narrow band (beams, in the band LU's order) three band
- * copies, the matrix now, at the last accepted equilibrium and the factor;
- * otherwise the symmetric pattern and SuiteSparse LDL's arrays.  The matrix
- * now and the factor are the scratch of a check (and of the crossing search
- * and the acceptance that follow it): when the Newton solver's band LU
- * storage holds both, they are placed there (borrowed), so that a check
- * touches no fresh memory but the accepted matrix; a check then overwrites
- * the band LU's factors, which the static solver never keeps across a check
- * (it factors every Newton matrix it makes: nonlinear.h opts.reuse = 0).
+ * Storage: the symmetric solver object (linalg/symsolve.h) holds the
+ * matrix now and the factor (for a narrow band in the Newton solver's band LU
+ * storage, borrowed, so that a check touches no fresh memory but the
+ * accepted matrix; a check then makes the band LU factor from scratch next
+ * time, which the static solver does anyway: it factors every Newton matrix
+ * it makes, nonlinear.h opts.reuse = 0); the checker keeps the values at the
+ * last accepted check.
  *
- * Ownership: the checker owns every array it allocates (bk_stability_free);
- * it keeps a pointer to the system, which must outlive it, and borrows the
- * band LU's storage, which must outlive it too.  No allocation after
- * bk_stability_init.
+ * Ownership: the checker owns every array it allocates and its symmetric
+ * solver (bk_stability_free); it keeps a pointer to the system, which must
+ * outlive it, and the symmetric solver borrows the linear solver's storage,
+ * which must outlive it too.  No allocation after bk_stability_init.
  */
 #ifndef BK_STABILITY_H
 #define BK_STABILITY_H
 
-#include "linalg/bandlu.h"
+#include "linalg/symsolve.h"
 #include "assembly/system.h"
 
 typedef struct bk_stability {
@@ -50,19 +49,9 @@ typedef struct bk_stability {
     double t_spent;                 /* wall time in this analysis so far (s; set-up, checks, crossings) */
     int n, nmult;
     char *ismult;                   /* [n] 1 for multiplier unknowns           */
-    int use_band;                   /* 1: band LDL^T (bandlu.h), 0: SuiteSparse LDL with AMD */
-    bk_band *lender;                /* NULL, or the band LU whose storage holds bnow and band.ab */
-    int have_prev;                  /* a check was accepted (the *prev values) */
-    /* band: the symmetric part in band layout, now and at the last accepted check */
-    bk_bandsym band;
-    double *bnow, *bprev;           /* [band.ldab n] */
-    /* sparse LDL^T: the symmetric pattern with every diagonal, and for each
-     * entry the positions of (i,j) and (j,i) in the system's values */
-    int *Bp, *Bi;
-    int *src, *srct;                /* [nnz] index into the system's Ax, -1: none */
-    double *Bx, *Bprev, *Bnow;      /* values now, at the last accepted check, copy */
-    int *Lp, *Parent, *Lnz, *Flag, *Pattern, *P, *Pinv, *Li;
-    double *Lx, *D, *Y;
+    int have_prev;                  /* a check was accepted (prev holds its values) */
+    bk_symsolver sym;               /* L D L^T of the symmetric part: inertia, solves, products */
+    double *prev;                   /* [sym.nval] the values at the last accepted check */
     /* eigenvalue iterations (static.eigenvalues) */
     double *x, *y, *z;              /* iteration vectors                        */
     double *dcross;                 /* [2 n] the pivots at the ends of the crossing's bracket */
@@ -81,12 +70,12 @@ typedef struct bk_stability_result {
     int ok;                         /* 0: the factorization broke down (zero pivot)         */
 } bk_stability_result;
 
-/* lu: the Newton solver's band LU plan of the system's pattern
- * (bk_linsolver.band: its order and half bandwidths serve the band LDL^T and
- * save its own reverse Cuthill-McKee search; its storage is borrowed as the
- * checks' scratch), or NULL (a plan of another pattern counts as NULL).
- * Returns 0, or -1 when out of memory. */
-int bk_stability_init(bk_stability *st, const bk_system *s, bk_band *lu);
+/* ls: the Newton solver's linear solver object of the system's pattern (a
+ * band LU plan's order and half bandwidths serve the band L D L^T and save
+ * its own reverse Cuthill-McKee search; its storage is borrowed as the
+ * checks' scratch: symsolve.h), or NULL.  Returns 0, or -1 when out of
+ * memory. */
+int bk_stability_init(bk_stability *st, const bk_system *s, bk_linsolver *ls);
 /* Analyses the Newton matrix with values Ax (as assembled by newton.c).
  * Overwrites the band LU's factors (see Storage). */
 void bk_stability_check(bk_stability *st, const double *Ax, bk_stability_result *res);
