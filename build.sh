@@ -27,6 +27,16 @@ PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-sci
 EX_USAGE=64
 
 usage() {
+    # (the same text as `beamkit --help`, bin/beamkit, with its own name)
+    if [ "${BK_PROG:-}" = beamkit ]; then
+        usage_text | sed -e 's|^usage: \./build\.sh \[COMMAND\]|usage: beamkit COMMAND|' \
+                         -e 's|^  (none)   |  setup    |' -e 's|\./build\.sh|beamkit|g'
+    else
+        usage_text
+    fi
+}
+
+usage_text() {
     cat <<'EOF'
 usage: ./build.sh [COMMAND] [ARGS...]
 
@@ -96,6 +106,9 @@ Commands:
   --help                 this text
 
 Results of a run: out/runs/SCENE/summary.json and sensors.csv (see README.md).
+From any directory: bin/beamkit COMMAND ... is ./build.sh COMMAND ... (put the
+repository's bin/ on PATH to type `beamkit`; it runs /usr/bin/python3 whatever
+python3 comes first on PATH).
 Relative paths (SCENE files, --out DIR, RUN_DIR) are taken from the directory
 you call build.sh from.
 
@@ -140,6 +153,10 @@ case "$cmd" in
         install_deps
         "$PY" -m gen.cli gen
         "$PY" -m gen.cli run "$DEFAULT_SCENE"
+        case ":$PATH:" in
+            *":$ROOT/bin:"*) ;;
+            *) echo "tip: export PATH=\"$ROOT/bin:\$PATH\" to run 'beamkit COMMAND' from anywhere" >&2 ;;
+        esac
         ;;
     -h|--help|help)
         usage
@@ -211,7 +228,7 @@ case "$cmd" in
         exec "$PY" -m report.bench "$@"
         ;;
     *)
-        echo "error: unknown command '$cmd' (./build.sh --help lists the commands)" >&2
+        echo "error: unknown command '$cmd' (${BK_PROG:-./build.sh} --help lists the commands)" >&2
         exit $EX_USAGE
         ;;
 esac
