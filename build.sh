@@ -88,6 +88,12 @@ Commands:
                          (the last ParaView frame drawn in 3-D) and path.png
                          (arc-length runs: load factor against displacement,
                          critical points marked)
+  animate RUN_DIR [options]  the run's ParaView frames as a video drawn offscreen:
+                         RUN_DIR/animation.mp4 (ffmpeg, installed when missing),
+                         coloured by a field, the sensors' paths, a scale bar,
+                         scene name and time.  --field NAME (default
+                         displacement; e.g. strain_energy_density), --gif,
+                         --fps N (default 10), --out FILE
   scenes                 list the scenes in models/
   report [--quick]       the seed cantilever tables beside the paper's, the
                          verification matrix (continuum elements x laws x
@@ -210,6 +216,14 @@ case "$cmd" in
     plot)
         shift
         exec "$PY" -m report.plot "$@"
+        ;;
+    animate)
+        shift
+        case " $* " in
+            *" --gif "*|*" -h "*|*" --help "*) ;;
+            *) PACKAGES=(ffmpeg); install_deps ;;      # (MP4: only this command needs it)
+        esac
+        exec "$PY" -m report.animate "$@"
         ;;
     hard)
         shift
