@@ -223,6 +223,10 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
     length = float(model0["length_scale"])
     cache = {}
     log = []
+    if max_nfev < len(keys) + 2:
+        raise BeamkitError(f"error: fit: --max-runs {max_nfev} is too small: {len(keys)} parameters need at least "
+                           f"{len(keys) + 2} runs (the start, one per parameter for the Jacobian, one step)")
+    last_jac, u_of = {}, {}
 
     def phys(u):
         return lo + np.clip(u, 0.0, 1.0) * rng
@@ -238,6 +242,9 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
             tkey = tuple(set_strings(p))
             if tkey not in cache and tkey not in [w[0] for w in want]:
                 want.append((tkey, p))
+                u_of[f"evals/{run_id(sc, p)}"] = np.array(u, dtype=float)
+        if len(log) + len(want) > max_nfev:
+            raise _Budget()               # --max-runs counts solver runs, the Jacobian's included
         futs = [(tkey, p, cl.submit(history, sc, p, str(evals / run_id(sc, p)), sensor, threads, pure=False))
                 for tkey, p in want]
         for tkey, p, f in futs:
@@ -262,11 +269,15 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
             res = evaluate(cl, pts)
             J = np.column_stack([(res[i + 1] - res[0]) / hs[i] for i in range(len(u))])
             identifiable(J, hs, keys, length, d.count)
+            last_jac["J"] = J
             return J
 
         u0 = (np.array([start[k] for k in keys]) - lo) / rng
-        r = least_squares(fun, u0, jac=jac, bounds=(0.0, 1.0), method="trf", x_scale=1.0,
-                          max_nfev=max_nfev, xtol=1e-6, ftol=1e-8, gtol=1e-8)
+        try:
+            r = least_squares(fun, u0, jac=jac, bounds=(0.0, 1.0), method="trf", x_scale=1.0,
+                              max_nfev=max_nfev, xtol=1e-6, ftol=1e-8, gtol=1e-8)
+        except _Budget:
+            r = _budget_result(log, u_of, last_jac["J"], max_nfev)
     u = r.x
     vals = params_of(u)
     resid = fun_cached(cache, vals)
@@ -295,6 +306,19 @@ def fit(scene, data, params, sensor=None, sets=None, out=None, scheduler=None, w
     if plot:
         res.plot = plot_fit(res, sc)
     return res
+
+
+class _Budget(Exception):
+    """The next evaluation would pass --max-runs."""
+
+
+def _budget_result(log, u_of, J, max_runs):
+    """least_squares' result fields for a fit stopped by the run budget: the best
+    run so far, the last Jacobian (of a nearby point), status 0 (not converged)."""
+    from types import SimpleNamespace
+    best = min(log, key=lambda e: e["cost"])
+    return SimpleNamespace(x=u_of[best["dir"]], jac=J, status=0, message=f"the run budget (--max-runs {max_runs}) was used up "
+                           "before the optimizer converged; the best run so far is reported")
 
 
 def fun_cached(cache, vals):

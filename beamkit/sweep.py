@@ -282,7 +282,7 @@ def sweep(scene, grid=None, random=None, samples=None, seed=0, sets=None, out=No
                 raise
     rows = _write(out, combos, ids, records, keys, outputs)
     t_plots = time.monotonic()
-    plots = plot_sweep(out, rows, keys, plot or outputs[0]) if rows else []
+    plots = plot_sweep(out, rows, keys, plot or outputs[0], scene=name) if rows else []
     res = SweepResult(rows, keys, outputs, out, out / "sweep.csv", plots, reused, time.monotonic() - t0)
     res.timing = {"setup_s": t_runs - t0, "runs_s": t_plots - t_runs, "plots_s": time.monotonic() - t_plots}
     return res
@@ -341,9 +341,35 @@ def _num(v):
         return None
 
 
-def plot_sweep(out, rows, keys, output):
+_UNITS = {"E": "Pa", "G": "Pa", "mu": "Pa", "lambda": "Pa", "c10": "Pa", "c01": "Pa", "kappa": "Pa",
+          "lambda_m": "", "nu": "", "rho": "kg/m³", "EA": "N", "GA1": "N", "GA2": "N", "GJ": "N m²", "EI1": "N m²",
+          "EI2": "N m²", "b": "m", "h": "m", "radius": "m", "start": "m", "end": "m", "tension": "N",
+          "pressure": "Pa", "area": "m²", "offset": "m", "value": "N or N m", "elements": "",
+          "ux": "m", "uy": "m", "uz": "m", "x": "m", "y": "m", "z": "m", "strain_energy": "J", "wall_s": "s",
+          "steps": "", "newton_iterations": "", "frequency": "Hz"}
+
+
+def unit_of(key):
+    """The unit of a scene key or a sweep output ('' when it has none or is not known)."""
+    from gen.options_schema import OPTIONS
+    for o in OPTIONS:
+        if o.name == key:
+            return o.unit
+    parts = key.split(".")
+    if parts[0] == "frequency":
+        return "Hz"
+    return _UNITS.get(parts[-1], _UNITS.get(parts[0], ""))
+
+
+def _with_unit(key):
+    u = unit_of(key)
+    return f"{key} ({u})" if u else key
+
+
+def plot_sweep(out, rows, keys, output, scene=""):
     """sweep_KEY.png: `output` against each swept key, one line per combination
-    of the other keys (points only for random draws)."""
+    of the other keys (points only for random draws); units on the axes, the
+    scene's name in the title."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -372,9 +398,10 @@ def plot_sweep(out, rows, keys, output):
         else:
             ax.set_xticks(range(len(cats)), cats)
         nfail = sum(not r["converged"] for r in rows)
-        ax.set_xlabel(k)
-        ax.set_ylabel(output)
-        ax.set_title(f"{output} against {k}" + (f" ({nfail} failed runs not drawn)" if nfail else ""), fontsize=10)
+        ax.set_xlabel(_with_unit(k))
+        ax.set_ylabel(_with_unit(output))
+        ax.set_title((f"{scene}: " if scene else "") + f"{output} against {k}" +
+                     (f" ({nfail} failed runs not drawn)" if nfail else ""), fontsize=10)
         if 1 < len(groups) <= 12:
             ax.legend(fontsize=7)
         ax.grid(alpha=0.3)

@@ -104,11 +104,19 @@ def fig_sensors(run, summary, length):
     if summary["analysis"] in ("modal", "buckling"):
         what += " on the load path of the static state"
     fig, ax = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    # a static run of one increment has two states, the reference and the end:
+    # drawn as two points, not as a line that would suggest a path between them
+    one = summary["analysis"] != "dynamic" and len({r["step"] for r in rows}) <= 2
     for n in names:
         r = [x for x in rows if x["sensor"] == n]
         t = [float(x["time"]) for x in r]
         for k, c in enumerate(("ux", "uy", "uz")):
-            ax[k].plot(t, [float(x[c]) for x in r], marker="." if len(r) < 60 else None, lw=1, label=n)
+            ax[k].plot(t, [float(x[c]) for x in r], marker="o" if one else "." if len(r) < 60 else None,
+                       lw=0 if one else 1, label=n)
+    if one:
+        ax[0].text(0.5, 0.97, "one load increment: the reference and the final state only (no path between; "
+                   "more static.load_steps draw it)", transform=ax[0].transAxes, ha="center", va="top",
+                   fontsize=7, color="0.3", gid="one_increment")
     for k, c in enumerate(("ux", "uy", "uz")):
         ax[k].set_ylabel(f"{c} (m)")
         ax[k].grid(True, lw=0.3)

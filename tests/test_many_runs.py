@@ -219,6 +219,21 @@ def test_fit_recovers_synthetic_parameters_within_three_standard_errors():
     assert not res.at_bound and res.success
 
 
+def test_fit_honours_max_runs_exactly():
+    """--max-runs counts solver runs, the Jacobian's included (10 used to make 18):
+    a budget the fit reaches stops it with the best run so far, not converged; a
+    budget below what one step needs is refused before any run."""
+    true = {"material.rod.E": 3e7, "dynamic.rayleigh_alpha": 0.5}
+    sc, path = pendulum_data(true, sigma=2e-3)
+    ps = {"material.rod.E": (1e7, 1e8, 2e7), "dynamic.rayleigh_alpha": (0.0, 2.0, 0.2)}
+    res = fit(sc, path, ps, workers=2, out=tmpdir("fitb"), progress=False, max_nfev=7, plot=False)
+    runs = json.loads((res.dir / "fit.json").read_text())["runs"]
+    assert res.nfev == len(runs) <= 7 and not res.success and "--max-runs 7" in res.status
+    assert abs(res.cost - min(r["cost"] for r in runs)) <= 1e-12 * res.cost
+    with pytest.raises(BeamkitError, match=r"--max-runs 3 is too small: 2 parameters need at least 4 runs"):
+        fit(sc, path, ps, workers=1, out=tmpdir("fitc3"), progress=False, max_nfev=3)
+
+
 def test_fit_refuses_parameters_the_data_cannot_identify():
     sc, path = pendulum_data({"material.rod.E": 3e7}, sigma=1e-3)
     # under gravity alone only E / rho matters

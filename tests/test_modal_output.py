@@ -256,3 +256,28 @@ def test_plot_marks_failed_and_interrupted_runs():
     assert status_note({"analysis": "dynamic", "interrupted": True, "time": 0.125, "converged": False}) == \
         "interrupted at t = 0.125 s"
     assert status_note({"analysis": "dynamic", "converged": True}) is None
+
+
+def test_one_increment_static_run_is_drawn_as_two_states_and_says_so():
+    """A static run of one load increment: sensors.png draws the reference and the
+    final state as points (no line suggesting a path between) and says why."""
+    from report.plot import figures
+    import matplotlib.pyplot as plt
+    out = fresh()
+    r = run_cli(["run", "cantilever_bend_100N", "--quiet", "--out", str(out), "--set", "static.load_steps=1",
+                 "--set", "static.step_control=fixed"])
+    assert r.returncode == 0, r.stderr
+    assert len({x["step"] for x in csv_rows(out / "sensors.csv")}) == 2
+    fig = figures(out)["sensors.png"]
+    for ax in fig.axes:
+        for line in ax.get_lines():
+            assert line.get_linewidth() == 0 and line.get_marker() == "o"
+    assert [t for t in fig.axes[0].texts if t.get_gid() == "one_increment"]
+    plt.close(fig)
+
+
+def test_sweep_axes_carry_units():
+    from beamkit.sweep import _with_unit, unit_of
+    assert unit_of("material.alu.E") == "Pa" and unit_of("dynamic.dt") == "s" and unit_of("tip.uz") == "m"
+    assert unit_of("frequency.1") == "Hz" and unit_of("beam.arm.elements") == "" and unit_of("material.a.rho") == "kg/m³"
+    assert _with_unit("section.s.b") == "section.s.b (m)" and _with_unit("newton_iterations") == "newton_iterations"
