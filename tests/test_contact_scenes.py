@@ -339,3 +339,32 @@ def test_capstan_holds_above_ten_e_to_the_minus_mu_theta_and_slides_below():
     assert len(after) > 10 and max(after) - min(after) < 1e-6, (min(after), max(after))
     r = run_cli(["run", str(_capstan_held(3.8)), "--quiet", "--out", str(out_dir())])
     assert r.returncode == 2 and "static solve failed" in r.stderr, (r.returncode, r.stderr[-500:])
+
+
+def test_reactions_contact_forces_and_loads_balance():
+    """The propped cantilever at the last load step: the clamp's reaction, the
+    ball's contact forces (contacts.csv, each at its point) and the beam's weight
+    (rho A g over the length, its moment about the clamp w L^2 / 2) sum to zero,
+    force and moment about the clamp, to round-off of the converged state."""
+    import csv
+    out = out_dir()
+    s, _ = run_scene(ROOT / "models" / "contact_propped_cantilever.toml", out=out)
+    w = 2700.0 * 0.01 * 0.01 * 9.81                       # N/m, the scene's rho A g
+    (rc,) = s["reactions"]
+    rows = list(csv.DictReader(open(out / "contacts.csv", newline="")))
+    last = [r for r in rows if r["step"] == rows[-1]["step"]]
+    fc = [sum(float(r[k]) for r in last) for k in ("fx", "fy", "fz")]
+    mc = [0.0, 0.0, 0.0]
+    for r in last:
+        x = [float(r[k]) for k in ("x", "y", "z")]
+        f = [float(r[k]) for k in ("fx", "fy", "fz")]
+        mc = [mc[0] + x[1] * f[2] - x[2] * f[1], mc[1] + x[2] * f[0] - x[0] * f[2], mc[2] + x[0] * f[1] - x[1] * f[0]]
+    for k in range(3):
+        assert abs(fc[k] - s["contact"]["sets"][0]["force"][k]) < 1e-12 * w
+    force = [rc["force"][k] + fc[k] + (-w if k == 2 else 0.0) for k in range(3)]
+    # the weight's moment about the clamp from the straight beam: the deflection shortens the
+    # lever arms by a fraction of order (deflection / L)^2 (measured 1.2e-7)
+    moment = [rc["moment"][k] + mc[k] + (w / 2 if k == 1 else 0.0) for k in range(3)]
+    assert max(abs(v) for v in force) < 1e-8 * w, force
+    assert max(abs(v) for v in moment) < 1e-6 * w / 2, moment
+    assert fc[2] > 0.3 * w                                # the ball carries a share (3/8 of the load)
