@@ -53,6 +53,8 @@ Commands:
       --set KEY=VALUE      override a numeric scene value (repeatable), e.g.
                            --set material.alu.E=3e7 --set beam.arm.elements=20
       --out DIR            results directory (default out/runs/SCENE)
+      --threads N          OpenMP threads of the element evaluation (default:
+                           every core; the results are the same bits for any N)
       --verbose            log every load step;  --quiet  print only errors
       --sanitize           build and run with AddressSanitizer + UBSan
       --memcheck           build for valgrind (-march=x86-64-v3) and run under

@@ -55,23 +55,28 @@ def execute(scene, sets=(), out=None, variant="release", verbose=False, quiet=Tr
     return res.rc, Path(res.out)
 
 
-def _run(scene, sets, out, variant, verbose, quiet, memcheck, reuse):
+def _run(scene, sets, out, variant, verbose, quiet, memcheck, reuse, threads=None):
     return pipeline.run(str(scene), sets, caller_path(out) if out else None, variant=variant, memcheck=memcheck,
-                        verbose=verbose, quiet=quiet, reuse=reuse, remember=True)
+                        verbose=verbose, quiet=quiet, reuse=reuse, remember=True, threads=threads)
 
 
 def parse(argv):
-    """(scene, sets, out, quiet, verbose) of the common argument forms (scene,
-    --set, --out, --quiet or --verbose), which need no argument parser; else None."""
-    scene, sets, out, quiet, verbose = None, [], None, False, False
+    """(scene, sets, out, quiet, verbose, threads) of the common argument forms
+    (scene, --set, --out, --threads N, --quiet or --verbose), which need no
+    argument parser; else None."""
+    scene, sets, out, quiet, verbose, threads = None, [], None, False, False, None
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in ("--set", "--out") and i + 1 < len(argv):
+        if a in ("--set", "--out", "--threads") and i + 1 < len(argv):
             if a == "--set":
                 sets.append(argv[i + 1])
-            else:
+            elif a == "--out":
                 out = argv[i + 1]
+            elif argv[i + 1].isdigit() and 1 <= int(argv[i + 1]) <= 1024:
+                threads = int(argv[i + 1])
+            else:
+                return None                # the parser says what is wrong
             i += 2
             continue
         if a == "--quiet":
@@ -85,14 +90,22 @@ def parse(argv):
         i += 1
     if scene is None or (quiet and verbose):
         return None
-    return scene, sets, out, quiet, verbose
+    return scene, sets, out, quiet, verbose, threads
+
+
+def _thread_count(text):
+    """--threads N: an integer from 1 to 1024."""
+    import argparse
+    if not text.isdigit() or not 1 <= int(text) <= 1024:
+        raise argparse.ArgumentTypeError(f"expected an integer from 1 to 1024, found {text!r}")
+    return int(text)
 
 
 def cmd_run(argv):
     simple = parse(argv)
     if simple is not None:             # the common forms: no argument parser to import, and an
-        scene, sets, out, quiet, verbose = simple   # identical earlier run is reused
-        return run_and_report(scene, sets, out, "release", verbose, quiet, False, reuse=True)
+        scene, sets, out, quiet, verbose, threads = simple   # identical earlier run is reused
+        return run_and_report(scene, sets, out, "release", verbose, quiet, False, reuse=True, threads=threads)
     ap = Parser(
         prog="build.sh run",
         description="Build the per-scene solver if stale and run it. Results go to out/runs/SCENE/ "
@@ -103,6 +116,9 @@ def cmd_run(argv):
                          "beam.arm.integration=full (arrays of tables are addressed by name or index, "
                          "array entries by index: load.0.value.2=-10); no kernel regeneration")
     ap.add_argument("--out", metavar="DIR", help="output directory (default out/runs/SCENE)")
+    ap.add_argument("--threads", type=_thread_count, metavar="N",
+                    help="OpenMP threads of the solver's element evaluation (default: every core); results "
+                         "are the same bits for any N")
     ap.add_argument("--quiet", action="store_true", help="print only errors")
     ap.add_argument("--verbose", action="store_true", help="log every load step")
     ap.add_argument("--sanitize", action="store_true",
@@ -114,13 +130,13 @@ def cmd_run(argv):
     if a.sanitize and a.memcheck:
         ap.error("--sanitize and --memcheck exclude each other")
     return run_and_report(a.scene, a.set, a.out, "sanitize" if a.sanitize else "release", a.verbose, a.quiet,
-                          a.memcheck)
+                          a.memcheck, threads=a.threads)
 
 
-def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck, reuse=False):
+def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck, reuse=False, threads=None):
     """The run and its summary on the console; the exit status."""
     try:
-        res = _run(scene, sets, out, variant, verbose, quiet, memcheck, reuse)
+        res = _run(scene, sets, out, variant, verbose, quiet, memcheck, reuse, threads)
     except scene_error() as e:
         print(str(e), file=sys.stderr)
         return EXIT_INPUT

@@ -317,6 +317,8 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
         if capture:
             rc, stderr = _captured(cmd, verbose, threads)
         else:
+            if threads:                # (the command line's process: its environment is the solver's)
+                os.environ["OMP_NUM_THREADS"] = str(int(threads))
             rc = sig.run(cmd)
     if console and rc in EXIT_SIGNAL.values():
         write_interrupted_summary(dest, run_name, analysis, signal.SIGINT if rc == 130 else signal.SIGTERM)

@@ -90,6 +90,9 @@ int main(int argc, char **argv)
         snprintf(info.message, sizeof info.message, "no analysis module of this solver runs the model's analysis");
     bk_output_final(&out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
+    char nthr[16];
+    snprintf(nthr, sizeof nthr, "%d", s->npart > 1 ? s->nthreads : 1);
+    bk_run_summary(&info, "threads", nthr);      /* of the element evaluation (1: serial) */
     for (int k = 0; k < s->ninter; ++k) {        /* the interactions' own summary entries */
         const bk_interaction *it = &s->inter[k];
         char text[8192];
