@@ -182,11 +182,19 @@ def material_data(mat, mpath):
         e = sp.sympify(e)
         return pycode(sp.nsimplify(e) if e.is_Number else e, fully_qualified_modules=True)
     inputs = []
+    ranges = getattr(mat, "RANGES", None)
+    missing = [k for keys, _ in mat.INPUTS for k in keys if not ranges or k not in ranges]
+    if getattr(mat, "KIND", "continuum") == "resultant" and hasattr(mat, "section_stiffness"):
+        missing += [k for k in ("E", "nu") if not ranges or k not in ranges]
+    if missing:
+        raise ValueError(f"{mpath}: RANGES gives no (lo, hi, unit) for {', '.join(dict.fromkeys(missing))} "
+                         "(every scene key of INPUTS needs its range: README, Adding a material)")
     for keys, fn in mat.INPUTS:
         syms = [sp.Symbol(k, positive=True) for k in keys]
         inputs.append({"keys": list(keys), "params": [code(v) for v in fn(*syms)]})
     d = {"title": mat.TITLE, "params": list(mat.PARAMS), "kind": getattr(mat, "KIND", "continuum"),
-         "inputs": inputs}
+         "inputs": inputs, "ranges": {k: [None if lo is None else float(lo), None if hi is None else float(hi), u]
+                                      for k, (lo, hi, u) in ranges.items()}}
     if hasattr(mat, "small_strain"):
         syms = [sp.Symbol(k, positive=True) for k in mat.PARAMS]
         d["small_strain"] = [code(sp.simplify(v)) for v in mat.small_strain(*syms)]

@@ -5,10 +5,18 @@ A material module holds
   TITLE     one line
   PARAMS    names of the kernel parameters, in the order of mat[] in C
   INPUTS    accepted scene key sets: tuple of (keys, function(*values) -> PARAMS values)
+  RANGES    {scene key: (lo, hi, unit)} for every key of INPUTS: the scene reader
+            refuses a value outside lo < value < hi (None: unbounded)
   energy(I1, I2, J, p) -> strain energy per unit reference volume (sympy), with p a
             dict of sympy symbols named as PARAMS.
+and may hold
+  small_strain(*PARAMS) -> (E, nu) at small strain: the locking warnings and
+            Kelvin-Voigt damping (kelvin_voigt) need it
+  GREEN_STRAIN_RANGE  (lo, hi) principal Green strains the law is meant for (the
+            runtime warns beyond)
 The generator derives forces and tangents from energy(); the scene reader uses
-INPUTS.  Adding a material is adding one such file.
+INPUTS and RANGES.  Adding a material is adding one such file (README, "Adding
+a material").
 """
 import importlib
 import pkgutil

@@ -18,6 +18,8 @@ NAME = "arruda_boyce"
 TITLE = "Arruda-Boyce (5 terms) with volumetric penalty kappa/2 (J-1)^2"
 PARAMS = ("mu", "lambda_m", "kappa")
 INPUTS = ((PARAMS, lambda mu, lm, kappa: (mu, lm, kappa)),)
+# Each scene key's range (lo < value < hi, None: unbounded) and unit, checked by the scene reader.
+RANGES = {"mu": (0, None, "Pa"), "lambda_m": (1, 1e6, ""), "kappa": (0, None, "Pa")}
 COEFFS = (Rational(1, 2), Rational(1, 20), Rational(11, 1050), Rational(19, 7000), Rational(519, 673750))
 
 

@@ -11,6 +11,8 @@ NAME = "mooney_rivlin"
 TITLE = "Mooney-Rivlin with volumetric penalty kappa/2 (J-1)^2"
 PARAMS = ("c10", "c01", "kappa")
 INPUTS = ((PARAMS, lambda c10, c01, kappa: (c10, c01, kappa)),)
+# Each scene key's range (lo < value < hi, None: unbounded) and unit, checked by the scene reader.
+RANGES = {"c10": (None, None, "Pa"), "c01": (None, None, "Pa"), "kappa": (0, None, "Pa")}
 
 
 def energy(I1, I2, J, p):

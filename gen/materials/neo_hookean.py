@@ -10,6 +10,8 @@ NAME = "neo_hookean"
 TITLE = "compressible Neo-Hookean"
 PARAMS = ("lambda", "mu")
 INPUTS = ((("E", "nu"), lame), (("lambda", "mu"), lambda lam, mu: (lam, mu)))
+# Each scene key's range (lo < value < hi, None: unbounded) and unit, checked by the scene reader.
+RANGES = {"E": (0, None, "Pa"), "nu": (-1, 0.5, ""), "lambda": (None, None, "Pa"), "mu": (0, None, "Pa")}
 
 
 def energy(I1, I2, J, p):

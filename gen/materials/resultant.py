@@ -17,6 +17,10 @@ TITLE = "quadratic resultant potential (EA, GA1, GA2, GJ, EI1, EI2)"
 KIND = "resultant"
 PARAMS = ("EA", "GA1", "GA2", "GJ", "EI1", "EI2")
 INPUTS = ((PARAMS, lambda *v: v),)
+# Each scene key's range (lo < value < hi, None: unbounded) and unit, checked by the scene reader
+# (E and nu: with the beam's section, section_stiffness below).
+RANGES = {"EA": (0, None, "N"), "GA1": (0, None, "N"), "GA2": (0, None, "N"), "GJ": (0, None, "N m^2"),
+          "EI1": (0, None, "N m^2"), "EI2": (0, None, "N m^2"), "E": (0, None, "Pa"), "nu": (-1, 0.5, "")}
 
 
 def energy(g, k, p):

@@ -10,6 +10,8 @@ NAME = "svk"
 TITLE = "St. Venant-Kirchhoff"
 PARAMS = ("lambda", "mu")
 INPUTS = ((("E", "nu"), lame), (("lambda", "mu"), lambda lam, mu: (lam, mu)))
+# Each scene key's range (lo < value < hi, None: unbounded) and unit, checked by the scene reader.
+RANGES = {"E": (0, None, "Pa"), "nu": (-1, 0.5, ""), "lambda": (None, None, "Pa"), "mu": (0, None, "Pa")}
 # Principal Green strains the law is meant for (the runtime warns beyond): St.
 # Venant-Kirchhoff is a large-rotation, moderate-strain law; in compression its
 # uniaxial stress peaks at E = -1/3 (stretch 1/sqrt 3) and then softens to zero.

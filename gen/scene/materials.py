@@ -5,17 +5,22 @@ import math
 import gen.scene_keys as K
 from gen.scene.values import _typename, check_keys, get_number, get_str, get_table
 
-# Ranges of material keys, whatever the law: (test, expectation text).
+# Ranges of the material keys of every law (the law's own keys: its RANGES,
+# in out/kernels/index.json): (test, expectation text).
 KEY_RANGES = {
-    "E": (lambda v: v > 0, "a positive number (Pa)"),
-    "nu": (lambda v: -1 < v < 0.5, "a number in (-1, 0.5)"),
-    "mu": (lambda v: v > 0, "a positive number (Pa)"),
-    "lambda": (lambda v: v > -1e300, "a number (Pa)"),
-    "kappa": (lambda v: v > 0, "a positive number (Pa)"),
-    "lambda_m": (lambda v: 1 < v <= 1e6, "a number in (1, 1e6]"),
     "rho": (lambda v: v > 0, "a positive number (kg/m^3)"),
     "kelvin_voigt": (lambda v: v >= 0, "a retardation time >= 0 (s)"),
 }
+
+
+def law_range(lo, hi, unit):
+    """(test, expectation text) of a law's range lo < v < hi (None: unbounded)."""
+    def test(v, lo=lo, hi=hi):
+        return (lo is None or v > lo) and (hi is None or v < hi)
+    text = ("a number" if lo is None and hi is None else "a positive number" if lo == 0 and hi is None
+            else f"a number > {lo:g}" if hi is None else f"a number < {hi:g}" if lo is None
+            else f"a number in ({lo:g}, {hi:g})")
+    return test, text + (f" ({unit})" if unit else "")
 
 def law_eval(exprs, names, values):
     """Values of the generated expressions of a law (out/kernels/index.json
@@ -50,9 +55,11 @@ def material_params(ctx, mname, mt, index):
         v = mt[k]
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(float(v)):
             ctx.fail(f"{where}.{k}", f"expected a finite number, found {_typename(v)}")
+    ranges = dict(KEY_RANGES)
+    ranges.update({k: law_range(*r) for k, r in info.get("ranges", {}).items()})
     for k in ["rho"] + given + (["kelvin_voigt"] if "kelvin_voigt" in mt else []):
-        if k in KEY_RANGES:
-            test, expect = KEY_RANGES[k]
+        if k in ranges:
+            test, expect = ranges[k]
             if not test(float(mt[k])):
                 ctx.fail(f"{where}.{k}", f"expected {expect}, found {mt[k]!r}")
     kind = info["kind"]
