@@ -1,16 +1,17 @@
 """C emission for rigid bodies (out/kernels/rigid_body.{h,c}: the element and its
 one pair) and the joints (out/kernels/joints.{h,c}: one kind per joint type,
-runtime/bk_joint.h), from gen/body.py."""
+runtime/bk_joint.h) and the joint actuators' coordinate kernels (gen/actuator.py), from
+gen/body.py."""
 from pathlib import Path
 
-from gen import body
+from gen import actuator, body
 from gen.c_functions import _function, section_frame_function
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
 from gen.program import Program, count_lowered, lower
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
-BODY_FILES = ("body.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py")
+BODY_FILES = ("body.py", "actuator.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py")
 UNITS = ("rigid_body", "joints")
 NAME = "rigid_body"
 MATERIAL = "rigid"
@@ -123,6 +124,14 @@ def joints_source():
 extern const bk_joint_kind *const bk_joint_kinds[];
 extern const int bk_njoint_kinds;
 
+/* The joint coordinate of an actuator (gen/actuator.py), x and prm[0..23] as the
+ * joints': val[2] (rotation: X, Y, the angle atan2(Y, X); translation: s, 0),
+ * grad[14] = ds/dx, H[14 * 14] = d2s/dx2 (full, symmetric). */
+void bk_actuator_rotation(const double *restrict x, const double *restrict prm, double *restrict val,
+                          double *restrict grad, double *restrict H);
+void bk_actuator_translation(const double *restrict x, const double *restrict prm, double *restrict val,
+                             double *restrict grad, double *restrict H);
+
 #endif
 """
     c = [f"/* {BANNER} (see joints.h) */", '#include "joints.h"'] + version_guard() + [
@@ -140,6 +149,12 @@ extern const int bk_njoint_kinds;
         c += [f"static const bk_joint_kind kind_{name} = {{", f'    .name = "{name}",',
               f"    .nrow = {body.joint_nrow(name)},", f"    .eval = {name}_eval,",
               f"    .hessian = {name}_hessian,", f"    .driven = {body.DRIVEN.get(name, 0)},", "};", ""]
+    mirror = ["    for (int i = 0; i < 14; ++i)", "        for (int j = 0; j < i; ++j)",
+              "            H[14 * i + j] = H[14 * j + i];"]
+    for kind in actuator.KINDS:
+        fn = _function(f"void bk_actuator_{kind}({_D} x, {_D} prm, {_W} val, {_W} grad, {_W} H)",
+                       lower(actuator.actuator_program(kind), ()))
+        c += fn[:-2] + mirror + fn[-2:]
     c += ["const bk_joint_kind *const bk_joint_kinds[] = {" +
           ", ".join(f"&kind_{n}" for n in body.JOINT_TYPES) + "};",
           f"const int bk_njoint_kinds = {len(body.JOINT_TYPES)};", ""]

@@ -7,6 +7,7 @@ import os
 
 import gen.scene_keys as K
 from gen.options_schema import OPTIONS
+from gen.scene.actuators import actuators
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
@@ -71,6 +72,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
     rows = constraints(ctx, doc, mesh, amps, analysis)    # none is allowed: the solver reports the singular tangent
+    acts = actuators(ctx, doc, rows, amps)
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
@@ -99,7 +101,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
-        "inputs": list(ctx.inputs),
+        "inputs": list(ctx.inputs), "actuators": acts,
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

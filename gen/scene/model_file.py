@@ -116,6 +116,8 @@ def write_model(model, path):
     out += contact_records(model.get("contact_prims", []), model.get("contact_sets", []), _f)
     from gen.scene.beam_contact import beam_contact_records
     out += beam_contact_records(model.get("beam_contacts", []), _f)
+    from gen.scene.actuators import actuator_records
+    out += actuator_records(model.get("actuators", []), _f)
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

@@ -4,6 +4,7 @@
 
 #include <stdlib.h>
 
+#include "assembly/actuators.h"
 #include "assembly/contact_force.h"
 #include "assembly/beam_contact.h"
 #include "assembly/loads.h"
@@ -66,6 +67,7 @@ static const struct {
     {&loads_ops, bk_loads_present, make_loads},
     {&bk_contact_ops, bk_contact_present, bk_contact_make},
     {&bk_beam_contact_ops, bk_beam_contact_present, bk_beam_contact_make},
+    {&bk_actuator_ops, bk_actuators_present, bk_actuators_make},
 };
 
 int bk_interactions_create(bk_system *s)

@@ -285,6 +285,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     bk_model_read_extras(r, m);
     bk_model_read_contacts(r, m);
     bk_model_read_beam_contacts(r, m);
+    bk_model_read_actuators(r, m);
     rd_expect(r, "end");
     free(r->buf);
     if (r->failed) {
@@ -300,6 +301,7 @@ void bk_model_free(bk_model *m)
         return;
     bk_contact_model_free(m->contact);
     bk_beam_contact_model_free(m->beam_contact);
+    bk_actuator_model_free(m->actuators);
     free(m->q0);
     free(m->qd0);
     free(m->pairs);

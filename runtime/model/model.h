@@ -12,6 +12,7 @@
 #include "bk_joint.h"
 #include "bk_kernel.h"
 #include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
+#include "model/actuator.h"
 #include "model/beam_contact.h"
 #include "model/contact.h"
 
@@ -177,6 +178,7 @@ typedef struct bk_model {
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
     bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h); owned when read from a file */
     bk_beam_contact_model *beam_contact;   /* NULL: no beam touches a beam (beam_contact.h); owned likewise */
+    bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
     int nsensor;
     bk_sensor *sensors;
     int namp;
