@@ -11,12 +11,13 @@ from gen.program import Program, count_lowered, lower
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
-BODY_FILES = ("body.py", "actuator.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py")
+BODY_FILES = ("body.py", "actuator.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py", "rod_frame.py",
+              "rodmath.py", "loads.py")
 UNITS = ("rigid_body", "joints")
 NAME = "rigid_body"
 MATERIAL = "rigid"
 TITLE = "rigid body (centre of mass, quaternion)"
-CAPS = ("BK_CAP_SECTION_RECTANGLE",)
+CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_MOMENT_ANYWHERE")
 _D = "const double *restrict"
 _W = "double *restrict"
 
@@ -29,7 +30,7 @@ def describe():
     fields = (Field("r", 0, 3, 0), Field("p", 3, 4, 0))
     return ElementDesc(name=NAME, title=TITLE, node_xi=("1/2",), ndof=7, caps=CAPS, fields=fields,
                        shape_dof=(0,), functions={k: k for k in ("reference", "shape", "mass", "volume",
-                                                                 "frame", "section_frame", "rotary")})
+                                                                 "frame", "section_frame", "moment", "rotary")})
 
 
 def _ops(low):
@@ -81,6 +82,13 @@ extern const bk_pair bk_pair_{NAME}_{MATERIAL}_full;
     c += _function(f"static void frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)",
                    lower(body.body_frame_program(), ()))
     c += section_frame_function(*(lower(pr, ()) for pr in body.body_section_frame_programs()))
+    from gen.rod_frame import moment_node_program
+    c += _function(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", lower(moment_node_program(), ()))
+    c += [f"static void moment({_D} geom, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)",
+          "{", "    (void)geom; (void)xi;", "    double Qn[4], dQn[16];",
+          "    for (int i = 0; i < 7; ++i) Q[i] = 0.0;", "    for (int i = 0; i < 49; ++i) dQ[i] = 0.0;",
+          "    moment_node(q + 3, M, Qn, dQn);", "    for (int i = 0; i < 4; ++i) {", "        Q[3 + i] = Qn[i];",
+          "        for (int j = 0; j < 4; ++j) dQ[7 * (3 + i) + 3 + j] = dQn[4 * i + j];", "    }", "}", ""]
     c += _function(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
                    f"{_W} Cq, {_W} Kq, {_W} T)", lower(body.body_rotary_program(), ()))
     c += [f"static void rotary({_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, {_W} Cq, {_W} Kq, {_W} T)",

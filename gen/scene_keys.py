@@ -32,7 +32,7 @@ CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
                                          "distance", "distance_amplitude"),
               "point_on_line": ("type", "name", "a", "axis"),
               "prescribed_motion": ("type", "name", "a", "motion", "amplitude", "clamped")}
-LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload"),
+LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload", "point"),
         "moment": ("type", "name", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "name", "value", "amplitude", "preload"),
         "distributed": ("type", "name", "beam", "from", "to", "value", "amplitude", "follower", "preload"),

@@ -74,7 +74,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     rows = constraints(ctx, doc, mesh, amps, analysis)    # none is allowed: the solver reports the singular tangent
     acts = actuators(ctx, doc, rows, amps)
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
-    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
+    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps, mesh.bodies)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
     modal = buckling or modal               # the model file's modal record carries the buckling options
     qd0 = initial_velocities(ctx, doc, mesh)
