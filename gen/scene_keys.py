@@ -51,7 +51,7 @@ MODAL = S.scene_keys("modal")
 BUCKLING = S.scene_keys("buckling")
 OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
-SENSOR = ("name", "at")
+SENSOR = ("name", "at", "point")
 ACTUATOR = ("name", "joint", "effort", "effort_amplitude", "kp", "kd", "setpoint", "setpoint_amplitude")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
            "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",

@@ -53,7 +53,7 @@ def _run(text, sets=()):
 
 def _angles(out):
     with open(Path(out) / "sensors.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
+        rows = [r for r in csv.DictReader(fh) if r["sensor"] == "c"]
     t = np.array([float(r["time"]) for r in rows])
     th = np.unwrap(np.array([math.atan2(float(r["d1y"]), float(r["d1x"])) for r in rows]))
     return t, th
@@ -153,3 +153,20 @@ def test_rigid_body_moment_kernel_against_finite_differences():
     rows = [dict(kv.split("=", 1) for kv in line.split()) for line in r.stdout.splitlines()]
     assert rows and all(float(d["fd_moment"]) <= 1e-8 for d in rows), r.stdout
     print(r.stdout)
+
+
+def test_sensor_at_a_body_point_follows_the_body():
+    """A sensor at the link's tip point [0.5, 0, 0] (sensor.point) while the moment
+    of 0.3 N m turns it: the point is on the circle of radius 0.5 at the
+    link's angle (from the centre-of-mass sensor's axes), and its displacement is
+    from its own reference place."""
+    _, _, out = _run(LINK + '[[load]]\ntype = "moment"\nat = "link"\nvalue = [0.0, 0.0, 0.3]\n'
+                     '[[sensor]]\nname = "tip"\nat = "link"\npoint = [0.5, 0.0, 0.0]\n')
+    t, th = _angles(out)
+    with open(Path(out) / "sensors.csv", newline="") as fh:
+        rows = [r for r in csv.DictReader(fh) if r["sensor"] == "tip"]
+    p = np.array([[float(r[k]) for k in ("x", "y", "z", "ux", "uy", "uz")] for r in rows])
+    ref = np.column_stack([0.5 * np.cos(th), 0.5 * np.sin(th), 0 * th])
+    assert th[-1] > 0.3
+    assert np.abs(p[:, :3] - ref).max() < 1e-12
+    assert np.abs(p[:, 3:] - (ref - [0.5, 0.0, 0.0])).max() < 1e-12

@@ -91,8 +91,8 @@ def write_model(model, path):
     g = model["gravity"]
     out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g[0]) + f" {g[1]}")
     out.append(f"sensors {len(model['sensors'])}")
-    for n, e, xi in model["sensors"]:
-        out.append(f"sensor {n} {e} {_f(xi)}")
+    for n, e, xi, off in model["sensors"]:
+        out.append(f"sensor {n} {e} {_f(xi)} " + " ".join(_f(x) for x in off))
     out.append(f"amplitudes {len(model['amplitudes'])}")
     for atype, params in model["amplitudes"]:
         out.append(f"amplitude {atype} {len(params)} " + " ".join(_f(x) for x in params))

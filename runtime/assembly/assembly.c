@@ -246,3 +246,13 @@ void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double 
     bk_elem_type(m, e)->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d ? d : dd);
 }
 
+void bk_eval_sensor(const bk_model *m, const double *q, const bk_sensor *s, double *pos, double *d)
+{
+    double dd[9];
+    d = d ? d : dd;
+    bk_eval_point(m, q, s->elem, s->xi, pos, d);
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i)
+            pos[i] += s->off[k] * d[3 * k + i];
+}
+

@@ -281,6 +281,8 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
             memcpy(s->name, t, strlen(t) + 1);
         s->elem = rd_inum(r, "sensor element", 0, m->nelem - 1);
         s->xi = rd_num(r, "sensor xi");
+        for (int k = 0; k < 3; ++k)
+            s->off[k] = rd_num(r, "sensor offset");
     }
     bk_model_read_extras(r, m);
     bk_model_read_contacts(r, m);

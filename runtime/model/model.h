@@ -107,6 +107,7 @@ typedef struct bk_sensor {
     char name[64];
     int elem;
     double xi;         /* along the element axis, on the centreline */
+    double off[3];     /* a point of a body: its place along the body axes d1, d2, d3 (else 0) */
 } bk_sensor;
 
 /* A constraint linear in q, possibly rheonomic:
