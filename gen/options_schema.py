@@ -16,7 +16,7 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 10      # 10: actuator records (joint motors);
+MODEL_VERSION = 10      # 10: actuator and point-mass records, sensor offsets (body points);
                         # 9: driven joints (the drive of each nlcon record), beam contact records;
                         # 8: contact's static and kinetic friction, primitives that turn or belong to bodies
 

@@ -12,7 +12,7 @@ from gen import options_schema as S
 # the top-level tables: the scene's, then the option tables of the schema (an
 # analysis's options table comes with its schema rows)
 TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
-       "contact", "beam_contact", "actuator") + tuple(S.TABLES)
+       "contact", "beam_contact", "actuator", "point_mass") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -52,6 +52,7 @@ BUCKLING = S.scene_keys("buckling")
 OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
 SENSOR = ("name", "at", "point")
+POINT_MASS = ("at", "mass")
 ACTUATOR = ("name", "joint", "effort", "effort_amplitude", "kp", "kd", "setpoint", "setpoint_amplitude")
 CONTACT = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
            "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
@@ -73,4 +74,4 @@ def all_keys():
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
             "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "contact": CONTACT,
-            "beam_contact": BEAM_CONTACT, "actuator": ACTUATOR}
+            "beam_contact": BEAM_CONTACT, "actuator": ACTUATOR, "point_mass": POINT_MASS}

@@ -20,6 +20,7 @@ from gen.scene.loads import loads
 from gen.scene.materials import material_params, sections as parse_sections
 from gen.scene.mesh import mesh_beams
 from gen.scene.options import initial_velocities, options, sensors
+from gen.scene.point_masses import point_masses
 from gen.scene.rigid_modes import check_static
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
 
@@ -101,7 +102,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
-        "inputs": list(ctx.inputs), "actuators": acts,
+        "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

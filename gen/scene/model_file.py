@@ -118,6 +118,8 @@ def write_model(model, path):
     out += beam_contact_records(model.get("beam_contacts", []), _f)
     from gen.scene.actuators import actuator_records
     out += actuator_records(model.get("actuators", []), _f)
+    from gen.scene.point_masses import point_mass_records
+    out += point_mass_records(model.get("point_masses", []), _f)
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

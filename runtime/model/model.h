@@ -57,6 +57,12 @@ typedef struct bk_force_load {   /* force at a material point of an element */
     int follower;      /* 1: turns with the section frame at the point */
 } bk_force_load;
 
+typedef struct bk_point_mass {  /* a mass without rotary inertia at a material point of an element */
+    int elem;
+    double xi;         /* on the centreline */
+    double mass;       /* kg */
+} bk_point_mass;
+
 typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
     double xi;
@@ -180,6 +186,8 @@ typedef struct bk_model {
     bk_contact_model *contact;   /* NULL: nothing touches anything (contact.h); owned when read from a file */
     bk_beam_contact_model *beam_contact;   /* NULL: no beam touches a beam (beam_contact.h); owned likewise */
     bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
+    int npmass;
+    bk_point_mass *pmass;        /* point masses (bk_element_mass, bk_element_weight) */
     int nsensor;
     bk_sensor *sensors;
     int namp;
