@@ -100,3 +100,24 @@ def test_flexible_arm_residual_vibration_at_the_first_modal_frequency():
     assert len(tz) >= 8
     assert abs(f / f1 - 1) < 0.02, (f, f1)
     print(f"flexible arm: residual vibration {f:.6f} Hz, modal {f1:.6f} Hz, {abs(f / f1 - 1):.1e}")
+
+
+def test_bad_mechanism_input_one_line_each():
+    """Issue 40 verification 5 on models/flexible_arm.toml: a driven joint whose axis
+    is zero, an actuator on a joint without an axis (the payload's weld), a body point
+    far outside the body (a sensor 5 m from a 0.3 kg payload), a joint at an arc
+    length beyond the beam and one between nodes (not available: refused naming the
+    nearest node): one line each naming the key, exit 1."""
+    from test_bad_input import check_error
+    base = (ROOT / "models" / "flexible_arm.toml").read_text()
+    elbow = 'b = "upper:end"\naxis = [0.0, 0.0, 1.0]'
+    assert elbow in base
+    check_error(base.replace(elbow, 'b = "upper:end"\naxis = [0.0, 0.0, 0.0]'), "constraint[1].axis", "zero")
+    check_error(base + '[[actuator]]\njoint = "grip"\neffort = 1.0\n', "actuator[0].joint",
+                "fixed joint: an actuator needs a joint with an axis")
+    check_error(base + '[[sensor]]\nname = "far"\nat = "payload"\npoint = [5.9, 0.0, 0.0]\n', "sensor.far.point",
+                "expected a point of the body")
+    check_error(base.replace(elbow, 'b = "upper:0.7"\naxis = [0.0, 0.0, 1.0]'), "constraint[1].b",
+                "outside beam 'upper'")
+    check_error(base.replace(elbow, 'b = "upper:0.33"\naxis = [0.0, 0.0, 1.0]'), "constraint[1].b",
+                "at a node of beam 'upper'")
