@@ -287,3 +287,67 @@ def test_bad_actuators():
                 "no constraint named 'knee'")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nsetpoint = 1.0\n', "actuator[0].kp", "needs a gain")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nkp = -1.0\n', "actuator[0].kp", "")
+
+
+def test_sweep_window_outputs_of_the_motor_link():
+    """beamkit/windows.py on the motor-driven link's results (effort 0.5 sin(2 pi t)
+    sampled every 0.01 s from 0 to 1 s): peak 0.5 and amplitude 0.5 over the run,
+    rms 0.5 sqrt(50/101) (the 101 samples' sin^2 sum to 50), over [0.2, 0.3] s the
+    max 0.5 (t = 0.25) and min 0.5 sin(0.4 pi); the joint's angle at the end equals
+    the closed form (through the joint's name in joints.csv); bad outputs refused."""
+    from beamkit import windows
+    text = LINK + """
+[amplitude.wave]
+type = "sine"
+frequency = 1.0
+
+[[actuator]]
+name = "motor"
+joint = "hinge"
+effort = 0.5
+effort_amplitude = "wave"
+"""
+    _, _, out = _run(text)
+    v = lambda o: windows.value(out, o)
+    assert abs(v("motor.effort:peak") - 0.5) < 1e-12 and abs(v("motor.effort:amplitude") - 0.5) < 1e-12
+    assert abs(v("motor.effort:rms") - 0.5 * math.sqrt(50 / 101)) < 1e-12
+    assert abs(v("motor.effort:max@0.2:0.3") - 0.5) < 1e-12
+    assert abs(v("motor.effort:min@0.2:0.3") - 0.5 * math.sin(0.4 * math.pi)) < 1e-12
+    mean = 0.5 * sum(math.sin(2 * math.pi * k / 100) for k in range(50, 101)) / 51
+    assert abs(v("motor.effort:mean@0.5:1.0") - mean) < 1e-12
+    assert abs(v("hinge.value:max") - 0.5 / (J_O * 2 * math.pi)) < 1e-3 * 0.8
+    assert v("motor.effort:peak@2:3") is None
+    import tomllib
+    doc = tomllib.loads(text)
+    assert windows.check(doc, "s", "motor.effort:peak@1:3") is None
+    assert "no joint or actuator 'elbow'" in windows.check(doc, "s", "elbow.effort:peak")
+    assert "unknown statistic 'median'" in windows.check(doc, "s", "motor.effort:median")
+    assert "T1 > T0" in windows.check(doc, "s", "motor.effort:rms@3:1")
+    assert "no sensor 'tip'" in windows.check(doc, "s", "tip.uy:peak")
+
+
+def test_sweep_reports_window_outputs():
+    """A sweep of the motor link over two effort levels (one local worker) with
+    window outputs: the peak effort is the effort level, the largest angle over
+    0 - 1 s the closed form tau0 / (J w) (0.1 % as above)."""
+    from beamkit.sweep import sweep
+    text = LINK + """
+[amplitude.wave]
+type = "sine"
+frequency = 1.0
+
+[[actuator]]
+name = "motor"
+joint = "hinge"
+effort = 0.5
+effort_amplitude = "wave"
+"""
+    d = Path(tempfile.mkdtemp(prefix="bk-actsw-", dir=ensure_dir(BUILD / "runs")))
+    (d / "link.toml").write_text(text)
+    res = sweep(str(d / "link.toml"), grid={"actuator.0.effort": [0.5, 1.0]}, out=d / "sweep", workers=1,
+                progress=False, outputs=["motor.effort:peak", "hinge.value:max@0:1"])
+    assert not res.failed
+    peak, th = res.column("motor.effort:peak"), res.column("hinge.value:max@0:1")
+    assert np.allclose(peak, [0.5, 1.0], rtol=1e-12, atol=0)
+    ref = np.array([0.5, 1.0]) / (J_O * 2 * math.pi)
+    assert np.abs(th / ref - 1).max() < 1e-3, th / ref
