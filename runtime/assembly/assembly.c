@@ -279,7 +279,8 @@ void bk_eval_sensor(const bk_model *m, const double *q, const bk_sensor *s, doub
     d = d ? d : dd;
     bk_eval_point(m, q, s->elem, s->xi, pos, d);
     for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 3; ++i)
-            pos[i] += s->off[k] * d[3 * k + i];
+        if (s->off[k] != 0.0)          /* (a cable's d1, d2 are NaN: only where needed) */
+            for (int i = 0; i < 3; ++i)
+                pos[i] += s->off[k] * d[3 * k + i];
 }
 
