@@ -351,3 +351,26 @@ effort_amplitude = "wave"
     assert np.allclose(peak, [0.5, 1.0], rtol=1e-12, atol=0)
     ref = np.array([0.5, 1.0]) / (J_O * 2 * math.pi)
     assert np.abs(th / ref - 1).max() < 1e-3, th / ref
+
+
+def test_plot_draws_joints_actuators_and_reactions():
+    """./build.sh plot's joints.png (the hinge's angle, rate and effort and the
+    motor's, from joints.csv and actuators.csv) and reactions.png: the lines drawn
+    are the tables' columns."""
+    from report.plot import figures
+    text = LINK + '[[actuator]]\nname = "motor"\njoint = "hinge"\neffort = 0.2\n'
+    _, _, out = _run(text)
+    figs = figures(out)
+    assert "joints.png" in figs and "reactions.png" in figs
+    acts = _rows(out, "actuators.csv")
+    ax = figs["joints.png"].axes
+    lines = {ln.get_label(): ln for ln in ax[2].get_lines()}
+    eff = lines["actuator motor (rad, N m)"].get_ydata()
+    assert np.allclose(eff, [float(r["effort"]) for r in acts]) and abs(eff[-1] - 0.2) < 1e-12
+    ang = {ln.get_label(): ln for ln in ax[0].get_lines()}["joint hinge (rad, N m)"].get_ydata()
+    assert np.allclose(ang[-1], 0.2 / (2 * J_O), rtol=1e-3)          # theta = tau t^2 / (2 J) at t = 1
+    rx = {ln.get_label() for ln in figs["reactions.png"].axes[0].get_lines()}
+    assert "hinge Fx" in rx
+    import matplotlib.pyplot as plt
+    for f in figs.values():
+        plt.close(f)
