@@ -374,3 +374,29 @@ def test_plot_draws_joints_actuators_and_reactions():
     import matplotlib.pyplot as plt
     for f in figs.values():
         plt.close(f)
+
+
+def test_modal_analysis_includes_the_actuators_spring():
+    """The hinged link held by an actuator with kp = 4 N m/rad (no other stiffness):
+    the modal analysis' one frequency is sqrt(kp / J_O) / 2 pi = 1.00658 Hz (the
+    actuator's stiffness kp g g^T in the modal stiffness), about the reference and
+    about the static state under a dead moment about the hinge (0.2 N m: turned by
+    M / kp = 0.05 rad, the same spring; 2.5e-6 off: the moment's own load stiffness
+    in the quaternion coordinates, which the modal analysis leaves out and warns
+    about, against the actuator's -tau d2s/dq2 it includes)."""
+    text = LINK.replace('analysis = "dynamic"', 'analysis = "modal"') + """
+[modal]
+modes = 1
+
+[[actuator]]
+name = "spring"
+joint = "hinge"
+kp = 4.0
+"""
+    ref = math.sqrt(4.0 / J_O) / (2 * math.pi)
+    s, _, _ = _run(text)
+    assert abs(s["frequencies_hz"][0] / ref - 1) < 1e-9, (s["frequencies_hz"], ref)
+    s, _, _ = _run(text + '[[load]]\ntype = "moment"\nat = "link"\nvalue = [0.0, 0.0, 0.2]\n',
+                   ["modal.about=static"])
+    assert abs(s["frequencies_hz"][0] / ref - 1) < 1e-5, (s["frequencies_hz"], ref)
+    assert any("load stiffness of moments" in w for w in s["warnings"]), s["warnings"]

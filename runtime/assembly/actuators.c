@@ -188,6 +188,37 @@ static int act_summary(void *self, const bk_system *s, const double *q, char *bu
     return k + 1 < n ? 0 : -1;
 }
 
+void bk_actuators_at_rest(const bk_system *s, const double *q, double x, double *fint,
+                          void (*add)(void *ctx, int i, int j, double v), void *ctx)
+{
+    const bk_model *m = s->m;
+    const int nx = BK_JOINT_NX;
+    if (!bk_actuators_present(m))
+        return;
+    for (int i = 0; i < m->actuators->n; ++i) {
+        const bk_actuator *a = &m->actuators->acts[i];
+        const bk_nlcon *c = &m->nlcons[a->nlcon];
+        const act_state ref = {0};
+        double xj[BK_JOINT_NX], g[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], raw;
+        joint_x(c, q, 0, xj);
+        const double sv = coordinate(a, c, &ref, xj, g, H, &raw);
+        const double as = a->samp >= 0 ? bk_amp_eval(&m->amps[a->samp], x, 0) : 1.0;
+        const double tau = a->effort0 * bk_load_factor(m, a->eamp, x) + a->kp * (a->setpoint * as - sv);
+        for (int k = 0; k < nx; ++k) {
+            const int ek = c->dof[k] >= 0 ? s->eq[c->dof[k]] : -1;
+            if (fint && c->dof[k] >= 0)
+                fint[c->dof[k]] -= tau * g[k];
+            if (!add || ek < 0 || ek >= s->nfree)
+                continue;
+            for (int l = 0; l < nx; ++l) {
+                const int el = c->dof[l] >= 0 ? s->eq[c->dof[l]] : -1;
+                if (el >= 0 && el < s->nfree)
+                    add(ctx, ek, el, -tau * H[nx * k + l] + a->kp * g[k] * g[l]);
+            }
+        }
+    }
+}
+
 static void act_free(void *self)
 {
     act_work *w = self;
