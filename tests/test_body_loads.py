@@ -130,12 +130,10 @@ kp = 5.0
 
 
 def test_bad_body_loads():
-    """One line each: a body point far outside the body, a dead force off the
-    centre of mass, a point on a moment."""
+    """One line each: a body point far outside the body, a point on a moment."""
     base = LINK + '[[load]]\ntype = "force"\nat = "link"\nvalue = [0.0, 1.0, 0.0]\n'
     check_error(base + 'follower = true\npoint = [50.0, 0.0, 0.0]\n', "load[0].point",
                 "expected a point of the body")
-    check_error(base + 'point = [0.5, 0.0, 0.0]\n', "load[0].follower", "dead force at a point of body 'link'")
     check_error(LINK + '[[load]]\ntype = "moment"\nat = "link"\nvalue = [0.0, 0.0, 1.0]\npoint = [0.5, 0.0, 0.0]\n',
                 "load[0].point", "unknown key")
 
@@ -170,3 +168,65 @@ def test_sensor_at_a_body_point_follows_the_body():
     assert th[-1] > 0.3
     assert np.abs(p[:, :3] - ref).max() < 1e-12
     assert np.abs(p[:, 3:] - (ref - [0.5, 0.0, 0.0])).max() < 1e-12
+
+
+def test_dead_force_at_a_body_point_against_a_pd_spring_statics():
+    """Statics: the hinged link held by an actuator spring kp = 5 N m/rad, a dead
+    force F = (0, -2, 0) N at its tip point [0.5, 0, 0]: equilibrium
+    kp theta = 0.5 F_y cos(theta) (root by brentq: -0.19289 rad), within 1e-9."""
+    from scipy.optimize import brentq
+    text = LINK.replace('analysis = "dynamic"', 'analysis = "static"') + """
+[[load]]
+type = "force"
+at = "link"
+point = [0.5, 0.0, 0.0]
+value = [0.0, -2.0, 0.0]
+
+[[actuator]]
+name = "spring"
+joint = "hinge"
+kp = 5.0
+
+[static]
+load_steps = 4
+"""
+    _, _, out = _run(text)
+    t, th = _angles(out)
+    ref = brentq(lambda x: 5.0 * x + 1.0 * math.cos(x), -1.0, 0.0, xtol=1e-14)
+    assert abs(th[-1] - ref) < 1e-9, (th[-1], ref)
+
+
+def test_dead_force_at_a_body_point_jacobian_against_central_differences():
+    """The interactions' Jacobian (dead forces at points of two bodies, with the PD
+    motors of tests/test_actuators.py) against central differences of their forces
+    (tests/actuator_check.c), at a turned state with velocities."""
+    import subprocess
+    from gen.solver_build import VARIANTS, build_solver, compile_object, runtime_headers, runtime_objects
+    from test_actuators import TWO_BODIES
+    from util import ROOT, all_pair_symbols
+    _, index = all_pair_symbols()
+    obj = BUILD / "sanitize" / "actuator_check.o"
+    compile_object(ROOT / "tests" / "actuator_check.c", obj, VARIANTS["sanitize"], runtime_headers())
+    objs = [o for o in runtime_objects("sanitize") if o.name != "main.o"] + [obj]
+    exe = build_solver([index["body"]["pair"]], BUILD / "sanitize" / "actuator_check", index, "sanitize",
+                       main_objs=objs)
+    text = TWO_BODIES + """
+[[load]]
+type = "force"
+at = "arm"
+point = [0.5, 0.2, 0.05]
+value = [3.0, -2.0, 1.0]
+
+[[load]]
+type = "force"
+at = "base"
+point = [0.1, -0.1, 0.2]
+value = [-1.0, 0.5, 2.0]
+amplitude = {type = "sine", frequency = 2.0}
+"""
+    _, _, out = _run(text)
+    for gp in (0.0, 700.0):
+        r = subprocess.run([str(exe), str(out / "model.dat"), "0.3", str(gp)], capture_output=True, text=True)
+        assert r.returncode == 0 and not r.stderr, r.stderr
+        err, big = map(float, r.stdout.split())
+        assert big > 1.0 and err < 1e-6 * big, (gp, err, big)

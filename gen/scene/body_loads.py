@@ -7,10 +7,12 @@ axes e1, e2, e3, the section frame of the rigid_body element).  A force acts at
 the centre of mass, or with `point` (global coordinates of a point of the body
 in the reference configuration) at that body point: a follower force f at the
 point c (body axes) is the follower force f at the centre of mass and the
-follower moment c x f, exactly.  A dead force at a point off the centre of
-mass (its moment (R c) x F neither dead nor following the body) is refused.
+follower moment c x f, exactly.  A dead force F at a point c off the centre
+of mass (its moment (R c) x F neither dead nor following the body) is a record
+of its own (body_point_forces; runtime/assembly/body_forces.c): the work F . (r
++ R c) with its exact Jacobian.
 """
-from gen.scene.values import _cross, _norm, _sub, get_bool, get_str, get_vec3
+from gen.scene.values import _cross, _norm, _sub, get_array_of_tables, get_bool, get_str, get_vec3
 
 SIZE_FACTOR = 10.0          # a body point within this many times the body's size of its centre
 
@@ -44,12 +46,32 @@ def body_load(ctx, lt, where, ltype, body, amps):
         ctx.fail(f"{where}.distribution", "a force on a rigid body acts at a point: omit `distribution`")
     c = body_point(ctx, lt, where, body)
     if c is not None and _norm(c) > 1e-12 * max(1.0, body["geom_edge"]) and not fol:
-        ctx.fail(f"{where}.follower", f"a dead force at a point of body {body['name']!r} off its centre of mass "
-                 "is not available: give follower = true (the force turns with the body), or put the force at the "
-                 "centre of mass and add the moment")
+        return [], []                    # a dead force off the centre: body_point_forces
     if not fol:
         return [(e, 0.5, 0.0, 0.0, 0, val, amp, 0)], []
     f = _mtv(body["R"], val)
     forces = [(e, 0.5, 0.0, 0.0, 0, f, amp, 1)]
     moments = [(e, 0.5, _cross(c, f), amp, 1)] if c is not None and _norm(c) > 0.0 else []
     return forces, moments
+
+
+def body_point_forces(ctx, doc, bodies, amps):
+    """[(element, c (body axes), F, amplitude)] of the dead forces at body points off
+    the centre of mass (the loads body_load leaves out; checked there)."""
+    out = []
+    for li, lt in enumerate(get_array_of_tables(ctx, doc, "load")):
+        if not (isinstance(lt, dict) and lt.get("type") == "force" and isinstance(lt.get("at"), str)
+                and lt["at"] in bodies and "point" in lt and lt.get("follower") is not True):
+            continue
+        where = f"load[{li}]"
+        body = bodies[lt["at"]]
+        c = body_point(ctx, lt, where, body)
+        if _norm(c) > 1e-12 * max(1.0, body["geom_edge"]):
+            out.append((body["elem"], c, get_vec3(ctx, lt, "value", where), amps.ref(lt, "amplitude", where)))
+    return out
+
+
+def body_force_records(pfs, fmt):
+    out = [f"body_forces {len(pfs)}"]
+    out += [f"body_force {e} " + " ".join(fmt(x) for x in list(c) + list(F)) + f" {amp}" for e, c, F, amp in pfs]
+    return out

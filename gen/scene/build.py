@@ -10,6 +10,7 @@ from gen.options_schema import OPTIONS
 from gen.scene.actuators import actuators
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
+from gen.scene.body_loads import body_point_forces
 from gen.scene.buckling import buckling_options
 from gen.scene.beam_contact import beam_contacts
 from gen.scene.contact import contacts
@@ -103,6 +104,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
+        "body_forces": body_point_forces(ctx, doc, mesh.bodies, amps),
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

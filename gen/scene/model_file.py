@@ -120,6 +120,8 @@ def write_model(model, path):
     out += actuator_records(model.get("actuators", []), _f)
     from gen.scene.point_masses import point_mass_records
     out += point_mass_records(model.get("point_masses", []), _f)
+    from gen.scene.body_loads import body_force_records
+    out += body_force_records(model.get("body_forces", []), _f)
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "assembly/actuators.h"
+#include "assembly/body_forces.h"
 #include "assembly/contact_force.h"
 #include "assembly/beam_contact.h"
 #include "assembly/loads.h"
@@ -68,6 +69,7 @@ static const struct {
     {&bk_contact_ops, bk_contact_present, bk_contact_make},
     {&bk_beam_contact_ops, bk_beam_contact_present, bk_beam_contact_make},
     {&bk_actuator_ops, bk_actuators_present, bk_actuators_make},
+    {&bk_body_force_ops, bk_body_forces_present, bk_body_forces_make},
 };
 
 int bk_interactions_create(bk_system *s)

@@ -289,6 +289,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     bk_model_read_beam_contacts(r, m);
     bk_model_read_actuators(r, m);
     bk_model_read_point_masses(r, m);
+    bk_model_read_body_forces(r, m);
     rd_expect(r, "end");
     free(r->buf);
     if (r->failed) {
@@ -306,6 +307,7 @@ void bk_model_free(bk_model *m)
     bk_beam_contact_model_free(m->beam_contact);
     bk_actuator_model_free(m->actuators);
     free(m->pmass);
+    free(m->bforces);
     free(m->q0);
     free(m->qd0);
     free(m->pairs);

@@ -63,6 +63,13 @@ typedef struct bk_point_mass {  /* a mass without rotary inertia at a material p
     double mass;       /* kg */
 } bk_point_mass;
 
+typedef struct bk_body_force {  /* a dead force at a point of a rigid body off its centre of mass */
+    int elem;          /* the body's element (7 DOFs: r, p) */
+    double c[3];       /* the point in the body axes (m) */
+    double value[3];   /* N, global */
+    int amp;           /* amplitude index, -1: the default */
+} bk_body_force;
+
 typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
     double xi;
@@ -188,6 +195,8 @@ typedef struct bk_model {
     bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
     int npmass;
     bk_point_mass *pmass;        /* point masses (bk_element_mass, bk_element_weight) */
+    int nbforce;
+    bk_body_force *bforces;      /* dead forces at body points (assembly/body_forces.c) */
     int nsensor;
     bk_sensor *sensors;
     int namp;

@@ -41,5 +41,6 @@ void bk_model_read_contacts(bk_reader *r, bk_model *m);      /* contact_read.c *
 void bk_model_read_beam_contacts(bk_reader *r, bk_model *m); /* beam_contact_read.c */
 void bk_model_read_actuators(bk_reader *r, bk_model *m);     /* actuator_read.c */
 void bk_model_read_point_masses(bk_reader *r, bk_model *m);  /* point_mass_read.c */
+void bk_model_read_body_forces(bk_reader *r, bk_model *m);   /* body_force_read.c */
 
 #endif
