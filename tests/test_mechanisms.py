@@ -203,6 +203,12 @@ type = "moment"
 at = "tip"
 value = [0.0, 0.0, 0.05]
 
+[[load]]
+type = "force"
+at = "base"
+point = [0.05, 0.02, 0.0]
+value = [0.2, -0.1, 0.0]
+
 [[actuator]]
 name = "slide"
 joint = "rail"
@@ -235,8 +241,8 @@ dt = 1e-3
 def test_every_mechanism_part_is_clean_under_sanitizers_and_valgrind():
     """A scene with every part of this page at once (a PD linear motor on a body's
     prismatic joint, a PD + ramped motor on a revolute joint between a beam node and
-    the body, a point mass between nodes, a follower force at a body point, a
-    moment on a body, a sensor at a body point, gravity): with AddressSanitizer and
+    the body, a point mass between nodes, a follower and a dead force at body
+    points, a moment on a body, a sensor at a body point, gravity): with AddressSanitizer and
     UBSan exit 0 and no report, under valgrind's memcheck exit 0 (not 99)."""
     from util import run_cli, run_memcheck
     d = Path(tempfile.mkdtemp(prefix="bk-mech-", dir=ensure_dir(BUILD / "runs")))
