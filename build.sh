@@ -87,7 +87,8 @@ Commands:
                          --check fails if the committed kernels are stale
   plot RUN_DIR           PNG plots of a run: sensors.png, energy.png (dynamic),
                          modes.png (modal: a panel per mode shape), beam.png
-                         (the last ParaView frame drawn in 3-D) and path.png
+                         (the last ParaView frame drawn in 3-D), joints.png and
+                         reactions.png (joint angles, efforts, reactions) and path.png
                          (arc-length runs: load factor against displacement,
                          critical points marked)
   animate RUN_DIR [options]  the run's ParaView frames as a video drawn offscreen:

@@ -53,8 +53,9 @@ def cmd_sweep(argv):
     ap.add_argument("--seed", type=int, default=0, help="seed of the random draws (default 0)")
     ap.add_argument("--output", action="append", default=[], metavar="OUTPUT",
                     help="a column of sweep.csv: SENSOR.x|y|z|ux|uy|uz (final value), steps, newton_iterations, "
-                         "cutbacks, load_factor, strain_energy, time, max_constraint_residual, frequency.N "
-                         "(default: every sensor's ux, uy, uz, steps, newton_iterations)")
+                         "cutbacks, load_factor, strain_energy, time, max_constraint_residual, frequency.N, "
+                         "or a statistic over a time window NAME.FIELD:peak|max|min|amplitude|rms|mean[@T0:T1] "
+                         "(FIELD: a sensor's x..uz, a joint's or actuator's value, rate, effort, power) (default: every sensor's ux, uy, uz, steps, newton_iterations)")
     ap.add_argument("--plot", metavar="OUTPUT", help="the output drawn against each swept key (default the first)")
     ap.add_argument("--vtk", action="store_true", help="keep the runs' ParaView frames (default: none)")
     a = ap.parse_args(argv)

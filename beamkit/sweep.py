@@ -16,7 +16,10 @@ against each swept key).  A finished run leaves runs/ID/sweep-run.json: a
 sweep run again over the same directory reuses those and runs only the rest.
 A run that fails (bad value, no convergence, a lost worker) is a row with its
 error (and is not retried by a restart; delete its directory to retry it); an
-interrupted run leaves no marker and runs again.  Sweeps write no ParaView frames unless vtk=True (output.vtk_every=0).
+interrupted run leaves no marker and runs again.  An output
+NAME.FIELD:STAT[@T0:T1] is a statistic of a sensor's, joint's or actuator's
+column over a time window of the run (beamkit/windows.py: peak, max, min,
+amplitude, rms, mean).  Sweeps write no ParaView frames unless vtk=True (output.vtk_every=0).
 """
 import hashlib
 import itertools
@@ -27,6 +30,7 @@ import re
 import time
 from pathlib import Path
 
+from beamkit import windows
 from beamkit.api import ROOT, BeamkitError, Scene, format_value, set_strings
 
 MARKER = "sweep-run.json"
@@ -164,6 +168,11 @@ def check_outputs(scene, outputs):
     for o in outputs:
         if o in SUMMARY_OUTPUTS or re.fullmatch(r"frequency\.[1-9]\d*", o):
             continue
+        if windows.is_window(o):         # a statistic over a time window (beamkit/windows.py)
+            err = windows.check(scene.doc, scene.path, o)
+            if err:
+                raise BeamkitError(err)
+            continue
         name, dot, comp = o.rpartition(".")
         if dot and comp in SENSOR_COMPONENTS:
             if name not in sensors:
@@ -171,7 +180,7 @@ def check_outputs(scene, outputs):
                                    f"(sensors: {', '.join(map(str, sensors)) or 'none'})")
             continue
         raise BeamkitError(f"error: --output {o}: unknown output; expected SENSOR.x, .y, .z, .ux, .uy, .uz, "
-                           f"{', '.join(SUMMARY_OUTPUTS)} or frequency.N")
+                           f"{', '.join(SUMMARY_OUTPUTS)}, frequency.N or NAME.FIELD:STAT[@T0:T1]")
 
 
 def output_value(summary, o):
@@ -320,7 +329,14 @@ def _write(out, combos, ids, records, keys, outputs):
         row["converged"] = bool(rec["converged"])
         row["wall_s"] = rec.get("wall_s")
         for o in outputs:
-            row[o] = output_value(rec.get("summary"), o) if rec["converged"] else None
+            if not rec["converged"]:
+                row[o] = None
+            elif windows.is_window(o):       # read once from the run's tables, kept in its record
+                row[o] = rec.setdefault("windows", {}).get(o)
+                if o not in rec["windows"]:
+                    row[o] = rec["windows"][o] = windows.value(Path(out) / "runs" / rid, o)
+            else:
+                row[o] = output_value(rec.get("summary"), o)
         row["error"] = rec.get("error") or ""
         rows.append(row)
     cols = ["run", "dir"] + keys + ["converged", "wall_s"] + outputs + ["error"]

@@ -1,21 +1,23 @@
 """C emission for rigid bodies (out/kernels/rigid_body.{h,c}: the element and its
 one pair) and the joints (out/kernels/joints.{h,c}: one kind per joint type,
-runtime/bk_joint.h), from gen/body.py."""
+runtime/bk_joint.h) and the joint actuators' coordinate kernels (gen/actuator.py), from
+gen/body.py."""
 from pathlib import Path
 
-from gen import body
+from gen import actuator, body
 from gen.c_functions import _function, section_frame_function
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
 from gen.program import Program, count_lowered, lower
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
-BODY_FILES = ("body.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py")
+BODY_FILES = ("body.py", "actuator.py", "emit_body.py", "rod.py", "rod_inertia.py", "chain.py", "rod_frame.py",
+              "rodmath.py", "loads.py")
 UNITS = ("rigid_body", "joints")
 NAME = "rigid_body"
 MATERIAL = "rigid"
 TITLE = "rigid body (centre of mass, quaternion)"
-CAPS = ("BK_CAP_SECTION_RECTANGLE",)
+CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_MOMENT_ANYWHERE")
 _D = "const double *restrict"
 _W = "double *restrict"
 
@@ -28,7 +30,7 @@ def describe():
     fields = (Field("r", 0, 3, 0), Field("p", 3, 4, 0))
     return ElementDesc(name=NAME, title=TITLE, node_xi=("1/2",), ndof=7, caps=CAPS, fields=fields,
                        shape_dof=(0,), functions={k: k for k in ("reference", "shape", "mass", "volume",
-                                                                 "frame", "section_frame", "rotary")})
+                                                                 "frame", "section_frame", "moment", "rotary")})
 
 
 def _ops(low):
@@ -80,6 +82,13 @@ extern const bk_pair bk_pair_{NAME}_{MATERIAL}_full;
     c += _function(f"static void frame({_D} geom, double xi, {_D} q, {_W} pos, {_W} d)",
                    lower(body.body_frame_program(), ()))
     c += section_frame_function(*(lower(pr, ()) for pr in body.body_section_frame_programs()))
+    from gen.rod_frame import moment_node_program
+    c += _function(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", lower(moment_node_program(), ()))
+    c += [f"static void moment({_D} geom, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)",
+          "{", "    (void)geom; (void)xi;", "    double Qn[4], dQn[16];",
+          "    for (int i = 0; i < 7; ++i) Q[i] = 0.0;", "    for (int i = 0; i < 49; ++i) dQ[i] = 0.0;",
+          "    moment_node(q + 3, M, Qn, dQn);", "    for (int i = 0; i < 4; ++i) {", "        Q[3 + i] = Qn[i];",
+          "        for (int j = 0; j < 4; ++j) dQ[7 * (3 + i) + 3 + j] = dQn[4 * i + j];", "    }", "}", ""]
     c += _function(f"static void rotary_node({_D} Jn, {_D} p, {_D} pd, {_D} pdd, {_W} f, {_W} Mq, "
                    f"{_W} Cq, {_W} Kq, {_W} T)", lower(body.body_rotary_program(), ()))
     c += [f"static void rotary({_D} geom, {_D} q, {_D} qd, {_D} qdd, {_W} f, {_W} Mq, {_W} Cq, {_W} Kq, {_W} T)",
@@ -123,6 +132,14 @@ def joints_source():
 extern const bk_joint_kind *const bk_joint_kinds[];
 extern const int bk_njoint_kinds;
 
+/* The joint coordinate of an actuator (gen/actuator.py), x and prm[0..23] as the
+ * joints': val[2] (rotation: X, Y, the angle atan2(Y, X); translation: s, 0),
+ * grad[14] = ds/dx, H[14 * 14] = d2s/dx2 (full, symmetric). */
+void bk_actuator_rotation(const double *restrict x, const double *restrict prm, double *restrict val,
+                          double *restrict grad, double *restrict H);
+void bk_actuator_translation(const double *restrict x, const double *restrict prm, double *restrict val,
+                             double *restrict grad, double *restrict H);
+
 #endif
 """
     c = [f"/* {BANNER} (see joints.h) */", '#include "joints.h"'] + version_guard() + [
@@ -140,6 +157,12 @@ extern const int bk_njoint_kinds;
         c += [f"static const bk_joint_kind kind_{name} = {{", f'    .name = "{name}",',
               f"    .nrow = {body.joint_nrow(name)},", f"    .eval = {name}_eval,",
               f"    .hessian = {name}_hessian,", f"    .driven = {body.DRIVEN.get(name, 0)},", "};", ""]
+    mirror = ["    for (int i = 0; i < 14; ++i)", "        for (int j = 0; j < i; ++j)",
+              "            H[14 * i + j] = H[14 * j + i];"]
+    for kind in actuator.KINDS:
+        fn = _function(f"void bk_actuator_{kind}({_D} x, {_D} prm, {_W} val, {_W} grad, {_W} H)",
+                       lower(actuator.actuator_program(kind), ()))
+        c += fn[:-2] + mirror + fn[-2:]
     c += ["const bk_joint_kind *const bk_joint_kinds[] = {" +
           ", ".join(f"&kind_{n}" for n in body.JOINT_TYPES) + "};",
           f"const int bk_njoint_kinds = {len(body.JOINT_TYPES)};", ""]

@@ -13,7 +13,7 @@ from gen import options_schema as S
 # the top-level tables: the scene's, then the option tables of the schema (an
 # analysis's options table comes with its schema rows)
 TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
-       "beam_contact") + tuple(S.TABLES)
+       "beam_contact", "actuator", "point_mass") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -33,7 +33,7 @@ CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
                                          "distance", "distance_amplitude"),
               "point_on_line": ("type", "name", "a", "axis"),
               "prescribed_motion": ("type", "name", "a", "motion", "amplitude", "clamped")}
-LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload"),
+LOAD = {"force": ("type", "name", "at", "value", "distribution", "amplitude", "follower", "preload", "point"),
         "moment": ("type", "name", "at", "value", "amplitude", "follower", "preload"),
         "gravity": ("type", "name", "value", "amplitude", "preload"),
         "distributed": ("type", "name", "beam", "from", "to", "value", "amplitude", "follower", "preload"),
@@ -52,7 +52,9 @@ MODAL = S.scene_keys("modal")
 BUCKLING = S.scene_keys("buckling")
 OUTPUT = S.scene_keys("output")
 INITIAL_VELOCITY = ("beam", "body", "velocity", "angular_velocity", "center")
-SENSOR = ("name", "at")
+SENSOR = ("name", "at", "point")
+POINT_MASS = ("at", "mass")
+ACTUATOR = ("name", "joint", "effort", "effort_amplitude", "kp", "kd", "setpoint", "setpoint_amplitude")
 BEAM_CONTACT = ("name", "beams", "self", "exclude", "distance", "stiffness", "samples", "contact_radius", "friction",
                 "slip", "static_friction", "kinetic_friction")
 
@@ -69,4 +71,5 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "beam_contact": BEAM_CONTACT}
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "beam_contact": BEAM_CONTACT,
+            "actuator": ACTUATOR, "point_mass": POINT_MASS}

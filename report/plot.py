@@ -7,6 +7,9 @@
                state the modes are about and displaced by the drawn mode scale
   beam.png     the last ParaView frame (results.pvd) drawn in 3-D, coloured by
                displacement magnitude
+  joints.png   the angle or displacement, rate and effort of every joint with an
+               axis and every actuator (joints.csv, actuators.csv; plot_joints.py)
+  reactions.png  every constraint's reaction force and moment (reactions.csv)
   path.png     arc-length runs (static.method = "arc_length"): the load factor
                against each sensor's displacement components, the limit points
                and bifurcations (summary.json critical_points) marked
@@ -316,6 +319,11 @@ def figures(run):
         figs["energy.png"] = fig_energy(run, summary)
     if "critical_points" in summary:
         figs["path.png"] = fig_path(run, summary)
+    from report.plot_joints import fig_joints, fig_reactions
+    for name, fn in (("joints.png", fig_joints), ("reactions.png", fig_reactions)):
+        f = fn(run, summary, decorate)
+        if f is not None:
+            figs[name] = f
     if summary["analysis"] in ("modal", "buckling"):
         f = fig_modes(run, summary, length)
         if f is not None:

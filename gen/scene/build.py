@@ -7,8 +7,10 @@ import os
 
 import gen.scene_keys as K
 from gen.options_schema import OPTIONS
+from gen.scene.actuators import actuators
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
+from gen.scene.body_loads import body_point_forces
 from gen.scene.buckling import buckling_options
 from gen.scene.beam_contact import beam_contacts
 from gen.scene import interactions
@@ -20,6 +22,7 @@ from gen.scene.materials import material_params, sections as parse_sections
 from gen.scene.mesh import mesh_beams
 from gen.scene.model_file import _f
 from gen.scene.options import initial_velocities, options, sensors
+from gen.scene.point_masses import point_masses
 from gen.scene.rigid_modes import check_static
 from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
 
@@ -72,8 +75,9 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
     rows = constraints(ctx, doc, mesh, amps, analysis)    # none is allowed: the solver reports the singular tangent
+    acts = actuators(ctx, doc, rows, amps)
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
-    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps)
+    forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps, mesh.bodies)
     stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
     modal = buckling or modal               # the model file's modal record carries the buckling options
     qd0 = initial_velocities(ctx, doc, mesh)
@@ -101,7 +105,8 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
-        "inputs": list(ctx.inputs),
+        "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
+        "body_forces": body_point_forces(ctx, doc, mesh.bodies, amps),
         "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])],
     }

@@ -422,6 +422,8 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     rows.analysis = analysis
     rows.nlcons = []
     names = set()
+    from gen.scene.actuators import actuated_joints
+    actuated = actuated_joints(doc)       # joints with a motor need their frames: nonlinear rows
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
         ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS) + ("fixed", "universal", "prismatic",
@@ -430,7 +432,7 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         name = _name(ctx, ct, where, ci, names)
-        if not _is_linear(ct, mesh, ctype):
+        if not _is_linear(ct, mesh, ctype) or (ctype in NONLINEAR and name in actuated):
             joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows)
             rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name))
             rows.nlcons.append(joint)

@@ -75,8 +75,9 @@ def _chamber(ctx, lt, where, beams, amps):
     return (amp, -p * area, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces])
 
 
-def loads(ctx, doc, beams, amps):
-    """(forces, moments, gravity, distributed, tendons) of the scene."""
+def loads(ctx, doc, beams, amps, bodies=None):
+    """(forces, moments, gravity, distributed, tendons) of the scene (a force or
+    moment on a body: gen/scene/body_loads.py)."""
     forces = []
     moments = []
     dloads = []
@@ -124,6 +125,14 @@ def loads(ctx, doc, beams, amps):
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             if "at" not in lt:
                 ctx.fail(f"{where}.at", "missing; expected a point like 'arm:end'")
+            if bodies and isinstance(lt["at"], str) and lt["at"] in bodies:
+                from gen.scene.body_loads import body_load
+                fs, ms = body_load(ctx, lt, where, ltype, bodies[lt["at"]], amps)
+                forces += fs
+                moments += ms
+                continue
+            if "point" in lt:
+                ctx.fail(f"{where}.point", "a point of a rigid body: expected `at` to name a body")
             beam, s = parse_point(ctx, lt["at"], f"{where}.at", beams)
             val = get_vec3(ctx, lt, "value", where)
             e, xi = locate(beam, s)

@@ -214,6 +214,10 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         geo = beam_geometry(ctx, bt, where, ename, einfo, index)
         length = geo.length
         lens = element_lengths(ctx, bt, where, nel, length)
+        from gen.scene.joint_nodes import split_at_joints
+        lens, added = split_at_joints(ctx, doc, bt, where, bname, lens, length)
+        nel = len(lens)
+        warnings.extend(added)
         starts = [0.0] + list(itertools.accumulate(lens))[:-1]
         esecs = element_sections(ctx, bt, where, sections, sec, [(s0 + l / 2) / length for s0, l in zip(starts, lens)])
         if pair not in pairs:
@@ -254,8 +258,6 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                 mats_used.append(mkey)
             midx_of[sec] = mats_used.index(mkey)
             return midx_of[sec]
-        lens = element_lengths(ctx, bt, where, nel, length)
-        starts = [0.0] + list(itertools.accumulate(lens))[:-1]
 
         first_elem = len(elements)
         enodes = einfo["nodes"]

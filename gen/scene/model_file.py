@@ -96,8 +96,8 @@ def write_model(model, path):
     g = model["gravity"]
     out.append("gravity 0" if g is None else "gravity 1 " + " ".join(_f(x) for x in g[0]) + f" {g[1]}")
     out.append(f"sensors {len(model['sensors'])}")
-    for n, e, xi in model["sensors"]:
-        out.append(f"sensor {n} {e} {_f(xi)}")
+    for n, e, xi, off in model["sensors"]:
+        out.append(f"sensor {n} {e} {_f(xi)} " + " ".join(_f(x) for x in off))
     out.append(f"amplitudes {len(model['amplitudes'])}")
     for atype, params in model["amplitudes"]:
         out.append(f"amplitude {atype} {len(params)} " + " ".join(_f(x) for x in params))
@@ -119,6 +119,12 @@ def write_model(model, path):
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
     from gen.scene.beam_contact import beam_contact_records
     out += beam_contact_records(model.get("beam_contacts", []), _f)
+    from gen.scene.actuators import actuator_records
+    out += actuator_records(model.get("actuators", []), _f)
+    from gen.scene.point_masses import point_mass_records
+    out += point_mass_records(model.get("point_masses", []), _f)
+    from gen.scene.body_loads import body_force_records
+    out += body_force_records(model.get("body_forces", []), _f)
     records = model.get("records", [])       # the interaction modules' (gen/scene/interactions.py)
     out.append(f"records {len(records)}")
     for name, lines in records:

@@ -63,7 +63,8 @@ def initial_velocities(ctx, doc, mesh):
 
 
 def sensors(ctx, doc, beams, bodies=None):
-    """[(name, element, xi)] of the [[sensor]] tables (a body: its centre of mass, xi = 1/2)."""
+    """[(name, element, xi, offset)] of the [[sensor]] tables (a body: its centre of mass, xi = 1/2, or
+    with `point` that point of the body, offset = its place in the body axes; gen/scene/body_loads.py)."""
     sensors = []
     seen = set()
     for si, sd in enumerate(get_array_of_tables(ctx, doc, "sensor")):
@@ -76,10 +77,14 @@ def sensors(ctx, doc, beams, bodies=None):
         if "at" not in sd:
             ctx.fail(f"sensor.{sn}.at", "missing; expected a point like 'arm:end'")
         if bodies and isinstance(sd["at"], str) and sd["at"] in bodies:
-            sensors.append((sn, bodies[sd["at"]]["elem"], 0.5))
+            from gen.scene.body_loads import body_point
+            off = body_point(ctx, sd, f"sensor.{sn}", bodies[sd["at"]])
+            sensors.append((sn, bodies[sd["at"]]["elem"], 0.5, off or [0.0, 0.0, 0.0]))
             continue
+        if "point" in sd:
+            ctx.fail(f"sensor.{sn}.point", "a point of a rigid body: expected `at` to name a body")
         beam, s = parse_point(ctx, sd["at"], f"sensor.{sn}.at", beams)
         e, xi = locate(beam, s)
-        sensors.append((sn, e, xi))
+        sensors.append((sn, e, xi, [0.0, 0.0, 0.0]))
 
     return sensors

@@ -204,6 +204,59 @@ static void section_frame(const double *restrict geom, double xi, const double *
     dR[62] = -x14*x42;
 }
 
+static void moment_node(const double *restrict p, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    const double rc0 = (1.0/((p[0]*p[0]) + (p[1]*p[1]) + (p[2]*p[2]) + (p[3]*p[3])));
+    const double x0 = 2.0*M[0];
+    const double x1 = 2.0*M[1];
+    const double x2 = 2.0*M[2];
+    const double x3 = -p[1]*x0 - p[2]*x1 - p[3]*x2;
+    const double x4 = 2.0*(rc0*rc0);
+    const double x5 = x3*x4;
+    const double x6 = rc0*x0;
+    const double x7 = rc0*x1;
+    const double x8 = rc0*x2;
+    const double x9 = p[0]*x0 - p[2]*x2 + p[3]*x1;
+    const double x10 = x4*x9;
+    const double x11 = p[0]*x1 + p[1]*x2 - p[3]*x0;
+    const double x12 = x11*x4;
+    const double x13 = p[0]*x2 - p[1]*x1 + p[2]*x0;
+    const double x14 = x13*x4;
+    Q[0] = rc0*x3;
+    dQ[0] = -p[0]*x5;
+    dQ[1] = -p[1]*x5 - x6;
+    dQ[2] = -p[2]*x5 - x7;
+    dQ[3] = -p[3]*x5 - x8;
+    Q[1] = rc0*x9;
+    dQ[4] = -p[0]*x10 + x6;
+    dQ[5] = -p[1]*x10;
+    dQ[6] = -p[2]*x10 - x8;
+    dQ[7] = -p[3]*x10 + x7;
+    Q[2] = rc0*x11;
+    dQ[8] = -p[0]*x12 + x7;
+    dQ[9] = -p[1]*x12 + x8;
+    dQ[10] = -p[2]*x12;
+    dQ[11] = -p[3]*x12 - x6;
+    Q[3] = rc0*x13;
+    dQ[12] = -p[0]*x14 + x8;
+    dQ[13] = -p[1]*x14 - x7;
+    dQ[14] = -p[2]*x14 + x6;
+    dQ[15] = -p[3]*x14;
+}
+
+static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
+{
+    (void)geom; (void)xi;
+    double Qn[4], dQn[16];
+    for (int i = 0; i < 7; ++i) Q[i] = 0.0;
+    for (int i = 0; i < 49; ++i) dQ[i] = 0.0;
+    moment_node(q + 3, M, Qn, dQn);
+    for (int i = 0; i < 4; ++i) {
+        Q[3 + i] = Qn[i];
+        for (int j = 0; j < 4; ++j) dQ[7 * (3 + i) + 3 + j] = dQn[4 * i + j];
+    }
+}
+
 static void rotary_node(const double *restrict Jn, const double *restrict p, const double *restrict pd, const double *restrict pdd, double *restrict f, double *restrict Mq, double *restrict Cq, double *restrict Kq, double *restrict T)
 {
     const double g0 = p[0]*pd[1] - p[1]*pd[0] - p[2]*pd[3] + p[3]*pd[2];
@@ -547,7 +600,7 @@ const bk_element bk_element_rigid_body = {
     .nnode = 1,
     .ndof = 7,
     .node_xi = node_xi,
-    .caps = BK_CAP_SECTION_RECTANGLE,
+    .caps = BK_CAP_SECTION_RECTANGLE | BK_CAP_MOMENT_ANYWHERE,
     .nfield = 2,
     .field_role = field_role,
     .field_name = field_name,
@@ -561,6 +614,7 @@ const bk_element bk_element_rigid_body = {
     .volume = volume,
     .frame = frame,
     .section_frame = section_frame,
+    .moment = moment,
     .rotary = rotary,
 };
 

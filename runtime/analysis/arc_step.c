@@ -164,8 +164,8 @@ void bk_sensor_displacements(const bk_model *m, const double *q, bk_critical_poi
     cp->nsensor = m->nsensor < BK_CRIT_SENSORS ? m->nsensor : BK_CRIT_SENSORS;
     for (int k = 0; k < cp->nsensor; ++k) {
         double p[3], p0[3];
-        bk_eval_point(m, q, m->sensors[k].elem, m->sensors[k].xi, p, NULL);
-        bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, p0, NULL);
+        bk_eval_sensor(m, q, &m->sensors[k], p, NULL);
+        bk_eval_sensor(m, m->q0, &m->sensors[k], p0, NULL);
         for (int i = 0; i < 3; ++i)
             cp->u[k][i] = p[i] - p0[i];
     }

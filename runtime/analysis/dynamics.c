@@ -65,7 +65,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
                 w->Ax[k] *= 1.0 + gp * rb;
     }
     A = matrix ? w->Ax : NULL;
-    const bk_path path = {.factor = 1.0, .x = tn};
+    const bk_path path = {.factor = 1.0, .x = tn, .qd = w->qd, .gp = gp};
     if (bk_assemble_interactions(s, q, &path, w->fint, A) != 0)
         return -1;
     bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
@@ -244,7 +244,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         s->cscale = mbar;
         bk_assemble_internal(s, q, w.fint, w.Ax);
         memset(w.Ax, 0, (size_t)s->nnz * sizeof *w.Ax);
-        const bk_path path = {.factor = 1.0, .x = t};
+        const bk_path path = {.factor = 1.0, .x = t, .qd = w.qd};
         bk_assemble_interactions(s, q, &path, w.fint, NULL);
         bk_dyn_element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
         for (int k = 0; k < (int)s->nnz; ++k)

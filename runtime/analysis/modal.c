@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "analysis/static.h"
+#include "assembly/actuators.h"
 
 #define BK_MODAL_MAXDOF 4000
 
@@ -199,6 +200,9 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
             add_element_block(s, e, Mq, rho, M);
         }
     }
+    /* the joint motors' stiffness (their springs kp and the torque's) at rest */
+    const double x_modal = m->modal.about == BK_ABOUT_STATIC ? 1.0 : 0.0;
+    bk_actuators_at_rest(s, q, x_modal, NULL, k_add, K);
     /* symmetrize (kernels are symmetric to round-off) */
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j) {
@@ -249,6 +253,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
             }
             bk_assemble_internal(s, q, fint, NULL);
             bk_assemble_follower(s, q, 1.0, fint, NULL);
+            bk_actuators_at_rest(s, q, 1.0, fint, NULL, NULL);
             bk_external_load(s, fext);
             for (int i = 0; i < m->ndof; ++i)
                 if (s->eq[i] >= 0)

@@ -161,6 +161,33 @@ void bk_element_mass(const bk_model *m, int e, double *work, double *Me)
         for (int b = 0; b < ns; ++b)
             for (int i = 0; i < 3; ++i)
                 Me[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i] = rho * work[a * ns + b];
+    for (int k = 0; k < m->npmass; ++k) {          /* point masses on it: m N^T N */
+        const bk_point_mass *pm = &m->pmass[k];
+        if (pm->elem != e)
+            continue;
+        et->shape(m->geoms[el->geom], pm->xi, 0.0, 0.0, work);
+        for (int a = 0; a < ns; ++a)
+            for (int b = 0; b < ns; ++b)
+                for (int i = 0; i < 3; ++i)
+                    Me[(et->shape_dof[a] + i) * nd + et->shape_dof[b] + i] += pm->mass * work[a] * work[b];
+    }
+}
+
+void bk_element_weight(const bk_model *m, int e, double *N)
+{
+    const bk_elem *el = &m->elems[e];
+    const bk_element *et = bk_elem_type(m, e);
+    const double rho = m->mats[el->mat].rho;
+    double Np[BK_MAX_SHAPE];
+    et->volume(m->geoms[el->geom], N);
+    for (int a = 0; a < et->nshape; ++a)
+        N[a] *= rho;
+    for (int k = 0; k < m->npmass; ++k)
+        if (m->pmass[k].elem == e) {
+            et->shape(m->geoms[el->geom], m->pmass[k].xi, 0.0, 0.0, Np);
+            for (int a = 0; a < et->nshape; ++a)
+                N[a] += m->pmass[k].mass * Np[a];
+        }
 }
 
 int bk_element_has_role(const bk_element *et, bk_field_role role)
@@ -244,5 +271,16 @@ void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double 
     double qe[BK_MAX_ELEMENT_DOF], dd[9];
     bk_gather(m, e, q, qe);
     bk_elem_type(m, e)->frame(m->geoms[m->elems[e].geom], xi, qe, pos, d ? d : dd);
+}
+
+void bk_eval_sensor(const bk_model *m, const double *q, const bk_sensor *s, double *pos, double *d)
+{
+    double dd[9];
+    d = d ? d : dd;
+    bk_eval_point(m, q, s->elem, s->xi, pos, d);
+    for (int k = 0; k < 3; ++k)
+        if (s->off[k] != 0.0)          /* (a cable's d1, d2 are NaN: only where needed) */
+            for (int i = 0; i < 3; ++i)
+                pos[i] += s->off[k] * d[3 * k + i];
 }
 

@@ -76,9 +76,8 @@ void bk_gravity_load(const bk_system *s, double *fg)
     memset(fg, 0, (size_t)m->ndof * sizeof *fg);
     if (m->has_gravity && !m->gravity_amp) {       /* with an amplitude: bk_assemble_loads */
         for (int e = 0; e < m->nelem; ++e) {
-            const bk_elem *el = &m->elems[e];
-            bk_elem_type(m, e)->volume(m->geoms[el->geom], N);
-            scatter_shape(m, e, N, m->gravity, m->mats[el->mat].rho, fg);
+            bk_element_weight(m, e, N);
+            scatter_shape(m, e, N, m->gravity, 1.0, fg);
         }
     }
 }

@@ -60,10 +60,15 @@ struct bk_system;
 
 /* A point of the path: factor scales the loads proportional to the load
  * factor (statics: the load factor; dynamics: 1), x is the variable of the
- * amplitudes (statics: the load factor; dynamics: the time). */
+ * amplitudes (statics: the load factor; dynamics: the time); in dynamics qd
+ * the velocities at q (NULL: at rest, statics) and gp the factor of the
+ * velocity in the Newton matrix (dq'/dq: gamma' of generalized-alpha, 0 in
+ * statics), for forces that depend on velocities (actuators' feedback). */
 typedef struct bk_path {
     double factor;
     double x;
+    const double *qd;
+    double gp;
 } bk_path;
 
 typedef struct bk_interaction_ops {

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "assembly/actuators.h"
+#include "assembly/body_forces.h"
 #include "assembly/beam_contact.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
@@ -63,6 +65,34 @@ static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FIL
 
 const bk_interaction_module bk_interaction_loads = {.ops = &loads_ops, .order = 20, .present = bk_loads_present,
                                                     .make = make_loads};
+
+/* ---- motors on joints (actuators.c) and forces at body points (body_forces.c):
+ * their data is the model's own records ---- */
+
+static int make_actuators(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
+{
+    (void)rec;
+    if (bk_actuators_make(s, self) == 0)
+        return 0;
+    fprintf(err, "error: actuators: out of memory\n");
+    return -1;
+}
+
+const bk_interaction_module bk_interaction_actuators = {.ops = &bk_actuator_ops, .order = 60,
+                                                        .present = bk_actuators_present, .make = make_actuators};
+
+static int make_body_forces(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
+{
+    (void)rec;
+    if (bk_body_forces_make(s, self) == 0)
+        return 0;
+    fprintf(err, "error: body forces: out of memory\n");
+    return -1;
+}
+
+const bk_interaction_module bk_interaction_body_forces = {.ops = &bk_body_force_ops, .order = 70,
+                                                          .present = bk_body_forces_present,
+                                                          .make = make_body_forces};
 
 /* ---- contact between beams (beam_contact.c; its data is the model's own) ---- */
 

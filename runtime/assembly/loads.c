@@ -327,8 +327,8 @@ void bk_assemble_loads_in(bk_system *s, bk_loads_scratch *ls, const double *q, d
         for (int e = 0; e < m->nelem; ++e) {
             const bk_element *et = bk_elem_type(m, e);
             memset(Q, 0, (size_t)et->ndof * sizeof *Q);
-            et->volume(m->geoms[m->elems[e].geom], w->N);
-            add_force(et, w->N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Q, NULL);
+            bk_element_weight(m, e, w->N);
+            add_force(et, w->N, m->gravity, NULL, gf, Q, NULL);
             bk_scatter(m, e, Q, -1.0, fint);
         }
     }
@@ -406,8 +406,8 @@ void bk_load_potentials(const bk_system *s, const double *q, double x, double *V
             const bk_element *et = bk_elem_type(m, e);
             bk_gather(m, e, q, qe);
             bk_gather(m, e, m->q0, qe0);
-            et->volume(m->geoms[m->elems[e].geom], N);
-            *Vg += gf * m->mats[m->elems[e].mat].rho * dead_work(et, N, m->gravity, qe, qe0);
+            bk_element_weight(m, e, N);
+            *Vg += gf * dead_work(et, N, m->gravity, qe, qe0);
         }
     }
     for (int i = 0; i < m->ntendon; ++i) {
@@ -442,8 +442,8 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
     bk_gather(m, e, q, w.qe);
     if (m->has_gravity) {
         double gf = m->gravity_amp ? bk_amp_eval(m->gravity_amp, x, 0) : bk_load_factor(m, -1, x);
-        et->volume(m->geoms[m->elems[e].geom], w.N);
-        add_force(et, w.N, m->gravity, NULL, gf * m->mats[m->elems[e].mat].rho, Qe, NULL);
+        bk_element_weight(m, e, w.N);
+        add_force(et, w.N, m->gravity, NULL, gf, Qe, NULL);
     }
     for (int i = 0; i < m->nforce; ++i) {
         const bk_force_load *f = &m->forces[i];

@@ -161,6 +161,12 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t);
 /* Centreline point xi of element e: position and (if d != NULL) the section
  * frame d1, d2, d3 (NaN where the element defines none). */
 void bk_eval_point(const bk_model *m, const double *q, int e, double xi, double *pos, double *d);
+/* The weights of element e's position shape functions under gravity, N[nshape]
+ * (kg): rho times its volume() plus its point masses' m N(xi). */
+void bk_element_weight(const bk_model *m, int e, double *N);
+/* The position (and frame d[9], may be NULL) of sensor s at q: bk_eval_point
+ * of its element and xi, moved by its offset along d1, d2, d3 (a body point). */
+void bk_eval_sensor(const bk_model *m, const double *q, const bk_sensor *s, double *pos, double *d);
 
 /* Adds the coupling blocks of n element pairs pairs[2 n] (any order, repeats
  * and a == b allowed) to the pattern.  When that needs entries the pattern

@@ -281,9 +281,14 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
             memcpy(s->name, t, strlen(t) + 1);
         s->elem = rd_inum(r, "sensor element", 0, m->nelem - 1);
         s->xi = rd_num(r, "sensor xi");
+        for (int k = 0; k < 3; ++k)
+            s->off[k] = rd_num(r, "sensor offset");
     }
     bk_model_read_extras(r, m);
     bk_model_read_beam_contacts(r, m);
+    bk_model_read_actuators(r, m);
+    bk_model_read_point_masses(r, m);
+    bk_model_read_body_forces(r, m);
     bk_model_read_records(r, m);
     rd_expect(r, "end");
     free(r->buf);
@@ -300,6 +305,9 @@ void bk_model_free(bk_model *m)
         return;
     bk_model_records_free(m);
     bk_beam_contact_model_free(m->beam_contact);
+    bk_actuator_model_free(m->actuators);
+    free(m->pmass);
+    free(m->bforces);
     free(m->q0);
     free(m->qd0);
     free(m->pairs);

@@ -12,6 +12,7 @@
 #include "bk_joint.h"
 #include "bk_kernel.h"
 #include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
+#include "model/actuator.h"
 #include "model/beam_contact.h"
 
 /* An interaction module's record (model/records.c): its name, and its text,
@@ -64,6 +65,19 @@ typedef struct bk_force_load {   /* force at a material point of an element */
     int follower;      /* 1: turns with the section frame at the point */
 } bk_force_load;
 
+typedef struct bk_point_mass {  /* a mass without rotary inertia at a material point of an element */
+    int elem;
+    double xi;         /* on the centreline */
+    double mass;       /* kg */
+} bk_point_mass;
+
+typedef struct bk_body_force {  /* a dead force at a point of a rigid body off its centre of mass */
+    int elem;          /* the body's element (7 DOFs: r, p) */
+    double c[3];       /* the point in the body axes (m) */
+    double value[3];   /* N, global */
+    int amp;           /* amplitude index, -1: the default */
+} bk_body_force;
+
 typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
     double xi;
@@ -114,6 +128,7 @@ typedef struct bk_sensor {
     char name[64];
     int elem;
     double xi;         /* along the element axis, on the centreline */
+    double off[3];     /* a point of a body: its place along the body axes d1, d2, d3 (else 0) */
 } bk_sensor;
 
 /* A constraint linear in q, possibly rheonomic:
@@ -184,6 +199,11 @@ typedef struct bk_model {
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
     bk_beam_contact_model *beam_contact;   /* NULL: no beam touches a beam (beam_contact.h); owned likewise */
+    bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
+    int npmass;
+    bk_point_mass *pmass;        /* point masses (bk_element_mass, bk_element_weight) */
+    int nbforce;
+    bk_body_force *bforces;      /* dead forces at body points (assembly/body_forces.c) */
     int nsensor;
     bk_sensor *sensors;
     int namp;

@@ -221,7 +221,7 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
         p->force(qe, m->tabs[el->geom], m->mats[el->mat].params, fe);
         bk_scatter(m, e, fe, 1.0, f->res);
     }
-    const bk_path path = {.factor = lf, .x = x};
+    const bk_path path = {.factor = lf, .x = x, .qd = qd};
     bk_assemble_interactions(s, q, &path, f->res, NULL);
     if (!f->have_fext) {                     /* dead loads of unit factor: constant */
         bk_external_load(s, f->fext);

@@ -99,7 +99,7 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         return -1;
     }
     for (int k = 0; k < m->nsensor; ++k)
-        bk_eval_point(m, m->q0, m->sensors[k].elem, m->sensors[k].xi, o->sensor_p0 + 3 * k, NULL);
+        bk_eval_sensor(m, m->q0, &m->sensors[k], o->sensor_p0 + 3 * k, NULL);
     if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
         return -1;
     o->vtk.sec = o->forces.sec;
@@ -123,7 +123,7 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
 static void sensor_state(const bk_output *o, int k, const double *q, double *pos, double *disp, double *grad)
 {
     const bk_sensor *s = &o->m->sensors[k];
-    bk_eval_point(o->m, q, s->elem, s->xi, pos, grad);
+    bk_eval_sensor(o->m, q, s, pos, grad);
     for (int i = 0; i < 3; ++i)
         disp[i] = pos[i] - o->sensor_p0[3 * k + i];
 }
@@ -321,9 +321,9 @@ double bk_output_mode(bk_output *o, int mode, const double *vals, const double *
         for (int k = 0; k < m->nsensor; ++k) {
             const bk_sensor *s = &m->sensors[k];
             double x[3], a[3], b[3], sh[3];
-            bk_eval_point(m, q, s->elem, s->xi, x, NULL);
-            bk_eval_point(m, qp, s->elem, s->xi, a, NULL);
-            bk_eval_point(m, qm, s->elem, s->xi, b, NULL);
+            bk_eval_sensor(m, q, s, x, NULL);
+            bk_eval_sensor(m, qp, s, a, NULL);
+            bk_eval_sensor(m, qm, s, b, NULL);
             for (int i = 0; i < 3; ++i)
                 sh[i] = (a[i] - b[i]) / (2.0 * eps * norm);
             fprintf(o->mode_sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", mode, vals[0],
