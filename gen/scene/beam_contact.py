@@ -14,8 +14,8 @@ section's: a circle's radius, a rectangle's half-height h/2), friction (the
 Coulomb coefficient mu, one for sticking and sliding, default 0) and slip (the
 relative slip per step below which two beams stick, m; default 1e-7 of the
 model length).  The runtime grows
-the Newton matrix's pattern as contacts are found, so only static analyses
-with load control and `stability = false` take beam contact."""
+the Newton matrix's pattern as contacts are found, so only dynamics and static
+analyses with load control and `stability = false` take beam contact."""
 import math
 
 import gen.scene_keys as K
@@ -90,10 +90,11 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "beam_contact")):
         where = f"beam_contact[{i}]"
         check_keys(ctx, ct, set(KEYS), where)
-        if analysis != "static" or stat.get("method", "load_control") != "load_control":
-            ctx.fail(where, "beam contact is available in static analyses with load control only (the Newton "
-                            "matrix's pattern grows as contacts are found)")
-        if stat.get("stability"):
+        if analysis not in ("static", "dynamic") or (analysis == "static" and
+                                                     stat.get("method", "load_control") != "load_control"):
+            ctx.fail(where, "beam contact is available in dynamics and in static analyses with load control only "
+                            "(the Newton matrix's pattern grows as contacts are found)")
+        if analysis == "static" and stat.get("stability"):
             ctx.fail(where, "expected [static] stability = false (the stability check keeps the first pattern of "
                             "the Newton matrix, which beam contact grows)")
         for k in ("static_friction", "kinetic_friction"):
