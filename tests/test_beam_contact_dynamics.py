@@ -1,0 +1,222 @@
+"""Beam-to-beam contact in dynamics (issue 35 part 2; [[beam_contact]] with
+analysis = "dynamic", runtime/assembly/beam_contact*.c, analysis/dynamics.c).
+
+Against closed forms: a short bar dropped across a clamped-clamped beam
+settles to the beam's static sag under the bar's weight and its own
+(Euler-Bernoulli) with the contact carrying the bar's weight; a bar thrown at
+the beam never passes through it at dt = 1e-4 ... 1e-2 (fixed and adaptive
+steps; the positions from sensors.csv, not from the contact code) and gains no
+energy; two equal free bars colliding crosswise exchange their velocities (the
+rigid-body limit of a conservative impact of equal masses) with the total
+momentum constant to round-off."""
+import csv
+import json
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+
+from util import BUILD, ROOT, ensure_dir, run_memcheck, run_scene
+
+DROP = (ROOT / "models" / "contact_bar_drop.toml").read_text()
+R_BEAM, R_BAR = 0.005, 0.004                       # contact radii: half-heights
+
+
+def out_dir():
+    return Path(tempfile.mkdtemp(prefix="bk-bcdyn-", dir=ensure_dir(BUILD / "runs")))
+
+
+def _scene(text, name="scene"):
+    d = out_dir()
+    p = d / f"{name}.toml"
+    p.write_text(text)
+    return p, d / "out"
+
+
+def _heights(out):
+    """{time: {sensor: z}} from sensors.csv."""
+    z = {}
+    with open(out / "sensors.csv", newline="") as fh:
+        for r in csv.DictReader(fh):
+            z.setdefault(float(r["time"]), {})[r["sensor"]] = float(r["z"])
+    return z
+
+
+def _energy(out):
+    with open(out / "energy.csv", newline="") as fh:
+        return [float(r["total"]) for r in csv.DictReader(fh)]
+
+
+def test_dropped_bar_settles_to_the_static_deflection():
+    """models/contact_bar_drop.toml: the beam (L = 1 m, EI = 7e10 * 1e-8 / 12)
+    sags P L^3 / (192 EI) + q L^4 / (384 EI) at its middle under the bar's
+    weight P and its own weight q (clamped at both ends); the contact force on
+    each is P, equal and opposite; the bar rests on the beam."""
+    p, out = _scene(DROP)
+    s, _ = run_scene(p, out=out)
+    EI, L, g = 7.0e10 * 0.01 ** 4 / 12, 1.0, 9.81
+    P, q = 7800.0 * 0.04 * 0.008 * 0.2 * g, 2700.0 * 0.01 * 0.01 * g
+    sag = P * L ** 3 / (192 * EI) + q * L ** 4 / (384 * EI)
+    mid = -s["sensors"]["mid"]["displacement"][2]
+    assert abs(mid / sag - 1) < 0.01, (mid, sag)
+    c = s["beam_contact"]
+    bar, beam = c["sets"][0]["beams"]["bar"], c["sets"][0]["beams"]["beam"]
+    assert abs(bar[2] / P - 1) < 1e-3, (bar, P)
+    assert all(abs(bar[i] + beam[i]) <= 1e-12 * P for i in range(3)), (bar, beam)
+    assert c["max_penetration"] == 0 and 0 < c["min_distance"] < 1e-5, c
+    gap = s["sensors"]["bar"]["position"][2] - s["sensors"]["mid"]["position"][2] - R_BEAM - R_BAR
+    assert 0 < gap < 1e-5, gap
+
+
+def _thrown(dt, extra="", contact=True, z0=0.1, t_end=0.1):
+    """The bar thrown down at 2 m/s from z0, no gravity, no damping,
+    rho_inf = 0: returns (summary, out)."""
+    t = DROP.replace('[[load]]\ntype = "gravity"\nvalue = [0.0, 0.0, -9.81]\n',
+                     '[[initial_velocity]]\nbeam = "bar"\nvelocity = [0.0, 0.0, -2.0]\n')
+    t = t.replace("rayleigh_alpha = 100.0\n", "").replace("rho_inf = 0.5", "rho_inf = 0.0")
+    t = t.replace("t_end = 0.4", f"t_end = {t_end}").replace("dt = 1e-3", f"dt = {dt}{extra}")
+    t = t.replace("start = [0.5, -0.1, 0.011]", f"start = [0.5, -0.1, {z0}]")
+    t = t.replace("end = [0.5, 0.1, 0.011]", f"end = [0.5, 0.1, {z0}]")
+    if not contact:
+        t = t.replace('[[beam_contact]]\nbeams = ["beam", "bar"]\ndistance = 1e-5\n', "")
+    p, out = _scene(t, f"thrown_{dt}")
+    s, _ = run_scene(p, out=out)
+    return s, out
+
+
+def _check_thrown(s, out):
+    z = _heights(out)
+    gaps = [v["bar"] - v["mid"] - R_BEAM - R_BAR for v in z.values()]
+    assert min(gaps) > 0, min(gaps)                          # above the beam at every output step
+    assert z[max(z)]["bar"] > z[max(z)]["mid"] + 0.01        # and bounced off it
+    e = _energy(out)                                         # 0.5 m v^2 at the start
+    assert abs(e[0] / (0.5 * 7800 * 0.04 * 0.008 * 0.2 * 4.0) - 1) < 1e-12, e[0]
+    assert max(e) <= e[0] * (1 + 1e-6), (max(e), e[0])       # no energy gained (rho_inf = 0 dissipates)
+    c = s["beam_contact"]
+    assert c["max_penetration"] == 0 and c["element_pairs"] > 0, c
+
+
+def test_thrown_bar_never_passes_through_fixed_steps():
+    """dt = 1e-2 moves the bar 20 mm a step, more than the two sections
+    together (18 mm): the predictor and every Newton correction are held to
+    the contact's step limit.  The broad phase finds the pair during the fall
+    (the pattern grows in dynamics)."""
+    for dt in ("1e-2", "1e-3", "1e-4"):
+        s, out = _thrown(dt)
+        _check_thrown(s, out)
+
+
+def test_thrown_bar_never_passes_through_adaptive_steps():
+    s, out = _thrown("1e-3", extra="\ntol = 1e-5")
+    _check_thrown(s, out)
+    assert s["steps"] > 100, s["steps"]                      # the step adapted below dt
+
+
+def test_without_contact_the_thrown_bar_passes_through():
+    """The same scene without [[beam_contact]]: the bar ends below the beam
+    (so the checks above can fail)."""
+    _, out = _thrown("1e-3", contact=False)
+    z = _heights(out)
+    assert z[max(z)]["bar"] < z[max(z)]["mid"] - 0.05
+
+
+def test_thrown_bar_with_pattern_growth_under_valgrind():
+    """valgrind memcheck on the solver while the pattern grows in dynamics
+    (the mass matrix and the Newton matrix follow it)."""
+    t = DROP.replace('[[load]]\ntype = "gravity"\nvalue = [0.0, 0.0, -9.81]\n',
+                     '[[initial_velocity]]\nbeam = "bar"\nvelocity = [0.0, 0.0, -2.0]\n')
+    t = t.replace("rayleigh_alpha = 100.0\n", "").replace("t_end = 0.4", "t_end = 0.06").replace("dt = 1e-3",
+                                                                                                 "dt = 5e-3")
+    t = t.replace("0.011]", "0.05]")
+    p, _ = _scene(t, "vg")
+    r, out = run_memcheck(p)
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert json.loads((out / "summary.json").read_text())["beam_contact"]["element_pairs"] > 0
+
+
+COLLIDE = """
+[scene]
+analysis = "dynamic"
+
+[material.steel]
+law = "resultant"
+E = 2.1e11
+nu = 0.3
+rho = 7800.0
+
+[section.bar]
+shape = "rectangle"
+b = 0.01
+h = 0.01
+
+[[beam]]
+name = "a"
+element = "gef"
+material = "steel"
+section = "bar"
+start = [0.0, -0.05, 0.013]
+end = [0.0, 0.05, 0.013]
+up = [0.0, 0.0, 1.0]
+elements = 4
+
+[[beam]]
+name = "b"
+element = "gef"
+material = "steel"
+section = "bar"
+start = [-0.05, 0.0, 0.0]
+end = [0.05, 0.0, 0.0]
+up = [0.0, 0.0, 1.0]
+elements = 4
+
+[[initial_velocity]]
+beam = "a"
+velocity = [0.0, 0.0, -1.0]
+
+[[beam_contact]]
+beams = ["a", "b"]
+distance = 2e-3
+stiffness = 1e5
+
+[dynamic]
+t_end = 0.008
+dt = 1e-5
+rho_inf = 1.0
+
+[[sensor]]
+name = "a"
+at = "a:0.05"
+
+[[sensor]]
+name = "b"
+at = "b:0.05"
+"""
+
+
+@lru_cache(maxsize=None)
+def collision():
+    p, out = _scene(COLLIDE, "collide")
+    run_scene(p, out=out)
+    return _heights(out)
+
+
+def test_equal_bars_exchange_their_velocities():
+    """Bar a (0.1 m, steel, 10 x 10 mm) at 1 m/s onto the equal bar b at rest,
+    crosswise, centre on centre: a soft barrier (2 mm reach) makes the impact
+    last ~3 ms against the bars' 0.2 ms bending period, so they move as rigid
+    bodies: a stops, b leaves at 1 m/s (equal masses, conservative impact).
+    Velocities from the positions over the last 1 ms (after the impact)."""
+    z = collision()
+    ts = sorted(z)
+    t1, t2 = ts[-101], ts[-1]
+    va = (z[t2]["a"] - z[t1]["a"]) / (t2 - t1)
+    vb = (z[t2]["b"] - z[t1]["b"]) / (t2 - t1)
+    assert abs(va) < 1e-3 and abs(vb + 1.0) < 1e-3, (va, vb)
+    assert min(v["a"] - v["b"] for v in z.values()) > 0.01     # never within the sections (10 mm)
+
+
+def test_colliding_bars_keep_their_momentum():
+    """No external force: the mean height of the two equal bars' centres
+    moves at v0 / 2 throughout (action = reaction), to round-off."""
+    z = collision()
+    dev = max(abs((v["a"] + v["b"]) / 2 - (0.0065 - 0.5 * t)) for t, v in z.items())
+    assert dev < 1e-12, dev
