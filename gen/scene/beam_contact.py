@@ -15,7 +15,8 @@ Coulomb coefficient mu, one for sticking and sliding, default 0) and slip (the
 relative slip per step below which two beams stick, m; default 1e-7 of the
 model length).  The runtime grows
 the Newton matrix's pattern as contacts are found, so only dynamics and static
-analyses with load control and `stability = false` take beam contact."""
+analyses (load control or arc length) with `stability = false` take beam
+contact."""
 import math
 
 import gen.scene_keys as K
@@ -90,10 +91,9 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "beam_contact")):
         where = f"beam_contact[{i}]"
         check_keys(ctx, ct, set(KEYS), where)
-        if analysis not in ("static", "dynamic") or (analysis == "static" and
-                                                     stat.get("method", "load_control") != "load_control"):
-            ctx.fail(where, "beam contact is available in dynamics and in static analyses with load control only "
-                            "(the Newton matrix's pattern grows as contacts are found)")
+        if analysis not in ("static", "dynamic"):
+            ctx.fail(where, "beam contact is available in static and dynamic analyses only (the Newton matrix's "
+                            "pattern grows as contacts are found)")
         if analysis == "static" and stat.get("stability"):
             ctx.fail(where, "expected [static] stability = false (the stability check keeps the first pattern of "
                             "the Newton matrix, which beam contact grows)")

@@ -53,10 +53,8 @@ void bk_model_read_beam_contacts(bk_reader *r, bk_model *m)
     /* the Newton matrix's pattern grows as contacts are found (assembly/
      * beam_contact.h): dynamics and the static analysis without stability
      * checks follow it; the others keep arrays made from the first pattern */
-    if (!bk_model_in_time(m) &&
-        (!bk_model_in_load(m) || m->stat.method != BK_METHOD_LOAD_CONTROL || m->stat.stability)) {
-        rd_fail(r, "beam contact is available in dynamics and in static analyses with load control and "
-                "stability = false only");
+    if (!bk_model_in_time(m) && (!bk_model_in_load(m) || m->stat.stability)) {
+        rd_fail(r, "beam contact is available in dynamics and in static analyses with stability = false only");
         return;
     }
     bk_beam_contact_model *bm = rd_xcalloc(r, 1, sizeof *bm);
