@@ -131,7 +131,10 @@ def _error(text):
 def test_bad_beam_contact_input_is_refused_with_one_line():
     base = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
     cases = [
-        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3'), "beam_contact[0].static_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3\nkinetic_friction = 0.4'),
+         "beam_contact[0].kinetic_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = 0.3\nstatic_friction = 0.4'),
+         "beam_contact[0].static_friction"),
         (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = -0.3'), "beam_contact[0].friction"),
         (base.replace('stability = false\n', ''), "stability = false"),
         (base.replace('beams = ["upper", "lower"]', 'beams = ["upper", "nosuch"]'), "no beam named 'nosuch'"),
@@ -204,12 +207,13 @@ def test_friction_jacobian_matches_differences():
     assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d
 
 
-def _crossed_with_friction(pull):
-    """The crossed cantilevers with friction 0.3: pressed by P over the first
-    half of the load path, then the upper's tip pulled sideways (along the
-    lower, y) by `pull` over the second.  Returns (summary, out)."""
+def _crossed_with_friction(pull, friction="friction = 0.3"):
+    """The crossed cantilevers with friction 0.3 (or the keys `friction`):
+    pressed by P over the first half of the load path, then the upper's tip
+    pulled sideways (along the lower, y) by `pull` over the second.  Returns
+    (summary, out)."""
     text = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
-    text = text.replace("distance = 1e-5", "distance = 1e-5\nfriction = 0.3")
+    text = text.replace("distance = 1e-5", "distance = 1e-5\n" + friction)
     text = text.replace('value = [0.0, 0.0, -2.0]\n', 'value = [0.0, 0.0, -2.0]\namplitude = {type = "ramp", t0 = 0.0, '
                         't1 = 0.5}\n\n[[load]]\ntype = "force"\nat = "upper:end"\nvalue = [0.0, ' + repr(pull) +
                         ', 0.0]\namplitude = {type = "ramp", t0 = 0.5, t1 = 1.0}\n')
@@ -265,3 +269,34 @@ def test_crossed_beams_stick_below_the_friction_limit():
     before, after = _crossing_slip(out)
     assert abs(after - before) < 1e-6, (before, after)
     assert s["sensors"]["tip"]["displacement"][1] < 0
+
+
+def test_crossed_beams_slide_with_the_kinetic_coefficient():
+    """static_friction = 0.4, kinetic_friction = 0.3, pulled by 1 N: the upper
+    slides (2 slip tolerances and more a step), so the friction is the kinetic
+    mu_k R and the tip moves (T L^3 / 3 - mu_k R a^2 (3L - a) / 6) / EI (the
+    closed form of the sliding test with mu = 0.3; mu_s = 0.4 would give a
+    tip 6 % nearer)."""
+    s, out = _crossed_with_friction(1.0, "static_friction = 0.4\nkinetic_friction = 0.3")
+    P, L, a, b, EI, mu_k, T = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12, 0.3, 1.0
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    ref = (T * L ** 3 / 3 - mu_k * R * a * a * (3 * L - a) / 6) / EI
+    tip = s["sensors"]["tip"]["displacement"][1]
+    assert abs(tip / ref - 1) < 0.02, (tip, ref)
+    with open(out / "beam_contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    fy = sum(float(r["fy"]) for r in last)
+    assert abs(fy / (-mu_k * R) - 1) < 0.05, (fy, mu_k * R)
+
+
+def test_crossed_beams_stick_with_the_static_coefficient_only():
+    """Pulled by -0.2 N: the prop at the crossing needs 0.23 N, more than
+    mu_k R = 0.117 N (mu_k = 0.1) and less than mu_s R = 0.467 N (mu_s = 0.4):
+    it sticks (relative motion below ten slip tolerances) with the two
+    coefficients, and slides with mu = 0.1 alone (millimetres)."""
+    _, out = _crossed_with_friction(-0.2, "static_friction = 0.4\nkinetic_friction = 0.1")
+    before, after = _crossing_slip(out)
+    assert abs(after - before) < 1e-6, (before, after)
+    _, out = _crossed_with_friction(-0.2, "friction = 0.1")
+    before, after = _crossing_slip(out)
+    assert abs(after - before) > 1e-4, (before, after)
