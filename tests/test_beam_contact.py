@@ -89,11 +89,19 @@ def test_crossed_beams_against_the_closed_form():
 
 
 def test_crossed_beams_contact_rows_name_both_beams():
+    """contacts.csv's beam-to-beam rows: primitive -1, the first element the
+    upper's (elements 0-19), the second beam and element the lower's; no
+    friction; the forces on the upper sum to the summary's."""
     s, out = crossed()
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
+    assert list(rows[0])[:16] == ["step", "time", "set", "primitive", "element", "point", "x", "y", "z", "distance",
+                                  "normal_force", "tangential_force", "state", "fx", "fy", "fz"]   # part 1's order
     last = [r for r in rows if int(r["step"]) == s["steps"]]
-    assert last and {(r["beam_a"], r["beam_b"]) for r in last} == {("upper", "lower")}, last
+    assert last and all(r["primitive"] == "-1" and int(r["element"]) < 20 and r["beam_b"] == "lower" and
+                        int(r["element_b"]) >= 20 and r["state"] == "none" for r in last), last
+    assert all(float(r["tangential_force"]) == 0 for r in last)
+    assert abs(sum(float(r["normal_force"]) for r in last) / s["beam_contact"]["sets"][0]["normal_force"] - 1) < 1e-9
     assert all(float(r["distance"]) > 0 for r in rows)
     assert abs(sum(float(r["fz"]) for r in last) - s["beam_contact"]["sets"][0]["beams"]["upper"][2]) < 1e-9
 
@@ -187,10 +195,10 @@ def test_self_contact_rollup_lies_on_itself_and_never_passes_through():
     assert c["sets"][0]["normal_force"] > 10.0 and c["sets"][0]["active_pairs"] > 0, c
     far = _min_far_distance(out / "sections.csv", 0.05)
     assert len(far) > 10 and min(far.values()) > 0.009, far
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
-    assert any(min(int(r["element_a"]), int(r["element_b"])) < 10 and max(int(r["element_a"]),
-               int(r["element_b"])) > 28 for r in last), last
+    assert any(min(int(r["element"]), int(r["element_b"])) < 10 and max(int(r["element"]),
+               int(r["element_b"])) > 28 and r["beam_b"] == "arm" for r in last), last
     text = (ROOT / "models" / "self_contact_rollup.toml").read_text()
     free = out_dir() / "free.toml"
     free.write_text(text.replace("[[beam_contact]]\nbeams = [\"arm\"]\nself = true\n", ""))
@@ -251,10 +259,12 @@ def test_crossed_beams_slide_with_coulomb_friction():
     ref = (T * L ** 3 / 3 - mu * R * a * a * (3 * L - a) / 6) / EI
     tip = s["sensors"]["tip"]["displacement"][1]
     assert abs(tip / ref - 1) < 0.02, (tip, ref)
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
     fy = sum(float(r["fy"]) for r in last)                   # on the upper: against its slip (+y)
     assert abs(fy / (-mu * R) - 1) < 0.05, (fy, mu * R)
+    assert all(r["state"] == "slip" for r in last if float(r["tangential_force"]) > 0), last   # (the rubbing rows)
+    assert abs(sum(float(r["tangential_force"]) for r in last) / (mu * R) - 1) < 0.05
     before, after = _crossing_slip(out)
     assert after - before > 1e-3, (before, after)            # it slid (millimetres)
     assert _beam_contact(s)["sets"][0]["active_pairs"] > 0
@@ -283,7 +293,7 @@ def test_crossed_beams_slide_with_the_kinetic_coefficient():
     ref = (T * L ** 3 / 3 - mu_k * R * a * a * (3 * L - a) / 6) / EI
     tip = s["sensors"]["tip"]["displacement"][1]
     assert abs(tip / ref - 1) < 0.02, (tip, ref)
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
     fy = sum(float(r["fy"]) for r in last)
     assert abs(fy / (-mu_k * R) - 1) < 0.05, (fy, mu_k * R)

@@ -1,7 +1,7 @@
 /* beam_contact.c -- the beam-to-beam contact interaction: barrier forces
  * between segments of the beams' sampled centrelines, their Jacobian, the
  * broad phase that keeps the pattern's coupling blocks ahead of the
- * contacts, the step limiter, beam_contacts.csv and summary.json
+ * contacts, the step limiter, its rows of contacts.csv and summary.json
  * "beam_contact" (see beam_contact.h). */
 #include "assembly/beam_contact.h"
 

@@ -1,5 +1,5 @@
 /* beam_contact_force.c -- the beam contact interaction's forces and Jacobian,
- * step limiter, beam_contacts.csv, summary.json "beam_contact" and state, and
+ * step limiter, its rows of contacts.csv, summary.json "beam_contact" and state, and
  * its operations (beam_contact.h; the broad phase and the geometry:
  * beam_contact.c). */
 #include <math.h>
@@ -8,6 +8,7 @@
 
 #include "assembly/beam_contact.h"
 #include "assembly/beam_contact_impl.h"
+#include "assembly/contact_force.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
 
@@ -203,18 +204,32 @@ typedef struct state {
 } state;
 
 /* The contact force (barrier and friction) on the segment pair's first
- * segment (fa; the second gets its opposite) and its magnitude (0: none). */
-static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa)
+ * segment (fa; the second gets its opposite) and its magnitude (0: none);
+ * when fn, ft are not NULL, the barrier's and the friction's magnitudes. */
+static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn,
+                         double *ft)
 {
     const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
-    double g[12];
+    double g[12], f[3] = {0.0, 0.0, 0.0};
     fa[0] = fa[1] = fa[2] = 0.0;
+    if (fn)
+        *fn = *ft = 0.0;
     if (!(sp->dist > 0.0) || (sp->dist >= set->shat && !lg))
         return 0.0;
-    pair_terms(set, sp, lg, g, NULL);
+    pair_terms(set, sp, NULL, g, NULL);          /* the barrier's */
     for (int r = 0; r < 3; ++r)
         fa[r] = -(g[r] + g[3 + r]);
+    if (lg) {                                    /* friction's */
+        memset(g, 0, sizeof g);
+        bc_friction(set, lg, sp, g, NULL);
+        for (int r = 0; r < 3; ++r)
+            f[r] = -(g[r] + g[3 + r]);
+    }
+    if (fn)
+        *fn = norm3(fa), *ft = norm3(f);
+    for (int r = 0; r < 3; ++r)
+        fa[r] += f[r];
     return norm3(fa);
 }
 
@@ -225,7 +240,7 @@ static void state_pair(void *ctx, seg_pair *sp)
         return;
     st->dmin = fmin(st->dmin, sp->dist);
     double fa[3];
-    const double fn = pair_force(st->w, st->m, sp, fa);
+    const double fn = pair_force(st->w, st->m, sp, fa, NULL, NULL);
     if (fn <= 0.0)
         return;
     st->nactive++;
@@ -316,16 +331,21 @@ static int bc_summary(void *self, const bk_system *s, const double *q, char *buf
     return len > 0 && (size_t)len < n ? 0 : -1;
 }
 
-/* beam_contacts.csv: per output step every pair of segments within the
- * barrier's reach: the two beams, elements and segments, the midpoint of the
- * closest points, the sections' distance, the normal force and the force on
- * the first beam there (N; the second gets its opposite). */
+/* contacts.csv (shared with rigid contact, assembly/contact_force.h): per
+ * output step every pair of segments within the barrier's reach or rubbing:
+ * the set, primitive -1, the first element and its segment, the midpoint of
+ * the closest points, the sections' distance, the normal force (the pair's
+ * whole force less friction's share, its magnitude), the friction force's
+ * magnitude, the friction state (none; stick: slip since the anchor below the
+ * tolerance; slip), the force on the first beam (N; the second gets its
+ * opposite), and the second beam, its element and segment. */
 static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     bc_work *w = self;
-    w->table = bk_tables_open(ts, dir, "beam_contacts.csv", "step,time,set,beam_a,element_a,segment_a,beam_b,"
-                              "element_b,segment_b,x,y,z,distance,normal_force,fx,fy,fz\n", 1, err);
+    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    if (!w->table)
+        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
     return w->table ? 0 : -1;
 }
 
@@ -340,28 +360,32 @@ typedef struct rows {
 static void row_pair(void *ctx, seg_pair *sp)
 {
     rows *rw = ctx;
-    double fa[3];
-    const double fn = pair_force(rw->w, rw->m, sp, fa);
-    if (fn <= 0.0)
+    double fa[3], fn, ft, ut[3];
+    const double f = pair_force(rw->w, rw->m, sp, fa, &fn, &ft);
+    if (f <= 0.0)
         return;
+    const bk_beam_contact_set *set = &rw->m->beam_contact->sets[sp->c];
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(rw->w, sp) : NULL;
     bk_row r;
     bk_row_begin(&r, rw->w->table, rw->rq);
     bk_row_int(&r, rw->step);
     bk_row_num(&r, rw->t);
     bk_row_int(&r, sp->c);
-    bk_row_str(&r, beam_name(rw->m, sp->ei));
+    bk_row_int(&r, -1);
     bk_row_int(&r, sp->ei);
     bk_row_int(&r, sp->k);
-    bk_row_str(&r, beam_name(rw->m, sp->ej));
-    bk_row_int(&r, sp->ej);
-    bk_row_int(&r, sp->l);
     for (int d = 0; d < 3; ++d)
         bk_row_num(&r, 0.5 * (sp->pts[0][d] + sp->sg * (sp->pts[1][d] - sp->pts[0][d]) + sp->pts[2][d] +
                               sp->tau * (sp->pts[3][d] - sp->pts[2][d])));
     bk_row_num(&r, sp->dist);
     bk_row_num(&r, fn);
+    bk_row_num(&r, ft);
+    bk_row_str(&r, !lg ? "none" : bc_slip(lg, sp, ut) < set->slip ? "stick" : "slip");
     for (int d = 0; d < 3; ++d)
         bk_row_num(&r, fa[d]);
+    bk_row_str(&r, beam_name(rw->m, sp->ej));
+    bk_row_int(&r, sp->ej);
+    bk_row_int(&r, sp->l);
     bk_row_end(&r);
 }
 

@@ -47,7 +47,7 @@ static void weights(double sg, double tau, double *c)
 }
 
 /* The slip u_t of the pair since its anchor (y = |u_t|). */
-static double slip(const bc_lag *lg, const seg_pair *sp, double *ut)
+double bc_slip(const bc_lag *lg, const seg_pair *sp, double *ut)
 {
     double c[4], u[3] = {0.0, 0.0, 0.0};
     weights(lg->sg, lg->tau, c);
@@ -65,7 +65,7 @@ static double slip(const bc_lag *lg, const seg_pair *sp, double *ut)
 void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H)
 {
     double ut[3], f[4], h[2], c[4];
-    const double y = slip(lg, sp, ut), k = lg->lam;
+    const double y = bc_slip(lg, sp, ut), k = lg->lam;
     bk_contact_friction(y, set->slip, f);
     bk_contact_transition(y, set->slip, h);
     /* phi(y) = mu(y) f1(y) / y, mu(y) = mu_s - (mu_s - mu_k) h(y): the static coefficient up to a slip of eps,
@@ -120,7 +120,7 @@ static void lag_pair(void *ctx, seg_pair *sp)
     bc_lag *lg = &l->next[l->n++];
     const bc_lag *old = bc_lag_find(l->w, sp);
     double ut[3];
-    if (old && slip(old, sp, ut) < set->slip) {
+    if (old && bc_slip(old, sp, ut) < set->slip) {
         *lg = *old;                                      /* sticks: the same material points, the same anchor */
     } else {
         key_of(sp, lg->key);

@@ -42,7 +42,7 @@ typedef struct bc_work {
     int *pairs;                      /* the broad phase's pairs (scratch) */
     bk_box *box;                     /* [largest set's nelem] */
     double *fe[2], *Kb[4];           /* [maxdof], [maxdof^2]: forces of elements i, j; blocks ii ij ji jj */
-    FILE *table;                     /* beam_contacts.csv, or NULL */
+    FILE *table;                     /* contacts.csv (shared with rigid contact), or NULL */
     int nlag;
     bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
 } bc_work;
@@ -88,6 +88,8 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
  * the friction energy's gradient and Hessian (H may be NULL) added into g[12],
  * H[144] (N, N/m; not over kappa); accept: the lagged states at q. */
 const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp);
+/* The pair's slip u_t[3] since its lagged anchor; returns |u_t| (m). */
+double bc_slip(const bc_lag *lg, const seg_pair *sp, double *ut);
 void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H);
 void bc_accept(void *self, const bk_system *s, const double *q, const bk_path *p);
 
