@@ -88,6 +88,7 @@ def main(argv):
     srows = scaling(quick, log)
     log(" contact")
     crows, grip = bench_contact.contact_cost(quick, log), bench_contact.gripper_wall(log)
+    sgrow = bench_contact.self_contact_growth(quick, log)
     log(" toolchain")
     tc = toolchain(quick, log)
     log(" targets around the solve")
@@ -122,7 +123,7 @@ def main(argv):
 
     L = bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, problems, pngs, srows, tc, targets,
                        t_all)
-    L += [""] + bench_contact.markdown(crows, grip)
+    L += [""] + bench_contact.markdown(crows, grip, sgrow)
     (OUT / "bench.md").write_text("\n".join(L))
     log(f" wrote {OUT / 'bench.md'}")
     print(f"bench: {OUT / 'bench.md'} ({time.time() - t_all:.0f} s)")

@@ -109,6 +109,54 @@ friction = 0.3
 """
 
 
+def _newton_exe():
+    """The bench_newton solver of ancf_cable (bench/newton_iter.c)."""
+    from gen.scene import load_index
+    from gen.solver_build import BUILD, VARIANTS, build_solver, compile_object, runtime_headers, runtime_objects
+    obj = BUILD / "release" / "bench" / "newton_iter.o"
+    compile_object(ROOT / "bench" / "newton_iter.c", obj, VARIANTS["release"], runtime_headers())
+    robjs = [o for o in runtime_objects("release") if o.stem != "main"]
+    return build_solver(["ancf_cable_resultant_full"], BUILD / "release" / "bench" / "bench_newton_cable", load_index(),
+                        "release", main_objs=[obj] + robjs)
+
+
+def _iteration(exe, text, name, iterations):
+    """bench_newton's medians {iteration_s, assembly_s, interactions_s, factor_s} for the scene text."""
+    from gen.scene import build, write_model
+    WORK.mkdir(parents=True, exist_ok=True)
+    scene, mpath = WORK / f"{name}.toml", WORK / f"{name}.dat"
+    scene.write_text(text)
+    write_model(build(scene, []), mpath)
+    r = subprocess.run([str(exe), str(mpath), str(iterations)], capture_output=True, text=True,
+                       env=dict(os.environ, OMP_NUM_THREADS="1"))
+    mpath.unlink()
+    if r.returncode != 0:
+        raise RuntimeError(f"bench_newton ({name}) failed: {r.stderr[-500:]}")
+    d = dict(line.split("=", 1) for line in r.stdout.split())
+    return {k: float(d[k]) for k in ("iteration_s", "assembly_s", "interactions_s", "factor_s")}
+
+
+def self_contact_growth(quick, log):
+    """The straight rod checked against itself (SELF) at 1,000, 10,000 and
+    100,000 elements (quick: 1,000 and 10,000): rows {elements, iteration_s,
+    check_s (its interactions less the rod's without contact: the broad
+    phase's candidates' segment distances), share}, and the exponent of
+    check_s's growth over the range."""
+    exe = _newton_exe()
+    rows = []
+    for n in (1000, 10000) if quick else (1000, 10000, 100000):
+        base = _iteration(exe, ROD.format(n=n, length=0.05 * n, contact=""), f"self_rod_{n}_free", 5)
+        self = _iteration(exe, ROD.format(n=n, length=0.05 * n, contact=SELF), f"self_rod_{n}", 5)
+        check = self["interactions_s"] - base["interactions_s"]
+        rows.append({"elements": n, "iteration_s": self["iteration_s"], "free_iteration_s": base["iteration_s"],
+                     "check_s": check, "share": check / self["iteration_s"]})
+        log(f"  contact: self-contact rod of {n} done")
+    import math
+    a, b = rows[0], rows[-1]
+    exponent = math.log(b["check_s"] / a["check_s"]) / math.log(b["elements"] / a["elements"])
+    return rows, exponent
+
+
 def contact_cost(quick, log):
     """Rows {case, elements, iteration_s, assembly_s, interactions_s, factor_s}
     for the rod with and without contact, medians of 21 iterations (best of 3
@@ -171,7 +219,7 @@ def gripper_wall(log):
             "newton_iterations": s["newton_iterations"]}
 
 
-def markdown(rows, grip):
+def markdown(rows, grip, growth=None):
     lines = ["## Contact", "",
              f"A rod of {rows[0]['elements']} `ancf_cable` elements (steel, 10 mm) lying on the ground, every element "
              "within the barrier's reach, friction 0.3 (bench/newton_iter.c, one thread, medians of 21 iterations, "
@@ -194,6 +242,18 @@ def markdown(rows, grip):
                   f"{rows[2]['contact_share']:.0%} of an iteration.  The rod checked against itself (straight, "
                   "`self = true`, nothing within reach: the candidates' segment distances only): "
                   f"{rows[3]['ratio']:.2f} times, the checking {rows[3]['contact_share']:.0%} of an iteration.", ""]
+    if growth:
+        g, e = growth
+        lines += ["Self-contact checking (the straight rod, `self = true`, nothing within reach; medians of 5 "
+                  "iterations): its cost (the interactions' time less the rod's without contact: the broad phase's "
+                  "candidates' segment distances) against the element count (target of issue 35: ≤ 25 % of an "
+                  "iteration at 10,000 elements, growth exponent ≤ 1.1):", "",
+                  "| elements | iteration | without contact | checking | share |", "|---|---|---|---|---|"]
+        for r in g:
+            lines.append(f"| {r['elements']:,} | {r['iteration_s'] * 1e3:.2f} ms | "
+                         f"{r['free_iteration_s'] * 1e3:.2f} ms | {r['check_s'] * 1e3:.2f} ms | {r['share']:.0%} |")
+        lines += ["", f"Growth exponent of the checking from {g[0]['elements']:,} to {g[-1]['elements']:,} elements: "
+                  f"**{e:.2f}**.", ""]
     if grip:
         lines += [f"`models/gripper_lift.toml` (0.6 s simulated, dt = 1e-3): {grip['wall_per_simulated_s']:.2f} s of "
                   f"wall time per simulated second (the whole command), {grip['steps']} steps, {grip['cutbacks']} "
@@ -202,6 +262,12 @@ def markdown(rows, grip):
 
 
 if __name__ == "__main__":
+    if "--self" in sys.argv:
+        g, e = self_contact_growth("--quick" in sys.argv, print)
+        for r in g:
+            print(r)
+        print("exponent", e)
+        sys.exit(0)
     rows = contact_cost("--quick" in sys.argv, print)
     grip = gripper_wall(print) if "--no-gripper" not in sys.argv else None
-    print("\n".join(markdown(rows, grip)))
+    print("\n".join(markdown(rows, grip, self_contact_growth("--quick" in sys.argv, print))))
