@@ -8,7 +8,9 @@ the beam never passes through it at dt = 1e-4 ... 1e-2 (fixed and adaptive
 steps; the positions from sensors.csv, not from the contact code) and gains no
 energy; two equal free bars colliding crosswise exchange their velocities (the
 rigid-body limit of a conservative impact of equal masses) with the total
-momentum constant to round-off."""
+momentum constant to round-off; a bar pushed along a stiff rail slides with
+the kinetic coefficient (kinetic energy t^2 (F - mu_k m g)^2 / (2m)) and,
+pushed by less than mu_s m g but more than mu_k m g, sticks."""
 import csv
 import json
 import tempfile
@@ -220,3 +222,113 @@ def test_colliding_bars_keep_their_momentum():
     z = collision()
     dev = max(abs((v["a"] + v["b"]) / 2 - (0.0065 - 0.5 * t)) for t, v in z.items())
     assert dev < 1e-12, dev
+
+
+SLIDE = """[scene]
+analysis = "dynamic"
+
+[material.steel]
+law = "resultant"
+E = 2.1e11
+nu = 0.3
+rho = 7800.0
+
+[section.rail]
+shape = "rectangle"
+b = 0.04
+h = 0.04
+
+[section.bar]
+shape = "rectangle"
+b = 0.01
+h = 0.01
+
+[[beam]]
+name = "rail"
+element = "gef"
+material = "steel"
+section = "rail"
+start = [-0.25, 0.0, 0.0]
+end = [0.35, 0.0, 0.0]
+up = [0.0, 0.0, 1.0]
+elements = 12
+
+[[beam]]
+name = "bar"
+element = "gef"
+material = "steel"
+section = "bar"
+start = [-0.05, 0.0, 0.02501001]
+end = [0.05, 0.0, 0.02501001]
+up = [0.0, 0.0, 1.0]
+elements = 4
+
+[[constraint]]
+type = "clamp"
+a = "rail:start"
+
+[[constraint]]
+type = "clamp"
+a = "rail:end"
+
+[[load]]
+type = "gravity"
+value = [0.0, 0.0, -9.81]
+
+[[load]]
+type = "force"
+at = "bar:end"
+value = [1.0, 0.0, 0.0]
+amplitude = {type = "ramp", t0 = 0.05, t1 = 0.0501}
+
+[[beam_contact]]
+beams = ["rail", "bar"]
+distance = 1e-5
+static_friction = 0.4
+kinetic_friction = 0.3
+slip = 1e-7
+
+[dynamic]
+t_end = 0.1
+dt = 1e-4
+rho_inf = 0.0
+
+[[sensor]]
+name = "bar"
+at = "bar:0.05"
+"""
+
+
+def _slide(force, ramp_end, friction="static_friction = 0.4\nkinetic_friction = 0.3"):
+    """A steel bar (0.1 m, 10 x 10 mm, m = 0.078 kg) lying on a clamped-clamped
+    40 x 40 mm rail, along it, settled under gravity for 0.05 s, then pushed
+    along it at its end by `force` (N) ramped in until `ramp_end`."""
+    t = SLIDE.replace("value = [1.0, 0.0, 0.0]", f"value = [{force}, 0.0, 0.0]").replace("t1 = 0.0501",
+                                                                                       f"t1 = {ramp_end}")
+    t = t.replace("static_friction = 0.4\nkinetic_friction = 0.3", friction)
+    p, out = _scene(t, "slide")
+    s, _ = run_scene(p, out=out)
+    return s, out
+
+
+def test_bar_slides_along_a_rail_with_the_kinetic_coefficient():
+    """F = 1 N > mu_s m g = 0.306 N, applied at t0 = 0.05 s: the bar's
+    kinetic energy follows (t - t0)^2 (F - mu_k m g)^2 / (2m) (mu_k = 0.3)."""
+    s, out = _slide(1.0, 0.0501)
+    m, g, F, mu_k = 7800 * 1e-4 * 0.1, 9.81, 1.0, 0.3
+    with open(out / "energy.csv", newline="") as fh:
+        T = {float(r["time"]): float(r["kinetic"]) for r in csv.DictReader(fh)}
+    t = max(T)
+    ref = (t - 0.05) ** 2 * (F - mu_k * m * g) ** 2 / (2 * m)
+    assert abs(T[t] / ref - 1) < 0.01, (T[t], ref)
+    assert s["beam_contact"]["max_penetration"] == 0
+
+
+def test_bar_on_a_rail_sticks_between_the_coefficients():
+    """F = 0.27 N, between mu_k m g = 0.230 N and mu_s m g = 0.306 N (ramped
+    over 10 ms): it holds within a slip tolerance or so (1e-7 m); with
+    mu = 0.3 alone it slides (tenths of a millimetre)."""
+    s, _ = _slide(0.27, 0.06)
+    assert abs(s["sensors"]["bar"]["displacement"][0]) < 3e-7, s["sensors"]["bar"]
+    s, _ = _slide(0.27, 0.06, friction="friction = 0.3")
+    assert s["sensors"]["bar"]["displacement"][0] > 1e-4, s["sensors"]["bar"]
