@@ -310,3 +310,22 @@ def test_crossed_beams_stick_with_the_static_coefficient_only():
     _, out = _crossed_with_friction(-0.2, "friction = 0.1")
     before, after = _crossing_slip(out)
     assert abs(after - before) > 1e-4, (before, after)
+
+
+def test_gripper_fingers_closed_on_nothing_touch_at_their_tips():
+    """models/contact_fingers_closed.toml (issue 35 point 6, with dead loads for
+    the fingers' drive): two parallel cantilevers 2 mm apart, their tips pushed
+    together by F = 300 N.  Each tip closes g/2 = 1 mm (to the barrier's gap);
+    the contact force is F less what the finger's tip stiffness takes,
+    R = F - (g/2) / (L^3 / 3EI + L / (kappa G A)), kappa = 5/6 (gef is a
+    shear-flexible beam: 126.35 N; Euler-Bernoulli alone gives 125 N).  The
+    tips' sections stay apart (sensors), action = reaction."""
+    s, _ = run_scene(ROOT / "models" / "contact_fingers_closed.toml", out=out_dir())
+    E, nu, A, I, L, F = 7.0e10, 0.3, 1e-4, 1e-8 / 12, 0.1, 300.0
+    R = F - 0.001 / (L ** 3 / (3 * E * I) + L / (5 / 6 * E / (2 * (1 + nu)) * A))
+    c = _beam_contact(s)
+    left, right = c["sets"][0]["beams"]["left"], c["sets"][0]["beams"]["right"]
+    assert abs(right[1] / R - 1) < 0.005, (right, R)
+    assert all(abs(left[i] + right[i]) <= 1e-12 * R for i in range(3)), (left, right)
+    gap = s["sensors"]["right_tip"]["position"][1] - s["sensors"]["left_tip"]["position"][1] - 0.01
+    assert 0 < gap < 1e-5, gap
