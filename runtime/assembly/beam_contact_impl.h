@@ -42,6 +42,9 @@ typedef struct bc_work {
     int *pairs;                      /* the broad phase's pairs (scratch) */
     bk_box *box;                     /* [largest set's nelem] */
     double *fe[2], *Kb[4];           /* [maxdof], [maxdof^2]: forces of elements i, j; blocks ii ij ji jj */
+    double *gp, *Hp, *T;             /* a candidate's gradient [n3] and Hessian [n3^2] on its sample points
+                                      * (n3 = 6 times the largest nsample), the contraction's [n3 maxdof] */
+    char *used;                      /* [n3 / 3] the candidate's points some pair touched */
     FILE *table;                     /* contacts.csv (shared with rigid contact), or NULL */
     int nlag;
     bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
