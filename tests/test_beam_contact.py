@@ -329,3 +329,24 @@ def test_gripper_fingers_closed_on_nothing_touch_at_their_tips():
     assert all(abs(left[i] + right[i]) <= 1e-12 * R for i in range(3)), (left, right)
     gap = s["sensors"]["right_tip"]["position"][1] - s["sensors"]["left_tip"]["position"][1] - 0.01
     assert 0 < gap < 1e-5, gap
+
+
+def test_crossed_beams_paraview_frames_show_both_beams_forces():
+    """beam_contacts_NNNNNN.vtp with every frame of results.pvd, listed in
+    beam_contacts.pvd: at the last, two vertices per row of contacts.csv (the
+    closest point on each beam) whose forces are equal and opposite and sum,
+    on the upper's, to the summary's force on it."""
+    import re
+    s, out = crossed()
+    frames = re.findall(r'file="(beam_contacts_\d+\.vtp)"', (out / "beam_contacts.pvd").read_text())
+    assert len(frames) == len(re.findall(r"<DataSet", (out / "results.pvd").read_text())), frames
+    text = (out / frames[-1]).read_text()
+    n = int(re.search(r'NumberOfPoints="(\d+)"', text).group(1))
+    with open(out / "contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    assert n == 2 * len(last) > 0, (n, len(last))
+    block = text.split('Name="force" NumberOfComponents="3" format="ascii">')[1].split("</DataArray>")[0]
+    f = [[float(x) for x in line.split()] for line in block.strip().splitlines()]
+    assert all(abs(sum(v[i] for v in f)) <= 1e-6 * max(abs(v[2]) for v in f) for i in range(3)), f
+    up = s["beam_contact"]["sets"][0]["beams"]["upper"]
+    assert abs(sum(v[2] for v in f[0::2]) / up[2] - 1) < 1e-6, (f, up)

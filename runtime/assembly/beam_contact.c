@@ -25,6 +25,9 @@ void bc_free(void *self)
     bc_work *w = self;
     if (!w)
         return;
+    if (w->nframe > 0)
+        bc_pvd(w);                       /* the collection complete (a failure was reported with the frames) */
+    free(w->frames), free(w->times);
     free(w->base), free(w->ebase), free(w->chain), free(w->N), free(w->X), free(w->Xref), free(w->D);
     free(w->margin), free(w->cand), free(w->pairs), free(w->box), free(w->lag);
     free(w->gp), free(w->Hp), free(w->T), free(w->used);

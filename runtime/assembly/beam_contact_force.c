@@ -273,8 +273,7 @@ typedef struct state {
 /* The contact force (barrier and friction) on the segment pair's first
  * segment (fa; the second gets its opposite) and its magnitude (0: none);
  * when fn, ft are not NULL, the barrier's and the friction's magnitudes. */
-static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn,
-                         double *ft)
+double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn, double *ft)
 {
     const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
@@ -307,7 +306,7 @@ static void state_pair(void *ctx, seg_pair *sp)
         return;
     st->dmin = fmin(st->dmin, sp->dist);
     double fa[3];
-    const double fn = pair_force(st->w, st->m, sp, fa, NULL, NULL);
+    const double fn = bc_pair_force(st->w, st->m, sp, fa, NULL, NULL);
     if (fn <= 0.0)
         return;
     st->nactive++;
@@ -428,7 +427,7 @@ static void row_pair(void *ctx, seg_pair *sp)
 {
     rows *rw = ctx;
     double fa[3], fn, ft, ut[3];
-    const double f = pair_force(rw->w, rw->m, sp, fa, &fn, &ft);
+    const double f = bc_pair_force(rw->w, rw->m, sp, fa, &fn, &ft);
     if (f <= 0.0)
         return;
     const bk_beam_contact_set *set = &rw->m->beam_contact->sets[sp->c];
@@ -468,5 +467,6 @@ static void bc_rows(void *self, const bk_system *s, int step, double t, const do
 
 const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
-                                                .tables = bc_tables, .rows = bc_rows, .summary_key = "beam_contact",
+                                                .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
+                                                .summary_key = "beam_contact",
                                                 .summary = bc_summary, .free = bc_free};

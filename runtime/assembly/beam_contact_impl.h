@@ -48,6 +48,11 @@ typedef struct bc_work {
     FILE *table;                     /* contacts.csv (shared with rigid contact), or NULL */
     int nlag;
     bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
+    char dir[1024];                  /* the frames' directory (beam_contact_frames.c) */
+    int nframe, capframe;
+    int *frames;                     /* [nframe] frame numbers written, */
+    double *times;                   /* their times or load factors */
+    double t_pvd;                    /* when beam_contacts.pvd was last written (bk_clock_s) */
 } bc_work;
 
 typedef struct seg_pair {
@@ -60,6 +65,15 @@ typedef struct seg_pair {
 } seg_pair;
 
 void bc_free(void *self);
+/* The contact force (barrier and friction) on the pair's first segment (fa;
+ * the second gets its opposite) and its magnitude (0: none); when fn, ft are
+ * not NULL, the barrier's and the friction's magnitudes
+ * (beam_contact_force.c). */
+double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn, double *ft);
+/* ParaView frames (beam_contact_frames.c): beam_contacts_NNNNNN.vtp at q, and
+ * the collection beam_contacts.pvd (0, or -1 with a message on err). */
+int bc_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
+int bc_pvd(bc_work *w);
 /* The broad phase again when a sample point moved more than M/4 since the
  * last one (or there was none): 0, or -1 when out of memory. */
 int bc_prepare(void *self, bk_system *s, const double *q);
