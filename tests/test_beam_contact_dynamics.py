@@ -332,3 +332,35 @@ def test_bar_on_a_rail_sticks_between_the_coefficients():
     assert abs(s["sensors"]["bar"]["displacement"][0]) < 3e-7, s["sensors"]["bar"]
     s, _ = _slide(0.27, 0.06, friction="friction = 0.3")
     assert s["sensors"]["bar"]["displacement"][0] > 1e-4, s["sensors"]["bar"]
+
+
+def _tip_gaps(out):
+    """{time: right tip's x - left tip's x} (sensors.csv; centrelines)."""
+    g = {}
+    with open(out / "sensors.csv", newline="") as fh:
+        for r in csv.DictReader(fh):
+            g.setdefault(float(r["time"]), {})[r["sensor"]] = float(r["x"])
+    return {t: v["right_tip"] - v["left_tip"] for t, v in g.items()}
+
+
+def test_gripper_closed_on_nothing_fingers_touch_and_stay_apart():
+    """models/gripper_closed_empty.toml (issue 35 point 6): the tendons alone
+    would bend each fingertip 32 mm (T e L^2 / 2EI) across the 25 mm between
+    the fingers; with beam contact the tips' centrelines stay more than the
+    two half-thicknesses (10 mm) apart at every output step and press on each
+    other at the end (equal and opposite); the same scene without
+    [[beam_contact]] runs the tips through each other."""
+    text = (ROOT / "models" / "gripper_closed_empty.toml").read_text()
+    p, out = _scene(text, "grip")
+    s, _ = run_scene(p, out=out)
+    gaps = _tip_gaps(out)
+    assert min(gaps.values()) > 0.01, min(gaps.values())
+    assert gaps[max(gaps)] < 0.0105, gaps[max(gaps)]               # closed: within half a millimetre
+    c = s["beam_contact"]
+    left, right = c["sets"][0]["beams"]["left"], c["sets"][0]["beams"]["right"]
+    assert right[0] > 0.05 and all(abs(left[i] + right[i]) <= 1e-12 * right[0] for i in range(3)), c
+    free = text.replace('[[beam_contact]]\nbeams = ["left", "right"]\ndistance = 3e-4\nfriction = 0.8\nslip = 1e-5\n', "")
+    assert free != text
+    p, out = _scene(free, "grip_free")
+    run_scene(p, out=out)
+    assert _tip_gaps(out)[max(gaps)] < 0.0, "without contact the fingertips cross"
