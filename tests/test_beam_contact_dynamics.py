@@ -397,3 +397,25 @@ def test_overhand_knot_tightens_without_passing_through_itself():
         pull = [(float(r["time"]), float(r["Fx"])) for r in csv.DictReader(fh) if r["at"] == "rope:end"]
     mid = dict(pull)[min(t for t, _ in pull if t >= 1.0)]
     assert pull[-1][1] > 0.1 and pull[-1][1] > 2 * mid, pull
+    from report.plot import figures                          # the pull against the end's displacement
+    assert "pull.png" in figures(out)
+
+
+def test_pull_plot_draws_the_prescribed_motions_reaction_against_displacement():
+    """./build.sh plot's pull.png (report/plot.py fig_pull, drawn for the
+    knot's pull): on models/contact_capstan.toml, whose rope end is drawn
+    2 mm by a prescribed_motion, the curve is the reaction along the motion
+    against its length, read back from reactions.csv here."""
+    from report.plot import figures
+    out = out_dir()
+    run_scene(ROOT / "models" / "contact_capstan.toml", out=out)
+    fig = figures(out)["pull.png"]
+    line = fig.axes[0].get_lines()[0]
+    with open(out / "reactions.csv", newline="") as fh:
+        rows = [r for r in csv.DictReader(fh) if r["type"] == "prescribed_motion"]
+    x0 = float(rows[0]["x"])
+    ref = [(1e3 * abs(float(r["x"]) - x0), float(r["Fx"])) for r in rows]   # the motion is along +x
+    assert len(line.get_xdata()) == len(ref)
+    assert all(abs(a - b) < 1e-9 and abs(c - d) < 1e-9 * max(1.0, abs(d))
+               for a, c, (b, d) in zip(line.get_xdata(), line.get_ydata(), ref)), (list(line.get_ydata()), ref)
+    assert max(line.get_xdata()) > 1.9                          # the 2 mm drawn
