@@ -92,6 +92,7 @@ def main(argv):
     crows, grip = bench_contact.contact_cost(quick, log), bench_contact.gripper_wall(log)
     log(" sparse modes")
     modal_row = bench_modal.sparse_modes(quick, log)
+    sgrow = bench_contact.self_contact_growth(quick, log)
     log(" toolchain")
     tc = toolchain(quick, log)
     log(" targets around the solve")
@@ -126,7 +127,7 @@ def main(argv):
 
     L = bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, problems, pngs, srows, tc, targets,
                        t_all)
-    L += [""] + bench_contact.markdown(crows, grip)
+    L += [""] + bench_contact.markdown(crows, grip, sgrow)
     L += bench_modal.markdown(modal_row)
     (OUT / "bench.md").write_text("\n".join(L))
     log(f" wrote {OUT / 'bench.md'}")

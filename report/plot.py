@@ -13,6 +13,9 @@
   path.png     arc-length runs (static.method = "arc_length"): the load factor
                against each sensor's displacement components, the limit points
                and bifurcations (summary.json critical_points) marked
+  pull.png     runs with prescribed_motion constraints: each one's reaction
+               along the point's displacement against that displacement (the
+               force needed to pull or press it; e.g. a knot tightened)
 
 Every title names the scene; a run that did not converge or was interrupted
 says so on every plot.  Displacement axes span at least 1e-6 of the model
@@ -306,6 +309,32 @@ def fig_path(run, summary):
     return fig
 
 
+def fig_pull(run, summary):
+    """pull.png: per prescribed_motion of reactions.csv, the reaction force's
+    component along the point's displacement from its first row against the
+    displacement's length; None when there is none."""
+    p = run / "reactions.csv"
+    rows = [r for r in read_csv(p) if r["type"] == "prescribed_motion"] if p.exists() else []
+    if not rows:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for name in dict.fromkeys(r["name"] for r in rows):
+        mine = [r for r in rows if r["name"] == name]
+        x0 = np.array([float(mine[0][k]) for k in "xyz"])
+        u = np.array([[float(r[k]) for k in "xyz"] for r in mine]) - x0
+        F = np.array([[float(r[k]) for k in ("Fx", "Fy", "Fz")] for r in mine])
+        d = np.linalg.norm(u, axis=1)
+        along = np.einsum("ij,ij->i", F, u) / np.where(d > 0, d, 1.0)
+        ax.plot(d * 1e3, along, marker=".", label=f"{name} ({mine[0]['at']})")
+    ax.set_xlabel("displacement of the point (mm)")
+    ax.set_ylabel("reaction along the displacement (N)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    top = decorate(fig, summary, "prescribed motions: force against displacement")
+    fig.tight_layout(rect=(0, 0, 1, top))
+    return fig
+
+
 def figures(run):
     """The plots of a run directory as {PNG file name: matplotlib Figure} (not saved)."""
     run = Path(run)
@@ -324,6 +353,9 @@ def figures(run):
         f = fn(run, summary, decorate)
         if f is not None:
             figs[name] = f
+    pull = fig_pull(run, summary)
+    if pull is not None:
+        figs["pull.png"] = pull
     if summary["analysis"] in ("modal", "buckling"):
         f = fig_modes(run, summary, length)
         if f is not None:

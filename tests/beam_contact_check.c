@@ -231,6 +231,7 @@ static void check_friction(void)
     const double r = 0.01, shat = 0.01;
     build(&s, 2 * r + 0.6 * shat, r, shat, 1e3, 3);
     s.set.mu = 0.4;
+    s.set.mu_k = 0.25;                       /* (slips across eps ... 2 eps: the transition's derivative) */
     s.set.slip = 1e-4;
     bk_system *sys = bk_system_create(&s.m, stderr);
     double q[NDOF], f[NDOF], fp[NDOF], fm[NDOF], h = 1e-8;

@@ -89,11 +89,19 @@ def test_crossed_beams_against_the_closed_form():
 
 
 def test_crossed_beams_contact_rows_name_both_beams():
+    """contacts.csv's beam-to-beam rows: primitive -1, the first element the
+    upper's (elements 0-19), the second beam and element the lower's; no
+    friction; the forces on the upper sum to the summary's."""
     s, out = crossed()
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
+    assert list(rows[0])[:16] == ["step", "time", "set", "primitive", "element", "point", "x", "y", "z", "distance",
+                                  "normal_force", "tangential_force", "state", "fx", "fy", "fz"]   # part 1's order
     last = [r for r in rows if int(r["step"]) == s["steps"]]
-    assert last and {(r["beam_a"], r["beam_b"]) for r in last} == {("upper", "lower")}, last
+    assert last and all(r["primitive"] == "-1" and int(r["element"]) < 20 and r["beam_b"] == "lower" and
+                        int(r["element_b"]) >= 20 and r["state"] == "none" for r in last), last
+    assert all(float(r["tangential_force"]) == 0 for r in last)
+    assert abs(sum(float(r["normal_force"]) for r in last) / s["beam_contact"]["sets"][0]["normal_force"] - 1) < 1e-9
     assert all(float(r["distance"]) > 0 for r in rows)
     assert abs(sum(float(r["fz"]) for r in last) - s["beam_contact"]["sets"][0]["beams"]["upper"][2]) < 1e-9
 
@@ -131,7 +139,10 @@ def _error(text):
 def test_bad_beam_contact_input_is_refused_with_one_line():
     base = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
     cases = [
-        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3'), "beam_contact[0].static_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nstatic_friction = 0.3\nkinetic_friction = 0.4'),
+         "beam_contact[0].kinetic_friction"),
+        (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = 0.3\nstatic_friction = 0.4'),
+         "beam_contact[0].static_friction"),
         (base.replace('distance = 1e-5', 'distance = 1e-5\nfriction = -0.3'), "beam_contact[0].friction"),
         (base.replace('stability = false\n', ''), "stability = false"),
         (base.replace('beams = ["upper", "lower"]', 'beams = ["upper", "nosuch"]'), "no beam named 'nosuch'"),
@@ -184,10 +195,10 @@ def test_self_contact_rollup_lies_on_itself_and_never_passes_through():
     assert c["sets"][0]["normal_force"] > 10.0 and c["sets"][0]["active_pairs"] > 0, c
     far = _min_far_distance(out / "sections.csv", 0.05)
     assert len(far) > 10 and min(far.values()) > 0.009, far
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
-    assert any(min(int(r["element_a"]), int(r["element_b"])) < 10 and max(int(r["element_a"]),
-               int(r["element_b"])) > 28 for r in last), last
+    assert any(min(int(r["element"]), int(r["element_b"])) < 10 and max(int(r["element"]),
+               int(r["element_b"])) > 28 and r["beam_b"] == "arm" for r in last), last
     text = (ROOT / "models" / "self_contact_rollup.toml").read_text()
     free = out_dir() / "free.toml"
     free.write_text(text.replace("[[beam_contact]]\nbeams = [\"arm\"]\nself = true\n", ""))
@@ -204,12 +215,13 @@ def test_friction_jacobian_matches_differences():
     assert float(d["force_sum"]) < 1e-12 * float(d["force_max"]), d
 
 
-def _crossed_with_friction(pull):
-    """The crossed cantilevers with friction 0.3: pressed by P over the first
-    half of the load path, then the upper's tip pulled sideways (along the
-    lower, y) by `pull` over the second.  Returns (summary, out)."""
+def _crossed_with_friction(pull, friction="friction = 0.3"):
+    """The crossed cantilevers with friction 0.3 (or the keys `friction`):
+    pressed by P over the first half of the load path, then the upper's tip
+    pulled sideways (along the lower, y) by `pull` over the second.  Returns
+    (summary, out)."""
     text = (ROOT / "models" / "contact_crossed_beams.toml").read_text()
-    text = text.replace("distance = 1e-5", "distance = 1e-5\nfriction = 0.3")
+    text = text.replace("distance = 1e-5", "distance = 1e-5\n" + friction)
     text = text.replace('value = [0.0, 0.0, -2.0]\n', 'value = [0.0, 0.0, -2.0]\namplitude = {type = "ramp", t0 = 0.0, '
                         't1 = 0.5}\n\n[[load]]\ntype = "force"\nat = "upper:end"\nvalue = [0.0, ' + repr(pull) +
                         ', 0.0]\namplitude = {type = "ramp", t0 = 0.5, t1 = 1.0}\n')
@@ -247,10 +259,12 @@ def test_crossed_beams_slide_with_coulomb_friction():
     ref = (T * L ** 3 / 3 - mu * R * a * a * (3 * L - a) / 6) / EI
     tip = s["sensors"]["tip"]["displacement"][1]
     assert abs(tip / ref - 1) < 0.02, (tip, ref)
-    with open(out / "beam_contacts.csv", newline="") as fh:
+    with open(out / "contacts.csv", newline="") as fh:
         last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
     fy = sum(float(r["fy"]) for r in last)                   # on the upper: against its slip (+y)
     assert abs(fy / (-mu * R) - 1) < 0.05, (fy, mu * R)
+    assert all(r["state"] == "slip" for r in last if float(r["tangential_force"]) > 0), last   # (the rubbing rows)
+    assert abs(sum(float(r["tangential_force"]) for r in last) / (mu * R) - 1) < 0.05
     before, after = _crossing_slip(out)
     assert after - before > 1e-3, (before, after)            # it slid (millimetres)
     assert _beam_contact(s)["sets"][0]["active_pairs"] > 0
@@ -265,3 +279,74 @@ def test_crossed_beams_stick_below_the_friction_limit():
     before, after = _crossing_slip(out)
     assert abs(after - before) < 1e-6, (before, after)
     assert s["sensors"]["tip"]["displacement"][1] < 0
+
+
+def test_crossed_beams_slide_with_the_kinetic_coefficient():
+    """static_friction = 0.4, kinetic_friction = 0.3, pulled by 1 N: the upper
+    slides (2 slip tolerances and more a step), so the friction is the kinetic
+    mu_k R and the tip moves (T L^3 / 3 - mu_k R a^2 (3L - a) / 6) / EI (the
+    closed form of the sliding test with mu = 0.3; mu_s = 0.4 would give a
+    tip 6 % nearer)."""
+    s, out = _crossed_with_friction(1.0, "static_friction = 0.4\nkinetic_friction = 0.3")
+    P, L, a, b, EI, mu_k, T = 2.0, 1.0, 0.91, 0.915, 7.0e10 * 0.01 ** 4 / 12, 0.3, 1.0
+    R = P * a * a * (3 * L - a) / 6 / ((a ** 3 + b ** 3) / 3)
+    ref = (T * L ** 3 / 3 - mu_k * R * a * a * (3 * L - a) / 6) / EI
+    tip = s["sensors"]["tip"]["displacement"][1]
+    assert abs(tip / ref - 1) < 0.02, (tip, ref)
+    with open(out / "contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    fy = sum(float(r["fy"]) for r in last)
+    assert abs(fy / (-mu_k * R) - 1) < 0.05, (fy, mu_k * R)
+
+
+def test_crossed_beams_stick_with_the_static_coefficient_only():
+    """Pulled by -0.2 N: the prop at the crossing needs 0.23 N, more than
+    mu_k R = 0.117 N (mu_k = 0.1) and less than mu_s R = 0.467 N (mu_s = 0.4):
+    it sticks (relative motion below ten slip tolerances) with the two
+    coefficients, and slides with mu = 0.1 alone (millimetres)."""
+    _, out = _crossed_with_friction(-0.2, "static_friction = 0.4\nkinetic_friction = 0.1")
+    before, after = _crossing_slip(out)
+    assert abs(after - before) < 1e-6, (before, after)
+    _, out = _crossed_with_friction(-0.2, "friction = 0.1")
+    before, after = _crossing_slip(out)
+    assert abs(after - before) > 1e-4, (before, after)
+
+
+def test_gripper_fingers_closed_on_nothing_touch_at_their_tips():
+    """models/contact_fingers_closed.toml (issue 35 point 6, with dead loads for
+    the fingers' drive): two parallel cantilevers 2 mm apart, their tips pushed
+    together by F = 300 N.  Each tip closes g/2 = 1 mm (to the barrier's gap);
+    the contact force is F less what the finger's tip stiffness takes,
+    R = F - (g/2) / (L^3 / 3EI + L / (kappa G A)), kappa = 5/6 (gef is a
+    shear-flexible beam: 126.35 N; Euler-Bernoulli alone gives 125 N).  The
+    tips' sections stay apart (sensors), action = reaction."""
+    s, _ = run_scene(ROOT / "models" / "contact_fingers_closed.toml", out=out_dir())
+    E, nu, A, I, L, F = 7.0e10, 0.3, 1e-4, 1e-8 / 12, 0.1, 300.0
+    R = F - 0.001 / (L ** 3 / (3 * E * I) + L / (5 / 6 * E / (2 * (1 + nu)) * A))
+    c = _beam_contact(s)
+    left, right = c["sets"][0]["beams"]["left"], c["sets"][0]["beams"]["right"]
+    assert abs(right[1] / R - 1) < 0.005, (right, R)
+    assert all(abs(left[i] + right[i]) <= 1e-12 * R for i in range(3)), (left, right)
+    gap = s["sensors"]["right_tip"]["position"][1] - s["sensors"]["left_tip"]["position"][1] - 0.01
+    assert 0 < gap < 1e-5, gap
+
+
+def test_crossed_beams_paraview_frames_show_both_beams_forces():
+    """beam_contacts_NNNNNN.vtp with every frame of results.pvd, listed in
+    beam_contacts.pvd: at the last, two vertices per row of contacts.csv (the
+    closest point on each beam) whose forces are equal and opposite and sum,
+    on the upper's, to the summary's force on it."""
+    import re
+    s, out = crossed()
+    frames = re.findall(r'file="(beam_contacts_\d+\.vtp)"', (out / "beam_contacts.pvd").read_text())
+    assert len(frames) == len(re.findall(r"<DataSet", (out / "results.pvd").read_text())), frames
+    text = (out / frames[-1]).read_text()
+    n = int(re.search(r'NumberOfPoints="(\d+)"', text).group(1))
+    with open(out / "contacts.csv", newline="") as fh:
+        last = [r for r in csv.DictReader(fh) if int(r["step"]) == s["steps"]]
+    assert n == 2 * len(last) > 0, (n, len(last))
+    block = text.split('Name="force" NumberOfComponents="3" format="ascii">')[1].split("</DataArray>")[0]
+    f = [[float(x) for x in line.split()] for line in block.strip().splitlines()]
+    assert all(abs(sum(v[i] for v in f)) <= 1e-6 * max(abs(v[2]) for v in f) for i in range(3)), f
+    up = s["beam_contact"]["sets"][0]["beams"]["upper"]
+    assert abs(sum(v[2] for v in f[0::2]) / up[2] - 1) < 1e-6, (f, up)

@@ -11,15 +11,16 @@ metre, default 1000 times the heaviest listed beam's weight per metre over
 the reach), samples (points per element, ends included, >= 2, default 4: the
 centreline is the polyline through them), contact_radius (m, default the
 section's: a circle's radius, a rectangle's half-height h/2), friction (the
-Coulomb coefficient mu, one for sticking and sliding, default 0) and slip (the
-relative slip per step below which two beams stick, m; default 1e-7 of the
-model length).  The runtime grows
-the Newton matrix's pattern as contacts are found, so only static analyses
-with load control and `stability = false` take beam contact."""
+Coulomb coefficient mu, default 0; or static_friction and kinetic_friction
+apart, as for [[contact]]) and slip (the relative slip per step below which
+two beams stick, m; default 1e-7 of the model length).  The runtime grows
+the Newton matrix's pattern as contacts are found, so only dynamics and static
+analyses (load control or arc length) with `stability = false` take beam
+contact."""
 import math
 
 import gen.scene_keys as K
-from gen.scene.contact import beam_names, weight_per_length
+from gen.scene.contact import _friction, beam_names, weight_per_length
 from gen.scene.values import _dot, _norm, _sub, check_keys, get_array_of_tables, get_bool, get_int, get_number
 
 KEYS = K.BEAM_CONTACT
@@ -84,23 +85,19 @@ def _check_start(ctx, where, segs, reach, exclude, self_contact, beam_of):
 
 
 def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
-    """The model file's beam contact sets: [(reach, stiffness, mu, slip,
+    """The model file's beam contact sets: [(reach, stiffness, (mu_s, mu_k), slip,
     samples, exclude, self, [[(element, radius, s0)] per beam])]."""
     sets = []
     for i, ct in enumerate(get_array_of_tables(ctx, doc, "beam_contact")):
         where = f"beam_contact[{i}]"
         check_keys(ctx, ct, set(KEYS), where)
-        if analysis != "static" or stat.get("method", "load_control") != "load_control":
-            ctx.fail(where, "beam contact is available in static analyses with load control only (the Newton "
-                            "matrix's pattern grows as contacts are found)")
-        if stat.get("stability"):
+        if analysis not in ("static", "dynamic"):
+            ctx.fail(where, "beam contact is available in static and dynamic analyses only (the Newton matrix's "
+                            "pattern grows as contacts are found)")
+        if analysis == "static" and stat.get("stability"):
             ctx.fail(where, "expected [static] stability = false (the stability check keeps the first pattern of "
                             "the Newton matrix, which beam contact grows)")
-        for k in ("static_friction", "kinetic_friction"):
-            if k in ct:
-                ctx.fail(f"{where}.{k}", "separate static and kinetic coefficients are not available yet: give one "
-                                         "`friction` coefficient")
-        mu = get_number(ctx, ct, "friction", where, default=0.0, nonneg=True, hi=100.0)
+        mu = _friction(ctx, ct, where)
         slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
         names = beam_names(ctx, ct, where, beams)
         if len(set(names)) != len(names):
@@ -130,10 +127,10 @@ def beam_contacts(ctx, doc, beams, length_scale, analysis, stat):
 
 def beam_contact_records(sets, fmt):
     """The model file's lines: 'beam_contacts NSET', per set 'bcset REACH
-    STIFFNESS MU SLIP SAMPLES EXCLUDE SELF NBEAM' and per beam 'chain N e r s0 ...'."""
+    STIFFNESS MU_S MU_K SLIP SAMPLES EXCLUDE SELF NBEAM' and per beam 'chain N e r s0 ...'."""
     out = [f"beam_contacts {len(sets)}"]
-    for reach, kappa, mu, slip, samples, exclude, self_contact, chains in sets:
-        out.append(f"bcset {fmt(reach)} {fmt(kappa)} {fmt(mu)} {fmt(slip)} {samples} {fmt(exclude)} {self_contact} "
-                   f"{len(chains)}")
+    for reach, kappa, (mu_s, mu_k), slip, samples, exclude, self_contact, chains in sets:
+        out.append(f"bcset {fmt(reach)} {fmt(kappa)} {fmt(mu_s)} {fmt(mu_k)} {fmt(slip)} {samples} {fmt(exclude)} "
+                   f"{self_contact} {len(chains)}")
         out += [f"chain {len(ch)} " + " ".join(f"{e} {fmt(r)} {fmt(s0)}" for e, r, s0 in ch) for ch in chains]
     return out

@@ -132,6 +132,8 @@ int bk_arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, dou
     double dlp = sigma * dl / sqrt(tWt + lam_scale * c->psi2);
     for (int j = 0; j < s->neq; ++j)       /* a predictor that keeps the interactions' states admissible */
         c->tmp[j] = dlp * c->t[j];
+    if (bk_interactions_prepare(s, q) != 0)  /* (the broad phase of beam contact where q is) */
+        return BK_NL_LINERR;
     dlp *= bk_interactions_step_limit(s, q, c->tmp);    /* (contact: no point through a surface) */
     bk_static_step_to(s, w, q, w->nu, c->t, dlp, q, w->nu);
     c->lam0 = lam0;

@@ -109,8 +109,10 @@ static int dp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval 
     bk_system *s = p->s;
     dyn_work *w = p->w;
     const bk_model *m = s->m;
-    (void)r, (void)Ax;                          /* w->r, w->Ax are the solver's buffers */
-    if (dyn_residual(s, w, p->fdof, p->q, p->tn, p->bp, p->gp, matrix, &ev->rnorm) != 0)
+    (void)r;                                    /* w->r is the solver's buffer */
+    w->Ax = Ax;                                 /* (made anew when the pattern grew: system.h) */
+    if (bk_dyn_mass_follow(s, w) != 0 ||
+        dyn_residual(s, w, p->fdof, p->q, p->tn, p->bp, p->gp, matrix, &ev->rnorm) != 0)
         return -1;
     ev->ref = fmax(bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
     ev->cres = bk_norm2(w->r + s->nfree, s->ncon) / s->cscale;
@@ -141,6 +143,28 @@ static void dp_update(void *ctx, const double *dx, double alpha)
     }
     for (int c = 0; c < s->ncon; ++c)
         w->nu[c] += alpha * dx[s->nfree + c];
+}
+
+/* Beam-to-beam contact: the constant-acceleration predictor q* of the step
+ * is taken only as far as the interactions' step limit allows from q_n (a
+ * predictor may carry a beam through another, where no distance is negative
+ * to tell).  The held-position predictor plus alpha (q* - q_n) by dp_update
+ * keeps the Newmark relations, since they are linear.  dx: [neq] scratch.
+ * 0, or -1 when out of memory. */
+static int limit_predictor(dyn_problem *p, double *dx, double am, double af, double bet, double gam, double h)
+{
+    bk_system *s = p->s;
+    dyn_work *w = p->w;
+    for (int j = 0; j < s->neq; ++j)
+        dx[j] = j < s->nfree ? p->q[p->fdof[j]] - w->q_s[p->fdof[j]] : 0.0;
+    if (bk_interactions_prepare(s, w->q_s) != 0)
+        return -1;
+    const double alpha = bk_interactions_step_limit(s, w->q_s, dx);
+    if (alpha < 1.0) {
+        bk_dyn_predict(s, w, p->q, h, am, af, bet, gam, 1);
+        dp_update(p, dx, alpha);
+    }
+    return 0;
 }
 
 static const char *dyn_why(int c)
@@ -295,6 +319,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         const int pred_position = retry_position || pred_hold > 0;
         bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
+        if (m->beam_contact && !pred_position && limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
+            snprintf(info->message, sizeof info->message, "out of memory");
+            goto done;
+        }
         bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update,
                               .step_limit = dp_step_limit};
         bk_nl_result res;

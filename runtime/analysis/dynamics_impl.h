@@ -19,6 +19,7 @@ typedef struct dyn_work {
     double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
     int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
     double *Mv;
+    int mass_gen;             /* the pattern version (system.h pattern_gen) Mx is in */
 } dyn_work;
 
 void bk_dyn_work_free(dyn_work *w);
@@ -27,6 +28,9 @@ void bk_dyn_assemble_mass(const bk_system *s, double *Mx, double *work, double *
 void bk_dyn_free_matvec(const bk_system *s, const int *fdof, const double *Ax, const double *x,
                         double *y);
 void bk_dyn_compact_mass(const bk_system *s, dyn_work *w, const double *Mx);
+/* Mx again in the system's pattern when it grew since (beam-to-beam contact
+ * couples elements as it finds them): 0, or -1 when out of memory. */
+int bk_dyn_mass_follow(const bk_system *s, dyn_work *w);
 void bk_dyn_mass_matvec(const bk_system *s, const dyn_work *w, const int *fdof, const double *x, double *y);
 double bk_dyn_dot_free(const bk_system *s, const int *fdof, const double *a, const double *b);
 int *bk_dyn_free_dofs(const bk_system *s);

@@ -52,7 +52,21 @@ int bk_dyn_work_alloc(dyn_work *w, const bk_system *s)
     w->Mp = malloc(((size_t)s->nfree + 1) * sizeof *w->Mp);
     w->Mi = malloc((nnz ? nnz : 1) * sizeof *w->Mi);
     w->Mv = dalloc(nnz);
+    w->mass_gen = s->pattern_gen;
     return w->Mp && w->Mi && w->Mv ? 0 : -1;
+}
+
+int bk_dyn_mass_follow(const bk_system *s, dyn_work *w)
+{
+    if (w->mass_gen == s->pattern_gen)
+        return 0;
+    double *Mx = realloc(w->Mx, (size_t)(s->nnz > 0 ? s->nnz : 1) * sizeof *Mx);
+    if (!Mx)
+        return -1;
+    w->Mx = Mx;
+    bk_dyn_assemble_mass(s, w->Mx, w->K1, w->K2);
+    w->mass_gen = s->pattern_gen;
+    return 0;
 }
 
 /* Constant mass matrix (translational inertia) on the free DOFs, in the pattern

@@ -104,6 +104,26 @@ done:
     return crit;
 }
 
+/* The secant predictor q (from w->qsave, w->nusave) taken only as far as the
+ * interactions' step limit allows (beam-to-beam contact: two beams have no
+ * signed distance to tell that an extrapolation put one through the other). */
+static void cut_predictor(bk_system *s, work *w, double *q)
+{
+    const int nd = s->m->ndof;
+    memset(w->dx, 0, (size_t)(s->neq > 0 ? s->neq : 1) * sizeof *w->dx);
+    for (int i = 0; i < nd; ++i)
+        if (s->eq[i] >= 0 && s->eq[i] < s->nfree)
+            w->dx[s->eq[i]] = q[i] - w->qsave[i];
+    const double alpha = bk_interactions_prepare(s, w->qsave) == 0 ? bk_interactions_step_limit(s, w->qsave, w->dx)
+                                                                   : 0.0;
+    if (alpha >= 1.0)
+        return;
+    for (int i = 0; i < nd; ++i)
+        q[i] = w->qsave[i] + alpha * (q[i] - w->qsave[i]);
+    for (int k = 0; k < s->ncon; ++k)
+        w->nu[k] = w->nusave[k] + alpha * (w->nu[k] - w->nusave[k]);
+}
+
 static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, int tables)
 {
     const bk_model *m = s->m;
@@ -139,6 +159,8 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                     q[i] += c * (q[i] - w->qprev[i]);
                 for (int k = 0; k < s->ncon; ++k)
                     w->nu[k] += c * (w->nu[k] - w->nuprev[k]);
+                if (m->beam_contact)        /* no beam carried through another by the extrapolation */
+                    cut_predictor(s, w, q);
                 bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
             }
             /* Attempts: Newton from the predicted state, then from the last

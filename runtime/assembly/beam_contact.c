@@ -1,7 +1,7 @@
 /* beam_contact.c -- the beam-to-beam contact interaction: barrier forces
  * between segments of the beams' sampled centrelines, their Jacobian, the
  * broad phase that keeps the pattern's coupling blocks ahead of the
- * contacts, the step limiter, beam_contacts.csv and summary.json
+ * contacts, the step limiter, its rows of contacts.csv and summary.json
  * "beam_contact" (see beam_contact.h). */
 #include "assembly/beam_contact.h"
 
@@ -25,8 +25,12 @@ void bc_free(void *self)
     bc_work *w = self;
     if (!w)
         return;
+    if (w->nframe > 0)
+        bc_pvd(w);                       /* the collection complete (a failure was reported with the frames) */
+    free(w->frames), free(w->times);
     free(w->base), free(w->ebase), free(w->chain), free(w->N), free(w->X), free(w->Xref), free(w->D);
     free(w->margin), free(w->cand), free(w->pairs), free(w->box), free(w->lag);
+    free(w->gp), free(w->Hp), free(w->T), free(w->used);
     for (int k = 0; k < 2; ++k)
         free(w->fe[k]);
     for (int k = 0; k < 4; ++k)
@@ -174,7 +178,7 @@ int bk_beam_contact_make(bk_system *s, void **self)
     if (!w)
         return -1;
     size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
-    int nent = 0, maxel = 1;
+    int nent = 0, maxel = 1, maxns = 2;
     w->base = calloc((size_t)bm->nset, sizeof *w->base);
     w->ebase = calloc((size_t)bm->nset, sizeof *w->ebase);
     w->margin = calloc((size_t)bm->nset, sizeof *w->margin);
@@ -186,6 +190,7 @@ int bk_beam_contact_make(bk_system *s, void **self)
         w->npt += set->nelem * set->nsample;
         nent += set->nelem;
         maxel = set->nelem > maxel ? set->nelem : maxel;
+        maxns = set->nsample > maxns ? set->nsample : maxns;
         /* M: the longest element, twice the thickest section, ten reaches */
         double M = 10.0 * set->shat;
         for (int i = 0; i < set->nelem; ++i)
@@ -203,8 +208,13 @@ int bk_beam_contact_make(bk_system *s, void **self)
         w->fe[k] = malloc(md * sizeof *w->fe[k]);
     for (int k = 0; k < 4; ++k)
         w->Kb[k] = malloc(md * md * sizeof *w->Kb[k]);
+    const size_t n3 = 6 * (size_t)maxns;
+    w->gp = malloc(n3 * sizeof *w->gp);
+    w->Hp = malloc(n3 * n3 * sizeof *w->Hp);
+    w->T = malloc(n3 * md * sizeof *w->T);
+    w->used = malloc(n3 / 3);
     if (!w->chain || !w->N || !w->X || !w->Xref || !w->D || !w->box || !w->fe[0] || !w->fe[1] || !w->Kb[0] ||
-        !w->Kb[1] || !w->Kb[2] || !w->Kb[3])
+        !w->Kb[1] || !w->Kb[2] || !w->Kb[3] || !w->gp || !w->Hp || !w->T || !w->used)
         return -1;
     for (int c = 0; c < bm->nset; ++c) {
         const bk_beam_contact_set *set = &bm->sets[c];

@@ -1,5 +1,5 @@
 /* beam_contact_force.c -- the beam contact interaction's forces and Jacobian,
- * step limiter, beam_contacts.csv, summary.json "beam_contact" and state, and
+ * step limiter, its rows of contacts.csv, summary.json "beam_contact" and state, and
  * its operations (beam_contact.h; the broad phase and the geometry:
  * beam_contact.c). */
 #include <math.h>
@@ -8,10 +8,15 @@
 
 #include "assembly/beam_contact.h"
 #include "assembly/beam_contact_impl.h"
+#include "assembly/contact_force.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
 
-/* ---- assemble: per candidate, the two elements' forces and four blocks ---- */
+/* ---- assemble: per candidate, the two elements' forces and four blocks ----
+ * The pairs of segments of a candidate add their gradients and Hessians on
+ * the candidate's sample points (gp, Hp: element i's points, then element j's
+ * unless j = i); the candidate's end takes them through the points' shape
+ * functions to the elements once (a few pairs of segments share each point). */
 
 typedef struct assembly {
     bc_work *w;
@@ -20,22 +25,91 @@ typedef struct assembly {
     int touched, bad;
 } assembly;
 
+/* The number of the candidate's sample points (ns or 2 ns). */
+static int local_points(const bk_model *m, const seg_pair *sp)
+{
+    const int ns = m->beam_contact->sets[sp->c].nsample;
+    return sp->i == sp->j ? ns : 2 * ns;
+}
+
+/* gp, Hp through the shape functions into fe[side], Kb[2 sP + sQ]. */
+static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp, int with_K)
+{
+    const int ns = m->beam_contact->sets[sp->c].nsample, nsides = sp->i == sp->j ? 1 : 2, n3 = 3 * nsides * ns;
+    const int el[2] = {sp->ei, sp->ej};
+    const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
+    const double *N[2] = {w->N + (size_t)(w->base[sp->c] + sp->i * ns) * BK_MAX_SHAPE,
+                          w->N + (size_t)(w->base[sp->c] + sp->j * ns) * BK_MAX_SHAPE};
+    for (int sd = 0; sd < nsides; ++sd) {
+        const int nd = bk_elem_type(m, el[sd])->ndof;
+        memset(w->fe[sd], 0, (size_t)nd * sizeof *w->fe[sd]);
+        for (int k = 0; k < ns; ++k) {
+            if (!w->used[sd * ns + k])
+                continue;
+            const double *Nk = N[sd] + (size_t)k * BK_MAX_SHAPE, *gk = w->gp + 3 * (sd * ns + k);
+            for (int a = 0; a < et[sd]->nshape; ++a)
+                for (int r = 0; r < 3; ++r)
+                    w->fe[sd][et[sd]->shape_dof[a] + r] += Nk[a] * gk[r];
+        }
+    }
+    if (!with_K)
+        return;
+    for (int sQ = 0; sQ < nsides; ++sQ) {
+        const int nq = 3 * et[sQ]->nshape;
+        /* T[(p, r)][(b, c)] = sum over the points q of side sQ of Hp[(p, r)][(q, c)] N_q[b] */
+        for (int row = 0; row < n3; ++row) {
+            if (!w->used[row / 3])
+                continue;                        /* (rows and columns of untouched points are zero) */
+            for (int b = 0; b < et[sQ]->nshape; ++b)
+                for (int c = 0; c < 3; ++c) {
+                    double t = 0.0;
+                    for (int k = 0; k < ns; ++k)
+                        if (w->used[sQ * ns + k])
+                            t += w->Hp[(size_t)row * n3 + 3 * (sQ * ns + k) + c] * N[sQ][(size_t)k * BK_MAX_SHAPE + b];
+                    w->T[(size_t)row * nq + 3 * b + c] = t;
+                }
+        }
+        for (int sP = 0; sP < nsides; ++sP) {
+            const int ndP = et[sP]->ndof, ndQ = et[sQ]->ndof;
+            double *K = w->Kb[2 * sP + sQ];
+            memset(K, 0, (size_t)ndP * (size_t)ndQ * sizeof *K);
+            for (int a = 0; a < et[sP]->nshape; ++a)
+                for (int r = 0; r < 3; ++r) {
+                    double *Krow = K + (size_t)(et[sP]->shape_dof[a] + r) * (size_t)ndQ;
+                    for (int k = 0; k < ns; ++k) {
+                        if (!w->used[sP * ns + k])
+                            continue;
+                        const double na = N[sP][(size_t)k * BK_MAX_SHAPE + a];
+                        const double *Trow = w->T + (size_t)(3 * (sP * ns + k) + r) * nq;
+                        for (int b = 0; b < et[sQ]->nshape; ++b)
+                            for (int c = 0; c < 3; ++c)
+                                Krow[et[sQ]->shape_dof[b] + c] += na * Trow[3 * b + c];
+                    }
+                }
+        }
+    }
+}
+
 static void assemble_candidate(void *ctx, seg_pair *sp, int end)
 {
     assembly *a = ctx;
     bc_work *w = a->w;
+    const bk_model *m = a->s->m;
     if (!end) {
         a->touched = 0;
         return;
     }
     if (!a->touched)
         return;
-    a->bad |= bk_scatter(a->s->m, sp->ei, w->fe[0], 1.0, a->fint);
-    a->bad |= bk_scatter(a->s->m, sp->ej, w->fe[1], 1.0, a->fint);
+    to_elements(w, m, sp, a->Ax != NULL);
+    const int one = sp->i == sp->j;             /* far segments of one element: its own block */
+    a->bad |= bk_scatter(m, sp->ei, w->fe[0], 1.0, a->fint);
+    if (!one)
+        a->bad |= bk_scatter(m, sp->ej, w->fe[1], 1.0, a->fint);
     if (!a->Ax)
         return;
     const int el[2] = {sp->ei, sp->ej};
-    for (int b = 0; b < 4; ++b)
+    for (int b = 0; b < (one ? 1 : 4); ++b)
         bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
 }
 
@@ -59,8 +133,8 @@ static void pair_terms(const bk_beam_contact_set *set, const seg_pair *sp, const
         bc_friction(set, lg, sp, g, H);
 }
 
-/* E = kappa e(x) (bc_pair_energy) on the 12 coordinates of the segments' ends, then through each end's
- * shape functions to its element. */
+/* E = kappa e(x) (bc_pair_energy) and friction on the 12 coordinates of the
+ * segments' ends, added on the candidate's sample points. */
 static void assemble_pair(void *ctx, seg_pair *sp)
 {
     assembly *a = ctx;
@@ -74,38 +148,32 @@ static void assemble_pair(void *ctx, seg_pair *sp)
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
     if (sp->dist >= set->shat && !lg)
         return;
-    const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
-    const int nd[2] = {et[0]->ndof, et[1]->ndof};
+    const int ns = set->nsample, n3 = 3 * local_points(m, sp);
     if (!a->touched) {
-        for (int k = 0; k < 2; ++k)
-            memset(w->fe[k], 0, (size_t)nd[k] * sizeof *w->fe[k]);
-        for (int b = 0; b < 4; ++b)
-            memset(w->Kb[b], 0, (size_t)nd[b / 2] * (size_t)nd[b % 2] * sizeof *w->Kb[b]);
+        memset(w->gp, 0, (size_t)n3 * sizeof *w->gp);
+        memset(w->used, 0, (size_t)n3 / 3);
+        if (a->Ax)
+            memset(w->Hp, 0, (size_t)n3 * (size_t)n3 * sizeof *w->Hp);
         a->touched = 1;
     }
     double g[12], H[144];
     pair_terms(set, sp, lg, g, a->Ax ? H : NULL);
-    for (int P = 0; P < 4; ++P) {
-        const int sP = P / 2;
-        const double *NP = w->N + (size_t)sp->pidx[P] * BK_MAX_SHAPE;
-        for (int i = 0; i < et[sP]->nshape; ++i)
-            for (int r = 0; r < 3; ++r) {
-                const int row = et[sP]->shape_dof[i] + r;
-                w->fe[sP][row] += NP[i] * g[3 * P + r];
-                if (!a->Ax)
-                    continue;
-                for (int Q = 0; Q < 4; ++Q) {
-                    const int sQ = Q / 2;
-                    const double *NQ = w->N + (size_t)sp->pidx[Q] * BK_MAX_SHAPE;
-                    double *K = w->Kb[2 * sP + sQ] + (size_t)row * (size_t)nd[sQ];
-                    for (int c = 0; c < 3; ++c) {
-                        const double k = H[12 * (3 * P + r) + 3 * Q + c] * NP[i];
-                        for (int j = 0; j < et[sQ]->nshape; ++j)
-                            K[et[sQ]->shape_dof[j] + c] += k * NQ[j];
-                    }
-                }
-            }
-    }
+    int li[4];                               /* the pair's ends among the candidate's points */
+    for (int P = 0; P < 4; ++P)
+        li[P] = P < 2 ? sp->pidx[P] - (w->base[sp->c] + sp->i * ns)
+                      : sp->pidx[P] - (w->base[sp->c] + sp->j * ns) + (sp->i == sp->j ? 0 : ns);
+    for (int P = 0; P < 4; ++P)
+        w->used[li[P]] = 1;
+    for (int P = 0; P < 4; ++P)
+        for (int r = 0; r < 3; ++r) {
+            w->gp[3 * li[P] + r] += g[3 * P + r];
+            if (!a->Ax)
+                continue;
+            double *Hrow = w->Hp + (size_t)(3 * li[P] + r) * n3;
+            for (int Q = 0; Q < 4; ++Q)
+                for (int c = 0; c < 3; ++c)
+                    Hrow[3 * li[Q] + c] += H[12 * (3 * P + r) + 3 * Q + c];
+        }
 }
 
 static int bc_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint, double *Ax)
@@ -203,18 +271,31 @@ typedef struct state {
 } state;
 
 /* The contact force (barrier and friction) on the segment pair's first
- * segment (fa; the second gets its opposite) and its magnitude (0: none). */
-static double pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa)
+ * segment (fa; the second gets its opposite) and its magnitude (0: none);
+ * when fn, ft are not NULL, the barrier's and the friction's magnitudes. */
+double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn, double *ft)
 {
     const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
-    double g[12];
+    double g[12], f[3] = {0.0, 0.0, 0.0};
     fa[0] = fa[1] = fa[2] = 0.0;
+    if (fn)
+        *fn = *ft = 0.0;
     if (!(sp->dist > 0.0) || (sp->dist >= set->shat && !lg))
         return 0.0;
-    pair_terms(set, sp, lg, g, NULL);
+    pair_terms(set, sp, NULL, g, NULL);          /* the barrier's */
     for (int r = 0; r < 3; ++r)
         fa[r] = -(g[r] + g[3 + r]);
+    if (lg) {                                    /* friction's */
+        memset(g, 0, sizeof g);
+        bc_friction(set, lg, sp, g, NULL);
+        for (int r = 0; r < 3; ++r)
+            f[r] = -(g[r] + g[3 + r]);
+    }
+    if (fn)
+        *fn = norm3(fa), *ft = norm3(f);
+    for (int r = 0; r < 3; ++r)
+        fa[r] += f[r];
     return norm3(fa);
 }
 
@@ -225,7 +306,7 @@ static void state_pair(void *ctx, seg_pair *sp)
         return;
     st->dmin = fmin(st->dmin, sp->dist);
     double fa[3];
-    const double fn = pair_force(st->w, st->m, sp, fa);
+    const double fn = bc_pair_force(st->w, st->m, sp, fa, NULL, NULL);
     if (fn <= 0.0)
         return;
     st->nactive++;
@@ -316,16 +397,21 @@ static int bc_summary(void *self, const bk_system *s, const double *q, char *buf
     return len > 0 && (size_t)len < n ? 0 : -1;
 }
 
-/* beam_contacts.csv: per output step every pair of segments within the
- * barrier's reach: the two beams, elements and segments, the midpoint of the
- * closest points, the sections' distance, the normal force and the force on
- * the first beam there (N; the second gets its opposite). */
+/* contacts.csv (shared with rigid contact, assembly/contact_force.h): per
+ * output step every pair of segments within the barrier's reach or rubbing:
+ * the set, primitive -1, the first element and its segment, the midpoint of
+ * the closest points, the sections' distance, the normal force (the pair's
+ * whole force less friction's share, its magnitude), the friction force's
+ * magnitude, the friction state (none; stick: slip since the anchor below the
+ * tolerance; slip), the force on the first beam (N; the second gets its
+ * opposite), and the second beam, its element and segment. */
 static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     bc_work *w = self;
-    w->table = bk_tables_open(ts, dir, "beam_contacts.csv", "step,time,set,beam_a,element_a,segment_a,beam_b,"
-                              "element_b,segment_b,x,y,z,distance,normal_force,fx,fy,fz\n", 1, err);
+    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    if (!w->table)
+        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
     return w->table ? 0 : -1;
 }
 
@@ -340,28 +426,32 @@ typedef struct rows {
 static void row_pair(void *ctx, seg_pair *sp)
 {
     rows *rw = ctx;
-    double fa[3];
-    const double fn = pair_force(rw->w, rw->m, sp, fa);
-    if (fn <= 0.0)
+    double fa[3], fn, ft, ut[3];
+    const double f = bc_pair_force(rw->w, rw->m, sp, fa, &fn, &ft);
+    if (f <= 0.0)
         return;
+    const bk_beam_contact_set *set = &rw->m->beam_contact->sets[sp->c];
+    const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(rw->w, sp) : NULL;
     bk_row r;
     bk_row_begin(&r, rw->w->table, rw->rq);
     bk_row_int(&r, rw->step);
     bk_row_num(&r, rw->t);
     bk_row_int(&r, sp->c);
-    bk_row_str(&r, beam_name(rw->m, sp->ei));
+    bk_row_int(&r, -1);
     bk_row_int(&r, sp->ei);
     bk_row_int(&r, sp->k);
-    bk_row_str(&r, beam_name(rw->m, sp->ej));
-    bk_row_int(&r, sp->ej);
-    bk_row_int(&r, sp->l);
     for (int d = 0; d < 3; ++d)
         bk_row_num(&r, 0.5 * (sp->pts[0][d] + sp->sg * (sp->pts[1][d] - sp->pts[0][d]) + sp->pts[2][d] +
                               sp->tau * (sp->pts[3][d] - sp->pts[2][d])));
     bk_row_num(&r, sp->dist);
     bk_row_num(&r, fn);
+    bk_row_num(&r, ft);
+    bk_row_str(&r, !lg ? "none" : bc_slip(lg, sp, ut) < set->slip ? "stick" : "slip");
     for (int d = 0; d < 3; ++d)
         bk_row_num(&r, fa[d]);
+    bk_row_str(&r, beam_name(rw->m, sp->ej));
+    bk_row_int(&r, sp->ej);
+    bk_row_int(&r, sp->l);
     bk_row_end(&r);
 }
 
@@ -377,5 +467,6 @@ static void bc_rows(void *self, const bk_system *s, int step, double t, const do
 
 const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
-                                                .tables = bc_tables, .rows = bc_rows, .summary_key = "beam_contact",
+                                                .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
+                                                .summary_key = "beam_contact", .uncounted_energy = 1,
                                                 .summary = bc_summary, .free = bc_free};

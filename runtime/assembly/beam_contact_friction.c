@@ -6,7 +6,10 @@
  * u_t = (I - n n^T) (P(sg) - Q(tau) - anchor), P and Q linear in the segments'
  * ends at the lagged parameters, and the friction energy mu lam f0(|u_t|),
  * f0' = f1 the smoothed slip function of out/kernels/contact.h: Coulomb's
- * mu lam beyond the slip tolerance, a stiff spring below it.  A pair that
+ * mu lam beyond the slip tolerance, a stiff spring below it; mu passes from
+ * the static mu_s to the kinetic mu_k between a slip of eps and 2 eps
+ * (bk_contact_transition), so a pair sliding 2 eps or more a step rubs with
+ * mu_k and one that stops holds with mu_s.  A pair that
  * sticks keeps its anchor and parameters (no creep under a load below the
  * limit); one that slid, or came into contact, takes the present ones. */
 #include <math.h>
@@ -44,7 +47,7 @@ static void weights(double sg, double tau, double *c)
 }
 
 /* The slip u_t of the pair since its anchor (y = |u_t|). */
-static double slip(const bc_lag *lg, const seg_pair *sp, double *ut)
+double bc_slip(const bc_lag *lg, const seg_pair *sp, double *ut)
 {
     double c[4], u[3] = {0.0, 0.0, 0.0};
     weights(lg->sg, lg->tau, c);
@@ -61,21 +64,26 @@ static double slip(const bc_lag *lg, const seg_pair *sp, double *ut)
 
 void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H)
 {
-    double ut[3], f[4], c[4];
-    const double y = slip(lg, sp, ut), k = set->mu * lg->lam;
+    double ut[3], f[4], h[2], c[4];
+    const double y = bc_slip(lg, sp, ut), k = lg->lam;
     bk_contact_friction(y, set->slip, f);
+    bk_contact_transition(y, set->slip, h);
+    /* phi(y) = mu(y) f1(y) / y, mu(y) = mu_s - (mu_s - mu_k) h(y): the static coefficient up to a slip of eps,
+     * the kinetic one from 2 eps */
+    const double mu = set->mu - (set->mu - set->mu_k) * h[0], dmu = -(set->mu - set->mu_k) * h[1];
+    const double py = mu * f[2], dpy = dmu * f[2] + mu * f[3];
     weights(lg->sg, lg->tau, c);
-    /* d/du: k (f1/y) u_t; d2/du2: k ((f1/y) (I - n n^T) + (f1/y)'/y u_t u_t^T); u = sum c_a x_a */
+    /* d/du: k phi u_t; d2/du2: k (phi (I - n n^T) + phi'/y u_t u_t^T); u = sum c_a x_a */
     for (int a = 0; a < 4; ++a)
         for (int r = 0; r < 3; ++r) {
-            g[3 * a + r] += c[a] * k * f[2] * ut[r];
+            g[3 * a + r] += c[a] * k * py * ut[r];
             if (!H)
                 continue;
             for (int b = 0; b < 4; ++b)
                 for (int s = 0; s < 3; ++s)
                     H[12 * (3 * a + r) + 3 * b + s] +=
-                        c[a] * c[b] * k * (f[2] * ((r == s) - lg->n[r] * lg->n[s]) +
-                                           (y > 0.0 ? f[3] / y * ut[r] * ut[s] : 0.0));
+                        c[a] * c[b] * k * (py * ((r == s) - lg->n[r] * lg->n[s]) +
+                                           (y > 0.0 ? dpy / y * ut[r] * ut[s] : 0.0));
         }
 }
 
@@ -112,7 +120,7 @@ static void lag_pair(void *ctx, seg_pair *sp)
     bc_lag *lg = &l->next[l->n++];
     const bc_lag *old = bc_lag_find(l->w, sp);
     double ut[3];
-    if (old && slip(old, sp, ut) < set->slip) {
+    if (old && bc_slip(old, sp, ut) < set->slip) {
         *lg = *old;                                      /* sticks: the same material points, the same anchor */
     } else {
         key_of(sp, lg->key);

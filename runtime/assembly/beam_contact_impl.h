@@ -42,9 +42,17 @@ typedef struct bc_work {
     int *pairs;                      /* the broad phase's pairs (scratch) */
     bk_box *box;                     /* [largest set's nelem] */
     double *fe[2], *Kb[4];           /* [maxdof], [maxdof^2]: forces of elements i, j; blocks ii ij ji jj */
-    FILE *table;                     /* beam_contacts.csv, or NULL */
+    double *gp, *Hp, *T;             /* a candidate's gradient [n3] and Hessian [n3^2] on its sample points
+                                      * (n3 = 6 times the largest nsample), the contraction's [n3 maxdof] */
+    char *used;                      /* [n3 / 3] the candidate's points some pair touched */
+    FILE *table;                     /* contacts.csv (shared with rigid contact), or NULL */
     int nlag;
     bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
+    char dir[1024];                  /* the frames' directory (beam_contact_frames.c) */
+    int nframe, capframe;
+    int *frames;                     /* [nframe] frame numbers written, */
+    double *times;                   /* their times or load factors */
+    double t_pvd;                    /* when beam_contacts.pvd was last written (bk_clock_s) */
 } bc_work;
 
 typedef struct seg_pair {
@@ -57,6 +65,15 @@ typedef struct seg_pair {
 } seg_pair;
 
 void bc_free(void *self);
+/* The contact force (barrier and friction) on the pair's first segment (fa;
+ * the second gets its opposite) and its magnitude (0: none); when fn, ft are
+ * not NULL, the barrier's and the friction's magnitudes
+ * (beam_contact_force.c). */
+double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn, double *ft);
+/* ParaView frames (beam_contact_frames.c): beam_contacts_NNNNNN.vtp at q, and
+ * the collection beam_contacts.pvd (0, or -1 with a message on err). */
+int bc_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
+int bc_pvd(bc_work *w);
 /* The broad phase again when a sample point moved more than M/4 since the
  * last one (or there was none): 0, or -1 when out of memory. */
 int bc_prepare(void *self, bk_system *s, const double *q);
@@ -88,6 +105,8 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
  * the friction energy's gradient and Hessian (H may be NULL) added into g[12],
  * H[144] (N, N/m; not over kappa); accept: the lagged states at q. */
 const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp);
+/* The pair's slip u_t[3] since its lagged anchor; returns |u_t| (m). */
+double bc_slip(const bc_lag *lg, const seg_pair *sp, double *ut);
 void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H);
 void bc_accept(void *self, const bk_system *s, const double *q, const bk_path *p);
 

@@ -17,6 +17,15 @@
 struct bk_system;
 struct bk_model;
 
+/* contacts.csv, shared by rigid and beam-to-beam contact (whichever
+ * interaction opens it first writes the header): the last three columns name
+ * the second beam, its element and segment of a beam-to-beam row (primitive
+ * -1), empty for a primitive's. */
+#define BK_CONTACTS_CSV "contacts.csv"
+#define BK_CONTACTS_HEADER                                                                                        \
+    "step,time,set,primitive,element,point,x,y,z,distance,normal_force,tangential_force,state,fx,fy,fz,beam_b,"   \
+    "element_b,segment_b\n"
+
 extern const bk_interaction_ops bk_contact_ops;
 
 /* The contact state at q: per set, the total force the primitive exerts on

@@ -39,15 +39,17 @@ int contact_summary(void *self, const bk_system *s, const double *q, char *buf, 
  * step: step, time (or load factor), set, primitive, element, point, its
  * position, distance, the normal force, the tangential force, the friction
  * state (none, stick: slip since the last step below the tolerance, slip) and
- * the force on the beam there (N).  contact_totals.csv: per output step and
+ * the force on the beam there (N), and three empty columns (the second
+ * beam's of beam-to-beam rows, contact_force.h).  contact_totals.csv: per output step and
  * set, the sums over its points: the normal force, the force on the beams,
  * the points within the barrier's reach, and the smallest distance. */
 int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     contact_work *w = self;
-    w->table = bk_tables_open(ts, dir, "contacts.csv", "step,time,set,primitive,element,point,x,y,z,distance,"
-                              "normal_force,tangential_force,state,fx,fy,fz\n", 1, err);
+    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    if (!w->table)
+        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
     w->totals = bk_tables_open(ts, dir, "contact_totals.csv", "step,time,set,primitive,normal_force,fx,fy,fz,"
                                "active_points,min_distance\n", 1, err);
     return w->table && w->totals ? 0 : -1;
@@ -106,6 +108,8 @@ static void row_point(void *ctx, point *pt)
         bk_row_num(&r, -fv[d]);
         tot[1 + d] -= fv[d];
     }
+    for (int k = 0; k < 3; ++k)
+        bk_row_str(&r, "");                      /* (beam_b, element_b, segment_b: a beam-to-beam row's) */
     bk_row_end(&r);
 }
 

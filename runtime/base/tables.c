@@ -43,6 +43,14 @@ FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const cha
     return fp;
 }
 
+FILE *bk_tables_find(const bk_tables *ts, const char *name)
+{
+    for (int k = 0; k < ts->n; ++k)
+        if (ts->t[k].fp && strcmp(ts->t[k].name, name) == 0)
+            return ts->t[k].fp;
+    return NULL;
+}
+
 int bk_tables_add(bk_tables *ts, const char *name, FILE *fp, int rows)
 {
     if (grow(ts) != 0) {

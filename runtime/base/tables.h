@@ -41,6 +41,9 @@ typedef struct bk_tables {
 } bk_tables;
 
 FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const char *header, int rows, FILE *err);
+/* The open stream of the table `name` already registered, or NULL (a table
+ * that two writers share, e.g. contacts.csv of rigid and beam contact). */
+FILE *bk_tables_find(const bk_tables *ts, const char *name);
 int bk_tables_add(bk_tables *ts, const char *name, FILE *fp, int rows);
 int bk_tables_rows(const bk_tables *ts, FILE **fp, int max);
 void bk_tables_flush(bk_tables *ts, int (*skip)(void *ctx, FILE *fp), void *ctx);

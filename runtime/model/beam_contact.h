@@ -15,14 +15,17 @@
  * zero beyond (out/kernels/contact.h).  Friction (mu > 0) is lagged over a
  * step as for rigid primitives (model/contact.h): the slip of the closest
  * points relative to each other since the last accepted state, in the plane
- * normal to the lagged normal, against the lagged normal force. */
+ * normal to the lagged normal, against the lagged normal force; the
+ * coefficient passes from mu_s to mu_k between a slip of eps and 2 eps since
+ * the anchor, as for rigid primitives (bk_contact_transition). */
 #ifndef BK_BEAM_CONTACT_MODEL_H
 #define BK_BEAM_CONTACT_MODEL_H
 
 typedef struct bk_beam_contact_set {
     double shat;                     /* barrier reach (m), > 0 */
     double kappa;                    /* barrier stiffness (N/m per metre), > 0 */
-    double mu;                       /* Coulomb friction coefficient, >= 0 */
+    double mu;                       /* static Coulomb coefficient mu_s, >= 0 */
+    double mu_k;                     /* kinetic coefficient, 0 <= mu_k <= mu_s */
     double slip;                     /* slip tolerance (m), > 0 */
     double exclude;                  /* arc length (m) within which segments of one beam do not touch, >= 0 */
     int nsample;                     /* sample points per element, >= 2 */

@@ -1,7 +1,7 @@
 /* beam_contact_read.c -- the beam-to-beam contact records of the model file
  * (model/beam_contact.h), written by gen/scene/beam_contact.py:
  *   beam_contacts NSET
- *   bcset REACH STIFFNESS MU SLIP SAMPLES EXCLUDE SELF NCHAIN   (NSET times, each followed by)
+ *   bcset REACH STIFFNESS MU_S MU_K SLIP SAMPLES EXCLUDE SELF NCHAIN   (NSET times, each followed by)
  *   chain N e r s0 ..                                           (NCHAIN times: N elements in order) */
 #include <stdlib.h>
 
@@ -13,6 +13,7 @@ static void read_set(bk_reader *r, bk_model *m, bk_beam_contact_set *set, int c)
     set->shat = rd_num(r, "beam contact reach");
     set->kappa = rd_num(r, "beam contact stiffness");
     set->mu = rd_num(r, "beam contact friction");
+    set->mu_k = rd_num(r, "beam contact kinetic friction");
     set->slip = rd_num(r, "beam contact slip tolerance");
     set->nsample = rd_inum(r, "beam contact samples", 2, 64);
     set->exclude = rd_num(r, "beam contact exclusion");
@@ -20,10 +21,11 @@ static void read_set(bk_reader *r, bk_model *m, bk_beam_contact_set *set, int c)
     int nc = rd_inum(r, "beam contact beams", 1, m->nelem > 0 ? m->nelem : 1);
     if (r->failed)
         return;
-    if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu >= 0.0) || !(set->slip > 0.0) ||
-        !(set->exclude >= 0.0))
-        rd_fail(r, "beam contact set %d: reach, stiffness and slip tolerance must be positive, friction and "
-                "exclusion >= 0 (%g, %g, %g, %g, %g)", c, set->shat, set->kappa, set->slip, set->mu, set->exclude);
+    if (!(set->shat > 0.0) || !(set->kappa > 0.0) || !(set->mu_k >= 0.0) || !(set->mu >= set->mu_k) ||
+        !(set->slip > 0.0) || !(set->exclude >= 0.0))
+        rd_fail(r, "beam contact set %d: reach, stiffness and slip tolerance must be positive, 0 <= kinetic <= "
+                "static friction, exclusion >= 0 (%g, %g, %g, %g, %g, %g)", c, set->shat, set->kappa, set->slip,
+                set->mu_k, set->mu, set->exclude);
     set->chain_off = rd_xcalloc(r, (size_t)nc + 1, sizeof *set->chain_off);
     set->elems = rd_xcalloc(r, (size_t)m->nelem + 1, sizeof *set->elems);
     set->radius = rd_xcalloc(r, (size_t)m->nelem + 1, sizeof *set->radius);
@@ -51,10 +53,10 @@ void bk_model_read_beam_contacts(bk_reader *r, bk_model *m)
     if (r->failed || ns == 0)
         return;
     /* the Newton matrix's pattern grows as contacts are found (assembly/
-     * beam_contact.h): the static analysis without stability checks follows
-     * it; the others keep arrays made from the first pattern */
-    if (!bk_model_in_load(m) || m->stat.method != BK_METHOD_LOAD_CONTROL || m->stat.stability) {
-        rd_fail(r, "beam contact is available in static analyses with load control and stability = false only");
+     * beam_contact.h): dynamics and the static analysis without stability
+     * checks follow it; the others keep arrays made from the first pattern */
+    if (!bk_model_in_time(m) && (!bk_model_in_load(m) || m->stat.stability)) {
+        rd_fail(r, "beam contact is available in dynamics and in static analyses with stability = false only");
         return;
     }
     bk_beam_contact_model *bm = rd_xcalloc(r, 1, sizeof *bm);
