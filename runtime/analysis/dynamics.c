@@ -18,8 +18,10 @@
  * Newton converges when the residual is below rtol times the force scale (or
  * its round-off floor), the constraints hold to 1e-12 L and the last increment
  * is below utol times the motion of the step.
- * A step whose Newton iteration fails is retried with half the step; with
- * dynamic.tol > 0 the step follows the local error estimate
+ * A step whose Newton iteration fails is retried with half the step, and the
+ * step controller (solver/step_control.h) remembers the failure: no regrowth
+ * right after it, and not back to the size that failed until enough steps have
+ * passed; with dynamic.tol > 0 the step follows the local error estimate
  *   e = h^2 |beta - 1/6| max|a_{n+1} - a_n| / L
  * (L the model's length scale), accepted when e <= tol.
  */
@@ -40,6 +42,7 @@
 #include "assembly/loads.h"
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
+#include "solver/step_control.h"
 
 /* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
  * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
@@ -222,6 +225,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
      * pred_hold steps (4, doubled while it keeps being needed, up to 64) */
     int retry_position = 0, pred_hold = 0, hold_len = 4;
     char inadm[320] = "";                       /* why the last inadmissible state was refused */
+    bk_step_ctl ctl;
+    bk_step_ctl_init(&ctl, fmax(o->dt, o->dt_min));
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
@@ -346,7 +351,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                             t, h, dyn_why(st));
                 continue;
             }
-            double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
+            double hn = st != DYN_OK ? bk_step_ctl_failed(&ctl, h) : bk_step_ctl_error_reject(&ctl, h, err / o->tol);
             if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
                 char incr[64];
                 if (it > 0 && isfinite(dnorm))
@@ -423,10 +428,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         if (log)
             fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
         bk_output_progress(out, t / o->t_end, step, t, h, it, rnorm);
-        if (o->tol > 0.0 && err > 0.0)
-            h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
-        else if (h < o->dt)
-            h = fmin(2.0 * h, o->dt);
+        h = bk_step_ctl_accepted(&ctl, h, it, o->tol > 0.0 ? fmax(err / o->tol, 1e-12) : 0.0);
     }
     rc = 0;
 done:
