@@ -28,6 +28,7 @@
 #include "analysis/analysis.h"
 #include "analysis/dynamics.h"
 #include "analysis/dynamics_impl.h"
+#include "analysis/dyn_energy.h"
 
 #include <float.h>
 #include <math.h>
@@ -59,19 +60,24 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     double *A = matrix || rb != 0.0 ? w->Ax : NULL;
     if (bk_assemble_internal(s, q, w->fint, A) != 0)
         return -1;
+    w->p_damp = 0.0;
     if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
         bk_dyn_free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += rb * w->tmp[i];
+        w->p_damp = rb * bk_dyn_dot_free(s, fdof, w->tmp, w->qd);
         if (matrix)
             for (long k = 0; k < s->nnz; ++k)
                 w->Ax[k] *= 1.0 + gp * rb;
     }
     A = matrix ? w->Ax : NULL;
     const bk_path path = {.factor = 1.0, .x = tn};
+    const double p_before = bk_dyn_dot_free(s, fdof, w->fint, w->qd);
     if (bk_assemble_interactions(s, q, &path, w->fint, A) != 0)
         return -1;
+    w->p_inter = bk_dyn_dot_free(s, fdof, w->fint, w->qd) - p_before;
     bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
+    w->p_damp += w->p_visc;
     bk_dyn_mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
         w->fint[i] += w->tmp[i];
@@ -79,6 +85,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
         bk_dyn_mass_matvec(s, w, fdof, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += ra * w->tmp[i];
+        w->p_damp += ra * bk_dyn_dot_free(s, fdof, w->tmp, w->qd);
     }
     if (matrix)
         for (long k = 0; k < s->nnz; ++k)
@@ -86,7 +93,13 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
     for (int i = 0; i < nd; ++i)
         if (s->eq[i] >= 0)
             w->r[s->eq[i]] = w->fint[i] - w->fext[i];
+    double c_before = 0.0, c_after = 0.0;
+    for (int j = 0; j < s->nfree; ++j)
+        c_before += w->r[j] * w->qd[fdof[j]];
     bk_assemble_constraints(s, q, w->nu, tn, w->r, A);
+    for (int j = 0; j < s->nfree; ++j)
+        c_after += w->r[j] * w->qd[fdof[j]];
+    w->p_con = c_after - c_before;
     *rnorm = bk_norm2(w->r, s->nfree);
     return isfinite(*rnorm) ? 0 : -1;
 }
@@ -159,22 +172,6 @@ static const char *dyn_why(int c)
     }
 }
 
-/* A row of energy.csv: kinetic, strain, gravity potential, potential of the
- * other constant loads, their total, constraint residual. */
-static void energy_row(bk_output *out, FILE *table, int step, double t, double T, double U, double Vg, double Vf,
-                       double cres)
-{
-    double t0 = bk_clock_s();
-    bk_row r;
-    bk_output_row(out, &r, table);
-    bk_row_int(&r, step);
-    const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
-    for (int i = 0; i < 6; ++i)
-        bk_row_num(&r, v[i]);
-    bk_row_e(&r, cres, 3);
-    bk_output_row_end(out, &r, t0, 1);
-}
-
 int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
@@ -189,8 +186,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    FILE *energy = bk_output_table(out, "energy.csv", "step,time,kinetic,strain,gravity,load_potential,total,"
-                                   "constraint_residual\n", stderr);
+    FILE *energy = bk_output_table(out, "energy.csv", bk_energy_header(), stderr);
+    bk_energy eb = {0};
     if (!energy) {
         snprintf(info->message, sizeof info->message, "cannot write energy.csv");
         goto done;
@@ -281,7 +278,16 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     {
         bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
         double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
-        energy_row(out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
+        /* the powers of the initial state, with the initial multipliers (in w.r) */
+        double rn, P0 = 0.0, Pd0 = 0.0;
+        if (w.nc)
+            memcpy(w.nu, w.r + s->nfree, (size_t)w.nc * sizeof *q);
+        if (dyn_residual(s, &w, fdof, q, 0.0, 0.0, 0.0, 0, &rn) == 0)
+            P0 = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd0 = w.p_damp;
+        if (w.nc)
+            memset(w.nu, 0, (size_t)w.nc * sizeof *q);
+        bk_energy_start(&eb, T, 0.0, P0, Pd0);
+        bk_energy_row(&eb, out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
         e_start = T, e_scale = fabs(T);
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
@@ -392,6 +398,12 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             double *acc[2] = {w.qdd, w.a};
             bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
         }
+        {   /* the energy balance over the step, at the converged state's powers */
+            const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
+            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
+            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            bk_energy_step(&eb, tn, h, T, bk_strain_energy(s, q) - U0, P, Pd);
+        }
         t = tn;
         step++;
         info->steps = step;
@@ -412,7 +424,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
             }
             bk_load_potentials(s, q, t, &Vg, &Vf);
-            energy_row(out, energy, step, t, T, U, Vg, Vf, cr);
+            bk_energy_row(&eb, out, energy, step, t, T, U, Vg, Vf, cr);
             /* contact with a step too long for its barrier can create energy (the
              * barrier's own energy is not in the total: a bounce gains) */
             e_scale = fmax(e_scale, fmax(fmax(fabs(T), fabs(U)), fmax(fabs(Vg), fabs(Vf))));
@@ -432,6 +444,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     }
     rc = 0;
 done:
+    if (energy) {
+        char etext[512];
+        bk_energy_summary(&eb, etext, sizeof etext);
+        if (bk_run_summary(info, "energy", etext) != 0 && rc == 0) {
+            snprintf(info->message, sizeof info->message, "out of memory");
+            rc = 1;
+        }
+    }
     /* a failed or interrupted run keeps its last accepted step even when the
      * output stride skipped it */
     if (rc != 0 && step > written)

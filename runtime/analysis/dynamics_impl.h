@@ -19,6 +19,9 @@ typedef struct dyn_work {
     double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
     int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
     double *Mv;
+    /* powers at the last residual (dyn_energy.h): of the interactions' and the
+     * constraints' forces as they enter the residual, of damping (Rayleigh, viscous) */
+    double p_inter, p_con, p_damp, p_visc;
 } dyn_work;
 
 void bk_dyn_work_free(dyn_work *w);
