@@ -6,9 +6,9 @@
 
 #include "base/clock.h"
 
-void bk_energy_start(bk_energy *e, double T, double U, double P, double Pd)
+void bk_energy_start(bk_energy *e, double T, double U, double P, double Pd, double floor)
 {
-    *e = (bk_energy){.T0 = T, .U0 = U, .P = P, .Pd = Pd, .scale = fabs(T)};
+    *e = (bk_energy){.T0 = T, .U0 = U, .P = P, .Pd = Pd, .scale = fmax(fabs(T), floor)};
 }
 
 void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double P, double Pd)
@@ -20,6 +20,15 @@ void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double
     e->scale = fmax(e->scale, fmax(fmax(fabs(T), fabs(T - e->T0)), fmax(fabs(U - e->U0), fabs(e->W))));
     if (e->Dnum < e->Dnum_min)
         e->Dnum_min = e->Dnum, e->t_min = t;
+    e->Dnum_max = fmax(e->Dnum_max, e->Dnum);
+}
+
+double bk_energy_trial(const bk_energy *e, double t, double h, double T, double U, double P, double Pd,
+                       bk_energy *trial)
+{
+    *trial = *e;
+    bk_energy_step(trial, t, h, T, U, P, Pd);
+    return (trial->Dnum_max - trial->Dnum) / (trial->scale > 0.0 ? trial->scale : 1.0);
 }
 
 const char *bk_energy_header(void)

@@ -26,14 +26,29 @@ typedef struct bk_energy {
     double P, Pd;         /* applied and damping power at the last state        */
     double W, D, Dnum;    /* work of loads, damping dissipation, integrator's   */
     double Dnum_min;      /* the most negative D_num so far (energy created)    */
+    double Dnum_max;      /* its largest value so far                           */
     double t_min;         /* when                                               */
     double scale;         /* the largest |T - T0|, |U - U0|, |W|, T seen        */
 } bk_energy;
 
-/* At t = 0: T, U and the powers of the initial state. */
-void bk_energy_start(bk_energy *e, double T, double U, double P, double Pd);
+/* At t = 0: T, U and the powers of the initial state; floor, the least energy
+ * scale (the energies of a run that has barely started are round-off and the
+ * start of its transients: dynamics.c takes the kinetic energy of the model's
+ * mass moving its length over the run). */
+void bk_energy_start(bk_energy *e, double T, double U, double P, double Pd, double floor);
 /* After an accepted step of length h ending at t in a state with T, U, P, Pd. */
 void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double P, double Pd);
+/* Energy created: an accepted step may not bring the integrator's dissipation
+ * more than BK_ENERGY_CREATED times the energy scale below its largest value
+ * (the scheme gives energy back only by round-off and the small swings of
+ * its high modes); above BK_ENERGY_CREATED_WARN the run is warned. */
+#define BK_ENERGY_CREATED 1e-2
+#define BK_ENERGY_CREATED_WARN 1e-3
+/* The balance e would have after a step (h, T, U, P, Pd) into *trial; returns
+ * the energy created so far (the fall of D_num below its largest value) over
+ * the energy scale. */
+double bk_energy_trial(const bk_energy *e, double t, double h, double T, double U, double P, double Pd,
+                       bk_energy *trial);
 /* The header of energy.csv and one of its rows (T, U relative to U0, the
  * gravity and load potentials, their total, the balance, the constraint residual). */
 const char *bk_energy_header(void);

@@ -105,7 +105,7 @@ static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double
 }
 
 enum { DYN_OK = BK_NL_OK, DYN_MAXIT = BK_NL_MAXIT, DYN_NONFINITE = BK_NL_NONFINITE, DYN_SINGULAR = BK_NL_SINGULAR,
-       DYN_LINERR = BK_NL_LINERR, DYN_INADMISSIBLE = BK_NL_NCODES };
+       DYN_LINERR = BK_NL_LINERR, DYN_INADMISSIBLE = BK_NL_NCODES, DYN_ENERGY };
 
 /* One step's Newton problem for the nonlinear solver (nonlinear.h): the
  * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
@@ -168,6 +168,7 @@ static const char *dyn_why(int c)
                               "too large for the transient (try a smaller dt or a larger rho_inf)";
     case DYN_LINERR: return "linear solver error";
     case DYN_INADMISSIBLE: return "Newton converged to a state that is not physical (an element inverted)";
+    case DYN_ENERGY: return "the step created energy";
     default: return "converged";
     }
 }
@@ -271,7 +272,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     }
     double U0 = bk_strain_energy(s, q);
     double e_start = 0.0, e_scale = 0.0;   /* the total energy at t = 0, the largest of its parts since */
-    int e_warned = 0;
+    int e_warned = 0, e_warned_num = 0;
     bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = 0.0});   /* the lagged states (friction) */
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
@@ -286,7 +287,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             P0 = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd0 = w.p_damp;
         if (w.nc)
             memset(w.nu, 0, (size_t)w.nc * sizeof *q);
-        bk_energy_start(&eb, T, 0.0, P0, Pd0);
+        const double vs = m->length_scale / o->t_end;
+        bk_energy_start(&eb, T, 0.0, P0, Pd0, 0.5 * mbar * s->nfree * vs * vs);
         bk_energy_row(&eb, out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
         e_start = T, e_scale = fabs(T);
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
@@ -326,6 +328,25 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
          * inverted): else it is retried and cut back like a failed one */
         if (st == DYN_OK && !bk_checks_admissible(&chk, s, q, inadm, sizeof inadm))
             st = DYN_INADMISSIBLE;
+        bk_energy eb_trial;
+        if (st == DYN_OK) {     /* the energy balance over the step, at the converged state's powers */
+            const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
+            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
+            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double created = bk_energy_trial(&eb, tn, h, T, bk_strain_energy(s, q) - U0, P, Pd, &eb_trial);
+            if (created > BK_ENERGY_CREATED) {
+                st = DYN_ENERGY;
+                snprintf(inadm, sizeof inadm, "the integrator created %.3g J (%.3g %% of the largest energy, %.3g J; "
+                         "work of loads and prescribed motions and damping counted): a weakly damped high mode grows "
+                         "(try rho_inf <= 0.9 or a smaller dt)", eb_trial.Dnum_max - eb_trial.Dnum, 100.0 * created,
+                         eb_trial.scale);
+            } else if (created > BK_ENERGY_CREATED_WARN && !e_warned_num) {
+                e_warned_num = 1;
+                bk_warn(info, out->console, m->name, "the integrator created %.3g J by t = %.6g s (%.3g %% of the "
+                        "largest energy): a weakly damped high mode may be growing; results after it are suspect "
+                        "(try rho_inf <= 0.9 or a smaller dt)", eb_trial.Dnum_max - eb_trial.Dnum, tn, 100.0 * created);
+            }
+        }
         if (st == DYN_OK) {
             for (int i = 0; i < nd; ++i) {
                 double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
@@ -367,7 +388,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 snprintf(info->message, sizeof info->message,
                          "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e%s after "
                          "%d iteration%s, %d cut-back%s in a row%s",
-                         step + 1, tn, h, st == DYN_INADMISSIBLE ? inadm : st != DYN_OK ? dyn_why(st)
+                         step + 1, tn, h, st == DYN_INADMISSIBLE || st == DYN_ENERGY ? inadm : st != DYN_OK ? dyn_why(st)
                          : "local error above tol at the smallest step",
                          rnorm, incr, it, it == 1 ? "" : "s", cuts, cuts == 1 ? "" : "s",
                          hn < o->dt_min ? " (the next step would be below dynamic.dt_min)" : "");
@@ -398,12 +419,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             double *acc[2] = {w.qdd, w.a};
             bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
         }
-        {   /* the energy balance over the step, at the converged state's powers */
-            const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
-            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
-            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
-            bk_energy_step(&eb, tn, h, T, bk_strain_energy(s, q) - U0, P, Pd);
-        }
+        eb = eb_trial;
         t = tn;
         step++;
         info->steps = step;
