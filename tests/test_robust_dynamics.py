@@ -209,3 +209,34 @@ def test_step_controller_remembers_failures():
     assert hs == [0.5] * 31
     hs, _, _ = _steps("f" + "s" * 12, ratio=1e-3)
     assert max(hs) <= 0.9 and hs[-1] == 0.9 and hs[:8] == [0.5] * 8
+
+
+def _bent_cantilever(replace_constraint, name):
+    from util import ROOT
+    text = (ROOT / "models" / "cantilever_bend_10N.toml").read_text()
+    text = replace_constraint(text).replace("[static]", "[static]\nfree_rigid_motion = true")
+    d = ensure_dir(BUILD / "robust_dynamics")
+    p = d / f"{name}.toml"
+    p.write_text(text)
+    from util import run_cli
+    return run_cli(["run", str(p), "--out", str(d / f"{name}_out")])
+
+
+def test_singular_tangent_names_the_free_motion():
+    """Statics of a model left free on purpose (free_rigid_motion = true) meets a
+    singular tangent; the message names the motion from the matrix's null vector:
+    the cantilever of cantilever_bend_10N pinned at its start (a spherical joint)
+    turns about an axis normal to the beam (its tip, at s = 1 m, moves normal to the
+    beam: no x component), and without any constraint every node translates."""
+    r = _bent_cantilever(lambda t: t.replace('type = "clamp"', 'type = "spherical"'), "pinned")
+    assert r.returncode == 2, r.stderr
+    line = [l for l in r.stderr.splitlines() if l.startswith("error")][0]
+    import re
+    m = re.search(r"the largest translation at beam 'arm' at s = 1 m, along \(([-0-9.]+), ([-0-9.]+), "
+                  r"([-0-9.]+)\); the section turning most at .* about \(([-0-9.]+), ", line)
+    assert m, line
+    assert abs(float(m.group(1))) <= 0.01 and abs(float(m.group(4))) <= 0.01, line
+    r = _bent_cantilever(lambda t: t.split("[[constraint]]")[0] + "[[load]]" + t.split("[[load]]")[1], "floating")
+    assert r.returncode == 2, r.stderr
+    assert "free motion (null vector of the matrix):" in r.stderr and "translation at beam 'arm'" in r.stderr, \
+        r.stderr

@@ -44,6 +44,7 @@
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
 #include "solver/step_control.h"
+#include "solver/null_motion.h"
 
 /* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
  * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
@@ -222,7 +223,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
      * held once it failed at this step and, with memory, for the next
      * pred_hold steps (4, doubled while it keeps being needed, up to 64) */
     int retry_position = 0, pred_hold = 0, hold_len = 4;
-    char inadm[320] = "";                       /* why the last inadmissible state was refused */
+    char inadm[640] = "";                       /* why the last inadmissible state was refused */
     bk_step_ctl ctl;
     bk_step_ctl_init(&ctl, fmax(o->dt, o->dt_min));
 
@@ -381,6 +382,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             double hn = st != DYN_OK ? bk_step_ctl_failed(&ctl, h) : bk_step_ctl_error_reject(&ctl, h, err / o->tol);
             if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
                 char incr[64];
+                char free_motion[400];
+                if (st == DYN_SINGULAR && bk_null_motion(s, w.Ax, q, ls, free_motion, sizeof free_motion) == 0) {
+                    snprintf(inadm, sizeof inadm, "singular iteration matrix; %s (held by nothing and without "
+                             "mass? else the step is too large for the transient: try a smaller dt or a larger "
+                             "rho_inf)", free_motion);
+                    st = DYN_INADMISSIBLE;   /* the message names the free motion */
+                }
                 if (it > 0 && isfinite(dnorm))
                     snprintf(incr, sizeof incr, ", last increment %.3e", dnorm);
                 else
