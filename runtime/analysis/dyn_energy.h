@@ -42,8 +42,8 @@ void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double
  * more than BK_ENERGY_CREATED times the energy scale below its largest value
  * (the scheme gives energy back only by round-off and the small swings of
  * its high modes); above BK_ENERGY_CREATED_WARN the run is warned. */
-#define BK_ENERGY_CREATED 1e-2
-#define BK_ENERGY_CREATED_WARN 1e-3
+#define BK_ENERGY_CREATED 5e-2
+#define BK_ENERGY_CREATED_WARN 1e-2
 /* The balance e would have after a step (h, T, U, P, Pd) into *trial; returns
  * the energy created so far (the fall of D_num below its largest value) over
  * the energy scale. */
