@@ -99,12 +99,14 @@ def test_names_cannot_escape_and_out_dirs_are_not_mixed():
 def test_dynamic_failure_keeps_steps_and_says_where():
     """A Neo-Hookean bar crushed by an axial force far beyond what it can carry, in dynamics: the
     run stops with time, step size, residual and cause on one line, exit 2, every accepted
-    step kept."""
+    step kept.  (The force a step at t = 0.25 ms and dt_min = dt / 4: with the step
+    controller's memory the crushed bar would otherwise be followed at small steps
+    through its collapse.)"""
     d = fresh()
     text = (ROOT / "models" / "cantilever_axial_m1kN.toml").read_text()
     text = text.replace('analysis = "static"', 'analysis = "dynamic"').replace('law = "svk"', 'law = "neo_hookean"').replace(
-        "value = [-1000.0, 0.0, 0.0]", "value = [-5.0e6, 0.0, 0.0]")
-    text += "\n[dynamic]\nt_end = 0.01\ndt = 1e-4\n"
+        "value = [-1000.0, 0.0, 0.0]", 'value = [-5.0e6, 0.0, 0.0]\namplitude = {type = "step", t0 = 0.00025}')
+    text += "\n[dynamic]\nt_end = 0.01\ndt = 1e-4\ndt_min = 2.5e-5\n"
     p = d / "collapse.toml"
     p.write_text(text)
     r = run_cli(["run", str(p), "--out", str(d / "o")])

@@ -18,14 +18,17 @@
  * Newton converges when the residual is below rtol times the force scale (or
  * its round-off floor), the constraints hold to 1e-12 L and the last increment
  * is below utol times the motion of the step.
- * A step whose Newton iteration fails is retried with half the step; with
- * dynamic.tol > 0 the step follows the local error estimate
+ * A step whose Newton iteration fails is retried with half the step, and the
+ * step controller (solver/step_control.h) remembers the failure: no regrowth
+ * right after it, and not back to the size that failed until enough steps have
+ * passed; with dynamic.tol > 0 the step follows the local error estimate
  *   e = h^2 |beta - 1/6| max|a_{n+1} - a_n| / L
  * (L the model's length scale), accepted when e <= tol.
  */
 #include "analysis/analysis.h"
 #include "analysis/dynamics.h"
 #include "analysis/dynamics_impl.h"
+#include "analysis/dyn_energy.h"
 
 #include <float.h>
 #include <math.h>
@@ -40,132 +43,11 @@
 #include "assembly/loads.h"
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
-
-/* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the
- * scaled constraint rows), its 2-norm into *rnorm; with `matrix`, also the iteration
- * matrix K_t (1 + gamma' beta_R) + (beta' + gamma' alpha_R) M + rotary/viscous terms
- * + constraint rows into w->Ax.  Returns nonzero on a non-finite force. */
-static int dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q, double tn, double bp,
-                        double gp, int matrix, double *rnorm)
-{
-    const bk_model *m = s->m;
-    const bk_dynamic_opts *o = &m->dyn;
-    const int nd = m->ndof;
-    const double ra = o->rayleigh_alpha, rb = o->rayleigh_beta;
-    /* the damping force beta_R K_t q' needs K_t even when the matrix is kept */
-    double *A = matrix || rb != 0.0 ? w->Ax : NULL;
-    if (bk_assemble_internal(s, q, w->fint, A) != 0)
-        return -1;
-    if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
-        bk_dyn_free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
-        for (int i = 0; i < nd; ++i)
-            w->fint[i] += rb * w->tmp[i];
-        if (matrix)
-            for (long k = 0; k < s->nnz; ++k)
-                w->Ax[k] *= 1.0 + gp * rb;
-    }
-    A = matrix ? w->Ax : NULL;
-    const bk_path path = {.factor = 1.0, .x = tn, .qd = w->qd, .gp = gp};
-    if (bk_assemble_interactions(s, q, &path, w->fint, A) != 0)
-        return -1;
-    bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
-    bk_dyn_mass_matvec(s, w, fdof, w->qdd, w->tmp);
-    for (int i = 0; i < nd; ++i)
-        w->fint[i] += w->tmp[i];
-    if (ra != 0.0) {
-        bk_dyn_mass_matvec(s, w, fdof, w->qd, w->tmp);
-        for (int i = 0; i < nd; ++i)
-            w->fint[i] += ra * w->tmp[i];
-    }
-    if (matrix)
-        for (long k = 0; k < s->nnz; ++k)
-            w->Ax[k] += (bp + gp * ra) * w->Mx[k];
-    for (int i = 0; i < nd; ++i)
-        if (s->eq[i] >= 0)
-            w->r[s->eq[i]] = w->fint[i] - w->fext[i];
-    bk_assemble_constraints(s, q, w->nu, tn, w->r, A);
-    *rnorm = bk_norm2(w->r, s->nfree);
-    return isfinite(*rnorm) ? 0 : -1;
-}
+#include "solver/step_control.h"
+#include "solver/null_motion.h"
 
 enum { DYN_OK = BK_NL_OK, DYN_MAXIT = BK_NL_MAXIT, DYN_NONFINITE = BK_NL_NONFINITE, DYN_SINGULAR = BK_NL_SINGULAR,
-       DYN_LINERR = BK_NL_LINERR, DYN_INADMISSIBLE = BK_NL_NCODES };
-
-/* One step's Newton problem for the nonlinear solver (nonlinear.h): the
- * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
- * q'' by beta' dq. */
-typedef struct dyn_problem {
-    bk_system *s;
-    dyn_work *w;
-    const int *fdof;
-    const bk_norms *norms;
-    double *q;
-    double tn, bp, gp;
-} dyn_problem;
-
-static int dp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
-{
-    dyn_problem *p = ctx;
-    bk_system *s = p->s;
-    dyn_work *w = p->w;
-    const bk_model *m = s->m;
-    (void)r;                                    /* w->r is the solver's buffer */
-    w->Ax = Ax;                                 /* (made anew when the pattern grew: system.h) */
-    if (bk_dyn_mass_follow(s, w) != 0 ||
-        dyn_residual(s, w, p->fdof, p->q, p->tn, p->bp, p->gp, matrix, &ev->rnorm) != 0)
-        return -1;
-    ev->ref = fmax(bk_norm2(w->fext, m->ndof), bk_norm2(w->fint, m->ndof));
-    ev->cres = bk_norm2(w->r + s->nfree, s->ncon) / s->cscale;
-    /* increments relative to the motion of this step */
-    ev->uscale = fmax(1e-12 * m->length_scale, bk_norm_dof_max(p->norms, s, p->q, w->q_s));
-    ev->escale = 0.0;
-    return 0;
-}
-
-/* The interactions' step limit (e.g. no contact gap crosses zero). */
-static double dp_step_limit(void *ctx, const double *dx)
-{
-    const dyn_problem *p = ctx;
-    return bk_interactions_step_limit(p->s, p->q, dx);
-}
-
-static void dp_update(void *ctx, const double *dx, double alpha)
-{
-    dyn_problem *p = ctx;
-    const bk_system *s = p->s;
-    dyn_work *w = p->w;
-    for (int j = 0; j < s->nfree; ++j) {
-        int i = p->fdof[j];
-        double d = alpha * dx[j];
-        p->q[i] += d;
-        w->qd[i] += p->gp * d;
-        w->qdd[i] += p->bp * d;
-    }
-    for (int c = 0; c < s->ncon; ++c)
-        w->nu[c] += alpha * dx[s->nfree + c];
-}
-
-/* Beam-to-beam contact: the constant-acceleration predictor q* of the step
- * is taken only as far as the interactions' step limit allows from q_n (a
- * predictor may carry a beam through another, where no distance is negative
- * to tell).  The held-position predictor plus alpha (q* - q_n) by dp_update
- * keeps the Newmark relations, since they are linear.  dx: [neq] scratch.
- * 0, or -1 when out of memory. */
-static int limit_predictor(dyn_problem *p, double *dx, double am, double af, double bet, double gam, double h)
-{
-    bk_system *s = p->s;
-    dyn_work *w = p->w;
-    for (int j = 0; j < s->neq; ++j)
-        dx[j] = j < s->nfree ? p->q[p->fdof[j]] - w->q_s[p->fdof[j]] : 0.0;
-    if (bk_interactions_prepare(s, w->q_s) != 0)
-        return -1;
-    const double alpha = bk_interactions_step_limit(s, w->q_s, dx);
-    if (alpha < 1.0) {
-        bk_dyn_predict(s, w, p->q, h, am, af, bet, gam, 1);
-        dp_update(p, dx, alpha);
-    }
-    return 0;
-}
+       DYN_LINERR = BK_NL_LINERR, DYN_INADMISSIBLE = BK_NL_NCODES, DYN_ENERGY };
 
 static const char *dyn_why(int c)
 {
@@ -176,24 +58,9 @@ static const char *dyn_why(int c)
                               "too large for the transient (try a smaller dt or a larger rho_inf)";
     case DYN_LINERR: return "linear solver error";
     case DYN_INADMISSIBLE: return "Newton converged to a state that is not physical (an element inverted)";
+    case DYN_ENERGY: return "the step created energy";
     default: return "converged";
     }
-}
-
-/* A row of energy.csv: kinetic, strain, gravity potential, potential of the
- * other constant loads, their total, constraint residual. */
-static void energy_row(bk_output *out, FILE *table, int step, double t, double T, double U, double Vg, double Vf,
-                       double cres)
-{
-    double t0 = bk_clock_s();
-    bk_row r;
-    bk_output_row(out, &r, table);
-    bk_row_int(&r, step);
-    const double v[6] = {t, T, U, Vg, Vf, T + U + Vg + Vf};
-    for (int i = 0; i < 6; ++i)
-        bk_row_num(&r, v[i]);
-    bk_row_e(&r, cres, 3);
-    bk_output_row_end(out, &r, t0, 1);
 }
 
 int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
@@ -210,8 +77,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    FILE *energy = bk_output_table(out, "energy.csv", "step,time,kinetic,strain,gravity,load_potential,total,"
-                                   "constraint_residual\n", stderr);
+    FILE *energy = bk_output_table(out, "energy.csv", bk_energy_header(), stderr);
+    bk_energy eb = {0};
     if (!energy) {
         snprintf(info->message, sizeof info->message, "cannot write energy.csv");
         goto done;
@@ -245,7 +112,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
      * held once it failed at this step and, with memory, for the next
      * pred_hold steps (4, doubled while it keeps being needed, up to 64) */
     int retry_position = 0, pred_hold = 0, hold_len = 4;
-    char inadm[320] = "";                       /* why the last inadmissible state was refused */
+    char inadm[640] = "";                       /* why the last inadmissible state was refused */
+    bk_step_ctl ctl;
+    bk_step_ctl_init(&ctl, fmax(o->dt, o->dt_min));
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
@@ -293,14 +162,24 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     }
     double U0 = bk_strain_energy(s, q);
     double e_start = 0.0, e_scale = 0.0;   /* the total energy at t = 0, the largest of its parts since */
-    int e_warned = 0;
+    int e_warned = 0, e_warned_num = 0;
     bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = 0.0});   /* the lagged states (friction) */
     bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
     bk_output_step(out, 0, 0.0, q);
     {
         bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
         double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
-        energy_row(out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
+        /* the powers of the initial state, with the initial multipliers (in w.r) */
+        double rn, P0 = 0.0, Pd0 = 0.0;
+        if (w.nc)
+            memcpy(w.nu, w.r + s->nfree, (size_t)w.nc * sizeof *q);
+        if (bk_dyn_residual(s, &w, fdof, q, 0.0, 0.0, 0.0, 0, &rn) == 0)
+            P0 = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd0 = w.p_damp;
+        if (w.nc)
+            memset(w.nu, 0, (size_t)w.nc * sizeof *q);
+        const double vs = m->length_scale / o->t_end;
+        bk_energy_start(&eb, T, 0.0, P0, Pd0, 0.5 * mbar * s->nfree * vs * vs);
+        bk_energy_row(&eb, out, energy, 0, 0.0, T, 0.0, 0.0, 0.0, bk_constraint_residual(s, q, 0.0));
         e_start = T, e_scale = fabs(T);
         info->max_constraint_residual = bk_constraint_residual(s, q, 0.0);
     }
@@ -319,12 +198,12 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         const int pred_position = retry_position || pred_hold > 0;
         bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
-        if (m->beam_contact && !pred_position && limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
+        if (m->beam_contact && !pred_position && bk_dyn_limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
             snprintf(info->message, sizeof info->message, "out of memory");
             goto done;
         }
-        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = dp_residual, .update = dp_update,
-                              .step_limit = dp_step_limit};
+        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = bk_dyn_problem_residual, .update = bk_dyn_problem_update,
+                              .step_limit = bk_dyn_problem_step_limit};
         bk_nl_result res;
         int st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
         int it = res.iters, signo = st == BK_NL_INTERRUPTED ? res.signo : 0, step_reused = res.reused;
@@ -343,6 +222,25 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
          * inverted): else it is retried and cut back like a failed one */
         if (st == DYN_OK && !bk_checks_admissible(&chk, s, q, inadm, sizeof inadm))
             st = DYN_INADMISSIBLE;
+        bk_energy eb_trial;
+        if (st == DYN_OK) {     /* the energy balance over the step, at the converged state's powers */
+            const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
+            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
+            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double created = bk_energy_trial(&eb, tn, h, T, bk_strain_energy(s, q) - U0, P, Pd, &eb_trial);
+            if (created > BK_ENERGY_CREATED) {
+                st = DYN_ENERGY;
+                snprintf(inadm, sizeof inadm, "the integrator created %.3g J (%.3g %% of the largest energy, %.3g J; "
+                         "work of loads and prescribed motions and damping counted): a weakly damped high mode grows "
+                         "(try rho_inf <= 0.9 or a smaller dt)", eb_trial.Dnum_max - eb_trial.Dnum, 100.0 * created,
+                         eb_trial.scale);
+            } else if (created > BK_ENERGY_CREATED_WARN && !e_warned_num) {
+                e_warned_num = 1;
+                bk_warn(info, out->console, m->name, "the integrator created %.3g J by t = %.6g s (%.3g %% of the "
+                        "largest energy): a weakly damped high mode may be growing; results after it are suspect "
+                        "(try rho_inf <= 0.9 or a smaller dt)", eb_trial.Dnum_max - eb_trial.Dnum, tn, 100.0 * created);
+            }
+        }
         if (st == DYN_OK) {
             for (int i = 0; i < nd; ++i) {
                 double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
@@ -374,9 +272,16 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                             t, h, dyn_why(st));
                 continue;
             }
-            double hn = st != DYN_OK ? 0.5 * h : h * fmax(0.2, 0.9 * cbrt(o->tol / err));
+            double hn = st != DYN_OK ? bk_step_ctl_failed(&ctl, h) : bk_step_ctl_error_reject(&ctl, h, err / o->tol);
             if (hn < o->dt_min || (st != DYN_OK && cuts >= o->max_cutbacks)) {
                 char incr[64];
+                char free_motion[400];
+                if (st == DYN_SINGULAR && bk_null_motion(s, w.Ax, q, ls, free_motion, sizeof free_motion) == 0) {
+                    snprintf(inadm, sizeof inadm, "singular iteration matrix; %s (held by nothing and without "
+                             "mass? else the step is too large for the transient: try a smaller dt or a larger "
+                             "rho_inf)", free_motion);
+                    st = DYN_INADMISSIBLE;   /* the message names the free motion */
+                }
                 if (it > 0 && isfinite(dnorm))
                     snprintf(incr, sizeof incr, ", last increment %.3e", dnorm);
                 else
@@ -384,7 +289,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 snprintf(info->message, sizeof info->message,
                          "dynamic solve failed at step %d, time %.6g s (step %.3g s): %s; residual %.3e%s after "
                          "%d iteration%s, %d cut-back%s in a row%s",
-                         step + 1, tn, h, st == DYN_INADMISSIBLE ? inadm : st != DYN_OK ? dyn_why(st)
+                         step + 1, tn, h, st == DYN_INADMISSIBLE || st == DYN_ENERGY ? inadm : st != DYN_OK ? dyn_why(st)
                          : "local error above tol at the smallest step",
                          rnorm, incr, it, it == 1 ? "" : "s", cuts, cuts == 1 ? "" : "s",
                          hn < o->dt_min ? " (the next step would be below dynamic.dt_min)" : "");
@@ -415,6 +320,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             double *acc[2] = {w.qdd, w.a};
             bk_quat_normalize_motion(quat, nquat, q, w.qd, acc, 2);
         }
+        eb = eb_trial;
         t = tn;
         step++;
         info->steps = step;
@@ -435,7 +341,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
             }
             bk_load_potentials(s, q, t, &Vg, &Vf);
-            energy_row(out, energy, step, t, T, U, Vg, Vf, cr);
+            bk_energy_row(&eb, out, energy, step, t, T, U, Vg, Vf, cr);
             /* contact with a step too long for its barrier can create energy (the
              * barrier's own energy is not in the total: a bounce gains) */
             e_scale = fmax(e_scale, fmax(fmax(fabs(T), fabs(U)), fmax(fabs(Vg), fabs(Vf))));
@@ -451,13 +357,18 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         if (log)
             fprintf(log, "  step %d: t = %.6g, h = %.3g, %d iterations, residual %.3e\n", step, t, h, it, rnorm);
         bk_output_progress(out, t / o->t_end, step, t, h, it, rnorm);
-        if (o->tol > 0.0 && err > 0.0)
-            h = fmin(h * fmin(2.0, 0.9 * cbrt(o->tol / err)), fmax(o->dt, o->dt_min));
-        else if (h < o->dt)
-            h = fmin(2.0 * h, o->dt);
+        h = bk_step_ctl_accepted(&ctl, h, it, o->tol > 0.0 ? fmax(err / o->tol, 1e-12) : 0.0);
     }
     rc = 0;
 done:
+    if (energy) {
+        char etext[512];
+        bk_energy_summary(&eb, etext, sizeof etext);
+        if (bk_run_summary(info, "energy", etext) != 0 && rc == 0) {
+            snprintf(info->message, sizeof info->message, "out of memory");
+            rc = 1;
+        }
+    }
     /* a failed or interrupted run keeps its last accepted step even when the
      * output stride skipped it */
     if (rc != 0 && step > written)

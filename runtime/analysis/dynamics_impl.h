@@ -6,6 +6,8 @@
 #include <stddef.h>
 
 #include "assembly/system.h"
+#include "solver/nonlinear.h"
+#include "solver/norms.h"
 
 /* dynamic.jacobian = "reuse" (modified Newton across steps): the Jacobian-reuse
  * policy of the nonlinear solver (nonlinear.h, BK_REUSE_*); a step that fails
@@ -20,6 +22,9 @@ typedef struct dyn_work {
     int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
     double *Mv;
     int mass_gen;             /* the pattern version (system.h pattern_gen) Mx is in */
+    /* powers at the last residual (dyn_energy.h): of the interactions' and the
+     * constraints' forces as they enter the residual, of damping (Rayleigh, viscous) */
+    double p_inter, p_con, p_damp, p_visc;
 } dyn_work;
 
 void bk_dyn_work_free(dyn_work *w);
@@ -45,5 +50,31 @@ void bk_dyn_predict(const bk_system *s, dyn_work *w, double *q, double h, double
                     double gam, int position);
 double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
                                double kp, double *fint, double *Ax);
+
+
+/* One step's Newton problem for the nonlinear solver (nonlinear.h): the
+ * residual at t_{n+1} = tn, corrections of q by dq, of q' by gamma' dq and of
+ * q'' by beta' dq. */
+typedef struct dyn_problem {
+    bk_system *s;
+    dyn_work *w;
+    const int *fdof;
+    const bk_norms *norms;
+    double *q;
+    double tn, bp, gp;
+} dyn_problem;
+
+/* dyn_residual.c: the residual at q (t_{n+1} = tn) into w->r, its norm into
+ * *rnorm, with `matrix` the iteration matrix into w->Ax (nonzero on a
+ * non-finite force); the step's Newton problem for the nonlinear solver
+ * (nonlinear.h bk_nl_problem: residual, update, step limit, ctx a dyn_problem);
+ * the predictor cut to the interactions' step limit (dx: [neq] scratch; 0, or
+ * -1 when out of memory). */
+int bk_dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q, double tn, double bp, double gp,
+                    int matrix, double *rnorm);
+int bk_dyn_problem_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev);
+double bk_dyn_problem_step_limit(void *ctx, const double *dx);
+void bk_dyn_problem_update(void *ctx, const double *dx, double alpha);
+int bk_dyn_limit_predictor(dyn_problem *p, double *dx, double am, double af, double bet, double gam, double h);
 
 #endif

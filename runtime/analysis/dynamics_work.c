@@ -153,6 +153,7 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
 {
     const bk_model *m = s->m;
     double Trot = 0.0;
+    w->p_visc = 0.0;
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
@@ -167,6 +168,8 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
         if (visc) {
             p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
             bk_scatter(m, e, w->fe, 1.0, fint);
+            for (int i = 0; i < et->ndof; ++i)
+                w->p_visc += w->fe[i] * w->qde[i];
             if (Ax) {
                 bk_scatter_matrix(s, e, w->K1, gp, Ax);
                 bk_scatter_matrix(s, e, w->K2, kp, Ax);

@@ -3,6 +3,7 @@
  * iterations and are cut back on failure; the analysis module "static" (see
  * analysis.h) unless static.method = "arc_length" (continuation.c). */
 #include "analysis/static.h"
+#include "solver/null_motion.h"
 
 #include <math.h>
 #include <signal.h>
@@ -265,11 +266,18 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
             int hopeless = st == NEWTON_SINGULAR && a.singular_at_start &&
                            !(o->predictor == BK_PREDICTOR_SECANT && have_prev);
             if (cuts_in_row >= o->max_cutbacks || hopeless) {
-                char what[600], incr[64];
+                char what[1000], incr[64];
                 if (st == NEWTON_INADMISSIBLE)
                     snprintf(what, sizeof what, "the equilibrium reached is not physical: %s", inadm);
                 else
                     bk_static_diagnose(what, sizeof what, st, &a, info->steps, info->negative_eigenvalues);
+                char fm[400];
+                size_t wl = strlen(what);
+                /* the free motion, from the matrix at the last equilibrium */
+                if ((st == NEWTON_SINGULAR || (isfinite(a.rcond) && a.rcond < ILL_RCOND)) &&
+                    bk_static_residual(s, w, w->qsave, w->nusave, lam, 1) == 0 &&
+                    bk_null_motion(s, w->Ax, w->qsave, &R.nl.ls, fm, sizeof fm) == 0)
+                    snprintf(what + wl, sizeof what - wl, "; %s", fm);
                 if (a.iters > 0 && isfinite(a.dnorm))
                     snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
                 else
