@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 9       # 9: driven joints (the drive of each nlcon record), beam contact records;
+MODEL_VERSION = 10      # 10: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
+                        # 9: driven joints (the drive of each nlcon record), beam contact records;
                         # 8: contact's static and kinetic friction, primitives that turn or belong to bodies
 
 REQUIRED = object()          # default of a key that must be given

@@ -100,6 +100,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "inputs": list(ctx.inputs),
-        "sections": [(b["name"], b["first_elem"] + k, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
-                     for b in mesh.beams.values() for k in range(b["nelem"])],
+        "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
+                     for b in mesh.beams.values() for k in range(b["nelem"])
+                     for e in [b["first_elem"] + k] + b["layer_elems"][k]],
     }
