@@ -77,6 +77,7 @@ class Problem:
     angular_velocity: list = field(default_factory=lambda: [0.0, 0.0, 0.0])
     center: list = field(default_factory=lambda: [0.0, 0.0, 0.0])
     sensors: list = field(default_factory=list)    # [(name, arc length s)]
+    layers: list = None           # beam.layers: [(Material, z0, z1)], fractions of h from the -d2 face; None: one
 
     def point(self, s, y=0.0, z=0.0):
         """Reference position of the section point (y along d1, z along d2) at arc length s."""
@@ -129,6 +130,35 @@ def _material(ctx, mname, mt):
         if not (v["mu"] > 0 and v["kappa"] > 0 and v["lambda_m"] > 1):
             ctx.fail(where, "expected mu > 0, kappa > 0 and lambda_m > 1")
     return Material(law, rho, v)
+
+
+def _layers(ctx, bt, where, mats, default, h):
+    """beam.layers as [(Material, z0, z1)] (fractions of h from the -d2 face), or
+    None; the keys are checked as the scene compiler does (gen/scene/layers.py),
+    which refuses anything else before a deck is written."""
+    if "layers" not in bt:
+        return None
+    v = bt["layers"]
+    if not isinstance(v, list) or not v or not all(isinstance(x, dict) for x in v):
+        ctx.fail(f"{where}.layers", "expected an array of inline tables {material = NAME, thickness = m}")
+    rows = []
+    for i, lt in enumerate(v):
+        w = f"{where}.layers[{i}]"
+        check_keys(ctx, lt, {"material", "thickness"}, w)
+        mname = get_str(ctx, lt, "material", w, default=default)
+        if mname not in mats:
+            ctx.fail(f"{w}.material", f"no [material.{mname}] in the scene")
+        t = get_number(ctx, lt, "thickness", w, positive=True) if "thickness" in lt else None
+        rows.append((_material(ctx, mname, mats[mname]), t))
+    fixed = sum(t for _, t in rows if t is not None)
+    if sum(t is None for _, t in rows) > 1 or fixed > h * (1 + 1e-9):
+        ctx.fail(f"{where}.layers", "expected at most one layer without a thickness, the others within the height")
+    out, z = [], 0.0
+    for m, t in rows:
+        dz = (h - fixed) / h if t is None else t / h
+        out.append((m, z, min(1.0, z + dz)))
+        z += dz
+    return out
 
 
 def _end_of(ctx, spec, key, bname, length):
@@ -199,6 +229,7 @@ def read_scene(scene, sets=()):
     if mname not in mats:
         ctx.fail(f"{where}.material", f"no [material.{mname}] in the scene")
     material = _material(ctx, mname, mats[mname])
+    layers = _layers(ctx, bt, where, mats, mname, h)
 
     clamps = []
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
@@ -245,7 +276,8 @@ def read_scene(scene, sets=()):
         if any(c[0] == side for c in clamps):
             ctx.fail("load", f"a force on the clamped {side} face does nothing")
 
-    prob = Problem(str(path), name, analysis, start, t, d1, d2, length, b, h, material, clamps, forces, gravity)
+    prob = Problem(str(path), name, analysis, start, t, d1, d2, length, b, h, material, clamps, forces, gravity,
+                   layers=layers)
 
     stt = get_table(ctx, doc, "static")
     check_keys(ctx, stt, STATIC_NUMERICS | {"load_steps", "cycles"}, "static")
