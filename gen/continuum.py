@@ -99,10 +99,14 @@ def tabulate_program(elem, integration, band=False):
     coordinates q0: per point w*l*b*h*det J0, the gradient slots, then the
     reference map M = J0^-1 Q0 = R^-1 (its upper triangle, MAP_ENTRIES).
     band: the element's rule mapped onto the band of a layer (geom[BK_GEOM_BAND_LO,
-    _HI]), its weights times the band's share 1 - lo - hi of the height."""
+    _HI]), its weights times the band's share 1 - lo - hi of the height; a rule
+    part with one point through the height keeps it at the section's middle (the
+    centreline part of selective reduced integration: at the band's middle the
+    element's lateral fields would lock as in full integration)."""
     slots, parts, ntab = rule_parts(elem, integration)
     geom = {**geom_subs(), **band_subs()} if band else geom_subs()
     share = (1 - LO - HI) if band else 1
+    section_points = [rp.points[2] for rp in elem.rule(integration)]
     nsh = elem.nshape
     q0 = [sp.Symbol(f"q0[{i}]", real=True) for i in range(elem.ndof)]
     grads = shape_gradients(elem)
@@ -110,7 +114,10 @@ def tabulate_program(elem, integration, band=False):
     for ip, part in enumerate(parts):
         for p, (s, w) in enumerate(part.rule):
             base = part.tab_offset + p * part.stride
-            sub = qp_coords(s, band)
+            # a part with one point through the height (the centreline part of
+            # selective reduced integration) stays at the section's middle: its
+            # constraint is the section's mean, wherever the layer lies
+            sub = qp_coords(s, band and section_points[ip] > 1)
             gp = [[sp.expand(grads[a][J].subs(sub)).subs(geom) for J in range(3)] for a in range(nsh)]
             J0 = sp.Matrix(3, 3, lambda i, J: prog.define(
                 f"J{ip}_{p}_{i}{J}", sum(q0[3 * a + i] * gp[a][J] for a in range(nsh))))

@@ -56,7 +56,8 @@ def sections_function(elem, mat, rname, fname):
              f"        for (int a = 0; a < {nsh}; ++a)",
              "            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];",
              "    }"]
-    for part, pts in plan:
+    counts = [rp.points for rp in elem.rule(rname)]
+    for (part, pts), (_, _, nz) in zip(plan, counts):
         low = lowered_body(elem, mat, part.energy, "traction")
         n = len(pts)
         sx = [part.rule[p][0][0] for p, _, _ in pts]
@@ -71,7 +72,9 @@ def sections_function(elem, mat, rname, fname):
                   f"            const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
                   f"            double tr[3], N[{nsh}], Nc[{nsh}], arm[3] = {{0.0, 0.0, 0.0}};"]
         lines += _block(low, "            ")
-        lines += ["            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;",
+        zmap = ("band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h" if nz > 1
+                else "pz[p] * h")     # one point through the height: the section's middle (gen/continuum.py)
+        lines += [f"            const double zp = {zmap};",
                   f"            {shape}(geom, px[p], py[p] * b, zp, N);",
                   f"            {shape}(geom, px[p], 0.0, 0.0, Nc);",
                   f"            for (int a = 0; a < {nsh}; ++a)",

@@ -336,9 +336,10 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             for j, (band, (ln, _)) in enumerate(zip(element_bands(ctx, where, layers, sec_k[2]), layers)):
                 lp = layer_pidx[j]
                 gkey = (lp, l, sec_k, shape_key, band)
+                eidx = len(elements) if j == 0 else first_elem + nel + len(layer_records)   # the record's index
                 if gkey not in geom_index:
                     geom_index[gkey] = len(geoms)
-                    geoms.append((lp, len(elements), section_geometry(sec_k, l, band)))
+                    geoms.append((lp, eidx, section_geometry(sec_k, l, band)))
                 rec = (lp, geom_index[gkey], material_index(sec_k, ln), edofs)
                 if j == 0:
                     elements.append(rec)
@@ -346,6 +347,7 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                     layer_elems[k].append(len(layer_records))
                     layer_records.append(rec)
         base = len(elements)
+        assert base == first_elem + nel
         layer_elems = [[base + i for i in le] for le in layer_elems]
         elements.extend(layer_records)
         t_progress[1] += nel

@@ -2,7 +2,7 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_resultant.py, gen/emit_cable.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:6362aa9e1af1e44babed039c6e731ece076486de7d70af63ebab64817e43e527
+ * input hash: sha256:d7a231b43e79d13a00fdfca803a8648d6f88ce3338fb93fdda213cf82062ac6c
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
  * cubic Hermite interpolation of seed 001 Eqs. (4)-(6).
