@@ -73,7 +73,7 @@ def sections_function(elem, mat, rname, fname):
                   f"            double tr[3], N[{nsh}], Nc[{nsh}], arm[3] = {{0.0, 0.0, 0.0}};"]
         lines += _block(low, "            ")
         zmap = ("band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h" if nz > 1
-                else "pz[p] * h")     # one point through the height: the section's middle (gen/continuum.py)
+                else "band ? geom[BK_GEOM_BAND_AXIS] * h : pz[p] * h")   # one point: the neutral axis (gen/continuum.py)
         lines += [f"            const double zp = {zmap};",
                   f"            {shape}(geom, px[p], py[p] * b, zp, N);",
                   f"            {shape}(geom, px[p], 0.0, 0.0, Nc);",

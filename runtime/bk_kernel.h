@@ -81,7 +81,12 @@ enum bk_geom_slot {
                                        * (1/2 - hi) h] that tabulate(), mass(), volume()
                                        * and sections() integrate (one layer of a layered
                                        * section); 0, 0: the whole section          */
-    BK_NGEOM = 10
+    BK_GEOM_BAND_AXIS = 10,           /* a layer: the height z / h (0: the middle) of the
+                                       * layered section's neutral axis, where a rule
+                                       * part with one point through the height (the
+                                       * centreline part of selective reduced
+                                       * integration) evaluates every layer          */
+    BK_NGEOM = 11
 };
 
 /* Section shapes (capabilities below say which an element takes). */

@@ -40,6 +40,15 @@ def beam_layers(ctx, bt, where, materials, einfo, ename, default_material):
     return out
 
 
+def neutral_axis(bands, moduli):
+    """Height z / h (0: the middle) of the neutral axis of the layered section whose
+    layers occupy bands [(lo, hi)] with small-strain Young's moduli moduli (the
+    transformed section's centroid): where the centreline part of selective reduced
+    integration evaluates every layer (runtime/bk_kernel.h BK_GEOM_BAND_AXIS)."""
+    w = [E * (1.0 - lo - hi) for (lo, hi), E in zip(bands, moduli)]
+    return sum(wk * ((lo + 1.0 - hi) / 2 - 0.5) for wk, (lo, hi) in zip(w, bands)) / sum(w)
+
+
 def element_bands(ctx, where, layers, h):
     """[(lo, hi)] per layer of an element of height h: the fractions of h below and
     above its band.  Refuses layers thicker than the section."""

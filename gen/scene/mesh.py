@@ -7,7 +7,7 @@ import time
 
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
-from gen.scene.layers import beam_layers, element_bands
+from gen.scene.layers import beam_layers, element_bands, neutral_axis
 from gen.scene.path import path_geometry
 from gen.scene.materials import locking_warnings, small_strain
 from gen.scene.plausible import beam_warnings
@@ -169,6 +169,13 @@ def beam_geometry(ctx, bt, where, ename, einfo, index):
         return arc_geometry(ctx, bt, where, start)
     end = get_vec3(ctx, bt, "end", where, bound=1e9)
     return line_geometry(ctx, bt, where, start, end)
+
+
+def layer_modulus(index, materials, mname, sec):
+    """Small-strain Young's modulus of a layer's material (1 where the law states
+    none: the layers then weigh by thickness)."""
+    es = small_strain(index, materials[mname][0], materials[mname][2](sec))
+    return es[0] if es else 1.0
 
 
 def layer_pair(ctx, where, index, pairs, ename, integ, materials, mname):
@@ -333,7 +340,10 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                     geoms.append((pidx, len(elements), section_geometry(sec_k, l)))
                 elements.append((pidx, geom_index[gkey], midx, edofs))
                 continue
-            for j, (band, (ln, _)) in enumerate(zip(element_bands(ctx, where, layers, sec_k[2]), layers)):
+            bands = element_bands(ctx, where, layers, sec_k[2])
+            axis = neutral_axis(bands, [layer_modulus(index, materials, ln, sec_k) for ln, _ in layers])
+            for j, (band, (ln, _)) in enumerate(zip(bands, layers)):
+                band = band + (axis,)
                 lp = layer_pidx[j]
                 gkey = (lp, l, sec_k, shape_key, band)
                 eidx = len(elements) if j == 0 else first_elem + nel + len(layer_records)   # the record's index

@@ -2983,7 +2983,7 @@ void ancf3243_neo_hookean_sri_sections(const double *restrict geom, const double
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            const double zp = pz[p] * h;
+            const double zp = band ? geom[BK_GEOM_BAND_AXIS] * h : pz[p] * h;
             bk_element_ancf3243.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 8; ++a)
