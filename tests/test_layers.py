@@ -262,3 +262,18 @@ def test_layers_refused_on_rods():
     r = run_cli(["run", str(p), "--quiet", "--out", str(ensure_dir(BUILD / "layers" / "bad_out"))])
     err = r.stderr.strip().splitlines()
     assert r.returncode != 0 and len(err) == 1 and "continuum ANCF" in err[0], r.stderr
+
+
+def test_neutral_axis_and_bands_of_the_scene_compiler():
+    """gen/scene/layers.py against the closed form: the bands of the bilayer (the stiff
+    layer 0.2 of the height) and the neutral axis the centreline part of selective
+    reduced integration is put at, -d/h; a taper keeps the given thickness (at h =
+    3 mm the 1 mm layer is a third of the height)."""
+    from gen.scene.layers import element_bands, neutral_axis
+    layers = [("stiff", T1), ("soft", None)]
+    bands = element_bands(None, "beam.strip", layers, T1 + T2)
+    assert [tuple(round(x, 15) for x in b) for b in bands] == [(0.0, 0.8), (0.2, 0.0)]
+    _, _, d = composite()
+    assert abs(neutral_axis(bands, [E1, E2]) - (-d / (T1 + T2))) < 1e-15
+    assert abs(element_bands(None, "beam.strip", layers, 0.003)[0][1] - 2.0 / 3.0) < 1e-15
+    assert neutral_axis(element_bands(None, "b", [("a", 0.001), ("a", None)], 0.005), [7.0, 7.0]) == 0.0
