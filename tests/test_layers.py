@@ -277,3 +277,31 @@ def test_neutral_axis_and_bands_of_the_scene_compiler():
     assert abs(neutral_axis(bands, [E1, E2]) - (-d / (T1 + T2))) < 1e-15
     assert abs(element_bands(None, "beam.strip", layers, 0.003)[0][1] - 2.0 / 3.0) < 1e-15
     assert neutral_axis(element_bands(None, "b", [("a", 0.001), ("a", None)], 0.005), [7.0, 7.0]) == 0.0
+
+
+def test_vtu_draws_each_layer_in_its_band():
+    """The VTU file draws each layer's record as the ring of its band (the stiff
+    layer's ring from -h/2 to -h/2 + 1 mm, the soft one's above it), the centreline
+    point at the middle; its strain_energy_density the layer's energy over its band's
+    volume: at the end moment the bands' densities weighted by their shares of the
+    height add up to the element's strain energy over its volume, which is
+    M^2 L / (2 EI) over the strip's volume within 1 %."""
+    from report import vtu
+    M, L = 1.0e-4, 0.1
+    out = ensure_dir(BUILD / "layers" / "vtu")
+    run_scene(scene("vtu", load=MOMENT.format(m=M)), out=out, extra=["--set", "output.vtk_every=1"])
+    frames = sorted(out.glob("step_*.vtu"))
+    d = vtu.read(frames[-1])
+    pts, nel = d["points"] - d["displacement"], 20
+    n = len(pts) // nel
+    rings = [pts[e * n:(e + 1) * n] for e in range(nel)]
+    z0 = rings[0][:, 2][[k for k in range(n) if (k + 1) % 9]]        # ring points, not the centreline
+    z1 = rings[10][:, 2][[k for k in range(n) if (k + 1) % 9]]
+    assert abs(z0.min() + 0.0025) < 1e-12 and abs(z0.max() + 0.0015) < 1e-12, (z0.min(), z0.max())
+    assert abs(z1.min() + 0.0015) < 1e-12 and abs(z1.max() - 0.0025) < 1e-12, (z1.min(), z1.max())
+    dens = d["strain_energy_density"]
+    w = len(dens) // nel
+    per = [dens[e * w] for e in range(nel)]
+    _, EI, _ = composite()
+    U = sum(per[e] * 0.2 + per[10 + e] * 0.8 for e in range(10)) * (L / 10) * B * (T1 + T2)
+    assert abs(U / (M * M * L / (2 * EI)) - 1) <= 0.01, (U, M * M * L / (2 * EI))
