@@ -96,6 +96,8 @@ def continuation_kappa(prob):
     one tight increment: the same equilibrium (a hyperelastic solid under dead loads
     has no memory of the path), in about a quarter of the iterations."""
     mat = prob.material
+    if prob.layers:                 # refused by layer_cards where a layer would need it
+        return None
     if prob.analysis != "static" or mat.law not in ("arruda_boyce", "mooney_rivlin", "neo_hookean"):
         return None
     mu0, K = _small_strain_moduli(mat)
@@ -104,12 +106,12 @@ def continuation_kappa(prob):
     return KAPPA0_RATIO * mu0
 
 
-def material_cards(mat, kappa0=None):
+def material_cards(mat, kappa0=None, name="M"):
     """*MATERIAL ... lines for a calculix.scene.Material; with `kappa0` (a bulk
     modulus) the hyperelastic card has a second data line at temperature 0 with
     that bulk modulus, the material's own at temperature 1."""
     p = mat.p
-    out = ["*MATERIAL, NAME=M", "*DENSITY", _f(mat.rho)]
+    out = [f"*MATERIAL, NAME={name}", "*DENSITY", _f(mat.rho)]
     if mat.law == "svk":
         if kappa0 is not None:
             raise DeckError("the bulk-modulus continuation is for the hyperelastic laws")
@@ -191,6 +193,34 @@ def sensor_nodes(prob, mesh):
     return out
 
 
+def layer_cards(prob, mesh, continuation):
+    """A layered section (beam.layers): one element set and material per layer, the
+    elements through the height assigned by their middle; refused unless every
+    layer interface is an element face, and for layers that would need the
+    bulk-modulus continuation (it is made for one material) or Rayleigh damping."""
+    import dataclasses
+    fz = mesh.fz
+    for _, z0, _ in prob.layers[1:]:
+        if min(abs(z0 - fz[2 * k]) for k in range(mesh.nz + 1)) > 1e-9:
+            raise DeckError(f"mesh {mesh.label}: the layer interface at {z0:.6g} h is not an element face "
+                            "(choose nz so that every layer is a whole number of elements high)")
+    if prob.analysis == "dynamic" and (prob.rayleigh_alpha or prob.rayleigh_beta):
+        raise DeckError("the CalculiX deck of a layered section takes no Rayleigh damping")
+    out, sets = [], [[] for _ in prob.layers]
+    for e in range(len(mesh.elements)):
+        zc = fz[2 * (e % mesh.nz) + 1]
+        sets[next(i for i, (_, z0, z1) in enumerate(prob.layers) if z0 <= zc <= z1)].append(e + 1)
+    for i, (mat, _, _) in enumerate(prob.layers):
+        if continuation and continuation_kappa(dataclasses.replace(prob, material=mat, layers=None)) is not None:
+            raise DeckError("the CalculiX deck's bulk-modulus continuation takes one material; "
+                            f"layer {i} is nearly incompressible")
+        out += material_cards(mat, None, name=f"M{i}")
+        out += [f"*ELSET, ELSET=LAYER{i}"] + [", ".join(map(str, sets[i][j:j + 16]))
+                                              for j in range(0, len(sets[i]), 16)]
+        out += [f"*SOLID SECTION, ELSET=LAYER{i}, MATERIAL=M{i}"]
+    return out
+
+
 def write_deck(prob, nx, ny, nz, increments=None, grading=None, continuation=True):
     """(deck text, mesh, [(sensor name, node set name, node id)]); `grading` a
     calculix.mesh.Grading (default uniform); continuation=False loads with the
@@ -210,10 +240,13 @@ def write_deck(prob, nx, ny, nz, increments=None, grading=None, continuation=Tru
         sets.append((name, f"S{k + 1}", n))
         L += [f"*NSET, NSET=S{k + 1}", str(n)]
     kappa0 = continuation_kappa(prob) if continuation else None
-    L += material_cards(prob.material, kappa0)
-    if prob.analysis == "dynamic" and (prob.rayleigh_alpha or prob.rayleigh_beta):
-        L += [f"*DAMPING, ALPHA={_f(prob.rayleigh_alpha)}, BETA={_f(prob.rayleigh_beta)}"]
-    L += ["*SOLID SECTION, ELSET=EALL, MATERIAL=M"]
+    if prob.layers:
+        L += layer_cards(prob, mesh, continuation)
+    else:
+        L += material_cards(prob.material, kappa0)
+        if prob.analysis == "dynamic" and (prob.rayleigh_alpha or prob.rayleigh_beta):
+            L += [f"*DAMPING, ALPHA={_f(prob.rayleigh_alpha)}, BETA={_f(prob.rayleigh_beta)}"]
+        L += ["*SOLID SECTION, ELSET=EALL, MATERIAL=M"]
     for side, mode in prob.clamps:
         face = mesh.face(side)
         L += [f"*NSET, NSET=CLAMP_{side.upper()}"]

@@ -77,9 +77,15 @@ class Problem:
     angular_velocity: list = field(default_factory=lambda: [0.0, 0.0, 0.0])
     center: list = field(default_factory=lambda: [0.0, 0.0, 0.0])
     sensors: list = field(default_factory=list)    # [(name, arc length s)]
+    layers: list = None           # beam.layers: [(Material, z0, z1)], fractions of h from the -d2 face; None: one
+    arc: object = None            # a circular arc (gen.scene.geometry.ArcGeometry) instead of the straight axis
 
     def point(self, s, y=0.0, z=0.0):
-        """Reference position of the section point (y along d1, z along d2) at arc length s."""
+        """Reference position of the section point (y along d1, z along d2) at arc length s
+        (on an arc: the section frame carried along it, as the scene compiler does)."""
+        if self.arc is not None:
+            X, _, d1, d2 = self.arc.at(s)
+            return [X[i] + y * d1[i] + z * d2[i] for i in range(3)]
         return [self.start[i] + s * self.t[i] + y * self.d1[i] + z * self.d2[i] for i in range(3)]
 
 
@@ -131,6 +137,35 @@ def _material(ctx, mname, mt):
     return Material(law, rho, v)
 
 
+def _layers(ctx, bt, where, mats, default, h):
+    """beam.layers as [(Material, z0, z1)] (fractions of h from the -d2 face), or
+    None; the keys are checked as the scene compiler does (gen/scene/layers.py),
+    which refuses anything else before a deck is written."""
+    if "layers" not in bt:
+        return None
+    v = bt["layers"]
+    if not isinstance(v, list) or not v or not all(isinstance(x, dict) for x in v):
+        ctx.fail(f"{where}.layers", "expected an array of inline tables {material = NAME, thickness = m}")
+    rows = []
+    for i, lt in enumerate(v):
+        w = f"{where}.layers[{i}]"
+        check_keys(ctx, lt, {"material", "thickness"}, w)
+        mname = get_str(ctx, lt, "material", w, default=default)
+        if mname not in mats:
+            ctx.fail(f"{w}.material", f"no [material.{mname}] in the scene")
+        t = get_number(ctx, lt, "thickness", w, positive=True) if "thickness" in lt else None
+        rows.append((_material(ctx, mname, mats[mname]), t))
+    fixed = sum(t for _, t in rows if t is not None)
+    if sum(t is None for _, t in rows) > 1 or fixed > h * (1 + 1e-9):
+        ctx.fail(f"{where}.layers", "expected at most one layer without a thickness, the others within the height")
+    out, z = [], 0.0
+    for m, t in rows:
+        dz = (h - fixed) / h if t is None else t / h
+        out.append((m, z, min(1.0, z + dz)))
+        z += dz
+    return out
+
+
 def _end_of(ctx, spec, key, bname, length):
     """'B:start' | 'B:end' | 'B:<arc length>' -> arc length s."""
     if not isinstance(spec, str) or ":" not in spec:
@@ -172,17 +207,26 @@ def read_scene(scene, sets=()):
     bt = beams[0]
     bname = bt.get("name") if isinstance(bt.get("name"), str) else "beam"
     where = f"beam.{bname}"
-    for k in ("arc_center", "arc_axis", "arc_angle"):
+    for k in ("path", "section_end", "sections"):
         if k in bt:
-            ctx.fail(f"{where}.{k}", "the CalculiX deck takes straight beams only (start, end); arcs are not represented")
+            ctx.fail(f"{where}.{k}", "the CalculiX deck takes straight beams and circular arcs of one section")
     start = get_vec3(ctx, bt, "start", where)
-    end = get_vec3(ctx, bt, "end", where)
-    axis = [end[i] - start[i] for i in range(3)]
-    length = math.sqrt(sum(a * a for a in axis))
-    if not length > 0:
-        ctx.fail(f"{where}.end", "expected an end point different from start")
-    t = [a / length for a in axis]
-    d1, d2 = section_axes(ctx, bt, where, t, [0.0, 0.0, 1.0])
+    arc = None
+    if any(k in bt for k in ("arc_center", "arc_axis", "arc_angle")):
+        from gen.scene.geometry import arc_geometry
+        if "end" in bt:
+            ctx.fail(f"{where}.end", "give either end (a straight beam) or an arc")
+        arc = arc_geometry(ctx, bt, where, start)
+        length = arc.length
+        _, t, d1, d2 = arc.at(0.0)
+    else:
+        end = get_vec3(ctx, bt, "end", where)
+        axis = [end[i] - start[i] for i in range(3)]
+        length = math.sqrt(sum(a * a for a in axis))
+        if not length > 0:
+            ctx.fail(f"{where}.end", "expected an end point different from start")
+        t = [a / length for a in axis]
+        d1, d2 = section_axes(ctx, bt, where, t, [0.0, 0.0, 1.0])
 
     secs = get_table(ctx, doc, "section")
     sname = get_str(ctx, bt, "section", where)
@@ -199,6 +243,7 @@ def read_scene(scene, sets=()):
     if mname not in mats:
         ctx.fail(f"{where}.material", f"no [material.{mname}] in the scene")
     material = _material(ctx, mname, mats[mname])
+    layers = _layers(ctx, bt, where, mats, mname, h)
 
     clamps = []
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
@@ -245,7 +290,10 @@ def read_scene(scene, sets=()):
         if any(c[0] == side for c in clamps):
             ctx.fail("load", f"a force on the clamped {side} face does nothing")
 
-    prob = Problem(str(path), name, analysis, start, t, d1, d2, length, b, h, material, clamps, forces, gravity)
+    prob = Problem(str(path), name, analysis, start, t, d1, d2, length, b, h, material, clamps, forces, gravity,
+                   layers=layers, arc=arc)
+    if arc is not None and any(side == "end" and mode == "free" for side, mode in clamps):
+        ctx.fail("constraint", "the CalculiX deck's free clamp of an arc is at its start (the section axes there)")
 
     stt = get_table(ctx, doc, "static")
     check_keys(ctx, stt, STATIC_NUMERICS | {"load_steps", "cycles"}, "static")

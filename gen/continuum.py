@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from gen.element import B, H, L, XI, Y, Z, geom_subs, shape_gradients
+from gen.element import AX, B, H, HI, L, LO, XI, Y, Z, band_subs, geom_subs, shape_gradients
 from gen.invariants import (COMPONENTS, cofactor, component_first, component_second,
                             first_derivatives, second_derivatives)
 from gen.program import Program, lower
@@ -67,8 +67,14 @@ def gradient_slots(elem):
     return GradientSlots(exprs, ref)
 
 
-def qp_coords(s):
-    """Unit-cube rule point -> (xi, y, z) of the element box."""
+def qp_coords(s, band=False):
+    """Unit-cube rule point -> (xi, y, z) of the element box (band: of the layer's
+    band z in [(lo - 1/2) h, (1/2 - hi) h] of it; "axis": at the height of the
+    layered section's neutral axis, s[2] being the middle)."""
+    if band == "axis":
+        return {XI: s[0], Y: (s[1] - 0.5) * B, Z: AX * H}
+    if band:
+        return {XI: s[0], Y: (s[1] - 0.5) * B, Z: (LO - sp.Rational(1, 2) + s[2] * (1 - LO - HI)) * H}
     return {XI: s[0], Y: (s[1] - 0.5) * B, Z: (s[2] - 0.5) * H}
 
 
@@ -91,12 +97,21 @@ def rule_parts(elem, integration):
     return slots, parts, off
 
 
-def tabulate_program(elem, integration):
+def tabulate_program(elem, integration, band=False):
     """Program filling tab[] from geom[BK_GEOM_L, _B, _H] and the reference
     coordinates q0: per point w*l*b*h*det J0, the gradient slots, then the
-    reference map M = J0^-1 Q0 = R^-1 (its upper triangle, MAP_ENTRIES)."""
+    reference map M = J0^-1 Q0 = R^-1 (its upper triangle, MAP_ENTRIES).
+    band: the element's rule mapped onto the band of a layer (geom[BK_GEOM_BAND_LO,
+    _HI]), its weights times the band's share 1 - lo - hi of the height; a rule
+    part with one point through the height puts it at the layered section's
+    neutral axis (the centreline part of selective reduced integration: at the
+    band's middle the element's lateral fields would lock as in full integration,
+    at the geometric middle a layer's lateral response would meet the stretch
+    there)."""
     slots, parts, ntab = rule_parts(elem, integration)
-    geom = geom_subs()
+    geom = {**geom_subs(), **band_subs()} if band else geom_subs()
+    share = (1 - LO - HI) if band else 1
+    section_points = [rp.points[2] for rp in elem.rule(integration)]
     nsh = elem.nshape
     q0 = [sp.Symbol(f"q0[{i}]", real=True) for i in range(elem.ndof)]
     grads = shape_gradients(elem)
@@ -104,12 +119,16 @@ def tabulate_program(elem, integration):
     for ip, part in enumerate(parts):
         for p, (s, w) in enumerate(part.rule):
             base = part.tab_offset + p * part.stride
-            sub = qp_coords(s)
+            # a part with one point through the height (the centreline part of
+            # selective reduced integration) is evaluated for every layer at the
+            # layered section's neutral axis (geom[BK_GEOM_BAND_AXIS]): where bending
+            # strains nothing, as the middle of a one-material section
+            sub = qp_coords(s, band if section_points[ip] > 1 or not band else "axis")
             gp = [[sp.expand(grads[a][J].subs(sub)).subs(geom) for J in range(3)] for a in range(nsh)]
             J0 = sp.Matrix(3, 3, lambda i, J: prog.define(
                 f"J{ip}_{p}_{i}{J}", sum(q0[3 * a + i] * gp[a][J] for a in range(nsh))))
             det, Mmap = reference_map(prog, J0, f"{ip}_{p}")
-            prog.output(f"tab[{base}]", (sp.Float(w) * L * B * H).subs(geom) * det, op="=")
+            prog.output(f"tab[{base}]", (sp.Float(w) * L * B * H * share).subs(geom) * det, op="=")
             for k, e in enumerate(slots.exprs):
                 prog.output(f"tab[{base + 1 + k}]", sp.expand(e.subs(sub)).subs(geom), op="=")
             for k, m in enumerate(Mmap):

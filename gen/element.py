@@ -23,6 +23,8 @@ import sympy as sp
 XI, Y, Z = sp.symbols("xi y z", real=True)           # xi = x / l in [0, 1]
 L, B, H = sp.symbols("l b h", positive=True)          # length, width, height
 GEOMETRY = (L, B, H)                                  # geom[BK_GEOM_L], [BK_GEOM_B], [BK_GEOM_H] in C
+LO, HI = sp.symbols("band_lo band_hi", nonnegative=True)   # fractions of h left out below / above a layer's band
+AX = sp.Symbol("band_axis", real=True)                     # a layered section's neutral axis, z / h
 
 
 def geom_symbol(slot):
@@ -35,6 +37,12 @@ def geom_symbol(slot):
 def geom_subs():
     """{l, b, h} -> their geom[] entries."""
     return {L: geom_symbol("L"), B: geom_symbol("B"), H: geom_symbol("H")}
+
+
+def band_subs():
+    """{band_lo, band_hi} -> geom[BK_GEOM_BAND_LO], [BK_GEOM_BAND_HI] (a layer's band)."""
+    return {LO: sp.Symbol("geom[BK_GEOM_BAND_LO]", real=True), HI: sp.Symbol("geom[BK_GEOM_BAND_HI]", real=True),
+            AX: sp.Symbol("geom[BK_GEOM_BAND_AXIS]", real=True)}
 
 
 def vector_order(name):

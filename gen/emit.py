@@ -16,7 +16,7 @@ from gen.c_functions import _block, _function, _prologue, section_frame_function
 from gen.continuum import (A_INDEX, contraction_programs, invariants_program, lowered_body, rule_parts, tabulate_program,
                            viscous_body_program)
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
-from gen.element import B, H, L, XI, Y, Z, geom_subs, shape_functions, shape_gradients
+from gen.element import B, H, HI, L, LO, XI, Y, Z, band_subs, geom_subs, shape_functions, shape_gradients
 from gen.emit_sections import sections_function
 from gen.lanes import _lane_kernel_fn, _lane_loop, _vector_math_decls, lanes
 from gen.program import Program, count_lowered, lower, Ops
@@ -75,23 +75,32 @@ def element_source(elem, elem_path):
         shp.output(f"N[{a}]", N.subs(sub), op="=")
     shp_low = lower(shp, ())
 
-    # Exact integrals over the box x in [0,l], y in [-b/2,b/2], z in [-h/2,h/2].
-    def integrate(expr):
-        e = sp.integrate(sp.expand(expr), (Y, -B / 2, B / 2), (Z, -H / 2, H / 2), (XI, 0, 1))
+    # Exact integrals over the box x in [0,l], y in [-b/2,b/2], z in [-h/2,h/2]
+    # (band: z in [(lo - 1/2) h, (1/2 - hi) h], a layer's band of the height).
+    def integrate(expr, band=False):
+        z0, z1 = ((LO - sp.Rational(1, 2)) * H, (sp.Rational(1, 2) - HI) * H) if band else (-H / 2, H / 2)
+        e = sp.integrate(sp.expand(expr), (Y, -B / 2, B / 2), (Z, z0, z1), (XI, 0, 1))
         return sp.factor(e * L)
 
-    mass = Program()
-    for a in range(nsh):
-        for b in range(a, nsh):
-            e = integrate(Ns[a] * Ns[b]).subs(geom)
-            mass.output(f"m[{a * nsh + b}]", e, op="=")
-            if b != a:
-                mass.output(f"m[{b * nsh + a}]", e, op="=")
-    mass_low = lower(mass, ())
-    vol = Program()
-    for a in range(nsh):
-        vol.output(f"v[{a}]", integrate(Ns[a]).subs(geom), op="=")
-    vol_low = lower(vol, ())
+    def mass_program(band):
+        gs = {**geom, **band_subs()} if band else geom
+        mass = Program()
+        for a in range(nsh):
+            for b in range(a, nsh):
+                e = integrate(Ns[a] * Ns[b], band).subs(gs)
+                mass.output(f"m[{a * nsh + b}]", e, op="=")
+                if b != a:
+                    mass.output(f"m[{b * nsh + a}]", e, op="=")
+        return lower(mass, ())
+
+    def volume_program(band):
+        gs = {**geom, **band_subs()} if band else geom
+        vol = Program()
+        for a in range(nsh):
+            vol.output(f"v[{a}]", integrate(Ns[a], band).subs(gs), op="=")
+        return lower(vol, ())
+    mass_low, mass_band_low = mass_program(False), mass_program(True)
+    vol_low, vol_band_low = volume_program(False), volume_program(True)
 
     # Centreline frame: position and the gradients r_y, r_z, r_x.
     def field(fn):
@@ -198,8 +207,11 @@ extern const bk_element bk_element_{name};
          "#define BK_NOINLINE", "#endif", ""]
     c += _function(f"static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)",
                    shp_low, ["(void)geom; (void)xi; (void)y; (void)z;"])
-    c += _function("static void mass(const double *restrict geom, double *restrict m)", mass_low)
-    c += _function("static void volume(const double *restrict geom, double *restrict v)", vol_low)
+    c += _function("static void mass_band(const double *restrict geom, double *restrict m)", mass_band_low)
+    c += _banded("static void mass(const double *restrict geom, double *restrict m)", mass_low, "mass_band(geom, m)")
+    c += _function("static void volume_band(const double *restrict geom, double *restrict v)", vol_band_low)
+    c += _banded("static void volume(const double *restrict geom, double *restrict v)", vol_low,
+                 "volume_band(geom, v)")
     c += _function("static void frame(const double *restrict geom, double xi, const double *restrict q, "
                    "double *restrict pos, double *restrict d)", fr_low, ["(void)geom; (void)xi;"])
     c += section_frame_function(*sf_low)
@@ -211,8 +223,12 @@ extern const bk_element bk_element_{name};
                    ["(void)geom;"])
     for rname in elem.rule_names:
         tprog, ntab = tabulate_program(elem, rname)
-        c += _function(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
-                       "double *restrict tab)", lower(tprog, ()), ["(void)geom;"])[:-2] + snap_map_lines(elem, rname)
+        bprog, _ = tabulate_program(elem, rname, band=True)
+        c += _function(f"static void {name}_{rname}_tabulate_band(const double *restrict geom, "
+                       "const double *restrict q0, double *restrict tab)", lower(bprog, ()))
+        c += _banded(f"void {name}_{rname}_tabulate(const double *restrict geom, const double *restrict q0, "
+                     "double *restrict tab)", lower(tprog, ()),
+                     f"{name}_{rname}_tabulate_band(geom, q0, tab)")[:-2] + snap_map_lines(elem, rname)
     # Strain invariants at every point of each integration (state checks).
     ilow = lower(invariants_program(elem), ())
     for rname in elem.rule_names:
@@ -275,6 +291,14 @@ extern const bk_element bk_element_{name};
     return htxt, "\n".join(c)
 
 
+def _banded(sig, low, band_call):
+    """C lines of a function computing low over the whole section, or calling
+    band_call when geom[] names a band of it (a layer: bk_kernel.h)."""
+    return ([sig, "{", "    if (geom[BK_GEOM_BAND_LO] != 0.0 || geom[BK_GEOM_BAND_HI] != 0.0) {",
+             f"        {band_call};", "    } else {"]
+            + _prologue(low, "        ") + _block(low, "        ") + ["    }", "}", ""])
+
+
 def snap_map_lines(elem, rname):
     """The end of a tabulate(): reference-map entries within 1e-12 of the identity's
     are the identity's, so that a straight element's map is exactly I (the sums that
@@ -286,7 +310,8 @@ def snap_map_lines(elem, rname):
     from gen.program import c_double
     lines = ["    /* a reference map within round-off of the identity is the identity, and the weight",
              "     * of a point whose det J0 is within round-off of 1 that of the straight box */",
-             "    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H];"]
+             "    const double box = geom[BK_GEOM_L] * geom[BK_GEOM_B] * geom[BK_GEOM_H]"
+             " * (1.0 - geom[BK_GEOM_BAND_LO] - geom[BK_GEOM_BAND_HI]);"]
     for part in parts:
         lines += [f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
                   f"        static const double wq[{len(part.rule)}] = {{{', '.join(c_double(w) for _, w in part.rule)}}};",

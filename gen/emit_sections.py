@@ -37,13 +37,17 @@ def sections_function(elem, mat, rname, fname):
     P N0 (N0 = e_x) of every point of the integration, weighted by the point's
     weight over its axial Gauss weight and the length (the section weight
     w_y w_z b h), summed per axial station into n = int P N0 dA0 and
-    m = int (r - r_c) x P N0 dA0, r from the element's shape functions."""
+    m = int (r - r_c) x P N0 dA0, r from the element's shape functions (a layer:
+    over its band of the height, the table's weights carrying the band's share)."""
     xs, plan = sections_plan(elem, rname)
     nsh, ns = elem.nshape, len(xs)
     sig = (f"void {fname}(const double *restrict geom, const double *restrict q, const double *restrict tab, "
            "const double *restrict mat, double *restrict sec)")
     shape = f"bk_element_{elem.name}.shape"
     lines = [sig, "{", "    const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];",
+             "    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */",
+             "    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];",
+             "    const int band = lo != 0.0 || hi != 0.0;",
              f"    static const double xs[{ns}] = {{{', '.join(c_double(x) for x in xs)}}};",
              f"    double N0[{ns}][{nsh}];",
              f"    for (int i = 0; i < {9 * ns}; ++i) sec[i] = 0.0;",
@@ -52,7 +56,8 @@ def sections_function(elem, mat, rname, fname):
              f"        for (int a = 0; a < {nsh}; ++a)",
              "            for (int i = 0; i < 3; ++i) sec[9 * k + i] += N0[k][a] * q[3 * a + i];",
              "    }"]
-    for part, pts in plan:
+    counts = [rp.points for rp in elem.rule(rname)]
+    for (part, pts), (_, _, nz) in zip(plan, counts):
         low = lowered_body(elem, mat, part.energy, "traction")
         n = len(pts)
         sx = [part.rule[p][0][0] for p, _, _ in pts]
@@ -67,7 +72,10 @@ def sections_function(elem, mat, rname, fname):
                   f"            const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
                   f"            double tr[3], N[{nsh}], Nc[{nsh}], arm[3] = {{0.0, 0.0, 0.0}};"]
         lines += _block(low, "            ")
-        lines += [f"            {shape}(geom, px[p], py[p] * b, pz[p] * h, N);",
+        zmap = ("band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h" if nz > 1
+                else "band ? geom[BK_GEOM_BAND_AXIS] * h : pz[p] * h")   # one point: the neutral axis (gen/continuum.py)
+        lines += [f"            const double zp = {zmap};",
+                  f"            {shape}(geom, px[p], py[p] * b, zp, N);",
                   f"            {shape}(geom, px[p], 0.0, 0.0, Nc);",
                   f"            for (int a = 0; a < {nsh}; ++a)",
                   "                for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];",

@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 12      # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
+MODEL_VERSION = 13      # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
+                        # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
                         # 11: actuator and point-mass records, sensor offsets (body points);
                         # 10: the interaction modules' records (record NAME ... end_record);
                         # 9: driven joints (the drive of each nlcon record), beam contact records;

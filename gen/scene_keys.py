@@ -19,7 +19,7 @@ SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
 SECTION = {"rectangle": ("shape", "b", "h"), "circle": ("shape", "radius")}
 BEAM = ("name", "element", "material", "section", "section_end", "sections", "start", "end", "up", "elements", "integration",
-        "arc_center", "arc_axis", "arc_angle", "path", "grading", "element_lengths")
+        "arc_center", "arc_axis", "arc_angle", "path", "grading", "element_lengths", "layers")
 BODY = ("name", "mass", "center", "inertia", "axes")
 CONSTRAINT = {"clamp": ("type", "name", "a", "cross_section", "b"),
               "spherical": ("type", "name", "a", "b", "at"),

@@ -23,7 +23,9 @@
  *   geom[BK_NGEOM] element geometry, slots enum bk_geom_slot: length, section
  *                width along the first section axis d1, height along the
  *                second d2, area, second moments about d1 and d2, polar moment
- *                (SI units).  Continuum elements use l, b, h.
+ *                (SI units).  Continuum elements use l, b, h and the band
+ *                (layers: each layer of a section is an element of its own on
+ *                the same coordinates, integrating its band of the height).
  *   q[ndof]      element coordinates: per node its fields (nodal vectors of 3
  *                components, quaternions of 4), then element-internal unknowns
  *                (Lagrange multipliers of constrained beam theories); what each
@@ -46,7 +48,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 5
+#define BK_KERNEL_VERSION 6
 
 /* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
  * elements of one pair per call, so that the compiler vectorizes across
@@ -74,7 +76,17 @@ enum bk_geom_slot {
     BK_GEOM_I2 = 5,                   /* second moment of area about d2 (m^4)         */
     BK_GEOM_IP = 6,                   /* polar moment I1 + I2 (m^4)                   */
     BK_GEOM_SHAPE = 7,                /* section shape, enum bk_section_shape (0: unstated) */
-    BK_NGEOM = 8
+    BK_GEOM_BAND_LO = 8,              /* continuum elements: the fractions of h left out */
+    BK_GEOM_BAND_HI = 9,              /* below and above the band z in [(lo - 1/2) h,
+                                       * (1/2 - hi) h] that tabulate(), mass(), volume()
+                                       * and sections() integrate (one layer of a layered
+                                       * section); 0, 0: the whole section          */
+    BK_GEOM_BAND_AXIS = 10,           /* a layer: the height z / h (0: the middle) of the
+                                       * layered section's neutral axis, where a rule
+                                       * part with one point through the height (the
+                                       * centreline part of selective reduced
+                                       * integration) evaluates every layer          */
+    BK_NGEOM = 11
 };
 
 /* Section shapes (capabilities below say which an element takes). */

@@ -6,8 +6,8 @@
 
 /* No lane kernels: force_lanes, force_tangent_lanes stay NULL (one element per call);
  * no section resultants: sections stays NULL (sections.csv has the nodal rows only). */
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 5"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 6"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

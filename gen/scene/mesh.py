@@ -7,6 +7,7 @@ import time
 
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
+from gen.scene.layers import beam_layers, element_bands, neutral_axis
 from gen.scene.path import path_geometry
 from gen.scene.materials import locking_warnings, small_strain
 from gen.scene.plausible import beam_warnings
@@ -170,6 +171,26 @@ def beam_geometry(ctx, bt, where, ename, einfo, index):
     return line_geometry(ctx, bt, where, start, end)
 
 
+def layer_modulus(index, materials, mname, sec):
+    """Small-strain Young's modulus of a layer's material (1 where the law states
+    none: the layers then weigh by thickness)."""
+    es = small_strain(index, materials[mname][0], materials[mname][2](sec))
+    return es[0] if es else 1.0
+
+
+def layer_pair(ctx, where, index, pairs, ename, integ, materials, mname):
+    """The index in pairs of the kernel of a layer of material mname."""
+    law = materials[mname][0]
+    if index["materials"][law]["kind"] != "continuum":
+        ctx.fail(f"{where}.layers", f"layer material {mname!r} has law {law!r}; a layer needs a continuum law")
+    pair = f"{ename}_{law}_{integ}"
+    if not any(p["element"] == ename and p["material"] == law and p["integration"] == integ for p in index["pairs"]):
+        ctx.fail(f"{where}.layers", f"no generated kernel for element {ename!r} x law {law!r} x integration {integ!r}")
+    if pair not in pairs:
+        pairs.append(pair)
+    return pairs.index(pair)
+
+
 def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
     """Every [[beam]]: validated, meshed, numbered.  Returns a Mesh."""
     m = Mesh()
@@ -227,28 +248,34 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
         if tau > 0 and einfo["kind"] != "continuum":
             ctx.fail(f"material.{mname}.kelvin_voigt", f"Kelvin-Voigt damping is offered by the ANCF continuum "
                      f"elements; for element {ename} use [dynamic] rayleigh_alpha / rayleigh_beta")
+        layers = beam_layers(ctx, bt, where, materials, einfo, ename, mname)
+        layer_pidx = [] if layers is None else [layer_pair(ctx, where, index, pairs, ename, integ, materials, ln)
+                                                for ln, _ in layers]
         midx_of = {}
 
-        def material_index(sec):
-            """The model's material record of the beam's material with section sec (the
-            resultant laws' stiffnesses depend on it)."""
-            if sec in midx_of:
-                return midx_of[sec]
+        def material_index(sec, mname=mname):
+            """The model's material record of material mname (the beam's, or a
+            layer's) with section sec (the resultant laws' stiffnesses depend on it)."""
+            if (mname, sec) in midx_of:
+                return midx_of[(mname, sec)]
+            law = materials[mname][0]
+            tau = float(mats_doc[mname].get("kelvin_voigt", 0.0))
+            first = not any(k[0] == mname for k in midx_of)
             key = "section" if sec == esecs[0] else "sections"
             if einfo["section"] == "rectangle" and sec[0] != "rectangle":
                 ctx.fail(f"{where}.{key}", f"element {ename} needs a rectangle section, found {sec[0]}")
             params = materials[mname][2](sec)
-            if not midx_of:
+            if first:
                 warnings.extend(w for w in beam_warnings(where, mname, law, params, materials[mname][1], sec, length,
                                                          index) if w not in warnings)
-            if einfo["kind"] == "continuum" and not midx_of:
+            if einfo["kind"] == "continuum" and first:
                 warnings.extend(locking_warnings(where, ename, integ, law, params, index))
             if einfo["kind"] == "cable" and abs(params[4] - params[5]) > 1e-9 * max(params[4], params[5]):
                 ctx.fail(f"{where}.{key}", f"element ancf_cable has no section orientation and needs equal "
                          f"bending stiffnesses, found EI1 = {params[4]:.6g}, EI2 = {params[5]:.6g}")
             visc = []
             if tau > 0:
-                if mkind == "resultant":
+                if index["materials"][law]["kind"] == "resultant":
                     visc = [tau * v for v in params]
                 else:
                     E_, nu_ = small_strain(index, law, params)
@@ -256,10 +283,12 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             mkey = (tuple(params), materials[mname][1], tuple(visc), tuple(index["materials"][law]["params"]))
             if mkey not in mats_used:
                 mats_used.append(mkey)
-            midx_of[sec] = mats_used.index(mkey)
-            return midx_of[sec]
+            midx_of[(mname, sec)] = mats_used.index(mkey)
+            return midx_of[(mname, sec)]
 
         first_elem = len(elements)
+        layer_records = []      # the layers above the first: after the beam's elements
+        layer_elems = [[] for _ in range(nel)]
         enodes = einfo["nodes"]
         prev_end = None
         prev_p = None           # the last nodal quaternion: its neighbours keep its hemisphere
@@ -303,19 +332,42 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             ndof += nint
             prev_end = end_node
             sec_k = esecs[k]
-            midx = material_index(sec_k)
-            gkey = (pidx, l, sec_k, geo.shape_key if geo.shape_key is not None else geo.element_key(k))
-            # congruent elements share a table
-            if gkey not in geom_index:
-                geom_index[gkey] = len(geoms)
-                geoms.append((pidx, len(elements), section_geometry(sec_k, l)))
-            elements.append((pidx, geom_index[gkey], midx, edofs))
+            shape_key = geo.shape_key if geo.shape_key is not None else geo.element_key(k)
+            if layers is None:
+                midx = material_index(sec_k)
+                gkey = (pidx, l, sec_k, shape_key)
+                # congruent elements share a table
+                if gkey not in geom_index:
+                    geom_index[gkey] = len(geoms)
+                    geoms.append((pidx, len(elements), section_geometry(sec_k, l)))
+                elements.append((pidx, geom_index[gkey], midx, edofs))
+                continue
+            bands = element_bands(ctx, where, layers, sec_k[2])
+            axis = neutral_axis(bands, [layer_modulus(index, materials, ln, sec_k) for ln, _ in layers])
+            for j, (band, (ln, _)) in enumerate(zip(bands, layers)):
+                band = band + (axis,)
+                lp = layer_pidx[j]
+                gkey = (lp, l, sec_k, shape_key, band)
+                eidx = len(elements) if j == 0 else first_elem + nel + len(layer_records)   # the record's index
+                if gkey not in geom_index:
+                    geom_index[gkey] = len(geoms)
+                    geoms.append((lp, eidx, section_geometry(sec_k, l, band)))
+                rec = (lp, geom_index[gkey], material_index(sec_k, ln), edofs)
+                if j == 0:
+                    elements.append(rec)
+                else:
+                    layer_elems[k].append(len(layer_records))
+                    layer_records.append(rec)
+        base = len(elements)
+        assert base == first_elem + nel
+        layer_elems = [[base + i for i in le] for le in layer_elems]
+        elements.extend(layer_records)
         t_progress[1] += nel
         beams[bname] = {"name": bname, "element": ename, "length": length, "nelem": nel,
                         "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
                         "node_at": node_ids_of_beam,
                         "kind": einfo["kind"], "moments": einfo["moments"], "section": sec, "sections": esecs,
-                        "section_frame": einfo["section_frame"]}
+                        "section_frame": einfo["section_frame"], "layer_elems": layer_elems}
 
     m.ndof = ndof
     return m

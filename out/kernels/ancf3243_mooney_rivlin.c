@@ -3,8 +3,8 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
-#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
+#error "generated for runtime/bk_kernel.h version 6: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -1119,6 +1119,9 @@ BK_LANE_TARGET void ancf3243_mooney_rivlin_full_force_tangent_lanes(const double
 void ancf3243_mooney_rivlin_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
 {
     const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */
+    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];
+    const int band = lo != 0.0 || hi != 0.0;
     static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
     double N0[3][8];
     for (int i = 0; i < 27; ++i) sec[i] = 0.0;
@@ -1195,7 +1198,8 @@ void ancf3243_mooney_rivlin_full_sections(const double *restrict geom, const dou
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 8; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
@@ -3757,6 +3761,9 @@ BK_LANE_TARGET void ancf3243_mooney_rivlin_sri_force_tangent_lanes(const double 
 void ancf3243_mooney_rivlin_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
 {
     const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */
+    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];
+    const int band = lo != 0.0 || hi != 0.0;
     static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
     double N0[3][8];
     for (int i = 0; i < 27; ++i) sec[i] = 0.0;
@@ -3864,7 +3871,8 @@ void ancf3243_mooney_rivlin_sri_sections(const double *restrict geom, const doub
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 8; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
@@ -4006,7 +4014,8 @@ void ancf3243_mooney_rivlin_sri_sections(const double *restrict geom, const doub
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3243.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? geom[BK_GEOM_BAND_AXIS] * h : pz[p] * h;
+            bk_element_ancf3243.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3243.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 8; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];

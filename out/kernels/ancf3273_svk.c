@@ -3,8 +3,8 @@
 #include "ancf3273.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 5
-#error "generated for runtime/bk_kernel.h version 5: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
+#error "generated for runtime/bk_kernel.h version 6: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3273_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -1038,6 +1038,9 @@ BK_LANE_TARGET void ancf3273_svk_full_force_tangent_lanes(const double *restrict
 void ancf3273_svk_full_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
 {
     const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */
+    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];
+    const int band = lo != 0.0 || hi != 0.0;
     static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
     double N0[3][14];
     for (int i = 0; i < 27; ++i) sec[i] = 0.0;
@@ -1106,7 +1109,8 @@ void ancf3273_svk_full_sections(const double *restrict geom, const double *restr
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 14; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
@@ -2155,6 +2159,9 @@ BK_LANE_TARGET void ancf3273_svk_reduced_force_tangent_lanes(const double *restr
 void ancf3273_svk_reduced_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
 {
     const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */
+    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];
+    const int band = lo != 0.0 || hi != 0.0;
     static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
     double N0[3][14];
     for (int i = 0; i < 27; ++i) sec[i] = 0.0;
@@ -2223,7 +2230,8 @@ void ancf3273_svk_reduced_sections(const double *restrict geom, const double *re
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 14; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
@@ -4254,6 +4262,9 @@ BK_LANE_TARGET void ancf3273_svk_sri_force_tangent_lanes(const double *restrict 
 void ancf3273_svk_sri_sections(const double *restrict geom, const double *restrict q, const double *restrict tab, const double *restrict mat, double *restrict sec)
 {
     const double l = geom[BK_GEOM_L], b = geom[BK_GEOM_B], h = geom[BK_GEOM_H];
+    /* a layer's band of the height (bk_kernel.h): the points' heights mapped onto it */
+    const double lo = geom[BK_GEOM_BAND_LO], hi = geom[BK_GEOM_BAND_HI];
+    const int band = lo != 0.0 || hi != 0.0;
     static const double xs[3] = {0.11270166537925831, 0.5, 0.8872983346207417};
     double N0[3][14];
     for (int i = 0; i < 27; ++i) sec[i] = 0.0;
@@ -4314,7 +4325,8 @@ void ancf3273_svk_sri_sections(const double *restrict geom, const double *restri
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 14; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];
@@ -4402,7 +4414,8 @@ void ancf3273_svk_sri_sections(const double *restrict geom, const double *restri
             tr[0] = P00;
             tr[1] = P10;
             tr[2] = P20;
-            bk_element_ancf3273.shape(geom, px[p], py[p] * b, pz[p] * h, N);
+            const double zp = band ? (lo - 0.5 + (pz[p] + 0.5) * (1.0 - lo - hi)) * h : pz[p] * h;
+            bk_element_ancf3273.shape(geom, px[p], py[p] * b, zp, N);
             bk_element_ancf3273.shape(geom, px[p], 0.0, 0.0, Nc);
             for (int a = 0; a < 14; ++a)
                 for (int i = 0; i < 3; ++i) arm[i] += (N[a] - Nc[a]) * q[3 * a + i];

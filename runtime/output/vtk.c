@@ -352,7 +352,9 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
             const bk_pair *p = m->pairs[el->pair];
             bk_gather(m, e, q, qe);
             const double *g = m->geoms[el->geom];
-            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) / (g[BK_GEOM_L] * g[BK_GEOM_A]);
+            /* a layer (bk_kernel.h): its energy over its band's volume */
+            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) /
+                          (g[BK_GEOM_L] * g[BK_GEOM_A] * (1.0 - g[BK_GEOM_BAND_LO] - g[BK_GEOM_BAND_HI]));
             int r = bk_vtk_ring_points(m, e), nc = (NX - 1) * r + 1;
             double vals[(NX - 1) * MAX_RING + 1];
             for (int c = 0; c < nc; ++c)

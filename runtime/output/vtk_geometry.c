@@ -39,13 +39,18 @@ int bk_vtk_ring_points(const bk_model *m, int e)
     return section_shape(m, e) == BK_SECTION_CIRCLE ? 12 : 8;
 }
 
-/* Section point k of n in section coordinates (y along d1, z along d2). */
+/* Section point k of n in section coordinates (y along d1, z along d2); a layer of
+ * a layered section (bk_kernel.h BK_GEOM_BAND_LO, _HI): the ring of its band. */
 static void ring_yz(const double *g, int n, int k, double *y, double *z)
 {
     if (n == 8) {
         static const double uy[8] = {-1, 0, 1, 1, 1, 0, -1, -1}, uz[8] = {-1, -1, -1, 0, 1, 1, 1, 0};
+        const double lo = g[BK_GEOM_BAND_LO], hi = g[BK_GEOM_BAND_HI];
         *y = 0.5 * g[BK_GEOM_B] * uy[k];
-        *z = 0.5 * g[BK_GEOM_H] * uz[k];
+        if (lo != 0.0 || hi != 0.0)
+            *z = (lo - 0.5 + 0.5 * (uz[k] + 1.0) * (1.0 - lo - hi)) * g[BK_GEOM_H];
+        else
+            *z = 0.5 * g[BK_GEOM_H] * uz[k];
     } else {
         double a = 2.0 * M_PI * k / n;
         *y = 0.5 * g[BK_GEOM_B] * cos(a);
