@@ -98,7 +98,9 @@ def mesh_bodies(ctx, doc, mesh, index):
         mesh.dof_of_node.append(base)
         mesh.q0.extend(list(X) + frame_quaternion(E[0], E[1], E[2]))
         mesh.ndof += 7
+        from gen import contract
         geom = [edge, edge, edge, M, lam[0], lam[1], lam[2], 1.0]
+        geom += [0.0] * (contract.ngeom() - len(geom))       # (the slots of beams' layers: unused)
         mesh.geoms.append((pidx, len(mesh.elements), geom))
         mesh.elements.append((pidx, len(mesh.geoms) - 1, midx, list(range(base, base + 7))))
         R = [[E[k][i] for k in range(3)] for i in range(3)]
