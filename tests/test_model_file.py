@@ -56,7 +56,10 @@ def test_option_records_are_checked_by_the_generated_descriptor_table():
     (gen/options_schema.py): choices by name, numbers and integers in range."""
     out, solver = _run()
     text = (out / "model.dat").read_text()
-    assert " step_control=adaptive\n" in text and " about=reference\n" in text
+    assert " step_control=adaptive\n" in text and " about=reference solver=auto\n" in text
+    r = _solve(solver, out, text.replace(" solver=auto", " solver=lanczos", 1))
+    assert r.returncode == 1 and "modal.solver: 'lanczos' is not supported by this solver (expected one of: " \
+                                 "auto dense sparse)" in r.stderr, r.stderr
     r = _solve(solver, out, text.replace(" step_control=adaptive", " step_control=adaptve", 1))
     assert r.returncode == 1 and "static.step_control: 'adaptve' is not supported by this solver (expected one of: " \
                                  "adaptive fixed)" in r.stderr, r.stderr
