@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from util import BUILD, ROOT, build_shared_kernels, ensure_dir, run_scene
+from util import BUILD, ROOT, build_shared_kernels, ensure_dir, run_cli, run_scene
 from test_bad_input import check_error
 
 NX = 14
@@ -400,3 +400,8 @@ kp = 4.0
                    ["modal.about=static"])
     assert abs(s["frequencies_hz"][0] / ref - 1) < 1e-5, (s["frequencies_hz"], ref)
     assert any("load stiffness of moments" in w for w in s["warnings"]), s["warnings"]
+    # the sparse modal solver leaves the actuators' stiffness out: it refuses them, naming the way out
+    d = Path(tempfile.mkdtemp(prefix="bk-act-", dir=ensure_dir(BUILD / "runs")))
+    (d / "scene.toml").write_text(text)
+    r = run_cli(["run", str(d / "scene.toml"), "--quiet", "--out", str(d / "out"), "--set", "modal.solver=sparse"])
+    assert r.returncode != 0 and "does not take the actuators' stiffness" in r.stderr, r.stderr[-500:]

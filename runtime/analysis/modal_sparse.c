@@ -21,7 +21,8 @@
  *
  * Limits (refused with a message): constraints of deficient rank (A is then
  * singular: the dense solver handles them), joints nonlinear in q about a
- * static state (their geometric stiffness needs the multipliers).
+ * static state (their geometric stiffness needs the multipliers), actuators
+ * (their stiffness at rest is the dense solver's).
  */
 #include "analysis/modal.h"
 
@@ -29,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "assembly/actuators.h"
 #include "linalg/lanczos.h"
 #include "linalg/linsolve.h"
 
@@ -107,6 +109,11 @@ int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, doub
     const int n = s->nfree;
     const size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     *got = *steps = 0;
+    if (bk_actuators_present(m)) {
+        snprintf(msg, nmsg, "the sparse modal solver does not take the actuators' stiffness: use modal.solver = "
+                 "\"dense\"");
+        return 1;
+    }
     if (m->nnlcon > 0 && m->modal.about == BK_ABOUT_STATIC) {
         snprintf(msg, nmsg, "the sparse modal solver does not take joints nonlinear in the coordinates about a "
                  "static state (their geometric stiffness needs the multipliers): use modal.solver = \"dense\"");
