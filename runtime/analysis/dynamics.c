@@ -198,7 +198,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         const int pred_position = retry_position || pred_hold > 0;
         bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
-        if (m->beam_contact && !pred_position && bk_dyn_limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
+        if (bk_interactions_cut_predictors(s) && !pred_position && bk_dyn_limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
             snprintf(info->message, sizeof info->message, "out of memory");
             goto done;
         }

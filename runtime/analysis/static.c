@@ -160,7 +160,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                     q[i] += c * (q[i] - w->qprev[i]);
                 for (int k = 0; k < s->ncon; ++k)
                     w->nu[k] += c * (w->nu[k] - w->nuprev[k]);
-                if (m->beam_contact)        /* no beam carried through another by the extrapolation */
+                if (bk_interactions_cut_predictors(s))   /* e.g. no beam carried through another */
                     cut_predictor(s, w, q);
                 bk_quat_normalize(w->quat, w->nquat, q, NULL, 0);
             }

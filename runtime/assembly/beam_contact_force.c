@@ -468,5 +468,5 @@ static void bc_rows(void *self, const bk_system *s, int step, double t, const do
 const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
                                                 .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
-                                                .summary_key = "beam_contact", .uncounted_energy = 1,
+                                                .summary_key = "beam_contact", .uncounted_energy = 1, .cut_predictors = 1,
                                                 .summary = bc_summary, .free = bc_free};

@@ -41,6 +41,11 @@
  *   uncounted_energy  1 when it stores energy that the dynamic energy balance
  *               does not count (a contact barrier: a step too long for it
  *               can create energy, which dynamics then warns of).
+ *   cut_predictors  1 when an analysis must cut its predicted state (secant,
+ *               constant acceleration, arc-length tangent) to the step limit
+ *               measured from the last accepted state: a prediction can jump
+ *               over what the limit guards (beam-to-beam contact: one beam
+ *               predicted beyond another, at a positive distance again).
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -83,6 +88,8 @@ typedef struct bk_interaction_ops {
                  FILE *err);
     const char *summary_key;
     int uncounted_energy;            /* 1: it stores energy the energy balance does not count (a barrier) */
+    int cut_predictors;              /* 1: the analyses' predictors are cut to its step limit (a predicted
+                                      * state may carry one beam through another, unseen by the limit) */
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
 } bk_interaction_ops;
@@ -129,6 +136,8 @@ int bk_interactions_prepare(struct bk_system *s, const double *q);
 double bk_interactions_step_limit(const struct bk_system *s, const double *q, const double *dx);
 /* Every interaction's frame (see frame above); 0, or -1 when one failed. */
 int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
+/* 1 when an interaction of s asks the analyses to cut their predictors. */
+int bk_interactions_cut_predictors(const struct bk_system *s);
 /* 1 when an interaction of s stores energy the energy balance does not count. */
 int bk_interactions_uncounted_energy(const struct bk_system *s);
 /* Every interaction's accept after an accepted state. */

@@ -220,3 +220,11 @@ int bk_interactions_uncounted_energy(const bk_system *s)
         any |= s->inter[k].ops->uncounted_energy;
     return any;
 }
+
+int bk_interactions_cut_predictors(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        any |= s->inter[k].ops->cut_predictors;
+    return any;
+}
