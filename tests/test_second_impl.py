@@ -56,7 +56,9 @@ def test_mass_matrix_and_volume_integrals_match_quadrature():
     kinematics: q^T M q = rho V |v|^2 for a translation."""
     import ctypes
     k = Kernel("ancf3243", "svk")
-    geom = np.array([0.3, 0.04, 0.02, 0, 0, 0, 0])
+    from gen import contract
+    geom = np.zeros(contract.ngeom())        # every slot of bk_kernel.h (the band slots 0: the whole section)
+    geom[:3] = (0.3, 0.04, 0.02)
     m = np.zeros(64)
     v = np.zeros(8)
     D = ctypes.POINTER(ctypes.c_double)
