@@ -25,9 +25,7 @@ void bc_free(void *self)
     bc_work *w = self;
     if (!w)
         return;
-    if (w->nframe > 0)
-        bc_pvd(w);                       /* the collection complete (a failure was reported with the frames) */
-    free(w->frames), free(w->times);
+    bk_point_frames_free(&w->pf);
     free(w->base), free(w->ebase), free(w->chain), free(w->N), free(w->X), free(w->Xref), free(w->D);
     free(w->margin), free(w->cand), free(w->pairs), free(w->box), free(w->lag);
     free(w->gp), free(w->Hp), free(w->T), free(w->used);
@@ -177,6 +175,7 @@ int bk_beam_contact_make(bk_system *s, void **self)
     *self = w;
     if (!w)
         return -1;
+    w->pf.stem = "beam_contacts";
     size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     int nent = 0, maxel = 1, maxns = 2;
     w->base = calloc((size_t)bm->nset, sizeof *w->base);

@@ -9,6 +9,7 @@
 
 #include "assembly/contact_broad.h"
 #include "assembly/system.h"
+#include "base/pointframes.h"
 
 /* Below this sin^2 of their angle two segments count as parallel: their
  * distance is then the smallest of an end's to the other segment (the lines'
@@ -48,11 +49,7 @@ typedef struct bc_work {
     FILE *table;                     /* contacts.csv (shared with rigid contact), or NULL */
     int nlag;
     bc_lag *lag;                     /* [nlag] sorted by key: pairs in contact at the last accepted state */
-    char dir[1024];                  /* the frames' directory (beam_contact_frames.c) */
-    int nframe, capframe;
-    int *frames;                     /* [nframe] frame numbers written, */
-    double *times;                   /* their times or load factors */
-    double t_pvd;                    /* when beam_contacts.pvd was last written (bk_clock_s) */
+    bk_point_frames pf;              /* ParaView frames beam_contacts_NNNNNN.vtp, .pvd (beam_contact_frames.c) */
 } bc_work;
 
 typedef struct seg_pair {
@@ -73,7 +70,6 @@ double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, do
 /* ParaView frames (beam_contact_frames.c): beam_contacts_NNNNNN.vtp at q, and
  * the collection beam_contacts.pvd (0, or -1 with a message on err). */
 int bc_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
-int bc_pvd(bc_work *w);
 /* The broad phase again when a sample point moved more than M/4 since the
  * last one (or there was none): 0, or -1 when out of memory. */
 int bc_prepare(void *self, bk_system *s, const double *q);

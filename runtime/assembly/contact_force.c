@@ -47,6 +47,7 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
         bk_contact_model_free(cm);
     if (w) {
         w->cm = cm;
+        w->pf.stem = "contacts";
         for (int c = 0; c < cm->nset; ++c)
             w->npoint += cm->sets[c].nelem * cm->sets[c].nsample;
         size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1);
@@ -79,15 +80,12 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
 static void contact_free(void *self)
 {
     contact_work *w = self;
-    if (w && w->nframe > 0)
-        contact_pvd(w);                  /* the collection complete (a failure was reported with the frames) */
     if (w) {
         free(w->Kc);
         free(w->tot);
         free(w->Nc);
         free(w->Noff);
-        free(w->frames);
-        free(w->times);
+        bk_point_frames_free(&w->pf);
         free(w->fe);
         free(w->Ke);
         free(w->lam);

@@ -11,6 +11,7 @@
 #include "assembly/contact_geometry.h"
 #include "assembly/system.h"
 #include "base/csvrow.h"
+#include "base/pointframes.h"
 #include "base/tables.h"
 
 /* Scratch of the interaction: one element's force and matrix, the lagged
@@ -28,11 +29,7 @@ typedef struct contact_work {
                                       * last assembled */
     double *Nc;                      /* the sample points' shape functions, each point's nshape of them */
     long *Noff;                      /* [npoint + 1] where each point's are in Nc */
-    int nframe, cap;                 /* ParaView frames written (contacts_NNNNNN.vtp) and room for */
-    int *frames;                     /* [cap] their numbers */
-    double *times;                   /* [cap] their times or load factors */
-    char dir[1024];                  /* where they are */
-    double t_pvd;                    /* wall clock of the last contacts.pvd */
+    bk_point_frames pf;              /* ParaView frames contacts_NNNNNN.vtp, contacts.pvd */
 } contact_work;
 
 /* A sample point as the visitor sees it (each_point). */
@@ -74,10 +71,8 @@ void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p
  * variables v (mp.nv: the point's position, then its body's coordinates). */
 void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv);
 
-/* The interaction's outputs (interaction.h: tables, rows, frame, summary;
- * contact_pvd: contacts.pvd, the collection of the frames so far). */
+/* The interaction's outputs (interaction.h: tables, rows, frame, summary). */
 int contact_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
-int contact_pvd(contact_work *w);
 int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err);
 void contact_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq);
 int contact_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n);

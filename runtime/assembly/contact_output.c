@@ -145,6 +145,8 @@ void contact_rows(void *self, const bk_system *s, int step, double t, const doub
 
 typedef struct frame_points {
     const contact_work *w;
+    const bk_system *s;
+    const double *q;
     FILE *f;
     int pass, n;                     /* pass 0: count; 1: positions; 2: forces; 3: normal forces; 4: states */
 } frame_points;
@@ -178,79 +180,24 @@ static void frame_point(void *ctx, point *pt)
     }
 }
 
+static void frame_visit(void *ctx, int pass, FILE *f, int *n)
+{
+    frame_points *fp = ctx;
+    fp->pass = pass, fp->f = f, fp->n = 0;
+    contact_each_point(fp->w, fp->s, fp->q, frame_point, NULL, fp);
+    if (pass == 0)
+        *n = fp->n;
+}
+
 /* contacts_NNNNNN.vtp: the sample points within a barrier's reach or rubbing
  * as vertices, with the force on the beam there (N, a vector for glyphs),
  * the normal force and the contact set; contacts.pvd lists them with their
- * times (rewritten at most once a second, and when the run ends). */
+ * times (base/pointframes.h). */
 int contact_frame(void *self, const bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err)
 {
     contact_work *w = self;
-    char path[1200];
-    if (w->nframe == w->cap) {
-        const int cap = w->cap ? 2 * w->cap : 64;
-        int *nf = realloc(w->frames, (size_t)cap * sizeof *nf);
-        if (nf)
-            w->frames = nf;
-        double *nt = realloc(w->times, (size_t)cap * sizeof *nt);
-        if (nt)
-            w->times = nt;
-        if (!nf || !nt)
-            return -1;
-        w->cap = cap;
-    }
-    snprintf(w->dir, sizeof w->dir, "%s", dir);
-    snprintf(path, sizeof path, "%s/contacts_%06d.vtp", dir, frame);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(err, "error: %s: cannot write\n", path);
-        return -1;
-    }
-    frame_points fp = {.w = w, .f = f};
-    contact_each_point(w, s, q, frame_point, NULL, &fp);
-    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-            "<PolyData>\n<Piece NumberOfPoints=\"%d\" NumberOfVerts=\"%d\">\n<Points>\n"
-            "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n", fp.n, fp.n);
-    static const char *const arrays[] = {
-        "</DataArray>\n</Points>\n<PointData Vectors=\"force\" Scalars=\"normal_force\">\n"
-        "<DataArray type=\"Float64\" Name=\"force\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-        "</DataArray>\n<DataArray type=\"Float64\" Name=\"normal_force\" format=\"ascii\">\n",
-        "</DataArray>\n<DataArray type=\"Int32\" Name=\"set\" format=\"ascii\">\n"};
-    for (fp.pass = 1; fp.pass <= 4; ++fp.pass) {
-        contact_each_point(w, s, q, frame_point, NULL, &fp);
-        if (fp.pass < 4)
-            fputs(arrays[fp.pass - 1], f);
-    }
-    fputs("</DataArray>\n</PointData>\n<Verts>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n", f);
-    for (int k = 0; k < fp.n; ++k)
-        fprintf(f, "%d\n", k);
-    fputs("</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n", f);
-    for (int k = 0; k < fp.n; ++k)
-        fprintf(f, "%d\n", k + 1);
-    fputs("</DataArray>\n</Verts>\n</Piece>\n</PolyData>\n</VTKFile>\n", f);
-    if (fclose(f) != 0) {
-        fprintf(err, "error: %s: cannot write\n", path);
-        return -1;
-    }
-    w->frames[w->nframe] = frame;
-    w->times[w->nframe++] = t;
-    if (w->nframe == 1 || bk_clock_s() - w->t_pvd >= 1.0)
-        return contact_pvd(w);
-    return 0;
-}
-
-int contact_pvd(contact_work *w)
-{
-    char path[1200];
-    w->t_pvd = bk_clock_s();
-    snprintf(path, sizeof path, "%s/contacts.pvd", w->dir);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return -1;
-    fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n", f);
-    for (int k = 0; k < w->nframe; ++k)
-        fprintf(f, "<DataSet timestep=\"%.17g\" file=\"contacts_%06d.vtp\"/>\n", w->times[k], w->frames[k]);
-    fputs("</Collection>\n</VTKFile>\n", f);
-    return fclose(f) == 0 ? 0 : -1;
+    frame_points fp = {.w = w, .s = s, .q = q};
+    return bk_point_frames_write(&w->pf, dir, frame, t, frame_visit, &fp, err);
 }
 
 /* ---- the state for the outputs and the tests ---- */
