@@ -277,6 +277,7 @@ case "$cmd" in
         ;;
     bench)
         shift
+        PACKAGES+=(liblapack-dev)                  # (the band LU against LAPACK, report/bench_band.py)
         install_deps
         "$PY" -m gen.cli gen
         exec "$PY" -m report.bench "$@"
