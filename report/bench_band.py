@@ -29,17 +29,16 @@ def _openblas_dir():
     return None
 
 
-def _matrices(log):
+def matrices(log, scenes=SCENES, work=WORK / "band"):
     """{label: matrix file} written by bench/newton_iter.c for each scene."""
     from gen.scene import build, load_index, write_model
     from gen.solver_build import BUILD, VARIANTS, build_solver, compile_object, runtime_headers, runtime_objects
     obj = BUILD / "release" / "bench" / "newton_iter.o"
     compile_object(ROOT / "bench" / "newton_iter.c", obj, VARIANTS["release"], runtime_headers())
     robjs = [o for o in runtime_objects("release") if o.stem != "main"]
-    work = WORK / "band"
     work.mkdir(parents=True, exist_ok=True)
     files = {}
-    for label, scene, sets in SCENES:
+    for label, scene, sets in scenes:
         m = build(ROOT / "models" / f"{scene}.toml", sets)
         exe = build_solver(m["pairs"], BUILD / "release" / "bench" / ("bench_newton_" + "_".join(sorted(m["pairs"]))),
                            load_index(), "release", main_objs=[obj] + robjs)
@@ -54,7 +53,7 @@ def _matrices(log):
     return files
 
 
-def _programs():
+def programs():
     """{LAPACK name: bench_band executable} (reference LAPACK, OpenBLAS if installed)."""
     from gen.solver_build import BUILD, CC, WARN
     out = BUILD / "release" / "bench"
@@ -76,7 +75,7 @@ def _programs():
 
 def band_vs_lapack(quick, log):
     """Rows {problem, lapack, n, kl, ku, band_s, lapack_s, ratio, solution_difference}."""
-    mats, progs = _matrices(log), _programs()
+    mats, progs = matrices(log), programs()
     rows = []
     for label, mat in mats.items():
         for lib, exe in progs.items():
