@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 13      # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
+MODEL_VERSION = 14      # 14: static.globalization (the static record);
+                        # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
                         # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
                         # 11: actuator and point-mass records, sensor offsets (body points);
                         # 10: the interaction modules' records (record NAME ... end_record);
@@ -128,6 +129,15 @@ OPTIONS = (
     static("stable_path", "bool", False, "cut back an increment whose equilibrium has more negative tangent "
            "eigenvalues than the last one (while cut-backs remain): with an imperfection the solver stays on the "
            "stable (buckled) branch; without, the bifurcation is bracketed and then passed"),
+    static("globalization", "choice", "none", "`trust_region`: each Newton correction is solved with a "
+           "Levenberg–Marquardt shift μ·diag|K| of the tangent and taken when it lowers the total potential "
+           "energy (strain energy less the dead loads' work), μ grown after a rejected or poor step and shrunk "
+           "to 0 after good ones (close to the solution: Newton's quadratic rate).  For near-mechanisms — slack "
+           "cables, ropes, chains, EI/(EA L²) far below 1e-8 — whose plain Newton fails at any load increment; "
+           "needs loads with a potential (dead forces, gravity: refused with moments, follower, distributed, "
+           "tendon and chamber loads, contact, springs, actuators and joints nonlinear in the unknowns) and "
+           "many more iterations per increment (raise `max_iterations`, e.g. to 2000, and load in one "
+           "increment).  `none`: plain Newton", choices=("none", "trust_region")),
     static("step_control", "choice", "adaptive", "`adaptive`: after an increment of at most 3 Newton iterations "
            "the next is twice as large, of at most 6 iterations 1.5 times, never right after a cut-back; a failed "
            "increment is halved.  `fixed`: equal increments of 1/load_steps (back to that size after cut-backs).  "
@@ -295,6 +305,9 @@ def _static_rules(ctx, tbl, s, analysis):
         if s["stable_path"]:
             ctx.fail("static.stable_path", "expected false with method = \"arc_length\" (arc-length follows "
                                            "the path through limit points; stable_path is for load control)")
+        if s["globalization"] != "none":
+            ctx.fail("static.globalization", 'expected "none" with method = "arc_length" (the trust region '
+                                             'is for load control)')
     else:
         for o in record_fields("continuation"):
             if o.key != "method" and o.key in tbl:
