@@ -2,13 +2,14 @@
  * "bathe"; Bathe and Baig 2005, Bathe 2007): of length h from t_n, in two
  * sub-steps whose equations of motion hold exactly at their ends, as in the
  * generalized-alpha steps (the same residual, dyn_residual.c):
- *   1. the trapezoidal rule over h/2 to t_n + h/2 (Newmark beta = 1/4,
+ *   1. the trapezoidal rule over g h to t_m = t_n + g h (Newmark beta = 1/4,
  *      gamma = 1/2: q' and q'' of the mid state linear in its q, with
- *      dq'/dq = 4/h and dq''/dq = 16/h^2);
+ *      dq'/dq = 2/(g h) and dq''/dq = 4/(g h)^2);
  *   2. the three-point backward difference over the whole step,
- *      q'_{n+1}  = (q_n  - 4 q_m  + 3 q_{n+1}) / h,
- *      q''_{n+1} = (q'_n - 4 q'_m + 3 q'_{n+1}) / h,
- *      (dq'/dq = 3/h, dq''/dq = 9/h^2).
+ *      q'_{n+1}  = c1 q_n  + c2 q_m  + c3 q_{n+1},
+ *      q''_{n+1} = c1 q'_n + c2 q'_m + c3 q'_{n+1},
+ *      c1 = (1 - g)/(g h), c2 = -1/((1 - g) g h), c3 = (2 - g)/((1 - g) h)
+ *      (g = 1/2: 1/h, -4/h, 3/h; dq'/dq = c3, dq''/dq = c3^2).
  * Second order, unconditionally stable for linear systems, and dissipating the
  * modes far above 1/h completely (spectral radius 0 at infinity) while those
  * resolved by the step keep their energy to O(h^3) per period: the sub-step
@@ -18,6 +19,7 @@
  * mass as in dynamics.c, the multipliers carried across by the ratio. */
 #include "analysis/dyn_bathe.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "assembly/system.h"
@@ -29,12 +31,12 @@ int bk_dyn_bathe_step(dyn_problem *dp, bk_nl *nl, const bk_nl_opts *nlo, double 
     dyn_work *w = dp->w;
     double *q = dp->q;
     const int nd = s->m->ndof;
-    const double h1 = 0.5 * h;
+    const double g = BK_BATHE_GAMMA, h1 = g * h;
     bk_nl_problem prob = {.ctx = dp, .q = q, .residual = bk_dyn_problem_residual, .update = bk_dyn_problem_update,
                           .step_limit = bk_dyn_problem_step_limit};
     /* 1: trapezoidal to t + h/2 */
     const double bp1 = 4.0 / (h1 * h1), gp1 = 2.0 / h1;
-    for (int c = 0; c < w->nc; ++c)       /* the multipliers were scaled by the last sub-step's 9/h^2 */
+    for (int c = 0; c < w->nc; ++c)       /* the multipliers were scaled by the last sub-step's c3^2 */
         w->nu[c] *= mid->cscale_last > 0.0 ? mid->cscale_last / (bp1 * mbar) : 1.0;
     s->cscale = bp1 * mbar;
     bk_dyn_predict(s, w, q, h1, 0.0, 0.0, 0.25, 0.5, position);
@@ -57,7 +59,7 @@ int bk_dyn_bathe_step(dyn_problem *dp, bk_nl *nl, const bk_nl_opts *nlo, double 
     memcpy(w->qd_m, w->qd, (size_t)nd * sizeof *q);
     /* 2: the three-point backward difference to t + h, from the constant
      * acceleration of the mid state (or its position held) */
-    const double c1 = 1.0 / h, c2 = -4.0 / h, c3 = 3.0 / h;
+    const double c1 = (1.0 - g) / (g * h), c2 = -1.0 / ((1.0 - g) * g * h), c3 = (2.0 - g) / ((1.0 - g) * h);
     for (int i = 0; i < nd; ++i) {
         if (s->eq[i] < 0)
             continue;

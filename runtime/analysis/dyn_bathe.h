@@ -5,6 +5,13 @@
 
 #include "analysis/dynamics_impl.h"
 
+/* The first sub-step's fraction of the step (the scheme holds for any in
+ * (0, 1); 2 - sqrt(2), which makes both sub-steps' matrices equal, gave the
+ * spinning hub at dt = 0.05 a larger lag, 13.6 mm against 8.3 mm at 1/2). */
+#ifndef BK_BATHE_GAMMA
+#define BK_BATHE_GAMMA 0.5
+#endif
+
 /* The mid state of a step (for the energy balance: its time, the applied and
  * damping powers, kinetic and strain energies) and the constraint scaling the
  * last sub-step left the multipliers in (0: none yet). */

@@ -240,8 +240,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
             bk_energy eb_from = eb;
             if (bathe)      /* the balance over the two sub-steps */
-                bk_energy_step(&eb_from, mid.t, 0.5 * h, mid.T, mid.U - U0, mid.P, mid.Pd);
-            double created = bk_energy_trial(&eb_from, tn, bathe ? 0.5 * h : h, T, bk_strain_energy(s, q) - U0, P,
+                bk_energy_step(&eb_from, mid.t, mid.t - t, mid.T, mid.U - U0, mid.P, mid.Pd);
+            double created = bk_energy_trial(&eb_from, tn, bathe ? tn - mid.t : h, T, bk_strain_energy(s, q) - U0, P,
                                              Pd, &eb_trial);
             if (created > BK_ENERGY_CREATED) {
                 st = DYN_ENERGY;
