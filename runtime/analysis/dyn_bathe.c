@@ -19,7 +19,6 @@
  * mass as in dynamics.c, the multipliers carried across by the ratio. */
 #include "analysis/dyn_bathe.h"
 
-#include <math.h>
 #include <string.h>
 
 #include "assembly/system.h"
