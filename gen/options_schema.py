@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 14      # 14: static.globalization (the static record);
+MODEL_VERSION = 15      # 15: dynamic.integrator (generalized_alpha | bathe);
+                        # 14: static.globalization (the static record);
                         # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
                         # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
                         # 11: actuator and point-mass records, sensor offsets (body points);
@@ -180,6 +181,12 @@ OPTIONS = (
             default_doc="1e-6 dt"),
     dynamic("rho_inf", "float", 0.8, "spectral radius at infinity (1: no numerical dissipation)", lo=0.0, hi=1.0,
             noun="spectral radius"),
+    dynamic("integrator", "choice", "generalized_alpha", "`generalized_alpha` (Arnold & Brüls, parameters from "
+            "`rho_inf`) or `bathe`: Bathe's composite scheme, a trapezoidal half step then the three-point backward "
+            "difference over the step (second order, unresolved modes removed: spectral radius 0 at infinity, "
+            "`rho_inf` unused; two Newton solves a step) — robust where generalized-α's nearly undamped high modes "
+            "grow under large rotations (a beam spinning on a hub: `models/spinning_hub.toml`)",
+            choices=("generalized_alpha", "bathe")),
     dynamic("tol", "float", 0.0, "local error per step relative to the model length: adapts the step (≤ `dt`)",
             nonneg=True, default_doc="0 (off)"),
     dynamic("rayleigh_alpha", "float", 0.0, "Rayleigh damping αM + βK_t: α", unit="1/s", nonneg=True),

@@ -29,6 +29,7 @@
 #include "analysis/dynamics.h"
 #include "analysis/dynamics_impl.h"
 #include "analysis/dyn_energy.h"
+#include "analysis/dyn_bathe.h"
 
 #include <float.h>
 #include <math.h>
@@ -115,6 +116,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     char inadm[640] = "";                       /* why the last inadmissible state was refused */
     bk_step_ctl ctl;
     bk_step_ctl_init(&ctl, fmax(o->dt, o->dt_min));
+    const int bathe = o->integrator == BK_INTEGRATOR_BATHE;
+    bk_dyn_mid mid = {0};
+    double cscale_acc = 0.0;                    /* the scaling of the accepted multipliers (Bathe) */
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
@@ -195,17 +199,24 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         memcpy(w.qdd_s, w.qdd, (size_t)nd * sizeof *q);
         memcpy(w.a_s, w.a, (size_t)nd * sizeof *q);
         memcpy(w.nu_s, w.nu, (size_t)(w.nc ? w.nc : 1) * sizeof *q);
-        const int pred_position = retry_position || pred_hold > 0;
-        bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
+        const int pred_position = retry_position || pred_hold > 0 || (bathe && bk_interactions_cut_predictors(s));
         dyn_problem dp = {.s = s, .w = &w, .fdof = fdof, .norms = &nl.norms, .q = q, .tn = tn, .bp = bp, .gp = gp};
-        if (bk_interactions_cut_predictors(s) && !pred_position && bk_dyn_limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
-            snprintf(info->message, sizeof info->message, "out of memory");
-            goto done;
-        }
-        bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = bk_dyn_problem_residual, .update = bk_dyn_problem_update,
-                              .step_limit = bk_dyn_problem_step_limit};
         bk_nl_result res;
-        int st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
+        int st;
+        if (bathe) {
+            mid.cscale_last = cscale_acc;
+            st = bk_dyn_bathe_step(&dp, &nl, &nlo, t, h, mbar, full_retry, pred_position, &mid, &res);
+        } else {
+            bk_dyn_predict(s, &w, q, h, am, af, bet, gam, pred_position);
+            if (bk_interactions_cut_predictors(s) && !pred_position &&
+                bk_dyn_limit_predictor(&dp, nl.dx, am, af, bet, gam, h) != 0) {
+                snprintf(info->message, sizeof info->message, "out of memory");
+                goto done;
+            }
+            bk_nl_problem prob = {.ctx = &dp, .q = q, .residual = bk_dyn_problem_residual,
+                                  .update = bk_dyn_problem_update, .step_limit = bk_dyn_problem_step_limit};
+            st = bk_nl_solve(&nl, &prob, &nlo, h, full_retry, NULL, &res);
+        }
         int it = res.iters, signo = st == BK_NL_INTERRUPTED ? res.signo : 0, step_reused = res.reused;
         double rnorm = res.rnorm, dnorm = res.dnorm;
         info->newton_iterations += it;
@@ -227,7 +238,11 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
             bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
             double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
-            double created = bk_energy_trial(&eb, tn, h, T, bk_strain_energy(s, q) - U0, P, Pd, &eb_trial);
+            bk_energy eb_from = eb;
+            if (bathe)      /* the balance over the two sub-steps */
+                bk_energy_step(&eb_from, mid.t, mid.t - t, mid.T, mid.U - U0, mid.P, mid.Pd);
+            double created = bk_energy_trial(&eb_from, tn, bathe ? tn - mid.t : h, T, bk_strain_energy(s, q) - U0, P,
+                                             Pd, &eb_trial);
             if (created > BK_ENERGY_CREATED) {
                 st = DYN_ENERGY;
                 snprintf(inadm, sizeof inadm, "the integrator created %.3g J (%.3g %% of the largest energy, %.3g J; "
@@ -242,12 +257,14 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             }
         }
         if (st == DYN_OK) {
+            /* the local error estimate: generalized-alpha's h^2 |beta - 1/6| |a_{n+1} - a_n|; for
+             * Bathe's scheme (a = q'') that of its trapezoidal part, h^2/12 |q''_{n+1} - q''_n| */
             for (int i = 0; i < nd; ++i) {
-                double an = ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
+                double an = bathe ? w.qdd[i] : ((1.0 - af) * w.qdd[i] + af * w.qdd_s[i] - am * w.a_s[i]) / (1.0 - am);
                 err = fmax(err, fabs(an - w.a_s[i]));
                 w.a[i] = an;
             }
-            err *= h * h * fabs(bet - 1.0 / 6.0) / m->length_scale;
+            err *= h * h * (bathe ? 1.0 / 12.0 : fabs(bet - 1.0 / 6.0)) / m->length_scale;
         }
         int reject = st != DYN_OK || (o->tol > 0.0 && err > o->tol && h > o->dt_min * 1.0000001);
         if (reject) {
@@ -305,6 +322,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         }
         cuts = 0;
         full_retry = 0;
+        cscale_acc = s->cscale;
         if (retry_position)
             pred_hold = hold_len, hold_len = hold_len < 64 ? 2 * hold_len : 64;
         else if (pred_position)
