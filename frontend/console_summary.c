@@ -175,10 +175,16 @@ int bk_print_summary(const char *run_dir, const char *shown)
     printf(" (");
     put_string(&t.node[analysis]);
     printf("): %s; ", bk_json_truthy(&t, bk_json_get(&t, 0, "converged")) ? "converged" : "NOT converged");
-    put_count(&t, bk_json_get(&t, 0, "steps"), "step");
-    printf(", ");
-    put_count(&t, bk_json_get(&t, 0, "newton_iterations"), "Newton iteration");
-    printf(", ");
+    int freqs = bk_json_get(&t, 0, "frequencies_hz");
+    if (is_word(&t, analysis, "modal") && freqs >= 0 && t.node[freqs].type == BK_JARR) {
+        int nm = t.node[freqs].count;           /* a modal run has modes, not steps */
+        printf("%d mode%s, ", nm, nm == 1 ? "" : "s");
+    } else {
+        put_count(&t, bk_json_get(&t, 0, "steps"), "step");
+        printf(", ");
+        put_count(&t, bk_json_get(&t, 0, "newton_iterations"), "Newton iteration");
+        printf(", ");
+    }
     put_raw(&t, bk_json_get(&t, 0, "dofs"));
     printf(" DOFs, ");
     put_count(&t, bk_json_get(&t, 0, "elements"), "element");
