@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from util import ROOT
+from util import ENV, ROOT
 
 RUN_PAGES = ["docs/tutorial.md"] + sorted(
     str(p.relative_to(ROOT)) for p in (ROOT / "docs" / "howto").glob("*.md"))
@@ -81,7 +81,8 @@ def _run(cmd, cwd):
         argv[0] = str(ROOT / "bin" / "beamkit")
     else:
         raise AssertionError(f"a runnable block runs ./build.sh or bin/beamkit only: {cmd}")
-    return subprocess.run(argv, cwd=cwd, capture_output=True, text=True, timeout=300)
+    env = dict(ENV, BK_CALLER_CWD=str(cwd))    # relative paths from the page's directory
+    return subprocess.run(argv, cwd=cwd, capture_output=True, text=True, timeout=300, env=env)
 
 
 @pytest.mark.parametrize("page", RUN_PAGES)
