@@ -5,11 +5,11 @@ exists.
 
 Markers (docs/reference/commands.md, "Runnable documentation"):
 * a fenced block opened with ```toml scene=NAME is written to NAME.toml in the
-  page's working directory;
+  page's working directory, one opened with ```LANG file=NAME to NAME;
 * a fenced block opened with ```sh run is run line by line there (a line ending
   in a backslash continues), ./build.sh and bin/beamkit being the repository's;
 * a line `> expect: FILE KEY = VALUE ± TOL` states a result: KEY is a path into
-  the JSON file FILE (dots, [i] for list items), TOL an absolute value or a
+  the JSON file FILE (dots, [i] for list items, ["a.b"] for a key with dots), TOL an absolute value or a
   percentage of VALUE;
 * a line `> expect file: PATH` states that a run wrote PATH.
 Each page runs in a fresh temporary directory, its blocks in order."""
@@ -47,6 +47,9 @@ def steps(text):
         info = m.group(1).split()
         if info[:1] == ["toml"] and any(w.startswith("scene=") for w in info):
             name = next(w for w in info if w.startswith("scene="))[6:]
+            items.append((m.start(), ("scene", name + ".toml", m.group(2))))
+        elif any(w.startswith("file=") for w in info[1:]):
+            name = next(w for w in info if w.startswith("file="))[5:]
             items.append((m.start(), ("scene", name, m.group(2))))
         elif info[:2] == ["sh", "run"]:
             for cmd in _commands(m.group(2)):
@@ -74,8 +77,13 @@ def _commands(block):
 
 
 def _lookup(data, key):
-    for part in re.findall(r"[^.\[\]]+|\[\d+\]", key):
-        data = data[int(part[1:-1])] if part.startswith("[") else data[part]
+    for part in re.findall(r'\["[^"]+"\]|\[\d+\]|[^.\[\]]+', key):
+        if part.startswith('["'):
+            data = data[part[2:-2]]
+        elif part.startswith("["):
+            data = data[int(part[1:-1])]
+        else:
+            data = data[part]
     return data
 
 
@@ -98,7 +106,7 @@ def test_page_runs_and_its_numbers_hold(page, tmp_path):
     assert any(s[0] == "sh" for s in todo), f"{page}: no ```sh run block"
     for s in todo:
         if s[0] == "scene":
-            (tmp_path / f"{s[1]}.toml").write_text(s[2])
+            (tmp_path / s[1]).write_text(s[2])
         elif s[0] == "sh":
             r = _run(s[1], tmp_path)
             assert r.returncode == 0, f"{page}: `{s[1]}` exited {r.returncode}:\n{r.stderr[-3000:]}"
@@ -114,14 +122,15 @@ def test_page_runs_and_its_numbers_hold(page, tmp_path):
 def test_markers_are_parsed():
     """The parser finds each kind of marker (a page whose markers were misspelt
     would otherwise run nothing)."""
-    text = ("```toml scene=a\n[scene]\n```\n\n```sh run\n# c\n./build.sh run a.toml \\\n  --out o\n```\n"
+    text = ("```toml scene=a\n[scene]\n```\n```csv file=d.csv\nt,x\n```\n\n```sh run\n# c\n./build.sh run a.toml \\\n  --out o\n```\n"
             "> expect: o/summary.json `sensors.tip.displacement[2]` = -1.5e-3 ± 2 %\n"
             "> expect file: o/beam.png\n```sh\n./build.sh test\n```\n")
     got = steps(text)
-    assert got == [("scene", "a", "[scene]\n"), ("sh", "./build.sh run a.toml --out o"),
+    assert got == [("scene", "a.toml", "[scene]\n"), ("scene", "d.csv", "t,x\n"), ("sh", "./build.sh run a.toml --out o"),
                    ("expect", "o/summary.json", "sensors.tip.displacement[2]", -1.5e-3, 2.0, True),
                    ("file", "o/beam.png")]
     assert _lookup({"s": {"d": [1, 2, 3]}}, "s.d[2]") == 3
+    assert _lookup({"p": {"m.s.E": {"value": 4}}}, 'p["m.s.E"].value') == 4
 
 
 # ---- links -------------------------------------------------------------------
