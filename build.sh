@@ -125,7 +125,7 @@ Commands:
                          about 10 minutes on 2 cores, --quick about 1 minute
   --help                 this text
 
-Results of a run: out/runs/SCENE/summary.json and sensors.csv (see README.md).
+Results of a run: out/runs/SCENE/summary.json and sensors.csv (see docs/reference/outputs.md).
 From any directory: bin/beamkit COMMAND ... is ./build.sh COMMAND ... (put the
 repository's bin/ on PATH to type `beamkit`; it runs /usr/bin/python3 whatever
 python3 comes first on PATH).

@@ -3,7 +3,7 @@
 The scene reader (gen/scene/) accepts exactly these keys (plus, in
 [material.NAME], the parameter keys of the chosen law: gen/materials/*.py
 INPUTS, and the tables of the interaction modules, each with its keys in its
-own module: gen/scene/interactions.py); tests/test_docs.py checks that the README's scene reference lists
+own module: gen/scene/interactions.py); tests/test_docs.py checks that the scene reference (docs/reference/scene.md) lists
 the same keys.  The analysis options' keys ([scene] analysis, [static],
 [dynamic], [modal], [buckling], [output]) come from the options schema
 (gen/options_schema.py).

@@ -120,7 +120,7 @@ def test_dropped_rod_never_passes_through_and_gains_no_energy():
     energy.csv (kinetic, strain, gravity; the barrier's own energy is not in
     it) never above its start by 1 % of the drop's m g h, for dt from 1e-4 to
     1e-2 (at 1e-2 with rho_inf = 0: with the default 0.8 the barrier, stiffer
-    than such a step resolves, gains energy; the README says so)."""
+    than such a step resolves, gains energy; docs/explanation/contact.md says so)."""
     import csv
     m_g_h = 7850.0 * math.pi * 0.005 ** 2 * 9.81 * 0.005
     text = (ROOT / "models" / "contact_rod_ground.toml").read_text()
@@ -197,7 +197,7 @@ def test_static_friction_holds_where_kinetic_friction_would_slide():
     """Static 0.4, kinetic 0.3: mu_k m g = 1.814 N < 2 N < mu_s m g = 2.419 N.
     Pulled by 2 N (ramped over 10 ms) the rod stays: 2.3e-6 m in 0.1 s
     (the points near the pulled end at their limit creep by about a quarter
-    of the slip tolerance a step: a known limit, README), where with one
+    of the slip tolerance a step: a known limit, docs/explanation/contact.md), where with one
     coefficient 0.3 it slides 9.8 mm; pulled by 3 N at once it slides with the
     kinetic coefficient: kinetic energy t^2 (F - mu_k m g)^2 / (2 m) within
     2 %."""

@@ -32,7 +32,7 @@ KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams
 # The reference of the keys (docs/reference/interactions.md): (keys, unit, default, meaning).
 DOC = (
     (('shape',), '', 'required',
-     '`half_space`, `sphere`, `capsule` (a segment swept by a sphere) or `box`: a rigid primitive that the beams may touch ([docs/contact.md](docs/contact.md))'),
+     '`half_space`, `sphere`, `capsule` (a segment swept by a sphere) or `box`: a rigid primitive that the beams may touch ([docs/explanation/contact.md](docs/explanation/contact.md))'),
     (('name',), '', '',
      'a label'),
     (('normal', 'point'), 'm', 'point [0, 0, 0]',
@@ -268,4 +268,4 @@ def _lines(data, fmt):
 
 INTERACTION = Interaction(table="contact", keys=KEYS, record="contact", build=_build, lines=_lines, holds=True,
                           order=30, doc=DOC,
-                          title="rigid primitives the beams may touch (docs/contact.md)")
+                          title="rigid primitives the beams may touch (docs/explanation/contact.md)")

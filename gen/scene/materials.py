@@ -102,8 +102,8 @@ def material_params(ctx, mname, mt, index):
     ctx.fail(where, f"law {law!r} needs rho and one of: {'; '.join(options)}; found {', '.join(given) or 'none'}")
 
 
-# Element choices measured to lock (out/report/verification.md, README "What is
-# there today"): (element, integrations, test on the small-strain nu, advice).
+# Element choices measured to lock (out/report/verification.md, docs/explanation/elements.md,
+# "The elements"): (element, integrations, test on the small-strain nu, advice).
 LOCKING = (
     ("ancf3243", ("full",), lambda nu: nu >= 0.1,
      "Poisson locking: bending too stiff (26 % at nu = 0.3, slender beam); use integration = \"sri\""),
