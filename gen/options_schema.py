@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 15      # 15: dynamic.integrator (generalized_alpha | bathe);
+MODEL_VERSION = 16      # 16: beam contact in its interaction record (record beam_contact);
+                        # 15: dynamic.integrator (generalized_alpha | bathe);
                         # 14: static.globalization (the static record);
                         # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
                         # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
