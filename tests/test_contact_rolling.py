@@ -150,7 +150,7 @@ def test_rolling_friction_jacobian_against_differences():
         r = run_cli(["run", str(p), "--quiet", "--out", str(out), "--set", "dynamic.t_end=0.001"])
         assert (out / "model.dat").exists(), r.stderr[-2000:]
         for amp in (2e-4, 1.5e-3, 6e-3):
-            c = subprocess.run([str(exe), str(out / "model.dat"), repr(amp)], capture_output=True, text=True,
+            c = subprocess.run([str(exe), str(out / "model.dat"), repr(amp), "contact"], capture_output=True, text=True,
                                timeout=300)
             assert c.returncode == 0, (case, amp, c.returncode, c.stderr[-2000:])
             jerr, jmax, fmax, rolling = c.stdout.split()
