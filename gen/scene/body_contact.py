@@ -17,14 +17,15 @@ radius / a, b, radius / center, size, axes as in [[contact]]; against =
 distance (the barrier's reach, m; default 1e-3 of the model length);
 stiffness (N/m per point; default 1000 x the body's weight over the reach);
 friction or static_friction and kinetic_friction; slip (m; default 1e-7 of
-the model length)."""
+the model length) or, in dynamics, slip_velocity (m/s: slip = slip_velocity x
+dynamic.dt)."""
 from gen.scene import contact as C
 from gen.scene.interactions import Interaction
 from gen.scene.values import check_keys, get_array_of_tables, get_number, get_str
 
 BODY_SHAPES = ("sphere", "capsule", "box")
 KEYS = ("name", "body", "shape", "center", "radius", "a", "b", "size", "axes", "against", "distance", "stiffness",
-        "friction", "static_friction", "kinetic_friction", "slip")
+        "friction", "static_friction", "kinetic_friction", "slip", "slip_velocity")
 AGAINST_KEYS = ("shape", "normal", "point", "center", "radius", "a", "b", "size", "axes")
 DOC = (
     (('body',), '', 'required',
@@ -48,6 +49,8 @@ DOC = (
      'μs and μk apart (0 ≤ μk ≤ μs; not with `friction`)'),
     (('slip',), 'm', '1e-7 × the model length',
      'slip tolerance ε: below it a point sticks, beyond it slides with μN'),
+    (('slip_velocity',), 'm/s', 'none',
+     'dynamics: ε = v_s × `dynamic.dt` instead of `.slip` (as in `[[contact]]`)'),
 )
 
 
@@ -68,7 +71,7 @@ def _points(code, prm):
     return out
 
 
-def body_contacts(ctx, doc, bodies, length_scale):
+def body_contacts(ctx, doc, bodies, length_scale, analysis="static"):
     """[(body element, X, R0 rows, body code, body prm, against code, against
     prm, reach, stiffness, (mu_s, mu_k), slip)] of the [[body_contact]] tables."""
     out = []
@@ -90,7 +93,7 @@ def body_contacts(ctx, doc, bodies, length_scale):
         acode, aprm = C._primitive(ctx, ag, aw, ashape)
         mu_s, mu_k = C._friction(ctx, bt, where)
         reach = get_number(ctx, bt, "distance", where, default=1e-3 * length_scale, positive=True)
-        slip = get_number(ctx, bt, "slip", where, default=1e-7 * length_scale, positive=True)
+        slip = C.slip_tolerance(ctx, bt, where, length_scale, analysis, doc)
         b = bodies[name]
         weight = b["mass"] * C.GRAVITY
         kappa = get_number(ctx, bt, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
@@ -105,7 +108,7 @@ def body_contacts(ctx, doc, bodies, length_scale):
 
 
 def _build(ctx, doc, scene):
-    data = body_contacts(ctx, doc, scene.bodies or {}, scene.length_scale)
+    data = body_contacts(ctx, doc, scene.bodies or {}, scene.length_scale, scene.analysis)
     return data or None
 
 
