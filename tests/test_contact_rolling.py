@@ -1,6 +1,6 @@
 """Rolling of round rods (issue 34): friction acts on the section's surface,
 at the point x - r n, and turns the section (elements with nodal rotations:
-gef; docs/contact.md, Rolling).  Against closed forms: a rod pushed sideways
+gef; docs/explanation/contact.md, Rolling).  Against closed forms: a rod pushed sideways
 on the ground rolls without slipping with a = 2F/(3m) (a solid cylinder,
 I = m r^2 / 2) and its section turns by y / r; on a 30 degree slope it rolls
 with a = (2/3) g sin(alpha) when mu >= tan(alpha) / 3 and slides with

@@ -3,7 +3,7 @@
 it is in the reference configuration) against a fixed half-space, sphere,
 capsule or box (`against`, an inline table), with the barrier and the lagged
 friction of the beams' contact (runtime/assembly/body_contact.c; the model
-file's body_contact record; docs/contact.md, Bodies on primitives).
+file's body_contact record; docs/explanation/contact.md, Bodies on primitives).
 
 The body's primitive is resolved by points: a sphere by its centre (its
 radius the section radius: exact), a capsule by the centres of its two end
@@ -28,8 +28,9 @@ KEYS = ("name", "body", "shape", "center", "radius", "a", "b", "size", "axes", "
         "friction", "static_friction", "kinetic_friction", "slip", "slip_velocity")
 AGAINST_KEYS = ("shape", "normal", "point", "center", "radius", "a", "b", "size", "axes")
 DOC = (
+    (('name',), '', '', 'a label'),
     (('body',), '', 'required',
-     'the `[[body]]` whose primitive this is ([docs/contact.md](docs/contact.md), Bodies on primitives)'),
+     'the `[[body]]` whose primitive this is ([docs/explanation/contact.md](docs/explanation/contact.md), Bodies on primitives)'),
     (('shape',), '', 'required',
      '`sphere` (`.center`, `.radius`), `capsule` (`.a`, `.b`, `.radius`) or `box` (`.center`, `.size`, `.axes`): the '
      "body's primitive where it is in the reference configuration; resolved by points: a sphere's centre, a "
@@ -125,4 +126,4 @@ def _lines(data, fmt):
 
 INTERACTION = Interaction(table="body_contact", keys=KEYS, record="body_contact", build=_build, lines=_lines,
                           holds=True, order=31, doc=DOC,
-                          title="a rigid body's primitive resting on a fixed primitive (docs/contact.md)")
+                          title="a rigid body's primitive resting on a fixed primitive (docs/explanation/contact.md)")
