@@ -375,13 +375,18 @@ def lowered_body(elem, mat, part, want):
     return lower(prog, hoistable=params.values())
 
 
-def viscous_body_program(elem):
+def viscous_body_program(elem, want="tangent"):
     """Kelvin-Voigt damping at one quadrature point: viscous second Piola-Kirchhoff
     stress S_v = lam_v tr(dE/dt) I + 2 mu_v dE/dt (visc = {lam_v, mu_v}: the
     retardation time times the small-strain Lame constants), dE/dt = sym(F^T dF/dt).
-    Outputs f += w F S_v g_a, A[45] = w dP_v/d(dF/dt) (for C = df/dqd) and
-    G[45] = w delta_ik S_v,JL (the stress part of df/dq; the variation of dE/dt
-    with F is left out of this approximate derivative)."""
+
+    want: "force" (f += w F S_v g_a only: residual-only evaluations), "dissipation"
+    (the same and D += w S_v : dE/dt / 2, the Rayleigh dissipation function, whose
+    derivative by qd is f), or "tangent" (f and, for one contraction into the Newton
+    matrix, A[45] = gc w dP_v/d(dF/dt) + gk w delta_ik S_v,JL: the velocity Jacobian
+    C = df/dqd times gc plus the stress part of df/dq times gk, the variation of
+    dE/dt with F being left out of that approximate, symmetric derivative).  gc, gk
+    are the kernel's scalar arguments (the analysis' factors, e.g. gamma' and 1)."""
     ndof, nsh = elem.ndof, elem.nshape
     prog = Program()
     q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
@@ -400,9 +405,14 @@ def viscous_body_program(elem):
     for a in range(nsh):
         for i in range(3):
             prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
+    if want == "dissipation":
+        prog.output("D", sum(S[I, J] * Ed[I, J] for I in range(3) for J in range(3)) / 2)
+    if want != "tangent":
+        return prog
+    gc, gk = sp.Symbol("gc", real=True), sp.Symbol("gk", real=True)
     b = F * F.T
     d = lambda u, v: 1 if u == v else 0
-    mapped_tangent(prog, lambda i, J, k, L_: w * (lam * F[i, J] * F[k, L_] + mu * (F[i, L_] * F[k, J]
-                                                                                   + b[i, k] * d(J, L_))), Mm)
-    mapped_tangent(prog, lambda i, J, k, L_: d(i, k) * S[J, L_], Mm, prefix="G")
+    mapped_tangent(prog, lambda i, J, k, L_: gc * w * (lam * F[i, J] * F[k, L_] + mu * (F[i, L_] * F[k, J]
+                                                                                        + b[i, k] * d(J, L_)))
+                   + gk * d(i, k) * S[J, L_], Mm)
     return prog

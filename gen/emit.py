@@ -42,6 +42,9 @@ LANE_TARGET = """
 # ----------------------------------------------------------------------------
 # Element file
 
+VISC_ARGS = ("const double *restrict q, const double *restrict qd, const double *restrict tab, "
+             "const double *restrict visc")
+
 CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_CURVED", "BK_CAP_MOMENT_ANYWHERE")
 
 
@@ -187,9 +190,15 @@ extern const bk_element bk_element_{name};
                  f"inv[3 p + 0..2] */\n"
                  f"void {name}_{rname}_invariants(const double *restrict q, const double *restrict tab, "
                  "double *restrict inv);\n")
-        htxt += (f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
-                 "const double *restrict tab, const double *restrict visc, double *restrict f, "
-                 "double *restrict C, double *restrict K);\n")
+        htxt += (f"/* Kelvin-Voigt damping of \"{rname}\" (bk_pair.viscous_force, viscous, and their lane\n"
+                 " * kernels): the force (and the Rayleigh dissipation function), and the force with\n"
+                 " * K = gc C + gk K_s, one contraction per point. */\n"
+                 f"double {name}_{rname}_viscous_force(" + VISC_ARGS + ", double *restrict f);\n"
+                 f"void {name}_{rname}_viscous(" + VISC_ARGS + ", double gc, double gk, "
+                 "double *restrict f, double *restrict K);\n"
+                 f"void {name}_{rname}_viscous_force_lanes(" + VISC_ARGS + ", double *restrict f);\n"
+                 f"void {name}_{rname}_viscous_lanes(" + VISC_ARGS + ", double gc, double gk, "
+                 "double *restrict f, double *restrict K);\n")
     htxt += (f"/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;\n"
              f" * A[{len(A_INDEX)}] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.\n"
              f" * {contraction_ops(elem)} operations. */\n"
@@ -244,26 +253,37 @@ extern const bk_element bk_element_{name};
             c += ["    }"]
             first += len(part.rule)
         c += ["}", ""]
-    # Kelvin-Voigt damping per integration (at the points of its first rule part).
-    vlow = lower(viscous_body_program(elem), ())
+    # Kelvin-Voigt damping per integration (at the points of its first rule part):
+    # the force alone for residual-only evaluations (the one-element kernel also
+    # returns the Rayleigh dissipation function), and the force with gc C + gk K_s
+    # formed in one contraction per point; each also over BK_LANES elements.
+    vlow = {want: lower(viscous_body_program(elem, want), ())
+            for want in ("force", "dissipation", "tangent")}
     for rname in elem.rule_names:
         _, parts, _ = rule_parts(elem, rname)
         part = parts[0]
-        c += [f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
-              "const double *restrict tab, const double *restrict visc, double *restrict f, "
-              "double *restrict C, double *restrict K)", "{",
+        point = [f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+                 f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;"]
+        low = vlow["dissipation"]
+        c += [f"double {name}_{rname}_viscous_force(" + VISC_ARGS + ", double *restrict f)", "{",
+              f"    for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;", "    double D = 0.0;"] + point
+        c += _prologue(low, "        ") + _block(low, "        ")
+        c += ["    }", "    return D;", "}", ""]
+        low = vlow["tangent"]
+        c += [f"void {name}_{rname}_viscous(" + VISC_ARGS + ", double gc, double gk, double *restrict f, "
+              "double *restrict K)", "{",
               f"    for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;",
-              f"    for (int i = 0; i < {ndof * ndof}; ++i) C[i] = K[i] = 0.0;",
-              f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
-              f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
-              f"        double A[{len(A_INDEX)}], G[{len(A_INDEX)}];"]
-        c += _prologue(vlow, "        ") + _block(vlow, "        ")
-        c += [f"        {name}_tangent_contract(A, t, C);", f"        {name}_tangent_contract(G, t, K);", "    }",
+              f"    for (int i = 0; i < {ndof * ndof}; ++i) K[i] = 0.0;"] + point
+        c += [f"        double A[{len(A_INDEX)}];"]
+        c += _prologue(low, "        ") + _block(low, "        ")
+        c += [f"        {name}_tangent_contract(A, t, K);", "    }",
               f"    for (int r = 1; r < {ndof}; ++r)",
-              f"        for (int c = 0; c < r; ++c) {{",
-              f"            C[r * {ndof} + c] = C[c * {ndof} + r];",
-              f"            K[r * {ndof} + c] = K[c * {ndof} + r];",
-              "        }", "}", ""]
+              f"        for (int c = 0; c < r; ++c) K[r * {ndof} + c] = K[c * {ndof} + r];", "}", ""]
+        c += _lane_kernel_fn(f"void {name}_{rname}_viscous_force_lanes(" + VISC_ARGS + ", double *restrict f)",
+                             ndof, [part], [vlow["force"]])
+        c += _lane_kernel_fn(f"void {name}_{rname}_viscous_lanes(" + VISC_ARGS + ", double gc, double gk, "
+                             "double *restrict f, double *restrict K)", ndof, [part], [vlow["tangent"]],
+                             contract_fn=f"{name}_tangent_contract_lanes")
     # The tangent contraction, one function per row node (keeps compile time linear).
     lows = contraction_lowered(elem)
     for a, low in enumerate(lows):
@@ -424,7 +444,10 @@ def pair_source(elem, elem_path, mat, mat_path):
             ops_force=counts["force"][1].total(), ops_force_tangent=counts["tangent"][1].total(),
             functions={"tabulate": f"{elem.name}_{rname}_tabulate", "energy": fns["energy"], "force": fns["force"],
                        "force_tangent": fns["tangent"], "force_lanes": fns["force_lanes"],
-                       "force_tangent_lanes": fns["tangent_lanes"], "viscous": f"{elem.name}_{rname}_viscous",
+                       "force_tangent_lanes": fns["tangent_lanes"], "viscous_force": f"{elem.name}_{rname}_viscous_force",
+                       "viscous": f"{elem.name}_{rname}_viscous",
+                       "viscous_force_lanes": f"{elem.name}_{rname}_viscous_force_lanes",
+                       "viscous_lanes": f"{elem.name}_{rname}_viscous_lanes",
                        "invariants": f"{elem.name}_{rname}_invariants", "sections": sname},
             nvisc=2, green_strain_range=tuple(getattr(mat, "GREEN_STRAIN_RANGE", (0.0, 0.0))),
             sample_xi=sxi, sample_source=ssrc))

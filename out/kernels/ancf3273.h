@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:cdf8bd69c73b900346d76c4e20e0ac2acf6427d0e1e4509bff9a209160a720e4
+ * input hash: sha256:74f94c4ce2112b9bbc740bb71469f0f55ca1367eb287ad9e7355c07e2cd7292a
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -36,17 +36,35 @@ extern const bk_element bk_element_ancf3273;
 void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_s, one contraction per point. */
+double ancf3273_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_full_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "reduced": 12 points (all); tab[252] */
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "reduced" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_s, one contraction per point. */
+double ancf3273_reduced_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_reduced_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_reduced_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "sri": 27 points (full_order), 4 points (centreline); tab[651] */
 void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 31 points of "sri" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "sri" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_s, one contraction per point. */
+double ancf3273_sri_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_sri_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_sri_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */
