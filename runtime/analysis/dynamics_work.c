@@ -44,6 +44,18 @@ static int visc_lane_elem(const bk_model *m, int e)
            !p->element->rotary;
 }
 
+/* Elements e .. e+n-1 go in one lane-kernel call: n, the run of up to BK_LANES
+ * elements of e's pair that visc_lane_elem takes (1 where it takes none). */
+static int visc_lane_run(const bk_model *m, int e)
+{
+    int n = 1;
+    if (visc_lane_elem(m, e))
+        while (n < BK_LANES && e + n < m->nelem && m->elems[e + n].pair == m->elems[e].pair &&
+               visc_lane_elem(m, e + n))
+            ++n;
+    return n;
+}
+
 /* n doubles aligned to 64 bytes (the lane kernels' vector loads), zeroed. */
 static double *alloc_lanes(size_t n)
 {
@@ -68,7 +80,26 @@ static int visc_lanes_alloc(dyn_work *w, const bk_model *m)
     if (nd == 0)
         return 0;
     const size_t L = BK_LANES;
-    w->vq = alloc_lanes(L * nd), w->vqd = alloc_lanes(L * nd), w->vtab = alloc_lanes(L * nt);
+    /* the lane groups' tables, lane-ordered once (constant through the run): group
+     * g (the g-th run of visc_lane_run()) at vtab + g L nt */
+    size_t ng = 0;
+    for (int e = 0; e < m->nelem; e += visc_lane_run(m, e))
+        ng += visc_lane_elem(m, e) != 0;
+    w->vtab = alloc_lanes(ng * L * nt);
+    w->vnt = nt;
+    if (w->vtab)
+        for (int e = 0, g = 0; e < m->nelem; e += visc_lane_run(m, e)) {
+            if (!visc_lane_elem(m, e))
+                continue;
+            const int n = visc_lane_run(m, e), ntab = m->pairs[m->elems[e].pair]->ntab;
+            double *vt = w->vtab + (size_t)g++ * L * nt;
+            for (size_t l = 0; l < L; ++l) {
+                const double *tab = m->tabs[m->elems[e + ((int)l < n ? (int)l : n - 1)].geom];
+                for (int k = 0; k < ntab; ++k)
+                    vt[k * L + l] = tab[k];
+            }
+        }
+    w->vq = alloc_lanes(L * nd), w->vqd = alloc_lanes(L * nd);
     w->vvisc = alloc_lanes(L * BK_MAT_MAXPARAM), w->vf = alloc_lanes(L * nd), w->vK = alloc_lanes(L * nd * nd);
     return w->vq && w->vqd && w->vtab && w->vvisc && w->vf && w->vK ? 0 : -1;
 }
@@ -197,37 +228,38 @@ int *bk_dyn_free_dofs(const bk_system *s)
  * w->p_visc; with Ax, gp C + kp K_s formed in one contraction per point.  Unused
  * lanes repeat the last element (valid inputs, outputs ignored).  Every element's
  * terms are added in element order, as one element at a time would. */
-static void visc_lanes(const bk_system *s, dyn_work *w, int e0, int n, const double *q, double gp, double kp,
-                       double *fint, double *Ax)
+static void visc_lanes(const bk_system *s, dyn_work *w, int e0, int n, const double *vtab, const double *q,
+                       double gp, double kp, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
     const bk_pair *p = m->pairs[m->elems[e0].pair];
-    const int nd = p->element->ndof, nt = p->ntab, nv = p->nvisc, L = BK_LANES;
+    const int nd = p->element->ndof, nv = p->nvisc, L = BK_LANES;
+    double *restrict vq = w->vq, *restrict vqd = w->vqd;
     for (int l = 0; l < L; ++l) {
         const bk_elem *el = &m->elems[e0 + (l < n ? l : n - 1)];
         const int *d = el->dofs;
-        const double *tab = m->tabs[el->geom], *visc = m->mats[el->mat].visc;
+        const double *visc = m->mats[el->mat].visc;
         for (int k = 0; k < nd; ++k) {
-            w->vq[k * L + l] = q[d[k]];
-            w->vqd[k * L + l] = w->qd[d[k]];
+            vq[k * L + l] = q[d[k]];
+            vqd[k * L + l] = w->qd[d[k]];
         }
-        for (int k = 0; k < nt; ++k)
-            w->vtab[k * L + l] = tab[k];
         for (int k = 0; k < nv; ++k)
             w->vvisc[k * L + l] = visc[k];
     }
     const int matrix = Ax && (gp != 0.0 || kp != 0.0);
     if (matrix)
-        p->viscous_lanes(w->vq, w->vqd, w->vtab, w->vvisc, gp, kp, w->vf, w->vK);
+        p->viscous_lanes(vq, vqd, vtab, w->vvisc, gp, kp, w->vf, w->vK);
     else
-        p->viscous_force_lanes(w->vq, w->vqd, w->vtab, w->vvisc, w->vf);
+        p->viscous_force_lanes(vq, vqd, vtab, w->vvisc, w->vf);
+    double pv = w->p_visc;
     for (int l = 0; l < n; ++l) {
         const int e = e0 + l, *d = m->elems[e].dofs;
         for (int k = 0; k < nd; ++k) {
             const double v = w->vf[k * L + l];
             fint[d[k]] += v;
-            w->p_visc += v * w->vqd[k * L + l];
+            pv += v * vqd[k * L + l];
         }
+        w->p_visc = pv;
         if (matrix) {
             const int *sl = s->eslot + s->eslot_off[e];
             for (int k = 0; k < nd * nd; ++k) {
@@ -252,13 +284,10 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
     const bk_model *m = s->m;
     double Trot = 0.0;
     w->p_visc = 0.0;
-    for (int e = 0; e < m->nelem;) {
+    for (int e = 0, g = 0; e < m->nelem;) {
         if (w->vq && visc_lane_elem(m, e)) {
-            int n = 1;
-            while (n < BK_LANES && e + n < m->nelem && m->elems[e + n].pair == m->elems[e].pair &&
-                   visc_lane_elem(m, e + n))
-                ++n;
-            visc_lanes(s, w, e, n, q, gp, kp, fint, Ax);
+            const int n = visc_lane_run(m, e);
+            visc_lanes(s, w, e, n, w->vtab + (size_t)g++ * BK_LANES * w->vnt, q, gp, kp, fint, Ax);
             e += n;
             continue;
         }
