@@ -221,15 +221,15 @@ typedef struct bk_pair {
      * retardation time x elastic constants).  viscous_force: the viscous force
      * f(q, qd) = dD/dqd alone (what a residual-only evaluation needs; no
      * contraction), returning the Rayleigh dissipation function D (f . qd = 2 D).
-     * viscous: f and, in one contraction per point, the Newton-matrix part
-     * K = gc C + gk K_s, C = df/dqd and K_s ~ df/dq the part from the viscous
-     * stress (without the variation of the strain rate with q: symmetric);
-     * (gc, gk) = (1, 0) gives C, (0, 1) K_s.  K is overwritten, full.  The lane
+     * viscous: f and the Newton-matrix part K = gc C + gk K_q, C = df/dqd
+     * (symmetric) and K_q = df/dq at fixed qd (not symmetric), per point one
+     * contraction of the symmetric part and one of the antisymmetric part of
+     * K_q; (gc, gk) = (1, 0) gives C, (0, 1) K_q.  K is overwritten, full.  The lane
      * kernels do the same for BK_LANES elements ("Lane kernels" above; qd and
      * visc lane-ordered like q and mat, gc and gk shared).  nvisc 0: none of
      * them offered; the lane kernels may be NULL on their own.  (Version 7:
-     * before, one viscous(q, qd, tab, visc, f, C, K) formed C and K_s, two
-     * contractions, on every call.) */
+     * before, one viscous(q, qd, tab, visc, f, C, K) formed C and the stress
+     * part of K_q alone, two contractions, on every call.) */
     int nvisc;
     double (*viscous_force)(const double *restrict q, const double *restrict qd, const double *restrict tab,
                             const double *restrict visc, double *restrict f);

@@ -20,11 +20,11 @@
  *   fd_dissipation max |f_j - dD/dqd_j (4th-order central)| / max|f| and
  *                  |f . qd - 2 D| / |f . qd|, D the Rayleigh dissipation function
  *                  viscous_force() returns
- *   fd_visc_stress max |K_s - (2 df/dq - d/dq f(q, q))| / max|K_s| at qd = q (4th-order
- *                  central differences of the force; K_s from viscous(gc=0, gk=1))
- *   visc_sym       asymmetry of C and K_s
+ *   fd_visc_tangent max |K_ij - df_i/dq_j (4th-order central, qd held)| / max|K|,
+ *                  K from viscous(gc=0, gk=1)
+ *   visc_sym       asymmetry of C
  *   visc_consist   force of viscous() against viscous_force(), and
- *                  viscous(gc, gk) against gc C + gk K_s formed apart
+ *                  viscous(gc, gk) against gc C + gk K formed apart
  *   visc_lanes     the lane kernels against the one-element kernels (-1: none)
  *   (all -1 for pairs without damping)
  * and at NSTATE random rigid motions of the reference element:
@@ -221,7 +221,7 @@ static int lane_check(const bk_pair *p, const double *geom_a, const double *geom
 
 /* Kelvin-Voigt damping of a pair at the deformed state q (tab its element's
  * table), random velocities qd; maxima over calls into ev[NVCHECK] (see the
- * header comment): 0 fd_viscous, 1 fd_dissipation, 2 fd_visc_stress, 3 visc_sym,
+ * header comment): 0 fd_viscous, 1 fd_dissipation, 2 fd_visc_tangent, 3 visc_sym,
  * 4 visc_consist, 5 visc_lanes.  Returns 0 when out of memory. */
 enum { NVCHECK = 6 };
 static int visc_check(const bk_pair *p, const double *q0, const double *tab, const double *sc, rng *r,
@@ -252,7 +252,6 @@ static int visc_check(const bk_pair *p, const double *q0, const double *tab, con
         p->viscous(q, qd, tab, visc, 1.0, 0.0, f1, C);
         p->viscous(q, qd, tab, visc, 0.0, 1.0, f1, Ks);
         const double fmx = fmax(maxabs(f, n), 1e-300), Cmax = fmax(maxabs(C, (int)nn), 1e-300);
-        const double Kmax = fmax(maxabs(Ks, (int)nn), 1e-300);
         double pw = 0.0;
         for (int i = 0; i < n; ++i)
             pw += f[i] * qd[i];
@@ -270,7 +269,7 @@ static int visc_check(const bk_pair *p, const double *q0, const double *tab, con
             for (int i = 0; i < n; ++i)
                 ev[0] = fmax(ev[0], fabs(C[i * n + j] - (fp[1][i] - fp[2][i]) / (2 * h)) / Cmax);
         }
-        /* symmetry of C and K_s; force of viscous() = viscous_force(); gc C + gk K_s
+        /* symmetry of C; force of viscous() = viscous_force(); gc C + gk K
          * in one contraction = the two formed apart */
         const double gc = 733.0, gk = 1.0;
         p->viscous(q, qd, tab, visc, gc, gk, f1, X);
@@ -278,16 +277,12 @@ static int visc_check(const bk_pair *p, const double *q0, const double *tab, con
         for (int i = 0; i < n; ++i) {
             ev[4] = fmax(ev[4], fabs(f1[i] - f[i]) / fmx);
             for (int j = 0; j < n; ++j) {
-                ev[3] = fmax(ev[3], fmax(fabs(C[i * n + j] - C[j * n + i]) / Cmax,
-                                         fabs(Ks[i * n + j] - Ks[j * n + i]) / Kmax));
+                ev[3] = fmax(ev[3], fabs(C[i * n + j] - C[j * n + i]) / Cmax);
                 ev[4] = fmax(ev[4], fabs(X[i * n + j] - gc * C[i * n + j] - gk * Ks[i * n + j]) / Xmax);
             }
         }
-        /* K_s, the stress part of df/dq: f = F(q) S(F(q), F(qd)) with F linear in the
-         * coordinates and S depending on sym(F(q)^T F(qd)) only, so that at qd = q
-         * K_s = 2 df/dq (qd held) - d/dq f(q, q): both by 4-point differences
-         * (f cubic in q: exact but for round-off) */
-        memcpy(qd, q, n * sizeof(double));
+        /* K = df/dq (qd held) by 4-point differences of the force (f is cubic in q:
+         * exact but for round-off) */
         p->viscous(q, qd, tab, visc, 0.0, 1.0, f1, Ks);
         const double Kqmax = fmax(maxabs(Ks, (int)nn), 1e-300);
         for (int j = 0; j < n; ++j) {
@@ -296,15 +291,9 @@ static int visc_check(const bk_pair *p, const double *q0, const double *tab, con
                 q[j] = v0 + off[k] * h;
                 p->viscous_force(q, qd, tab, visc, fp[k]);
             }
-            for (int i = 0; i < n; ++i)
-                G[i * n + j] = 2.0 * (-fp[0][i] + 8 * fp[1][i] - 8 * fp[2][i] + fp[3][i]) / (12 * h);
-            for (int k = 0; k < 4; ++k) {
-                q[j] = qd[j] = v0 + off[k] * h;
-                p->viscous_force(q, qd, tab, visc, fp[k]);
-            }
-            q[j] = qd[j] = v0;
+            q[j] = v0;
             for (int i = 0; i < n; ++i) {
-                G[i * n + j] -= (-fp[0][i] + 8 * fp[1][i] - 8 * fp[2][i] + fp[3][i]) / (12 * h);
+                G[i * n + j] = (-fp[0][i] + 8 * fp[1][i] - 8 * fp[2][i] + fp[3][i]) / (12 * h);
                 ev[2] = fmax(ev[2], fabs(Ks[i * n + j] - G[i * n + j]) / Kqmax);
             }
         }
@@ -491,7 +480,7 @@ int main(int argc, char **argv)
             if (p->force_lanes && p->force_tangent_lanes && !lane_check(p, geoms[ig], geoms[1 - ig], mat, sc, &r, &e_lf, &e_lK))
                 return 3;
             printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
-                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_dissipation=%.3e fd_visc_stress=%.3e "
+                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_dissipation=%.3e fd_visc_tangent=%.3e "
                    "visc_sym=%.3e visc_consist=%.3e visc_lanes=%.3e fd_moment=%.3e lanes_f=%.3e lanes_K=%.3e "
                    "fscale=%.3e\n",
                    e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,

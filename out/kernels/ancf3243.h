@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:5a82b4fef1da8badbea0264103461ba558f1f92eb74196bad7063b2adf574578
+ * input hash: sha256:3fa584b31412abae28a59c33569618e2d5a479c0d9105d0fc957a362397b1c57
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -32,7 +32,8 @@ void ancf3243_full_tabulate(const double *restrict geom, const double *restrict 
 void ancf3243_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 /* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
  * kernels): the force (and the Rayleigh dissipation function), and the force with
- * K = gc C + gk K_s, one contraction per point. */
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
 double ancf3243_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
 void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 void ancf3243_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
@@ -43,7 +44,8 @@ void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q
 void ancf3243_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
 /* Kelvin-Voigt damping of "sri" (bk_pair.viscous_force, viscous, and their lane
  * kernels): the force (and the Rayleigh dissipation function), and the force with
- * K = gc C + gk K_s, one contraction per point. */
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
 double ancf3243_sri_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
 void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 void ancf3243_sri_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
@@ -54,6 +56,11 @@ void ancf3243_sri_viscous_lanes(const double *restrict q, const double *restrict
 void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower
+ * triangle), B[36] the entries (iJ) < (kL) of an antisymmetric tensor; and over
+ * BK_LANES elements. */
+void ancf3243_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);
+void ancf3243_contract_skew_lanes(const double *restrict Ask, const double *restrict t, double *restrict K);
 
 /* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

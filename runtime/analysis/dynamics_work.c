@@ -225,7 +225,7 @@ int *bk_dyn_free_dofs(const bk_system *s)
 
 /* Kelvin-Voigt damping of the elements e0 .. e0+n-1 (n <= BK_LANES, one pair,
  * visc_lane_elem) in one lane-kernel call: the force into fint and its power into
- * w->p_visc; with Ax, gp C + kp K_s formed in one contraction per point.  Unused
+ * w->p_visc; with Ax, gp C + kp df/dq (bk_pair.viscous_lanes).  Unused
  * lanes repeat the last element (valid inputs, outputs ignored).  Every element's
  * terms are added in element order, as one element at a time would. */
 static void visc_lanes(const bk_system *s, dyn_work *w, int e0, int n, const double *vtab, const double *q,
@@ -274,7 +274,7 @@ static void visc_lanes(const bk_system *s, dyn_work *w, int e0, int n, const dou
 /* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
  * rotary inertia.  Adds to fint and, with Ax, their contributions
  * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy.
- * The damping's matrix part gp C + kp K_s comes from one contraction
+ * The damping's matrix part gp C + kp df/dq comes from one kernel call
  * (bk_pair.viscous), and only when Ax is given and a factor is not zero; else
  * only the force is evaluated (bk_pair.viscous_force), BK_LANES elements per
  * call where the pair offers lane kernels. */
