@@ -179,9 +179,10 @@ def table_symbols(elem):
     return [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(gradient_slots(elem).exprs) + NMAP)]
 
 
-def mapped_tangent(prog, A, M, prefix="A"):
-    """Outputs prefix[x] = A'[iJkL] = sum_PQ M_JP M_LQ A[i,P,k,Q] for (iJkL) in
-    A_INDEX; A(i, P, k, Q) gives the untransformed entries."""
+def mapped_tangent(prog, A, M, prefix="A", index=None):
+    """Outputs prefix[x] = A'[iJkL] = sum_PQ M_JP M_LQ A[i,P,k,Q] for (iJkL) the
+    x-th of `index` (default A_INDEX); A(i, P, k, Q) gives the untransformed entries."""
+    index = A_INDEX if index is None else index
     Bt = {}
     for i in range(3):
         for J in range(3):
@@ -189,7 +190,7 @@ def mapped_tangent(prog, A, M, prefix="A"):
                 for Q in range(3):
                     Bt[(i, J, k, Q)] = prog.define(f"{prefix}m{i}{J}{k}{Q}",
                                                    sum(M[J, P] * A(i, P, k, Q) for P in range(3)))
-    for x, (i, J, k, Ll) in enumerate(A_INDEX):
+    for x, (i, J, k, Ll) in enumerate(index):
         prog.output(f"{prefix}[{x}]", sum(M[Ll, Q] * Bt[(i, J, k, Q)] for Q in range(3)), op="=")
 
 
@@ -310,6 +311,8 @@ def body_program(elem, mat, part, want):
 # The 45 distinct entries of the symmetric 3x3x3x3 tangent dP/dF, (iJ) <= (kL).
 A_INDEX = tuple((i, J, k, L) for i in range(3) for J in range(3) for k in range(3) for L in range(3)
                 if 3 * i + J <= 3 * k + L)
+# The 36 distinct entries of an antisymmetric one (B[iJkL] = -B[kLiJ]), (iJ) < (kL).
+SKEW_INDEX = tuple(x for x in A_INDEX if 3 * x[0] + x[1] < 3 * x[2] + x[3])
 
 
 def contraction_programs(elem):
@@ -351,6 +354,51 @@ def contraction_programs(elem):
     return progs
 
 
+def skew_contraction_programs(elem):
+    """The antisymmetric part of a tangent: per row node a, X_rc = sum_JL g_aJ g_bL
+    B[i,J,k,L] for r = 3a+i < c = 3b+k, with B[36] (SKEW_INDEX) the antisymmetric
+    tensor's entries, added into the lower triangle K[c, r] (the kernel then makes
+    K[r, c] = upper + X, K[c, r] = upper - X; the diagonal of an antisymmetric part
+    is zero)."""
+    slots = gradient_slots(elem)
+    ndof, nsh = elem.ndof, elem.nshape
+    t = [sp.Symbol(f"t[{i}]", real=True) for i in range(1 + len(slots.exprs))]
+    Bsym = [sp.Symbol(f"Ask[{x}]", real=True) for x in range(len(SKEW_INDEX))]
+    pos = {key: x for x, key in enumerate(SKEW_INDEX)}
+
+    def g(a, J):
+        r = slots.ref.get((a, J))
+        return 0 if r is None else r[1] * t[1 + r[0]]
+
+    def Bget(i, J, k, Ll):
+        if 3 * i + J < 3 * k + Ll:
+            return Bsym[pos[(i, J, k, Ll)]]
+        if 3 * i + J > 3 * k + Ll:
+            return -Bsym[pos[(k, Ll, i, J)]]
+        return 0
+
+    progs = []
+    for a in range(nsh):
+        prog = Program()
+        for i in range(3):
+            r = 3 * a + i
+            for c in range(r + 1, ndof):
+                b, k = divmod(c, 3)
+                expr = 0
+                for J in range(3):
+                    gaJ = g(a, J)
+                    if gaJ == 0:
+                        continue
+                    for Ll in range(3):
+                        gbL = g(b, Ll)
+                        if gbL != 0:
+                            expr += gaJ * gbL * Bget(i, J, k, Ll)
+                if expr != 0:
+                    prog.output(f"K[{c * ndof + r}]", expr)
+        progs.append(prog)
+    return progs
+
+
 def invariants_program(elem):
     """J = det F, I1 = tr C, I2 of C = F^T F at one quadrature point (t: its table
     row), into inv[0..2]: what the runtime checks a state against (inverted or
@@ -375,13 +423,20 @@ def lowered_body(elem, mat, part, want):
     return lower(prog, hoistable=params.values())
 
 
-def viscous_body_program(elem):
+def viscous_body_program(elem, want="tangent"):
     """Kelvin-Voigt damping at one quadrature point: viscous second Piola-Kirchhoff
     stress S_v = lam_v tr(dE/dt) I + 2 mu_v dE/dt (visc = {lam_v, mu_v}: the
     retardation time times the small-strain Lame constants), dE/dt = sym(F^T dF/dt).
-    Outputs f += w F S_v g_a, A[45] = w dP_v/d(dF/dt) (for C = df/dqd) and
-    G[45] = w delta_ik S_v,JL (the stress part of df/dq; the variation of dE/dt
-    with F is left out of this approximate derivative)."""
+
+    want: "force" (f += w F S_v g_a only: residual-only evaluations), "dissipation"
+    (the same and D += w S_v : dE/dt / 2, the Rayleigh dissipation function, whose
+    derivative by qd is f), or "tangent" (f and, for the Newton matrix gc C + gk K
+    with C = df/dqd and K = df/dq, the tensors A[45] = gc w dP_v/d(dF/dt) + gk (the
+    symmetric part of w dP_v/dF) and Ask[36] = gk (its antisymmetric part), contracted
+    by <element>_tangent_contract and _contract_skew).  w dP_v/dF at fixed dF/dt is
+    delta_ik S_v,JL (the stress part) + w (lam F_iJ Fd_kL + mu (F_iL Fd_kJ +
+    (F Fd^T)_ik delta_JL)) (the variation of dE/dt with F), not symmetric.  gc, gk
+    are the kernel's scalar arguments (the analysis' factors, e.g. gamma' and 1)."""
     ndof, nsh = elem.ndof, elem.nshape
     prog = Program()
     q = [sp.Symbol(f"q[{i}]", real=True) for i in range(ndof)]
@@ -400,9 +455,20 @@ def viscous_body_program(elem):
     for a in range(nsh):
         for i in range(3):
             prog.output(f"f[{3 * a + i}]", sum(P[i, J] * g(a, J) for J in range(3)))
+    if want == "dissipation":
+        prog.output("D", sum(S[I, J] * Ed[I, J] for I in range(3) for J in range(3)) / 2)
+    if want != "tangent":
+        return prog
+    gc, gk = sp.Symbol("gc", real=True), sp.Symbol("gk", real=True)
     b = F * F.T
+    bd = sp.Matrix(3, 3, lambda i, k: prog.define(f"bd{i}{k}", sum(F[i, m] * Fd[k, m] for m in range(3))))
     d = lambda u, v: 1 if u == v else 0
-    mapped_tangent(prog, lambda i, J, k, L_: w * (lam * F[i, J] * F[k, L_] + mu * (F[i, L_] * F[k, J]
-                                                                                   + b[i, k] * d(J, L_))), Mm)
-    mapped_tangent(prog, lambda i, J, k, L_: d(i, k) * S[J, L_], Mm, prefix="G")
+
+    def T(i, J, k, L_):               # w dP_v/dF_kL through dE/dt
+        return w * (lam * F[i, J] * Fd[k, L_] + mu * (F[i, L_] * Fd[k, J] + bd[i, k] * d(J, L_)))
+    mapped_tangent(prog, lambda i, J, k, L_: gc * w * (lam * F[i, J] * F[k, L_] + mu * (F[i, L_] * F[k, J]
+                                                                                        + b[i, k] * d(J, L_)))
+                   + gk * (d(i, k) * S[J, L_] + (T(i, J, k, L_) + T(k, L_, i, J)) / 2), Mm)
+    mapped_tangent(prog, lambda i, J, k, L_: gk * (T(i, J, k, L_) - T(k, L_, i, J)) / 2, Mm, prefix="Ask",
+                   index=SKEW_INDEX)
     return prog

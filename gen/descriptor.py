@@ -47,7 +47,7 @@ class PairDesc:
     nqp: int
     ops_force: int
     ops_force_tangent: int
-    functions: dict           # tabulate, energy, force, force_tangent, viscous, invariants
+    functions: dict           # tabulate, energy, force, force_tangent, viscous*, invariants
     nvisc: int = 0
     green_strain_range: tuple = (0.0, 0.0)
     sample_xi: tuple = ()     # points of sections() along the axis (floats), () with no sections()
@@ -60,7 +60,7 @@ class PairDesc:
 
 ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "section_frame", "moment", "rotary")
 PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "force_lanes", "force_tangent_lanes",
-                  "viscous", "invariants", "sections")
+                  "viscous_force", "viscous", "viscous_force_lanes", "viscous_lanes", "invariants", "sections")
 
 
 def version_guard():
@@ -139,8 +139,10 @@ def pair_descriptors(params, pairs):
         unknown = set(p.functions) - set(PAIR_FUNCTIONS)
         if unknown:
             raise ValueError(f"{p.symbol}: unknown descriptor functions {sorted(unknown)}")
-        if bool(p.nvisc) != bool(p.functions.get("viscous")):
-            raise ValueError(f"{p.symbol}: nvisc and viscous() go together")
+        if any(bool(p.nvisc) != bool(p.functions.get(k)) for k in ("viscous_force", "viscous")):
+            raise ValueError(f"{p.symbol}: nvisc, viscous_force() and viscous() go together")
+        if bool(p.functions.get("viscous_force_lanes")) != bool(p.functions.get("viscous_lanes")):
+            raise ValueError(f"{p.symbol}: viscous_force_lanes() and viscous_lanes() go together")
         members = [("element", f"&bk_element_{p.element}"), ("material", _c_str(p.material)),
                    ("integration", _c_str(p.integration)), ("nparam", str(len(params))),
                    ("param_names", "param_names"), ("ntab", str(p.ntab)), ("nqp", str(p.nqp)),
@@ -148,7 +150,9 @@ def pair_descriptors(params, pairs):
         members += [(k, p.functions[k]) for k in ("tabulate", "energy", "force", "force_tangent")]
         members += [(k, p.functions[k]) for k in ("force_lanes", "force_tangent_lanes") if p.functions.get(k)]
         if p.nvisc:
-            members += [("nvisc", str(p.nvisc)), ("viscous", p.functions["viscous"])]
+            members += [("nvisc", str(p.nvisc))]
+            members += [(k, p.functions[k]) for k in ("viscous_force", "viscous", "viscous_force_lanes",
+                                                      "viscous_lanes") if p.functions.get(k)]
         if p.functions.get("invariants"):
             members.append(("invariants", p.functions["invariants"]))
         lo, hi = p.green_strain_range

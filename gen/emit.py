@@ -13,8 +13,8 @@ from pathlib import Path
 import sympy as sp
 
 from gen.c_functions import _block, _function, _prologue, section_frame_function
-from gen.continuum import (A_INDEX, contraction_programs, invariants_program, lowered_body, rule_parts, tabulate_program,
-                           viscous_body_program)
+from gen.continuum import (A_INDEX, SKEW_INDEX, contraction_programs, invariants_program, lowered_body, rule_parts,
+                           skew_contraction_programs, tabulate_program, viscous_body_program)
 from gen.descriptor import ElementDesc, Field, PairDesc, element_descriptor, pair_descriptors, version_guard
 from gen.element import B, H, HI, L, LO, XI, Y, Z, band_subs, geom_subs, shape_functions, shape_gradients
 from gen.emit_sections import sections_function
@@ -41,6 +41,9 @@ LANE_TARGET = """
 
 # ----------------------------------------------------------------------------
 # Element file
+
+VISC_ARGS = ("const double *restrict q, const double *restrict qd, const double *restrict tab, "
+             "const double *restrict visc")
 
 CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_FIELD", "BK_CAP_CURVED", "BK_CAP_MOMENT_ANYWHERE")
 
@@ -187,9 +190,16 @@ extern const bk_element bk_element_{name};
                  f"inv[3 p + 0..2] */\n"
                  f"void {name}_{rname}_invariants(const double *restrict q, const double *restrict tab, "
                  "double *restrict inv);\n")
-        htxt += (f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
-                 "const double *restrict tab, const double *restrict visc, double *restrict f, "
-                 "double *restrict C, double *restrict K);\n")
+        htxt += (f"/* Kelvin-Voigt damping of \"{rname}\" (bk_pair.viscous_force, viscous, and their lane\n"
+                 " * kernels): the force (and the Rayleigh dissipation function), and the force with\n"
+                 " * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its\n"
+                 " * symmetric part and one of its antisymmetric part. */\n"
+                 f"double {name}_{rname}_viscous_force(" + VISC_ARGS + ", double *restrict f);\n"
+                 f"void {name}_{rname}_viscous(" + VISC_ARGS + ", double gc, double gk, "
+                 "double *restrict f, double *restrict K);\n"
+                 f"void {name}_{rname}_viscous_force_lanes(" + VISC_ARGS + ", double *restrict f);\n"
+                 f"void {name}_{rname}_viscous_lanes(" + VISC_ARGS + ", double gc, double gk, "
+                 "double *restrict f, double *restrict K);\n")
     htxt += (f"/* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;\n"
              f" * A[{len(A_INDEX)}] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.\n"
              f" * {contraction_ops(elem)} operations. */\n"
@@ -197,6 +207,12 @@ extern const bk_element bk_element_{name};
     htxt += (f"/* The same for BK_LANES = {lanes()} elements, every array in lane order "
              "(runtime/bk_kernel.h, \"Lane kernels\"). */\n"
              f"void {name}_tangent_contract_lanes(const double *restrict A, const double *restrict t, "
+             "double *restrict K);\n")
+    htxt += (f"/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower\n"
+             f" * triangle), B[{len(SKEW_INDEX)}] the entries (iJ) < (kL) of an antisymmetric tensor; and over\n"
+             " * BK_LANES elements. */\n"
+             f"void {name}_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);\n"
+             f"void {name}_contract_skew_lanes(const double *restrict Ask, const double *restrict t, "
              "double *restrict K);\n")
     htxt += LANE_TARGET
     htxt += "\n#endif\n"
@@ -244,26 +260,58 @@ extern const bk_element bk_element_{name};
             c += ["    }"]
             first += len(part.rule)
         c += ["}", ""]
-    # Kelvin-Voigt damping per integration (at the points of its first rule part).
-    vlow = lower(viscous_body_program(elem), ())
+    # Kelvin-Voigt damping per integration (at the points of its first rule part):
+    # the force alone for residual-only evaluations (the one-element kernel also
+    # returns the Rayleigh dissipation function), and the force with gc C + gk K_q
+    # (K_q = df/dq) from one symmetric and one antisymmetric contraction per point; each also over BK_LANES elements.
+    vlow = {want: lower(viscous_body_program(elem, want), ())
+            for want in ("force", "dissipation", "tangent")}
     for rname in elem.rule_names:
         _, parts, _ = rule_parts(elem, rname)
         part = parts[0]
-        c += [f"void {name}_{rname}_viscous(const double *restrict q, const double *restrict qd, "
-              "const double *restrict tab, const double *restrict visc, double *restrict f, "
-              "double *restrict C, double *restrict K)", "{",
+        point = [f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+                 f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;"]
+        low = vlow["dissipation"]
+        c += [f"double {name}_{rname}_viscous_force(" + VISC_ARGS + ", double *restrict f)", "{",
+              f"    for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;", "    double D = 0.0;"] + point
+        c += _prologue(low, "        ") + _block(low, "        ")
+        c += ["    }", "    return D;", "}", ""]
+        # the matrix: the symmetric part's upper triangle, the antisymmetric part's
+        # into the lower one (X_rc at [c, r]); then K[r, c] = U + X, K[c, r] = U - X
+        low = vlow["tangent"]
+        c += [f"void {name}_{rname}_viscous(" + VISC_ARGS + ", double gc, double gk, double *restrict f, "
+              "double *restrict K)", "{",
               f"    for (int i = 0; i < {ndof}; ++i) f[i] = 0.0;",
-              f"    for (int i = 0; i < {ndof * ndof}; ++i) C[i] = K[i] = 0.0;",
-              f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
-              f"        const double *restrict t = tab + {part.tab_offset} + {part.stride} * p;",
-              f"        double A[{len(A_INDEX)}], G[{len(A_INDEX)}];"]
-        c += _prologue(vlow, "        ") + _block(vlow, "        ")
-        c += [f"        {name}_tangent_contract(A, t, C);", f"        {name}_tangent_contract(G, t, K);", "    }",
+              f"    for (int i = 0; i < {ndof * ndof}; ++i) K[i] = 0.0;"] + point
+        c += [f"        double A[{len(A_INDEX)}], Ask[{len(SKEW_INDEX)}];"]
+        c += _prologue(low, "        ") + _block(low, "        ")
+        c += [f"        {name}_tangent_contract(A, t, K);", f"        {name}_contract_skew(Ask, t, K);", "    }",
               f"    for (int r = 1; r < {ndof}; ++r)",
-              f"        for (int c = 0; c < r; ++c) {{",
-              f"            C[r * {ndof} + c] = C[c * {ndof} + r];",
-              f"            K[r * {ndof} + c] = K[c * {ndof} + r];",
+              "        for (int c = 0; c < r; ++c) {",
+              f"            const double u = K[c * {ndof} + r], x = K[r * {ndof} + c];",
+              f"            K[c * {ndof} + r] = u + x;",
+              f"            K[r * {ndof} + c] = u - x;",
               "        }", "}", ""]
+        c += _lane_kernel_fn(f"void {name}_{rname}_viscous_force_lanes(" + VISC_ARGS + ", double *restrict f)",
+                             ndof, [part], [vlow["force"]])
+        w = lanes()
+        c += ["BK_LANE_TARGET void " + f"{name}_{rname}_viscous_lanes(" + VISC_ARGS + ", double gc, double gk, "
+              "double *restrict f, double *restrict K)", "{",
+              f"    for (int i = 0; i < {ndof * w}; ++i) f[i] = 0.0;",
+              f"    for (int i = 0; i < {ndof * ndof * w}; ++i) K[i] = 0.0;",
+              f"    for (int p = 0; p < {len(part.rule)}; ++p) {{",
+              f"        const double *restrict t = tab + ({part.tab_offset} + {part.stride} * p) * {w};",
+              f"        double A[{len(A_INDEX) * w}], Ask[{len(SKEW_INDEX) * w}];"]
+        c += _lane_loop(_prologue(low, "            ") + _block(low, "            "), "        ")
+        c += [f"        {name}_tangent_contract_lanes(A, t, K);", f"        {name}_contract_skew_lanes(Ask, t, K);",
+              "    }",
+              f"    for (int r = 1; r < {ndof}; ++r)",
+              "        for (int c = 0; c < r; ++c)",
+              f"            for (int l = 0; l < {w}; ++l) {{",
+              f"                const double u = K[(c * {ndof} + r) * {w} + l], x = K[(r * {ndof} + c) * {w} + l];",
+              f"                K[(c * {ndof} + r) * {w} + l] = u + x;",
+              f"                K[(r * {ndof} + c) * {w} + l] = u - x;",
+              "            }", "}", ""]
     # The tangent contraction, one function per row node (keeps compile time linear).
     lows = contraction_lowered(elem)
     for a, low in enumerate(lows):
@@ -287,6 +335,22 @@ extern const bk_element bk_element_{name};
           "double *restrict K)", "{"]
     c += [f"    {name}_contract_lanes_row{a}(A, t, K);" for a, low in enumerate(lows) if low.outputs]
     c += ["}", ""]
+    # The antisymmetric contraction (the viscous tangent's part), the same way.
+    slows = [lower(p, ()) for p in skew_contraction_programs(elem)]
+    for a, low in enumerate(slows):
+        if not low.outputs:
+            continue
+        c += _function(f"static BK_NOINLINE void {name}_skew_row{a}(const double *restrict Ask, "
+                       "const double *restrict t, double *restrict K)", low)
+        c += [f"static BK_NOINLINE BK_LANE_TARGET void {name}_skew_lanes_row{a}(const double *restrict Ask, "
+              "const double *restrict t, double *restrict K)", "{"]
+        c += _lane_loop(_prologue(low, "        ") + _block(low, "        "), "    ")
+        c += ["}", ""]
+    c += [f"void {name}_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K)",
+          "{"] + [f"    {name}_skew_row{a}(Ask, t, K);" for a, low in enumerate(slows) if low.outputs] + ["}", ""]
+    c += [f"BK_LANE_TARGET void {name}_contract_skew_lanes(const double *restrict Ask, const double *restrict t, "
+          "double *restrict K)", "{"]
+    c += [f"    {name}_skew_lanes_row{a}(Ask, t, K);" for a, low in enumerate(slows) if low.outputs] + ["}", ""]
     c += element_descriptor(describe(elem))
     return htxt, "\n".join(c)
 
@@ -424,7 +488,10 @@ def pair_source(elem, elem_path, mat, mat_path):
             ops_force=counts["force"][1].total(), ops_force_tangent=counts["tangent"][1].total(),
             functions={"tabulate": f"{elem.name}_{rname}_tabulate", "energy": fns["energy"], "force": fns["force"],
                        "force_tangent": fns["tangent"], "force_lanes": fns["force_lanes"],
-                       "force_tangent_lanes": fns["tangent_lanes"], "viscous": f"{elem.name}_{rname}_viscous",
+                       "force_tangent_lanes": fns["tangent_lanes"], "viscous_force": f"{elem.name}_{rname}_viscous_force",
+                       "viscous": f"{elem.name}_{rname}_viscous",
+                       "viscous_force_lanes": f"{elem.name}_{rname}_viscous_force_lanes",
+                       "viscous_lanes": f"{elem.name}_{rname}_viscous_lanes",
                        "invariants": f"{elem.name}_{rname}_invariants", "sections": sname},
             nvisc=2, green_strain_range=tuple(getattr(mat, "GREEN_STRAIN_RANGE", (0.0, 0.0))),
             sample_xi=sxi, sample_source=ssrc))

@@ -9,7 +9,7 @@ from gen import contract
 from gen.c_functions import _block, _prologue
 from gen.continuum import A_INDEX
 
-_LANE_ARRAYS = re.compile(r"\b(q|t|mat|f|K|A)\[(\d+)\]")
+_LANE_ARRAYS = re.compile(r"\b(q|qd|t|mat|visc|f|K|A|Ask)\[(\d+)\]")
 
 
 def lanes():

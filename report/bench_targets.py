@@ -14,7 +14,9 @@
     two-turn roll-up at default settings, against fixed load steps;
   * dynamics: wall time of the soft and stiff seed pendulums (10 ancf3243
     elements, dt = 1e-3 s, 1 s) with the default Jacobian reuse, and how far their
-    tip lies from the full-Newton solution of the same scheme.
+    tip lies from the full-Newton solution of the same scheme;
+  * damping: the damped silicone cantilever (Kelvin-Voigt) against the undamped
+    one, wall per simulated second (target <= 1.5x), each tip against full Newton.
 
 Solver timings run the per-scene solver directly on the model file a
 `./build.sh run` wrote, the variants interleaved, and take medians (the machine
@@ -172,13 +174,48 @@ def dynamics(work, repeats, log):
     return rows
 
 
+DAMPING = (("Kelvin-Voigt", "silicone_fall_damped", []),)
+
+
+def damping(work, repeats, log):
+    """Damped against undamped: the silicone cantilever falling (12 ancf3363, dt 1e-3 s,
+    0.5 s) with and without Kelvin-Voigt damping, the solver runs interleaved; the
+    ratio of the median walls per simulated second (target <= 1.5), and, as the
+    accuracy both runs are held to, each tip's distance from full Newton's
+    (dynamic.jacobian = every_iteration) of the same scheme."""
+    solver, m_plain = _build_run("silicone_fall", [], work / "k_plain")
+    _, m_plain_full = _build_run("silicone_fall", ["dynamic.jacobian=every_iteration"], work / "k_plain_full")
+    rows = []
+    for label, scene, sets in DAMPING:
+        _, m_damp = _build_run(scene, sets, work / f"k_{scene}")
+        _, m_damp_full = _build_run(scene, sets + ["dynamic.jacobian=every_iteration"], work / f"k_{scene}_full")
+        t = _solver_times({"plain": (solver, m_plain), "damped": (solver, m_damp)}, repeats, work)
+        full = _solver_times({"plain": (solver, m_plain_full), "damped": (solver, m_damp_full)}, 1, work)
+        row = {"problem": label, "scene": scene, "target": 1.5}
+        for k in ("plain", "damped"):
+            s = t[k]["summary"]
+            tip = next(iter(s["sensors"]))
+            row[k] = {"wall_s": statistics.median(t[k]["wall"]), "min_s": min(t[k]["wall"]),
+                      "cpu_s": statistics.median(t[k]["cpu"]),
+                      "per_s": statistics.median(t[k]["wall"]) / s["time"], "iterations": s["newton_iterations"],
+                      "factorizations": s["factorizations"], "steps": s["steps"],
+                      "tip_diff": math.dist(s["sensors"][tip]["position"],
+                                            full[k]["summary"]["sensors"][tip]["position"])}
+        row["ratio"] = row["damped"]["per_s"] / row["plain"]["per_s"]
+        row["cpu_ratio"] = row["damped"]["cpu_s"] / row["plain"]["cpu_s"]   # (same simulated time)
+        rows.append(row)
+        log(f"  targets: damping {scene}")
+    return rows
+
+
 def measure(work, quick, log):
     """Everything above; `quick` takes fewer repeats."""
     work = Path(work) / "targets"
     work.mkdir(parents=True, exist_ok=True)
     n = 3 if quick else 9
     return {"front_end": front_end(work, n, log), "output": output_share(work, n, log),
-            "statics": statics(work, log), "dynamics": dynamics(work, n, log)}
+            "statics": statics(work, log), "dynamics": dynamics(work, n, log),
+            "damping": damping(work, n, log)}
 
 
 def _ms(t):
@@ -221,4 +258,13 @@ def target_rows(res, met):
                      f"{r['iterations']} iterations, {r['factorizations']} factorizations in {r['steps']} steps; "
                      f"tip {r['tip_diff']:.1e} m from full Newton's",
                      met(r["wall_s"] <= r["target_s"] and r["tip_diff"] <= 1e-6)))
+    for r in res.get("damping", ()):
+        d, u = r["damped"], r["plain"]
+        rows.append((f"{r['problem']} damping ≤ {r['target']:g}× the undamped cost per simulated second "
+                     f"({r['scene']} against silicone_fall: 12 ancf3363, dt 1e-3, 0.5 s)",
+                     f"{r['ratio']:.2f}×: {d['wall_s']:.3f} s (min {d['min_s']:.3f}) against {u['wall_s']:.3f} s "
+                     f"(min {u['min_s']:.3f}), process CPU time {r['cpu_ratio']:.2f}×; {d['iterations']} / {u['iterations']} iterations, "
+                     f"{d['factorizations']} / {u['factorizations']} factorizations; tips {d['tip_diff']:.1e} / "
+                     f"{u['tip_diff']:.1e} m from full Newton's",
+                     met(r["ratio"] <= r["target"] and max(d["tip_diff"], u["tip_diff"]) <= 1e-6)))
     return rows

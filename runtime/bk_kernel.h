@@ -48,7 +48,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 6
+#define BK_KERNEL_VERSION 7
 
 /* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
  * elements of one pair per call, so that the compiler vectorizes across
@@ -217,14 +217,31 @@ typedef struct bk_pair {
     void (*force_tangent_lanes)(const double *restrict q, const double *restrict tab,
                                 const double *restrict mat, double *restrict f,
                                 double *restrict K);
-    /* Kelvin-Voigt damping: viscous force f(q, qd) with parameters visc[nvisc]
-     * (the viscous stiffnesses: retardation time x elastic constants), its
-     * derivatives C = df/dqd and K ~ df/dq (the part from the viscous stress,
-     * without the variation of the strain rate with q).  NULL: not offered. */
+    /* Kelvin-Voigt damping with parameters visc[nvisc] (the viscous stiffnesses:
+     * retardation time x elastic constants).  viscous_force: the viscous force
+     * f(q, qd) = dD/dqd alone (what a residual-only evaluation needs; no
+     * contraction), returning the Rayleigh dissipation function D (f . qd = 2 D).
+     * viscous: f and the Newton-matrix part K = gc C + gk K_q, C = df/dqd
+     * (symmetric) and K_q = df/dq at fixed qd (not symmetric), per point one
+     * contraction of the symmetric part and one of the antisymmetric part of
+     * K_q; (gc, gk) = (1, 0) gives C, (0, 1) K_q.  K is overwritten, full.  The lane
+     * kernels do the same for BK_LANES elements ("Lane kernels" above; qd and
+     * visc lane-ordered like q and mat, gc and gk shared).  nvisc 0: none of
+     * them offered; the lane kernels may be NULL on their own.  (Version 7:
+     * before, one viscous(q, qd, tab, visc, f, C, K) formed C and the stress
+     * part of K_q alone, two contractions, on every call.) */
     int nvisc;
+    double (*viscous_force)(const double *restrict q, const double *restrict qd, const double *restrict tab,
+                            const double *restrict visc, double *restrict f);
     void (*viscous)(const double *restrict q, const double *restrict qd, const double *restrict tab,
-                    const double *restrict visc, double *restrict f, double *restrict C,
+                    const double *restrict visc, double gc, double gk, double *restrict f,
                     double *restrict K);
+    void (*viscous_force_lanes)(const double *restrict q, const double *restrict qd,
+                                const double *restrict tab, const double *restrict visc,
+                                double *restrict f);
+    void (*viscous_lanes)(const double *restrict q, const double *restrict qd, const double *restrict tab,
+                          const double *restrict visc, double gc, double gk, double *restrict f,
+                          double *restrict K);
     /* State checks: inv[3 p + 0..2] = J = det F, I1, I2 of C = F^T F at the nqp
      * quadrature points (NULL: not offered, e.g. rod elements), and the range
      * of principal Green strains the law is meant for (both 0: no limit). */

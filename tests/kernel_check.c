@@ -14,6 +14,19 @@
  *   fd_moment   for elements that carry moments: max_ij |dQ_ij - dQ_i/dq_j
  *               (4th-order central)| / max|dQ| for a random moment on the
  *               section at each node (the Jacobian used by Newton)
+ * and, for pairs with Kelvin-Voigt damping, at each deformed state with random
+ * velocities qd:
+ *   fd_viscous     max |C_ij - df_i/dqd_j (central)| / max|C|, C from viscous(gc=1, gk=0)
+ *   fd_dissipation max |f_j - dD/dqd_j (4th-order central)| / max|f| and
+ *                  |f . qd - 2 D| / |f . qd|, D the Rayleigh dissipation function
+ *                  viscous_force() returns
+ *   fd_visc_tangent max |K_ij - df_i/dq_j (4th-order central, qd held)| / max|K|,
+ *                  K from viscous(gc=0, gk=1)
+ *   visc_sym       asymmetry of C
+ *   visc_consist   force of viscous() against viscous_force(), and
+ *                  viscous(gc, gk) against gc C + gk K formed apart
+ *   visc_lanes     the lane kernels against the one-element kernels (-1: none)
+ *   (all -1 for pairs without damping)
  * and at NSTATE random rigid motions of the reference element:
  *   rigid_energy  |U| / (energy of a unit strain)
  *   rigid_force   max|f| / (force of a unit strain)
@@ -206,6 +219,121 @@ static int lane_check(const bk_pair *p, const double *geom_a, const double *geom
     return ok;
 }
 
+/* Kelvin-Voigt damping of a pair at the deformed state q (tab its element's
+ * table), random velocities qd; maxima over calls into ev[NVCHECK] (see the
+ * header comment): 0 fd_viscous, 1 fd_dissipation, 2 fd_visc_tangent, 3 visc_sym,
+ * 4 visc_consist, 5 visc_lanes.  Returns 0 when out of memory. */
+enum { NVCHECK = 6 };
+static int visc_check(const bk_pair *p, const double *q0, const double *tab, const double *sc, rng *r,
+                      double *ev)
+{
+    enum { W = BK_LANES };
+    const int n = p->element->ndof, nt = p->ntab > 0 ? p->ntab : 1;
+    const size_t nn = (size_t)n * n;
+    double *q = malloc(n * sizeof(double)), *qd = malloc(n * sizeof(double)), *f = malloc(n * sizeof(double));
+    double *f1 = malloc(n * sizeof(double)), *fp[4] = {0}, *C = malloc(nn * sizeof(double));
+    double *Ks = malloc(nn * sizeof(double)), *G = malloc(nn * sizeof(double)), *X = malloc(nn * sizeof(double));
+    double *lq = malloc(W * n * sizeof(double)), *lqd = malloc(W * n * sizeof(double));
+    double *lt = malloc(W * (size_t)nt * sizeof(double)), *lv = malloc(W * 2 * sizeof(double));
+    double *lf = malloc(W * n * sizeof(double)), *lf2 = malloc(W * n * sizeof(double));
+    double *lK = malloc(W * nn * sizeof(double));
+    int ok = q && qd && f && f1 && C && Ks && G && X && lq && lqd && lt && lv && lf && lf2 && lK;
+    for (int k = 0; k < 4; ++k)
+        ok = ok && (fp[k] = malloc(n * sizeof(double))) != NULL;
+    if (ok) {
+        const double visc[2] = {0.3 * 1e7 * 1e-3 + 1.0, 0.2 * 1e7 * 1e-3 + 1.0};
+        const double off[4] = {2, 1, -1, -2};
+        memcpy(q, q0, n * sizeof(double));
+        for (int i = 0; i < n; ++i)
+            qd[i] = sc[i] * urand(r);
+        /* C = df/dqd (central differences of the force-only kernel: f is linear in qd);
+         * f = dD/dqd (D quadratic in qd: the 4-point difference is exact but for round-off) */
+        double D0 = p->viscous_force(q, qd, tab, visc, f);
+        p->viscous(q, qd, tab, visc, 1.0, 0.0, f1, C);
+        p->viscous(q, qd, tab, visc, 0.0, 1.0, f1, Ks);
+        const double fmx = fmax(maxabs(f, n), 1e-300), Cmax = fmax(maxabs(C, (int)nn), 1e-300);
+        double pw = 0.0;
+        for (int i = 0; i < n; ++i)
+            pw += f[i] * qd[i];
+        ev[1] = fmax(ev[1], fabs(pw - 2.0 * D0) / fmax(fabs(pw), 1e-300));   /* f . qd = 2 D */
+        for (int j = 0; j < n; ++j) {
+            const double h = 1e-3 * sc[j], v0 = qd[j];
+            double Dk[4];
+            for (int k = 0; k < 4; ++k) {
+                qd[j] = v0 + off[k] * h;
+                Dk[k] = p->viscous_force(q, qd, tab, visc, fp[k]);
+            }
+            qd[j] = v0;
+            const double dD = (-Dk[0] + 8 * Dk[1] - 8 * Dk[2] + Dk[3]) / (12 * h);
+            ev[1] = fmax(ev[1], fabs(f[j] - dD) / fmx);
+            for (int i = 0; i < n; ++i)
+                ev[0] = fmax(ev[0], fabs(C[i * n + j] - (fp[1][i] - fp[2][i]) / (2 * h)) / Cmax);
+        }
+        /* symmetry of C; force of viscous() = viscous_force(); gc C + gk K
+         * in one contraction = the two formed apart */
+        const double gc = 733.0, gk = 1.0;
+        p->viscous(q, qd, tab, visc, gc, gk, f1, X);
+        double Xmax = fmax(maxabs(X, (int)nn), 1e-300);
+        for (int i = 0; i < n; ++i) {
+            ev[4] = fmax(ev[4], fabs(f1[i] - f[i]) / fmx);
+            for (int j = 0; j < n; ++j) {
+                ev[3] = fmax(ev[3], fabs(C[i * n + j] - C[j * n + i]) / Cmax);
+                ev[4] = fmax(ev[4], fabs(X[i * n + j] - gc * C[i * n + j] - gk * Ks[i * n + j]) / Xmax);
+            }
+        }
+        /* K = df/dq (qd held) by 4-point differences of the force (f is cubic in q:
+         * exact but for round-off) */
+        p->viscous(q, qd, tab, visc, 0.0, 1.0, f1, Ks);
+        const double Kqmax = fmax(maxabs(Ks, (int)nn), 1e-300);
+        for (int j = 0; j < n; ++j) {
+            const double h = 1e-3 * sc[j], v0 = q[j];
+            for (int k = 0; k < 4; ++k) {
+                q[j] = v0 + off[k] * h;
+                p->viscous_force(q, qd, tab, visc, fp[k]);
+            }
+            q[j] = v0;
+            for (int i = 0; i < n; ++i) {
+                G[i * n + j] = (-fp[0][i] + 8 * fp[1][i] - 8 * fp[2][i] + fp[3][i]) / (12 * h);
+                ev[2] = fmax(ev[2], fabs(Ks[i * n + j] - G[i * n + j]) / Kqmax);
+            }
+        }
+        /* lane kernels: lanes with their own states, velocities and parameters
+         * (this element's table in every lane) against the one-element kernels */
+        if (p->viscous_lanes && p->viscous_force_lanes) {
+            for (int l = 0; l < W; ++l) {
+                for (int k = 0; k < n; ++k) {
+                    lq[k * W + l] = q0[k] + 1e-2 * sc[k] * urand(r);
+                    lqd[k * W + l] = sc[k] * urand(r);
+                }
+                for (int k = 0; k < p->ntab; ++k)
+                    lt[k * W + l] = tab[k];
+                for (int k = 0; k < 2; ++k)
+                    lv[k * W + l] = visc[k] * (1.0 + 0.1 * l);
+            }
+            p->viscous_force_lanes(lq, lqd, lt, lv, lf2);
+            p->viscous_lanes(lq, lqd, lt, lv, gc, gk, lf, lK);
+            for (int l = 0; l < W; ++l) {
+                double vl[2] = {lv[l], lv[W + l]};
+                for (int k = 0; k < n; ++k)
+                    q[k] = lq[k * W + l], qd[k] = lqd[k * W + l];
+                p->viscous(q, qd, tab, vl, gc, gk, f1, X);
+                double fm = fmax(maxabs(f1, n), 1e-300), Xm = fmax(maxabs(X, (int)nn), 1e-300);
+                for (int k = 0; k < n; ++k)
+                    ev[5] = fmax(ev[5], fmax(fabs(lf[k * W + l] - f1[k]), fabs(lf2[k * W + l] - f1[k])) / fm);
+                for (size_t k = 0; k < nn; ++k)
+                    ev[5] = fmax(ev[5], fabs(lK[k * W + l] - X[k]) / Xm);
+            }
+        } else {
+            ev[5] = -1.0;
+        }
+    }
+    free(q), free(qd), free(f), free(f1), free(C), free(Ks), free(G), free(X), free(lq), free(lqd);
+    free(lt), free(lv), free(lf), free(lf2), free(lK);
+    for (int k = 0; k < 4; ++k)
+        free(fp[k]);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     /* kernel_check [NSTATE [PAIR_SUBSTRING]] */
@@ -264,7 +392,10 @@ int main(int argc, char **argv)
             /* inextensible elements store no energy in a stretch: use force x length */
             double Uscale = fmax(Ueps / (eps * eps), fscale * geom[BK_GEOM_L]);
 
-            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_visc = 0, e_mom = 0;
+            double e_force = 0, e_tan = 0, e_sym = 0, e_con = 0, e_rigU = 0, e_rigf = 0, e_mom = 0;
+            double ev[NVCHECK] = {0};
+            for (int k = 0; k < NVCHECK; ++k)
+                ev[k] = p->viscous ? 0.0 : -1.0;
 
             for (int st = 0; st < NSTATE; ++st) {
                 random_rotation(&r, R, qr);
@@ -341,34 +472,19 @@ int main(int argc, char **argv)
                         }
                     }
                 }
-                /* Kelvin-Voigt: C = d f_v / d qd by central differences (f_v is linear in qd) */
-                if (p->viscous) {
-                    double visc[2] = {0.3 * mat[0] + 1.0, 0.2 * mat[0] + 1.0};
-                    double *qd = fp, *Cv = Kd, *Kv = K, *Cx = Kd2;
-                    for (int i = 0; i < n; ++i)
-                        qd[i] = sc[i] * urand(&r);
-                    p->viscous(q, qd, tab, visc, f, Cv, Kv);
-                    double Cmax = maxabs(Cv, n * n);
-                    for (int j = 0; j < n; ++j) {
-                        double hq = 1e-3 * sc[j], v0 = qd[j];
-                        qd[j] = v0 + hq;
-                        p->viscous(q, qd, tab, visc, fm, Cx, Kv);
-                        qd[j] = v0 - hq;
-                        p->viscous(q, qd, tab, visc, fp2, Cx, Kv);
-                        qd[j] = v0;
-                        for (int i = 0; i < n; ++i)
-                            e_visc = fmax(e_visc, fabs(Cv[i * n + j] - (fm[i] - fp2[i]) / (2 * hq)) / Cmax);
-                    }
-                }
+                /* Kelvin-Voigt damping (visc_check) */
+                if (p->viscous && !visc_check(p, q, tab, sc, &r, ev))
+                    return 3;
             }
             double e_lf = -1.0, e_lK = -1.0;
             if (p->force_lanes && p->force_tangent_lanes && !lane_check(p, geoms[ig], geoms[1 - ig], mat, sc, &r, &e_lf, &e_lK))
                 return 3;
             printf("pair=%s_%s_%s geom=%d states=%d fd_force=%.3e fd_tangent=%.3e sym=%.3e consist=%.3e "
-                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_moment=%.3e lanes_f=%.3e lanes_K=%.3e "
+                   "rigid_energy=%.3e rigid_force=%.3e fd_viscous=%.3e fd_dissipation=%.3e fd_visc_tangent=%.3e "
+                   "visc_sym=%.3e visc_consist=%.3e visc_lanes=%.3e fd_moment=%.3e lanes_f=%.3e lanes_K=%.3e "
                    "fscale=%.3e\n",
                    e->name, p->material, p->integration, ig, NSTATE, e_force, e_tan, e_sym, e_con,
-                   e_rigU, e_rigf, e_visc, e_mom, e_lf, e_lK, fscale);
+                   e_rigU, e_rigf, ev[0], ev[1], ev[2], ev[3], ev[4], ev[5], e_mom, e_lf, e_lK, fscale);
             if (!isfinite(e_force) || !isfinite(e_tan))
                 bad = 1;
             free(tab); free(q0); free(q); free(f); free(f2); free(K); free(Kd);

@@ -37,10 +37,17 @@ def check(exe, nstate):
     for d in rows:
         assert int(d["states"]) >= nstate
         checks = {"fd_force": 1e-6, "fd_tangent": 1e-6, "sym": 1e-14, "consist": 1e-12,
-                  "rigid_energy": 1e-10, "rigid_force": 1e-10, "fd_viscous": 1e-8, "fd_moment": 1e-8}
+                  "rigid_energy": 1e-10, "rigid_force": 1e-10, "fd_viscous": 1e-8, "fd_moment": 1e-8,
+                  "fd_dissipation": 1e-8, "fd_visc_tangent": 1e-6, "visc_sym": 1e-14, "visc_consist": 1e-12,
+                  "visc_lanes": 1e-11}
+        continuum = d["pair"].startswith("ancf3") and "_resultant_" not in d["pair"]
+        if continuum:             # every continuum pair has Kelvin-Voigt damping, lane kernels included
+            for k in ("fd_viscous", "fd_dissipation", "fd_visc_tangent", "visc_lanes"):
+                if not float(d[k]) >= 0:
+                    worst.append(f"{d['pair']} geometry {d['geom']}: {k} not checked ({d[k]})")
         for k, tol in checks.items():
             v = float(d[k])
-            if not v <= tol:
+            if not v <= tol:             # (-1: not applicable)
                 worst.append(f"{d['pair']} geometry {d['geom']}: {k} = {v:.3e} > {tol:.0e}")
         # lane kernels (BK_LANES elements per call) against the one-element kernels: round-off
         continuum = d["pair"].startswith("ancf3") and "_resultant_" not in d["pair"]

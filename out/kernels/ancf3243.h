@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:527f70e01619e80da256ddef89bf02f6b744272720accde0fef3fc7620761695
+ * input hash: sha256:3fa584b31412abae28a59c33569618e2d5a479c0d9105d0fc957a362397b1c57
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z
@@ -30,18 +30,37 @@ extern const bk_element bk_element_ancf3243;
 void ancf3243_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3243_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3243_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3243_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3243_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3243_full_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "sri": 12 points (full_order), 3 points (centreline); tab[210] */
 void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 15 points of "sri" (all parts, in order): inv[3 p + 0..2] */
 void ancf3243_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "sri" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3243_sri_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3243_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3243_sri_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3243_sri_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 1347 (653 add, 694 mul, 0 div, 0 call) operations. */
 void ancf3243_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3243_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower
+ * triangle), B[36] the entries (iJ) < (kL) of an antisymmetric tensor; and over
+ * BK_LANES elements. */
+void ancf3243_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);
+void ancf3243_contract_skew_lanes(const double *restrict Ask, const double *restrict t, double *restrict K);
 
 /* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:cdf8bd69c73b900346d76c4e20e0ac2acf6427d0e1e4509bff9a209160a720e4
+ * input hash: sha256:5a6566e0937e364bf0b5eb7bae3ba54f3ab976364ac66b9796460bc256a29924
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz
@@ -36,23 +36,49 @@ extern const bk_element bk_element_ancf3273;
 void ancf3273_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3273_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_full_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "reduced": 12 points (all); tab[252] */
 void ancf3273_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "reduced" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3273_reduced_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_reduced_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_reduced_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "sri": 27 points (full_order), 4 points (centreline); tab[651] */
 void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 31 points of "sri" (all parts, in order): inv[3 p + 0..2] */
 void ancf3273_sri_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "sri" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3273_sri_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_sri_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3273_sri_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3273_sri_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 6142 (2963 add, 3179 mul, 0 div, 0 call) operations. */
 void ancf3273_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3273_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower
+ * triangle), B[36] the entries (iJ) < (kL) of an antisymmetric tensor; and over
+ * BK_LANES elements. */
+void ancf3273_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);
+void ancf3273_contract_skew_lanes(const double *restrict Ask, const double *restrict t, double *restrict K);
 
 /* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

@@ -3,8 +3,8 @@
 #include "ancf3273.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
-#error "generated for runtime/bk_kernel.h version 6: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
+#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
 #endif
 
 /* Vector variants (glibc libmvec) of the libm functions the lane kernels call. */
@@ -6334,7 +6334,10 @@ const bk_pair bk_pair_ancf3273_arruda_boyce_full = {
     .force_lanes = ancf3273_arruda_boyce_full_force_lanes,
     .force_tangent_lanes = ancf3273_arruda_boyce_full_force_tangent_lanes,
     .nvisc = 2,
+    .viscous_force = ancf3273_full_viscous_force,
     .viscous = ancf3273_full_viscous,
+    .viscous_force_lanes = ancf3273_full_viscous_force_lanes,
+    .viscous_lanes = ancf3273_full_viscous_lanes,
     .invariants = ancf3273_full_invariants,
     .nsample = 3,
     .sample_xi = sample_xi_full,
@@ -6361,7 +6364,10 @@ const bk_pair bk_pair_ancf3273_arruda_boyce_reduced = {
     .force_lanes = ancf3273_arruda_boyce_reduced_force_lanes,
     .force_tangent_lanes = ancf3273_arruda_boyce_reduced_force_tangent_lanes,
     .nvisc = 2,
+    .viscous_force = ancf3273_reduced_viscous_force,
     .viscous = ancf3273_reduced_viscous,
+    .viscous_force_lanes = ancf3273_reduced_viscous_force_lanes,
+    .viscous_lanes = ancf3273_reduced_viscous_lanes,
     .invariants = ancf3273_reduced_invariants,
     .nsample = 3,
     .sample_xi = sample_xi_reduced,
@@ -6388,7 +6394,10 @@ const bk_pair bk_pair_ancf3273_arruda_boyce_sri = {
     .force_lanes = ancf3273_arruda_boyce_sri_force_lanes,
     .force_tangent_lanes = ancf3273_arruda_boyce_sri_force_tangent_lanes,
     .nvisc = 2,
+    .viscous_force = ancf3273_sri_viscous_force,
     .viscous = ancf3273_sri_viscous,
+    .viscous_force_lanes = ancf3273_sri_viscous_force_lanes,
+    .viscous_lanes = ancf3273_sri_viscous_lanes,
     .invariants = ancf3273_sri_invariants,
     .nsample = 3,
     .sample_xi = sample_xi_sri,

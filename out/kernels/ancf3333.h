@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:876c6fd5ddf109bacfd6e6fd963af01494b31c19a214f5fb70e15ad97547b59c
+ * input hash: sha256:5b6fce932b42d3c496ce151c2534dfcf42bff5e79e9cc93bfe140722d9a0716b
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z
@@ -31,13 +31,25 @@ extern const bk_element bk_element_ancf3333;
 void ancf3333_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3333_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3333_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3333_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3333_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3333_full_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 2028 (1017 add, 1011 mul, 0 div, 0 call) operations. */
 void ancf3333_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3333_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower
+ * triangle), B[36] the entries (iJ) < (kL) of an antisymmetric tensor; and over
+ * BK_LANES elements. */
+void ancf3333_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);
+void ancf3333_contract_skew_lanes(const double *restrict Ask, const double *restrict t, double *restrict K);
 
 /* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:f7c29c11bc9ca2d8704a7aff7f707f98c0994b803d0301ddefc85ba9d1eda8ef
+ * input hash: sha256:b57772e5f1ce9ac577becc01b1343b9838a28ac5cf7004c377480de842f0bb92
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz
@@ -40,18 +40,37 @@ extern const bk_element bk_element_ancf3363;
 void ancf3363_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 27 points of "full" (all parts, in order): inv[3 p + 0..2] */
 void ancf3363_full_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "full" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3363_full_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3363_full_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3363_full_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3363_full_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* integration "reduced": 12 points (all); tab[408] */
 void ancf3363_reduced_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 /* J, I1, I2 of C = F^T F at the 12 points of "reduced" (all parts, in order): inv[3 p + 0..2] */
 void ancf3363_reduced_invariants(const double *restrict q, const double *restrict tab, double *restrict inv);
-void ancf3363_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f, double *restrict C, double *restrict K);
+/* Kelvin-Voigt damping of "reduced" (bk_pair.viscous_force, viscous, and their lane
+ * kernels): the force (and the Rayleigh dissipation function), and the force with
+ * K = gc C + gk K_q (C = df/dqd, K_q = df/dq): per point one contraction of its
+ * symmetric part and one of its antisymmetric part. */
+double ancf3363_reduced_viscous_force(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3363_reduced_viscous(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
+void ancf3363_reduced_viscous_force_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double *restrict f);
+void ancf3363_reduced_viscous_lanes(const double *restrict q, const double *restrict qd, const double *restrict tab, const double *restrict visc, double gc, double gk, double *restrict f, double *restrict K);
 /* K (upper triangle) += sum over node pairs of g_a g_b : A for one quadrature point;
  * A[45] = the weighted dP/dF entries (iJ) <= (kL), t = the point's table row.
  * 11400 (5670 add, 5730 mul, 0 div, 0 call) operations. */
 void ancf3363_tangent_contract(const double *restrict A, const double *restrict t, double *restrict K);
 /* The same for BK_LANES = 8 elements, every array in lane order (runtime/bk_kernel.h, "Lane kernels"). */
 void ancf3363_tangent_contract_lanes(const double *restrict A, const double *restrict t, double *restrict K);
+/* Antisymmetric part: K[c, r] += sum over node pairs of g_a g_b : B for r < c (the lower
+ * triangle), B[36] the entries (iJ) < (kL) of an antisymmetric tensor; and over
+ * BK_LANES elements. */
+void ancf3363_contract_skew(const double *restrict Ask, const double *restrict t, double *restrict K);
+void ancf3363_contract_skew_lanes(const double *restrict Ask, const double *restrict t, double *restrict K);
 
 /* The lane kernels in whole 512-bit registers where the target has them (gen/emit.py). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)

@@ -3,8 +3,8 @@
 #include "ancf3363.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
-#error "generated for runtime/bk_kernel.h version 6: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
+#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3363_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)
@@ -2222,7 +2222,10 @@ const bk_pair bk_pair_ancf3363_svk_full = {
     .force_lanes = ancf3363_svk_full_force_lanes,
     .force_tangent_lanes = ancf3363_svk_full_force_tangent_lanes,
     .nvisc = 2,
+    .viscous_force = ancf3363_full_viscous_force,
     .viscous = ancf3363_full_viscous,
+    .viscous_force_lanes = ancf3363_full_viscous_force_lanes,
+    .viscous_lanes = ancf3363_full_viscous_lanes,
     .invariants = ancf3363_full_invariants,
     .green_strain_min = -0.2,
     .green_strain_max = 0.5,
@@ -2251,7 +2254,10 @@ const bk_pair bk_pair_ancf3363_svk_reduced = {
     .force_lanes = ancf3363_svk_reduced_force_lanes,
     .force_tangent_lanes = ancf3363_svk_reduced_force_tangent_lanes,
     .nvisc = 2,
+    .viscous_force = ancf3363_reduced_viscous_force,
     .viscous = ancf3363_reduced_viscous,
+    .viscous_force_lanes = ancf3363_reduced_viscous_force_lanes,
+    .viscous_lanes = ancf3363_reduced_viscous_lanes,
     .invariants = ancf3363_reduced_invariants,
     .green_strain_min = -0.2,
     .green_strain_max = 0.5,

@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/rod_kinematics.py, gen/rod_energy.py, gen/rod_frame.py, gen/rod_inertia.py, gen/chain.py, gen/emit_rod_shared.py, gen/emit_resultant.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:6daecd2d8b022f8cac0d7d7a03ac6c96cafeeca338fbb945baab5291072dc57b
+ * input hash: sha256:c958bd26d1987463b7cf4a14634d0eec7403c79cb16d843ed44e02068951d0a6
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/rod_kinematics.py, gen/rod_energy.py, gen/rod_frame.py, gen/rod_inertia.py, gen/chain.py, gen/emit_rod_shared.py, gen/emit_resultant.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:9df6ebd6fffdf957f322eef3d292d0b1666ef11a71d6a262f82706fc9c5b4156
+ * input hash: sha256:d4483e6513221a773fb1634bf7b574f3158162b793988e1cf60da1c40dfdd1c8
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

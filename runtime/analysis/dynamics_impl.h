@@ -20,6 +20,12 @@ typedef struct dyn_work {
     double *fint, *fext, *fgrav, *Mx, *tmp;
     double *r, *dx, *Ax;                       /* the nonlinear solver's buffers (not owned) */
     double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */
+    /* Kelvin-Voigt damping BK_LANES elements per call (bk_pair.viscous_lanes), lane
+     * order: coordinates, velocities, tables, parameters, force, Newton-matrix part
+     * (64-byte aligned; NULL when no element of the model takes them); vtab holds
+     * every lane group's tables, made once */
+    double *vq, *vqd, *vtab, *vvisc, *vf, *vK;
+    size_t vnt;               /* table entries per lane of vtab's groups (one run's tables each) */
     int *Mp, *Mi;             /* the mass matrix's nonzeros of the free block, compressed columns */
     double *Mv;
     int mass_gen;             /* the pattern version (system.h pattern_gen) Mx is in */

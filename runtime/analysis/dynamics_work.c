@@ -26,6 +26,82 @@ void bk_dyn_work_free(dyn_work *w)
     }
     free(w->Mp), free(w->Mi), free(w->Mv);
     w->Mp = w->Mi = NULL, w->Mv = NULL;
+    double **v[] = {&w->vq, &w->vqd, &w->vtab, &w->vvisc, &w->vf, &w->vK};
+    for (size_t i = 0; i < sizeof v / sizeof *v; ++i) {
+        free(*v[i]);
+        *v[i] = NULL;
+    }
+}
+
+/* Element e's Kelvin-Voigt damping goes BK_LANES per call: its pair has the
+ * lane kernels, its material the pair's parameters, and it has no rotary
+ * inertia (whose terms would then come before the damping's). */
+static int visc_lane_elem(const bk_model *m, int e)
+{
+    const bk_pair *p = m->pairs[m->elems[e].pair];
+    const bk_mat *mat = &m->mats[m->elems[e].mat];
+    return p->viscous_lanes && p->viscous_force_lanes && mat->nvisc > 0 && mat->nvisc == p->nvisc &&
+           !p->element->rotary;
+}
+
+/* Elements e .. e+n-1 go in one lane-kernel call: n, the run of up to BK_LANES
+ * elements of e's pair that visc_lane_elem takes (1 where it takes none). */
+static int visc_lane_run(const bk_model *m, int e)
+{
+    int n = 1;
+    if (visc_lane_elem(m, e))
+        while (n < BK_LANES && e + n < m->nelem && m->elems[e + n].pair == m->elems[e].pair &&
+               visc_lane_elem(m, e + n))
+            ++n;
+    return n;
+}
+
+/* n doubles aligned to 64 bytes (the lane kernels' vector loads), zeroed. */
+static double *alloc_lanes(size_t n)
+{
+    size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
+    double *x = aligned_alloc(64, bytes ? bytes : 64);
+    if (x)
+        memset(x, 0, bytes ? bytes : 64);
+    return x;
+}
+
+static int visc_lanes_alloc(dyn_work *w, const bk_model *m)
+{
+    size_t nd = 0, nt = 0;
+    for (int e = 0; e < m->nelem; ++e)
+        if (visc_lane_elem(m, e)) {
+            const bk_pair *p = m->pairs[m->elems[e].pair];
+            if ((size_t)p->element->ndof > nd)
+                nd = (size_t)p->element->ndof;
+            if ((size_t)p->ntab > nt)
+                nt = (size_t)p->ntab;
+        }
+    if (nd == 0)
+        return 0;
+    const size_t L = BK_LANES;
+    /* the lane groups' tables, lane-ordered once (constant through the run): group
+     * g (the g-th run of visc_lane_run()) at vtab + g L nt */
+    size_t ng = 0;
+    for (int e = 0; e < m->nelem; e += visc_lane_run(m, e))
+        ng += visc_lane_elem(m, e) != 0;
+    w->vtab = alloc_lanes(ng * L * nt);
+    w->vnt = nt;
+    if (w->vtab)
+        for (int e = 0, g = 0; e < m->nelem; e += visc_lane_run(m, e)) {
+            if (!visc_lane_elem(m, e))
+                continue;
+            const int n = visc_lane_run(m, e), ntab = m->pairs[m->elems[e].pair]->ntab;
+            double *vt = w->vtab + (size_t)g++ * L * nt;
+            for (size_t l = 0; l < L; ++l) {
+                const double *tab = m->tabs[m->elems[e + ((int)l < n ? (int)l : n - 1)].geom];
+                for (int k = 0; k < ntab; ++k)
+                    vt[k * L + l] = tab[k];
+            }
+        }
+    w->vq = alloc_lanes(L * nd), w->vqd = alloc_lanes(L * nd);
+    w->vvisc = alloc_lanes(L * BK_MAT_MAXPARAM), w->vf = alloc_lanes(L * nd), w->vK = alloc_lanes(L * nd * nd);
+    return w->vq && w->vqd && w->vtab && w->vvisc && w->vf && w->vK ? 0 : -1;
 }
 
 int bk_dyn_work_alloc(dyn_work *w, const bk_system *s)
@@ -54,6 +130,8 @@ int bk_dyn_work_alloc(dyn_work *w, const bk_system *s)
     w->Mi = malloc((nnz ? nnz : 1) * sizeof *w->Mi);
     w->Mv = dalloc(nnz);
     w->mass_gen = s->pattern_gen;
+    if (visc_lanes_alloc(w, m) != 0)
+        return -1;
     return w->Mp && w->Mi && w->Mv ? 0 : -1;
 }
 
@@ -146,35 +224,96 @@ int *bk_dyn_free_dofs(const bk_system *s)
     return d;
 }
 
+/* Kelvin-Voigt damping of the elements e0 .. e0+n-1 (n <= BK_LANES, one pair,
+ * visc_lane_elem) in one lane-kernel call: the force into fint and its power into
+ * w->p_visc; with Ax, gp C + kp df/dq (bk_pair.viscous_lanes).  Unused
+ * lanes repeat the last element (valid inputs, outputs ignored).  Every element's
+ * terms are added in element order, as one element at a time would. */
+static void visc_lanes(const bk_system *s, dyn_work *w, int e0, int n, const double *vtab, const double *q,
+                       double gp, double kp, double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    const bk_pair *p = m->pairs[m->elems[e0].pair];
+    const int nd = p->element->ndof, nv = p->nvisc, L = BK_LANES;
+    double *restrict vq = w->vq, *restrict vqd = w->vqd;
+    for (int l = 0; l < L; ++l) {
+        const bk_elem *el = &m->elems[e0 + (l < n ? l : n - 1)];
+        const int *d = el->dofs;
+        const double *visc = m->mats[el->mat].visc;
+        for (int k = 0; k < nd; ++k) {
+            vq[k * L + l] = q[d[k]];
+            vqd[k * L + l] = w->qd[d[k]];
+        }
+        for (int k = 0; k < nv; ++k)
+            w->vvisc[k * L + l] = visc[k];
+    }
+    const int matrix = Ax && (gp != 0.0 || kp != 0.0);
+    if (matrix)
+        p->viscous_lanes(vq, vqd, vtab, w->vvisc, gp, kp, w->vf, w->vK);
+    else
+        p->viscous_force_lanes(vq, vqd, vtab, w->vvisc, w->vf);
+    double pv = w->p_visc;
+    for (int l = 0; l < n; ++l) {
+        const int e = e0 + l, *d = m->elems[e].dofs;
+        for (int k = 0; k < nd; ++k) {
+            const double v = w->vf[k * L + l];
+            fint[d[k]] += v;
+            pv += v * vqd[k * L + l];
+        }
+        w->p_visc = pv;
+        if (matrix) {
+            const int *sl = s->eslot + s->eslot_off[e];
+            for (int k = 0; k < nd * nd; ++k) {
+                const double v = w->vK[(size_t)k * L + l];
+                if (sl[k] >= 0 && v != 0.0)
+                    Ax[sl[k]] += v;
+            }
+        }
+    }
+}
+
 /* Velocity- and acceleration-dependent element forces: Kelvin-Voigt damping and
  * rotary inertia.  Adds to fint and, with Ax, their contributions
- * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy. */
+ * gp C + bp M + kp K to the Newton matrix; returns the rotary kinetic energy.
+ * The damping's matrix part gp C + kp df/dq comes from one kernel call
+ * (bk_pair.viscous), and only when Ax is given and a factor is not zero; else
+ * only the force is evaluated (bk_pair.viscous_force), BK_LANES elements per
+ * call where the pair offers lane kernels. */
 double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
                                double kp, double *fint, double *Ax)
 {
     const bk_model *m = s->m;
     double Trot = 0.0;
     w->p_visc = 0.0;
-    for (int e = 0; e < m->nelem; ++e) {
+    for (int e = 0, g = 0; e < m->nelem;) {
+        if (w->vq && visc_lane_elem(m, e)) {
+            const int n = visc_lane_run(m, e);
+            visc_lanes(s, w, e, n, w->vtab + (size_t)g++ * BK_LANES * w->vnt, q, gp, kp, fint, Ax);
+            e += n;
+            continue;
+        }
         const bk_elem *el = &m->elems[e];
         const bk_pair *p = m->pairs[el->pair];
         const bk_element *et = p->element;
         const bk_mat *mat = &m->mats[el->mat];
         int visc = mat->nvisc > 0 && p->viscous != NULL;
-        if (!visc && !et->rotary)
+        if (!visc && !et->rotary) {
+            ++e;
             continue;
+        }
         bk_gather(m, e, q, w->qe);
         bk_gather(m, e, w->qd, w->qde);
         bk_gather(m, e, w->qdd, w->qdde);
         if (visc) {
-            p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe, w->K1, w->K2);
+            if (Ax && (gp != 0.0 || kp != 0.0)) {
+                p->viscous(w->qe, w->qde, m->tabs[el->geom], mat->visc, gp, kp, w->fe, w->K1);
+                bk_scatter_matrix(s, e, w->K1, 1.0, Ax);
+            } else {
+                p->viscous_force(w->qe, w->qde, m->tabs[el->geom], mat->visc, w->fe);
+            }
             bk_scatter(m, e, w->fe, 1.0, fint);
             for (int i = 0; i < et->ndof; ++i)
                 w->p_visc += w->fe[i] * w->qde[i];
-            if (Ax) {
-                bk_scatter_matrix(s, e, w->K1, gp, Ax);
-                bk_scatter_matrix(s, e, w->K2, kp, Ax);
-            }
         }
         if (et->rotary) {
             double T = 0.0;
@@ -187,6 +326,7 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
                 bk_scatter_matrix(s, e, w->K3, mat->rho * kp, Ax);
             }
         }
+        ++e;
     }
     return Trot;
 }

@@ -255,7 +255,7 @@ static void full_residual(bk_forces *f, bk_system *s, double x, const double *q,
             bk_scatter(m, e, fe, 1.0, f->res);
         }
         if (mat->nvisc > 0 && p->viscous) {
-            p->viscous(qe, qde, m->tabs[el->geom], mat->visc, fe, K1, K2);
+            p->viscous_force(qe, qde, m->tabs[el->geom], mat->visc, fe);
             bk_scatter(m, e, fe, 1.0, f->res);
         }
         if (et->rotary) {

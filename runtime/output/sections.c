@@ -146,7 +146,7 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
                 Qe[j] = qdde[j] + ra * qde[j];           /* (Qe is free until the viscous forces) */
             bk_forces_rows_times(ne, Me, Qe, ge, 0);
             if (mat->nvisc > 0 && p->viscous) {
-                p->viscous(qe, qde, m->tabs[el->geom], mat->visc, Qe, K1, K2);
+                p->viscous_force(qe, qde, m->tabs[el->geom], mat->visc, Qe);
                 for (int i = 0; i < ne; ++i)
                     ge[i] += Qe[i];
             }
