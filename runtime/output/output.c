@@ -45,6 +45,7 @@ static void spent_flush(bk_output *o, double t0)
         if (o->rq.w)
             bk_rowqueue_submit(&o->rq, 1);
         bk_tables_flush(&o->tables, queued, &o->rq);
+        bk_h5_flush(&o->h5);              /* (a failure is reported by bk_output_close_tables) */
         now = bk_clock_s();
     }
     o->t_output += now - t0;
@@ -60,8 +61,7 @@ static void rows_to_writer(bk_output *o)
     /* the tables written with bk_row (the mode tables are not) */
     FILE *list[BK_ROWQ_TABLES];
     int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
-    if (bk_rowqueue_start(&o->rq, &o->vtk.fw, list, n) == 0)
-        o->forces.rq = &o->rq;
+    bk_rowqueue_start(&o->rq, &o->vtk.fw, list, n);
 }
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
@@ -102,6 +102,12 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         bk_eval_sensor(m, m->q0, &m->sensors[k], o->sensor_p0 + 3 * k, NULL);
     if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
         return -1;
+    o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
+    if (m->output.hdf5) {
+        if (bk_h5_open(&o->h5, m, dir, &o->tables, err) != 0)
+            return -1;
+        o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
+    }
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
     o->vtk.ssec = o->forces.ssec;
@@ -173,6 +179,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
     double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, o->sys, step, t, q);
     rows_to_writer(o);
+    bk_h5_state(&o->h5, step, t, q);
     if (!o->sensors) {
         spent(o, t0);
         return;
@@ -203,6 +210,7 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
 {
     double t0 = bk_clock_s();
     o->sys = s;
+    bk_h5_velocity(&o->h5, step, qd);
     if (o->forces_calls == 0)            /* the interactions' tables, at the first output step */
         for (int k = 0; k < s->ninter; ++k) {
             const bk_interaction *it = &s->inter[k];
@@ -459,8 +467,8 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
     bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */
-    o->forces.rq = NULL;
-    return bk_tables_close(&o->tables, o->dir, err);
+    int h5 = bk_h5_close(&o->h5, err);   /* (its rows were mirrored as they were given) */
+    return bk_tables_close(&o->tables, o->dir, err) != 0 || h5 != 0 ? -1 : 0;
 }
 
 void bk_output_close(bk_output *o)

@@ -1,5 +1,6 @@
 /* output.h -- result files of a run: sensors.csv (one row per output step and
  * sensor, flushed as it is written so an interrupted run keeps its results),
+ * results.h5 (h5.h: every output step's q, and every table's rows),
  * summary.json (written at the end, also when the solve failed) and, for modal
  * analyses, modes.csv, mode_sensors.csv and the mode files of vtk.h. */
 #ifndef BK_OUTPUT_H
@@ -8,6 +9,7 @@
 #include <stdio.h>
 
 #include "output/forces.h"
+#include "output/h5.h"
 #include "output/run_info.h"
 #include "base/tables.h"
 #include "model/model.h"
@@ -38,6 +40,7 @@ typedef struct bk_output {
     int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
     const bk_system *sys;    /* the system of the last bk_output_forces: its interactions add to the frames */
     bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
+    bk_h5 h5;                /* results.h5 (h5.h; output.hdf5): the states and a mirror of the tables */
 } bk_output;
 
 
