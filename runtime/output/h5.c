@@ -12,8 +12,11 @@
 
 _Static_assert(sizeof(hid_t) == sizeof(bk_h5_id), "hid_t is not 64 bits: HDF5 older than 1.10");
 
-#define CHUNK_ROWS 1024         /* rows of a table column's chunk */
-#define CHUNK_BYTES (256 << 10) /* the most bytes of a chunk of /q */
+/* Chunks of about CHUNK_BYTES: a chunk is made (zeroed, written whole) as soon
+ * as a row of it is, so a short run's file and time stay small with small
+ * chunks, and a long run's writes are a chunk or more at a time. */
+#define CHUNK_BYTES (32 << 10)
+#define CHUNK_ROWS(rowbytes) ((hsize_t)fmax(1.0, floor((double)CHUNK_BYTES / (double)(rowbytes))))
 
 /* The first failure is kept (reported by bk_h5_close). */
 static int fail(bk_h5 *h, const char *what)
@@ -213,51 +216,58 @@ out:
     return rc;
 }
 
-/* ---- the tables' mirror (csvrow.h bk_rowsink) ---- */
+/* ---- the tables' mirror (csvrow.h bk_rowsink), on the solve thread ---- */
 
 static size_t cell_size(int type)
 {
     return type == 3 ? BK_H5_STR : 8;
 }
 
-/* Room for one more row in t (its columns' buffers grow to BK_H5_ROWS). */
+/* Room for one more row of t in the set being filled: its buffer grows to
+ * BK_H5_ROWS rows, then the set is handed over.  Before the first row's types
+ * are known a row takes the most room a row can (every cell a string). */
 static int table_room(bk_h5 *h, bk_h5_table *t)
 {
-    if (t->nbuf < t->cap)
+    if (t->nbuf[h->cur] < t->cap[h->cur])
         return 0;
-    if (t->cap >= BK_H5_ROWS && bk_h5_flush(h) == 0 && t->nbuf < t->cap)
-        return 0;
-    int cap = t->cap ? 2 * t->cap : 64;
-    for (int c = 0; c < t->ncol; ++c) {
-        void *b = realloc(t->col[c].buf, (size_t)cap * BK_H5_STR);   /* (room for any type) */
-        if (!b)
-            return fail(h, "out of memory");
-        t->col[c].buf = b;
+    if (t->cap[h->cur] >= BK_H5_ROWS) {
+        bk_h5_flush(h);
+        if (t->nbuf[h->cur] < t->cap[h->cur])
+            return 0;
     }
-    t->cap = cap;
+    const int k = h->cur;
+    int cap = t->cap[k] ? 2 * t->cap[k] : 64;
+    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
+    if (!b) {
+        h->oom = 1;
+        return -1;
+    }
+    t->buf[k] = b;
+    t->cap[k] = cap;
     return 0;
 }
 
-static void *sink_begin(void *ctx, FILE *fp)
+/* Waits until the thread has done everything handed over. */
+static void settle_thread(bk_h5 *h)
 {
-    bk_h5 *h = ctx;
-    if (!h->open || h->failed)
-        return NULL;
-    for (int k = 0; k < h->ntab; ++k)
-        if (h->tab[k].fp == fp) {
-            bk_h5_table *t = &h->tab[k];
-            if (t->ncol == 0 || table_room(h, t) != 0)
-                return NULL;
-            t->field = 0;
-            return t;
+    for (int k = 0; k < 2; ++k)
+        if (h->ticket[k] > 0) {
+            bk_filewriter_wait(&h->fw, h->ticket[k]);
+            h->ticket[k] = 0;
         }
-    /* a table not seen yet: its name and columns from the registry */
-    const bk_table *rt = bk_tables_of(h->tables, fp);
+}
+
+/* A table seen for the first time: its name and columns from the registry
+ * (the thread is idle meanwhile: it reads the list of tables). */
+static bk_h5_table *new_table(bk_h5 *h, FILE *fp)
+{
+    settle_thread(h);
     if (h->ntab == h->captab) {
         int cap = h->captab ? 2 * h->captab : 8;
         bk_h5_table *nt = realloc(h->tab, (size_t)cap * sizeof *nt);
         if (!nt) {
-            fail(h, "out of memory");
+            h->oom = 1;
             return NULL;
         }
         h->tab = nt;
@@ -266,8 +276,9 @@ static void *sink_begin(void *ctx, FILE *fp)
     bk_h5_table *t = &h->tab[h->ntab++];
     memset(t, 0, sizeof *t);
     t->fp = fp;
+    const bk_table *rt = bk_tables_of(h->tables, fp);
     if (!rt || !rt->header)
-        return NULL;                      /* (ncol 0: never mirrored) */
+        return t;                         /* (ncol 0: never mirrored) */
     snprintf(t->name, sizeof t->name, "%s", rt->name);
     char *dot = strstr(t->name, ".csv");
     if (dot)
@@ -277,8 +288,8 @@ static void *sink_begin(void *ctx, FILE *fp)
         ncol += *p == ',';
     t->col = calloc((size_t)ncol, sizeof *t->col);
     if (!t->col) {
-        fail(h, "out of memory");
-        return NULL;
+        h->oom = 1;
+        return t;
     }
     const char *p = rt->header;
     for (int c = 0; c < ncol; ++c) {
@@ -287,73 +298,209 @@ static void *sink_begin(void *ctx, FILE *fp)
         p += len + (p[len] == ',');
     }
     t->ncol = ncol;
-    if (table_room(h, t) != 0)
-        return NULL;
     return t;
 }
 
-/* The cell of the row being given in column t->field, set to its type's
- * blank; NULL past the last column.  type: of the value given. */
-static void *cell(bk_h5_table *t, int type)
+static void *sink_begin(void *ctx, FILE *fp)
+{
+    bk_h5 *h = ctx;
+    if (!h->open)
+        return NULL;
+    bk_h5_table *t = NULL;
+    for (int k = 0; k < h->ntab && !t; ++k)
+        if (h->tab[k].fp == fp)
+            t = &h->tab[k];
+    if (!t && !(t = new_table(h, fp)))
+        return NULL;
+    if (t->ncol == 0 || table_room(h, t) != 0)
+        return NULL;
+    t->field = 0;
+    t->row = t->buf[h->cur] + (size_t)t->nbuf[h->cur] * t->stride;   /* (stride 0 before the first row) */
+    t->set = h->cur;
+    return t;
+}
+
+/* Column c's type set (the first row's) and its offset in a row. */
+static void settle(bk_h5_table *t, int c, int type)
+{
+    bk_h5_col *col = &t->col[c];
+    if (col->type)
+        return;
+    col->type = type;
+    col->off = c ? t->col[c - 1].off + cell_size(t->col[c - 1].type) : 0;
+    if (c == t->ncol - 1)
+        t->rowbytes = col->off + cell_size(type);
+}
+
+static void blank(bk_h5_table *t, int c)
+{
+    bk_h5_col *col = &t->col[c];
+    unsigned char *b = t->row + col->off;
+    if (col->type == 1) {
+        double v = NAN;
+        memcpy(b, &v, 8);
+    } else if (col->type == 2)
+        memset(b, 0, 8);
+    else
+        memset(b, 0, BK_H5_STR);
+}
+
+/* The cell of the row being given in the next column for a value of this
+ * type; NULL (the cell blank) past the last column or when the column's type
+ * (its first row's) is another. */
+static unsigned char *cell(bk_h5_table *t, int type)
 {
     if (t->field >= t->ncol)
         return NULL;
-    bk_h5_col *c = &t->col[t->field++];
-    if (c->type == 0)
-        c->type = type;
-    if (c->type != type) {
-        /* another type than the column's first row: a blank cell */
-        void *b = (char *)c->buf + (size_t)t->nbuf * cell_size(c->type);
-        if (c->type == 1)
-            *(double *)b = NAN;
-        else if (c->type == 2)
-            *(int64_t *)b = 0;
-        else
-            memset(b, 0, BK_H5_STR);
+    const int c = t->field++;
+    settle(t, c, type);
+    if (t->col[c].type != type) {
+        blank(t, c);
         return NULL;
     }
-    return (char *)c->buf + (size_t)t->nbuf * cell_size(type);
+    return t->row + t->col[c].off;
 }
 
 static void sink_num(void *tab, double v)
 {
-    double *p = cell(tab, 1);
+    unsigned char *p = cell(tab, 1);
     if (p)
-        *p = v;
+        memcpy(p, &v, 8);
 }
 
 static void sink_int(void *tab, long v)
 {
-    int64_t *p = cell(tab, 2);
+    unsigned char *p = cell(tab, 2);
+    int64_t w = v;
     if (p)
-        *p = v;
+        memcpy(p, &w, 8);
 }
 
 static void sink_str(void *tab, const char *s)
 {
-    char *p = cell(tab, 3);
+    unsigned char *p = cell(tab, 3);
     if (p)
-        strncpy(p, s, BK_H5_STR);     /* null-padded, cut at 64 bytes */
+        strncpy((char *)p, s, BK_H5_STR);     /* null-padded, cut at 64 bytes */
 }
 
 static void sink_end(void *tab)
 {
     bk_h5_table *t = tab;
-    /* a short row: the rest blank (a column without a type yet: float64) */
-    while (t->field < t->ncol) {
-        bk_h5_col *c = &t->col[t->field];
-        cell(t, c->type ? c->type : 1);
-        if (c->type == 1)
-            ((double *)c->buf)[t->nbuf] = NAN;
-        else if (c->type == 2)
-            ((int64_t *)c->buf)[t->nbuf] = 0;
-        else
-            memset((char *)c->buf + (size_t)t->nbuf * BK_H5_STR, 0, BK_H5_STR);
+    for (; t->field < t->ncol; ++t->field) {   /* a short row: the rest blank (no type yet: float64) */
+        settle(t, t->field, 1);
+        blank(t, t->field);
     }
-    t->nbuf++;
+    if (t->stride == 0)                        /* the first row: its layout is every row's */
+        t->stride = t->rowbytes;
+    t->nbuf[t->set]++;
 }
 
-/* ---- the file ---- */
+/* ---- the thread: every HDF5 call ---- */
+
+static void make_file(bk_h5 *h)
+{
+    const bk_model *m = h->m;
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);       /* failures are reported by return codes, once */
+    hid_t f = H5Fcreate(h->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0) {
+        fail(h, errno ? strerror(errno) : "HDF5 cannot create it");
+        return;
+    }
+    h->file = f;
+    const hsize_t nd = (hsize_t)m->ndof;
+    hid_t tg = H5Gcreate2(f, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    h->tables_group = tg >= 0 ? tg : 0;
+    int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
+             attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&
+             attr_str(f, "time_name", bk_model_in_time(m) ? "time" : "load_factor") == 0 &&
+             attr_str(f, "units", "SI: m, kg, s, N, Pa, J; time in s; load factor 0 to 1; angles in rad "
+                                  "unless a column says deg") == 0 &&
+             attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0 &&
+             (h->ds_step = make_dataset(f, "step", H5T_STD_I64LE, 0, CHUNK_ROWS(8))) != 0 &&
+             (h->ds_time = make_dataset(f, "time", H5T_IEEE_F64LE, 0, CHUNK_ROWS(8))) != 0 &&
+             (h->ds_q = make_dataset(f, "q", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0 &&
+             (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0) &&
+             H5Fflush(f, H5F_SCOPE_LOCAL) >= 0;
+    if (!ok)
+        fail(h, "HDF5 failed to lay out the file");
+}
+
+static void write_set(bk_h5 *h, int k)
+{
+    if (h->failed || !h->file)
+        return;
+    hsize_t nd = (hsize_t)h->ndof, n = (hsize_t)h->nbuf[k], have = (hsize_t)h->nstate;
+    if (append(h->ds_step, H5T_NATIVE_LONG, have, n, 0, h->step[k]) != 0 ||
+        append(h->ds_time, H5T_NATIVE_DOUBLE, have, n, 0, h->time[k]) != 0 ||
+        append(h->ds_q, H5T_NATIVE_DOUBLE, have, n, nd, h->q[k]) != 0 ||
+        (h->with_qd && append(h->ds_qd, H5T_NATIVE_DOUBLE, have, n, nd, h->qd[k]) != 0)) {
+        fail(h, "HDF5 failed to append the states");
+        return;
+    }
+    h->nstate += (long)n;
+    hid_t s64 = str_type();
+    if (s64 < 0) {
+        fail(h, "HDF5 failed to make a string type");
+        return;
+    }
+    for (int j = 0; j < h->ntab; ++j) {
+        bk_h5_table *t = &h->tab[j];
+        if (t->ncol == 0 || t->nbuf[k] == 0)
+            continue;
+        if (!t->ds) {
+            /* the row's compound type: a member per column, named by the header */
+            hid_t ct = H5Tcreate(H5T_COMPOUND, t->rowbytes);
+            int ok = ct >= 0;
+            for (int c = 0; c < t->ncol && ok; ++c)
+                ok = H5Tinsert(ct, t->col[c].name, t->col[c].off,
+                               t->col[c].type == 1 ? H5T_NATIVE_DOUBLE : t->col[c].type == 2 ? H5T_NATIVE_INT64 : s64)
+                     >= 0;
+            if (ok && (t->ds = make_dataset(h->tables_group, t->name, ct, 0, CHUNK_ROWS(t->rowbytes))) != 0)
+                t->type = ct;
+            else if (ct >= 0)
+                H5Tclose(ct);
+        }
+        if (!t->ds || append(t->ds, t->type, (hsize_t)t->nrow, (hsize_t)t->nbuf[k], 0, t->buf[k]) != 0) {
+            fail(h, "HDF5 failed to append a table's rows");
+            break;
+        }
+        t->nrow += t->nbuf[k];
+    }
+    H5Tclose(s64);
+    if (!h->failed && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
+        fail(h, "HDF5 failed to flush the file");
+}
+
+static void close_file(bk_h5 *h)
+{
+    hid_t ids[] = {h->ds_step, h->ds_time, h->ds_q, h->ds_qd, h->tables_group};
+    for (size_t k = 0; k < sizeof ids / sizeof *ids; ++k)
+        if (ids[k] > 0)
+            H5Oclose(ids[k]);
+    for (int k = 0; k < h->ntab; ++k) {
+        if (h->tab[k].ds > 0)
+            H5Dclose(h->tab[k].ds);
+        if (h->tab[k].type > 0)
+            H5Tclose(h->tab[k].type);
+    }
+    if (h->file > 0 && H5Fclose(h->file) < 0)
+        fail(h, "HDF5 failed to close the file");
+    h->file = 0;
+}
+
+static void run_job(const void *arg, FILE *unused)
+{
+    (void)unused;
+    const bk_h5_job *j = arg;
+    if (j->what == 0)
+        make_file(j->h);
+    else if (j->what == 1)
+        write_set(j->h, j->set);
+    else
+        close_file(j->h);
+}
+
+/* ---- the solve thread's side ---- */
 
 int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, FILE *err)
 {
@@ -365,44 +512,31 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *ta
     h->qd_step = -1;
     h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end};
     snprintf(h->path, sizeof h->path, "%s/results.h5", dir);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);       /* failures are reported by return codes, once */
-    hid_t f = H5Fcreate(h->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (f < 0) {
-        fprintf(err, "error: %s: cannot write: %s\n", h->path, errno ? strerror(errno) : "HDF5 cannot create it");
-        return -1;
-    }
-    h->file = f;
-    h->open = 1;
     size_t nd = (size_t)m->ndof;
-    /* the states' buffers: rows of at most CHUNK_BYTES, and at least 16 */
-    h->cap = (int)fmax(16.0, fmin((double)BK_H5_ROWS, (double)CHUNK_BYTES / (8.0 * (double)(nd + 1))));
-    h->step = malloc((size_t)h->cap * sizeof *h->step);
-    h->time = malloc((size_t)h->cap * sizeof *h->time);
-    h->q = malloc((size_t)h->cap * nd * sizeof *h->q + 1);
-    h->qd = h->with_qd ? malloc((size_t)h->cap * nd * sizeof *h->qd + 1) : NULL;
+    /* the states' buffers: 1 MB of rows per set (at least 16, at most BK_H5_ROWS) */
+    h->cap = (int)fmax(16.0, fmin((double)BK_H5_ROWS, (double)(1 << 20) / (8.0 * (double)(nd + 1))));
+    int ok = 1;
+    for (int k = 0; k < 2; ++k) {
+        h->step[k] = malloc((size_t)h->cap * sizeof *h->step[k]);
+        h->time[k] = malloc((size_t)h->cap * sizeof *h->time[k]);
+        h->q[k] = malloc((size_t)h->cap * nd * sizeof *h->q[k] + 1);
+        h->qd[k] = h->with_qd ? malloc((size_t)h->cap * nd * sizeof *h->qd[k] + 1) : NULL;
+        ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
+    }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    if (!h->step || !h->time || !h->q || (h->with_qd && (!h->qd || !h->qd_last))) {
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, 1, 1) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
+        h->open = 1;                          /* (bk_h5_close frees) */
+        h->failed = 1;
+        snprintf(h->failure, sizeof h->failure, "out of memory");
         return -1;
     }
-    hsize_t qrows = (hsize_t)fmax(1.0, fmin(256.0, (double)CHUNK_BYTES / (8.0 * (double)(nd + 1))));
-    hid_t tg = H5Gcreate2(f, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    h->tables_group = tg >= 0 ? tg : 0;
-    int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
-             attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&
-             attr_str(f, "time_name", bk_model_in_time(m) ? "time" : "load_factor") == 0 &&
-             attr_str(f, "units", "SI: m, kg, s, N, Pa, J; time in s; load factor 0 to 1; angles in rad "
-                                  "unless a column says deg") == 0 &&
-             attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0 &&
-             (h->ds_step = make_dataset(f, "step", H5T_STD_I64LE, 0, CHUNK_ROWS)) != 0 &&
-             (h->ds_time = make_dataset(f, "time", H5T_IEEE_F64LE, 0, CHUNK_ROWS)) != 0 &&
-             (h->ds_q = make_dataset(f, "q", H5T_IEEE_F64LE, nd, qrows)) != 0 &&
-             (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, qrows)) != 0) &&
-             H5Fflush(f, H5F_SCOPE_LOCAL) >= 0;
-    if (!ok) {
-        fprintf(err, "error: %s: cannot write: HDF5 failed to lay out the file\n", h->path);
-        return -1;
-    }
+    h->job[0] = (bk_h5_job){h, 0, 0};
+    h->job[1] = (bk_h5_job){h, 1, 0};
+    h->job[2] = (bk_h5_job){h, 1, 1};
+    h->job[3] = (bk_h5_job){h, 2, 0};
+    h->open = 1;
+    bk_filewriter_call(&h->fw, run_job, &h->job[0]);
     return 0;
 }
 
@@ -416,102 +550,53 @@ void bk_h5_velocity(bk_h5 *h, int step, const double *qd)
 
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
 {
-    if (!h->open || h->failed)
+    if (!h->open)
         return;
-    if (h->nbuf == h->cap && bk_h5_flush(h) != 0)
-        return;
-    size_t nd = (size_t)h->ndof, k = (size_t)h->nbuf;
-    h->step[k] = step;
-    h->time[k] = t;
-    memcpy(h->q + k * nd, q, nd * sizeof *q);
+    if (h->nbuf[h->cur] == h->cap)
+        bk_h5_flush(h);
+    const int s = h->cur;
+    size_t nd = (size_t)h->ndof, k = (size_t)h->nbuf[s];
+    h->step[s][k] = step;
+    h->time[s][k] = t;
+    memcpy(h->q[s] + k * nd, q, nd * sizeof *q);
     if (h->with_qd) {
         if (h->qd_step == step)
-            memcpy(h->qd + k * nd, h->qd_last, nd * sizeof *q);
+            memcpy(h->qd[s] + k * nd, h->qd_last, nd * sizeof *q);
         else
             for (size_t i = 0; i < nd; ++i)
-                h->qd[k * nd + i] = NAN;
+                h->qd[s][k * nd + i] = NAN;
     }
     h->qd_step = -1;
-    h->nbuf++;
+    h->nbuf[s]++;
 }
 
-static hid_t mem_type(int type, hid_t s64)
+void bk_h5_flush(bk_h5 *h)
 {
-    return type == 1 ? H5T_NATIVE_DOUBLE : type == 2 ? H5T_NATIVE_INT64 : s64;
-}
-
-static hid_t file_type(int type, hid_t s64)
-{
-    return type == 1 ? H5T_IEEE_F64LE : type == 2 ? H5T_STD_I64LE : s64;
-}
-
-int bk_h5_flush(bk_h5 *h)
-{
-    if (!h->open || h->failed)
-        return h->failed ? -1 : 0;
-    hsize_t nd = (hsize_t)h->ndof, n = (hsize_t)h->nbuf, have = (hsize_t)h->nstate;
-    if (append(h->ds_step, H5T_NATIVE_LONG, have, n, 0, h->step) != 0 ||
-        append(h->ds_time, H5T_NATIVE_DOUBLE, have, n, 0, h->time) != 0 ||
-        append(h->ds_q, H5T_NATIVE_DOUBLE, have, n, nd, h->q) != 0 ||
-        (h->with_qd && append(h->ds_qd, H5T_NATIVE_DOUBLE, have, n, nd, h->qd) != 0))
-        return fail(h, "HDF5 failed to append the states");
-    h->nstate += h->nbuf;
-    h->nbuf = 0;
-    hid_t s64 = str_type();
-    if (s64 < 0)
-        return fail(h, "HDF5 failed to make a string type");
-    for (int k = 0; k < h->ntab; ++k) {
-        bk_h5_table *t = &h->tab[k];
-        if (t->ncol == 0 || t->nbuf == 0)
-            continue;
-        hid_t g = 0;
-        for (int c = 0; c < t->ncol; ++c) {
-            bk_h5_col *col = &t->col[c];
-            if (!col->ds) {
-                if (!g && (g = H5Gopen2(h->tables_group, t->name, H5P_DEFAULT)) < 0 &&
-                    (g = H5Gcreate2(h->tables_group, t->name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0)
-                    break;
-                col->ds = make_dataset(g, col->name, file_type(col->type ? col->type : 1, s64), 0, CHUNK_ROWS);
-                if (!col->type)
-                    col->type = 1;
-            }
-            if (!col->ds ||
-                append(col->ds, mem_type(col->type, s64), (hsize_t)t->nrow, (hsize_t)t->nbuf, 0, col->buf) != 0) {
-                g = g > 0 ? (H5Gclose(g), -1) : -1;
-                break;
-            }
-        }
-        if (g > 0)
-            H5Gclose(g);
-        if (g < 0) {
-            H5Tclose(s64);
-            return fail(h, "HDF5 failed to append a table's rows");
-        }
-        t->nrow += t->nbuf;
-        t->nbuf = 0;
-    }
-    H5Tclose(s64);
-    if (H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
-        return fail(h, "HDF5 failed to flush the file");
-    return 0;
+    if (!h->open)
+        return;
+    const int k = h->cur;
+    h->ticket[k] = bk_filewriter_call(&h->fw, run_job, &h->job[1 + k]);
+    h->cur = k ^ 1;
+    if (h->ticket[h->cur] > 0)            /* the other set: written by now? */
+        bk_filewriter_wait(&h->fw, h->ticket[h->cur]);
+    h->ticket[h->cur] = 0;
+    h->nbuf[h->cur] = 0;
+    for (int j = 0; j < h->ntab; ++j)
+        h->tab[j].nbuf[h->cur] = 0;
 }
 
 int bk_h5_close(bk_h5 *h, FILE *err)
 {
     int rc = 0;
     if (h->open) {
-        bk_h5_flush(h);
-        hid_t ids[] = {h->ds_step, h->ds_time, h->ds_q, h->ds_qd, h->tables_group};
-        for (size_t k = 0; k < sizeof ids / sizeof *ids; ++k)
-            if (ids[k] > 0)
-                H5Oclose(ids[k]);
-        for (int k = 0; k < h->ntab; ++k)
-            for (int c = 0; c < h->tab[k].ncol; ++c)
-                if (h->tab[k].col[c].ds > 0)
-                    H5Dclose(h->tab[k].col[c].ds);
-        if (H5Fclose(h->file) < 0)
-            fail(h, "HDF5 failed to close the file");
+        if (h->fw.ready) {
+            bk_h5_flush(h);
+            bk_filewriter_call(&h->fw, run_job, &h->job[3]);
+        }
+        bk_filewriter_close(&h->fw);      /* (drains: the file is closed) */
         h->open = 0;
+        if (!h->failed && h->oom)
+            fail(h, "out of memory for the rows (some are missing)");
         if (h->failed) {
             if (err)
                 fprintf(err, "error: %s: cannot write: %s\n", h->path, h->failure);
@@ -519,15 +604,17 @@ int bk_h5_close(bk_h5 *h, FILE *err)
         }
     }
     for (int k = 0; k < h->ntab; ++k) {
-        for (int c = 0; c < h->tab[k].ncol; ++c)
-            free(h->tab[k].col[c].buf);
+        free(h->tab[k].buf[0]);
+        free(h->tab[k].buf[1]);
         free(h->tab[k].col);
     }
     free(h->tab);
-    free(h->step);
-    free(h->time);
-    free(h->q);
-    free(h->qd);
+    for (int k = 0; k < 2; ++k) {
+        free(h->step[k]);
+        free(h->time[k]);
+        free(h->q[k]);
+        free(h->qd[k]);
+    }
     free(h->qd_last);
     const bk_tables *tables = h->tables;
     memset(h, 0, sizeof *h);

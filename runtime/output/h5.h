@@ -8,26 +8,35 @@
  *   /qd               [nstep, ndof] their velocities (dynamics; NaN where the
  *                     analysis gave none, e.g. a failed run's last step)
  *   /dofs/...         [ndof] each DOF's node, beam, element, field, component
- *   /tables/NAME/COL  [nrow] each column COL of each result table NAME.csv
- *                     (float64, int64 or 64-byte strings, as the first row had
- *                     them): the very values the CSV prints
+ *   /tables/NAME      [nrow] the rows of each result table NAME.csv, a
+ *                     compound of its columns by their header names (float64,
+ *                     int64 or 64-byte strings, as the first row had them):
+ *                     the very values the CSV prints
  *
- * Every row is kept in memory and written to the file when the run's tables are
- * flushed (output.c: every 0.5 s of wall time, output.c BK_FLUSH_INTERVAL), when
- * BK_H5_ROWS rows of a dataset are buffered, and at the end, each time followed
- * by H5Fflush: a run that is interrupted or fails keeps every row; one killed
- * outright keeps the rows up to its last flush.  Every HDF5 call is made on the
- * solve thread (the mirror of the tables, csvrow.h bk_rowsink, is given the
- * rows' values there, whether or not the writer thread formats their text).
+ * Every HDF5 call is made by a thread of its own (filewriter.h), one at a
+ * time, so HDF5's own start (0.4 ms), the file's making and every write run
+ * beside the solve.  The rows (states, and the tables' rows given to the
+ * mirror, csvrow.h bk_rowsink, on the solve thread whether or not the writer
+ * thread formats their text) are kept in one of two sets of buffers; when the
+ * run's tables are flushed (output.c: every 0.5 s of wall time), when
+ * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
+ * the thread, which appends it and flushes the file (H5Fflush), and the other
+ * set is filled meanwhile.  A run that is interrupted or fails keeps every
+ * row; one killed outright keeps the rows up to its last flush.
  *
  * Sizes and directions:
- *   bk_h5_open    in: m, dir, tables (the run's registry: the mirrored tables'
- *                 names and headers; not owned, must outlive h).  0, or -1 with
- *                 "error: DIR/results.h5: cannot write: ..." on err.
- *   bk_h5_state   in: step, t, q[ndof], qd[ndof] or NULL.
- *   bk_h5_flush   writes what is buffered and flushes the file; 0 or -1.
- *   bk_h5_close   flushes and closes; 0, or -1 with the first failure's line on
- *                 err (if not NULL).  Safe on a closed or never opened h. */
+ *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
+ *                   tables' names and headers; not owned, must outlive h).
+ *                   The file is made by the thread: a failure to is reported by
+ *                   bk_h5_close.  0, or -1 when out of memory (message on err).
+ *   bk_h5_velocity  in: the velocities qd[ndof] of the state of output step
+ *                   `step` given next (dynamics; copied).
+ *   bk_h5_state     in: step, t, q[ndof] (copied).
+ *   bk_h5_flush     hands the rows so far to the thread.
+ *   bk_h5_close     hands over the rest, waits until the file is written and
+ *                   closed, ends the thread, frees; 0, or -1 with "error:
+ *                   DIR/results.h5: cannot write: REASON" on err (if not NULL).
+ *                   Safe on a closed or never opened h. */
 #ifndef BK_H5_H
 #define BK_H5_H
 
@@ -35,6 +44,7 @@
 #include <stdio.h>
 
 #include "base/csvrow.h"
+#include "base/filewriter.h"
 #include "base/tables.h"
 #include "model/model.h"
 
@@ -45,9 +55,8 @@ typedef int64_t bk_h5_id;       /* an hid_t (int64_t in HDF5 >= 1.10: checked in
 
 typedef struct bk_h5_col {
     char name[64];
-    int type;                 /* 0 not yet known, 1 float64, 2 int64, 3 string */
-    bk_h5_id ds;              /* its dataset, 0 before the first write */
-    void *buf;                /* owned: [cap] cells of its type */
+    int type;                 /* 0 not yet known, 1 float64, 2 int64, 3 string (the first row's) */
+    size_t off;               /* its offset in a row */
 } bk_h5_col;
 
 typedef struct bk_h5_table {
@@ -55,28 +64,46 @@ typedef struct bk_h5_table {
     char name[64];            /* the CSV's name without ".csv" */
     int ncol;
     bk_h5_col *col;           /* owned: [ncol] */
-    long nrow;                /* rows in the file */
-    int nbuf, cap;            /* rows buffered, room */
-    int field;                /* the field of the row being given */
+    size_t rowbytes, stride;  /* a row's bytes (known once the first row's last column is), the buffers' */
+    unsigned char *buf[2];    /* owned: per set, [cap] rows */
+    int nbuf[2], cap[2];      /* per set: rows buffered, room */
+    int field;                /* the row being given: its next field, */
+    int set;                  /*   its set, */
+    unsigned char *row;       /*   its place */
+    long nrow;                /* the thread's: rows in the file, */
+    bk_h5_id ds, type;        /*   its dataset and compound type (0 before the first write) */
 } bk_h5_table;
 
+struct bk_h5;
+typedef struct bk_h5_job {
+    struct bk_h5 *h;
+    int what;                 /* 0 make the file, 1 write set `set`, 2 close the file */
+    int set;
+} bk_h5_job;
+
 typedef struct bk_h5 {
-    int open;
-    bk_h5_id file, tables_group;
+    int open;                 /* between bk_h5_open and bk_h5_close */
     char path[1100];
     const bk_model *m;
     const bk_tables *tables;
     int ndof, with_qd;
-    long nstate;              /* states in the file */
-    int nbuf, cap;            /* states buffered, room (rows) */
-    long *step;               /* owned: [cap] */
-    double *time, *q, *qd;    /* owned: [cap], [cap ndof], [cap ndof] */
-    bk_h5_id ds_step, ds_time, ds_q, ds_qd;
+    bk_filewriter fw;         /* owned: the HDF5 thread */
+    bk_h5_job job[4];         /* make, write set 0, write set 1, close */
+    long ticket[2];           /* the write of each set handed over (0: none pending) */
+    int cur;                  /* the set being filled */
+    int cap;                  /* states per set */
+    int nbuf[2];              /* states buffered per set */
+    long *step[2];            /* owned: [cap] per set */
+    double *time[2], *q[2], *qd[2];   /* owned: [cap], [cap ndof], [cap ndof] per set */
     double *qd_last;          /* owned: [ndof] the velocities given for step qd_step */
     int qd_step;              /* -1: none */
     bk_h5_table *tab;         /* owned: [ntab] the mirrored tables */
     int ntab, captab;
     bk_rowsink sink;          /* the tables' mirror (csvrow.h), ctx = this */
+    int oom;                  /* the solve thread ran out of memory for rows (some are missing) */
+    /* the thread's */
+    bk_h5_id file, tables_group, ds_step, ds_time, ds_q, ds_qd;
+    long nstate;              /* states in the file */
     int failed;               /* an HDF5 call failed: */
     char failure[200];        /*   which */
 } bk_h5;
@@ -84,7 +111,7 @@ typedef struct bk_h5 {
 int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, FILE *err);
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
-int bk_h5_flush(bk_h5 *h);
+void bk_h5_flush(bk_h5 *h);
 int bk_h5_close(bk_h5 *h, FILE *err);
 
 #endif
