@@ -51,17 +51,37 @@ static void spent_flush(bk_output *o, double t0)
     o->t_output += now - t0;
 }
 
-/* Once the frames have a writer thread (vtk.h: a run with enough frames), the
- * tables' rows are formatted there too (csvrow.h bk_rowqueue): from here on
- * the tables are that thread's until bk_output_close_tables. */
+/* The tables' rows are formatted by a writer thread (csvrow.h bk_rowqueue)
+ * from the first output step that one runs: the frames' (vtk.h: a run with
+ * enough frames), else results.h5's (h5.h), else, in a run without frames,
+ * one of the output's own from its BK_ROWS_THREAD_AFTER-th output step on (a
+ * dynamic run without frames formatted its rows on the solve thread: its
+ * output took longer than with them).  From then on the tables are that
+ * thread's until bk_output_close_tables. */
+#define BK_ROWS_THREAD_AFTER 8
 static void rows_to_writer(bk_output *o)
 {
-    if (o->rq.w || !o->vtk.background || !o->vtk.fw.threaded)
+    if (o->rq.w)
+        return;
+    bk_filewriter *w = NULL;
+    if (o->vtk.background && o->vtk.fw.threaded)
+        w = &o->vtk.fw;
+    else if (o->h5.open && o->h5.fw.threaded)
+        w = &o->h5.fw;
+    else if (o->vtk.every <= 0 && !o->own_tried && ++o->row_steps >= BK_ROWS_THREAD_AFTER) {
+        o->own_tried = 1;
+        if (bk_filewriter_open(&o->fw, 1, 1) == 0 && o->fw.threaded) {
+            o->own_fw = 1;
+            w = &o->fw;
+        } else
+            bk_filewriter_close(&o->fw);
+    }
+    if (!w)
         return;
     /* the tables written with bk_row (the mode tables are not) */
     FILE *list[BK_ROWQ_TABLES];
     int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
-    bk_rowqueue_start(&o->rq, &o->vtk.fw, list, n);
+    bk_rowqueue_start(&o->rq, w, list, n);
 }
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
@@ -467,6 +487,10 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
     bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */
+    if (o->own_fw) {
+        bk_filewriter_close(&o->fw);
+        o->own_fw = 0;
+    }
     int h5 = bk_h5_close(&o->h5, err);   /* (its rows were mirrored as they were given) */
     return bk_tables_close(&o->tables, o->dir, err) != 0 || h5 != 0 ? -1 : 0;
 }

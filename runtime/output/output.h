@@ -41,6 +41,9 @@ typedef struct bk_output {
     const bk_system *sys;    /* the system of the last bk_output_forces: its interactions add to the frames */
     bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
     bk_h5 h5;                /* results.h5 (h5.h; output.hdf5): the states and a mirror of the tables */
+    bk_filewriter fw;        /* the rows' writer thread when neither the frames' nor results.h5's runs */
+    int own_fw, own_tried;   /*   1: fw is open; its opening was tried */
+    int row_steps;           /*   output steps before it */
 } bk_output;
 
 
