@@ -221,6 +221,9 @@ out:
 static void make_file(bk_h5 *h)
 {
     const bk_model *m = h->m;
+    /* HDF5 is started and ended on this thread (H5close in close_file): its
+     * exit handler would make per-thread state for the main thread at exit */
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);       /* failures are reported by return codes, once */
     hid_t f = H5Fcreate(h->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (f < 0) {
@@ -307,6 +310,7 @@ static void close_file(bk_h5 *h)
     if (h->file > 0 && H5Fclose(h->file) < 0)
         fail(h, "HDF5 failed to close the file");
     h->file = 0;
+    H5close();
 }
 
 void bk_h5_run_job(const void *arg, FILE *unused)
