@@ -178,3 +178,14 @@ def test_hdf5_false_writes_no_file_and_the_same_csvs():
     assert (a / "results.h5").exists() and not (b / "results.h5").exists()
     for name in ("sensors.csv", "reactions.csv", "sections.csv"):
         assert (a / name).read_bytes() == (b / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("scene", ["contact_capstan", "tendon_finger_dynamic", "lee_frame"])
+def test_every_table_of_contact_tendon_and_arc_length_runs_is_in_results_h5(scene):
+    """The interactions' tables (contacts, contact totals), a dynamic tendon run's
+    energy, an arc-length run's Newton record: each equal to its CSV, and every CSV
+    the run wrote row by row has its table."""
+    out = _run(scene)
+    checked = set(check_tables_equal_csv(out))
+    csvs = {p.stem for p in out.glob("*.csv")}
+    assert csvs <= checked, csvs - checked
