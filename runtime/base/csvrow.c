@@ -252,7 +252,7 @@ void bk_rowqueue_submit(bk_rowqueue *q, int flush)
 void bk_rowqueue_stop(bk_rowqueue *q)
 {
     if (q->w) {
-        bk_rowqueue_submit(q, 1);
+        bk_rowqueue_submit(q, 0);        /* (not flushed: the caller's fclose does, and reports a failure's errno) */
         bk_filewriter_wait(q->w, q->ticket[q->cur ^ 1]);
     }
     free(q->chunk[0]);

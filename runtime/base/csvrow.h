@@ -29,7 +29,9 @@
  *   bk_rowqueue_submit  hands over the chunk being filled; flush: the thread
  *                       then flushes every stream (the 0.5 s flush of output.c).
  *   bk_rowqueue_stop    hands over what is left and waits until the thread has
- *                       formatted it; the streams are the caller's again; frees
+ *                       formatted it (not flushed: closing a stream flushes it
+ *                       and reports a failure with its errno); the streams are
+ *                       the caller's again; frees
  *                       the chunks.  Safe on a queue never started. */
 #ifndef BK_CSVROW_H
 #define BK_CSVROW_H
