@@ -189,3 +189,18 @@ def test_every_table_of_contact_tendon_and_arc_length_runs_is_in_results_h5(scen
     checked = set(check_tables_equal_csv(out))
     csvs = {p.stem for p in out.glob("*.csv")}
     assert csvs <= checked, csvs - checked
+
+
+def test_results_h5_that_cannot_be_written_is_an_error():
+    """results.h5's name taken by a directory: one line naming it, exit status 1,
+    the CSV tables and summary.json still written."""
+    out = _run("cantilever_bend_100N")
+    first = (out / "model.dat").read_text().split("\n", 3)[1]
+    solver = ROOT / "out" / "bin" / dict(kv.split("=", 1) for kv in first.split()[1:])["name"]
+    run_dir = _out("bk-h5-bad-")
+    (run_dir / "results.h5").mkdir()
+    p = subprocess.run([str(solver), str(out / "model.dat"), str(run_dir), "--quiet"], capture_output=True, text=True)
+    assert p.returncode == 1, (p.returncode, p.stderr)
+    assert p.stderr.count("cannot write") == 1 and f"error: {run_dir}/results.h5: cannot write: " in p.stderr, p.stderr
+    assert (run_dir / "sensors.csv").read_bytes() == (out / "sensors.csv").read_bytes()
+    assert json.loads((run_dir / "summary.json").read_text())["converged"]
