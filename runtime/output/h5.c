@@ -189,7 +189,7 @@ static void sink_end(void *tab)
 
 /* ---- the solve thread's side ---- */
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, FILE *err)
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
@@ -211,7 +211,7 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *ta
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, 1, 1) != 0) {
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
         h->open = 1;                          /* (bk_h5_close frees) */
         h->failed = 1;

@@ -26,7 +26,9 @@
  *
  * Sizes and directions:
  *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
- *                   tables' names and headers; not owned, must outlive h).
+ *                   tables' names and headers; not owned, must outlive h);
+ *                   cap: the bytes of its writer's file buffers (filewriter.h:
+ *                   the thread is shared with the ParaView frames, vtk.h ext).
  *                   The file is made by the thread: a failure to is reported by
  *                   bk_h5_close.  0, or -1 when out of memory (message on err).
  *   bk_h5_velocity  in: the velocities qd[ndof] of the state of output step
@@ -108,7 +110,7 @@ typedef struct bk_h5 {
     char failure[200];        /*   which */
 } bk_h5;
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, FILE *err);
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err);
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
 void bk_h5_flush(bk_h5 *h);

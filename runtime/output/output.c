@@ -64,8 +64,8 @@ static void rows_to_writer(bk_output *o)
     if (o->rq.w)
         return;
     bk_filewriter *w = NULL;
-    if (o->vtk.background && o->vtk.fw.threaded)
-        w = &o->vtk.fw;
+    if (o->vtk.background && o->vtk.wp->threaded)
+        w = o->vtk.wp;
     else if (o->h5.open && o->h5.fw.threaded)
         w = &o->h5.fw;
     else if (o->vtk.every <= 0 && !o->own_tried && ++o->row_steps >= BK_ROWS_THREAD_AFTER) {
@@ -124,9 +124,14 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         return -1;
     o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
     if (m->output.hdf5) {
-        if (bk_h5_open(&o->h5, m, dir, &o->tables, err) != 0)
+        /* one writer thread for results.h5, the frames and the tables' rows
+         * (the frames' buffers in it when they would have a thread of their own) */
+        const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
+        if (bk_h5_open(&o->h5, m, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
             return -1;
         o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
+        if (share)
+            o->vtk.ext = &o->h5.fw;
     }
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
