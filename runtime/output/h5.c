@@ -189,6 +189,8 @@ static void sink_end(void *tab)
 
 /* ---- the solve thread's side ---- */
 
+static void hand_over(bk_h5 *h, int flush);
+
 int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
 {
     memset(h, 0, sizeof *h);
@@ -255,13 +257,24 @@ void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
     }
     h->qd_step = -1;
     h->nbuf[s]++;
+    /* every BK_H5_HANDOVER states to the thread while it is idle, unflushed: the
+     * writing goes on beside the solve instead of after it */
+    if (h->nbuf[s] >= BK_H5_HANDOVER && (h->ticket[s ^ 1] == 0 || bk_filewriter_done(&h->fw, h->ticket[s ^ 1])))
+        hand_over(h, 0);
 }
 
 void bk_h5_flush(bk_h5 *h)
 {
-    if (!h->open)
-        return;
+    if (h->open)
+        hand_over(h, 1);
+}
+
+/* The set being filled to the thread (flush: then the file is flushed), and
+ * the other set, once written, to be filled. */
+static void hand_over(bk_h5 *h, int flush)
+{
     const int k = h->cur;
+    h->flush[k] = flush;
     h->ticket[k] = bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[1 + k]);
     h->cur = k ^ 1;
     if (h->ticket[h->cur] > 0)            /* the other set: written by now? */
@@ -277,7 +290,7 @@ int bk_h5_close(bk_h5 *h, FILE *err)
     int rc = 0;
     if (h->open) {
         if (h->fw.ready) {
-            bk_h5_flush(h);
+            hand_over(h, 0);              /* (closing the file flushes it) */
             bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]);
         }
         bk_filewriter_close(&h->fw);      /* (drains: the file is closed) */

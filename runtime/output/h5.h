@@ -21,8 +21,10 @@
  * run's tables are flushed (output.c: every 0.5 s of wall time), when
  * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
  * the thread, which appends it and flushes the file (H5Fflush), and the other
- * set is filled meanwhile.  A run that is interrupted or fails keeps every
- * row; one killed outright keeps the rows up to its last flush.
+ * set is filled meanwhile; BK_H5_HANDOVER states (and the rows since) are
+ * handed over as soon as the thread is idle too, without the flush, so that
+ * the writing goes on beside the solve.  A run that is interrupted or fails
+ * keeps every row; one killed outright keeps the rows up to its last flush.
  *
  * Sizes and directions:
  *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
@@ -51,6 +53,7 @@
 #include "model/model.h"
 
 #define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
+#define BK_H5_HANDOVER 16      /* states handed to the thread as soon as it is idle */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 
 typedef int64_t bk_h5_id;       /* an hid_t (int64_t in HDF5 >= 1.10: checked in h5.c) */
@@ -92,6 +95,7 @@ typedef struct bk_h5 {
     bk_filewriter fw;         /* owned: the HDF5 thread */
     bk_h5_job job[4];         /* make, write set 0, write set 1, close */
     long ticket[2];           /* the write of each set handed over (0: none pending) */
+    int flush[2];             /* the file is flushed after the set's write */
     int cur;                  /* the set being filled */
     int cap;                  /* states per set */
     int nbuf[2];              /* states buffered per set */

@@ -243,8 +243,7 @@ static void make_file(bk_h5 *h)
              (h->ds_step = make_dataset(f, "step", H5T_STD_I64LE, 0, CHUNK_ROWS(8))) != 0 &&
              (h->ds_time = make_dataset(f, "time", H5T_IEEE_F64LE, 0, CHUNK_ROWS(8))) != 0 &&
              (h->ds_q = make_dataset(f, "q", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0 &&
-             (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0) &&
-             H5Fflush(f, H5F_SCOPE_LOCAL) >= 0;
+             (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0);
     if (!ok)
         fail(h, "HDF5 failed to lay out the file");
 }
@@ -291,7 +290,7 @@ static void write_set(bk_h5 *h, int k)
         t->nrow += t->nbuf[k];
     }
     H5Tclose(s64);
-    if (!h->failed && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
+    if (!h->failed && h->flush[k] && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
         fail(h, "HDF5 failed to flush the file");
 }
 
