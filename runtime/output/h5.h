@@ -13,9 +13,10 @@
  *                     int64 or 64-byte strings, as the first row had them):
  *                     the very values the CSV prints
  *
- * Every HDF5 call is made by a thread of its own (filewriter.h), one at a
- * time, so HDF5's own start (0.4 ms), the file's making and every write run
- * beside the solve.  The rows (states, and the tables' rows given to the
+ * Every HDF5 call is made by the writer thread h owns (filewriter.h: the
+ * run's one writer thread, which the ParaView frames and the tables' rows
+ * share), one at a time, so HDF5's own start (0.4 ms), the file's making and
+ * every write run beside the solve.  The rows (states, and the tables' rows given to the
  * mirror, csvrow.h bk_rowsink, on the solve thread whether or not the writer
  * thread formats their text) are kept in one of two sets of buffers; when the
  * run's tables are flushed (output.c: every 0.5 s of wall time), when
