@@ -206,16 +206,6 @@ void bk_filewriter_wait(bk_filewriter *w, long ticket)
     pthread_mutex_unlock(&w->mu);
 }
 
-int bk_filewriter_done(bk_filewriter *w, long ticket)
-{
-    if (!w->threaded)
-        return 1;
-    pthread_mutex_lock(&w->mu);
-    const int done = w->calls_done >= ticket;
-    pthread_mutex_unlock(&w->mu);
-    return done;
-}
-
 int bk_filewriter_drain(bk_filewriter *w)
 {
     if (!w->threaded)

@@ -31,8 +31,6 @@
  *                         waits while BK_FILEWRITER_CALLS calls are queued).
  *   bk_filewriter_wait    in: ticket of bk_filewriter_call: waits until that call
  *                         has returned.
- *   bk_filewriter_done    in: ticket of bk_filewriter_call: 1 when that call has
- *                         returned, else 0 (no wait).
  *   bk_filewriter_drain   waits until every file and call handed over is done;
  *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
@@ -86,7 +84,6 @@ int bk_filewriter_slot(bk_filewriter *w);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
 long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);
 void bk_filewriter_wait(bk_filewriter *w, long ticket);
-int bk_filewriter_done(bk_filewriter *w, long ticket);
 int bk_filewriter_drain(bk_filewriter *w);
 void bk_filewriter_close(bk_filewriter *w);
 

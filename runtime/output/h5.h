@@ -22,9 +22,11 @@
  * run's tables are flushed (output.c: every 0.5 s of wall time), when
  * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
  * the thread, which appends it and flushes the file (H5Fflush), and the other
- * set is filled meanwhile; BK_H5_HANDOVER states (and the rows since) are
- * handed over as soon as the thread is idle too, without the flush, so that
- * the writing goes on beside the solve.  A run that is interrupted or fails
+ * set is filled meanwhile; every BK_H5_HANDOVER states (and the rows since)
+ * are handed over too, without the flush, so that the writing goes on beside
+ * the solve.  A run shorter than the flush interval writes the same bytes each
+ * time (no modification times are kept); in a longer one the file's layout
+ * (not its values) depends on when the timed flushes came.  A run that is interrupted or fails
  * keeps every row; one killed outright keeps the rows up to its last flush.
  *
  * Sizes and directions:

@@ -28,6 +28,18 @@ static int fail(bk_h5 *h, const char *what)
     return -1;
 }
 
+/* A group without modification times (a run's file is the same bytes each
+ * time); -1 on failure. */
+static hid_t make_group(hid_t where, const char *name)
+{
+    hid_t pl = H5Pcreate(H5P_GROUP_CREATE);
+    hid_t g = pl >= 0 && H5Pset_obj_track_times(pl, 0) >= 0 ? H5Gcreate2(where, name, H5P_DEFAULT, pl, H5P_DEFAULT)
+                                                           : -1;
+    if (pl >= 0)
+        H5Pclose(pl);
+    return g;
+}
+
 /* A chunked dataset of rows of `width` cells (width 0: one cell a row, 1-d),
  * extensible in rows; 0 on failure. */
 static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t width, hsize_t chunk_rows)
@@ -37,7 +49,7 @@ static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t wid
     hid_t space = H5Screate_simple(rank, dims, maxd);
     hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
     hid_t ds = -1;
-    if (space >= 0 && plist >= 0 && H5Pset_chunk(plist, rank, chunk) >= 0)
+    if (space >= 0 && plist >= 0 && H5Pset_chunk(plist, rank, chunk) >= 0 && H5Pset_obj_track_times(plist, 0) >= 0)
         ds = H5Dcreate2(where, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
     if (plist >= 0)
         H5Pclose(plist);
@@ -117,7 +129,11 @@ static int whole(hid_t where, const char *name, hid_t ftype, hid_t mtype, hsize_
 {
     hid_t sp = H5Screate_simple(1, &n, NULL);
     int rc = -1;
-    hid_t ds = sp >= 0 ? H5Dcreate2(where, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    hid_t pl = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t ds = sp >= 0 && pl >= 0 && H5Pset_obj_track_times(pl, 0) >= 0
+                   ? H5Dcreate2(where, name, ftype, sp, H5P_DEFAULT, pl, H5P_DEFAULT) : -1;
+    if (pl >= 0)
+        H5Pclose(pl);
     if (ds >= 0) {
         rc = n == 0 || H5Dwrite(ds, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0 ? 0 : -1;
         H5Dclose(ds);
@@ -191,7 +207,7 @@ static int write_dofs(bk_h5 *h)
             }
         }
     }
-    hid_t g = H5Gcreate2(h->file, "dofs", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = make_group(h->file, "dofs");
     hid_t s64 = str_type(), s8 = H5Tcopy(H5T_C_S1), s2 = H5Tcopy(H5T_C_S1);
     if (g >= 0 && s64 >= 0 && s8 >= 0 && s2 >= 0 && H5Tset_size(s8, 8) >= 0 && H5Tset_size(s2, 2) >= 0 &&
         whole(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, nd, node) == 0 &&
@@ -232,7 +248,7 @@ static void make_file(bk_h5 *h)
     }
     h->file = f;
     const hsize_t nd = (hsize_t)m->ndof;
-    hid_t tg = H5Gcreate2(f, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t tg = make_group(f, "tables");
     h->tables_group = tg >= 0 ? tg : 0;
     int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
              attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&

@@ -51,39 +51,6 @@ static void spent_flush(bk_output *o, double t0)
     o->t_output += now - t0;
 }
 
-/* The tables' rows are formatted by a writer thread (csvrow.h bk_rowqueue)
- * from the first output step that one runs: the frames' (vtk.h: a run with
- * enough frames), else results.h5's (h5.h), else, in a run without frames,
- * one of the output's own from its BK_ROWS_THREAD_AFTER-th output step on (a
- * dynamic run without frames formatted its rows on the solve thread: its
- * output took longer than with them).  From then on the tables are that
- * thread's until bk_output_close_tables. */
-#define BK_ROWS_THREAD_AFTER 8
-static void rows_to_writer(bk_output *o)
-{
-    if (o->rq.w)
-        return;
-    bk_filewriter *w = NULL;
-    if (o->vtk.background && o->vtk.wp->threaded)
-        w = o->vtk.wp;
-    else if (o->h5.open && o->h5.fw.threaded)
-        w = &o->h5.fw;
-    else if (o->vtk.every <= 0 && !o->own_tried && ++o->row_steps >= BK_ROWS_THREAD_AFTER) {
-        o->own_tried = 1;
-        if (bk_filewriter_open(&o->fw, 1, 1) == 0 && o->fw.threaded) {
-            o->own_fw = 1;
-            w = &o->fw;
-        } else
-            bk_filewriter_close(&o->fw);
-    }
-    if (!w)
-        return;
-    /* the tables written with bk_row (the mode tables are not) */
-    FILE *list[BK_ROWQ_TABLES];
-    int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
-    bk_rowqueue_start(&o->rq, w, list, n);
-}
-
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
 {
     memset(o, 0, sizeof *o);
@@ -182,7 +149,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
     double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, o->sys, -step, t, q);
-    rows_to_writer(o);
+    bk_output_rows_to_writer(o);
     spent(o, t0);
 }
 
@@ -203,7 +170,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, o->sys, step, t, q);
-    rows_to_writer(o);
+    bk_output_rows_to_writer(o);
     bk_h5_state(&o->h5, step, t, q);
     if (!o->sensors) {
         spent(o, t0);

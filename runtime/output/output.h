@@ -105,6 +105,9 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
  * 0, or -1 with "error: PATH: cannot write: REASON" on err for each table
  * that could not be written. */
 int bk_output_close_tables(bk_output *o, FILE *err);
+/* (output.c's, in rows_writer.c) The tables' rows to a writer thread once one
+ * runs, called at every output step. */
+void bk_output_rows_to_writer(bk_output *o);
 /* Closes what is still open (the tables too, unreported) and frees. */
 void bk_output_close(bk_output *o);
 

@@ -108,12 +108,11 @@ static void maybe_background(bk_vtk *v, double frac)
         if (!v->ext->threaded || v->ext->cap < v->frame_bytes)
             return;
         v->wp = v->ext;
-    } else {
-        if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) != 0) {
-            bk_filewriter_close(&v->fw);
-            return;
-        }
+    } else if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
         v->wp = &v->fw;
+    else {
+        bk_filewriter_close(&v->fw);
+        return;
     }
     v->background = 1;
     const bk_model *m = v->m;
