@@ -105,12 +105,14 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     o->vtk.ssec = o->forces.ssec;
     o->vtk.maxsample = o->forces.maxsample;
     /* section forces at the steps that get a ParaView frame; without frames at
-     * the stride their default would have (gen/scene/options.py: about 100
-     * frames in dynamics, every equilibrium in statics) */
+     * the stride their default would have (gen/options_schema.py _vtk_every:
+     * 50 frames in dynamics, DYNAMIC_FRAMES; every equilibrium in statics) --
+     * it was 100 here, so a run without frames computed twice the section
+     * forces of one with them (its output took longer) */
     if (m->output.vtk_every > 0)
         o->sections_every = m->output.vtk_every;
     else if (bk_model_in_time(m))
-        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
+        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 50.0));
     else
         o->sections_every = 1;
     return 0;
