@@ -1,5 +1,5 @@
-"""beamkit from Python: scenes, runs, sweeps and calibration (see README.md,
-"Many runs from Python").  Importing this package imports no sympy.
+"""beamkit from Python: scenes, runs, sweeps and calibration (see docs/reference/python-api.md
+and docs/howto/sweep-dask.md).  Importing this package imports no sympy.
 
     Scene, Run, Sensor, BeamkitError, run     beamkit.api
     sweep                                     beamkit.sweep

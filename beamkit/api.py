@@ -141,7 +141,7 @@ def run(source, sets=None, out=None, threads=None):
 class Sensor:
     """The history of one sensor: arrays over the output steps.  step (int),
     time (s; load factor in statics), position and displacement (n x 3, m),
-    d1, d2, d3 (n x 3: the section vectors, see the README)."""
+    d1, d2, d3 (n x 3: the section vectors, see docs/reference/outputs.md)."""
 
     def __init__(self, name, cols):
         self.name = name

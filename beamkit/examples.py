@@ -1,4 +1,4 @@
-"""The "measurements" of the silicone calibration examples of the README.
+"""The "measurements" of the silicone calibration examples of docs/howto/calibrate.md.
 
     python3 -m beamkit.examples     writes models/data/silicone_fall_calculix.csv,
                                     models/data/silicone_fall_rayleigh_calculix.csv and
@@ -10,7 +10,7 @@ silicone_fall_measured.csv is made with our own solver, not measured: models/sil
 and step than the fit uses (24 elements graded 3 instead of 12, dt = 0.5 ms
 instead of 1 ms), over 0 ... 0.3 s; the tip displacement ux, uz every 5 ms with
 Gaussian noise of standard deviation 0.5 mm (seed 18), uy left out (the motion
-is in the x-z plane).  The fit (README) should find mu and the retardation time
+is in the x-z plane).  The fit (docs/howto/calibrate.md) should find mu and the retardation time
 near 0.3 MPa and 5 ms; the difference beyond the standard errors is the
 discretization error of the coarser model.  (CalculiX has no Kelvin-Voigt law
 for hyperelastic solids, and our runs with its Rayleigh damping take about a

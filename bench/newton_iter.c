@@ -1,7 +1,7 @@
 /* newton_iter.c -- cost of one Newton iteration of a model (./build.sh bench,
  * scaling section).
  *
- * usage: bench_newton MODEL_FILE ITERATIONS
+ * usage: bench_newton MODEL_FILE ITERATIONS [MATRIX_FILE]
  * Reads the model as the solver does, builds the system and the linear
  * solver's analysis, then times ITERATIONS Newton iterations at a perturbed
  * configuration: internal forces and tangent (bk_assemble_internal),
@@ -15,6 +15,9 @@
  * medians of each part, the setup time, the peak resident memory (VmHWM) and the
  * counts of KLU analyses, numeric factorizations and full (pivoting,
  * allocating) factorizations.
+ * MATRIX_FILE: the first iteration's Newton matrix and right-hand side are
+ * also written there, for bench/band_lapack.c: int32 n, int64 nnz, then
+ * Ap[n+1], Ai[nnz] (int32), Ax[nnz], b[n] (double), native byte order.
  */
 #include <math.h>
 #include <stdio.h>
@@ -50,10 +53,24 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+static int dump_matrix(const char *path, const bk_system *s, const double *Ax, const double *b)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    int n = s->neq;
+    long long nnz = s->nnz;
+    int ok = fwrite(&n, sizeof n, 1, f) == 1 && fwrite(&nnz, sizeof nnz, 1, f) == 1 &&
+             fwrite(s->Ap, sizeof *s->Ap, (size_t)n + 1, f) == (size_t)n + 1 &&
+             fwrite(s->Ai, sizeof *s->Ai, (size_t)nnz, f) == (size_t)nnz &&
+             fwrite(Ax, sizeof *Ax, (size_t)nnz, f) == (size_t)nnz && fwrite(b, sizeof *b, (size_t)n, f) == (size_t)n;
+    return fclose(f) == 0 && ok ? 0 : -1;
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s MODEL_FILE ITERATIONS\n", argv[0]);
+    if (argc != 3 && argc != 4) {
+        fprintf(stderr, "usage: %s MODEL_FILE ITERATIONS [MATRIX_FILE]\n", argv[0]);
         return 1;
     }
     int nit = atoi(argv[2]);
@@ -99,6 +116,10 @@ int main(int argc, char **argv)
         for (int i = 0; i < ne; ++i)
             r[i] = -r[i];
         memcpy(r2, r, (size_t)ne * sizeof *r);
+        if (it == 0 && argc == 4 && dump_matrix(argv[3], s, Ax, r) != 0) {
+            fprintf(stderr, "bench_newton: cannot write %s\n", argv[3]);
+            return 1;
+        }
         double b = now();
         int st = bk_lin_factor_solve(&ls, Ax, r);   /* what a Newton iteration with a new matrix does */
         double c = now();

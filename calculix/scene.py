@@ -37,7 +37,7 @@ class Material:
     #                               arruda_boyce: mu, lambda_m, kappa
 
     def small_strain(self):
-        """(E, nu) of the small-strain limit, as the README's material table."""
+        """(E, nu) of the small-strain limit, as the material table of docs/explanation/elements.md."""
         p = self.p
         if self.law in ("svk", "neo_hookean"):
             return p["E"], p["nu"]

@@ -21,7 +21,10 @@ these are byte-identical: the scene file's path and contents, every --set, and
 the state (name, size, modification time) of every file the model and the
 solver are made from: gen/ (the scene compiler and the build rules), runtime/
 and out/kernels/.  The solver binary must still be the one that run used (same
-size and modification time: a relinked solver is another binary)."""
+size and modification time: a relinked solver is another binary).
+`./build.sh run` finds such a run without Python first (frontend/, a copy
+of key(), fingerprint() and the entry format in C; tests/test_run_cached.py
+holds the two together): change them together."""
 import os
 
 try:                                   # hashlib's OpenSSL binding alone costs ~5 ms to import

@@ -8,7 +8,7 @@ import importlib.util; with -S, no site packages: they are loaded when an
 import needs them (SiteOnDemand), and a repeated run, or one with new --set
 numbers and a built solver, needs none.
 
-Exit status (also in ./build.sh --help and the README):
+Exit status (also in ./build.sh --help and docs/reference/commands.md):
   0   success (the solve converged)
   1   bad input: scene file, key or value, output directory (one `error:` line)
   2   the solve did not converge (results of every converged step are kept)

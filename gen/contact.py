@@ -29,6 +29,17 @@ primitive's at z.  bk_contact_body_frame writes z (out[0..2]), dz/dv
 ..], 10 x 10 row-major): the chain rule then gives the gap's derivatives in v.
 Friction is measured in z too, so it acts on the slip relative to the body.
 
+Rolling (a section that carries a rotation, a node's quaternion p): friction
+acts on the section's surface, at the material point y + R(p) a with a the
+lever arm in the node's frame (fixed over a step: the arm -r n of the last
+accepted state taken back by R(p)^T).  bk_contact_lever writes w = R(p) a
+(out[0..2]), dw/dp (out[3..14], 3 x 4 row-major) and the second-derivative
+term sum_i f_i d2 w_i/dp2 (out[15..30], 4 x 4 row-major) for the force f on
+the point, so the point's force f on the quaternion, (dw/dp)^T f (the moment
+w x f), and its Jacobian are exact.  The same kernel takes a point of a rigid
+body's reference (a body's box corner, a sphere's surface point) to where it
+is: y = r + R(p) a with a = R0^T (Z - X).
+
 Friction (the same paper's smoothed slip function): for a slip magnitude
 y >= 0 and tolerance eps, f1(y) = 2 y/eps - y^2/eps^2 below eps, 1 beyond, so
 the friction force mu N f1(y) t/|t| is exact Coulomb past eps and a stiff
@@ -103,6 +114,23 @@ def body_frame():
     return lower(p, ())
 
 
+def lever():
+    p, a, f = _vec("p", 0, 4), _vec("a"), _vec("f")
+    w = rotation(p[0], sp.Matrix(p[1:])) * a
+    prog = Program()
+    for i in range(3):
+        prog.output(f"out[{i}]", w[i], op="=")
+    dw = [[sp.diff(w[i], p[j]) for j in range(4)] for i in range(3)]
+    for i in range(3):
+        for j in range(4):
+            prog.output(f"out[{3 + 4 * i + j}]", dw[i][j], op="=")
+    g = [sum(f[i] * dw[i][j] for i in range(3)) for j in range(4)]
+    for j in range(4):
+        for k in range(4):
+            prog.output(f"out[{15 + 4 * j + k}]", sp.diff(g[j], p[k]), op="=")
+    return lower(prog, ())
+
+
 def barrier():
     s, shat = sp.symbols("s shat", positive=True)
     b = -(s - shat) ** 2 * sp.log(s / shat)
@@ -166,6 +194,11 @@ def functions():
     out.append(("bk_contact_body_frame", sig,
                 f"reference coordinates z of y on a body (r, p) and their derivatives: y[3], qb[7], prm[12] in; "
                 f"out[333]; {_ops(low)} operations", _function(sig, low)))
+    low = lever()
+    sig = f"void bk_contact_lever({_D} p, {_D} a, {_D} f, {_W} out)"
+    out.append(("bk_contact_lever", sig,
+                f"lever arm w = R(p) a of a section's surface point, dw/dp and sum f_i d2w_i/dp2: p[4], a[3], f[3] "
+                f"in; out[31]; {_ops(low)} operations", _function(sig, low)))
     out.append(_guarded("barrier", ("s", "shat"), barrier(),
                         ["if (s >= shat) {", "    out[0] = out[1] = out[2] = 0.0;", "    return;", "}"],
                         "barrier b, b', b'' at the distance s (0 < s; zero from shat on)"))

@@ -188,7 +188,7 @@ def material_data(mat, mpath):
         missing += [k for k in ("E", "nu") if not ranges or k not in ranges]
     if missing:
         raise ValueError(f"{mpath}: RANGES gives no (lo, hi, unit) for {', '.join(dict.fromkeys(missing))} "
-                         "(every scene key of INPUTS needs its range: README, Adding a material)")
+                         "(every scene key of INPUTS needs its range: docs/howto/add-material.md)")
     for keys, fn in mat.INPUTS:
         syms = [sp.Symbol(k, positive=True) for k in keys]
         inputs.append({"keys": list(keys), "params": [code(v) for v in fn(*syms)]})

@@ -157,7 +157,7 @@ def reference():
     """Text of docs/reference/options.md."""
     out = ["# Analysis options", "", f"<!-- {NOTE} -->", "",
            "The keys of `[scene] analysis`, `[static]`, `[dynamic]`, `[modal]`, `[buckling]` and `[output]` (the other scene keys: "
-           "the README's scene reference).  One table declares them (`gen/options_schema.py`); this page, the "
+           "the [scene reference](scene.md#scene-reference)).  One table declares them (`gen/options_schema.py`); this page, the "
            "scene reader's checks, the model file's records and the solver's C structs "
            "(`out/kernels/bk_options.h`) are made from it, and the name of a key is the same in all of them.  "
            "*Record*: the model-file record that carries it (`model.dat`, format version "

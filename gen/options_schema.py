@@ -16,7 +16,10 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 14      # 14: the output record's hdf5 (results.h5);
+MODEL_VERSION = 17      # 17: the output record's hdf5 (results.h5);
+                        # 16: beam contact in its interaction record (record beam_contact);
+                        # 15: dynamic.integrator (generalized_alpha | bathe);
+                        # 14: static.globalization (the static record);
                         # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
                         # 12: beam contact's static and kinetic friction (bcset MU_S MU_K);
                         # 11: actuator and point-mass records, sensor offsets (body points);
@@ -129,6 +132,15 @@ OPTIONS = (
     static("stable_path", "bool", False, "cut back an increment whose equilibrium has more negative tangent "
            "eigenvalues than the last one (while cut-backs remain): with an imperfection the solver stays on the "
            "stable (buckled) branch; without, the bifurcation is bracketed and then passed"),
+    static("globalization", "choice", "none", "`trust_region`: each Newton correction is solved with a "
+           "Levenberg–Marquardt shift μ·diag|K| of the tangent and taken when it lowers the total potential "
+           "energy (strain energy less the dead loads' work), μ grown after a rejected or poor step and shrunk "
+           "to 0 after good ones (close to the solution: Newton's quadratic rate).  For near-mechanisms — slack "
+           "cables, ropes, chains, EI/(EA L²) far below 1e-8 — whose plain Newton fails at any load increment; "
+           "needs loads with a potential (dead forces, gravity: refused with moments, follower, distributed, "
+           "tendon and chamber loads, contact, springs, actuators and joints nonlinear in the unknowns) and "
+           "many more iterations per increment (raise `max_iterations`, e.g. to 2000, and load in one "
+           "increment).  `none`: plain Newton", choices=("none", "trust_region")),
     static("step_control", "choice", "adaptive", "`adaptive`: after an increment of at most 3 Newton iterations "
            "the next is twice as large, of at most 6 iterations 1.5 times, never right after a cut-back; a failed "
            "increment is halved.  `fixed`: equal increments of 1/load_steps (back to that size after cut-backs).  "
@@ -171,6 +183,12 @@ OPTIONS = (
             default_doc="1e-6 dt"),
     dynamic("rho_inf", "float", 0.8, "spectral radius at infinity (1: no numerical dissipation)", lo=0.0, hi=1.0,
             noun="spectral radius"),
+    dynamic("integrator", "choice", "generalized_alpha", "`generalized_alpha` (Arnold & Brüls, parameters from "
+            "`rho_inf`) or `bathe`: Bathe's composite scheme, a trapezoidal half step then the three-point backward "
+            "difference over the step (second order, unresolved modes removed: spectral radius 0 at infinity, "
+            "`rho_inf` unused; two Newton solves a step) — robust where generalized-α's nearly undamped high modes "
+            "grow under large rotations (a beam spinning on a hub: `models/spinning_hub.toml`)",
+            choices=("generalized_alpha", "bathe")),
     dynamic("tol", "float", 0.0, "local error per step relative to the model length: adapts the step (≤ `dt`)",
             nonneg=True, default_doc="0 (off)"),
     dynamic("rayleigh_alpha", "float", 0.0, "Rayleigh damping αM + βK_t: α", unit="1/s", nonneg=True),
@@ -299,6 +317,9 @@ def _static_rules(ctx, tbl, s, analysis):
         if s["stable_path"]:
             ctx.fail("static.stable_path", "expected false with method = \"arc_length\" (arc-length follows "
                                            "the path through limit points; stable_path is for load control)")
+        if s["globalization"] != "none":
+            ctx.fail("static.globalization", 'expected "none" with method = "arc_length" (the trust region '
+                                             'is for load control)')
     else:
         for o in record_fields("continuation"):
             if o.key != "method" and o.key in tbl:

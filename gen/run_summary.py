@@ -55,9 +55,11 @@ def print_summary(s, out):
     def n(k, word):
         return f"{k} {word}" + ("" if k == 1 else "s")
 
-    print(f"scene {s['scene']} ({s['analysis']}): {status}; {n(s['steps'], 'step')}, "
-          f"{n(s['newton_iterations'], 'Newton iteration')}, {s['dofs']} DOFs, {n(s['elements'], 'element')}, "
-          f"wall {s['wall_s']:.3f} s")
+    # a modal run has modes, not steps and Newton iterations
+    work = (n(len(s["frequencies_hz"]), "mode") if s["analysis"] == "modal" and "frequencies_hz" in s
+            else f"{n(s['steps'], 'step')}, {n(s['newton_iterations'], 'Newton iteration')}")
+    print(f"scene {s['scene']} ({s['analysis']}): {status}; {work}, {s['dofs']} DOFs, "
+          f"{n(s['elements'], 'element')}, wall {s['wall_s']:.3f} s")
     for name, v in s["sensors"].items():
         p, u = v["position"], v["displacement"]
         print(f"  sensor {name}: position [{p[0]:.6e}, {p[1]:.6e}, {p[2]:.6e}] m, "

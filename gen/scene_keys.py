@@ -3,7 +3,7 @@
 The scene reader (gen/scene/) accepts exactly these keys (plus, in
 [material.NAME], the parameter keys of the chosen law: gen/materials/*.py
 INPUTS, and the tables of the interaction modules, each with its keys in its
-own module: gen/scene/interactions.py); tests/test_docs.py checks that the README's scene reference lists
+own module: gen/scene/interactions.py); tests/test_docs.py checks that the scene reference (docs/reference/scene.md) lists
 the same keys.  The analysis options' keys ([scene] analysis, [static],
 [dynamic], [modal], [buckling], [output]) come from the options schema
 (gen/options_schema.py).
@@ -13,7 +13,7 @@ from gen import options_schema as S
 # the top-level tables: the scene's, then the option tables of the schema (an
 # analysis's options table comes with its schema rows)
 TOP = ("material", "section", "beam", "body", "constraint", "load", "initial_velocity", "sensor", "amplitude",
-       "beam_contact", "actuator", "point_mass") + tuple(S.TABLES)
+       "actuator", "point_mass") + tuple(S.TABLES)
 
 SCENE = S.scene_keys("scene")
 MATERIAL_COMMON = ("law", "rho", "kelvin_voigt")
@@ -71,5 +71,5 @@ def all_keys():
     return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
             "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
             "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING, "beam_contact": BEAM_CONTACT,
+            "amplitude": union(AMPLITUDE), "buckling": BUCKLING,
             "actuator": ACTUATOR, "point_mass": POINT_MASS}

@@ -57,6 +57,16 @@ def _values(data, field):
     return np.array([mag[c].mean() for _, c in cells])
 
 
+
+def color_range(vals):
+    """(min, max) of the finite values of every frame: a rigid body has no
+    section force (NaN there, drawn grey), which must not set the scale."""
+    finite = [v[np.isfinite(v)] for v in vals]
+    finite = [v for v in finite if len(v)]
+    if not finite:
+        return 0.0, 1.0
+    return min(float(v.min()) for v in finite), max(float(v.max()) for v in finite)
+
 def _nice(x):
     """The largest of 1, 2, 5 x 10^k at most x."""
     e = np.floor(np.log10(x))
@@ -90,8 +100,7 @@ def render(run, field="displacement", fps=10, gif=False, out=None, log=print):
     if field not in fields:
         raise AnimateError(f"--field {field!r}: not a field of the frames (fields: {', '.join(fields)})")
     vals = [_values(d, field) for d, _ in frames]
-    vmin = min(float(v.min()) for v in vals if len(v))
-    vmax = max(float(v.max()) for v in vals if len(v))
+    vmin, vmax = color_range(vals)
     norm = plt.Normalize(vmin, vmax if vmax > vmin else vmin + 1.0)
     allp = np.vstack([d["points"] for d, _ in frames])
     lo, hi = allp.min(axis=0), allp.max(axis=0)
@@ -121,8 +130,11 @@ def render(run, field="displacement", fps=10, gif=False, out=None, log=print):
             pts = d["points"]
             quads = [(c, val) for (ty, c), val in zip(cells, v) if ty == 9]
             if quads:
+                qv = np.array([x for _, x in quads], dtype=float)
+                colors = plt.cm.viridis(norm(qv))
+                colors[~np.isfinite(qv)] = (0.75, 0.75, 0.75, 1.0)
                 ax.add_collection3d(Poly3DCollection([pts[c] for c, _ in quads], edgecolors="none", linewidths=0,
-                                                     facecolors=plt.cm.viridis(norm([x for _, x in quads]))))
+                                                     facecolors=colors))
             for (ty, c) in cells:
                 if ty == 4:
                     ax.plot(*pts[c].T, color="k", lw=0.8)

@@ -12,7 +12,8 @@
   * contact: a 1,000-element rod on the ground against the same rod without
     contact (cost per Newton iteration, the contact's share), the gripper's
     wall time per simulated second (report/bench_contact.py); the sparse modal
-    solve of a 10,000-element beam (report/bench_modal.py);
+    solve of a 10,000-element beam (report/bench_modal.py); the band LU against
+    LAPACK's band solver, reference and OpenBLAS (report/bench_band.py);
   * scaling: time per Newton iteration and peak memory for 10 ... 100,000
     elements, fitted exponent;
   * toolchain: regeneration time per kernel, per-scene solver compile time and size.
@@ -42,6 +43,7 @@ from report.bench_markdown import bench_markdown  # noqa: E402
 from report.bench_pareto import pareto, plot_wp  # noqa: E402
 from report.bench_runs import OUT, WORK  # noqa: E402
 from report import bench_contact  # noqa: E402
+from report import bench_band  # noqa: E402
 from report import bench_modal  # noqa: E402
 from report.bench_scaling import plot_scaling, scaling  # noqa: E402
 from report.bench_statics import statics  # noqa: E402
@@ -92,6 +94,8 @@ def main(argv):
     crows, grip = bench_contact.contact_cost(quick, log), bench_contact.gripper_wall(log)
     log(" sparse modes")
     modal_row = bench_modal.sparse_modes(quick, log)
+    log(" band LU against LAPACK")
+    band = bench_band.band_vs_lapack(quick, log)
     sgrow = bench_contact.self_contact_growth(quick, log)
     log(" toolchain")
     tc = toolchain(quick, log)
@@ -129,6 +133,7 @@ def main(argv):
                        t_all)
     L += [""] + bench_contact.markdown(crows, grip, sgrow)
     L += bench_modal.markdown(modal_row)
+    L += bench_band.markdown(band)
     (OUT / "bench.md").write_text("\n".join(L))
     log(f" wrote {OUT / 'bench.md'}")
     print(f"bench: {OUT / 'bench.md'} ({time.time() - t_all:.0f} s)")

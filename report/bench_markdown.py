@@ -157,8 +157,11 @@ def bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, pro
     keymap = {problems[0]: "table3"}
     for prob in problems:
         key = {"Table 3": "table3", "Roll-up": "rollup", "Soft pen": "pendulum",
-               "Silicone fall discretization": "silicone_disc", "Silicone": "silicone"}
+               "Silicone fall discretization": "silicone_disc", "Silicone sag": "silicone_sag",
+               "Silicone fall, tip at": "silicone_end", "Silicone": "silicone"}
         note = next((notes[v] for k, v in key.items() if prob.startswith(k)), "")
+        if prob.startswith("Table 3") and "table3_solid" in notes:
+            note += "  " + notes["table3_solid"]
         L += [f"### {prob}", "", note, "", f"![work-precision]({pngs[prob].name})", "",
               "| variant | elements | dt (s) | wall | Newton it. | error | Pareto |", "|---|---|---|---|---|---|---|"]
         for p in points:

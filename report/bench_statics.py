@@ -59,6 +59,36 @@ def statics(quick, log):
             points.append(point("Table 3 (-100 N, nu = 0.3)", label, n, None, s, err,
                                 lambda s: dist(tip_xyz(s, "tip"), u_ref) / L))
         log(f"  table 3: {label}")
+    from report.bench_solid import note as solid_note, solid_points
+    points += solid_points("Table 3 (-100 N, nu = 0.3)", ccx, L)
+    notes.append(("table3_solid", solid_note(ccx, "St. Venant-Kirchhoff, the clamped face fixed")))
+
+    # Silicone cantilever sagging under its weight (Arruda-Boyce, kappa = 1000 mu):
+    # CalculiX C3D20R, rigid clamp, mesh-extrapolated (calculix_silicone.json).
+    from calculix import reference_data
+    sil = reference_data("silicone_cantilever_sag_rigid")
+    Ls = 0.25
+    u_sil = [Ls + sil.value[0], sil.value[1], sil.value[2]]
+    sil_variants = [("ancf3243 sri", ["beam.strip.element=ancf3243", "beam.strip.integration=sri"]),
+                    ("ancf3273 reduced", ["beam.strip.element=ancf3273", "beam.strip.integration=reduced"]),
+                    ("ancf3363 reduced", ["beam.strip.element=ancf3363", "beam.strip.integration=reduced"])]
+    if quick:
+        sil_variants = sil_variants[::2]
+    sil_meshes = (2, 8) if quick else (2, 4, 8, 16, 32)
+    notes.append(("silicone_sag", f"Reference: CalculiX C3D20R solid of the silicone strip sagging under its weight "
+                  f"(`models/silicone_cantilever_sag.toml`, Arruda-Boyce, kappa = 1000 mu, the clamped face "
+                  f"fixed: beamkit's `cross_section = rigid`), mesh-extrapolated: tip at ({u_sil[0]:.7f}, "
+                  f"{u_sil[2]:.7f}) m, its own error estimate {max(sil.error[0], sil.error[2]):.1e} m.  Error = "
+                  f"|tip - reference| / L, L = 0.25 m.  " + solid_note(sil, "the same strip and law")))
+    for label, sets in sil_variants:
+        for n in sil_meshes:
+            s, err = run("silicone_cantilever_sag", sets + ["constraint.0.cross_section=rigid",
+                                                            f"beam.strip.elements={n}"],
+                         f"sag-{label.replace(' ', '_')}-{n}")
+            points.append(point("Silicone sag (static)", label, n, None, s, err,
+                                lambda s: dist(tip_xyz(s, "tip"), u_sil) / Ls))
+        log(f"  silicone sag: {label}")
+    points += solid_points("Silicone sag (static)", sil, Ls)
 
     # Roll-up, M = 2 pi EI / L: exact solution, the tip returns to the clamp.
     scene = "cantilever_rollup"

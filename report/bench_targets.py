@@ -86,18 +86,24 @@ def front_end(work, repeats, log):
         t = time.perf_counter() - t0
         if p.returncode != 0:
             raise RuntimeError(p.stderr.strip())
-        return t - json.loads((out / "summary.json").read_text())["wall_s"], p.stderr
+        return t - json.loads((out / "summary.json").read_text())["wall_s"], p.stderr, t
 
-    repeat, changed = [], []
+    repeat, changed, whole_c, whole_py = [], [], [], []
+    python_only = dict(os.environ, BK_NO_FAST_RUN="1")
     for k in range(repeats):                    # interleaved: a slow spell of the machine reaches both alike
-        repeat.append(whole([])[0])
+        beyond, _, t = whole([])
+        repeat.append(beyond)
+        whole_c.append(t)
+        whole_py.append(whole([], python_only)[2])
         changed.append(whole([f"material.alu.E={7.2e10 * (1 + 1e-6 * (k + 1))!r}"])[0])
     env = dict(os.environ, PYTHONPROFILEIMPORTTIME="1")
-    _, err = whole([f"material.alu.E={7.3e10!r}"], env)
+    _, err, _ = whole([f"material.alu.E={7.3e10!r}"], env)
     sympy = any(line.rstrip().endswith("| sympy") or "| sympy." in line for line in err.splitlines())
     rebuilt = solver.stat().st_mtime_ns != mtime
     log("  targets: front end")
     return {"repeat_s": statistics.median(repeat), "repeat_min_s": min(repeat),
+            "whole_s": statistics.median(whole_c), "whole_min_s": min(whole_c),
+            "whole_python_s": statistics.median(whole_py),
             "set_s": statistics.median(changed), "set_min_s": min(changed),
             "set_imports_sympy": sympy, "set_rebuilt_solver": rebuilt}
 
@@ -199,6 +205,10 @@ def target_rows(res, met):
                  f"{'yes' if fe['set_rebuilt_solver'] else 'no'}",
                  met(fe["repeat_s"] <= 0.05 and fe["set_s"] <= 0.05 and not fe["set_imports_sympy"]
                      and not fe["set_rebuilt_solver"])))
+    if "whole_s" in fe:
+        rows.append((f"the whole command of a repeated run ≤ 5 ms ({TABLE3}; out/bin/run-cached, no Python)",
+                     f"{_ms(fe['whole_s'])} (min {_ms(fe['whole_min_s'])}); through the Python front end "
+                     f"{_ms(fe['whole_python_s'])}", met(fe["whole_s"] <= 0.005)))
     for r in res["output"]:
         stab = "" if r["stability_share"] is None else (f", stability check {100 * r['stability_share']:.1f} % "
                                                         f"(whole runs: {100 * r['stability_share_ab']:.0f} %)")

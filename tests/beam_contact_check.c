@@ -97,7 +97,23 @@ static void build(scene *s, double za, double r, double shat, double kappa, int 
                                    .self = 0, .nchain = NC, .chain_off = s->chain_off, .nelem = NEL,
                                    .elems = s->celems, .radius = s->radius, .s0 = s->s0};
     s->bm = (bk_beam_contact_model){.nset = 1, .sets = &s->set};
-    m->beam_contact = &s->bm;
+}
+
+/* The system of the scene with the beam contact interaction made from the
+ * scene's own sets (a model file would carry them in its record). */
+static bk_system *make_system(scene *s)
+{
+    bk_system *sys = bk_system_create(&s->m, stderr);
+    if (!sys)
+        return NULL;
+    void *self = NULL;
+    const int r = bk_beam_contact_make(sys, &s->bm, &self);
+    sys->inter[sys->ninter++] = (bk_interaction){&bk_beam_contact_ops, self};
+    if (r != 0) {
+        bk_system_free(sys);
+        return NULL;
+    }
+    return sys;
 }
 
 /* The interaction's residual over all DOFs at q (nothing else). */
@@ -123,7 +139,7 @@ static void check_jacobian(void)
     scene s;
     const double r = 0.01, shat = 0.01;
     build(&s, 2 * r + 0.6 * shat, r, shat, 1e3, 3);
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = make_system(&s);
     double q[NDOF], f[NDOF], fp[NDOF], fm[NDOF], h = 1e-7;
     wavy(&s, shat, q);
     bk_interactions_prepare(sys, q);
@@ -167,7 +183,7 @@ static void check_growth(void)
     scene s;
     const double r = 0.01, shat = 0.01;
     build(&s, 0.5, r, shat, 1e3, 3);
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = make_system(&s);
     const long nnz0 = sys->nnz;
     const int gen0 = sys->pattern_gen, ncouple0 = sys->ncouple;
     double q[NDOF];
@@ -233,7 +249,7 @@ static void check_friction(void)
     s.set.mu = 0.4;
     s.set.mu_k = 0.25;                       /* (slips across eps ... 2 eps: the transition's derivative) */
     s.set.slip = 1e-4;
-    bk_system *sys = bk_system_create(&s.m, stderr);
+    bk_system *sys = make_system(&s);
     double q[NDOF], f[NDOF], fp[NDOF], fm[NDOF], h = 1e-8;
     wavy(&s, shat, q);
     bk_interactions_prepare(sys, q);

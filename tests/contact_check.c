@@ -148,14 +148,46 @@ int main(void)
         bk_contact_body_frame(ref, ref + 3, prm, o0);
         eref = fabs(o0[0] - ref[0]) + fabs(o0[1] - ref[1]) + fabs(o0[2] - ref[2]);
     }
+    /* a section's lever arm w = R(p) a (p not unit): dw/dp and sum f_i d2 w_i/dp2 against differences; w
+     * against the rotation by the angle 2 atan2(|v|, s) about v/|v| (Rodrigues, written here) */
+    double eLJ = 0, eLH = 0, eLc;
+    {
+        const double p[4] = {0.9, 0.3, -0.5, 0.4}, a[3] = {0.2, -0.7, 0.35}, f[3] = {1.3, -0.4, 2.1};
+        double o[31], op[31], om[31];
+        bk_contact_lever(p, a, f, o);
+        for (int j = 0; j < 4; ++j) {
+            double pp[4], pm[4], hh = 1e-6;
+            memcpy(pp, p, sizeof p);
+            memcpy(pm, p, sizeof p);
+            pp[j] += hh;
+            pm[j] -= hh;
+            bk_contact_lever(pp, a, f, op);
+            bk_contact_lever(pm, a, f, om);
+            for (int i = 0; i < 3; ++i)
+                eLJ = fmax(eLJ, fabs((op[i] - om[i]) / (2 * hh) - o[3 + 4 * i + j]));
+            for (int k = 0; k < 4; ++k) {
+                double gp = 0, gm = 0;
+                for (int i = 0; i < 3; ++i)
+                    gp += f[i] * op[3 + 4 * i + k], gm += f[i] * om[3 + 4 * i + k];
+                eLH = fmax(eLH, fabs((gp - gm) / (2 * hh) - o[15 + 4 * k + j]));
+            }
+        }
+        const double vn = sqrt(p[1] * p[1] + p[2] * p[2] + p[3] * p[3]), th = 2 * atan2(vn, p[0]);
+        const double k[3] = {p[1] / vn, p[2] / vn, p[3] / vn}, kd = k[0] * a[0] + k[1] * a[1] + k[2] * a[2];
+        const double kx[3] = {k[1] * a[2] - k[2] * a[1], k[2] * a[0] - k[0] * a[2], k[0] * a[1] - k[1] * a[0]};
+        eLc = 0;
+        for (int i = 0; i < 3; ++i)
+            eLc = fmax(eLc, fabs(o[i] - (a[i] * cos(th) + kx[i] * sin(th) + k[i] * kd * (1 - cos(th)))));
+    }
     double t1[2], t2[2];
     bk_contact_transition(eps * (1 + 1e-12), eps, t1);
     bk_contact_transition(2 * eps * (1 - 1e-12), eps, t2);
     printf("gap_grad_err=%.3e gap_hess_err=%.3e closed_err=%.3e hess_sym_err=%.3e barrier_err=%.3e "
            "barrier_at_shat=%.3e,%.3e,%.3e barrier_near_0=%.3e friction_err=%.3e friction_jump=%.3e,%.3e "
            "friction_f1y_at_0=%.17g transition_err=%.3e transition_ends=%.3e,%.3e body_J_err=%.3e body_T_err=%.3e "
-           "body_ref_err=%.3e\n",
+           "body_ref_err=%.3e lever_J_err=%.3e lever_H_err=%.3e lever_closed_err=%.3e\n",
            eg, eh, eclosed, esym, eb, bl[0], bl[1], bl[2], bz[0], ef, fabs(fl[0] - fr[0]), fabs(fl[1] - fr[1]),
-           f0[2] * eps, et, fabs(t1[0]) + fabs(t1[1]) * eps, fabs(t2[0] - 1) + fabs(t2[1]) * eps, eJ, eT, eref);
+           f0[2] * eps, et, fabs(t1[0]) + fabs(t1[1]) * eps, fabs(t2[0] - 1) + fabs(t2[1]) * eps, eJ, eT, eref, eLJ, eLH,
+           eLc);
     return 0;
 }

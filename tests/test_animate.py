@@ -70,3 +70,19 @@ def test_bad_field_and_a_run_without_frames_one_line_each():
     run0 = _run(["dynamic.t_end=0.02", "output.vtk_every=0"])
     r = _animate([run0, "--gif"])
     assert r.returncode == 1 and "no ParaView frames" in r.stderr and r.stderr.count("error:") == 1
+
+
+def test_colour_range_ignores_the_bodies_nan_and_the_body_is_drawn():
+    """A rigid body's points carry NaN for the section fields: the colour range
+    is the beams' (0.74 N in the trial's gripper, not -0.1..0.1), and the
+    animation of section_force of a scene with a body is written."""
+    import numpy as np
+    from report.animate import color_range
+    assert color_range([np.array([0.2, np.nan, 0.74]), np.array([np.nan, 0.1])]) == (0.1, 0.74)
+    assert color_range([np.array([np.nan])]) == (0.0, 1.0)
+    out = BUILD / "runs" / "animate_body"
+    r = run_cli(["run", "contact_ball_on_cantilever", "--quiet", "--out", str(out)])
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = run_cli(["animate", str(out), "--field", "section_force", "--gif", "--fps", "4"])
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert (out / "animation.gif").stat().st_size > 1000

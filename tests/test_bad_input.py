@@ -135,3 +135,49 @@ def test_a_pinned_beam_is_refused_naming_its_rotations():
     r, p, out = run_text(text, "pinned")
     assert r.returncode == 1 and "a rotation about x" in r.stderr and "rotation about y" in r.stderr \
         and "rotation about z" in r.stderr, r.stderr
+
+
+def test_cable_resultant_material_needs_only_ea_and_ei(tmp_path):
+    """ancf_cable reads EA and EI only: a resultant material without GA1, GA2,
+    GJ (and EI2 = EI1) runs it -- with the cable's closed-form small tip
+    deflection P L^3 / (3 EI) -- and gef, which uses them, is refused naming them."""
+    import json
+    base = """[scene]
+analysis = "static"
+[material.m]
+law = "resultant"
+EA = 1.0e7
+EI1 = 2.0
+rho = 1.0
+[section.round]
+shape = "circle"
+radius = 0.01
+[[beam]]
+name = "c"
+element = "ELEMENT"
+material = "m"
+section = "round"
+start = [0.0, 0.0, 0.0]
+end = [1.0, 0.0, 0.0]
+elements = 8
+[[constraint]]
+type = "clamp"
+a = "c:start"
+[[load]]
+type = "force"
+at = "c:end"
+value = [0.0, 0.0, -1e-4]
+[[sensor]]
+name = "tip"
+at = "c:end"
+"""
+    scene = tmp_path / "cable.toml"
+    scene.write_text(base.replace("ELEMENT", "ancf_cable"))
+    r = run_cli(["run", str(scene), "--quiet", "--out", str(tmp_path / "out")])
+    assert r.returncode == 0, r.stderr[-2000:]
+    s = json.loads((tmp_path / "out" / "summary.json").read_text())
+    uz = s["sensors"]["tip"]["displacement"][2]
+    assert abs(uz / (-1e-4 / (3 * 2.0)) - 1) < 1e-3, uz
+    scene.write_text(base.replace("ELEMENT", "gef"))
+    r = run_cli(["run", str(scene), "--quiet", "--out", str(tmp_path / "out2")])
+    assert r.returncode == 1 and "element gef uses GA1, GA2, GJ" in r.stderr, r.stderr

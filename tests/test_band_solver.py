@@ -76,3 +76,20 @@ def test_band_lu_reports_a_singular_matrix():
     assert d["factor"] == "1", d
     assert d["lin_factor"] == "1", d          # BK_LIN_SINGULAR
 
+
+
+def test_band_lu_solves_a_newton_matrix_as_lapack_does():
+    """The runtime's band LU against LAPACK's dgbtrf/dgbtrs (another
+    implementation: reference LAPACK) on the Newton matrix of seed Table 3 at a
+    deformed state (bench/newton_iter.c writes it, bench/band_lapack.c solves
+    it both ways): the same solution to round-off."""
+    import subprocess
+    from report.bench_band import matrices, programs
+    from util import BUILD, ensure_dir
+    mats = matrices(lambda s: None, [("Table 3", "cantilever_bend_100N_nu03", [])],
+                    ensure_dir(BUILD / "band_lapack"))
+    exe = programs()["reference LAPACK 3"]
+    r = subprocess.run([str(exe), str(mats["Table 3"]), "3"], capture_output=True, text=True, check=True)
+    d = dict(line.split("=", 1) for line in r.stdout.split())
+    assert int(d["n"]) == 120 and int(d["kl"]) == 23
+    assert float(d["solution_difference"]) < 1e-8

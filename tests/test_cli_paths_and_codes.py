@@ -35,7 +35,7 @@ def test_usage_errors_exit_64_and_are_listed_in_help():
     h = run_cli(["--help"]).stdout
     for code in ("64", "130", "143", "99"):
         assert code in h, code
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "docs" / "reference" / "commands.md").read_text()
     for code in ("| 64 |", "| 130 |", "| 143 |", "| 2 |", "| 1 |", "| 99 |"):
         assert code in readme, code
 

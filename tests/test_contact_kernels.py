@@ -60,3 +60,13 @@ def test_a_body_frame_map_has_the_derivatives_of_its_differences_and_is_the_iden
     assert float(d["body_J_err"]) < 1e-8, d              # dz/dv against central differences of z
     assert float(d["body_T_err"]) < 1e-7, d              # d2z/dv2 against differences of dz/dv
     assert float(d["body_ref_err"]) < 1e-14, d           # at r = X, p = quaternion of R0: z = y
+
+
+def test_a_sections_lever_arm_has_the_derivatives_of_its_differences_and_is_the_rotation():
+    """bk_contact_lever (rolling: friction on the section's surface): w = R(p) a
+    against Rodrigues' formula written in contact_check.c, dw/dp and
+    sum f_i d2w_i/dp2 against central differences."""
+    d = results()
+    assert float(d["lever_closed_err"]) < 1e-14, d
+    assert float(d["lever_J_err"]) < 1e-8, d
+    assert float(d["lever_H_err"]) < 1e-7, d

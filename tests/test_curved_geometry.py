@@ -64,7 +64,7 @@ def ring_path(npts):
     return "path = [" + ", ".join(f"[{x!r}, {y!r}, {z!r}]" for x, y, z in pts) + "]\nup = [0.0, 0.0, 1.0]"
 
 
-# Torsion: gef has the Saint-Venant constant of the square, 0.1406 b^4 (README); the
+# Torsion: gef has the Saint-Venant constant of the square, 0.1406 b^4 (docs/explanation/elements.md); the
 # continuum elements' sections cannot warp, so they twist with the polar moment
 # Ip = b^4/6 (18.5 % stiffer: measured on the straight cantilever of seed Table 6,
 # 1.2414 degrees against T L/(G Ip) = 1.2414).  Castigliano takes each one's GJ.

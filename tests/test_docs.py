@@ -1,4 +1,4 @@
-"""The README's scene reference and the generated option reference
+"""The scene reference (docs/reference/scene.md) and the generated option reference
 (docs/reference/options.md) list exactly the keys the scene reader accepts
 (gen/scene_keys.py and the laws' parameter keys), so a key is never undocumented
 or documented but refused; the files generated from the options schema are
@@ -11,7 +11,7 @@ from util import ROOT
 
 
 def documented_keys():
-    return _table_keys((ROOT / "README.md").read_text(), "### Scene reference") | \
+    return _table_keys((ROOT / "docs" / "reference" / "scene.md").read_text(), "## Scene reference") | \
         _table_keys((ROOT / "docs" / "reference" / "options.md").read_text(), "# Analysis options") | \
         _interaction_keys((ROOT / "docs" / "reference" / "interactions.md").read_text())
 
@@ -60,8 +60,8 @@ def accepted_keys():
 
 def test_readme_scene_reference_matches_the_reader():
     doc, acc = documented_keys(), accepted_keys()
-    assert not acc - doc, f"accepted but not in the README's scene reference: {sorted(acc - doc)}"
-    assert not doc - acc, f"in the README's scene reference but refused by the reader: {sorted(doc - acc)}"
+    assert not acc - doc, f"accepted but not in the scene reference (docs/reference/scene.md): {sorted(acc - doc)}"
+    assert not doc - acc, f"in the scene reference (docs/reference/scene.md) but refused by the reader: {sorted(doc - acc)}"
 
 
 def test_option_header_and_reference_are_generated_from_the_schema():
@@ -72,8 +72,8 @@ def test_option_header_and_reference_are_generated_from_the_schema():
         assert path.read_text(encoding="utf-8") == text, f"{path} is stale: run ./build.sh gen"
 
 
-def test_readme_mentions_outputs_and_limits():
-    text = (ROOT / "README.md").read_text()
+def test_output_reference_mentions_outputs_and_limits():
+    text = "".join((ROOT / "docs" / "reference" / f).read_text() for f in ("outputs.md", "scene.md"))
     for needle in ("results.pvd", "step_NNNNNN.vtu", "vtk_every", "[[initial_velocity]]", "1,000,000",
                    "about 50 frames"):
         assert needle in text, needle

@@ -281,3 +281,14 @@ def test_sweep_axes_carry_units():
     assert unit_of("material.alu.E") == "Pa" and unit_of("dynamic.dt") == "s" and unit_of("tip.uz") == "m"
     assert unit_of("frequency.1") == "Hz" and unit_of("beam.arm.elements") == "" and unit_of("material.a.rho") == "kg/m³"
     assert _with_unit("section.s.b") == "section.s.b (m)" and _with_unit("newton_iterations") == "newton_iterations"
+
+
+def test_the_console_counts_modes_not_steps():
+    """A modal run's line says how many modes it found (it takes no steps and
+    no Newton iterations)."""
+    from util import run_cli
+    r = run_cli(["run", "cantilever_modal", "--set", "modal.modes=4", "--out",
+                 str(BUILD / "runs" / "modal_console")])
+    assert r.returncode == 0, r.stderr[-2000:]
+    first = r.stdout.splitlines()[0]
+    assert "(modal): converged; 4 modes, " in first and "step" not in first and "Newton" not in first, first

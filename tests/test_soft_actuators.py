@@ -1,4 +1,4 @@
-"""The worked examples of README "Soft actuators" (issue 37) against closed forms in
+"""The worked examples of docs/explanation/soft-actuators.md (issue 37) against closed forms in
 their linear range: the PneuNet-style actuator (models/pneunet_actuator.toml, with its
 strain-limiting layer) turns its tip by p A (e + d) L / EI of the layered section,
 the tapered curved finger (models/finger_tapered_tendon.toml) by T d int ds / EI(s);

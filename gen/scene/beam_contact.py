@@ -24,6 +24,7 @@ from gen.scene.contact import _friction, beam_names, weight_per_length
 from gen.scene.values import _dot, _norm, _sub, check_keys, get_array_of_tables, get_bool, get_int, get_number
 
 KEYS = K.BEAM_CONTACT
+from gen.scene.interactions import Interaction  # noqa: E402
 
 
 def _segments(beam, first, samples, radius):
@@ -134,3 +135,13 @@ def beam_contact_records(sets, fmt):
                    f"{self_contact} {len(chains)}")
         out += [f"chain {len(ch)} " + " ".join(f"{e} {fmt(r)} {fmt(s0)}" for e, r, s0 in ch) for ch in chains]
     return out
+
+
+def _build(ctx, doc, scene):
+    sets = beam_contacts(ctx, doc, scene.beams, scene.length_scale, scene.analysis, scene.stat)
+    return sets or None
+
+
+INTERACTION = Interaction(table="beam_contact", keys=KEYS, record="beam_contact", build=_build,
+                          lines=beam_contact_records, holds=True, order=40,
+                          title="beams that may touch one another and themselves (docs/explanation/contact.md)")

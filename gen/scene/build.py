@@ -12,7 +12,6 @@ from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
 from gen.scene.body_loads import body_point_forces
 from gen.scene.buckling import buckling_options
-from gen.scene.beam_contact import beam_contacts
 from gen.scene import interactions
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
@@ -95,11 +94,10 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
     scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat)
     inter = interactions.records(ctx, doc, scene_parts)
-    check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter) or "beam_contact" in doc, stat)
+    check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter), stat)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
         "records": [(it.record, it.lines(data, _f)) for it, data in inter],
-        "beam_contacts": beam_contacts(ctx, doc, mesh.beams, length_scale, analysis, stat),
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,

@@ -16,7 +16,8 @@ metre over the reach); samples (points per element, ends included, default
 contact_radius (m; default the section's: a circle's radius, a rectangle's
 half-height h/2); friction (the Coulomb coefficient mu, default 0; or static_friction and
 kinetic_friction apart) and slip (the slip per step below which friction
-sticks, m; default 1e-7 of the model length); motion (m: a prescribed translation, times the load factor in statics
+sticks, m; default 1e-7 of the model length) or, in dynamics, slip_velocity
+(m/s: slip = slip_velocity x dynamic.dt); motion (m: a prescribed translation, times the load factor in statics
 or the factor of `amplitude`, which dynamics requires)."""
 import math
 
@@ -28,11 +29,11 @@ SHAPES = {"half_space": ("normal", "point"), "sphere": ("center", "radius"), "ca
           "box": ("center", "size", "axes")}
 KEYS = ("name", "shape", "normal", "point", "center", "radius", "a", "b", "beams", "distance", "stiffness",
         "samples", "contact_radius", "friction", "slip", "motion", "amplitude", "static_friction",
-        "kinetic_friction", "size", "axes", "turn", "pivot", "body")
+        "kinetic_friction", "size", "axes", "turn", "pivot", "body", "slip_velocity")
 # The reference of the keys (docs/reference/interactions.md): (keys, unit, default, meaning).
 DOC = (
     (('shape',), '', 'required',
-     '`half_space`, `sphere`, `capsule` (a segment swept by a sphere) or `box`: a rigid primitive that the beams may touch ([docs/contact.md](docs/contact.md))'),
+     '`half_space`, `sphere`, `capsule` (a segment swept by a sphere) or `box`: a rigid primitive that the beams may touch ([docs/explanation/contact.md](docs/explanation/contact.md))'),
     (('name',), '', '',
      'a label'),
     (('normal', 'point'), 'm', 'point [0, 0, 0]',
@@ -67,6 +68,8 @@ DOC = (
      'the history of `.motion` and `.turn` (required in dynamics when either is given): an `[amplitude.NAME]` or inline table'),
     (('slip',), 'm', '1e-7 × the model length',
      'slip tolerance ε: below it a point sticks (a spring of stiffness 2μN/ε about where it stuck, which stays put while it sticks), beyond it slides with μN'),
+    (('slip_velocity',), 'm/s', 'none',
+     'dynamics: the slip velocity v_s of the stick–slip transition instead of `.slip`: ε = v_s × `dynamic.dt` (a point slipping slower than v_s over a step of `dynamic.dt` sticks; not with `.slip`)'),
 )
 CODE = {"half_space": 0, "sphere": 1, "capsule": 2, "box": 3}
 GRAVITY = 9.81
@@ -133,6 +136,24 @@ def _distance(code, prm, x):
     e = _sub(b, a)
     t = min(max(_dot(_sub(x, a), e) / _dot(e, e), 0.0), 1.0)
     return _norm(_sub(x, [a[i] + t * e[i] for i in range(3)])) - prm[6]
+
+
+def slip_tolerance(ctx, ct, where, length_scale, analysis, doc):
+    """The slip tolerance eps (m): `slip`, or in dynamics `slip_velocity` times
+    the nominal step dynamic.dt (the transition in slip velocity), default
+    1e-7 of the model length."""
+    if "slip_velocity" not in ct:
+        return get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
+    if "slip" in ct:
+        ctx.fail(f"{where}.slip_velocity", "expected either `slip` (m per step) or `slip_velocity` (m/s), not both")
+    if analysis != "dynamic":
+        ctx.fail(f"{where}.slip_velocity", f"is for dynamics (the analysis is {analysis!r}: give `slip`, the slip "
+                                           f"per load step, m)")
+    vs = get_number(ctx, ct, "slip_velocity", where, positive=True)
+    dt = (doc.get("dynamic") or {}).get("dt")
+    if isinstance(dt, bool) or not isinstance(dt, (int, float)) or not dt > 0.0:
+        ctx.fail(f"{where}.slip_velocity", "needs dynamic.dt (a positive time step): eps = slip_velocity x dt")
+    return vs * float(dt)
 
 
 def _friction(ctx, ct, where):
@@ -219,7 +240,7 @@ def contacts(ctx, doc, beams, length_scale, amps=None, analysis="static", bodies
         names = beam_names(ctx, ct, where, beams)
         reach = get_number(ctx, ct, "distance", where, default=1e-3 * length_scale, positive=True)
         samples = get_int(ctx, ct, "samples", where, default=4, lo=1, hi=64)
-        slip = get_number(ctx, ct, "slip", where, default=1e-7 * length_scale, positive=True)
+        slip = slip_tolerance(ctx, ct, where, length_scale, analysis, doc)
         weight = max(weight_per_length(doc, n, beams[n]["section"]) for n in names)
         kappa = get_number(ctx, ct, "stiffness", where, default=max(1e3 * weight / reach, 1e-12), positive=True)
         members = []
@@ -268,4 +289,4 @@ def _lines(data, fmt):
 
 INTERACTION = Interaction(table="contact", keys=KEYS, record="contact", build=_build, lines=_lines, holds=True,
                           order=30, doc=DOC,
-                          title="rigid primitives the beams may touch (docs/contact.md)")
+                          title="rigid primitives the beams may touch (docs/explanation/contact.md)")

@@ -87,6 +87,14 @@ def material_params(ctx, mname, mt, index):
             if kind == "resultant" and not all(v > 0 for v in vals):
                 ctx.fail(where, f"stiffnesses {', '.join(keys)} must be positive")
             return law, rho, (lambda sec, vals=vals: [float(v) for v in vals])
+    # a resultant law given some of its stiffnesses: the rest are NaN, and an
+    # element that uses one of them is refused where the material meets it
+    # (gen/scene/mesh.py: the cable uses EA and EI only)
+    if kind == "resultant" and inputs and "EA" in given and set(given) < set(inputs[0][0]):
+        keys, exprs = inputs[0]
+        if tuple(keys) == tuple(info["params"]) and all(mt[k] > 0 for k in given):
+            vals = [float(mt[k]) if k in mt else math.nan for k in keys]
+            return law, rho, (lambda sec, vals=vals: list(vals))
     known = {k for keys, _ in inputs for k in keys}
     for k in given:
         if k not in known:
@@ -94,8 +102,8 @@ def material_params(ctx, mname, mt, index):
     ctx.fail(where, f"law {law!r} needs rho and one of: {'; '.join(options)}; found {', '.join(given) or 'none'}")
 
 
-# Element choices measured to lock (out/report/verification.md, README "What is
-# there today"): (element, integrations, test on the small-strain nu, advice).
+# Element choices measured to lock (out/report/verification.md, docs/explanation/elements.md,
+# "The elements"): (element, integrations, test on the small-strain nu, advice).
 LOCKING = (
     ("ancf3243", ("full",), lambda nu: nu >= 0.1,
      "Poisson locking: bending too stiff (26 % at nu = 0.3, slender beam); use integration = \"sri\""),

@@ -265,6 +265,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             if einfo["section"] == "rectangle" and sec[0] != "rectangle":
                 ctx.fail(f"{where}.{key}", f"element {ename} needs a rectangle section, found {sec[0]}")
             params = materials[mname][2](sec)
+            if any(math.isnan(v) for v in params):
+                params = partial_stiffnesses(ctx, f"material.{mname}", ename, einfo, law, params, index)
             if first:
                 warnings.extend(w for w in beam_warnings(where, mname, law, params, materials[mname][1], sec, length,
                                                          index) if w not in warnings)
@@ -371,3 +373,27 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
 
     m.ndof = ndof
     return m
+
+
+# The resultant stiffnesses an element kind reads (by the law's parameter
+# names); the others may be left out of its material.  The cable has no
+# section orientation, shear or torsion: EA and one bending stiffness.
+RESULTANT_USED = {"cable": ("EA", "EI1")}
+
+
+def partial_stiffnesses(ctx, where, ename, einfo, law, params, index):
+    """params of a resultant material given only some stiffnesses (NaN: left
+    out), for element ename: refused when the element uses one left out;
+    else the ones it does not use are set (EI2 = EI1, the rest 0: never read)."""
+    names = index["materials"][law]["params"]
+    used = RESULTANT_USED.get(einfo["kind"], tuple(names))
+    missing = [n for n, v in zip(names, params) if math.isnan(v) and n in used]
+    if missing:
+        left = [n for n, v in zip(names, params) if math.isnan(v)]
+        ctx.fail(where, f"element {ename} uses {', '.join(missing)} of law {law!r}: give "
+                        f"{'it' if len(missing) == 1 else 'them'} (given without {', '.join(left)}; "
+                        f"ancf_cable uses only {', '.join(RESULTANT_USED['cable'])})")
+    out = [v if not math.isnan(v) else 0.0 for v in params]
+    if "EI1" in names and "EI2" in names and math.isnan(params[names.index("EI2")]):
+        out[names.index("EI2")] = out[names.index("EI1")]
+    return out

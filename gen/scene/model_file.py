@@ -117,8 +117,6 @@ def write_model(model, path):
     out.append(f"sections {len(model['sections'])}")
     for bname, e, s0, s1 in model["sections"]:
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
-    from gen.scene.beam_contact import beam_contact_records
-    out += beam_contact_records(model.get("beam_contacts", []), _f)
     from gen.scene.actuators import actuator_records
     out += actuator_records(model.get("actuators", []), _f)
     from gen.scene.point_masses import point_mass_records

@@ -5,13 +5,15 @@
 #ifndef BK_OPTIONS_H
 #define BK_OPTIONS_H
 
-#define BK_MODEL_VERSION 14       /* model file format */
+#define BK_MODEL_VERSION 17       /* model file format */
 
 enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2, BK_ANALYSIS_BUCKLING = 3 };   /* scene.analysis */
 enum bk_predictor { BK_PREDICTOR_NONE = 0, BK_PREDICTOR_SECANT = 1 };   /* static.predictor */
+enum bk_globalization { BK_GLOBALIZATION_NONE = 0, BK_GLOBALIZATION_TRUST_REGION = 1 };   /* static.globalization */
 enum bk_step_control { BK_STEP_CONTROL_ADAPTIVE = 0, BK_STEP_CONTROL_FIXED = 1 };   /* static.step_control */
 enum bk_method { BK_METHOD_LOAD_CONTROL = 0, BK_METHOD_ARC_LENGTH = 1 };   /* static.method */
 enum bk_arc_constraint { BK_ARC_CONSTRAINT_CYLINDRICAL = 0, BK_ARC_CONSTRAINT_SPHERICAL = 1 };   /* static.arc_constraint */
+enum bk_integrator { BK_INTEGRATOR_GENERALIZED_ALPHA = 0, BK_INTEGRATOR_BATHE = 1 };   /* dynamic.integrator */
 enum bk_jacobian { BK_JACOBIAN_REUSE = 0, BK_JACOBIAN_EVERY_ITERATION = 1 };   /* dynamic.jacobian */
 enum bk_about { BK_ABOUT_REFERENCE = 0, BK_ABOUT_STATIC = 1 };   /* modal.about */
 enum bk_solver { BK_SOLVER_AUTO = 0, BK_SOLVER_DENSE = 1, BK_SOLVER_SPARSE = 2 };   /* modal.solver */
@@ -53,6 +55,7 @@ typedef struct bk_static_opts {
     int stability;                  /* static.stability: 0 or 1 */
     int eigenvalues;                /* static.eigenvalues: 0 or 1 */
     int stable_path;                /* static.stable_path: 0 or 1 */
+    int globalization;              /* static.globalization: enum bk_globalization */
     int step_control;               /* static.step_control: enum bk_step_control */
     int method;                     /* static.method: enum bk_method */
     int arc_constraint;             /* static.arc_constraint: enum bk_arc_constraint */
@@ -68,6 +71,7 @@ typedef struct bk_dynamic_opts {
     double dt;                      /* dynamic.dt (s) */
     double dt_min;                  /* dynamic.dt_min (s) */
     double rho_inf;                 /* dynamic.rho_inf */
+    int integrator;                 /* dynamic.integrator: enum bk_integrator */
     double tol;                     /* dynamic.tol */
     double rayleigh_alpha;          /* dynamic.rayleigh_alpha (1/s) */
     double rayleigh_beta;           /* dynamic.rayleigh_beta (s) */
@@ -111,6 +115,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
     X("static", "stability", BK_OPT_BOOL, stat.stability, 0.0, 0, 1.0, NULL) \
     X("static", "eigenvalues", BK_OPT_BOOL, stat.eigenvalues, 0.0, 0, 1.0, NULL) \
     X("static", "stable_path", BK_OPT_BOOL, stat.stable_path, 0.0, 0, 1.0, NULL) \
+    X("static", "globalization", BK_OPT_CHOICE, stat.globalization, 0.0, 0, 1.0, "none trust_region") \
     X("static", "step_control", BK_OPT_CHOICE, stat.step_control, 0.0, 0, 1.0, "adaptive fixed") \
     X("continuation", "method", BK_OPT_CHOICE, stat.method, 0.0, 0, 1.0, "load_control arc_length") \
     X("continuation", "arc_constraint", BK_OPT_CHOICE, stat.arc_constraint, 0.0, 0, 1.0, "cylindrical spherical") \
@@ -123,6 +128,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
     X("dynamic", "dt", BK_OPT_FLOAT, dyn.dt, 0.0, 1, 1e308, NULL) \
     X("dynamic", "dt_min", BK_OPT_FLOAT, dyn.dt_min, 0.0, 1, 1e308, NULL) \
     X("dynamic", "rho_inf", BK_OPT_FLOAT, dyn.rho_inf, 0.0, 0, 1.0, NULL) \
+    X("dynamic", "integrator", BK_OPT_CHOICE, dyn.integrator, 0.0, 0, 1.0, "generalized_alpha bathe") \
     X("dynamic", "tol", BK_OPT_FLOAT, dyn.tol, 0.0, 0, 1e308, NULL) \
     X("dynamic", "rayleigh_alpha", BK_OPT_FLOAT, dyn.rayleigh_alpha, 0.0, 0, 1e308, NULL) \
     X("dynamic", "rayleigh_beta", BK_OPT_FLOAT, dyn.rayleigh_beta, 0.0, 0, 1e308, NULL) \

@@ -16,6 +16,7 @@ typedef struct dyn_work {
     int nd, ne, nc;
     double *qd, *qdd, *a, *nu;                 /* state at t_n (q is the caller's)   */
     double *q_s, *qd_s, *qdd_s, *a_s, *nu_s;   /* saved for cut-backs                 */
+    double *q_m, *qd_m;                        /* a Bathe step's mid state (dyn_bathe.c) */
     double *fint, *fext, *fgrav, *Mx, *tmp;
     double *r, *dx, *Ax;                       /* the nonlinear solver's buffers (not owned) */
     double *qe, *qde, *qdde, *fe, *K1, *K2, *K3;   /* element buffers */

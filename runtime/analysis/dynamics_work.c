@@ -18,7 +18,7 @@ static double *dalloc(size_t n)
 void bk_dyn_work_free(dyn_work *w)
 {
     double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
-                    &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
+                    &w->q_m, &w->qd_m, &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
                     &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
     for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
         free(*p[i]);
@@ -39,11 +39,12 @@ int bk_dyn_work_alloc(dyn_work *w, const bk_system *s)
     w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
     w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
     w->nu_s = dalloc(nc);
+    w->q_m = dalloc(nd), w->qd_m = dalloc(nd);
     w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd);
     w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
     w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
     w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
-    double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->fint,
+    double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->q_m, w->qd_m, w->fint,
                      w->fext, w->fgrav, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
                      w->fe, w->K1, w->K2, w->K3};
     for (size_t i = 0; i < sizeof all / sizeof *all; ++i)

@@ -278,13 +278,20 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                     bk_static_residual(s, w, w->qsave, w->nusave, lam, 1) == 0 &&
                     bk_null_motion(s, w->Ax, w->qsave, &R.nl.ls, fm, sizeof fm) == 0)
                     snprintf(what + wl, sizeof what - wl, "; %s", fm);
+                /* a near-mechanism (slack cable, rope, chain) under loads with a
+                 * potential: the trust region may converge where Newton cannot */
+                char why_not[8];
+                const char *hint = o->globalization == BK_GLOBALIZATION_NONE && st != NEWTON_INADMISSIBLE &&
+                                   !hopeless && !bk_static_trust_refusal(s, why_not, sizeof why_not)
+                    ? "; for a near-mechanism (a slack cable, rope or chain) try [static] globalization = "
+                      "\"trust_region\" with max_iterations = 2000" : "";
                 if (a.iters > 0 && isfinite(a.dnorm))
                     snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
                 else
                     incr[0] = 0;
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
-                         "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s",
+                         "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s%s",
                          info->steps + 1, target, lam, what, a.rnorm, a.rtol_abs, incr, a.iters,
                          a.iters == 1 ? "" : "s", cuts_in_row, cuts_in_row == 1 ? "" : "s",
                          hopeless ? " (a tangent singular at the last equilibrium does not improve with smaller "
@@ -292,7 +299,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                          : info->negative_eigenvalues > 0 && info->steps > 0
                              ? "; the last equilibrium was unstable (negative tangent eigenvalues): "
                                "a bifurcation or limit point was passed"
-                             : "");
+                             : "", hint);
                 goto done;
             }
             cuts_in_row++;

@@ -100,6 +100,8 @@ int bk_sp_residual(void *ctx, int matrix, double *r, double *Ax, bk_nl_eval *ev)
         return -1;
     if (matrix && p->ref && p->ref->state == 1)
         p->ref->state = 3;
+    if (matrix && w->qtrial)
+        bk_static_trust_shift(s, p->mu, Ax);          /* (after the reference state's check) */
     /* Every measure is invariant under a rigid rotation of the scene: field
      * norms, column-block norms, scalar products (norms.h). */
     ev->rnorm = bk_norm2(w->r, s->neq);
@@ -143,7 +145,8 @@ double bk_sp_step_limit(void *ctx, const double *dx)
     }
     double a = dpmax > ROT_STEP ? ROT_STEP / dpmax : 1.0;
     double b = bk_interactions_step_limit(s, p->q, dx);     /* e.g. no contact gap crosses zero */
-    return b < a ? b : a;
+    a = b < a ? b : a;
+    return w->qtrial ? bk_static_trust_step(p, dx, a) : a;
 }
 
 bk_nl_opts bk_static_nl_opts(const bk_static_opts *o)
@@ -355,6 +358,16 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         }
         R->have_stab = 1;
     }
+    if (o->globalization == BK_GLOBALIZATION_TRUST_REGION) {
+        if (bk_static_trust_refusal(s, info->message, sizeof info->message))
+            return 1;
+        w->qtrial = calloc((size_t)nd, sizeof(double));
+        w->nutrial = calloc((size_t)nc, sizeof(double));
+        if (!w->qtrial || !w->nutrial) {
+            snprintf(info->message, sizeof info->message, "out of memory");
+            return 1;
+        }
+    }
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     bk_external_load(s, w->fext);
 
@@ -406,6 +419,8 @@ void bk_static_end(static_run *R, bk_run_info *info, int rc)
     free(w->nu);
     free(w->nusave);
     free(w->nuprev);
+    free(w->qtrial);
+    free(w->nutrial);
     free(w->quat);
     bk_checks_free(&R->chk);
 }

@@ -18,6 +18,7 @@
 typedef struct work {
     double *fint, *fext, *r, *dx, *Ax, *qsave, *nu, *nusave;
     double *qprev, *nuprev;          /* the equilibrium before the last one (predictor) */
+    double *qtrial, *nutrial;        /* the trust region's trial state (NULL: static.globalization = none) */
     int *quat;                       /* first global DOF of each free nodal quaternion */
     int nquat;
     const bk_norms *norms;           /* rotation-invariant measures (the solver's) */
@@ -78,7 +79,18 @@ typedef struct static_problem {
     double lam, lam_last;            /* the load factor sought, the last equilibrium's */
     double lscale;
     reference_probe *ref;            /* NULL, or a pending check of the reference state at q */
+    double mu;                       /* the trust region's shift of the tangent (static_trust.c) */
 } static_problem;
+
+/* static_trust.c: static.globalization = "trust_region".
+ * bk_static_trust_refusal: 0 when the model's loads have a potential (dead
+ *   forces, gravity) and no interaction or nonlinear joint; else 1 and why in msg.
+ * bk_static_trust_shift: Ax[jj] += mu |Ax[jj]| on the free unknowns' diagonal.
+ * bk_static_trust_step: the fraction of the correction dx to take (a, or 0:
+ *   rejected), judged by the potential energy; adapts p->mu. */
+int bk_static_trust_refusal(const bk_system *s, char *msg, size_t n);
+void bk_static_trust_shift(const bk_system *s, double mu, double *Ax);
+double bk_static_trust_step(static_problem *p, const double *dx, double a);
 
 /* One static path's state between bk_static_begin and bk_static_end. */
 typedef struct static_run {

@@ -15,11 +15,6 @@
 #include "contact.h"
 #include "contact_pairs.h"
 
-int bk_beam_contact_present(const bk_model *m)
-{
-    return m->beam_contact && m->beam_contact->nset > 0;
-}
-
 void bc_free(void *self)
 {
     bc_work *w = self;
@@ -28,6 +23,7 @@ void bc_free(void *self)
     bk_point_frames_free(&w->pf);
     free(w->base), free(w->ebase), free(w->chain), free(w->N), free(w->X), free(w->Xref), free(w->D);
     free(w->margin), free(w->cand), free(w->pairs), free(w->box), free(w->lag);
+    bk_beam_contact_model_free(w->own);
     free(w->gp), free(w->Hp), free(w->T), free(w->used);
     for (int k = 0; k < 2; ++k)
         free(w->fe[k]);
@@ -55,7 +51,7 @@ static void point_of(const bk_model *m, const bc_work *w, int e, int p, const do
 void bc_points(bc_work *w, const bk_system *s, const double *v, int on_eq, double *X)
 {
     const bk_model *m = s->m;
-    const bk_beam_contact_model *bm = m->beam_contact;
+    const bk_beam_contact_model *bm = w->bm;
     double ve[BK_MAX_ELEMENT_DOF];
     for (int c = 0; c < bm->nset; ++c) {
         const bk_beam_contact_set *set = &bm->sets[c];
@@ -87,7 +83,7 @@ static double arc_gap(const bk_model *m, const bk_beam_contact_set *set, int i, 
  * arc length between them (adjacent segments never). */
 static int allowed(const bc_work *w, const bk_model *m, int c, int i, int k, int j, int l)
 {
-    const bk_beam_contact_set *set = &m->beam_contact->sets[c];
+    const bk_beam_contact_set *set = &w->bm->sets[c];
     if (w->chain[w->ebase[c] + i] != w->chain[w->ebase[c] + j])
         return 1;
     return set->self && arc_gap(m, set, i, k, j, l) > set->exclude;
@@ -98,7 +94,7 @@ static int allowed(const bc_work *w, const bk_model *m, int c, int i, int k, int
 static int broad_phase(bc_work *w, bk_system *s)
 {
     const bk_model *m = s->m;
-    const bk_beam_contact_model *bm = m->beam_contact;
+    const bk_beam_contact_model *bm = w->bm;
     w->ncand = 0;
     for (int c = 0; c < bm->nset; ++c) {
         const bk_beam_contact_set *set = &bm->sets[c];
@@ -153,7 +149,7 @@ static int broad_phase(bc_work *w, bk_system *s)
 int bc_prepare(void *self, bk_system *s, const double *q)
 {
     bc_work *w = self;
-    const bk_beam_contact_model *bm = s->m->beam_contact;
+    const bk_beam_contact_model *bm = w->bm;
     bc_points(w, s, q, 0, w->X);
     int again = !w->have_ref;
     for (int c = 0; c < bm->nset && !again; ++c) {
@@ -167,14 +163,14 @@ int bc_prepare(void *self, bk_system *s, const double *q)
     return again ? broad_phase(w, s) : 0;
 }
 
-int bk_beam_contact_make(bk_system *s, void **self)
+int bk_beam_contact_make(bk_system *s, const bk_beam_contact_model *bm, void **self)
 {
     const bk_model *m = s->m;
-    const bk_beam_contact_model *bm = m->beam_contact;
     bc_work *w = calloc(1, sizeof *w);
     *self = w;
     if (!w)
         return -1;
+    w->bm = bm;
     w->pf.stem = "beam_contacts";
     size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     int nent = 0, maxel = 1, maxns = 2;
@@ -389,7 +385,7 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
     seg_pair sp;
     for (int n = 0; n < w->ncand; ++n) {
         sp.c = w->cand[3 * n], sp.i = w->cand[3 * n + 1], sp.j = w->cand[3 * n + 2];
-        const bk_beam_contact_set *set = &m->beam_contact->sets[sp.c];
+        const bk_beam_contact_set *set = &w->bm->sets[sp.c];
         const int ns = set->nsample;
         sp.ei = set->elems[sp.i], sp.ej = set->elems[sp.j];
         const double hi = elem_len(m, sp.ei) / (ns - 1), hj = elem_len(m, sp.ej) / (ns - 1);
@@ -414,3 +410,22 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
             cand(ctx, &sp, 1);
     }
 }
+
+/* The interaction module: made when the model has the record "beam_contact". */
+static int make_module(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
+{
+    bk_beam_contact_model *bm = bk_beam_contact_model_read(s->m, rec, err);
+    if (!bm)
+        return -1;
+    const int r = bk_beam_contact_make(s, bm, self);
+    if (*self)
+        ((bc_work *)*self)->own = bm;    /* (freed with the work, also after a failure) */
+    else
+        bk_beam_contact_model_free(bm);
+    if (r != 0)
+        fprintf(err, "error: beam contact: out of memory\n");
+    return r != 0 ? -1 : 0;
+}
+
+const bk_interaction_module bk_interaction_beam_contact = {.ops = &bk_beam_contact_ops, .order = 40,
+                                                           .record = "beam_contact", .make = make_module};

@@ -1,6 +1,6 @@
 /* beam_contact.h -- beam-to-beam and self-contact as an interaction
- * (interaction.h): for every set of the model's beam contact data
- * (model/beam_contact.h) the segments of the beams' sampled centrelines feel
+ * (interaction.h): for every set of its data (its model record "beam_contact",
+ * beam_contact_model.h) the segments of the beams' sampled centrelines feel
  * the barrier of their distances to one another (out/kernels/contact_pairs.h
  * for the distances, out/kernels/contact.h for the barrier), with the exact
  * Jacobian.  Action equals reaction: the energy of a pair depends on the
@@ -23,16 +23,18 @@
 #ifndef BK_BEAM_CONTACT_H
 #define BK_BEAM_CONTACT_H
 
+#include "assembly/beam_contact_model.h"
 #include "assembly/interaction.h"
 
 struct bk_system;
 struct bk_model;
 
 extern const bk_interaction_ops bk_beam_contact_ops;
-/* 1 when the model has beam contact data; its data into *self (the broad
- * phase at the reference configuration done, its pairs coupled), 0 or -1. */
-int bk_beam_contact_present(const struct bk_model *m);
-int bk_beam_contact_make(struct bk_system *s, void **self);
+/* Its work for the sets bm (not owned: they must outlive it) into *self: the
+ * broad phase at the reference configuration done, its pairs coupled; 0 or
+ * -1 (out of memory).  The module (bk_interaction_beam_contact) makes it from
+ * the model's record; tests from sets of their own. */
+int bk_beam_contact_make(struct bk_system *s, const bk_beam_contact_model *bm, void **self);
 
 /* The state at q (for the outputs and the tests), of set c: the total force
  * on each of its beams (F[3 nchain], N), the pairs of segments within the

@@ -26,16 +26,16 @@ typedef struct assembly {
 } assembly;
 
 /* The number of the candidate's sample points (ns or 2 ns). */
-static int local_points(const bk_model *m, const seg_pair *sp)
+static int local_points(const bc_work *w, const seg_pair *sp)
 {
-    const int ns = m->beam_contact->sets[sp->c].nsample;
+    const int ns = w->bm->sets[sp->c].nsample;
     return sp->i == sp->j ? ns : 2 * ns;
 }
 
 /* gp, Hp through the shape functions into fe[side], Kb[2 sP + sQ]. */
 static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp, int with_K)
 {
-    const int ns = m->beam_contact->sets[sp->c].nsample, nsides = sp->i == sp->j ? 1 : 2, n3 = 3 * nsides * ns;
+    const int ns = w->bm->sets[sp->c].nsample, nsides = sp->i == sp->j ? 1 : 2, n3 = 3 * nsides * ns;
     const int el[2] = {sp->ei, sp->ej};
     const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
     const double *N[2] = {w->N + (size_t)(w->base[sp->c] + sp->i * ns) * BK_MAX_SHAPE,
@@ -139,8 +139,7 @@ static void assemble_pair(void *ctx, seg_pair *sp)
 {
     assembly *a = ctx;
     bc_work *w = a->w;
-    const bk_model *m = a->s->m;
-    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    const bk_beam_contact_set *set = &w->bm->sets[sp->c];
     if (!(sp->dist > 0.0)) {
         a->bad = 1;                          /* through a beam: not an admissible state */
         return;
@@ -148,7 +147,7 @@ static void assemble_pair(void *ctx, seg_pair *sp)
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
     if (sp->dist >= set->shat && !lg)
         return;
-    const int ns = set->nsample, n3 = 3 * local_points(m, sp);
+    const int ns = set->nsample, n3 = 3 * local_points(w, sp);
     if (!a->touched) {
         memset(w->gp, 0, (size_t)n3 * sizeof *w->gp);
         memset(w->used, 0, (size_t)n3 / 3);
@@ -240,7 +239,7 @@ static void limit_pair(void *ctx, seg_pair *sp)
 static double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
 {
     bc_work *w = self;
-    const bk_beam_contact_model *bm = s->m->beam_contact;
+    const bk_beam_contact_model *bm = w->bm;
     bc_points(w, s, q, 0, w->X);
     bc_points(w, s, dx, 1, w->D);
     limiter l = {.w = w, .alpha = 1.0};
@@ -275,7 +274,8 @@ typedef struct state {
  * when fn, ft are not NULL, the barrier's and the friction's magnitudes. */
 double bc_pair_force(const bc_work *w, const bk_model *m, const seg_pair *sp, double *fa, double *fn, double *ft)
 {
-    const bk_beam_contact_set *set = &m->beam_contact->sets[sp->c];
+    (void)m;
+    const bk_beam_contact_set *set = &w->bm->sets[sp->c];
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(w, sp) : NULL;
     double g[12], f[3] = {0.0, 0.0, 0.0};
     fa[0] = fa[1] = fa[2] = 0.0;
@@ -330,9 +330,9 @@ int bk_beam_contact_state(const bk_system *s, const double *q, int c, double *F,
                           double *min_distance)
 {
     bc_work *w = work_of(s);
-    if (!w || c < 0 || c >= s->m->beam_contact->nset)
+    if (!w || c < 0 || c >= w->bm->nset)
         return -1;
-    memset(F, 0, 3 * (size_t)s->m->beam_contact->sets[c].nchain * sizeof *F);
+    memset(F, 0, 3 * (size_t)w->bm->sets[c].nchain * sizeof *F);
     bc_points(w, s, q, 0, w->X);
     state st = {.w = w, .m = s->m, .c = c, .F = F, .dmin = INFINITY};
     bc_each_pair(w, s->m, state_pair, NULL, &st);
@@ -363,8 +363,8 @@ static const char *beam_name(const bk_model *m, int e)
  * for a beam touching only itself). */
 static int bc_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
 {
-    (void)self;
-    const bk_beam_contact_model *bm = s->m->beam_contact;
+    const bc_work *w = self;
+    const bk_beam_contact_model *bm = w->bm;
     double dmin = INFINITY, F[3 * 64];
     int len = 0;
     for (int c = 0; c < bm->nset; ++c) {
@@ -430,7 +430,7 @@ static void row_pair(void *ctx, seg_pair *sp)
     const double f = bc_pair_force(rw->w, rw->m, sp, fa, &fn, &ft);
     if (f <= 0.0)
         return;
-    const bk_beam_contact_set *set = &rw->m->beam_contact->sets[sp->c];
+    const bk_beam_contact_set *set = &rw->w->bm->sets[sp->c];
     const bc_lag *lg = set->mu > 0.0 ? bc_lag_find(rw->w, sp) : NULL;
     bk_row r;
     bk_row_begin(&r, rw->w->table, rw->rq);

@@ -98,7 +98,7 @@ typedef struct lagger {
 static void lag_pair(void *ctx, seg_pair *sp)
 {
     lagger *l = ctx;
-    const bk_beam_contact_set *set = &l->m->beam_contact->sets[sp->c];
+    const bk_beam_contact_set *set = &l->w->bm->sets[sp->c];
     if (!(set->mu > 0.0) || !(sp->dist > 0.0) || sp->dist >= set->shat)
         return;
     double g[12], fa[3];

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 
+#include "assembly/beam_contact_model.h"
 #include "assembly/contact_broad.h"
 #include "assembly/system.h"
 #include "base/pointframes.h"
@@ -30,6 +31,8 @@ typedef struct bc_lag {
 } bc_lag;
 
 typedef struct bc_work {
+    const bk_beam_contact_model *bm; /* the sets */
+    bk_beam_contact_model *own;      /* the same when read from the model's record (owned), else NULL */
     int npt;                         /* sample points of every set */
     int *base, *ebase;               /* [nset] each set's first point, first element entry */
     int *chain;                      /* [entries] the beam of each element entry of each set */

@@ -62,6 +62,7 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
         w->lam = calloc(np, sizeof *w->lam);
         w->nrm = calloc(3 * np, sizeof *w->nrm);
         w->xprev = calloc(3 * np, sizeof *w->xprev);
+        w->arm = calloc(3 * np, sizeof *w->arm);
         w->tot = calloc(6 * (size_t)(cm->nset > 0 ? cm->nset : 1), sizeof *w->tot);
         w->place = calloc(BK_CONTACT_PLACEMENT * (size_t)(cm->nprim > 0 ? cm->nprim : 1), sizeof *w->place);
         for (int i = 0; w->place && i < cm->nprim; ++i)    /* in place until a path point is assembled */
@@ -70,7 +71,7 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
     const int shapes = w ? contact_sample_shapes(w, s->m) : -1;
     *self = w;
     if (!w || shapes != 0 || body_couplings(s, cm) < 0 ||
-        !(w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->place)) {
+        !(w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->arm && w->place)) {
         fprintf(err, "error: contact: out of memory\n");
         return -1;
     }
@@ -91,6 +92,8 @@ static void contact_free(void *self)
         free(w->lam);
         free(w->nrm);
         free(w->xprev);
+        free(w->arm);
+        free(w->qdof);
         free(w->place);
         bk_contact_model_free(w->cm);
     }
@@ -128,17 +131,15 @@ static void assemble_element(void *ctx, point *pt, int end)
     if (pt->prim->body < 0) {
         if (!a->Ax)
             return;
-        const bk_element *et = pt->et;      /* Ke from the blocks: the N_i N_j Kv of every point */
+        const bk_element *et = pt->et;      /* Ke += the blocks: the N_i N_j Kv of every point */
         const int ns = et->nshape, nd = et->ndof;
-        if (ns * 3 != nd)
-            memset(w->Ke, 0, (size_t)nd * (size_t)nd * sizeof *w->Ke);   /* DOFs no position reaches */
         for (int i = 0; i < ns; ++i)
             for (int j = 0; j < ns; ++j) {
                 const double *blk = w->Kc + 9 * (i * ns + j);
                 double *Kij = w->Ke + (size_t)et->shape_dof[i] * nd + et->shape_dof[j];
                 for (int r = 0; r < 3; ++r)
                     for (int c = 0; c < 3; ++c)
-                        Kij[r * nd + c] = blk[3 * r + c];
+                        Kij[r * nd + c] += blk[3 * r + c];
             }
         bk_scatter_matrix(a->s, pt->e, w->Ke, 1.0, a->Ax);
         return;
@@ -164,6 +165,67 @@ static void assemble_element(void *ctx, point *pt, int end)
     }
 }
 
+/* Adds the friction of rolling point pt, which acts on its section's surface
+ * point y = x + w(p) (p the quaternion of its node, at DOF qd): fv[nv], Kv on
+ * v = (y, body), taken to the element block by G = dy/dq (N_i on the
+ * positions, dw/dp on p) and the term sum_r f_r d2 w_r/dp2 (the lever arm's
+ * own curvature: the moment's Jacobian). */
+static void assemble_roll(assembly *a, const point *pt)
+{
+    contact_work *w = a->w;
+    const bk_element *et = pt->et;
+    const int nd = et->ndof, nv = pt->mpf.nv, nb = nd + (nv - 3), qd = w->qdof[pt->p];
+    double fz[3] = {0.0, 0.0, 0.0}, Kz[9] = {0.0}, fv[10], Kv[100], lev[31];
+    contact_friction_terms(w, pt->set, pt->p, pt->mpf.z, fz, Kz);
+    bk_contact_chain(&pt->mpf, fz, Kz, fv, a->Ax ? Kv : NULL);
+    /* G rows: each y_r is a sum of (dof, coefficient) terms, nshape + 4 of them */
+    int gd[BK_MAX_SHAPE + 4];
+    double gc[3][BK_MAX_SHAPE + 4];
+    const int ng = et->nshape + 4;
+    for (int i = 0; i < et->nshape; ++i)
+        gd[i] = et->shape_dof[i];
+    for (int j = 0; j < 4; ++j)
+        gd[et->nshape + j] = qd + j;
+    for (int r = 0; r < 3; ++r) {
+        for (int i = 0; i < et->nshape; ++i)
+            gc[r][i] = pt->N[i];
+        for (int j = 0; j < 4; ++j)
+            gc[r][et->nshape + j] = pt->lev[3 + 4 * r + j];
+    }
+    /* the DOF of term t of row r: positions r + shape_dof, the quaternion's own */
+#define GDOF(t, r) ((t) < et->nshape ? gd[t] + (r) : gd[t])
+    for (int r = 0; r < 3; ++r)
+        for (int t = 0; t < ng; ++t)
+            w->fe[GDOF(t, r)] += gc[r][t] * fv[r];
+    for (int k = 3; k < nv; ++k)
+        w->fe[nd + k - 3] += fv[k];
+    if (!a->Ax)
+        return;
+    for (int r = 0; r < 3; ++r)                  /* G^T K_yy G */
+        for (int c = 0; c < 3; ++c) {
+            const double k = Kv[nv * r + c];
+            if (k == 0.0)
+                continue;
+            for (int t = 0; t < ng; ++t)
+                for (int u = 0; u < ng; ++u)
+                    w->Ke[(size_t)GDOF(t, r) * nb + GDOF(u, c)] += gc[r][t] * k * gc[c][u];
+        }
+    for (int r = 0; r < 3; ++r)                  /* G^T K_yb, K_by G */
+        for (int k = 3; k < nv; ++k)
+            for (int t = 0; t < ng; ++t) {
+                w->Ke[(size_t)GDOF(t, r) * nb + nd + k - 3] += gc[r][t] * Kv[nv * r + k];
+                w->Ke[(size_t)(nd + k - 3) * nb + GDOF(t, r)] += Kv[nv * k + r] * gc[r][t];
+            }
+    for (int k = 3; k < nv; ++k)
+        for (int l = 3; l < nv; ++l)
+            w->Ke[(size_t)(nd + k - 3) * nb + nd + l - 3] += Kv[nv * k + l];
+#undef GDOF
+    bk_contact_lever(pt->qe + qd, w->arm + 3 * pt->p, fv, lev);   /* f . d2w/dp2 */
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            w->Ke[(size_t)(qd + i) * nb + qd + j] += lev[15 + 4 * i + j];
+}
+
 static void assemble_point(void *ctx, point *pt)
 {
     assembly *a = ctx;
@@ -177,15 +239,23 @@ static void assemble_point(void *ctx, point *pt)
     }
     if (!contact_acts(w, pt))
         return;
-    contact_point_force(w, pt, fv, a->Ax ? Kv : NULL);
+    if (pt->roll) {                          /* the barrier on x here, the friction on the surface point */
+        double fz[3], Kz[9];
+        contact_barrier_terms(pt->set, pt->wl, pt->g, pt->dist, fz, Kz);
+        bk_contact_chain(&pt->mp, fz, Kz, fv, a->Ax ? Kv : NULL);
+    } else {
+        contact_point_force(w, pt, fv, a->Ax ? Kv : NULL);
+    }
     if (!a->touched) {
         memset(w->fe, 0, (size_t)nb * sizeof *w->fe);
         if (a->Ax && nv == 3)
             memset(w->Kc, 0, 9 * (size_t)et->nshape * (size_t)et->nshape * sizeof *w->Kc);
-        else if (a->Ax)
+        if (a->Ax)
             memset(w->Ke, 0, (size_t)nb * (size_t)nb * sizeof *w->Ke);
         a->touched = 1;
     }
+    if (pt->roll)
+        assemble_roll(a, pt);
     /* v = (x, body): x = sum N_i r_i, so the block's rows are N_i times x's, then the body's */
     for (int i = 0; i < et->nshape; ++i)
         for (int r = 0; r < 3; ++r)
@@ -194,7 +264,7 @@ static void assemble_point(void *ctx, point *pt)
         w->fe[nd + k - 3] += fv[k];
     if (!a->Ax)
         return;
-    if (nv == 3) {                           /* the blocks N_i N_j Kv, expanded into Ke after the last point */
+    if (nv == 3) {                           /* the blocks N_i N_j Kv, added to Ke after the last point */
         const int ns = et->nshape, nrow = 9 * ns;
         double *restrict v = w->Kc + 9 * ns * ns;   /* v = (N_j Kv)_j, then each row of blocks += N_i v */
         for (int j = 0; j < ns; ++j)
@@ -219,7 +289,7 @@ static void assemble_point(void *ctx, point *pt)
                 const double ni = av < 3 ? pt->N[i] : 1.0;
                 for (int j = 0; j < (bv < 3 ? et->nshape : 1); ++j) {
                     const int col = bv < 3 ? et->shape_dof[j] + bv : nd + bv - 3;
-                    w->Ke[row * (nv == 3 ? nd : nb) + col] += ni * (bv < 3 ? pt->N[j] : 1.0) * kab;
+                    w->Ke[row * nb + col] += ni * (bv < 3 ? pt->N[j] : 1.0) * kab;
                 }
             }
         }
@@ -249,9 +319,10 @@ static void accept_point(void *ctx, point *pt)
 {
     contact_work *w = ctx;
     const int p = pt->p;
+    const double *zf = pt->roll ? pt->mpf.z : pt->mp.z;   /* where friction acted over the step */
     double *xa = w->xprev + 3 * p, *n = w->nrm + 3 * p, u[3], un = 0.0, ut2 = 0.0, b[3];
     for (int r = 0; r < 3; ++r)
-        u[r] = pt->mp.z[r] - xa[r], un += u[r] * n[r];
+        u[r] = zf[r] - xa[r], un += u[r] * n[r];
     for (int r = 0; r < 3; ++r)
         ut2 += (u[r] - un * n[r]) * (u[r] - un * n[r]);
     const double y = sqrt(ut2), eps = pt->set->slip;
@@ -261,11 +332,39 @@ static void accept_point(void *ctx, point *pt)
         bk_contact_barrier(pt->dist, pt->set->shat, b);
         w->lam[p] = -pt->wl * b[1];
     }
+    const double nold[3] = {n[0], n[1], n[2]};
+    for (int r = 0; r < 3; ++r)
+        n[r] = pt->g[1 + r];
+    if (w->qdof[p] >= 0 && pt->set->mu > 0.0) {
+        /* a section that rolls: the new lever arm -r n (n in space: J_y^T n, J_y the map's rotation), in its
+         * node's frame (R^T by the lever of the unit vectors), the surface point there, and the anchor kept
+         * by the slip of a sticking point (as on the centreline: a point that rolls without slipping sticks) */
+        const int nv = pt->mp.nv;
+        double nw[3], aw[3], y3[3], col[31], R[9];
+        static const double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, nof[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            nw[c] = pt->mp.identity ? n[c] : 0.0;
+            for (int k = 0; k < 3 && !pt->mp.identity; ++k)
+                nw[c] += pt->mp.J[nv * k + c] * n[k];
+        }
+        for (int k = 0; k < 3; ++k) {
+            bk_contact_lever(pt->qe + w->qdof[p], e[k], nof, col);
+            for (int r = 0; r < 3; ++r)
+                R[3 * r + k] = col[r];
+        }
+        for (int r = 0; r < 3; ++r)
+            aw[r] = -pt->set->radius[pt->i] * nw[r], y3[r] = pt->x[r] + aw[r];
+        for (int k = 0; k < 3; ++k)
+            w->arm[3 * p + k] = R[k] * aw[0] + R[3 + k] * aw[1] + R[6 + k] * aw[2];
+        bk_contact_map map;
+        bk_contact_map_point(pt->prim, w->place + BK_CONTACT_PLACEMENT * pt->set->prim, pt->qb, y3, &map);
+        for (int r = 0; r < 3; ++r)          /* the slip in the plane (the arm's turn lifts the old point) */
+            xa[r] = map.z[r] - (rubbed && y < eps ? u[r] - un * nold[r] : 0.0);
+        return;
+    }
     for (int r = 0; r < 3; ++r)
         if (!rubbed || y >= eps)
             xa[r] = pt->mp.z[r];
-    for (int r = 0; r < 3; ++r)
-        n[r] = pt->g[1 + r];
 }
 
 static void contact_accept(void *self, const bk_system *s, const double *q, const bk_path *path)

@@ -25,6 +25,9 @@ typedef struct contact_work {
     double *tot;                     /* [6 nset] the sets' sums of an output step */
     int npoint;                      /* sample points of every set */
     double *lam, *nrm, *xprev;       /* [npoint], [3 npoint] x 2: the lagged normal force, normal, anchor (in z) */
+    double *arm;                     /* [3 npoint] a rolling point's lever arm in its node's frame (lagged) */
+    int *qdof;                       /* [npoint] the element DOF of the quaternion of the node nearest the point
+                                      * (its section's rotation), -1: the element has none (it slides) */
     double *place;                   /* [BK_CONTACT_PLACEMENT nprim] each primitive's placement at the path point
                                       * last assembled */
     double *Nc;                      /* the sample points' shape functions, each point's nshape of them */
@@ -44,6 +47,11 @@ typedef struct point {
     double qb[7];                    /* the primitive's body's coordinates (when it has one) */
     bk_contact_map mp;               /* x in the primitive's reference coordinates, mp.z, with derivatives */
     double g[13], dist;              /* the primitive's gap at mp.z with derivatives; the section's distance */
+    const double *qe;                /* the element's coordinates */
+    int roll;                        /* 1: friction acts on the section's surface point y = x + w (it rubs and
+                                      * its element carries rotations), 0: on the centreline point x */
+    double lev[31];                  /* roll: bk_contact_lever of the arm (w, dw/dp; the f term not set) */
+    bk_contact_map mpf;              /* roll: y in the primitive's reference coordinates (friction's point) */
 } point;
 
 /* The shape functions of every sample point into w->Nc, w->Noff (allocated
@@ -62,13 +70,27 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
 /* Whether point pt feels the contact: within the barrier's reach, or rubbing. */
 int contact_acts(const contact_work *w, const point *pt);
 
-/* Force fp[3] (internal sign) and stiffness Kp[9] of sample point p at z, its
- * position in the primitive's reference coordinates (g: the gap there). */
-void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *z,
-                         const double *g, double dist, double *fp, double *Kp);
+/* The barrier's force fp[3] (internal sign) and stiffness Kp[9] of a sample
+ * point at the distance dist (g: the gap and its derivatives there). */
+void contact_barrier_terms(const bk_contact_set *set, double wl, const double *g, double dist, double *fp,
+                           double *Kp);
 
-/* The force fv[nv] and (Kv not NULL) stiffness Kv[nv^2] of point pt on its
- * variables v (mp.nv: the point's position, then its body's coordinates). */
+/* Adds the lagged friction's force and stiffness of sample point p at zf,
+ * the point friction acts on in the primitive's reference coordinates. */
+void contact_friction_terms(const contact_work *w, const bk_contact_set *set, int p, const double *zf, double *fp,
+                            double *Kp);
+
+/* Force fp[3] (internal sign) and stiffness Kp[9] of sample point p: the
+ * barrier's at z, its centreline point in the primitive's reference
+ * coordinates (g: the gap there), and the friction's at zf (z, or a rolling
+ * point's surface point). */
+void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *z,
+                         const double *zf, const double *g, double dist, double *fp, double *Kp);
+
+/* The force fv[nv] and (Kv not NULL; not for a rolling point, whose friction
+ * acts on other variables: contact_force.c assembles those) stiffness
+ * Kv[nv^2] of point pt on its variables v (mp.nv: the point's position, then
+ * its body's coordinates).  fv[0..2] is the force on the beam. */
 void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv);
 
 /* The interaction's outputs (interaction.h: tables, rows, frame, summary). */

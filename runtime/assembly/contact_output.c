@@ -81,13 +81,17 @@ static void row_point(void *ctx, point *pt)
         tot[4] += 1.0;
     }
     tot[0] += fn;
-    contact_point_terms(w, set, pt->p, pt->wl, pt->mp.z, g, pt->dist, fp, Kp);
+    const double *zf = pt->roll ? pt->mpf.z : pt->mp.z;   /* friction's point: a rolling section's surface */
+    contact_point_terms(w, set, pt->p, pt->wl, pt->mp.z, zf, g, pt->dist, fp, Kp);
     const double fg = -(fp[0] * g[1] + fp[1] * g[2] + fp[2] * g[3]);
-    double ft2 = 0.0, slip2 = 0.0, fv[10];
+    double ft2 = 0.0, slip2 = 0.0, fv[10], u[3], un = 0.0;
+    const double *nl = w->nrm + 3 * pt->p;       /* the slip in the tangent plane, as friction measures it */
+    for (int r = 0; r < 3; ++r)
+        u[r] = zf[r] - w->xprev[3 * pt->p + r], un += u[r] * nl[r];
     for (int r = 0; r < 3; ++r) {                /* split in z, where the normal is g's gradient */
-        const double tr = -fp[r] - fg * g[1 + r], u = pt->mp.z[r] - w->xprev[3 * pt->p + r];
+        const double tr = -fp[r] - fg * g[1 + r];
         ft2 += tr * tr;
-        slip2 += u * u;
+        slip2 += (u[r] - un * nl[r]) * (u[r] - un * nl[r]);
     }
     bk_contact_chain(&pt->mp, fp, Kp, fv, NULL);
     bk_row r;

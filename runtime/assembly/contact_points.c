@@ -42,7 +42,8 @@ int contact_sample_shapes(contact_work *w, const bk_model *m)
     long tot = 0;
     int p = 0;
     w->Noff = malloc(((size_t)w->npoint + 1) * sizeof *w->Noff);
-    if (!w->Noff)
+    w->qdof = malloc(((size_t)w->npoint + 1) * sizeof *w->qdof);
+    if (!w->Noff || !w->qdof)
         return -1;
     for (int c = 0; c < cm->nset; ++c)
         for (int i = 0; i < cm->sets[c].nelem; ++i)
@@ -59,21 +60,26 @@ int contact_sample_shapes(contact_work *w, const bk_model *m)
         for (int i = 0; i < cm->sets[c].nelem; ++i) {
             const int e = cm->sets[c].elems[i];
             const bk_element *et = bk_elem_type(m, e);
+            int best = 0;
             for (int k = 0; k < cm->sets[c].nsample; ++k, ++p) {
                 sample_at(k, cm->sets[c].nsample, &xi);
                 et->shape(m->geoms[m->elems[e].geom], xi, 0.0, 0.0, N);
                 for (int a = 0; a < et->nshape; ++a)
                     w->Nc[w->Noff[p] + a] = N[a];
+                w->qdof[p] = -1;           /* the quaternion of the node nearest xi (the j-th is node j's) */
+                for (int f = 0, j = 0; f < et->nfield; ++f)
+                    if (et->field_role[f] == BK_FIELD_QUATERNION && j < et->nnode) {
+                        if (w->qdof[p] < 0 || fabs(et->node_xi[j] - xi) <= fabs(et->node_xi[best] - xi))
+                            w->qdof[p] = et->field_dof[f], best = j;
+                        j++;
+                    }
             }
         }
     return 0;
 }
 
-/* Force fp[3] (internal sign: what fint gains) and stiffness Kp[9] = dfp/dz of
- * sample point p at z, the point in the primitive's reference coordinates:
- * the barrier's and, with friction, the lagged friction's. */
-void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *x,
-                        const double *g, double dist, double *fp, double *Kp)
+void contact_barrier_terms(const bk_contact_set *set, double wl, const double *g, double dist, double *fp,
+                           double *Kp)
 {
     double b[3];
     memset(fp, 0, 3 * sizeof *fp);
@@ -86,6 +92,11 @@ void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p
                 Kp[3 * r + j] += wl * (b[2] * g[1 + r] * g[1 + j] + b[1] * g[4 + 3 * r + j]);
         }
     }
+}
+
+void contact_friction_terms(const contact_work *w, const bk_contact_set *set, int p, const double *x, double *fp,
+                            double *Kp)
+{
     if (set->mu > 0.0 && w->lam[p] > 0.0) {   /* D = mu lam f0(|u_t|), u_t = P (x - x_prev), P = I - n n^T */
         const double *n = w->nrm + 3 * p, *xp = w->xprev + 3 * p;
         double u[3], ut[3], f[4];
@@ -107,6 +118,17 @@ void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p
                 Kp[3 * r + j] += c * (py * ((r == j) - n[r] * n[j]) + (y > 0.0 ? dpy / y * ut[r] * ut[j] : 0.0));
         }
     }
+}
+
+/* Force fp[3] (internal sign: what fint gains) and stiffness Kp[9] = dfp/dz of
+ * sample point p: the barrier's (g: the gap at its point z) and, with
+ * friction, the lagged friction's at xf. */
+void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p, double wl, const double *z,
+                         const double *xf, const double *g, double dist, double *fp, double *Kp)
+{
+    (void)z;                           /* (the barrier needs only the gap there) */
+    contact_barrier_terms(set, wl, g, dist, fp, Kp);
+    contact_friction_terms(w, set, p, xf, fp, Kp);
 }
 
 
@@ -132,6 +154,7 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
             pt.et = bk_elem_type(m, pt.e);
             const double kl = m->geoms[m->elems[pt.e].geom][BK_GEOM_L] * pt.set->kappa;
             bk_gather(m, pt.e, q, qe);
+            pt.qe = qe;
             if (element)
                 element(ctx, &pt, 0);
             for (pt.k = 0; pt.k < pt.set->nsample; ++pt.k, ++pt.p) {
@@ -145,6 +168,15 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
                 bk_contact_map_point(pt.prim, pl, pt.qb, pt.x, &pt.mp);
                 bk_contact_gap_ref(pt.prim, pt.mp.z, pt.g);
                 pt.dist = pt.g[0] - pt.set->radius[pt.i];
+                pt.roll = w->qdof[pt.p] >= 0 && pt.set->mu > 0.0 && w->lam[pt.p] > 0.0;
+                if (pt.roll) {             /* friction on the surface point y = x + R(p) a */
+                    static const double nof[3] = {0.0, 0.0, 0.0};
+                    double y[3];
+                    bk_contact_lever(qe + w->qdof[pt.p], w->arm + 3 * pt.p, nof, pt.lev);
+                    for (int r = 0; r < 3; ++r)
+                        y[r] = pt.x[r] + pt.lev[r];
+                    bk_contact_map_point(pt.prim, pl, pt.qb, y, &pt.mpf);
+                }
                 fn(ctx, &pt);
             }
             if (element)
@@ -164,6 +196,7 @@ int contact_acts(const contact_work *w, const point *pt)
 void contact_point_force(const contact_work *w, const point *pt, double *fv, double *Kv)
 {
     double fz[3], Kz[9];
-    contact_point_terms(w, pt->set, pt->p, pt->wl, pt->mp.z, pt->g, pt->dist, fz, Kz);
+    contact_point_terms(w, pt->set, pt->p, pt->wl, pt->mp.z, pt->roll ? pt->mpf.z : pt->mp.z, pt->g, pt->dist, fz,
+                        Kz);
     bk_contact_chain(&pt->mp, fz, Kz, fv, Kv);
 }

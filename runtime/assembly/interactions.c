@@ -8,7 +8,6 @@
 
 #include "assembly/actuators.h"
 #include "assembly/body_forces.h"
-#include "assembly/beam_contact.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
 
@@ -93,21 +92,6 @@ static int make_body_forces(bk_system *s, const bk_model_record *rec, void **sel
 const bk_interaction_module bk_interaction_body_forces = {.ops = &bk_body_force_ops, .order = 70,
                                                           .present = bk_body_forces_present,
                                                           .make = make_body_forces};
-
-/* ---- contact between beams (beam_contact.c; its data is the model's own) ---- */
-
-static int make_beam_contact(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
-{
-    (void)rec;
-    if (bk_beam_contact_make(s, self) == 0)
-        return 0;
-    fprintf(err, "error: beam contact: out of memory\n");
-    return -1;
-}
-
-const bk_interaction_module bk_interaction_beam_contact = {.ops = &bk_beam_contact_ops, .order = 40,
-                                                           .present = bk_beam_contact_present,
-                                                           .make = make_beam_contact};
 
 /* Whether the model has the module's interaction, and the record it reads. */
 static int module_present(const bk_interaction_module *im, const bk_model *m, const bk_model_record **rec)

@@ -285,7 +285,6 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
             s->off[k] = rd_num(r, "sensor offset");
     }
     bk_model_read_extras(r, m);
-    bk_model_read_beam_contacts(r, m);
     bk_model_read_actuators(r, m);
     bk_model_read_point_masses(r, m);
     bk_model_read_body_forces(r, m);
@@ -304,7 +303,6 @@ void bk_model_free(bk_model *m)
     if (!m)
         return;
     bk_model_records_free(m);
-    bk_beam_contact_model_free(m->beam_contact);
     bk_actuator_model_free(m->actuators);
     free(m->pmass);
     free(m->bforces);

@@ -13,7 +13,6 @@
 #include "bk_kernel.h"
 #include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
 #include "model/actuator.h"
-#include "model/beam_contact.h"
 
 /* An interaction module's record (model/records.c): its name, and its text,
  * which the model keeps unread; the module reads it (model/reader.h
@@ -198,7 +197,6 @@ typedef struct bk_model {
     double gravity[3];
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
-    bk_beam_contact_model *beam_contact;   /* NULL: no beam touches a beam (beam_contact.h); owned likewise */
     bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
     int npmass;
     bk_point_mass *pmass;        /* point masses (bk_element_mass, bk_element_weight) */

@@ -1,13 +1,15 @@
-/* beam_contact_read.c -- the beam-to-beam contact records of the model file
- * (model/beam_contact.h), written by gen/scene/beam_contact.py:
+/* beam_contact_read.c -- the beam contact interaction's record of the model
+ * file (assembly/beam_contact_model.h), written by gen/scene/beam_contact.py:
+ *   record beam_contact
  *   beam_contacts NSET
  *   bcset REACH STIFFNESS MU_S MU_K SLIP SAMPLES EXCLUDE SELF NCHAIN   (NSET times, each followed by)
  *   chain N e r s0 ..                                           (NCHAIN times: N elements in order) */
 #include <stdlib.h>
 
+#include "assembly/beam_contact_model.h"
 #include "model/reader.h"
 
-static void read_set(bk_reader *r, bk_model *m, bk_beam_contact_set *set, int c)
+static void read_set(bk_reader *r, const bk_model *m, bk_beam_contact_set *set, int c)
 {
     rd_expect(r, "bcset");
     set->shat = rd_num(r, "beam contact reach");
@@ -46,7 +48,7 @@ static void read_set(bk_reader *r, bk_model *m, bk_beam_contact_set *set, int c)
     }
 }
 
-void bk_model_read_beam_contacts(bk_reader *r, bk_model *m)
+static void read_sets(bk_reader *r, const bk_model *m, bk_beam_contact_model *bm)
 {
     rd_expect(r, "beam_contacts");
     int ns = rd_inum(r, "beam contact sets", 0, MAXN);
@@ -59,15 +61,26 @@ void bk_model_read_beam_contacts(bk_reader *r, bk_model *m)
         rd_fail(r, "beam contact is available in dynamics and in static analyses with stability = false only");
         return;
     }
-    bk_beam_contact_model *bm = rd_xcalloc(r, 1, sizeof *bm);
-    if (!bm)
-        return;
-    m->beam_contact = bm;
     bm->sets = rd_xcalloc(r, (size_t)ns, sizeof *bm->sets);
     for (int c = 0; c < ns && !r->failed; ++c) {
         bm->nset = c + 1;                  /* (freed from here on) */
         read_set(r, m, &bm->sets[c], c);
     }
+}
+
+bk_beam_contact_model *bk_beam_contact_model_read(const bk_model *m, const bk_model_record *rec, FILE *err)
+{
+    bk_reader r;
+    if (rd_open_record(&r, rec, err) != 0)
+        return NULL;
+    bk_beam_contact_model *bm = rd_xcalloc(&r, 1, sizeof *bm);
+    if (bm)
+        read_sets(&r, m, bm);
+    if (rd_close_record(&r) != 0) {
+        bk_beam_contact_model_free(bm);
+        return NULL;
+    }
+    return bm;
 }
 
 void bk_beam_contact_model_free(bk_beam_contact_model *bm)

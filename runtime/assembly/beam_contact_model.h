@@ -1,8 +1,8 @@
-/* beam_contact.h -- the beam-to-beam contact data of a model: per set, the
+/* beam_contact_model.h -- the beam-to-beam contact data: per set, the
  * beams (chains of elements in order along each) whose centrelines may touch
  * one another and, with self, themselves, and the barrier that keeps them
- * apart (read with the model, model/beam_contact_read.c; used by
- * assembly/contact_pairs.c).
+ * apart (the interaction's own model record "beam_contact", read by
+ * beam_contact_read.c; used by beam_contact*.c).
  *
  * Each element's centreline is sampled at nsample >= 2 points, xi = k /
  * (nsample - 1), and taken as the polyline through them: its segments.  Two
@@ -20,6 +20,8 @@
  * the anchor, as for rigid primitives (bk_contact_transition). */
 #ifndef BK_BEAM_CONTACT_MODEL_H
 #define BK_BEAM_CONTACT_MODEL_H
+
+#include <stdio.h>
 
 typedef struct bk_beam_contact_set {
     double shat;                     /* barrier reach (m), > 0 */
@@ -43,6 +45,13 @@ typedef struct bk_beam_contact_model {
     bk_beam_contact_set *sets;
 } bk_beam_contact_model;
 
+struct bk_model;
+struct bk_model_record;
+
+/* The record's data (the model for its element count and analysis), or NULL
+ * after one line to err. */
+bk_beam_contact_model *bk_beam_contact_model_read(const struct bk_model *m, const struct bk_model_record *rec,
+                                                  FILE *err);
 /* Frees beam contact data read from a model file. */
 void bk_beam_contact_model_free(bk_beam_contact_model *bm);
 

@@ -1,0 +1,189 @@
+"""The launcher of repeated runs (frontend/, out/bin/run-cached): `./build.sh
+run` of a scene run before with the same --set values and nothing rebuilt
+since starts the solver without Python.  It is a second implementation of the
+Python front end's repeated run (gen/cache.py key, gen/pipeline.py run,
+gen/run_summary.py print_summary), so these tests hold the two against each
+other: the same cache key, the same files, the same console output, the same
+exit status; a run it cannot take goes to Python unchanged.  (Its speed is in
+./build.sh bench, not here.)"""
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from util import BUILD, ENV, ROOT, ensure_dir, run_cli
+
+LAUNCHER = ROOT / "out" / "bin" / "run-cached"
+FRONTEND = ROOT / "frontend"
+ONLY = {"BK_RUN_CACHED_ONLY": "1"}          # a run the launcher cannot take exits 3
+PYTHON = {"BK_NO_FAST_RUN": "1"}            # the Python front end only
+
+
+def out_dir():
+    return Path(tempfile.mkdtemp(prefix="bk-cached-", dir=ensure_dir(BUILD / "runs")))
+
+
+def launcher():
+    """out/bin/run-cached, built by build.sh's first run when missing or stale."""
+    r = run_cli(["run", "cantilever_bend_100N", "--quiet", "--out", str(out_dir())])
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert LAUNCHER.exists(), "build.sh did not build out/bin/run-cached"
+    return LAUNCHER
+
+
+def print_key(scene, sets):
+    args = [str(launcher()), "--print-key", str(scene)]
+    for s in sets:
+        args += ["--set", s]
+    r = subprocess.run(args, capture_output=True, text=True, env=dict(ENV, BK_ROOT=str(ROOT)), cwd=ROOT)
+    assert r.returncode == 0, r.stderr
+    return r.stdout.strip()
+
+
+def test_the_launchers_key_is_the_python_front_ends():
+    from gen import cache
+    d = out_dir()
+    odd = d / "a scene with spaces, ünïcode.toml"
+    shutil.copy(ROOT / "models" / "cantilever_bend_100N.toml", odd)
+    fp = cache.fingerprint()
+    cases = [(ROOT / "models" / "cantilever_bend_100N.toml", []),
+             (ROOT / "models" / "cantilever_modal.toml", ["beam.arm.elements=7", "material.alu.E=7e10"]),
+             (odd, ["load.0.value.2=-1.5e1", "scene.name=ñame"])]
+    for path, sets in cases:
+        real = os.path.realpath(path)
+        want = cache.key(real, Path(real).read_bytes(), sets, fp)
+        assert print_key(path, sets) == want, (path, sets)
+    # a byte more in the scene is another key
+    odd.write_bytes(odd.read_bytes() + b"\n")
+    assert print_key(odd, cases[2][1]) != cache.key(os.path.realpath(odd), b"", cases[2][1], fp)
+
+
+def test_sha256_against_hashlib():
+    """The launcher's SHA-256 (constants computed, not listed) on messages of
+    every length around the block and padding boundaries."""
+    import hashlib
+    src = ensure_dir(BUILD / "run_cached") / "sha_check.c"
+    src.write_text(
+        '#include "sha256.h"\n#include <stdio.h>\n#include <stdlib.h>\n'
+        "int main(void) {\n"
+        "    unsigned char m[300];\n"
+        "    for (int i = 0; i < 300; i++) m[i] = (unsigned char)(i * 7 + 3);\n"
+        "    for (int n = 0; n <= 300; n++) {\n"
+        "        bk_sha256 h; char hex[65];\n"
+        "        bk_sha256_init(&h);\n"
+        "        for (int k = 0; k < n; k += 1 + n % 13)\n"
+        "            bk_sha256_update(&h, m + k, (size_t)((k + 1 + n % 13 > n) ? n - k : 1 + n % 13));\n"
+        "        bk_sha256_hex(&h, hex); puts(hex);\n"
+        "    }\n    return 0;\n}\n")
+    exe = src.with_suffix("")
+    subprocess.run(["gcc", "-O1", "-std=c11", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
+                    f"-I{FRONTEND}", str(src), str(FRONTEND / "sha256.c"), "-o", str(exe)], check=True)
+    got = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout.split()
+    m = bytes((i * 7 + 3) & 0xFF for i in range(300))
+    assert got == [hashlib.sha256(m[:n]).hexdigest() for n in range(301)]
+
+
+def without_timings(summary):
+    return {k: v for k, v in summary.items() if not k.endswith("_s")}
+
+
+def console(text, out):
+    """The console text with the wall time and the results directory masked."""
+    import re
+    return re.sub(r"wall \d+\.\d+ s", "wall T s", text).replace(str(out), "OUT")
+
+
+# (scene, --set values): one of each analysis the summary prints differently
+SCENES = [("cantilever_bend_100N", ["beam.arm.elements=6"]),
+          ("cantilever_bend_100N_nu03", []),                       # with a scene warning
+          ("pendulum_soft_ancf", ["dynamic.t_end=0.02"]),          # scene warnings, dynamic
+          ("cantilever_modal", []),
+          ("column_buckling", []),
+          ("tip_mass_cantilever", ["scene.analysis=dynamic", "dynamic.t_end=0.02"]),
+          ("cantilever_euler_arc", [])]
+
+
+@pytest.mark.parametrize("scene,sets", SCENES, ids=[s for s, _ in SCENES])
+def test_a_repeated_run_gives_the_python_front_ends_files_and_output(scene, sets):
+    args = []
+    for s in sets:
+        args += ["--set", s]
+    a, b = out_dir(), out_dir()
+    run_cli(["run", scene, "--out", str(a)] + args, env=PYTHON)             # records the entry
+    ra = run_cli(["run", scene, "--out", str(a)] + args, env=PYTHON)        # Python's repeated run
+    rb = run_cli(["run", scene, "--out", str(b)] + args, env=ONLY)          # must be the launcher's
+    assert ra.returncode == rb.returncode, (ra.stderr[-2000:], rb.stderr[-2000:])
+    assert "run-cached:" not in rb.stderr, rb.stderr
+    assert console(rb.stdout, b) == console(ra.stdout, a)
+    assert console(rb.stderr, b) == console(ra.stderr, a)
+    assert rb.stdout.count("\n") >= 2 and "results in" in rb.stdout
+    files_a = sorted(p.relative_to(a) for p in a.rglob("*"))
+    assert files_a == sorted(p.relative_to(b) for p in b.rglob("*"))
+    for rel in files_a:
+        if rel.name == "summary.json":
+            sa, sb = (json.loads((d / rel).read_text()) for d in (a, b))
+            assert without_timings(sa) == without_timings(sb)
+        elif (a / rel).is_file():
+            assert (a / rel).read_bytes() == (b / rel).read_bytes(), rel
+    # --quiet prints nothing, --verbose says the run was reused, as in Python
+    rq = run_cli(["run", scene, "--quiet", "--out", str(b)] + args, env=ONLY)
+    assert rq.returncode == ra.returncode and rq.stdout == ""
+    rv = run_cli(["run", scene, "--verbose", "--out", str(b)] + args, env=ONLY)
+    assert "model and solver of an identical earlier run" in rv.stderr
+
+
+def test_a_run_it_cannot_take_goes_to_python_unchanged():
+    d = out_dir()
+    scene = d / "bend.toml"
+    shutil.copy(ROOT / "models" / "cantilever_bend_100N.toml", scene)
+    out = d / "run"
+    r = run_cli(["run", str(scene), "--out", str(out), "--quiet"], env=ONLY)
+    assert r.returncode == 3 and "no identical earlier run" in r.stderr
+    r = run_cli(["run", str(scene), "--out", str(out), "--quiet"])     # Python, records it
+    assert r.returncode == 0, r.stderr
+    tip = json.loads((out / "summary.json").read_text())["sensors"]["tip"]["displacement"][2]
+    assert run_cli(["run", str(scene), "--out", str(out), "--quiet"], env=ONLY).returncode == 0
+    # an edited scene: a miss, and through Python the new result
+    scene.write_text(scene.read_text().replace("-100.0", "-50.0"))
+    assert run_cli(["run", str(scene), "--out", str(out), "--quiet"], env=ONLY).returncode == 3
+    r = run_cli(["run", str(scene), "--out", str(out), "--quiet"])
+    assert r.returncode == 0, r.stderr
+    tip2 = json.loads((out / "summary.json").read_text())["sensors"]["tip"]["displacement"][2]
+    assert abs(tip2) < abs(tip) * 0.9
+    # a results directory with foreign files: Python's error, nothing removed
+    foreign = d / "foreign"
+    foreign.mkdir()
+    (foreign / "mine.txt").write_text("keep me")
+    r = run_cli(["run", str(scene), "--out", str(foreign), "--quiet"], env=ONLY)
+    assert r.returncode == 3 and "results directory" in r.stderr
+    r = run_cli(["run", str(scene), "--out", str(foreign), "--quiet"])
+    assert r.returncode == 1 and "was not made by ./build.sh run" in r.stderr
+    assert (foreign / "mine.txt").read_text() == "keep me" and len(list(foreign.iterdir())) == 1
+    # forms it does not take: --sanitize goes to Python
+    r = run_cli(["run", str(scene), "--sanitize", "--out", str(out), "--quiet"], env=ONLY)
+    assert r.returncode == 3 and "common forms" in r.stderr
+
+
+def test_launcher_is_clean_under_sanitizers_and_valgrind():
+    """The launcher's sources built with -Werror, then with AddressSanitizer and
+    UBSan, and for valgrind memcheck, each running a repeated run and its summary."""
+    base = ["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-g"] + [str(p) for p in FRONTEND.glob("*.c")]
+    d = ensure_dir(BUILD / "run_cached")
+    asan, plain = d / "run-cached-asan", d / "run-cached-memcheck"
+    subprocess.run(base + ["-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-o", str(asan)],
+                   check=True)
+    subprocess.run(base + ["-O1", "-march=x86-64-v2", "-o", str(plain)], check=True)
+    sets = ["--set", "beam.arm.elements=5"]
+    out = out_dir()
+    assert run_cli(["run", "cantilever_modal", "--out", str(out)] + sets, env=PYTHON).returncode == 0
+    env = dict(ENV, BK_ROOT=str(ROOT), BK_RUN_CACHED_ONLY="1", BK_CALLER_CWD=str(ROOT))
+    for cmd in ([str(asan)], ["valgrind", "--error-exitcode=99", "--leak-check=full", "--errors-for-leak-kinds=all",
+                              "--trace-children=no", str(plain)]):
+        r = subprocess.run(cmd + ["cantilever_modal", "--out", str(out)] + sets, capture_output=True, text=True,
+                           env=env, cwd=ROOT, timeout=300)
+        assert r.returncode == 0, (cmd[0], r.stderr[-3000:])
+        assert "frequency (Hz)" in r.stdout and "ERROR: AddressSanitizer" not in r.stderr
