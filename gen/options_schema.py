@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 16      # 16: beam contact in its interaction record (record beam_contact);
+MODEL_VERSION = 17      # 17: the output record's hdf5 (results.h5);
+                        # 16: beam contact in its interaction record (record beam_contact);
                         # 15: dynamic.integrator (generalized_alpha | bathe);
                         # 14: static.globalization (the static record);
                         # 13: geom records carry a layer's band (BK_GEOM_BAND_LO, _HI; bk_kernel.h 6);
@@ -209,6 +210,9 @@ OPTIONS = (
     Opt("output", "vtk_every", "int", _vtk_every, "a ParaView frame every n-th output step (0: none); the last "
         "step always gets one", record="output", lo=0, hi=10**9,
         default_doc="1 (static, modal); ⌈output steps / 50⌉ (dynamic)"),
+    Opt("output", "hdf5", "bool", True, "results.h5: every output step's time (or load factor), coordinates q, "
+        "velocities (dynamics) and every result table's columns in one HDF5 file (layout: "
+        "docs/reference/results_h5.md)", record="output"),
     Opt("modal", "modes", "int", 10, "number of modes", record="modal", lo=1, hi=100000),
     Opt("modal", "about", "choice", "reference", "`reference` or `static` (the static equilibrium under the "
         "loads); a buckling analysis writes `static` when it has preloads", record="modal",

@@ -101,7 +101,17 @@ KERNEL_FLAGS = {
     "memcheck": ["-O2", MEMCHECK_ARCH, "-fopenmp-simd", "-fno-math-errno", "-fPIC"],
 }
 WARN = ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra"]
-INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse"]
+# HDF5's headers: Debian's serial build (libhdf5-dev, which ./build.sh installs).
+HDF5_INCLUDE = "/usr/include/hdf5/serial"
+INCLUDES = ["-I" + str(RUNTIME), "-I" + str(KERNELS), "-I/usr/include/suitesparse", "-I" + HDF5_INCLUDE]
+
+
+def check_hdf5():
+    """One clear line when HDF5's header is missing (the runtime's results.h5
+    needs it), instead of a compiler error deep in runtime/output/h5.c."""
+    if not os.path.exists(HDF5_INCLUDE + "/hdf5.h"):
+        raise BuildError(f"{HDF5_INCLUDE}/hdf5.h: not found: the solver writes results.h5 with HDF5; "
+                         "install Debian's libhdf5-dev (./build.sh installs it)")
 
 
 class _BuildLock:
@@ -201,6 +211,7 @@ def runtime_objects(variant="release", log=None, extra_sources=()):
 
 
 def _runtime_objects(variant, log, extra_sources):
+    check_hdf5()
     flags = VARIANTS[variant]
     headers = runtime_headers()
     jobs = []

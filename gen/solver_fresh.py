@@ -19,8 +19,10 @@ class BuildError(Exception):
 # libgsl-dev): loading their shared objects took 0.4-0.9 ms of each solver
 # process here, a fifth of a small scene's run; libgomp, libmvec and libm stay
 # shared.
+# HDF5 (results.h5, runtime/output/h5.c) likewise: Debian's serial build
+# (libhdf5-dev) with its szip and zlib filters.
 LIBS = ["-Wl,-Bstatic", "-lklu", "-lldl", "-lamd", "-lcolamd", "-lbtf", "-lsuitesparseconfig", "-lgsl",
-        "-lgslcblas", "-Wl,-Bdynamic", "-lm"]
+        "-lgslcblas", "-lhdf5_serial", "-lsz", "-laec", "-lz", "-Wl,-Bdynamic", "-lm"]
 # The lane kernels' vector log, cbrt, pow (out/kernels/*_*.c, `declare simd`): glibc's libmvec.
 if os.uname().sysname == "Linux" and os.uname().machine == "x86_64":   # (os.uname: no platform import)
     LIBS.insert(LIBS.index("-lm"), "-lmvec")

@@ -77,7 +77,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     acts = actuators(ctx, doc, rows, amps)
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps, mesh.bodies)
-    stat, dyn, modal, vtk_every = options(ctx, doc, analysis)
+    stat, dyn, modal, output = options(ctx, doc, analysis)
     modal = buckling or modal               # the model file's modal record carries the buckling options
     qd0 = initial_velocities(ctx, doc, mesh)
     load_types = [lt.get("type") for lt in get_array_of_tables(ctx, doc, "load")]
@@ -101,7 +101,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "pairs": mesh.pairs, "mats": mesh.mats_used, "geoms": mesh.geoms, "elements": mesh.elements,
         "fixed": sorted(rows.fixed), "lincons": rows.lincons, "nlcons": rows.nlcons, "forces": forces, "moments": moments,
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
-        "dynamic": dyn, "modal": modal, "qd0": qd0, "vtk_every": vtk_every, "warnings": mesh.warnings,
+        "dynamic": dyn, "modal": modal, "qd0": qd0, **output, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
         "body_forces": body_point_forces(ctx, doc, mesh.bodies, amps),

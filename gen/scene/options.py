@@ -11,10 +11,10 @@ DYNAMIC_DEFAULTS = S.defaults("dynamic")
 
 
 def options(ctx, doc, analysis):
-    """(static, dynamic, modal, vtk_every) options: {key: value} by the schema
+    """(static, dynamic, modal, output) options: {key: value} by the schema
     (choices by name)."""
     v = S.validate(ctx, doc, analysis)
-    return v["static"], v["dynamic"], v["modal"], v["output"]["vtk_every"]
+    return v["static"], v["dynamic"], v["modal"], v["output"]
 
 
 def initial_velocities(ctx, doc, mesh):

@@ -5,7 +5,7 @@
 #ifndef BK_OPTIONS_H
 #define BK_OPTIONS_H
 
-#define BK_MODEL_VERSION 16       /* model file format */
+#define BK_MODEL_VERSION 17       /* model file format */
 
 enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2, BK_ANALYSIS_BUCKLING = 3 };   /* scene.analysis */
 enum bk_predictor { BK_PREDICTOR_NONE = 0, BK_PREDICTOR_SECANT = 1 };   /* static.predictor */
@@ -91,6 +91,7 @@ typedef struct bk_modal_opts {
 
 typedef struct bk_output_opts {
     int vtk_every;                  /* output.vtk_every */
+    int hdf5;                       /* output.hdf5: 0 or 1 */
 } bk_output_opts;
 
 enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_OPT_STR };
@@ -138,6 +139,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
     X("dynamic", "jacobian", BK_OPT_CHOICE, dyn.jacobian, 0.0, 0, 1.0, "reuse every_iteration") \
     X("dynamic", "output_every", BK_OPT_INT, dyn.output_every, 1.0, 0, 1000000000.0, NULL) \
     X("output", "vtk_every", BK_OPT_INT, output.vtk_every, 0.0, 0, 1000000000.0, NULL) \
+    X("output", "hdf5", BK_OPT_BOOL, output.hdf5, 0.0, 0, 1.0, NULL) \
     X("modal", "modes", BK_OPT_INT, modal.modes, 1.0, 0, 100000.0, NULL) \
     X("modal", "about", BK_OPT_CHOICE, modal.about, 0.0, 0, 1.0, "reference static") \
     X("modal", "solver", BK_OPT_CHOICE, modal.solver, 0.0, 0, 2.0, "auto dense sparse")

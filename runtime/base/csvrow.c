@@ -215,7 +215,9 @@ static void format_chunk(const void *arg, FILE *unused)
 
 int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n)
 {
+    const bk_rowsink *sink = q->sink;
     memset(q, 0, sizeof *q);
+    q->sink = sink;
     for (int k = 0; k < n && q->nfp < BK_ROWQ_TABLES; ++k)
         if (fp[k])
             q->fp[q->nfp++] = fp[k];
@@ -250,13 +252,15 @@ void bk_rowqueue_submit(bk_rowqueue *q, int flush)
 void bk_rowqueue_stop(bk_rowqueue *q)
 {
     if (q->w) {
-        bk_rowqueue_submit(q, 1);
+        bk_rowqueue_submit(q, 0);        /* (not flushed: the caller's fclose does, and reports a failure's errno) */
         bk_filewriter_wait(q->w, q->ticket[q->cur ^ 1]);
     }
     free(q->chunk[0]);
     free(q->chunk[1]);
     free(q->row);
+    const bk_rowsink *sink = q->sink;
     memset(q, 0, sizeof *q);
+    q->sink = sink;
 }
 
 int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp)
@@ -274,6 +278,10 @@ int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp)
 void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q)
 {
     fmt_begin(r, fp);
+    r->sink = NULL;
+    r->mirror = NULL;
+    if (q && q->sink && (r->mirror = q->sink->begin(q->sink->ctx, fp)) != NULL)
+        r->sink = q->sink;
     if (!q || !q->w)
         return;
     for (int t = 0; t < q->nfp; ++t)
@@ -287,6 +295,8 @@ void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q)
 
 void bk_row_num(bk_row *r, double v)
 {
+    if (r->mirror)
+        r->sink->num(r->mirror, v);
     if (r->q)
         rq_value(r->q, T_NUM, 0, &v);
     else
@@ -295,6 +305,8 @@ void bk_row_num(bk_row *r, double v)
 
 void bk_row_int(bk_row *r, long v)
 {
+    if (r->mirror)
+        r->sink->integer(r->mirror, v);
     if (r->q)
         rq_value(r->q, T_INT, 0, &v);
     else
@@ -303,6 +315,8 @@ void bk_row_int(bk_row *r, long v)
 
 void bk_row_str(bk_row *r, const char *s)
 {
+    if (r->mirror)
+        r->sink->str(r->mirror, s);
     if (r->q)
         rq_str(r->q, s, strlen(s));
     else
@@ -311,6 +325,8 @@ void bk_row_str(bk_row *r, const char *s)
 
 void bk_row_e(bk_row *r, double v, int prec)
 {
+    if (r->mirror)
+        r->sink->num(r->mirror, v);
     if (r->q)
         rq_value(r->q, T_E, prec, &v);
     else
@@ -319,6 +335,8 @@ void bk_row_e(bk_row *r, double v, int prec)
 
 void bk_row_g(bk_row *r, double v, int prec)
 {
+    if (r->mirror)
+        r->sink->num(r->mirror, v);
     if (r->q)
         rq_value(r->q, T_G, prec, &v);
     else
@@ -327,6 +345,8 @@ void bk_row_g(bk_row *r, double v, int prec)
 
 void bk_row_end(bk_row *r)
 {
+    if (r->mirror)
+        r->sink->end(r->mirror);
     if (r->q)
         rq_tag(r->q, T_END, 0);
     else

@@ -29,7 +29,9 @@
  *   bk_rowqueue_submit  hands over the chunk being filled; flush: the thread
  *                       then flushes every stream (the 0.5 s flush of output.c).
  *   bk_rowqueue_stop    hands over what is left and waits until the thread has
- *                       formatted it; the streams are the caller's again; frees
+ *                       formatted it (not flushed: closing a stream flushes it
+ *                       and reports a failure with its errno); the streams are
+ *                       the caller's again; frees
  *                       the chunks.  Safe on a queue never started. */
 #ifndef BK_CSVROW_H
 #define BK_CSVROW_H
@@ -42,6 +44,20 @@
 #define BK_ROWQ_CHUNK (128 << 10)
 
 struct bk_filewriter;
+
+/* A mirror of the tables' rows (the run's results.h5: output/h5.h): given the
+ * values of every row begun with a queue that has a sink, as they are written
+ * (before formatting, on the caller's thread), whether the row is formatted
+ * here or queued.  begin: the mirror of the table written to fp (NULL: that
+ * table is not mirrored); then one call per field, and end. */
+typedef struct bk_rowsink {
+    void *ctx;
+    void *(*begin)(void *ctx, FILE *fp);
+    void (*num)(void *tab, double v);        /* bk_row_num, bk_row_e, bk_row_g */
+    void (*integer)(void *tab, long v);
+    void (*str)(void *tab, const char *s);
+    void (*end)(void *tab);
+} bk_rowsink;
 
 typedef struct bk_rowqueue {
     struct bk_filewriter *w;           /* NULL: not started (rows are formatted by the caller) */
@@ -56,6 +72,7 @@ typedef struct bk_rowqueue {
     struct bk_rowqueue_job { struct bk_rowqueue *q; int k; } job[2];
     /* the thread's: the row being formatted (its fields may span two chunks) */
     struct bk_row *row;                /* owned */
+    const bk_rowsink *sink;            /* not owned: the rows' mirror, or NULL (kept by start and stop) */
 } bk_rowqueue;
 
 typedef struct bk_row {
@@ -65,6 +82,8 @@ typedef struct bk_row {
     FILE *fp;                /* where the row goes */
     bk_rowqueue *q;          /* non-NULL: the row is recorded in q (table `table`) */
     int table;
+    const bk_rowsink *sink;  /* the mirror of the row's values (sink->begin gave mirror), */
+    void *mirror;            /*   or NULL */
 } bk_row;
 
 int bk_rowqueue_start(bk_rowqueue *q, struct bk_filewriter *w, FILE *const *fp, int n);
@@ -73,7 +92,8 @@ void bk_rowqueue_stop(bk_rowqueue *q);
 /* 1 when q is started and fp is one of its streams (the writer thread's). */
 int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp);
 
-/* q: NULL or not started, or fp not one of its streams: formatted here. */
+/* q: NULL or not started, or fp not one of its streams: formatted here.
+ * Either way, q's sink (when it has one) is given the row's values. */
 void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q);
 void bk_row_num(bk_row *r, double v);              /* as "%.17g" */
 void bk_row_int(bk_row *r, long v);                /* as "%ld" */

@@ -21,9 +21,10 @@ static int grow(bk_tables *ts)
     return 0;
 }
 
-static void put(bk_tables *ts, const char *name, FILE *fp, char *buf, int rows)
+static void put(bk_tables *ts, const char *name, const char *header, FILE *fp, char *buf, int rows)
 {
     bk_table *t = &ts->t[ts->n++];
+    t->header = header ? strdup(header) : NULL;     /* (NULL when out of memory: no mirror, csvrow.h) */
     snprintf(t->name, sizeof t->name, "%s", name);
     t->fp = fp;
     t->buf = buf;
@@ -39,8 +40,16 @@ FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const cha
     char *buf;
     FILE *fp = bk_table_open(dir, name, header, &buf, err);
     if (fp)
-        put(ts, name, fp, buf, rows);
+        put(ts, name, header, fp, buf, rows);
     return fp;
+}
+
+const bk_table *bk_tables_of(const bk_tables *ts, const FILE *fp)
+{
+    for (int k = 0; k < ts->n; ++k)
+        if (ts->t[k].fp == fp)
+            return &ts->t[k];
+    return NULL;
 }
 
 FILE *bk_tables_find(const bk_tables *ts, const char *name)
@@ -57,7 +66,7 @@ int bk_tables_add(bk_tables *ts, const char *name, FILE *fp, int rows)
         fclose(fp);
         return -1;
     }
-    put(ts, name, fp, NULL, rows);
+    put(ts, name, NULL, fp, NULL, rows);
     return 0;
 }
 
@@ -101,8 +110,10 @@ int bk_tables_close(bk_tables *ts, const char *dir, FILE *err)
 void bk_tables_free(bk_tables *ts)
 {
     bk_tables_close(ts, "", NULL);
-    for (int k = 0; k < ts->n; ++k)
+    for (int k = 0; k < ts->n; ++k) {
         free(ts->t[k].buf);
+        free(ts->t[k].header);
+    }
     free(ts->t);
     ts->t = NULL;
     ts->n = ts->cap = 0;

@@ -32,6 +32,7 @@ typedef struct bk_table {
     char name[BK_TABLE_NAME];
     FILE *fp;                /* owned; NULL once closed */
     char *buf;               /* owned: its stdio buffer (may be NULL) */
+    char *header;            /* owned: its header line (NULL: bk_tables_add) */
     int rows;                /* written with bk_row */
 } bk_table;
 
@@ -44,6 +45,8 @@ FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const cha
 /* The open stream of the table `name` already registered, or NULL (a table
  * that two writers share, e.g. contacts.csv of rigid and beam contact). */
 FILE *bk_tables_find(const bk_tables *ts, const char *name);
+/* The table written to the stream fp, or NULL. */
+const bk_table *bk_tables_of(const bk_tables *ts, const FILE *fp);
 int bk_tables_add(bk_tables *ts, const char *name, FILE *fp, int rows);
 int bk_tables_rows(const bk_tables *ts, FILE **fp, int max);
 void bk_tables_flush(bk_tables *ts, int (*skip)(void *ctx, FILE *fp), void *ctx);

@@ -45,23 +45,10 @@ static void spent_flush(bk_output *o, double t0)
         if (o->rq.w)
             bk_rowqueue_submit(&o->rq, 1);
         bk_tables_flush(&o->tables, queued, &o->rq);
+        bk_h5_flush(&o->h5);              /* (a failure is reported by bk_output_close_tables) */
         now = bk_clock_s();
     }
     o->t_output += now - t0;
-}
-
-/* Once the frames have a writer thread (vtk.h: a run with enough frames), the
- * tables' rows are formatted there too (csvrow.h bk_rowqueue): from here on
- * the tables are that thread's until bk_output_close_tables. */
-static void rows_to_writer(bk_output *o)
-{
-    if (o->rq.w || !o->vtk.background || !o->vtk.fw.threaded)
-        return;
-    /* the tables written with bk_row (the mode tables are not) */
-    FILE *list[BK_ROWQ_TABLES];
-    int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
-    if (bk_rowqueue_start(&o->rq, &o->vtk.fw, list, n) == 0)
-        o->forces.rq = &o->rq;
 }
 
 int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
@@ -102,17 +89,30 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
         bk_eval_sensor(m, m->q0, &m->sensors[k], o->sensor_p0 + 3 * k, NULL);
     if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
         return -1;
+    o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
+    if (m->output.hdf5) {
+        /* one writer thread for results.h5, the frames and the tables' rows
+         * (the frames' buffers in it when they would have a thread of their own) */
+        const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
+        if (bk_h5_open(&o->h5, m, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
+            return -1;
+        o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
+        if (share)
+            o->vtk.ext = &o->h5.fw;
+    }
     o->vtk.sec = o->forces.sec;
     o->vtk.sec_step = &o->forces.sec_step;
     o->vtk.ssec = o->forces.ssec;
     o->vtk.maxsample = o->forces.maxsample;
     /* section forces at the steps that get a ParaView frame; without frames at
-     * the stride their default would have (gen/scene/options.py: about 100
-     * frames in dynamics, every equilibrium in statics) */
+     * the stride their default would have (gen/options_schema.py _vtk_every:
+     * 50 frames in dynamics, DYNAMIC_FRAMES; every equilibrium in statics) --
+     * it was 100 here, so a run without frames computed twice the section
+     * forces of one with them (its output took longer) */
     if (m->output.vtk_every > 0)
         o->sections_every = m->output.vtk_every;
     else if (bk_model_in_time(m))
-        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 100.0));
+        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 50.0));
     else
         o->sections_every = 1;
     return 0;
@@ -151,7 +151,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
     double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, o->sys, -step, t, q);
-    rows_to_writer(o);
+    bk_output_rows_to_writer(o);
     spent(o, t0);
 }
 
@@ -172,7 +172,8 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, o->sys, step, t, q);
-    rows_to_writer(o);
+    bk_output_rows_to_writer(o);
+    bk_h5_state(&o->h5, step, t, q);
     if (!o->sensors) {
         spent(o, t0);
         return;
@@ -203,6 +204,7 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
 {
     double t0 = bk_clock_s();
     o->sys = s;
+    bk_h5_velocity(&o->h5, step, qd);
     if (o->forces_calls == 0)            /* the interactions' tables, at the first output step */
         for (int k = 0; k < s->ninter; ++k) {
             const bk_interaction *it = &s->inter[k];
@@ -459,8 +461,12 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
 int bk_output_close_tables(bk_output *o, FILE *err)
 {
     bk_rowqueue_stop(&o->rq);            /* the rows the writer thread still has, formatted */
-    o->forces.rq = NULL;
-    return bk_tables_close(&o->tables, o->dir, err);
+    if (o->own_fw) {
+        bk_filewriter_close(&o->fw);
+        o->own_fw = 0;
+    }
+    int h5 = bk_h5_close(&o->h5, err);   /* (its rows were mirrored as they were given) */
+    return bk_tables_close(&o->tables, o->dir, err) != 0 || h5 != 0 ? -1 : 0;
 }
 
 void bk_output_close(bk_output *o)

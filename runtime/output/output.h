@@ -1,5 +1,6 @@
 /* output.h -- result files of a run: sensors.csv (one row per output step and
  * sensor, flushed as it is written so an interrupted run keeps its results),
+ * results.h5 (h5.h: every output step's q, and every table's rows),
  * summary.json (written at the end, also when the solve failed) and, for modal
  * analyses, modes.csv, mode_sensors.csv and the mode files of vtk.h. */
 #ifndef BK_OUTPUT_H
@@ -8,6 +9,7 @@
 #include <stdio.h>
 
 #include "output/forces.h"
+#include "output/h5.h"
 #include "output/run_info.h"
 #include "base/tables.h"
 #include "model/model.h"
@@ -38,6 +40,10 @@ typedef struct bk_output {
     int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
     const bk_system *sys;    /* the system of the last bk_output_forces: its interactions add to the frames */
     bk_rowqueue rq;          /* the tables' rows, formatted by the frames' writer thread once it runs (csvrow.h) */
+    bk_h5 h5;                /* results.h5 (h5.h; output.hdf5): the states and a mirror of the tables */
+    bk_filewriter fw;        /* the rows' writer thread when neither the frames' nor results.h5's runs */
+    int own_fw, own_tried;   /*   1: fw is open; its opening was tried */
+    int row_steps;           /*   output steps before it */
 } bk_output;
 
 
@@ -99,6 +105,9 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
  * 0, or -1 with "error: PATH: cannot write: REASON" on err for each table
  * that could not be written. */
 int bk_output_close_tables(bk_output *o, FILE *err);
+/* (output.c's, in rows_writer.c) The tables' rows to a writer thread once one
+ * runs, called at every output step. */
+void bk_output_rows_to_writer(bk_output *o);
 /* Closes what is still open (the tables too, unreported) and frees. */
 void bk_output_close(bk_output *o);
 

@@ -104,7 +104,13 @@ static void maybe_background(bk_vtk *v, double frac)
             return;                          /* a short run (asked again at its next frame) */
     }
     v->tried_background = 1;
-    if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) != 0) {
+    if (v->ext) {                        /* the output's writer (results.h5's thread) */
+        if (!v->ext->threaded || v->ext->cap < v->frame_bytes)
+            return;
+        v->wp = v->ext;
+    } else if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
+        v->wp = &v->fw;
+    else {
         bk_filewriter_close(&v->fw);
         return;
     }
@@ -143,15 +149,15 @@ static void record_failure(bk_vtk *v, const char *path, int err)
 
 int bk_vtk_finish(bk_vtk *v, FILE *err)
 {
-    int bad = v->background && bk_filewriter_drain(&v->fw) != 0;
+    int bad = v->background && bk_filewriter_drain(v->wp) != 0;
     const char *path = NULL;
     int e = 0;
     if (v->failed == 1) {
         path = v->failed_path, e = v->errno_;
         v->failed = 2;                    /* reported */
-    } else if (bad && v->fw.failed == 1) {
-        path = v->fw.failed_path, e = v->fw.errno_;
-        v->fw.failed = 2;
+    } else if (bad && v->wp->failed == 1) {
+        path = v->wp->failed_path, e = v->wp->errno_;
+        v->wp->failed = 2;
     }
     if (err && path)
         fprintf(err, "error: %s: cannot write: %s\n", path, strerror(e));
@@ -160,8 +166,8 @@ int bk_vtk_finish(bk_vtk *v, FILE *err)
 
 void bk_vtk_close(bk_vtk *v)
 {
-    if (v->background)
-        bk_filewriter_close(&v->fw);
+    if (v->background && v->wp == &v->fw)
+        bk_filewriter_close(&v->fw);     /* (a shared writer is its owner's to close) */
     v->background = 0;
     if (v->jobs)
         free(v->jobs[0].q);              /* the block of every job's arrays */
@@ -213,7 +219,7 @@ static int write_collection(bk_vtk *v, const char *dir, const char *name, int n,
 static int write_pvd(bk_vtk *v)
 {
     if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
-        bk_filewriter_drain(&v->fw);
+        bk_filewriter_drain(v->wp);
     return write_collection(v, v->dir, "results.pvd", v->nframe, v->times, v->frames, "step_%06d.vtu");
 }
 
@@ -222,7 +228,7 @@ static int write_pvd(bk_vtk *v)
 static int write_modes_pvd(bk_vtk *v)
 {
     if (v->background)                   /* the frames it lists first (a failed one: bk_vtk_finish) */
-        bk_filewriter_drain(&v->fw);
+        bk_filewriter_drain(v->wp);
     return write_collection(v, v->dir, "modes.pvd", v->nmode, NULL, NULL, "mode_%02d.vtu");
 }
 
@@ -382,7 +388,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
                      const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
 {
     v->written++;
-    const int b = v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(&v->fw) : -1;
+    const int b = v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(v->wp) : -1;
     if (b >= 0) {
         const bk_model *m = v->m;
         const size_t nq = (size_t)m->ndof;
@@ -405,7 +411,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
         if (j->with_ssec)
             memcpy(j->ssec, ssec, 6 * (size_t)maxsample * (size_t)m->nelem * sizeof *ssec);
         /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
-        bk_filewriter_submit_job(&v->fw, b, path, frame_job, j);
+        bk_filewriter_submit_job(v->wp, b, path, frame_job, j);
         return 0;
     }
     FILE *fp = fopen(path, "wb");

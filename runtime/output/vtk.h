@@ -35,7 +35,10 @@ typedef struct bk_vtk {
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
-    bk_filewriter fw;        /* owned when background */
+    bk_filewriter fw;        /* owned when background and no ext */
+    bk_filewriter *ext;      /* not owned, or NULL: a writer thread to share (buffers of at least
+                              * frame_bytes; the output's: results.h5's) instead of one of its own */
+    bk_filewriter *wp;       /* the frames' writer when background: &fw or ext */
     struct bk_vtk_job *jobs; /* owned when background: per buffer of fw, the inputs of the
                               * frame its thread makes (NULL: frames are written here) */
     int failed;              /* a frame or collection written here could not be: 1, 2 once reported */

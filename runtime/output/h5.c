@@ -1,0 +1,326 @@
+/* h5.c -- results.h5 (see h5.h): the rows kept on the solve thread and handed
+ * to the HDF5 thread (h5_file.c). */
+#include "output/h5_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model/model.h"
+
+/* ---- the tables' mirror (csvrow.h bk_rowsink), on the solve thread ---- */
+
+static size_t cell_size(int type)
+{
+    return type == 3 ? BK_H5_STR : 8;
+}
+
+/* Room for one more row of t in the set being filled: its buffer grows to
+ * BK_H5_ROWS rows, then the set is handed over.  Before the first row's types
+ * are known a row takes the most room a row can (every cell a string). */
+static int table_room(bk_h5 *h, bk_h5_table *t)
+{
+    if (t->nbuf[h->cur] < t->cap[h->cur])
+        return 0;
+    if (t->cap[h->cur] >= BK_H5_ROWS) {
+        bk_h5_flush(h);
+        if (t->nbuf[h->cur] < t->cap[h->cur])
+            return 0;
+    }
+    const int k = h->cur;
+    int cap = t->cap[k] ? 2 * t->cap[k] : 64;
+    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
+    if (!b) {
+        h->oom = 1;
+        return -1;
+    }
+    t->buf[k] = b;
+    t->cap[k] = cap;
+    return 0;
+}
+
+/* Waits until the thread has done everything handed over. */
+static void settle_thread(bk_h5 *h)
+{
+    for (int k = 0; k < 2; ++k)
+        if (h->ticket[k] > 0) {
+            bk_filewriter_wait(&h->fw, h->ticket[k]);
+            h->ticket[k] = 0;
+        }
+}
+
+/* A table seen for the first time: its name and columns from the registry
+ * (the thread is idle meanwhile: it reads the list of tables). */
+static bk_h5_table *new_table(bk_h5 *h, FILE *fp)
+{
+    settle_thread(h);
+    if (h->ntab == h->captab) {
+        int cap = h->captab ? 2 * h->captab : 8;
+        bk_h5_table *nt = realloc(h->tab, (size_t)cap * sizeof *nt);
+        if (!nt) {
+            h->oom = 1;
+            return NULL;
+        }
+        h->tab = nt;
+        h->captab = cap;
+    }
+    bk_h5_table *t = &h->tab[h->ntab++];
+    memset(t, 0, sizeof *t);
+    t->fp = fp;
+    const bk_table *rt = bk_tables_of(h->tables, fp);
+    if (!rt || !rt->header)
+        return t;                         /* (ncol 0: never mirrored) */
+    snprintf(t->name, sizeof t->name, "%s", rt->name);
+    char *dot = strstr(t->name, ".csv");
+    if (dot)
+        *dot = 0;
+    int ncol = 1;
+    for (const char *p = rt->header; *p && *p != '\n'; ++p)
+        ncol += *p == ',';
+    t->col = calloc((size_t)ncol, sizeof *t->col);
+    if (!t->col) {
+        h->oom = 1;
+        return t;
+    }
+    const char *p = rt->header;
+    for (int c = 0; c < ncol; ++c) {
+        size_t len = strcspn(p, ",\n");
+        snprintf(t->col[c].name, sizeof t->col[c].name, "%.*s", (int)(len < 63 ? len : 63), p);
+        p += len + (p[len] == ',');
+    }
+    t->ncol = ncol;
+    return t;
+}
+
+static void *sink_begin(void *ctx, FILE *fp)
+{
+    bk_h5 *h = ctx;
+    if (!h->open)
+        return NULL;
+    bk_h5_table *t = NULL;
+    for (int k = 0; k < h->ntab && !t; ++k)
+        if (h->tab[k].fp == fp)
+            t = &h->tab[k];
+    if (!t && !(t = new_table(h, fp)))
+        return NULL;
+    if (t->ncol == 0 || table_room(h, t) != 0)
+        return NULL;
+    t->field = 0;
+    t->row = t->buf[h->cur] + (size_t)t->nbuf[h->cur] * t->stride;   /* (stride 0 before the first row) */
+    t->set = h->cur;
+    return t;
+}
+
+/* Column c's type set (the first row's) and its offset in a row. */
+static void settle(bk_h5_table *t, int c, int type)
+{
+    bk_h5_col *col = &t->col[c];
+    if (col->type)
+        return;
+    col->type = type;
+    col->off = c ? t->col[c - 1].off + cell_size(t->col[c - 1].type) : 0;
+    if (c == t->ncol - 1)
+        t->rowbytes = col->off + cell_size(type);
+}
+
+static void blank(bk_h5_table *t, int c)
+{
+    bk_h5_col *col = &t->col[c];
+    unsigned char *b = t->row + col->off;
+    if (col->type == 1) {
+        double v = NAN;
+        memcpy(b, &v, 8);
+    } else if (col->type == 2)
+        memset(b, 0, 8);
+    else
+        memset(b, 0, BK_H5_STR);
+}
+
+/* The cell of the row being given in the next column for a value of this
+ * type; NULL (the cell blank) past the last column or when the column's type
+ * (its first row's) is another. */
+static unsigned char *cell(bk_h5_table *t, int type)
+{
+    if (t->field >= t->ncol)
+        return NULL;
+    const int c = t->field++;
+    settle(t, c, type);
+    if (t->col[c].type != type) {
+        blank(t, c);
+        return NULL;
+    }
+    return t->row + t->col[c].off;
+}
+
+static void sink_num(void *tab, double v)
+{
+    unsigned char *p = cell(tab, 1);
+    if (p)
+        memcpy(p, &v, 8);
+}
+
+static void sink_int(void *tab, long v)
+{
+    unsigned char *p = cell(tab, 2);
+    int64_t w = v;
+    if (p)
+        memcpy(p, &w, 8);
+}
+
+static void sink_str(void *tab, const char *s)
+{
+    unsigned char *p = cell(tab, 3);
+    if (p)
+        strncpy((char *)p, s, BK_H5_STR);     /* null-padded, cut at 64 bytes */
+}
+
+static void sink_end(void *tab)
+{
+    bk_h5_table *t = tab;
+    for (; t->field < t->ncol; ++t->field) {   /* a short row: the rest blank (no type yet: float64) */
+        settle(t, t->field, 1);
+        blank(t, t->field);
+    }
+    if (t->stride == 0)                        /* the first row: its layout is every row's */
+        t->stride = t->rowbytes;
+    t->nbuf[t->set]++;
+}
+
+/* ---- the solve thread's side ---- */
+
+static void hand_over(bk_h5 *h, int flush);
+
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
+{
+    memset(h, 0, sizeof *h);
+    h->m = m;
+    h->tables = tables;
+    h->ndof = m->ndof;
+    h->with_qd = bk_model_in_time(m);
+    h->qd_step = -1;
+    h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end};
+    snprintf(h->path, sizeof h->path, "%s/results.h5", dir);
+    size_t nd = (size_t)m->ndof;
+    /* the states' buffers: 1 MB of rows per set (at least 16, at most BK_H5_ROWS) */
+    h->cap = (int)fmax(16.0, fmin((double)BK_H5_ROWS, (double)(1 << 20) / (8.0 * (double)(nd + 1))));
+    int ok = 1;
+    for (int k = 0; k < 2; ++k) {
+        h->step[k] = malloc((size_t)h->cap * sizeof *h->step[k]);
+        h->time[k] = malloc((size_t)h->cap * sizeof *h->time[k]);
+        h->q[k] = malloc((size_t)h->cap * nd * sizeof *h->q[k] + 1);
+        h->qd[k] = h->with_qd ? malloc((size_t)h->cap * nd * sizeof *h->qd[k] + 1) : NULL;
+        ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
+    }
+    h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
+        fprintf(err, "error: %s: out of memory\n", h->path);
+        h->open = 1;                          /* (bk_h5_close frees) */
+        h->failed = 1;
+        snprintf(h->failure, sizeof h->failure, "out of memory");
+        return -1;
+    }
+    h->job[0] = (bk_h5_job){h, 0, 0};
+    h->job[1] = (bk_h5_job){h, 1, 0};
+    h->job[2] = (bk_h5_job){h, 1, 1};
+    h->job[3] = (bk_h5_job){h, 2, 0};
+    h->open = 1;
+    bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+    return 0;
+}
+
+void bk_h5_velocity(bk_h5 *h, int step, const double *qd)
+{
+    if (!h->open || !h->with_qd || !qd)
+        return;
+    memcpy(h->qd_last, qd, (size_t)h->ndof * sizeof *qd);
+    h->qd_step = step;
+}
+
+void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
+{
+    if (!h->open)
+        return;
+    if (h->nbuf[h->cur] == h->cap)
+        bk_h5_flush(h);
+    const int s = h->cur;
+    size_t nd = (size_t)h->ndof, k = (size_t)h->nbuf[s];
+    h->step[s][k] = step;
+    h->time[s][k] = t;
+    memcpy(h->q[s] + k * nd, q, nd * sizeof *q);
+    if (h->with_qd) {
+        if (h->qd_step == step)
+            memcpy(h->qd[s] + k * nd, h->qd_last, nd * sizeof *q);
+        else
+            for (size_t i = 0; i < nd; ++i)
+                h->qd[s][k * nd + i] = NAN;
+    }
+    h->qd_step = -1;
+    h->nbuf[s]++;
+    /* every BK_H5_HANDOVER states to the thread, unflushed: the writing goes
+     * on beside the solve instead of after it (at fixed counts, so that a run
+     * shorter than the flush interval writes the same bytes each time) */
+    if (h->nbuf[s] >= BK_H5_HANDOVER)
+        hand_over(h, 0);
+}
+
+void bk_h5_flush(bk_h5 *h)
+{
+    if (h->open)
+        hand_over(h, 1);
+}
+
+/* The set being filled to the thread (flush: then the file is flushed), and
+ * the other set, once written, to be filled. */
+static void hand_over(bk_h5 *h, int flush)
+{
+    const int k = h->cur;
+    h->flush[k] = flush;
+    h->ticket[k] = bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[1 + k]);
+    h->cur = k ^ 1;
+    if (h->ticket[h->cur] > 0)            /* the other set: written by now? */
+        bk_filewriter_wait(&h->fw, h->ticket[h->cur]);
+    h->ticket[h->cur] = 0;
+    h->nbuf[h->cur] = 0;
+    for (int j = 0; j < h->ntab; ++j)
+        h->tab[j].nbuf[h->cur] = 0;
+}
+
+int bk_h5_close(bk_h5 *h, FILE *err)
+{
+    int rc = 0;
+    if (h->open) {
+        if (h->fw.ready) {
+            hand_over(h, 0);              /* (closing the file flushes it) */
+            bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]);
+        }
+        bk_filewriter_close(&h->fw);      /* (drains: the file is closed) */
+        h->open = 0;
+        if (!h->failed && h->oom) {
+            h->failed = 1;
+            snprintf(h->failure, sizeof h->failure, "out of memory for the rows (some are missing)");
+        }
+        if (h->failed) {
+            if (err)
+                fprintf(err, "error: %s: cannot write: %s\n", h->path, h->failure);
+            rc = -1;
+        }
+    }
+    for (int k = 0; k < h->ntab; ++k) {
+        free(h->tab[k].buf[0]);
+        free(h->tab[k].buf[1]);
+        free(h->tab[k].col);
+    }
+    free(h->tab);
+    for (int k = 0; k < 2; ++k) {
+        free(h->step[k]);
+        free(h->time[k]);
+        free(h->q[k]);
+        free(h->qd[k]);
+    }
+    free(h->qd_last);
+    const bk_tables *tables = h->tables;
+    memset(h, 0, sizeof *h);
+    h->tables = tables;
+    return rc;
+}

@@ -1,0 +1,126 @@
+/* h5.h -- results.h5: one HDF5 file per run with every output step's state and
+ * every result table (layout: docs/reference/results_h5.md).
+ *
+ *   /                 attributes scene, analysis, time_name ("time" or
+ *                     "load_factor"), units, format (1)
+ *   /step, /time      [nstep] the output steps and their time (s) or load factor
+ *   /q                [nstep, ndof] the coordinates of each output step
+ *   /qd               [nstep, ndof] their velocities (dynamics; NaN where the
+ *                     analysis gave none, e.g. a failed run's last step)
+ *   /dofs/...         [ndof] each DOF's node, beam, element, field, component
+ *   /tables/NAME      [nrow] the rows of each result table NAME.csv, a
+ *                     compound of its columns by their header names (float64,
+ *                     int64 or 64-byte strings, as the first row had them):
+ *                     the very values the CSV prints
+ *
+ * Every HDF5 call is made by the writer thread h owns (filewriter.h: the
+ * run's one writer thread, which the ParaView frames and the tables' rows
+ * share), one at a time, so HDF5's own start (0.4 ms), the file's making and
+ * every write run beside the solve.  The rows (states, and the tables' rows given to the
+ * mirror, csvrow.h bk_rowsink, on the solve thread whether or not the writer
+ * thread formats their text) are kept in one of two sets of buffers; when the
+ * run's tables are flushed (output.c: every 0.5 s of wall time), when
+ * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
+ * the thread, which appends it and flushes the file (H5Fflush), and the other
+ * set is filled meanwhile; every BK_H5_HANDOVER states (and the rows since)
+ * are handed over too, without the flush, so that the writing goes on beside
+ * the solve.  A run shorter than the flush interval writes the same bytes each
+ * time (no modification times are kept); in a longer one the file's layout
+ * (not its values) depends on when the timed flushes came.  A run that is interrupted or fails
+ * keeps every row; one killed outright keeps the rows up to its last flush.
+ *
+ * Sizes and directions:
+ *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
+ *                   tables' names and headers; not owned, must outlive h);
+ *                   cap: the bytes of its writer's file buffers (filewriter.h:
+ *                   the thread is shared with the ParaView frames, vtk.h ext).
+ *                   The file is made by the thread: a failure to is reported by
+ *                   bk_h5_close.  0, or -1 when out of memory (message on err).
+ *   bk_h5_velocity  in: the velocities qd[ndof] of the state of output step
+ *                   `step` given next (dynamics; copied).
+ *   bk_h5_state     in: step, t, q[ndof] (copied).
+ *   bk_h5_flush     hands the rows so far to the thread.
+ *   bk_h5_close     hands over the rest, waits until the file is written and
+ *                   closed, ends the thread, frees; 0, or -1 with "error:
+ *                   DIR/results.h5: cannot write: REASON" on err (if not NULL).
+ *                   Safe on a closed or never opened h. */
+#ifndef BK_H5_H
+#define BK_H5_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "base/csvrow.h"
+#include "base/filewriter.h"
+#include "base/tables.h"
+#include "model/model.h"
+
+#define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
+#define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
+#define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
+
+typedef int64_t bk_h5_id;       /* an hid_t (int64_t in HDF5 >= 1.10: checked in h5.c) */
+
+typedef struct bk_h5_col {
+    char name[64];
+    int type;                 /* 0 not yet known, 1 float64, 2 int64, 3 string (the first row's) */
+    size_t off;               /* its offset in a row */
+} bk_h5_col;
+
+typedef struct bk_h5_table {
+    const FILE *fp;           /* the CSV stream it mirrors */
+    char name[64];            /* the CSV's name without ".csv" */
+    int ncol;
+    bk_h5_col *col;           /* owned: [ncol] */
+    size_t rowbytes, stride;  /* a row's bytes (known once the first row's last column is), the buffers' */
+    unsigned char *buf[2];    /* owned: per set, [cap] rows */
+    int nbuf[2], cap[2];      /* per set: rows buffered, room */
+    int field;                /* the row being given: its next field, */
+    int set;                  /*   its set, */
+    unsigned char *row;       /*   its place */
+    long nrow;                /* the thread's: rows in the file, */
+    bk_h5_id ds, type;        /*   its dataset and compound type (0 before the first write) */
+} bk_h5_table;
+
+struct bk_h5;
+typedef struct bk_h5_job {
+    struct bk_h5 *h;
+    int what;                 /* 0 make the file, 1 write set `set`, 2 close the file */
+    int set;
+} bk_h5_job;
+
+typedef struct bk_h5 {
+    int open;                 /* between bk_h5_open and bk_h5_close */
+    char path[1100];
+    const bk_model *m;
+    const bk_tables *tables;
+    int ndof, with_qd;
+    bk_filewriter fw;         /* owned: the HDF5 thread */
+    bk_h5_job job[4];         /* make, write set 0, write set 1, close */
+    long ticket[2];           /* the write of each set handed over (0: none pending) */
+    int flush[2];             /* the file is flushed after the set's write */
+    int cur;                  /* the set being filled */
+    int cap;                  /* states per set */
+    int nbuf[2];              /* states buffered per set */
+    long *step[2];            /* owned: [cap] per set */
+    double *time[2], *q[2], *qd[2];   /* owned: [cap], [cap ndof], [cap ndof] per set */
+    double *qd_last;          /* owned: [ndof] the velocities given for step qd_step */
+    int qd_step;              /* -1: none */
+    bk_h5_table *tab;         /* owned: [ntab] the mirrored tables */
+    int ntab, captab;
+    bk_rowsink sink;          /* the tables' mirror (csvrow.h), ctx = this */
+    int oom;                  /* the solve thread ran out of memory for rows (some are missing) */
+    /* the thread's */
+    bk_h5_id file, tables_group, ds_step, ds_time, ds_q, ds_qd;
+    long nstate;              /* states in the file */
+    int failed;               /* an HDF5 call failed: */
+    char failure[200];        /*   which */
+} bk_h5;
+
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err);
+void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
+void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
+void bk_h5_flush(bk_h5 *h);
+int bk_h5_close(bk_h5 *h, FILE *err);
+
+#endif
