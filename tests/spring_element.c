@@ -5,9 +5,10 @@
 #include <math.h>
 
 /* No lane kernels: force_lanes, force_tangent_lanes stay NULL (one element per call);
- * no section resultants: sections stays NULL (sections.csv has the nodal rows only). */
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 6
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 6"
+ * no section resultants: sections stays NULL (sections.csv has the nodal rows only);
+ * no damping: the viscous kernels stay NULL. */
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 7"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

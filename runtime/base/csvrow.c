@@ -238,6 +238,9 @@ void bk_rowqueue_submit(bk_rowqueue *q, int flush)
 {
     if (!q->w)
         return;
+    if (flush && q->pos == 0 && !q->unflushed)
+        return;                          /* nothing since the last flush (a timed flush of a quiet run) */
+    q->unflushed = !flush;
     const int k = q->cur;
     q->len[k] = q->pos;
     q->flush[k] = flush;

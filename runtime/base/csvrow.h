@@ -69,6 +69,7 @@ typedef struct bk_rowqueue {
     long ticket[2];                    /* the call formatting chunk k (0: none) */
     int cur;                           /* the chunk being filled, */
     size_t pos;                        /*   its bytes so far */
+    int unflushed;                     /* chunks handed over since the last flush without one */
     struct bk_rowqueue_job { struct bk_rowqueue *q; int k; } job[2];
     /* the thread's: the row being formatted (its fields may span two chunks) */
     struct bk_row *row;                /* owned */

@@ -28,7 +28,7 @@ static int table_room(bk_h5 *h, bk_h5_table *t)
             return 0;
     }
     const int k = h->cur;
-    int cap = t->cap[k] ? 2 * t->cap[k] : 64;
+    int cap = t->cap[k] ? 2 * t->cap[k] : BK_H5_FIRST_ROWS;
     size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
     unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
     if (!b) {
@@ -266,7 +266,14 @@ void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
 
 void bk_h5_flush(bk_h5 *h)
 {
-    if (h->open)
+    if (!h->open)
+        return;
+    /* nothing written since the last flush: no HDF5 call (a long run's timed
+     * flushes with no new output step would allocate in the library) */
+    int empty = h->nbuf[h->cur] == 0 && !h->unflushed;
+    for (int j = 0; j < h->ntab && empty; ++j)
+        empty = h->tab[j].nbuf[h->cur] == 0;
+    if (!empty)
         hand_over(h, 1);
 }
 
@@ -276,6 +283,7 @@ static void hand_over(bk_h5 *h, int flush)
 {
     const int k = h->cur;
     h->flush[k] = flush;
+    h->unflushed = !flush;
     h->ticket[k] = bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[1 + k]);
     h->cur = k ^ 1;
     if (h->ticket[h->cur] > 0)            /* the other set: written by now? */

@@ -56,6 +56,9 @@
 #include "model/model.h"
 
 #define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
+#define BK_H5_FIRST_ROWS 1024  /* a table's first buffer: a short run's rows (a step's and its Newton
+                                * iterations') fit without growing it, so its allocations do not
+                                * depend on the number of steps (tests/test_bench_alloc.py) */
 #define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 
@@ -102,6 +105,7 @@ typedef struct bk_h5 {
     int cur;                  /* the set being filled */
     int cap;                  /* states per set */
     int nbuf[2];              /* states buffered per set */
+    int unflushed;            /* sets handed over since the last flush without one */
     long *step[2];            /* owned: [cap] per set */
     double *time[2], *q[2], *qd[2];   /* owned: [cap], [cap ndof], [cap ndof] per set */
     double *qd_last;          /* owned: [ndof] the velocities given for step qd_step */
