@@ -248,6 +248,15 @@ def sweep(scene, grid=None, random=None, samples=None, seed=0, sets=None, out=No
         sc.solver(first["pairs"])
     except BeamkitError as e:
         if KEY_ERROR.search(str(e)):
+            # a key of the grid or the draws is named as the user gave it (the
+            # scene reader applies every value as a --set)
+            text = str(e)
+            for k in grid:
+                text = text.replace(f"--set {k}:", f"--grid {k}:")
+            for k in (random or {}):
+                text = text.replace(f"--set {k}:", f"--random {k}:")
+            if text != str(e):
+                raise BeamkitError(text) from None
             raise
     name = first["name"] if first else (sc.name or Path(str(sc.path)).stem)
     out = Path(out) if out else ROOT / "out" / "sweeps" / name

@@ -422,7 +422,3 @@ def _kernel_fn(signature, ndof, parts, lows, zero, finish, contract_fn=None):
     lines += ["}", ""]
     return lines
 
-
-# The pair's kernels (energy, force, force + tangent, lanes, sections, and its
-# header): gen/emit_pair.py, which uses the helpers above.
-from gen.emit_pair import pair_source  # noqa: E402,F401

@@ -2,13 +2,14 @@
 <element>_<material>.h / .c with the energy, force and force + tangent kernels
 per integration (one element a call, and over BK_LANES elements), the section
 resultants function, the pair descriptors and the header that says what each
-computes, its inputs' layout and its operation counts (gen/emit.py has the
-element's own file and the helpers used here)."""
+computes, its inputs' layout and its operation counts.  With gen/emit.py's
+describe and element_source (the element's own file; re-exported here) it is
+the continuum elements' emitter (gen/generate.py _emitter)."""
 from pathlib import Path
 
 from gen.continuum import lowered_body, rule_parts
 from gen.descriptor import PairDesc, pair_descriptors, version_guard
-from gen.emit import _kernel_fn, contraction_ops
+from gen.emit import _kernel_fn, contraction_ops, describe, element_source  # noqa: F401
 from gen.emit_sections import sections_function
 from gen.lanes import _lane_kernel_fn, _vector_math_decls
 from gen.program import Ops, count_lowered

@@ -90,7 +90,7 @@ def _emitter(elem):
     """The module that writes an element family's files: describe,
     element_source, pair_source."""
     if elem.kind == "continuum":
-        import gen.emit as m
+        import gen.emit_pair as m
     elif elem.kind == "cable":
         import gen.emit_cable as m
     else:

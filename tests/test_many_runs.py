@@ -258,6 +258,10 @@ def test_bad_input_one_line_each():
     cases = [
         (["sweep", "cantilever_bend_100N", "--grid", "beam.arm.foo=1,2"],
          "beam.arm.foo: unknown key; expected one of"),
+        (["sweep", "cantilever_bend_100N", "--grid", "beam.arms.elements=4,8"],
+         "--grid beam.arms.elements: no entry named or numbered 'arms' in 'beam'"),
+        (["sweep", "cantilever_bend_100N", "--random", "material.steel.E=1e10:2e10", "--samples", "2"],
+         "--random material.steel.E: "),
         (["sweep", "cantilever_bend_100N", "--grid", "beam.arm.elements="],
          "error: --grid beam.arm.elements=: no values; expected KEY=v1,v2,..."),
         (["sweep", "cantilever_bend_100N", "--random", "material.alu.E=5e10:5e10", "--samples", "3"],
