@@ -22,30 +22,12 @@
 #include <time.h>
 
 #include "linalg/bandlu.h"
+#include "median_clock.h"
 
 void dgbtrf_(const int *m, const int *n, const int *kl, const int *ku, double *ab, const int *ldab, int *ipiv,
              int *info);
 void dgbtrs_(const char *trans, const int *n, const int *kl, const int *ku, const int *nrhs, const double *ab,
              const int *ldab, const int *ipiv, double *b, const int *ldb, int *info, size_t trans_len);
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* LAPACK's band of the matrix in the plan's order: ab[(kl + ku + i - j) + j ldab]. */
 static void fill_lapack(const bk_band *p, const int *Ap, const int *Ai, const double *Ax, double *ab, int ldab)
@@ -98,17 +80,17 @@ int main(int argc, char **argv)
         return 1;
     for (int r = 0; r < reps; r++) {           /* interleaved: a slow spell reaches both alike */
         memcpy(x1, b, (size_t)n * sizeof *b);
-        double a = now();
+        double a = bench_now();
         int st = bk_band_factor_solve(&p, Ax, x1);
-        double c = now();
+        double c = bench_now();
         for (int i = 0; i < n; i++)            /* LAPACK's right-hand side in the plan's order */
             y[i] = b[p.perm[i]];
-        double d = now();
+        double d = bench_now();
         fill_lapack(&p, Ap, Ai, Ax, ab, ldab);
         dgbtrf_(&n, &n, &kl, &ku, ab, &ldab, ipiv, &info);
         if (info == 0)
             dgbtrs_("N", &n, &kl, &ku, &nrhs, ab, &ldab, ipiv, y, &n, &info, 1);
-        double e = now();
+        double e = bench_now();
         if (st != 0 || info != 0) {
             fprintf(stderr, "bench_band: factorization failed (band %d, LAPACK info %d)\n", st, info);
             return 2;
@@ -125,7 +107,7 @@ int main(int argc, char **argv)
         xmax = fmax(xmax, fabs(x1[i]));
     }
     printf("n=%d\nnnz=%lld\nkl=%d\nku=%d\nband_s=%.6e\nlapack_s=%.6e\nsolution_difference=%.3e\n", n, nnz, kl, ku,
-           median(t1, reps), median(t2, reps), xmax > 0 ? dmax / xmax : dmax);
+           bench_median(t1, reps), bench_median(t2, reps), xmax > 0 ? dmax / xmax : dmax);
     bk_band_free(&p);
     free(Ap), free(Ai), free(Ax), free(b), free(ab), free(x1), free(x2), free(y), free(ipiv), free(t1), free(t2);
     return 0;

@@ -26,6 +26,7 @@
 #include <sys/resource.h>
 #include <time.h>
 
+#include "median_clock.h"
 #include "linalg/linsolve.h"
 #include "model/model.h"
 #include "assembly/interaction.h"
@@ -33,25 +34,6 @@
 
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static int dump_matrix(const char *path, const bk_system *s, const double *Ax, const double *b)
 {
@@ -76,7 +58,7 @@ int main(int argc, char **argv)
     int nit = atoi(argv[2]);
     if (nit < 1)
         nit = 1;
-    double t0 = now();
+    double t0 = bench_now();
     bk_model *m = bk_model_read(argv[1], bk_linked_pairs, bk_nlinked_pairs, stderr);
     if (!m)
         return 1;
@@ -88,7 +70,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_newton: KLU analysis failed\n");
         return 1;
     }
-    double t_setup = now() - t0;
+    double t_setup = bench_now() - t0;
     int nd = m->ndof, ne = s->neq;
     double *q = malloc((size_t)nd * sizeof *q), *fint = malloc((size_t)nd * sizeof *fint);
     double *r = calloc((size_t)ne, sizeof *r), *r2 = calloc((size_t)ne, sizeof *r2), *nu = calloc((size_t)(s->ncon + 1), sizeof *nu);
@@ -104,11 +86,11 @@ int main(int argc, char **argv)
     const bk_path path = {.factor = 1.0, .x = 1.0};
     bk_interactions_accept(s, q, &path);           /* the lagged contact state of a converged step */
     for (int it = 0; it < nit; ++it) {
-        double a = now();
+        double a = bench_now();
         int bad = bk_assemble_internal(s, q, fint, Ax);
-        double ai = now();
+        double ai = bench_now();
         bad |= bk_assemble_interactions(s, q, &path, fint, Ax) != 0;
-        ti[it] = now() - ai;
+        ti[it] = bench_now() - ai;
         for (int i = 0; i < nd; ++i)
             if (s->eq[i] >= 0)
                 r[s->eq[i]] = fint[i];
@@ -120,15 +102,15 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench_newton: cannot write %s\n", argv[3]);
             return 1;
         }
-        double b = now();
+        double b = bench_now();
         int st = bk_lin_factor_solve(&ls, Ax, r);   /* what a Newton iteration with a new matrix does */
-        double c = now();
+        double c = bench_now();
         if (bad || st != BK_LIN_OK) {
             fprintf(stderr, "bench_newton: assembly (%d) or factorization (%d) failed\n", bad, st);
             return 2;
         }
         bk_lin_solve(&ls, r2);                      /* an iteration that keeps the factors */
-        double d = now();
+        double d = bench_now();
         ta[it] = b - a, tf[it] = c - b, ts[it] = d - c, tt[it] = c - a;
     }
     /* Peak resident memory of this process image: VmHWM (getrusage's maxrss
@@ -149,7 +131,7 @@ int main(int argc, char **argv)
     }
     printf("elements=%d\ndofs=%d\nequations=%d\nnnz=%ld\nthreads=%d\n", m->nelem, nd, ne, s->nnz, s->nthreads);
     printf("setup_s=%.6e\niteration_s=%.6e\nassembly_s=%.6e\nfactor_s=%.6e\nsolve_s=%.6e\ninteractions_s=%.6e\n",
-           t_setup, median(tt, nit), median(ta, nit), median(tf, nit), median(ts, nit), median(ti, nit));
+           t_setup, bench_median(tt, nit), bench_median(ta, nit), bench_median(tf, nit), bench_median(ts, nit), bench_median(ti, nit));
     printf("analyses=%d\nfactorizations=%d\nfull_factorizations=%d\nmaxrss_kb=%ld\n", ls.nanalyze, ls.nfactor,
            ls.nfull, hwm);
     bk_lin_free(&ls);

@@ -3,39 +3,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "console_summary.h"
 #include "json_tree.h"
+#include "read_file.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-/* The whole file (NUL-terminated; *len its size), or NULL. */
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    size_t cap = 1 << 14, n = 0;
-    char *buf = malloc(cap);
-    size_t got;
-    while (buf && (got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
-        n += got;
-        if (n + 1 == cap) {
-            char *b = realloc(buf, cap *= 2);
-            if (!b) {
-                free(buf);
-                buf = NULL;
-            }
-            buf = b;
-        }
-    }
-    fclose(f);
-    if (buf) {
-        buf[n] = '\0';
-        *len = n;
-    }
-    return buf;
-}
 
 /* A JSON string's characters as text (the escapes the solver writes decoded). */
 static void put_string(const bk_jnode *s)
@@ -91,7 +64,7 @@ static void print_modes(const char *dir)
     char path[4096];
     snprintf(path, sizeof path, "%s/modes.csv", dir);
     size_t len;
-    char *text = slurp(path, &len);
+    char *text = bk_read_file(path, &len);
     if (!text)
         return;
     char *save = NULL, *line = strtok_r(text, "\n", &save);
@@ -147,7 +120,7 @@ int bk_print_summary(const char *run_dir, const char *shown)
     char path[4096];
     snprintf(path, sizeof path, "%s/summary.json", run_dir);
     size_t len;
-    char *text = slurp(path, &len);
+    char *text = bk_read_file(path, &len);
     if (!text)
         return -1;
     bk_json t;

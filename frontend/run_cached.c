@@ -22,6 +22,7 @@
  * stderr instead of going to Python (tests; "why is my run not fast"). */
 #define _DEFAULT_SOURCE
 #include "console_summary.h"
+#include "read_file.h"
 #include "run_dir.h"
 #include "run_key.h"
 #include "scene_warnings.h"
@@ -126,25 +127,6 @@ static char *scene_file(const char *root, const char *spec)
     return real;
 }
 
-static char *slurp(const char *path, size_t *len)
-{
-    int fd = open(path, O_RDONLY);
-    if (fd < 0)
-        return NULL;
-    struct stat st;
-    char *buf = NULL;
-    if (fstat(fd, &st) == 0 && (buf = malloc((size_t)st.st_size + 1)) != NULL) {
-        size_t got = 0;
-        ssize_t r;
-        while (got < (size_t)st.st_size && (r = read(fd, buf + got, (size_t)st.st_size - got)) > 0)
-            got += (size_t)r;
-        buf[got] = '\0';
-        *len = got;
-    }
-    close(fd);
-    return buf;
-}
-
 static int field(const char *line, size_t n, const char *name, char *dst, size_t cap)
 {
     size_t k = strlen(name);
@@ -159,7 +141,7 @@ static int field(const char *line, size_t n, const char *name, char *dst, size_t
 static int read_entry(const char *path, entry *e)
 {
     size_t len;
-    char *text = slurp(path, &len);
+    char *text = bk_read_file(path, &len);
     if (!text)
         return -1;
     *e = (entry){0};
@@ -301,32 +283,33 @@ int main(int argc, char **argv)
         return print_key ? 1 : fall_back(root, nuser, user);
     args a = {0};
     entry e = {0};
+    int rc = -1;                         /* the solver's exit status; -1: the run goes to Python */
     const char *why = "not one of the command line's common forms";
     char *scene = NULL, *dest = NULL, *model = NULL, *cache_dir = NULL;
     char key[33];
     if (parse(nuser, user, &a) != 0)
-        goto miss;
+        goto done;
     why = "no such scene file";
     if ((scene = scene_file(root, a.scene)) == NULL || bk_run_key(root, scene, a.sets, a.nsets, key) != 0)
-        goto miss;
+        goto done;
     if (print_key) {
         puts(key);
         return 0;
     }
     cache_dir = malloc(strlen(root) + 64);
     if (!cache_dir)
-        goto miss;
+        goto done;
     sprintf(cache_dir, "%s/out/cache/run/%s.run", root, key);
     struct stat st;
     why = "no identical earlier run (scene, --set values, gen/, runtime/, out/kernels/), or its solver was "
           "rebuilt since";
     if (read_entry(cache_dir, &e) != 0 || stat(e.solver, &st) != 0 || st.st_size != e.size ||
         (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != e.mtime_ns)
-        goto miss;
+        goto done;
     size_t model_len;
     sprintf(cache_dir, "%s/out/cache/run/%s.dat", root, key);
-    if ((model = slurp(cache_dir, &model_len)) == NULL)
-        goto miss;
+    if ((model = bk_read_file(cache_dir, &model_len)) == NULL)
+        goto done;
     if (a.out) {
         char *p = bk_caller_path(a.out);
         dest = p ? bk_normpath(p) : NULL;
@@ -338,11 +321,11 @@ int main(int argc, char **argv)
     }
     why = "the results directory cannot be used";
     if (!dest || bk_prepare_run_dir(dest) != 0)
-        goto miss;
+        goto done;
     char path[PATH_MAX + 16];
     snprintf(path, sizeof path, "%s/model.dat", dest);
     if (write_file(path, model, model_len) != 0)
-        goto miss;
+        goto done;
     if (!a.quiet) {
         for (int i = 0; i < e.nwarnings; i++)
             fprintf(stderr, "warning: %s: %s\n", e.name, e.warning[i]);
@@ -356,10 +339,10 @@ int main(int argc, char **argv)
         snprintf(t, sizeof t, "%d", a.threads);
         setenv("OMP_NUM_THREADS", t, 1);
     }
-    int rc = run_solver(e.solver, dest, &a);
+    rc = run_solver(e.solver, dest, &a);
     why = "the solver could not be started";
     if (rc < 0)
-        goto miss;
+        goto done;
     if (rc == 130 || rc == 143)
         interrupted_summary(dest, &e, rc);
     if (bk_add_scene_warnings(dest, e.warning, e.nwarnings) != 0)
@@ -373,20 +356,15 @@ int main(int argc, char **argv)
             fprintf(stderr, "warning: %s: not the solver's summary; see the file\n", path);
     }
     fflush(stdout);
+done:                                   /* (rc < 0: the run goes to Python) */
     free_entry(&e);
     free(scene);
     free(dest);
     free(model);
     free(cache_dir);
     free(a.sets);
-    return rc;
-miss:
-    free_entry(&e);
-    free(scene);
-    free(dest);
-    free(model);
-    free(cache_dir);
-    free(a.sets);
+    if (rc >= 0)
+        return rc;
     if (print_key)
         return 1;
     const char *only = getenv("BK_RUN_CACHED_ONLY");

@@ -315,6 +315,32 @@ A_INDEX = tuple((i, J, k, L) for i in range(3) for J in range(3) for k in range(
 SKEW_INDEX = tuple(x for x in A_INDEX if 3 * x[0] + x[1] < 3 * x[2] + x[3])
 
 
+def _node_row_programs(nsh, ndof, g, tensor, skip, place):
+    """One Program per row node a: for r = 3a + i and c = 3b + k from r + skip
+    on, sum_JL g_aJ g_bL tensor(i, J, k, L) into K[place(r, c)] (the
+    symmetric part's upper triangle, the antisymmetric part's lower)."""
+    progs = []
+    for a in range(nsh):
+        prog = Program()
+        for i in range(3):
+            r = 3 * a + i
+            for c in range(r + skip, ndof):
+                b, k = divmod(c, 3)
+                expr = 0
+                for J in range(3):
+                    gaJ = g(a, J)
+                    if gaJ == 0:
+                        continue
+                    for Ll in range(3):
+                        gbL = g(b, Ll)
+                        if gbL != 0:
+                            expr += gaJ * gbL * tensor(i, J, k, Ll)
+                if expr != 0:
+                    prog.output(f"K[{place(r, c)}]", expr)
+        progs.append(prog)
+    return progs
+
+
 def contraction_programs(elem):
     """Per row node a: K[(3a+i), (3b+k)] += sum_JL g_aJ g_bL A[i,J,k,L] for the upper
     triangle, with A[45] (weighted dP/dF) and the table slots t[] as inputs.  This
@@ -332,26 +358,7 @@ def contraction_programs(elem):
     def Aget(i, J, k, Ll):
         return Asym[pos[(i, J, k, Ll)]] if 3 * i + J <= 3 * k + Ll else Asym[pos[(k, Ll, i, J)]]
 
-    progs = []
-    for a in range(nsh):
-        prog = Program()
-        for i in range(3):
-            r = 3 * a + i
-            for c in range(r, ndof):
-                b, k = divmod(c, 3)
-                expr = 0
-                for J in range(3):
-                    gaJ = g(a, J)
-                    if gaJ == 0:
-                        continue
-                    for Ll in range(3):
-                        gbL = g(b, Ll)
-                        if gbL != 0:
-                            expr += gaJ * gbL * Aget(i, J, k, Ll)
-                if expr != 0:
-                    prog.output(f"K[{r * ndof + c}]", expr)
-        progs.append(prog)
-    return progs
+    return _node_row_programs(nsh, ndof, g, Aget, 0, lambda r, c: r * ndof + c)
 
 
 def skew_contraction_programs(elem):
@@ -377,26 +384,7 @@ def skew_contraction_programs(elem):
             return -Bsym[pos[(k, Ll, i, J)]]
         return 0
 
-    progs = []
-    for a in range(nsh):
-        prog = Program()
-        for i in range(3):
-            r = 3 * a + i
-            for c in range(r + 1, ndof):
-                b, k = divmod(c, 3)
-                expr = 0
-                for J in range(3):
-                    gaJ = g(a, J)
-                    if gaJ == 0:
-                        continue
-                    for Ll in range(3):
-                        gbL = g(b, Ll)
-                        if gbL != 0:
-                            expr += gaJ * gbL * Bget(i, J, k, Ll)
-                if expr != 0:
-                    prog.output(f"K[{c * ndof + r}]", expr)
-        progs.append(prog)
-    return progs
+    return _node_row_programs(nsh, ndof, g, Bget, 1, lambda r, c: c * ndof + r)
 
 
 def invariants_program(elem):

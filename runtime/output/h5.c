@@ -28,7 +28,7 @@ static int table_room(bk_h5 *h, bk_h5_table *t)
             return 0;
     }
     const int k = h->cur;
-    int cap = t->cap[k] ? 2 * t->cap[k] : BK_H5_FIRST_ROWS;
+    int cap = t->cap[k] ? 2 * t->cap[k] : 64;
     size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
     unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
     if (!b) {

@@ -56,9 +56,6 @@
 #include "model/model.h"
 
 #define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
-#define BK_H5_FIRST_ROWS 1024  /* a table's first buffer: a short run's rows (a step's and its Newton
-                                * iterations') fit without growing it, so its allocations do not
-                                * depend on the number of steps (tests/test_bench_alloc.py) */
 #define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 

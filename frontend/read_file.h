@@ -1,0 +1,15 @@
+/* read_file.h -- a whole file into memory, for the launcher.
+ *
+ * bk_read_file(path, len)
+ *   path in   the file
+ *   len  out  its size in bytes
+ * Returns the bytes with a NUL after them (malloc'd: the caller frees them),
+ * or NULL when the file cannot be read or memory runs out. */
+#ifndef BK_READ_FILE_H
+#define BK_READ_FILE_H
+
+#include <stddef.h>
+
+char *bk_read_file(const char *path, size_t *len);
+
+#endif
