@@ -15,7 +15,8 @@
     solve of a 10,000-element beam (report/bench_modal.py); the band LU against
     LAPACK's band solver, reference and OpenBLAS (report/bench_band.py);
   * scaling: time per Newton iteration and peak memory for 10 ... 100,000
-    elements, fitted exponent;
+    elements, fitted exponent; a 10,000-element static run with 1 and 2 threads
+    end to end, and where its wall goes (report/bench_threads.py);
   * toolchain: regeneration time per kernel, per-scene solver compile time and size.
 
 The parts: report/bench_kernels.py (kernels), bench_statics.py and
@@ -45,6 +46,7 @@ from report.bench_runs import OUT, WORK  # noqa: E402
 from report import bench_contact  # noqa: E402
 from report import bench_band  # noqa: E402
 from report import bench_modal  # noqa: E402
+from report import bench_threads  # noqa: E402
 from report.bench_scaling import plot_scaling, scaling  # noqa: E402
 from report.bench_statics import statics  # noqa: E402
 from report.bench_toolchain import toolchain  # noqa: E402
@@ -101,6 +103,8 @@ def main(argv):
     tc = toolchain(quick, log)
     log(" targets around the solve")
     targets = bench_targets.measure(WORK, quick, log)
+    log(" both cores end to end")
+    targets["threads"] = bench_threads.end_to_end(WORK, quick, log, srows)
     (OUT / "bench_targets.json").write_text(json.dumps(targets, indent=1) + "\n")
 
     # ---- files

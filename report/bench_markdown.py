@@ -4,7 +4,7 @@ import math
 import os
 import time
 
-from report import bench_targets
+from report import bench_targets, bench_threads
 from report.bench_pareto import TOLS, config
 from report.bench_scaling import SCALING_PASSES, fit_exponent
 
@@ -138,6 +138,8 @@ def bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, pro
              f"{met(tc['regen_incremental_redone'] == 0 and (quick or regen_total < 600))} |")
     for target, measured, status in bench_targets.target_rows(targets, met):
         L.append(f"| {target} | {measured} | {status} |")
+    if "threads" in targets:
+        L.append("| %s | %s | %s |" % bench_threads.target_row(targets["threads"], met))
     L += ["", "Around the solve (`bench_targets.json`): the front end is the whole `./build.sh run` process minus "
           "the solver's own wall time; the output and stability shares are the solver's own account "
           "(`summary.json` `output_s`, `stability_s`: the time inside its output calls, every table, frame and the "
