@@ -93,3 +93,34 @@ def test_band_lu_solves_a_newton_matrix_as_lapack_does():
     d = dict(line.split("=", 1) for line in r.stdout.split())
     assert int(d["n"]) == 120 and int(d["kl"]) == 23
     assert float(d["solution_difference"]) < 1e-8
+
+
+@lru_cache(maxsize=None)
+def split_results():
+    exe = build_runtime_program(["bandsplit_check.c"], "bandsplit_check", "sanitize")
+    r = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, f"bandsplit_check failed ({r.returncode}):\n{r.stdout}\n{r.stderr[-4000:]}"
+    assert "runtime error" not in r.stderr and "Sanitizer" not in r.stderr, r.stderr[-4000:]
+    return {d.pop("case"): d for d in (dict(kv.split("=", 1) for kv in line.split()) for line in r.stdout.splitlines())}
+
+
+def test_split_band_lu_matches_dense_elimination():
+    """The band LU in two halves and a separator (runtime/linalg/bandsplit.c,
+    the linear solver of bands of BK_BANDSPLIT_MIN unknowns and more) against a
+    dense LU with row pivoting written in tests/bandsplit_check.c: chains of 60
+    nodes, diagonally dominant, with small diagonals (row interchanges inside
+    the halves), with multiplier rows of zero diagonal, and badly row-scaled:
+    the solution to 1e-10 (relative, max norm; 1e-9 for the 1e12 row-scale
+    spread), residual to 1e-12; the same bits with 1 and 2 OpenMP threads and
+    for a second factorization with the same plan; a zero column is reported
+    singular, a NaN as non-finite."""
+    r = split_results()
+    for case in ("chain", "weak", "kkt", "scaled"):
+        d = r[case]
+        assert d["plan"] == "0" and d["factor"] == "0", (case, d)
+        assert float(d["err"]) <= (1e-9 if case == "scaled" else 1e-10), (case, d)
+        assert float(d["res"]) <= 1e-12, (case, d)
+        assert d["same_threads"] == "1" and d["same_again"] == "1", (case, d)
+        assert int(d["s"]) == max(int(d["kl"]), int(d["ku"])), (case, d)
+    assert r["singular"]["factor"] == "1", r["singular"]
+    assert r["nonfinite"]["factor"] == "2", r["nonfinite"]

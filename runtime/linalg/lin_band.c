@@ -46,6 +46,10 @@ int bk_lin_band_init(bk_linsolver *s, int required)
     if (bp < 0)
         return BK_LIN_ERROR;
     if (bp == 0 && (required || s->band.kl + s->band.ku <= BK_BAND_MAX_WIDTH)) {
+        /* a long band: two halves on two threads (bandsplit.h), whatever the
+         * thread count, so that the bits do not depend on it */
+        if (s->n >= BK_BANDSPLIT_MIN && bk_lin_bandsplit_init(s) == BK_LIN_OK)
+            return BK_LIN_OK;
         s->ops = &bk_lin_band_ops;
         s->nanalyze = 1;
         return BK_LIN_OK;

@@ -11,6 +11,9 @@
  *            allocates, later ones refactor in place (klu_refactor) and fall
  *            back to a full factorization when the refactored matrix looks
  *            much worse conditioned;
+ *   split band LU (lin_bandsplit.c, bandsplit.h) for such a band of at least
+ *            BK_BANDSPLIT_MIN unknowns: two halves factored on two threads
+ *            and a separator;
  *   dense LU (lin_dense.c) with partial pivoting on the n x n matrix, for
  *            small systems and as an independent check of the others.
  * BK_LIN_AUTO picks the band when its storage stays within
@@ -30,6 +33,7 @@
 #include <klu.h>
 
 #include "linalg/bandlu.h"
+#include "linalg/bandsplit.h"
 
 enum { BK_LIN_OK = 0, BK_LIN_SINGULAR = 1, BK_LIN_ERROR = 2 };
 typedef enum bk_lin_kind { BK_LIN_AUTO = 0, BK_LIN_BAND, BK_LIN_KLU, BK_LIN_DENSE } bk_lin_kind;
@@ -55,6 +59,7 @@ typedef struct bk_linsolver {
     double rcond_factor;     /* the same, of the last full factorization */
     /* the backends' state: only the chosen one's is used */
     bk_band band;
+    bk_bandsplit split;
     klu_common common;
     klu_symbolic *sym;
     klu_numeric *num;
@@ -83,10 +88,14 @@ const char *bk_lin_name(const bk_linsolver *s);
 bk_band *bk_lin_band(bk_linsolver *s);
 
 /* The backends (used by bk_lin_init_kind). */
-extern const bk_lin_ops bk_lin_band_ops, bk_lin_klu_ops, bk_lin_dense_ops;
+extern const bk_lin_ops bk_lin_band_ops, bk_lin_bandsplit_ops, bk_lin_klu_ops, bk_lin_dense_ops;
 /* required: 0 (auto) answers -1 when the matrix is no narrow band (nothing
  * kept); 1 plans the band whatever its width. */
 int bk_lin_band_init(bk_linsolver *s, int required);
+/* After a band plan in s->band: the split band LU in its order (the plan's
+ * storage freed); BK_LIN_OK, or -1 (out of memory, or too short to split:
+ * s->band kept). */
+int bk_lin_bandsplit_init(bk_linsolver *s);
 int bk_lin_klu_init(bk_linsolver *s);
 int bk_lin_dense_init(bk_linsolver *s);
 
