@@ -28,8 +28,9 @@ REFERENCE = Path(__file__).resolve().parent.parent.parent / "docs" / "reference"
 
 # What a module's build sees of the compiled scene: the meshed beams (by name)
 # and bodies, the model length, the amplitudes, the analysis and its static
-# options.
-Scene = namedtuple("Scene", "beams bodies length_scale amps analysis stat")
+# options, the constraints' rows (gen/scene/joints.py constraints: reactions,
+# joints nonlinear in q).
+Scene = namedtuple("Scene", "beams bodies length_scale amps analysis stat joints")
 
 _DECL = re.compile(r"^INTERACTION = Interaction\(", re.M)
 _MODULES = None
