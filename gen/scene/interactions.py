@@ -16,10 +16,12 @@ from collections import namedtuple
 from pathlib import Path
 
 # A scene module's interaction: table (the scene's [[table]] name), keys (the
-# keys a table may hold), record (the model record's name), build(ctx, doc,
-# scene) -> data or None, lines(data, fmt) -> the record's lines (fmt
-# formats a float), holds (True: it may hold the model against rigid motion,
-# so statics of a model free to move is not refused; gen/scene/rigid_modes.py),
+# keys a table may hold; () for a part of a table whose keys another module
+# checks and documents: body_loads.py's forces at body points in [[load]]),
+# record (the model record's name), build(ctx, doc, scene) -> data or None,
+# lines(data, fmt) -> the record's lines (fmt formats a float), holds (True: it
+# may hold the model against rigid motion, so statics of a model free to move is
+# not refused; gen/scene/rigid_modes.py),
 # order (the order of the records; the C modules sum in their own order),
 # doc (the key reference: rows (keys, unit, default, meaning), markdown, links
 # relative to the repository) and title (a line saying what the table is).
