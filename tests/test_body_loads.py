@@ -230,3 +230,47 @@ amplitude = {type = "sine", frequency = 2.0}
         assert r.returncode == 0 and not r.stderr, r.stderr
         err, big = map(float, r.stdout.split())
         assert big > 1.0 and err < 1e-6 * big, (gp, err, big)
+
+
+def test_damaged_interaction_records_are_refused_naming_the_record():
+    """The actuators and the forces at body points are interactions reading their
+    own model records ("actuator", "body_force"; runtime/assembly/actuators.c,
+    body_forces.c): a record naming a joint or an element out of range, a force on
+    an element that is not a body, or a token too many is refused with one line
+    naming the model file and the record."""
+    import subprocess
+    from util import ROOT
+    text = LINK + """
+[[load]]
+type = "force"
+at = "link"
+point = [0.5, 0.0, 0.0]
+value = [0.0, -2.0, 0.0]
+
+[[actuator]]
+name = "spring"
+joint = "hinge"
+kp = 5.0
+"""
+    d = Path(tempfile.mkdtemp(prefix="bk-bload-", dir=ensure_dir(BUILD / "runs")))
+    (d / "bload_records.toml").write_text(text)
+    run_scene(d / "bload_records.toml", out=d / "out")
+    model = (d / "out" / "model.dat").read_text()
+    act = next(line for line in model.splitlines() if line.startswith("actuator spring "))
+    bf = next(line for line in model.splitlines() if line.startswith("body_force "))
+    assert "\nrecord actuator\nactuators 1\n" in model and "\nrecord body_force\nbody_forces 1\n" in model
+    f = act.split()
+    cases = [(model.replace(act, " ".join(f[:3] + ["7"] + f[4:])), "record actuator: actuator joint: expected an "
+              "integer in [0, 0], found '7'"),
+             (model.replace(act, act + " 1"), "record actuator: unexpected '1' after the record's data"),
+             (model.replace(bf, "body_force 9 " + bf.split(" ", 2)[2]), "record body_force: body force element: "
+              "expected an integer in [0, 0], found '9'"),
+             (model.replace("record body_force", "record body_forcez"), "record body_forcez: no interaction module "
+              "of this solver reads it")]
+    for k, (edited, msg) in enumerate(cases):
+        (d / f"edited{k}.dat").write_text(edited)
+        (d / f"w{k}").mkdir()
+        r = subprocess.run([str(ROOT / "out" / "bin" / "bload_records"), str(d / f"edited{k}.dat"), str(d / f"w{k}"),
+                            "--quiet"], capture_output=True, text=True)
+        assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1, (k, r.returncode, r.stderr)
+        assert f"{d / f'edited{k}.dat'}, {msg}" in r.stderr, (k, r.stderr)

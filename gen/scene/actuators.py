@@ -1,6 +1,6 @@
 """Actuators: [[actuator]] tables, each a motor acting equally and oppositely on
-the two frames of a named joint with an axis, as model-file records
-(runtime/model/actuator_read.c, runtime/assembly/actuators.c).
+the two frames of a named joint with an axis: the interaction whose model
+record "actuator" runtime/assembly/actuators.c reads.
 
   effort = tau0 a_e(x) + kp (s_ref a_s(x) - s) + kd (s_ref a_s'(x) - s')
 s the joint coordinate (the angle of frame a relative to b about the axis, rad,
@@ -12,6 +12,7 @@ about the axis and its opposite on b, or a force (N) along the axis.
 import re
 
 import gen.scene_keys as K
+from gen.scene.interactions import Interaction
 from gen.scene.values import check_keys, get_array_of_tables, get_number, get_str
 
 # joint types an actuator may act on: the coordinate it drives
@@ -73,9 +74,19 @@ def actuators(ctx, doc, rows, amps):
     return out
 
 
+def _build(ctx, doc, scene):
+    return actuators(ctx, doc, scene.joints, scene.amps)
+
+
 def actuator_records(acts, fmt):
-    """The model file's actuator records."""
+    """The lines of the record: 'actuators N', then per actuator 'actuator NAME
+    KIND JOINT EFFORT EAMP KP KD SETPOINT SAMP'."""
     out = [f"actuators {len(acts)}"]
     for name, kind, nlcon, tau0, eamp, kp, kd, sref, samp in acts:
         out.append(f"actuator {name} {kind} {nlcon} {fmt(tau0)} {eamp} {fmt(kp)} {fmt(kd)} {fmt(sref)} {samp}")
     return out
+
+
+# (its keys are documented with the scene's, docs/reference/scene.md: gen/scene_keys.py ACTUATOR)
+INTERACTION = Interaction(table="actuator", keys=K.ACTUATOR, record="actuator", build=_build, lines=actuator_records,
+                          holds=False, order=60)

@@ -9,9 +9,11 @@ in the reference configuration) at that body point: a follower force f at the
 point c (body axes) is the follower force f at the centre of mass and the
 follower moment c x f, exactly.  A dead force F at a point c off the centre
 of mass (its moment (R c) x F neither dead nor following the body) is a record
-of its own (body_point_forces; runtime/assembly/body_forces.c): the work F . (r
-+ R c) with its exact Jacobian.
+of its own: the interaction whose model record "body_force" (body_point_forces)
+runtime/assembly/body_forces.c reads, the work F . (r + R c) with its exact
+Jacobian.
 """
+from gen.scene.interactions import Interaction
 from gen.scene.values import _cross, _norm, _sub, get_array_of_tables, get_bool, get_str, get_vec3
 
 SIZE_FACTOR = 10.0          # a body point within this many times the body's size of its centre
@@ -71,7 +73,18 @@ def body_point_forces(ctx, doc, bodies, amps):
     return out
 
 
+def _build(ctx, doc, scene):
+    return body_point_forces(ctx, doc, scene.bodies, scene.amps)
+
+
 def body_force_records(pfs, fmt):
+    """The lines of the record: 'body_forces N', then per force 'body_force
+    ELEMENT CX CY CZ FX FY FZ AMP' (C in the body axes, F global)."""
     out = [f"body_forces {len(pfs)}"]
     out += [f"body_force {e} " + " ".join(fmt(x) for x in list(c) + list(F)) + f" {amp}" for e, c, F, amp in pfs]
     return out
+
+
+# (part of the [[load]] table, whose keys gen/scene/loads.py checks and docs/reference/scene.md lists)
+INTERACTION = Interaction(table="load", keys=(), record="body_force", build=_build, lines=body_force_records,
+                          holds=False, order=70)

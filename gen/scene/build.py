@@ -7,10 +7,8 @@ import os
 
 import gen.scene_keys as K
 from gen.options_schema import OPTIONS
-from gen.scene.actuators import actuators
 from gen.scene.amplitude import Amplitudes
 from gen.scene.bodies import mesh_bodies
-from gen.scene.body_loads import body_point_forces
 from gen.scene.buckling import buckling_options
 from gen.scene import interactions
 from gen.scene.cost import cost_check
@@ -74,7 +72,6 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
     mesh_bodies(ctx, doc, mesh, index)
     amps = Amplitudes(ctx, doc)
     rows = constraints(ctx, doc, mesh, amps, analysis)    # none is allowed: the solver reports the singular tangent
-    acts = actuators(ctx, doc, rows, amps)
     buckling = buckling_options(ctx, doc, analysis)   # (before the loads: gives them their amplitudes)
     forces, moments, gravity, dloads, tendons = loads(ctx, doc, mesh.beams, amps, mesh.bodies)
     stat, dyn, modal, output = options(ctx, doc, analysis)
@@ -92,7 +89,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
                              "tendons")
     length_scale = max([b["length"] for b in mesh.beams.values()] +
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
-    scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat)
+    scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat, rows)
     inter = interactions.records(ctx, doc, scene_parts)
     check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter), stat)
     return {
@@ -103,8 +100,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "gravity": gravity, "sensors": sensors(ctx, doc, mesh.beams, mesh.bodies), "static": stat, "beams": mesh.beams,
         "dynamic": dyn, "modal": modal, "qd0": qd0, **output, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
-        "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
-        "body_forces": body_point_forces(ctx, doc, mesh.bodies, amps),
+        "inputs": list(ctx.inputs), "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
         "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
                      for b in mesh.beams.values() for k in range(b["nelem"])
                      for e in [b["first_elem"] + k] + b["layer_elems"][k]],

@@ -16,10 +16,12 @@ from collections import namedtuple
 from pathlib import Path
 
 # A scene module's interaction: table (the scene's [[table]] name), keys (the
-# keys a table may hold), record (the model record's name), build(ctx, doc,
-# scene) -> data or None, lines(data, fmt) -> the record's lines (fmt
-# formats a float), holds (True: it may hold the model against rigid motion,
-# so statics of a model free to move is not refused; gen/scene/rigid_modes.py),
+# keys a table may hold; () for a part of a table whose keys another module
+# checks and documents: body_loads.py's forces at body points in [[load]]),
+# record (the model record's name), build(ctx, doc, scene) -> data or None,
+# lines(data, fmt) -> the record's lines (fmt formats a float), holds (True: it
+# may hold the model against rigid motion, so statics of a model free to move is
+# not refused; gen/scene/rigid_modes.py),
 # order (the order of the records; the C modules sum in their own order),
 # doc (the key reference: rows (keys, unit, default, meaning), markdown, links
 # relative to the repository) and title (a line saying what the table is).
@@ -28,8 +30,9 @@ REFERENCE = Path(__file__).resolve().parent.parent.parent / "docs" / "reference"
 
 # What a module's build sees of the compiled scene: the meshed beams (by name)
 # and bodies, the model length, the amplitudes, the analysis and its static
-# options.
-Scene = namedtuple("Scene", "beams bodies length_scale amps analysis stat")
+# options, the constraints' rows (gen/scene/joints.py constraints: reactions,
+# joints nonlinear in q).
+Scene = namedtuple("Scene", "beams bodies length_scale amps analysis stat joints")
 
 _DECL = re.compile(r"^INTERACTION = Interaction\(", re.M)
 _MODULES = None

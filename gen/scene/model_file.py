@@ -117,12 +117,8 @@ def write_model(model, path):
     out.append(f"sections {len(model['sections'])}")
     for bname, e, s0, s1 in model["sections"]:
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
-    from gen.scene.actuators import actuator_records
-    out += actuator_records(model.get("actuators", []), _f)
     from gen.scene.point_masses import point_mass_records
     out += point_mass_records(model.get("point_masses", []), _f)
-    from gen.scene.body_loads import body_force_records
-    out += body_force_records(model.get("body_forces", []), _f)
     records = model.get("records", [])       # the interaction modules' (gen/scene/interactions.py)
     out.append(f"records {len(records)}")
     for name, lines in records:

@@ -109,7 +109,7 @@ int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, doub
     const int n = s->nfree;
     const size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     *got = *steps = 0;
-    if (bk_actuators_present(m)) {
+    if (bk_actuators_present(s)) {
         snprintf(msg, nmsg, "the sparse modal solver does not take the actuators' stiffness: use modal.solver = "
                  "\"dense\"");
         return 1;

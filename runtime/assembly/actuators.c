@@ -1,13 +1,24 @@
-/* actuators.c -- the joint actuators as an interaction (interaction.h): each
- * motor's generalized force Q = tau ds/dx on the coordinates x of its joint's
- * two frames and its exact Jacobian, and actuators.csv (per output step and
- * actuator: the joint coordinate s, its rate, the effort tau and the power)
+/* actuators.c -- the joint actuators as an interaction (interaction.h), read
+ * from the model's record "actuator" (written by gen/scene/actuators.py):
+ *   actuators N
+ *   actuator NAME KIND JOINT EFFORT EAMP KP KD SETPOINT SAMP   (N times; KIND
+ *            rotation | translation, JOINT an index of model->nlcons, EAMP and
+ *            SAMP amplitude indices, -1: none)
+ * Motors acting equally and oppositely on the two frames of a joint with an
+ * axis: each one's generalized force Q = tau ds/dx on the coordinates x of its
+ * joint's two frames and its exact Jacobian, and actuators.csv (per output step
+ * and actuator: the joint coordinate s, its rate, the effort tau and the power)
  * with each one's peak effort in summary.json.
  *
+ * With s the joint coordinate (the angle of frame a relative to frame b about
+ * the axis, or a's displacement along it; 0 in the reference configuration)
+ * and x the time (dynamics) or the load factor, the effort is
+ *   tau = effort0 a_e(x) + kp (s_ref a_s(x) - s) + kd (s_ref a_s'(x) - s'),
+ * a torque on a about the axis (and its opposite on b) or a force along it;
+ * a_e: the amplitude EAMP (-1: the load factor in statics, 1 in dynamics), a_s:
+ * the amplitude SAMP (-1: the constant 1); s' = ds/dx . x'.
  * s(x), ds/dx and d2s/dx2 come from the generated kernels (gen/actuator.py,
- * out/kernels/joints.c); the effort (model/actuator.h)
- *   tau = effort0 a_e + kp (s_ref - s) + kd (s_ref' - s'),  s' = ds/dx . x',
- * so that, with fint = -Q and g = ds/dx, H = d2s/dx2,
+ * out/kernels/joints.c), so that, with fint = -Q and g = ds/dx, H = d2s/dx2,
  *   dfint/dx  = -tau H + kp g g^T + kd g (H x')^T,
  *   dfint/dx' = kd g g^T   (times gp in the Newton matrix).
  * A rotation's s is the unwrapped angle: atan2 of the kernel's (X, Y), taken
@@ -17,11 +28,13 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "assembly/system_impl.h"
 #include "base/csvrow.h"
 #include "base/tables.h"
 #include "model/amplitude.h"
+#include "model/reader.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -33,6 +46,19 @@ void bk_actuator_rotation(const double *restrict x, const double *restrict prm, 
 void bk_actuator_translation(const double *restrict x, const double *restrict prm, double *restrict val,
                              double *restrict grad, double *restrict H);
 
+enum { ACT_ROTATION = 1, ACT_TRANSLATION = 2 };
+
+typedef struct bk_actuator {
+    char name[64];
+    int kind;                    /* ACT_ROTATION | ACT_TRANSLATION */
+    int nlcon;                   /* its joint (model->nlcons) */
+    double effort0;              /* N m or N */
+    int eamp;                    /* amplitude of effort0, -1: the default */
+    double kp, kd;               /* N m/rad, N m s/rad (or N/m, N s/m), >= 0 */
+    double setpoint;             /* rad or m */
+    int samp;                    /* amplitude of the set-point, -1: constant */
+} bk_actuator;
+
 typedef struct act_state {
     double raw, angle;           /* the accepted state's atan2 and unwrapped angle */
     double s, sd, tau;           /* of the last evaluation */
@@ -41,22 +67,18 @@ typedef struct act_state {
 
 typedef struct act_work {
     int n;
+    bk_actuator *acts;           /* [n] the record's */
     act_state *st;
     FILE *table;                 /* actuators.csv (NULL: not opened) */
     int have_rows;
 } act_work;
-
-int bk_actuators_present(const bk_model *m)
-{
-    return m->actuators && m->actuators->n > 0;
-}
 
 /* The joint coordinate's value (unwrapped from st), gradient and Hessian at x. */
 static double coordinate(const bk_actuator *a, const bk_nlcon *c, const act_state *st, const double *x, double *g,
                          double *H, double *raw)
 {
     double val[2];
-    if (a->kind == BK_ACT_ROTATION) {
+    if (a->kind == ACT_ROTATION) {
         bk_actuator_rotation(x, c->prm, val, g, H);
         *raw = atan2(val[1], val[0]);
         double d = *raw - st->raw;
@@ -75,7 +97,7 @@ static int act_assemble(void *self, bk_system *s, const double *q, const bk_path
     const int nx = BK_JOINT_NX;
     int bad = 0;
     for (int i = 0; i < w->n; ++i) {
-        const bk_actuator *a = &m->actuators->acts[i];
+        const bk_actuator *a = &w->acts[i];
         const bk_nlcon *c = &m->nlcons[a->nlcon];
         act_state *st = &w->st[i];
         double x[BK_JOINT_NX], xd[BK_JOINT_NX] = {0}, g[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], raw;
@@ -121,8 +143,8 @@ static void act_accept(void *self, const bk_system *s, const double *q, const bk
     const bk_model *m = s->m;
     (void)p;
     for (int i = 0; i < w->n; ++i) {
-        const bk_actuator *a = &m->actuators->acts[i];
-        if (a->kind != BK_ACT_ROTATION)
+        const bk_actuator *a = &w->acts[i];
+        if (a->kind != ACT_ROTATION)
             continue;
         const bk_nlcon *c = &m->nlcons[a->nlcon];
         double x[BK_JOINT_NX], g[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], raw;
@@ -147,12 +169,11 @@ static int act_tables(void *self, const bk_system *s, bk_tables *ts, const char 
 static void act_rows(void *self, const bk_system *s, int step, double t, const double *q, bk_rowqueue *rq)
 {
     act_work *w = self;
-    const bk_model *m = s->m;
-    (void)q;
+    (void)s, (void)q;
     if (!w->table)
         return;
     for (int i = 0; i < w->n; ++i) {
-        const bk_actuator *a = &m->actuators->acts[i];
+        const bk_actuator *a = &w->acts[i];
         act_state *st = &w->st[i];
         if (isfinite(st->tau) && fabs(st->tau) >= st->peak)
             st->peak = fabs(st->tau), st->peak_t = t;
@@ -162,7 +183,7 @@ static void act_rows(void *self, const bk_system *s, int step, double t, const d
         bk_row_num(&r, t);
         bk_row_str(&r, a->name);
         bk_row_int(&r, a->nlcon);
-        bk_row_str(&r, a->kind == BK_ACT_ROTATION ? "rotation" : "translation");
+        bk_row_str(&r, a->kind == ACT_ROTATION ? "rotation" : "translation");
         bk_row_num(&r, st->s);
         bk_row_num(&r, st->sd);
         bk_row_num(&r, st->tau);
@@ -175,17 +196,46 @@ static void act_rows(void *self, const bk_system *s, int step, double t, const d
 static int act_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
 {
     act_work *w = self;
-    (void)q;
+    (void)s, (void)q;
     if (!w->have_rows)
         return -1;
     size_t k = (size_t)snprintf(buf, n, "[");
     for (int i = 0; i < w->n && k < n; ++i)
         k += (size_t)snprintf(buf + k, n - k, "%s{\"name\": \"%s\", \"peak_effort\": %.17g, \"peak_time\": %.17g, "
-                              "\"final_value\": %.17g}", i ? ", " : "", s->m->actuators->acts[i].name,
+                              "\"final_value\": %.17g}", i ? ", " : "", w->acts[i].name,
                               w->st[i].peak, w->st[i].peak_t, w->st[i].s);
     if (k < n)
         snprintf(buf + k, n - k, "]");
     return k + 1 < n ? 0 : -1;
+}
+
+static void act_free(void *self)
+{
+    act_work *w = self;
+    if (!w)
+        return;
+    free(w->acts);
+    free(w->st);
+    free(w);
+}
+
+static const bk_interaction_ops act_ops = {.name = "actuators", .assemble = act_assemble, .accept = act_accept,
+                                           .tables = act_tables, .rows = act_rows, .summary_key = "actuators",
+                                           .summary = act_summary, .free = act_free};
+
+/* The actuators of s (its interaction of this module), or NULL. */
+static const act_work *actuators_of(const bk_system *s)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &act_ops)
+            return s->inter[k].self;
+    return NULL;
+}
+
+int bk_actuators_present(const bk_system *s)
+{
+    const act_work *w = actuators_of(s);
+    return w && w->n > 0;
 }
 
 void bk_actuators_at_rest(const bk_system *s, const double *q, double x, double *fint,
@@ -193,10 +243,9 @@ void bk_actuators_at_rest(const bk_system *s, const double *q, double x, double 
 {
     const bk_model *m = s->m;
     const int nx = BK_JOINT_NX;
-    if (!bk_actuators_present(m))
-        return;
-    for (int i = 0; i < m->actuators->n; ++i) {
-        const bk_actuator *a = &m->actuators->acts[i];
+    const act_work *w = actuators_of(s);
+    for (int i = 0; w && i < w->n; ++i) {
+        const bk_actuator *a = &w->acts[i];
         const bk_nlcon *c = &m->nlcons[a->nlcon];
         const act_state ref = {0};
         double xj[BK_JOINT_NX], g[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], raw;
@@ -219,26 +268,55 @@ void bk_actuators_at_rest(const bk_system *s, const double *q, double x, double 
     }
 }
 
-static void act_free(void *self)
+/* The record (see the top): the actuators, checked against the model's joints
+ * and amplitudes. */
+static void read_actuators(bk_reader *r, const bk_model *m, act_work *w)
 {
-    act_work *w = self;
-    if (!w)
-        return;
-    free(w->st);
-    free(w);
+    rd_expect(r, "actuators");
+    const int n = rd_inum(r, "actuators", 1, MAXN);
+    w->acts = rd_xcalloc(r, (size_t)(n > 0 ? n : 1), sizeof *w->acts);
+    for (int i = 0; i < n && !r->failed; ++i) {
+        bk_actuator *a = &w->acts[i];
+        rd_expect(r, "actuator");
+        rd_copy_token(r, a->name, sizeof a->name, "actuator name");
+        const char *t = rd_next(r, "actuator kind");
+        a->kind = !t ? 0 : strcmp(t, "rotation") == 0 ? ACT_ROTATION : strcmp(t, "translation") == 0 ? ACT_TRANSLATION
+                                                                                                     : 0;
+        if (t && !a->kind)
+            rd_fail(r, "actuator %d: unknown kind '%s' (expected rotation or translation)", i, t);
+        a->nlcon = rd_inum(r, "actuator joint", 0, m->nnlcon - 1);
+        a->effort0 = rd_num(r, "actuator effort");
+        a->eamp = rd_inum(r, "actuator effort amplitude", -1, m->namp - 1);
+        a->kp = rd_num(r, "actuator kp");
+        a->kd = rd_num(r, "actuator kd");
+        a->setpoint = rd_num(r, "actuator set-point");
+        a->samp = rd_inum(r, "actuator set-point amplitude", -1, m->namp - 1);
+        if (!r->failed && !(a->kp >= 0.0 && a->kd >= 0.0))
+            rd_fail(r, "actuator %d: gains kp, kd must be >= 0 (%g, %g)", i, a->kp, a->kd);
+        w->n = i + 1;
+    }
 }
 
-const bk_interaction_ops bk_actuator_ops = {.name = "actuators", .assemble = act_assemble, .accept = act_accept,
-                                           .tables = act_tables, .rows = act_rows, .summary_key = "actuators",
-                                           .summary = act_summary, .free = act_free};
-
-int bk_actuators_make(bk_system *s, void **self)
+static int act_make(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
     act_work *w = calloc(1, sizeof *w);
-    if (!w)
-        return -1;
-    w->n = s->m->actuators->n;
-    w->st = calloc((size_t)w->n, sizeof *w->st);
     *self = w;
-    return w->st ? 0 : -1;
+    bk_reader r;
+    if (!w || rd_open_record(&r, rec, err) != 0) {
+        if (!w)
+            fprintf(err, "error: actuators: out of memory\n");
+        return -1;
+    }
+    read_actuators(&r, s->m, w);
+    if (rd_close_record(&r) != 0)
+        return -1;
+    w->st = calloc((size_t)w->n, sizeof *w->st);
+    if (!w->st) {
+        fprintf(err, "error: actuators: out of memory\n");
+        return -1;
+    }
+    return 0;
 }
+
+const bk_interaction_module bk_interaction_actuators = {.ops = &act_ops, .order = 60, .record = "actuator",
+                                                        .make = act_make};

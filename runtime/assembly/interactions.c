@@ -1,13 +1,11 @@
-/* interactions.c -- the built-in interaction modules (follower moments, loads),
- * the module of beam-to-beam contact, making the model's interactions in
- * the modules' order, and the loops over them (see interaction.h). */
+/* interactions.c -- the built-in interaction modules (follower moments, loads:
+ * the model's own records), making the model's interactions in the modules'
+ * order, and the loops over them (see interaction.h). */
 #include "assembly/interaction.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "assembly/actuators.h"
-#include "assembly/body_forces.h"
 #include "assembly/loads.h"
 #include "assembly/system.h"
 
@@ -64,34 +62,6 @@ static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FIL
 
 const bk_interaction_module bk_interaction_loads = {.ops = &loads_ops, .order = 20, .present = bk_loads_present,
                                                     .make = make_loads};
-
-/* ---- motors on joints (actuators.c) and forces at body points (body_forces.c):
- * their data is the model's own records ---- */
-
-static int make_actuators(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
-{
-    (void)rec;
-    if (bk_actuators_make(s, self) == 0)
-        return 0;
-    fprintf(err, "error: actuators: out of memory\n");
-    return -1;
-}
-
-const bk_interaction_module bk_interaction_actuators = {.ops = &bk_actuator_ops, .order = 60,
-                                                        .present = bk_actuators_present, .make = make_actuators};
-
-static int make_body_forces(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
-{
-    (void)rec;
-    if (bk_body_forces_make(s, self) == 0)
-        return 0;
-    fprintf(err, "error: body forces: out of memory\n");
-    return -1;
-}
-
-const bk_interaction_module bk_interaction_body_forces = {.ops = &bk_body_force_ops, .order = 70,
-                                                          .present = bk_body_forces_present,
-                                                          .make = make_body_forces};
 
 /* Whether the model has the module's interaction, and the record it reads. */
 static int module_present(const bk_interaction_module *im, const bk_model *m, const bk_model_record **rec)

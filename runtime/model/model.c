@@ -285,9 +285,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
             s->off[k] = rd_num(r, "sensor offset");
     }
     bk_model_read_extras(r, m);
-    bk_model_read_actuators(r, m);
     bk_model_read_point_masses(r, m);
-    bk_model_read_body_forces(r, m);
     bk_model_read_records(r, m);
     rd_expect(r, "end");
     free(r->buf);
@@ -303,9 +301,7 @@ void bk_model_free(bk_model *m)
     if (!m)
         return;
     bk_model_records_free(m);
-    bk_actuator_model_free(m->actuators);
     free(m->pmass);
-    free(m->bforces);
     free(m->q0);
     free(m->qd0);
     free(m->pairs);

@@ -12,7 +12,6 @@
 #include "bk_joint.h"
 #include "bk_kernel.h"
 #include "bk_options.h"        /* generated (out/kernels/): the option structs and enums */
-#include "model/actuator.h"
 
 /* An interaction module's record (model/records.c): its name, and its text,
  * which the model keeps unread; the module reads it (model/reader.h
@@ -69,13 +68,6 @@ typedef struct bk_point_mass {  /* a mass without rotary inertia at a material p
     double xi;         /* on the centreline */
     double mass;       /* kg */
 } bk_point_mass;
-
-typedef struct bk_body_force {  /* a dead force at a point of a rigid body off its centre of mass */
-    int elem;          /* the body's element (7 DOFs: r, p) */
-    double c[3];       /* the point in the body axes (m) */
-    double value[3];   /* N, global */
-    int amp;           /* amplitude index, -1: the default */
-} bk_body_force;
 
 typedef struct bk_moment_load {  /* moment on the cross-section at xi */
     int elem;
@@ -197,11 +189,8 @@ typedef struct bk_model {
     double gravity[3];
     int gravity_ampid;           /* amplitude index of gravity in the model file, -1: none */
     const bk_amplitude *gravity_amp;   /* its amplitude, NULL: the default (bk_external_load) */
-    bk_actuator_model *actuators;          /* NULL: no joint motor (actuator.h); owned likewise */
     int npmass;
     bk_point_mass *pmass;        /* point masses (bk_element_mass, bk_element_weight) */
-    int nbforce;
-    bk_body_force *bforces;      /* dead forces at body points (assembly/body_forces.c) */
     int nsensor;
     bk_sensor *sensors;
     int namp;

@@ -49,8 +49,6 @@ int rd_open_record(bk_reader *r, const bk_model_record *rec, FILE *err);
 /* Ends reading a record: an error when tokens are left; frees r's text.  0, or
  * -1 when reading failed (the message was written). */
 int rd_close_record(bk_reader *r);
-void bk_model_read_actuators(bk_reader *r, bk_model *m);     /* actuator_read.c */
 void bk_model_read_point_masses(bk_reader *r, bk_model *m);  /* point_mass_read.c */
-void bk_model_read_body_forces(bk_reader *r, bk_model *m);   /* body_force_read.c */
 
 #endif
