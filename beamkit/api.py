@@ -64,10 +64,13 @@ def format_value(v):
 class Scene:
     """A scene to run many times.  source: a name in models/, a path to a .toml
     file, or a dict of tables (then `name` names it; default its scene.name or
-    "scene").  sets: overrides applied to every run."""
+    "scene").  sets: overrides applied to every run.  base: the directory of
+    the scene's relative data paths (table and path CSV files); default the
+    scene file's; a dict scene without it takes absolute paths only."""
 
-    def __init__(self, source, sets=None, name=None):
+    def __init__(self, source, sets=None, name=None, base=None):
         self.sets = set_strings(sets)
+        self.base = str(Path(base).resolve()) if base is not None else None
         if isinstance(source, dict):
             self.doc = json.loads(json.dumps(source))      # plain data, a copy
             sc = self.doc.get("scene") if isinstance(self.doc.get("scene"), dict) else {}
@@ -95,7 +98,7 @@ class Scene:
         """The meshed model (plain data, as gen/scene builds it) with these overrides."""
         try:
             return build(self.path, self.sets + set_strings(sets), name=self.name,
-                         out_dir=out_dir or RUNS, doc=self.doc)
+                         out_dir=out_dir or RUNS, doc=self.doc, base=self.base)
         except SceneError as e:
             raise BeamkitError(str(e)) from None
 
@@ -117,6 +120,7 @@ class Scene:
         solver's OpenMP threads (default: the environment's).  Returns a Run."""
         try:
             r = pipeline.run(self.path, self.sets + set_strings(sets), str(out) if out else None, doc=self.doc,
+                             base=self.base,
                              name=self.name, verbose=verbose, quiet=not verbose, threads=threads, capture=True)
         except SceneError as e:
             msg = str(e)

@@ -238,12 +238,12 @@ def _reuse(path, sets, out, quiet, verbose):
     return entry, dest
 
 
-def _build(path, sets, out, doc, name, variant, quiet, console):
+def _build(path, sets, out, doc, name, variant, quiet, console, base=None):
     """Mesh the scene (the scene compiler), write model.dat into the output
     directory and get the solver: (model, out dir, solver)."""
     from gen.scene import build, write_model
     log = _stderr_line if console and not quiet else None
-    model = build(path, sets, name=name, log=log, out_dir=out or RUNS, doc=doc)
+    model = build(path, sets, name=name, log=log, out_dir=out or RUNS, doc=doc, base=base)
     if console and not quiet:
         _print_warnings(model["name"], model.get("warnings", []))
     dest = prepare_out_dir(out or os.path.join(RUNS, model["name"]))
@@ -258,12 +258,13 @@ def _build(path, sets, out, doc, name, variant, quiet, console):
 
 
 def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", memcheck=False, verbose=False,
-        quiet=True, threads=None, capture=False, reuse=False, remember=False):
+        quiet=True, threads=None, capture=False, reuse=False, remember=False, base=None):
     """Run one scene; returns an Outcome, raises SceneError for bad input (the
     one-line `error:` message of the command line).
 
     scene: a name in models/ or a scene file's path (the caller's, caller_path);
-    with doc (the scene's tables, parsed TOML) only its label in messages.
+    with doc (the scene's tables, parsed TOML) only its label in messages;
+    base: the directory of its relative data paths (default the scene file's).
     sets: `--set` strings.  out: the output directory (a str as the caller
     means it; default out/runs/NAME).  variant: the solver build, release or
     sanitize; memcheck: the memcheck build run under valgrind.  verbose / quiet:
@@ -289,7 +290,7 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
                 exe, run_name, analysis, warnings = entry["solver"], entry["name"], entry["analysis"], \
                     entry["warnings"]
             else:
-                model, dest, exe = _build(path, sets, out, doc, name, variant, quiet, console)
+                model, dest, exe = _build(path, sets, out, doc, name, variant, quiet, console, base)
                 run_name, analysis, warnings = model["name"], model["analysis"], model.get("warnings", [])
                 # a scene that reads data files (CSV paths, tables) is compiled anew each run:
                 # the run cache keys on the scene file and the --sets alone

@@ -7,6 +7,7 @@ PD-controlled joint (a damped second-order system)."""
 import csv
 import ctypes
 import math
+import re
 import subprocess
 import tempfile
 from pathlib import Path
@@ -287,6 +288,75 @@ def test_bad_actuators():
                 "no constraint named 'knee'")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nsetpoint = 1.0\n', "actuator[0].kp", "needs a gain")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nkp = -1.0\n', "actuator[0].kp", "")
+
+
+BEAM_JOINT = """[scene]
+analysis = "dynamic"
+[material.m]
+law = "LAW"
+E = 7.0e10
+nu = 0.33
+rho = 2700.0
+[section.bar]
+shape = "rectangle"
+b = 0.02
+h = 0.02
+[[beam]]
+name = "arm"
+element = "ELEMENT"
+material = "m"
+section = "bar"
+start = [0.0, 0.0, 0.0]
+end = [0.5, 0.0, 0.0]
+elements = 4
+[dynamic]
+t_end = 0.002
+dt = 1e-3
+[[constraint]]
+name = "j"
+"""
+# every constraint type: the table's other keys, and the last words of the refusal
+# of an actuator on it (None: it takes one)
+JOINT_KINDS = {
+    "revolute": ('a = "arm:start"\naxis = [0.0, 0.0, 1.0]', None),
+    "prismatic": ('a = "arm:start"\naxis = [1.0, 0.0, 0.0]', None),
+    "clamp": ('a = "arm:start"', "it has no axis"),
+    "spherical": ('a = "arm:start"', "it has no axis"),
+    "fixed": ('a = "arm:start"', "it has no axis"),
+    "universal": ('a = "arm:start"\naxis = [0.0, 0.0, 1.0]\naxis_b = [0.0, 1.0, 0.0]', "two axes"),
+    "point_on_line": ('a = "arm:end"\naxis = [1.0, 0.0, 0.0]', "a force along it is a `force` load"),
+    "prescribed_motion": ('a = "arm:end"\nmotion = [0.0, 0.01, 0.0]\namplitude = {type = "ramp", t0 = 0.0, t1 = 0.01}',
+                          "its force is in reactions.csv"),
+    "prescribed_rotation": ('a = "arm:start"\naxis = [0.0, 0.0, 1.0]\nrate = 1.0', "its effort is in joints.csv"),
+    "prescribed_translation": ('a = "arm:start"\naxis = [1.0, 0.0, 0.0]\nrate = 1.0', "its effort is in joints.csv"),
+}
+
+
+def test_which_joints_take_an_actuator():
+    """Issue 40, verification 5 and the actuators' scope: of every constraint type
+    (gen/scene_keys.py CONSTRAINT, all listed here) an actuator acts on `revolute`
+    and `prismatic` joints (a gef beam's end to the ground: the run ends with exit 0
+    and actuators.csv); on each other type it is refused with one line naming
+    actuator[0].joint and why; on an ANCF point (no nodal rotation) a revolute
+    joint, fine without a motor, is refused with one line saying the motor needs a
+    rotation there."""
+    import gen.scene_keys as K
+    assert set(JOINT_KINDS) == set(K.CONSTRAINT)
+    gef = BEAM_JOINT.replace("LAW", "resultant").replace("ELEMENT", "gef")
+    motor = '[[actuator]]\njoint = "j"\neffort = 0.1\n'
+    for kind, (keys, why) in JOINT_KINDS.items():
+        text = gef + f'type = "{kind}"\n{keys}\n' + motor
+        if why is None:
+            s, _, out = _run(text)
+            assert s["converged"] and len(_rows(out, "actuators.csv")) == 3, kind
+        else:
+            check_error(text, "actuator[0].joint", f"is a {kind} joint: an actuator needs a joint with an axis, "
+                        f"revolute or prismatic \\(.*{re.escape(why)}")
+    ancf = BEAM_JOINT.replace("LAW", "svk").replace("ELEMENT", "ancf3243") + 'type = "revolute"\n' + \
+        JOINT_KINDS["revolute"][0] + "\n"
+    s, _, _ = _run(ancf)                           # without a motor: the linear rows of an ANCF hinge
+    assert s["converged"]
+    check_error(ancf + motor, "constraint[0].a", "a revolute joint with an actuator needs a rotation on both sides")
 
 
 def test_sweep_window_outputs_of_the_motor_link():

@@ -93,6 +93,76 @@ def test_api_errors_are_the_command_lines():
         Scene("no_such_scene")
 
 
+def test_dict_scene_reads_its_data_files_from_base_not_the_current_directory(monkeypatch):
+    """Issue 40: a table amplitude's CSV file named by a relative path in a scene
+    given to the API as a dict was read from the current directory.  Now it is read
+    from Scene(..., base=DIR); without base it is refused with one line (a dict has
+    no directory).  A decoy file of the same name in the current directory (the
+    load doubled) is never read: the tip deflection equals the same scene written
+    as a .toml file beside the data (`./build.sh run`) and the same table given
+    inline, to the last digit."""
+    data, cwd = tmpdir("dict-data"), tmpdir("dict-cwd")
+    (data / "amp.csv").write_text("x,a\n0,0\n1,0.5\n")
+    (cwd / "amp.csv").write_text("x,a\n0,0\n1,1.0\n")             # the decoy
+    doc = {"scene": {"analysis": "static"},
+           "material": {"alu": {"law": "resultant", "E": 7e10, "nu": 0.3, "rho": 2700.0}},
+           "section": {"s": {"shape": "rectangle", "b": 0.01, "h": 0.01}},
+           "beam": [{"name": "arm", "element": "gef", "material": "alu", "section": "s", "start": [0.0, 0.0, 0.0],
+                     "end": [1.0, 0.0, 0.0], "elements": 4}],
+           "constraint": [{"type": "clamp", "a": "arm:start"}],
+           "amplitude": {"a": {"type": "table", "file": "amp.csv"}},
+           "load": [{"type": "force", "at": "arm:end", "value": [0.0, 0.0, -1.0], "amplitude": "a"}],
+           "sensor": [{"name": "tip", "at": "arm:end"}]}
+    monkeypatch.chdir(cwd)
+    with pytest.raises(BeamkitError, match=r"amplitude\.a\.file: the relative path 'amp\.csv' in a scene given as "
+                                           r"a dict has no directory"):
+        Scene(doc).run(out=tmpdir("dict-o0"))
+    got = Scene(doc, base=data).run(out=tmpdir("dict-o1")).summary["sensors"]["tip"]["displacement"][2]
+    toml = data / "beam.toml"
+    toml.write_text("""[scene]
+analysis = "static"
+[material.alu]
+law = "resultant"
+E = 7e10
+nu = 0.3
+rho = 2700.0
+[section.s]
+shape = "rectangle"
+b = 0.01
+h = 0.01
+[[beam]]
+name = "arm"
+element = "gef"
+material = "alu"
+section = "s"
+start = [0.0, 0.0, 0.0]
+end = [1.0, 0.0, 0.0]
+elements = 4
+[[constraint]]
+type = "clamp"
+a = "arm:start"
+[amplitude.a]
+type = "table"
+file = "amp.csv"
+[[load]]
+type = "force"
+at = "arm:end"
+value = [0.0, 0.0, -1.0]
+amplitude = "a"
+[[sensor]]
+name = "tip"
+at = "arm:end"
+""")
+    out = tmpdir("dict-o2")
+    run_cli(["run", str(toml), "--quiet", "--out", str(out)], check=True)
+    from_file = json.loads((out / "summary.json").read_text())["sensors"]["tip"]["displacement"][2]
+    inline = dict(doc, amplitude={"a": {"type": "table", "points": [[0.0, 0.0], [1.0, 0.5]]}})
+    from_points = Scene(inline).run(out=tmpdir("dict-o3")).summary["sensors"]["tip"]["displacement"][2]
+    assert got == from_file == from_points and got < 0, (got, from_file, from_points)
+    decoy = Scene(doc, base=cwd).run(out=tmpdir("dict-o4")).summary["sensors"]["tip"]["displacement"][2]
+    assert abs(decoy / got - 2.0) < 1e-3, (decoy, got)       # (linear: the decoy's doubled load)
+
+
 def pendulum_grid():
     return {"beam.rod.elements": [3, 4], "dynamic.dt": [0.02, 0.01], "material.rod.E": [3e7, 4e7]}
 

@@ -17,6 +17,14 @@ from gen.scene.values import check_keys, get_array_of_tables, get_number, get_st
 
 # joint types an actuator may act on: the coordinate it drives
 AXIS_KIND = {"revolute": "rotation", "prismatic": "translation"}
+# why the other joint types take none (the error's last words)
+NO_ACTUATOR = {"universal": "a universal joint has two axes; a motor turns about one",
+               "point_on_line": "a point_on_line axis carries no motor; a force along it is a `force` load at "
+                                "the point",
+               "prescribed_rotation": "a driven joint prescribes the motion; its effort is in joints.csv",
+               "prescribed_translation": "a driven joint prescribes the motion; its effort is in joints.csv",
+               "prescribed_motion": "a prescribed motion prescribes the point's path; its force is in "
+                                    "reactions.csv"}
 
 
 def actuated_joints(doc):
@@ -50,10 +58,8 @@ def actuators(ctx, doc, rows, amps):
                      f"{', '.join(sorted(joints)) or 'none'})")
         ctype, nlcon = joints[jname][1], joints[jname][8]
         if ctype not in AXIS_KIND:
-            extra = (" (a driven joint prescribes the motion; its effort is in joints.csv)"
-                     if ctype.startswith("prescribed") else "")
             ctx.fail(f"{where}.joint", f"constraint {jname!r} is a {ctype} joint: an actuator needs a joint with "
-                     f"an axis, revolute or prismatic{extra}")
+                     f"an axis, revolute or prismatic ({NO_ACTUATOR.get(ctype, 'it has no axis')})")
         if nlcon < 0:       # (actuated joints are made nonlinear: gen/scene/joints.py)
             ctx.fail(f"{where}.joint", f"constraint {jname!r} has no frames to act on")
         tau0 = get_number(ctx, at, "effort", where, default=0.0)

@@ -100,10 +100,7 @@ class Amplitudes:
             fname = tbl["file"]
             if not isinstance(fname, str):
                 ctx.fail(key, f"expected a path to a CSV file, found {_typename(fname)}")
-            from pathlib import Path           # only for tables from a file
-            path = Path(fname)
-            if not path.is_absolute():
-                path = Path(ctx.path).resolve().parent / path
+            path = ctx.data_path(key, fname)
             try:
                 text = path.read_text(encoding="utf-8")
             except OSError as e:

@@ -27,13 +27,14 @@ ANALYSES = next(o.choices for o in OPTIONS if o.name == "scene.analysis")
 PLANNED_ANALYSES = ()
 
 
-def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
+def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None):
     """Validate the scene and return the model as a dict of plain data.  log: a
     function taking a line (cost estimates and meshing progress of large
     models); out_dir: where the results will go (disk space check); doc: the
     scene as parsed TOML (a dict, copied; the Python API), else read from path
-    (which names the scene in messages either way)."""
-    ctx = Ctx(path)
+    (which names the scene in messages either way); base: the directory of
+    relative data paths (gen/scene/values.py Ctx)."""
+    ctx = Ctx(path, base)
     if doc is not None:
         import copy                      # (only here: 2 ms of a scene run's imports)
         doc = copy.deepcopy(doc)

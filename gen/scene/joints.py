@@ -362,9 +362,10 @@ def _joint_axes(ctx, ct, where, ctype):
     return [n1, n2, axis]
 
 
-def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None):
+def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None, actuated=False):
     """(type, dofs[14], x0[14], prm[24], drive[5]) of a joint between a and b (b omitted:
-    the ground); a driven joint moves a relative to b (_drive)."""
+    the ground); a driven joint moves a relative to b (_drive).  actuated: an
+    [[actuator]] acts on it (said when a side has no rotation)."""
     if "a" not in ct:
         ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start' or a body name")
     a = _endpoint(ctx, f"{where}.a", ct["a"], mesh, ctype)
@@ -376,8 +377,9 @@ def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None):
     if ctype in _ROTATIONAL:
         for side, e in (("a", a), ("b", b)):
             if not e["rot"]:
-                ctx.fail(f"{where}.{side}", f"a {ctype} joint needs a rotation on both sides; {e['what']} has "
-                         f"none (use gef, euler_bernoulli, kirchhoff beams or a body)")
+                why = " with an actuator" if actuated else ""
+                ctx.fail(f"{where}.{side}", f"a {ctype} joint{why} needs a rotation on both sides; {e['what']} "
+                         f"has none (use gef, euler_bernoulli, kirchhoff beams or a body)")
     if "at" in ct:
         X = get_vec3(ctx, ct, "at", where, bound=1e9)
     else:
@@ -442,7 +444,7 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     rows.analysis = analysis
     rows.nlcons = []
     names = set()
-    from gen.scene.actuators import actuated_joints
+    from gen.scene.actuators import AXIS_KIND, actuated_joints
     actuated = actuated_joints(doc)       # joints with a motor need their frames: nonlinear rows
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
@@ -452,8 +454,10 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         name = _name(ctx, ct, where, ci, names)
-        if not _is_linear(ct, mesh, ctype) or (ctype in NONLINEAR and name in actuated):
-            joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows)
+        linear = _is_linear(ct, mesh, ctype)
+        motor = ctype in AXIS_KIND and name in actuated   # (other types refuse it: gen/scene/actuators.py)
+        if not linear or motor:
+            joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows, actuated=motor and linear)
             rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name))
             rows.nlcons.append(joint)
             continue

@@ -150,10 +150,7 @@ def path_points(ctx, bt, where):
     key = f"{where}.path"
     v = bt["path"]
     if isinstance(v, str):
-        from pathlib import Path           # only for paths from a file
-        p = Path(v)
-        if not p.is_absolute():
-            p = Path(ctx.path).resolve().parent / p
+        p = ctx.data_path(key, v)
         try:
             text = p.read_text(encoding="utf-8")
         except OSError as e:

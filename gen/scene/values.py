@@ -25,14 +25,30 @@ class SceneError(Exception):
 
 
 class Ctx:
-    """Error reporting with the file name."""
+    """Error reporting with the file name; base: the directory of the scene's
+    relative data paths (default the scene file's; a scene given as a dict to
+    the Python API, whose label is "<dict scene NAME>", has none)."""
 
-    def __init__(self, path):
+    def __init__(self, path, base=None):
         self.path = str(path)
+        self.base = base
         self.inputs = []        # data files the scene reads (paths from CSV files)
 
     def fail(self, key, msg):
         raise SceneError(f"error: {self.path}: {key}: {msg}")
+
+    def data_path(self, key, fname):
+        """The path of a data file named in the scene (key: where)."""
+        from pathlib import Path           # only for data files
+        p = Path(fname)
+        if p.is_absolute():
+            return p
+        if self.base is not None:
+            return Path(self.base) / p
+        if self.path.startswith("<"):
+            self.fail(key, f"the relative path {fname!r} in a scene given as a dict has no directory to start "
+                           "from: give an absolute path, or the directory as Scene(..., base=DIR)")
+        return Path(self.path).resolve().parent / p
 
 
 def _typename(v):
