@@ -26,8 +26,8 @@ def test_arc_length_closes_the_gap_and_matches_the_closed_form():
     w = (P * L ** 3 / 3 - R * a * a * (3 * L - a) / 6) / EI
     tip = -s["sensors"]["tip"]["displacement"][2]
     assert abs(tip / w - 1) < 0.01, (tip, w)
-    c = s["beam_contact"]
-    low, up = c["sets"][0]["beams"]["lower"], c["sets"][0]["beams"]["upper"]
+    c = s["contact"]
+    low, up = c["beam_sets"][0]["beams"]["lower"], c["beam_sets"][0]["beams"]["upper"]
     assert abs(low[2] / -R - 1) < 0.01, (low, R)
     assert all(abs(up[i] + low[i]) <= 1e-12 * abs(up[2]) for i in range(3)), (up, low)
     assert c["max_penetration"] == 0 and 0 < c["min_distance"] < 1e-5, c

@@ -131,7 +131,7 @@ def test_plectoneme_forms_with_self_contact_and_no_penetration():
     assert pos[last]["end"][0] < 0.5 * L and off > 10 * R, (pos[last], off)   # writhed: end jumped in
     peak = max(M for _, M in twist.values())
     assert peak > 2 * math.sqrt(B * T) and twist[max(twist)][1] < 0.5 * peak, (peak, twist[max(twist)])
-    c = s["beam_contact"]
-    assert c["max_penetration"] == 0 and c["sets"][0]["active_pairs"] > 10, c
+    c = s["contact"]
+    assert c["max_penetration"] == 0 and c["beam_sets"][0]["active_pairs"] > 10, c
     far = _far_distance(out / "sections.csv", 0.05)
     assert len(far) > 30 and min(far.values()) > 2 * R - 0.0005, sorted(far.values())[:3]
