@@ -12,6 +12,7 @@ itself, friction between the crossed beams (sliding: Coulomb's force and the
 closed-form deflection; sticking below the limit); bad input refused with one
 line."""
 import csv
+import json
 import math
 import subprocess
 import tempfile
@@ -122,7 +123,7 @@ def test_rigid_and_beam_contact_share_the_summary_entry():
     < 1e-5 apart) with a ball 20 mm below the lower's tip (out of the barrier's
     reach: the same solution): the beams' distance; the upper beam lifted
     0.2 m and unloaded (no beam pair near: beam_min_distance null): the
-    ball's 20 mm."""
+    ball's 20 mm; the second under valgrind."""
     text = (ROOT / "models" / "contact_crossed_beams.toml").read_text() + BALL
     d = out_dir()
     (d / "ball.toml").write_text(text)
@@ -137,6 +138,10 @@ def test_rigid_and_beam_contact_share_the_summary_entry():
     c = s["contact"]
     assert c["beam_min_distance"] is None and c["beam_sets"][0]["active_pairs"] == 0, c
     assert abs(c["min_distance"] - 0.02) < 1e-4 and c["max_penetration"] == 0, c
+    r, vg = run_memcheck(d / "far.toml")                  # the merge under valgrind (exit 99 on an error)
+    assert r.returncode == 0, r.stderr[-3000:]
+    v = json.loads((vg / "summary.json").read_text())["contact"]
+    assert abs(v.pop("min_distance") - c.pop("min_distance")) < 1e-12 and v == c, (v, c)
 
 
 def test_stacked_strips_carry_the_load_on_the_contact():
