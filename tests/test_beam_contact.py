@@ -12,6 +12,7 @@ itself, friction between the crossed beams (sliding: Coulomb's force and the
 closed-form deflection; sticking below the limit); bad input refused with one
 line."""
 import csv
+import json
 import math
 import subprocess
 import tempfile
@@ -58,7 +59,7 @@ def out_dir():
 
 
 def _beam_contact(summary):
-    c = summary["beam_contact"]
+    c = summary["contact"]
     assert c["max_penetration"] == 0 and c["min_distance"] > 0, c
     return c
 
@@ -82,7 +83,7 @@ def test_crossed_beams_against_the_closed_form():
     w = (P * L ** 3 / 3 - R * a * a * (3 * L - a) / 6) / EI
     k_ref, k = P / w, P / -s["sensors"]["tip"]["displacement"][2]
     assert abs(k / k_ref - 1) < 0.01, (k, k_ref)
-    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    up, low = c["beam_sets"][0]["beams"]["upper"], c["beam_sets"][0]["beams"]["lower"]
     assert abs(low[2] / -R - 1) < 0.01, (low, R)
     assert all(abs(up[i] + low[i]) <= 1e-12 * abs(up[2]) for i in range(3)), (up, low)   # action = reaction
     assert c["min_distance"] < 1e-5                                   # within the barrier's reach
@@ -101,18 +102,55 @@ def test_crossed_beams_contact_rows_name_both_beams():
     assert last and all(r["primitive"] == "-1" and int(r["element"]) < 20 and r["beam_b"] == "lower" and
                         int(r["element_b"]) >= 20 and r["state"] == "none" for r in last), last
     assert all(float(r["tangential_force"]) == 0 for r in last)
-    assert abs(sum(float(r["normal_force"]) for r in last) / s["beam_contact"]["sets"][0]["normal_force"] - 1) < 1e-9
+    bs = s["contact"]["beam_sets"]
+    assert abs(sum(float(r["normal_force"]) for r in last) / bs[0]["normal_force"] - 1) < 1e-9
     assert all(float(r["distance"]) > 0 for r in rows)
-    assert abs(sum(float(r["fz"]) for r in last) - s["beam_contact"]["sets"][0]["beams"]["upper"][2]) < 1e-9
+    assert abs(sum(float(r["fz"]) for r in last) - bs[0]["beams"]["upper"][2]) < 1e-9
+
+
+BALL = """
+[[contact]]
+shape = "sphere"
+center = [0.91, 0.085, -0.075]
+radius = 0.05
+"""
+
+
+def test_rigid_and_beam_contact_share_the_summary_entry():
+    """summary.json "contact" holds both interactions: min_distance the
+    smaller of the two, max_penetration the larger, the rigid sets under
+    "sets", the beam pairs under "beam_sets".  The crossed beams (sections
+    < 1e-5 apart) with a ball 20 mm below the lower's tip (out of the barrier's
+    reach: the same solution): the beams' distance; the upper beam lifted
+    0.2 m and unloaded (no beam pair near: beam_min_distance null): the
+    ball's 20 mm; the second under valgrind."""
+    text = (ROOT / "models" / "contact_crossed_beams.toml").read_text() + BALL
+    d = out_dir()
+    (d / "ball.toml").write_text(text)
+    s, _ = run_scene(d / "ball.toml", out=d / "out")
+    c, ref = s["contact"], crossed()[0]["contact"]
+    assert c["sets"][0]["active_points"] == 0 and c["max_penetration"] == 0, c
+    assert c["min_distance"] == c["beam_min_distance"] < 1e-5, c
+    assert abs(c["beam_sets"][0]["normal_force"] / ref["beam_sets"][0]["normal_force"] - 1) < 1e-12, (c, ref)
+    far = text.replace("0.01001]", "0.21001]").replace("value = [0.0, 0.0, -2.0]", "value = [0.0, 0.0, 0.0]")
+    (d / "far.toml").write_text(far)
+    s, _ = run_scene(d / "far.toml", out=d / "far")
+    c = s["contact"]
+    assert c["beam_min_distance"] is None and c["beam_sets"][0]["active_pairs"] == 0, c
+    assert abs(c["min_distance"] - 0.02) < 1e-4 and c["max_penetration"] == 0, c
+    r, vg = run_memcheck(d / "far.toml")                  # the merge under valgrind (exit 99 on an error)
+    assert r.returncode == 0, r.stderr[-3000:]
+    v = json.loads((vg / "summary.json").read_text())["contact"]
+    assert abs(v.pop("min_distance") - c.pop("min_distance")) < 1e-12 and v == c, (v, c)
 
 
 def test_stacked_strips_carry_the_load_on_the_contact():
     s, _ = run_scene(ROOT / "models" / "contact_stacked_strips.toml", out=out_dir())
     c = _beam_contact(s)
-    up, low = c["sets"][0]["beams"]["upper"], c["sets"][0]["beams"]["lower"]
+    up, low = c["beam_sets"][0]["beams"]["upper"], c["beam_sets"][0]["beams"]["lower"]
     assert abs(up[2] / 20.0 - 1) < 1e-9, up                          # the distributed load: 20 N/m over 1 m
     assert all(abs(up[i] + low[i]) <= 1e-12 * 20.0 for i in range(3)), (up, low)
-    assert c["sets"][0]["active_pairs"] > 10
+    assert c["beam_sets"][0]["active_pairs"] > 10
 
 
 def test_crossed_beams_under_valgrind():
@@ -192,7 +230,7 @@ def test_self_contact_rollup_lies_on_itself_and_never_passes_through():
     out = out_dir()
     s, _ = run_scene(ROOT / "models" / "self_contact_rollup.toml", out=out)
     c = _beam_contact(s)
-    assert c["sets"][0]["normal_force"] > 10.0 and c["sets"][0]["active_pairs"] > 0, c
+    assert c["beam_sets"][0]["normal_force"] > 10.0 and c["beam_sets"][0]["active_pairs"] > 0, c
     far = _min_far_distance(out / "sections.csv", 0.05)
     assert len(far) > 10 and min(far.values()) > 0.009, far
     with open(out / "contacts.csv", newline="") as fh:
@@ -267,7 +305,7 @@ def test_crossed_beams_slide_with_coulomb_friction():
     assert abs(sum(float(r["tangential_force"]) for r in last) / (mu * R) - 1) < 0.05
     before, after = _crossing_slip(out)
     assert after - before > 1e-3, (before, after)            # it slid (millimetres)
-    assert _beam_contact(s)["sets"][0]["active_pairs"] > 0
+    assert _beam_contact(s)["beam_sets"][0]["active_pairs"] > 0
 
 
 def test_crossed_beams_stick_below_the_friction_limit():
@@ -324,7 +362,7 @@ def test_gripper_fingers_closed_on_nothing_touch_at_their_tips():
     E, nu, A, I, L, F = 7.0e10, 0.3, 1e-4, 1e-8 / 12, 0.1, 300.0
     R = F - 0.001 / (L ** 3 / (3 * E * I) + L / (5 / 6 * E / (2 * (1 + nu)) * A))
     c = _beam_contact(s)
-    left, right = c["sets"][0]["beams"]["left"], c["sets"][0]["beams"]["right"]
+    left, right = c["beam_sets"][0]["beams"]["left"], c["beam_sets"][0]["beams"]["right"]
     assert abs(right[1] / R - 1) < 0.005, (right, R)
     assert all(abs(left[i] + right[i]) <= 1e-12 * R for i in range(3)), (left, right)
     gap = s["sensors"]["right_tip"]["position"][1] - s["sensors"]["left_tip"]["position"][1] - 0.01
@@ -348,5 +386,5 @@ def test_crossed_beams_paraview_frames_show_both_beams_forces():
     block = text.split('Name="force" NumberOfComponents="3" format="ascii">')[1].split("</DataArray>")[0]
     f = [[float(x) for x in line.split()] for line in block.strip().splitlines()]
     assert all(abs(sum(v[i] for v in f)) <= 1e-6 * max(abs(v[2]) for v in f) for i in range(3)), f
-    up = s["beam_contact"]["sets"][0]["beams"]["upper"]
+    up = s["contact"]["beam_sets"][0]["beams"]["upper"]
     assert abs(sum(v[2] for v in f[0::2]) / up[2] - 1) < 1e-6, (f, up)

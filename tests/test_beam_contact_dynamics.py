@@ -62,8 +62,8 @@ def test_dropped_bar_settles_to_the_static_deflection():
     sag = P * L ** 3 / (192 * EI) + q * L ** 4 / (384 * EI)
     mid = -s["sensors"]["mid"]["displacement"][2]
     assert abs(mid / sag - 1) < 0.01, (mid, sag)
-    c = s["beam_contact"]
-    bar, beam = c["sets"][0]["beams"]["bar"], c["sets"][0]["beams"]["beam"]
+    c = s["contact"]
+    bar, beam = c["beam_sets"][0]["beams"]["bar"], c["beam_sets"][0]["beams"]["beam"]
     assert abs(bar[2] / P - 1) < 1e-3, (bar, P)
     assert all(abs(bar[i] + beam[i]) <= 1e-12 * P for i in range(3)), (bar, beam)
     assert c["max_penetration"] == 0 and 0 < c["min_distance"] < 1e-5, c
@@ -95,7 +95,7 @@ def _check_thrown(s, out):
     e = _energy(out)                                         # 0.5 m v^2 at the start
     assert abs(e[0] / (0.5 * 7800 * 0.04 * 0.008 * 0.2 * 4.0) - 1) < 1e-12, e[0]
     assert max(e) <= e[0] * (1 + 1e-6), (max(e), e[0])       # no energy gained (rho_inf = 0 dissipates)
-    c = s["beam_contact"]
+    c = s["contact"]
     assert c["max_penetration"] == 0 and c["element_pairs"] > 0, c
 
 
@@ -134,7 +134,7 @@ def test_thrown_bar_with_pattern_growth_under_valgrind():
     p, _ = _scene(t, "vg")
     r, out = run_memcheck(p)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert json.loads((out / "summary.json").read_text())["beam_contact"]["element_pairs"] > 0
+    assert json.loads((out / "summary.json").read_text())["contact"]["element_pairs"] > 0
 
 
 COLLIDE = """
@@ -323,7 +323,7 @@ def test_bar_slides_along_a_rail_with_the_kinetic_coefficient():
     t = max(T)
     ref = (t - 0.05) ** 2 * (F - mu_k * m * g) ** 2 / (2 * m)
     assert abs(T[t] / ref - 1) < 0.01, (T[t], ref)
-    assert s["beam_contact"]["max_penetration"] == 0
+    assert s["contact"]["max_penetration"] == 0
 
 
 def test_bar_on_a_rail_sticks_between_the_coefficients():
@@ -358,8 +358,8 @@ def test_gripper_closed_on_nothing_fingers_touch_and_stay_apart():
     gaps = _tip_gaps(out)
     assert min(gaps.values()) > 0.01, min(gaps.values())
     assert gaps[max(gaps)] < 0.0105, gaps[max(gaps)]               # closed: within half a millimetre
-    c = s["beam_contact"]
-    left, right = c["sets"][0]["beams"]["left"], c["sets"][0]["beams"]["right"]
+    c = s["contact"]
+    left, right = c["beam_sets"][0]["beams"]["left"], c["beam_sets"][0]["beams"]["right"]
     assert right[0] > 0.05 and all(abs(left[i] + right[i]) <= 1e-12 * right[0] for i in range(3)), c
     free = text.replace('[[beam_contact]]\nbeams = ["left", "right"]\ndistance = 3e-4\nfriction = 0.8\nslip = 1e-5\n', "")
     assert free != text
@@ -391,8 +391,8 @@ def test_overhand_knot_tightens_without_passing_through_itself():
                 ext.setdefault(int(r["step"]), []).append(float(r["y"]))
     first, last = ext[min(ext)], ext[max(ext)]
     assert max(first) - min(first) > 0.1 and 0.01 < max(last) - min(last) < 0.05, (first, last)
-    c = s["beam_contact"]
-    assert c["sets"][0]["active_pairs"] > 10 and c["max_penetration"] == 0, c
+    c = s["contact"]
+    assert c["beam_sets"][0]["active_pairs"] > 10 and c["max_penetration"] == 0, c
     with open(out / "reactions.csv", newline="") as fh:
         pull = [(float(r["time"]), float(r["Fx"])) for r in csv.DictReader(fh) if r["at"] == "rope:end"]
     mid = dict(pull)[min(t for t, _ in pull if t >= 1.0)]

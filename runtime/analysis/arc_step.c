@@ -120,7 +120,8 @@ int bk_arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, d
 
 /* One arc step of length dl from the equilibrium in q, w->nu at lam0 along
  * the tangent c->t oriented by sigma: the predictor, then the bordered Newton
- * iteration.  On success q, w->nu, c->sp.lam hold the new equilibrium; on
+ * iteration (a predictor the contact's step limiter cut: load control at its
+ * uncut load factor first).  On success q, w->nu, c->sp.lam hold the new equilibrium; on
  * failure the start is restored.  w->qsave, w->nusave: the start. */
 int bk_arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, double sigma, double tWt,
                     double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info, double lam_scale)
@@ -134,10 +135,34 @@ int bk_arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, dou
         c->tmp[j] = dlp * c->t[j];
     if (bk_interactions_prepare(s, q) != 0)  /* (the broad phase of beam contact where q is) */
         return BK_NL_LINERR;
-    dlp *= bk_interactions_step_limit(s, q, c->tmp);    /* (contact: no point through a surface) */
-    bk_static_step_to(s, w, q, w->nu, c->t, dlp, q, w->nu);
+    const double cut = bk_interactions_step_limit(s, q, c->tmp);   /* (contact: no point through a surface) */
+    bk_static_step_to(s, w, q, w->nu, c->t, cut * dlp, q, w->nu);
     c->lam0 = lam0;
     c->dl = dl;
+    if (cut < 1.0 && lam_scale > 0.0) {
+        /* The contact cut the predictor: the tangent did not see it (a pair
+         * just beyond the barrier's reach, or running into it).  The arc's
+         * Newton iteration would start from a state whose increment is
+         * dominated by the barrier's correction, and its root choice (the
+         * acute angle with that increment) then takes the path's other root,
+         * backwards.  This step is solved in load control instead, at the
+         * uncut predictor's load factor from the cut predictor (the path's
+         * direction is that load factor's sign); the arc length goes on from
+         * its equilibrium with a tangent that sees the contact.  When that
+         * fails, the arc iteration below, as before. */
+        const double lt = lam0 + lam_scale * dlp;
+        a->id++;
+        int lst = bk_static_newton(s, nl, w, q, lt, lam0, a, o, m->length_scale, step, NULL);
+        info->newton_iterations += a->iters;
+        if (lst == NEWTON_OK) {
+            c->sp.lam = lt;
+            return BK_NL_OK;
+        }
+        memcpy(q, w->qsave, (size_t)m->ndof * sizeof *q);
+        memcpy(w->nu, w->nusave, (size_t)(s->ncon > 0 ? s->ncon : 1) * sizeof *q);
+        bk_static_step_to(s, w, q, w->nu, c->t, cut * dlp, q, w->nu);
+    }
+    dlp *= cut;
     c->sp.lam = lam0 + lam_scale * dlp;
     c->sp.lam_last = lam0;
     c->pending = 0.0;

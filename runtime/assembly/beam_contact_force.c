@@ -1,5 +1,5 @@
 /* beam_contact_force.c -- the beam contact interaction's forces and Jacobian,
- * step limiter, its rows of contacts.csv, summary.json "beam_contact" and state, and
+ * step limiter, its rows of contacts.csv, summary.json "contact" and state, and
  * its operations (beam_contact.h; the broad phase and the geometry:
  * beam_contact.c). */
 #include <math.h>
@@ -355,12 +355,14 @@ static const char *beam_name(const bk_model *m, int e)
     return "?";
 }
 
-/* summary.json "beam_contact": the smallest distance between the sections of
- * segments that may touch (null: none near), the largest penetration (0: a
- * state through a beam is refused), the element pairs the pattern couples,
- * and per set the pairs of segments within the barrier's reach, the sum of
- * their forces' magnitudes and the total contact force on each beam (zero
- * for a beam touching only itself). */
+/* summary.json "contact" (merged with rigid contact's entry when both run:
+ * min_distance the smaller, max_penetration the larger, run_info.c):
+ * min_distance and beam_min_distance the smallest distance between the
+ * sections of segments that may touch (null: none near), the largest
+ * penetration (0: a state through a beam is refused), the element pairs the
+ * pattern couples, and per set (beam_sets) the pairs of segments within the
+ * barrier's reach, the sum of their forces' magnitudes and the total contact
+ * force on each beam (zero for a beam touching only itself). */
 static int bc_summary(void *self, const bk_system *s, const double *q, char *buf, size_t n)
 {
     const bc_work *w = self;
@@ -374,11 +376,11 @@ static int bc_summary(void *self, const bk_system *s, const double *q, char *buf
         dmin = fmin(dmin, d);
     }
     if (isfinite(dmin))
-        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"element_pairs\": %d, "
-                       "\"sets\": [", dmin, dmin < 0.0 ? -dmin : 0.0, s->ncouple);
+        len = snprintf(buf, n, "{\"min_distance\": %.17g, \"max_penetration\": %.17g, \"beam_min_distance\": %.17g, "
+                       "\"element_pairs\": %d, \"beam_sets\": [", dmin, dmin < 0.0 ? -dmin : 0.0, dmin, s->ncouple);
     else
-        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"element_pairs\": %d, \"sets\": [",
-                       s->ncouple);
+        len = snprintf(buf, n, "{\"min_distance\": null, \"max_penetration\": 0, \"beam_min_distance\": null, "
+                       "\"element_pairs\": %d, \"beam_sets\": [", s->ncouple);
     for (int c = 0; c < bm->nset && len > 0 && (size_t)len < n; ++c) {
         const bk_beam_contact_set *set = &bm->sets[c];
         int nact;
@@ -468,5 +470,5 @@ static void bc_rows(void *self, const bk_system *s, int step, double t, const do
 const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assemble = bc_assemble,
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
                                                 .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
-                                                .summary_key = "beam_contact", .uncounted_energy = 1, .cut_predictors = 1,
+                                                .summary_key = "contact", .uncounted_energy = 1, .cut_predictors = 1,
                                                 .summary = bc_summary, .free = bc_free};

@@ -1,6 +1,7 @@
 /* json.h -- writing JSON values: strings escaped, numbers with "%.17g" and a
  * non-finite number as null (JSON has no NaN or infinity), and the repair of
- * JSON text made elsewhere whose numbers were printed without that care. */
+ * JSON text made elsewhere whose numbers were printed without that care, and
+ * the merge of two objects given under one summary key. */
 #ifndef BK_JSON_H
 #define BK_JSON_H
 
@@ -15,5 +16,11 @@ void bk_json_vec3(FILE *fp, const double *v);
  * false or null (nan, -nan, inf, -inf as printf writes them) replaced by
  * null; out has room for 2 strlen(in) + 1 characters (the most it can need). */
 void bk_json_repair(const char *in, char *out);
+/* The object texts a and b (at most 64 members each) as one object, malloc'ed:
+ * a's members, then b's whose names a lacks; a member in both is a's, but for
+ * "min_distance" (the smaller of the two numbers; null when neither is one)
+ * and "max_penetration" (the larger).  NULL when either is not an object or
+ * out of memory. */
+char *bk_json_merge(const char *a, const char *b);
 
 #endif

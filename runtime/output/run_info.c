@@ -81,6 +81,17 @@ int bk_run_summary(bk_run_info *info, const char *key, const char *json)
     }
     strcpy(k, key);
     bk_json_repair(json, v);          /* summary.json stays JSON whatever the text held (nan: null) */
+    for (int e = 0; e < info->nsummary; ++e)
+        if (strcmp(info->summary_key[e], key) == 0) {   /* a second entry under one key: merged */
+            char *both = bk_json_merge(info->summary_json[e], v);
+            free(k);
+            free(v);
+            if (!both)
+                return -1;
+            free(info->summary_json[e]);
+            info->summary_json[e] = both;
+            return 0;
+        }
     info->summary_key[info->nsummary] = k;
     info->summary_json[info->nsummary++] = v;
     return 0;

@@ -85,8 +85,10 @@ bk_stability_event *bk_run_add_stability(bk_run_info *info);
 bk_critical_point *bk_run_insert_critical(bk_run_info *info, int at);
 
 /* An entry "key": json of summary.json that the analysis adds (json: a JSON
- * value's text, copied), written after the counters in the order added.  0,
- * or -1 when out of memory (then none is added). */
+ * value's text, copied), written after the counters in the order added; an
+ * object given under a key already added is merged into it (bk_json_merge:
+ * rigid and beam contact both report under "contact").  0, or -1 when out of
+ * memory or the two are not objects (then none is added). */
 int bk_run_summary(bk_run_info *info, const char *key, const char *json);
 
 /* Frees the warnings, events, critical points and summary entries (info may
