@@ -127,7 +127,7 @@ def _redirect(argv):
 
 
 def _run(cmd, cwd, root=ROOT):
-    argv, out = _redirect(shlex.split(cmd))
+    argv, out = _redirect(shlex.split(cmd, comments=True))
     out = cwd / out if out else None
     if argv[0] in ("./build.sh", "build.sh"):
         argv[0] = str(root / "build.sh")
