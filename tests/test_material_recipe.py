@@ -14,7 +14,7 @@ import subprocess
 import pytest
 
 from test_docs_run import follow, steps
-from util import ROOT, scratch_copy
+from util import ENV, ROOT, scratch_copy
 
 PAGE = "docs/howto/add-material.md"
 
@@ -25,8 +25,10 @@ def _page():
 
 
 def _sh(proj, *args, timeout=1800):
+    """The copy's ./build.sh ARGS, relative paths from the copy's top."""
+    env = dict(ENV, BK_CALLER_CWD=str(proj), PYTHONPATH=str(proj), PYTHONPYCACHEPREFIX=str(proj / "out" / "pycache"))
     return subprocess.run([str(proj / "build.sh"), *args], capture_output=True, text=True, cwd=proj,
-                          timeout=timeout)
+                          timeout=timeout, env=env)
 
 
 def _tip_uz(proj, out):
