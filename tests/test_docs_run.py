@@ -35,10 +35,9 @@ def _marked(path):
 
 
 def _slow(page):
-    """Pages that follow a recipe in a scratch copy (a generator run and a
-    build) or run CalculiX: more than 30 s."""
-    text = (ROOT / page).read_text()
-    return in_copy(text) or "./build.sh calculix" in text
+    """Pages that follow a recipe in a scratch copy (a generator run, a build
+    and a nested test run): more than 30 s."""
+    return in_copy((ROOT / page).read_text())
 
 
 # Pages that another test follows, with checks of its own in the same copy.
