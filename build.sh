@@ -118,6 +118,11 @@ Commands:
                          roll-up, torsion, stiff pendulums, incompressibility,
                          slenderness, long runs) per element: out/report/hard.md
                          (+ hard_*.csv, hard_rollup_newton.png)
+  calculix SCENE [options]  the CalculiX reference of a straight-beam scene: the
+                         scene as a C3D20R solid (calculix-ccx) on 2-3 meshes,
+                         the sensors' displacements Richardson-extrapolated with
+                         an error estimate; --meshes NXxNYxNZ,..., --json, --set
+                         (calculix --help lists them; docs/howto/verify-calculix.md)
   deps                   only install missing Debian packages
   bench [--quick]        the speed-against-error report: work-precision diagrams,
                          kernel timings, scaling, toolchain times, in
@@ -268,6 +273,12 @@ case "$cmd" in
     hard)
         shift
         exec "$PY" -m report.hard "$@"
+        ;;
+    calculix)
+        # (paths on its command line are the caller's: run from there)
+        shift
+        cd "$BK_CALLER_CWD"
+        exec "$PY" -m calculix "$@"
         ;;
     report)
         shift

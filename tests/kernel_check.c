@@ -111,16 +111,19 @@ static void rigid(const bk_element *e, const double *geom, const double R[9], co
     }
 }
 
-/* Size of a perturbation of each DOF: positions ~ l, slopes and quaternions ~ 1,
+/* Size of a perturbation of each DOF: positions ~ the nodes' spacing along the
+ * axis (strains of the same size for any number of nodes), slopes and quaternions ~ 1,
  * curvature-like vectors ~ 1/h, multipliers ~ 1e-3. */
 static void dof_scale(const bk_element *e, const double *geom, double *sc)
 {
-    double hmin = fmin(geom[BK_GEOM_B], geom[BK_GEOM_H]);
+    double hmin = fmin(geom[BK_GEOM_B], geom[BK_GEOM_H]), gap = 1.0;
+    for (int a = 1; a < e->nnode; ++a)             /* the nodes' spacing along the axis */
+        gap = fmin(gap, fabs(e->node_xi[a] - e->node_xi[a - 1]));
     for (int f = 0; f < e->nfield; ++f) {
         const bk_field_role role = e->field_role[f];
         double v = 1.0;
         if (role == BK_FIELD_POSITION)
-            v = geom[BK_GEOM_L];
+            v = gap * geom[BK_GEOM_L];
         else if (role == BK_FIELD_R_YY || role == BK_FIELD_R_YZ || role == BK_FIELD_R_ZZ)
             v = 1.0 / hmin;
         else if (role == BK_FIELD_MULTIPLIER)

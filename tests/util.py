@@ -195,3 +195,28 @@ class Kernel:
         U = self._energy(qp, tp, mp)
         self._ft(qp, tp, mp, fp, Kp)
         return U, f.copy(), K.reshape(self.ndof, self.ndof).copy()
+
+
+def scratch_copy(dst):
+    """A copy of the project's tracked files (the working tree's content) in dst,
+    for tests that follow a recipe which edits the code (docs/howto/add-*.md).
+    The release objects of this checkout's runtime and kernels are built first
+    (the suite's runs and kernel tests need them anyway) and copied with their
+    times, as are the sources: the copy's build recompiles only what its edits
+    make stale (gen/solver_build.py compares times and flags).  Returns dst."""
+    import shutil
+    from gen.solver_build import BUILD as OBJ, build_lock, kernel_objects, runtime_objects
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+    dst = Path(dst)
+    for rel_ in filter(None, files.decode().split("\0")):
+        src = ROOT / rel_
+        if src.is_file():
+            (dst / rel_).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dst / rel_)
+    allp, index = all_pair_symbols()
+    with build_lock():
+        runtime_objects("release")
+        kernel_objects(allp, index, "release")
+        for sub in ("runtime", "kernels"):
+            shutil.copytree(OBJ / "release" / sub, dst / "out" / "build" / "release" / sub)
+    return dst
