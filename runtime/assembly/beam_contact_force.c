@@ -57,17 +57,25 @@ static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp,
     for (int sQ = 0; sQ < nsides; ++sQ) {
         const int nq = 3 * et[sQ]->nshape;
         /* T[(p, r)][(b, c)] = sum over the points q of side sQ of Hp[(p, r)][(q, c)] N_q[b] */
+        const int nsq = et[sQ]->nshape;
         for (int row = 0; row < n3; ++row) {
             if (!w->used[row / 3])
                 continue;                        /* (rows and columns of untouched points are zero) */
-            for (int b = 0; b < et[sQ]->nshape; ++b)
-                for (int c = 0; c < 3; ++c) {
-                    double t = 0.0;
-                    for (int k = 0; k < ns; ++k)
-                        if (w->used[sQ * ns + k])
-                            t += w->Hp[(size_t)row * n3 + 3 * (sQ * ns + k) + c] * N[sQ][(size_t)k * w->nsh + b];
-                    w->T[(size_t)row * nq + 3 * b + c] = t;
+            double *restrict Trow = w->T + (size_t)row * nq;
+            const double *Hrow = w->Hp + (size_t)row * n3 + 3 * sQ * ns;
+            for (int m = 0; m < nq; ++m)
+                Trow[m] = 0.0;
+            for (int k = 0; k < ns; ++k) {       /* (the sum over k in order, as a dot product would) */
+                if (!w->used[sQ * ns + k])
+                    continue;
+                const double *Nk = N[sQ] + (size_t)k * w->nsh, h0 = Hrow[3 * k], h1 = Hrow[3 * k + 1],
+                             h2 = Hrow[3 * k + 2];
+                for (int b = 0; b < nsq; ++b) {
+                    Trow[3 * b] += h0 * Nk[b];
+                    Trow[3 * b + 1] += h1 * Nk[b];
+                    Trow[3 * b + 2] += h2 * Nk[b];
                 }
+            }
         }
         for (int sP = 0; sP < nsides; ++sP) {
             const int ndP = et[sP]->ndof, ndQ = et[sQ]->ndof;
