@@ -117,8 +117,12 @@ static void assemble_candidate(void *ctx, seg_pair *sp, int end)
     if (!a->Ax)
         return;
     const int el[2] = {sp->ei, sp->ej};
-    for (int b = 0; b < (one ? 1 : 4); ++b)
-        bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+    for (int b = 0; b < (one ? 1 : 4); ++b) {
+        if (el[b / 2] == el[b % 2])              /* an element's own block: its scatter map, no search */
+            bk_scatter_matrix(a->s, el[b / 2], w->Kb[b], 1.0, a->Ax);
+        else
+            bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+    }
 }
 
 /* The pair's energy gradient g[12] and Hessian H[144] (H may be NULL) in its
