@@ -303,6 +303,7 @@ static void assemble_point(void *ctx, point *pt)
             for (int j = i; j < ns; ++j) {
                 double *restrict blk = w->Kc + 9 * (i * ns + j);
                 const double nij = pt->N[i] * pt->N[j];
+#pragma omp simd
                 for (int k = 0; k < 9; ++k)
                     blk[k] += nij * Kv[k];
             }
