@@ -356,6 +356,7 @@ static void add_barrier(double c, double d, const double *gd, const double *Hd, 
     *e += c * b[0];
     for (int i = 0; i < 12; ++i) {
         g[i] += c * b[1] * gd[i];
+#pragma omp simd
         for (int j = 0; j < 12; ++j)
             H[12 * i + j] += c * (b[2] * gd[i] * gd[j] + b[1] * Hd[12 * i + j]);
     }
@@ -387,6 +388,7 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
         g[i] = xi * gss[i] + (1.0 - xi) * gps[i] + de * k1 * gc[i];
         if (!H)
             continue;
+#pragma omp simd
         for (int j = 0; j < 12; ++j)
             H[12 * i + j] = xi * Hss[12 * i + j] + (1.0 - xi) * Hps[12 * i + j] +
                             k1 * (gc[i] * (gss[j] - gps[j]) + (gss[i] - gps[i]) * gc[j]) +
