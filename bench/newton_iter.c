@@ -15,6 +15,14 @@
  * medians of each part, the setup time, the peak resident memory (VmHWM) and the
  * counts of KLU analyses, numeric factorizations and full (pivoting,
  * allocating) factorizations.
+ * The rest of a Newton iteration of the solver is timed apart: the
+ * interactions' prepare before it (prepare_s; beam contact's check whether a
+ * point moved enough for its broad phase) and their step limiter of the
+ * correction (limit_s); and, in a model with contact, each broad phase alone
+ * (contact_broad_s: rigid primitives', also part of interactions_s;
+ * beam_broad_s: beam contact's, run again at the same state as a rebuild
+ * does).  Every *_s key has a *_cpu_s twin from the thread's CPU clock (the
+ * bench runs one thread; on a loaded machine CPU time is the steadier).
  * MATRIX_FILE: the first iteration's Newton matrix and right-hand side are
  * also written there, for bench/band_lapack.c: int32 n, int64 nnz, then
  * Ap[n+1], Ai[nnz] (int32), Ax[nnz], b[n] (double), native byte order.
@@ -29,11 +37,26 @@
 #include "median_clock.h"
 #include "linalg/linsolve.h"
 #include "model/model.h"
+#include "assembly/beam_contact.h"
+#include "assembly/contact_force.h"
 #include "assembly/interaction.h"
 #include "assembly/system.h"
 
 extern const bk_pair *const bk_linked_pairs[];
 extern const int bk_nlinked_pairs;
+
+/* Seconds of this thread's CPU clock. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* The timed parts of an iteration: wall and CPU seconds of each. */
+enum { T_ITER, T_ASM, T_FACT, T_SOLVE, T_INTER, T_PREP, T_LIMIT, T_BROAD, T_BBROAD, NT };
+static const char *const tname[NT] = {"iteration", "assembly", "factor", "solve", "interactions", "prepare",
+                                      "limit", "contact_broad", "beam_broad"};
 
 static int dump_matrix(const char *path, const bk_system *s, const double *Ax, const double *b)
 {
@@ -75,22 +98,32 @@ int main(int argc, char **argv)
     double *q = malloc((size_t)nd * sizeof *q), *fint = malloc((size_t)nd * sizeof *fint);
     double *r = calloc((size_t)ne, sizeof *r), *r2 = calloc((size_t)ne, sizeof *r2), *nu = calloc((size_t)(s->ncon + 1), sizeof *nu);
     double *Ax = malloc((size_t)(s->nnz ? s->nnz : 1) * sizeof *Ax);
-    double *ta = malloc((size_t)nit * sizeof *ta), *tf = malloc((size_t)nit * sizeof *tf);
-    double *ts = malloc((size_t)nit * sizeof *ts), *tt = malloc((size_t)nit * sizeof *tt);
-    double *ti = malloc((size_t)nit * sizeof *ti);
-    if (!q || !fint || !r || !r2 || !nu || !Ax || !ta || !tf || !ts || !tt || !ti)
+    double *tw = calloc((size_t)nit * NT, sizeof *tw), *tc = calloc((size_t)nit * NT, sizeof *tc);
+    if (!q || !fint || !r || !r2 || !nu || !Ax || !tw || !tc)
         return 1;
     /* a smooth deformed state: small transverse sag growing along the model */
     for (int i = 0; i < nd; ++i)
         q[i] = m->q0[i] + (s->eq[i] >= 0 ? 1e-4 * sin(0.37 * i) : 0.0);
     const bk_path path = {.factor = 1.0, .x = 1.0};
     bk_interactions_accept(s, q, &path);           /* the lagged contact state of a converged step */
+    int have_broad = bk_contact_broad_phase(s, q, &path) >= 0, have_bbroad = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        have_bbroad |= s->inter[k].ops == &bk_beam_contact_ops;
     for (int it = 0; it < nit; ++it) {
-        double a = bench_now();
-        int bad = bk_assemble_internal(s, q, fint, Ax);
-        double ai = bench_now();
+        double *w = tw + (size_t)NT * it, *c = tc + (size_t)NT * it, w0, c0;
+#define TIC (w0 = bench_now(), c0 = cpu_now())
+#define TOC(k) (w[k] += bench_now() - w0, c[k] += cpu_now() - c0)
+        TIC;
+        int bad = bk_interactions_prepare(s, q) != 0;
+        TOC(T_PREP);
+        TIC;
+        bad |= bk_assemble_internal(s, q, fint, Ax);
+        TOC(T_ASM);
+        TIC;
         bad |= bk_assemble_interactions(s, q, &path, fint, Ax) != 0;
-        ti[it] = bench_now() - ai;
+        TOC(T_INTER);
+        w[T_ASM] += w[T_INTER], c[T_ASM] += c[T_INTER];
+        TIC;
         for (int i = 0; i < nd; ++i)
             if (s->eq[i] >= 0)
                 r[s->eq[i]] = fint[i];
@@ -98,20 +131,37 @@ int main(int argc, char **argv)
         for (int i = 0; i < ne; ++i)
             r[i] = -r[i];
         memcpy(r2, r, (size_t)ne * sizeof *r);
+        TOC(T_ASM);
         if (it == 0 && argc == 4 && dump_matrix(argv[3], s, Ax, r) != 0) {
             fprintf(stderr, "bench_newton: cannot write %s\n", argv[3]);
             return 1;
         }
-        double b = bench_now();
+        TIC;
         int st = bk_lin_factor_solve(&ls, Ax, r);   /* what a Newton iteration with a new matrix does */
-        double c = bench_now();
+        TOC(T_FACT);
         if (bad || st != BK_LIN_OK) {
             fprintf(stderr, "bench_newton: assembly (%d) or factorization (%d) failed\n", bad, st);
             return 2;
         }
+        TIC;
         bk_lin_solve(&ls, r2);                      /* an iteration that keeps the factors */
-        double d = bench_now();
-        ta[it] = b - a, tf[it] = c - b, ts[it] = d - c, tt[it] = c - a;
+        TOC(T_SOLVE);
+        TIC;
+        (void)bk_interactions_step_limit(s, q, r);  /* the limiter of the correction */
+        TOC(T_LIMIT);
+        if (have_broad) {
+            TIC;
+            bk_contact_broad_phase(s, q, &path);
+            TOC(T_BROAD);
+        }
+        if (have_bbroad) {
+            TIC;
+            bk_beam_contact_broad_phase(s, q);
+            TOC(T_BBROAD);
+        }
+#undef TIC
+#undef TOC
+        w[T_ITER] = w[T_ASM] + w[T_FACT], c[T_ITER] = c[T_ASM] + c[T_FACT];
     }
     /* Peak resident memory of this process image: VmHWM (getrusage's maxrss
      * would include the parent's peak before exec). */
@@ -130,12 +180,21 @@ int main(int argc, char **argv)
         hwm = ru.ru_maxrss;
     }
     printf("elements=%d\ndofs=%d\nequations=%d\nnnz=%ld\nthreads=%d\n", m->nelem, nd, ne, s->nnz, s->nthreads);
-    printf("setup_s=%.6e\niteration_s=%.6e\nassembly_s=%.6e\nfactor_s=%.6e\nsolve_s=%.6e\ninteractions_s=%.6e\n",
-           t_setup, bench_median(tt, nit), bench_median(ta, nit), bench_median(tf, nit), bench_median(ts, nit), bench_median(ti, nit));
+    printf("setup_s=%.6e\n", t_setup);
+    double *col = malloc((size_t)nit * sizeof *col);
+    if (!col)
+        return 1;
+    for (int k = 0; k < NT; ++k)
+        for (int clock = 0; clock < 2; ++clock) {
+            for (int it = 0; it < nit; ++it)
+                col[it] = (clock ? tc : tw)[(size_t)NT * it + k];
+            printf("%s%s_s=%.6e\n", tname[k], clock ? "_cpu" : "", bench_median(col, nit));
+        }
+    free(col);
     printf("analyses=%d\nfactorizations=%d\nfull_factorizations=%d\nmaxrss_kb=%ld\n", ls.nanalyze, ls.nfactor,
            ls.nfull, hwm);
     bk_lin_free(&ls);
-    free(q), free(fint), free(r), free(r2), free(nu), free(Ax), free(ta), free(tf), free(ts), free(tt), free(ti);
+    free(q), free(fint), free(r), free(r2), free(nu), free(Ax), free(tw), free(tc);
     bk_system_free(s);
     bk_model_free(m);
     return 0;

@@ -5,7 +5,8 @@
  * ground under its weight by Newton's method with the interaction's step
  * limiter (no iterate through the surface; the contact forces balance the
  * weight); the step limiter against a correction that would cross the
- * surface.  Prints "case=NAME key=value ..." lines for tests/test_contact.py. */
+ * surface; the broad phase's candidates against a sphere.  Prints
+ * "case=NAME key=value ..." lines for tests/test_contact.py. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -314,6 +315,37 @@ static void check_step_limit(void)
     bk_system_free(sys);
 }
 
+/* The broad phase against a sphere (radius R = 0.1 at (0.5, 0, 0), or moved
+ * by 0.25 along x) under the chain at z = 0.115 (r = 0.01, reach 0.01): only
+ * the two elements meeting above the centre come within R + r + reach = 0.12
+ * of it (the next ones are 0.125 away along x); the points within reach there
+ * (bk_contact_state visits every point); the step limiter of a fall of 0.2 by
+ * every node: 0.9 of the nearest point's distance 0.005 over 0.2. */
+static void check_broad_phase(void)
+{
+    int cand[2], nact = 0;
+    double alpha = 0.0;
+    for (int moved = 0; moved < 2; ++moved) {
+        scene s;
+        bk_contact_prim sphere = {.shape = BK_CONTACT_SPHERE, .prm = {0.5, 0.0, 0.0, 0.1}, .amp = -1, .body = -1};
+        sphere.motion[0] = moved ? 0.25 : 0.0;
+        build(&s, 0.115, 100.0, sphere, 0.01, 0.01, 1e3);
+        bk_system *sys = create(&s);
+        double f[3 * NN], F[3], dmin, dx[3 * NN];
+        contact_force(sys, s.q0, f, NULL);       /* (places the sphere at the factor 1) */
+        cand[moved] = bk_contact_broad_phase(sys, s.q0, &(bk_path){.factor = 1.0, .x = 1.0});
+        if (!moved) {
+            bk_contact_state(sys, s.q0, F, &nact, &dmin);
+            for (int i = 0; i < sys->neq; ++i)
+                dx[i] = -0.2;
+            alpha = bk_interactions_step_limit(sys, s.q0, dx);
+        }
+        bk_system_free(sys);
+    }
+    printf("case=broad_phase elements=%d candidates=%d candidates_moved=%d active=%d alpha=%.17g\n", NE, cand[0],
+           cand[1], nact, alpha);
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
@@ -321,5 +353,6 @@ int main(void)
     check_friction();
     check_resting_chain();
     check_step_limit();
+    check_broad_phase();
     return 0;
 }

@@ -54,3 +54,16 @@ def test_friction_jacobian_and_coulomb_limit():
     assert int(d["active"]) > 0, d
     assert float(d["err"]) < 1e-6, d
     assert abs(float(d["coulomb_ratio"]) - float(d["mu"])) < 1e-3 * float(d["mu"]), d
+
+
+def test_broad_phase_keeps_the_elements_within_reach_only():
+    """A chain of 8 elements at z = 0.115 over a sphere of radius 0.1 (section
+    radius 0.01, reach 0.01): the two elements meeting above the centre come
+    within R + r + reach = 0.12 of it, the next are 0.125 away along x; the
+    same with the sphere moved by 0.25 along x; the step limiter of a fall of
+    0.2 keeps 0.9 of the nearest point's distance 0.005 (the far elements'
+    too)."""
+    d = results()["broad_phase"]
+    assert int(d["candidates"]) == 2 and int(d["candidates_moved"]) == 2, d
+    assert int(d["active"]) == 2, d                      # the two elements' points above the centre
+    assert abs(float(d["alpha"]) - 0.9 * 0.005 / 0.2) < 1e-12, d

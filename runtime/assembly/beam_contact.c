@@ -41,7 +41,7 @@ static double elem_len(const bk_model *m, int e)
 static void point_of(const bk_model *m, const bc_work *w, int e, int p, const double *ve, double *x)
 {
     const bk_element *et = bk_elem_type(m, e);
-    const double *N = w->N + (size_t)p * BK_MAX_SHAPE;
+    const double *N = w->N + (size_t)p * w->nsh;
     x[0] = x[1] = x[2] = 0.0;
     for (int a = 0; a < et->nshape; ++a)
         for (int r = 0; r < 3; ++r)
@@ -163,6 +163,17 @@ int bc_prepare(void *self, bk_system *s, const double *q)
     return again ? broad_phase(w, s) : 0;
 }
 
+int bk_beam_contact_broad_phase(bk_system *s, const double *q)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops == &bk_beam_contact_ops) {
+            bc_work *w = s->inter[k].self;
+            bc_points(w, s, q, 0, w->X);
+            return broad_phase(w, s) != 0 ? -1 : w->ncand;
+        }
+    return -1;
+}
+
 int bk_beam_contact_make(bk_system *s, const bk_beam_contact_model *bm, void **self)
 {
     const bk_model *m = s->m;
@@ -186,6 +197,10 @@ int bk_beam_contact_make(bk_system *s, const bk_beam_contact_model *bm, void **s
         nent += set->nelem;
         maxel = set->nelem > maxel ? set->nelem : maxel;
         maxns = set->nsample > maxns ? set->nsample : maxns;
+        for (int i = 0; i < set->nelem; ++i) {
+            const int nsh = bk_elem_type(m, set->elems[i])->nshape;
+            w->nsh = nsh > w->nsh ? nsh : w->nsh;
+        }
         /* M: the longest element, twice the thickest section, ten reaches */
         double M = 10.0 * set->shat;
         for (int i = 0; i < set->nelem; ++i)
@@ -194,7 +209,7 @@ int bk_beam_contact_make(bk_system *s, const bk_beam_contact_model *bm, void **s
     }
     size_t np = (size_t)(w->npt > 0 ? w->npt : 1);
     w->chain = calloc((size_t)nent + 1, sizeof *w->chain);
-    w->N = calloc(np * BK_MAX_SHAPE, sizeof *w->N);
+    w->N = calloc(np * (size_t)(w->nsh > 0 ? w->nsh : 1), sizeof *w->N);
     w->X = calloc(3 * np, sizeof *w->X);
     w->Xref = calloc(3 * np, sizeof *w->Xref);
     w->D = calloc(3 * np, sizeof *w->D);
@@ -218,9 +233,12 @@ int bk_beam_contact_make(bk_system *s, const bk_beam_contact_model *bm, void **s
                 w->chain[w->ebase[c] + i] = b;
         for (int i = 0; i < set->nelem; ++i) {
             const int e = set->elems[i];
-            for (int k = 0; k < set->nsample; ++k)
-                bk_elem_type(m, e)->shape(m->geoms[m->elems[e].geom], (double)k / (set->nsample - 1), 0.0, 0.0,
-                                          w->N + (size_t)(w->base[c] + i * set->nsample + k) * BK_MAX_SHAPE);
+            double Nk[BK_MAX_SHAPE];
+            for (int k = 0; k < set->nsample; ++k) {
+                bk_elem_type(m, e)->shape(m->geoms[m->elems[e].geom], (double)k / (set->nsample - 1), 0.0, 0.0, Nk);
+                memcpy(w->N + (size_t)(w->base[c] + i * set->nsample + k) * w->nsh, Nk,
+                       (size_t)bk_elem_type(m, e)->nshape * sizeof *Nk);
+            }
         }
     }
     return bc_prepare(w, s, m->q0);
@@ -338,6 +356,7 @@ static void add_barrier(double c, double d, const double *gd, const double *Hd, 
     *e += c * b[0];
     for (int i = 0; i < 12; ++i) {
         g[i] += c * b[1] * gd[i];
+#pragma omp simd
         for (int j = 0; j < 12; ++j)
             H[12 * i + j] += c * (b[2] * gd[i] * gd[j] + b[1] * Hd[12 * i + j]);
     }
@@ -369,6 +388,7 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
         g[i] = xi * gss[i] + (1.0 - xi) * gps[i] + de * k1 * gc[i];
         if (!H)
             continue;
+#pragma omp simd
         for (int j = 0; j < 12; ++j)
             H[12 * i + j] = xi * Hss[12 * i + j] + (1.0 - xi) * Hps[12 * i + j] +
                             k1 * (gc[i] * (gss[j] - gps[j]) + (gss[i] - gps[i]) * gc[j]) +
@@ -379,8 +399,36 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
 
 /* ---- the visitor of the candidate segment pairs (beam_contact_impl.h) ---- */
 
-void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
-                      void (*cand)(void *, seg_pair *, int), void *ctx)
+/* The distance between the boxes of the current sample points of entries i
+ * and j of set c, less a round-off allowance: a lower bound of the distances
+ * bc_closest finds between their segments. */
+static double box_gap(const bc_work *w, int c, int i, int j)
+{
+    const int ns = w->bm->sets[c].nsample;
+    double lo[2][3], hi[2][3], d2 = 0.0, big = 0.0;
+    for (int sd = 0; sd < 2; ++sd) {
+        const double *x = w->X + 3 * (size_t)(w->base[c] + (sd ? j : i) * ns);
+        for (int r = 0; r < 3; ++r)
+            lo[sd][r] = hi[sd][r] = x[r];
+        for (int k = 1; k < ns; ++k)
+            for (int r = 0; r < 3; ++r) {
+                const double v = x[3 * k + r];
+                lo[sd][r] = v < lo[sd][r] ? v : lo[sd][r];
+                hi[sd][r] = v > hi[sd][r] ? v : hi[sd][r];
+            }
+    }
+    for (int r = 0; r < 3; ++r) {
+        const double g = lo[1][r] - hi[0][r] > lo[0][r] - hi[1][r] ? lo[1][r] - hi[0][r] : lo[0][r] - hi[1][r];
+        d2 += g > 0.0 ? g * g : 0.0;
+        for (int sd = 0; sd < 2; ++sd)
+            big = fmax(big, fmax(fabs(lo[sd][r]), fabs(hi[sd][r])));
+    }
+    return sqrt(d2) - 1e-14 * big;           /* (less the round-off of the segments' own distances) */
+}
+
+void bc_each_near_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
+                       void (*cand)(void *, seg_pair *, int), int (*skip)(void *, const seg_pair *, double),
+                       void *ctx)
 {
     seg_pair sp;
     for (int n = 0; n < w->ncand; ++n) {
@@ -388,6 +436,8 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
         const bk_beam_contact_set *set = &w->bm->sets[sp.c];
         const int ns = set->nsample;
         sp.ei = set->elems[sp.i], sp.ej = set->elems[sp.j];
+        if (skip && sp.i != sp.j && skip(ctx, &sp, box_gap(w, sp.c, sp.i, sp.j)))
+            continue;
         const double hi = elem_len(m, sp.ei) / (ns - 1), hj = elem_len(m, sp.ej) / (ns - 1);
         if (cand)
             cand(ctx, &sp, 0);
@@ -409,6 +459,12 @@ void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pa
         if (cand)
             cand(ctx, &sp, 1);
     }
+}
+
+void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
+                  void (*cand)(void *, seg_pair *, int), void *ctx)
+{
+    bc_each_near_pair(w, m, fn, cand, NULL, ctx);
 }
 
 /* The interaction module: made when the model has the record "beam_contact". */

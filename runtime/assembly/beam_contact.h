@@ -36,6 +36,11 @@ extern const bk_interaction_ops bk_beam_contact_ops;
  * the model's record; tests from sets of their own. */
 int bk_beam_contact_make(struct bk_system *s, const bk_beam_contact_model *bm, void **self);
 
+/* The broad phase run again at q, whether or not a point moved (for the
+ * bench: its cost; the tests): the number of candidate element pairs, or -1
+ * (no beam contact, out of memory). */
+int bk_beam_contact_broad_phase(struct bk_system *s, const double *q);
+
 /* The state at q (for the outputs and the tests), of set c: the total force
  * on each of its beams (F[3 nchain], N), the pairs of segments within the
  * barrier's reach and the sum of their forces' magnitudes (N; both may be

@@ -38,15 +38,15 @@ static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp,
     const int ns = w->bm->sets[sp->c].nsample, nsides = sp->i == sp->j ? 1 : 2, n3 = 3 * nsides * ns;
     const int el[2] = {sp->ei, sp->ej};
     const bk_element *et[2] = {bk_elem_type(m, sp->ei), bk_elem_type(m, sp->ej)};
-    const double *N[2] = {w->N + (size_t)(w->base[sp->c] + sp->i * ns) * BK_MAX_SHAPE,
-                          w->N + (size_t)(w->base[sp->c] + sp->j * ns) * BK_MAX_SHAPE};
+    const double *N[2] = {w->N + (size_t)(w->base[sp->c] + sp->i * ns) * w->nsh,
+                          w->N + (size_t)(w->base[sp->c] + sp->j * ns) * w->nsh};
     for (int sd = 0; sd < nsides; ++sd) {
         const int nd = bk_elem_type(m, el[sd])->ndof;
         memset(w->fe[sd], 0, (size_t)nd * sizeof *w->fe[sd]);
         for (int k = 0; k < ns; ++k) {
             if (!w->used[sd * ns + k])
                 continue;
-            const double *Nk = N[sd] + (size_t)k * BK_MAX_SHAPE, *gk = w->gp + 3 * (sd * ns + k);
+            const double *Nk = N[sd] + (size_t)k * w->nsh, *gk = w->gp + 3 * (sd * ns + k);
             for (int a = 0; a < et[sd]->nshape; ++a)
                 for (int r = 0; r < 3; ++r)
                     w->fe[sd][et[sd]->shape_dof[a] + r] += Nk[a] * gk[r];
@@ -57,17 +57,25 @@ static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp,
     for (int sQ = 0; sQ < nsides; ++sQ) {
         const int nq = 3 * et[sQ]->nshape;
         /* T[(p, r)][(b, c)] = sum over the points q of side sQ of Hp[(p, r)][(q, c)] N_q[b] */
+        const int nsq = et[sQ]->nshape;
         for (int row = 0; row < n3; ++row) {
             if (!w->used[row / 3])
                 continue;                        /* (rows and columns of untouched points are zero) */
-            for (int b = 0; b < et[sQ]->nshape; ++b)
-                for (int c = 0; c < 3; ++c) {
-                    double t = 0.0;
-                    for (int k = 0; k < ns; ++k)
-                        if (w->used[sQ * ns + k])
-                            t += w->Hp[(size_t)row * n3 + 3 * (sQ * ns + k) + c] * N[sQ][(size_t)k * BK_MAX_SHAPE + b];
-                    w->T[(size_t)row * nq + 3 * b + c] = t;
+            double *restrict Trow = w->T + (size_t)row * nq;
+            const double *Hrow = w->Hp + (size_t)row * n3 + 3 * sQ * ns;
+            for (int m = 0; m < nq; ++m)
+                Trow[m] = 0.0;
+            for (int k = 0; k < ns; ++k) {       /* (the sum over k in order, as a dot product would) */
+                if (!w->used[sQ * ns + k])
+                    continue;
+                const double *Nk = N[sQ] + (size_t)k * w->nsh, h0 = Hrow[3 * k], h1 = Hrow[3 * k + 1],
+                             h2 = Hrow[3 * k + 2];
+                for (int b = 0; b < nsq; ++b) {
+                    Trow[3 * b] += h0 * Nk[b];
+                    Trow[3 * b + 1] += h1 * Nk[b];
+                    Trow[3 * b + 2] += h2 * Nk[b];
                 }
+            }
         }
         for (int sP = 0; sP < nsides; ++sP) {
             const int ndP = et[sP]->ndof, ndQ = et[sQ]->ndof;
@@ -79,7 +87,7 @@ static void to_elements(const bc_work *w, const bk_model *m, const seg_pair *sp,
                     for (int k = 0; k < ns; ++k) {
                         if (!w->used[sP * ns + k])
                             continue;
-                        const double na = N[sP][(size_t)k * BK_MAX_SHAPE + a];
+                        const double na = N[sP][(size_t)k * w->nsh + a];
                         const double *Trow = w->T + (size_t)(3 * (sP * ns + k) + r) * nq;
                         for (int b = 0; b < et[sQ]->nshape; ++b)
                             for (int c = 0; c < 3; ++c)
@@ -109,8 +117,12 @@ static void assemble_candidate(void *ctx, seg_pair *sp, int end)
     if (!a->Ax)
         return;
     const int el[2] = {sp->ei, sp->ej};
-    for (int b = 0; b < (one ? 1 : 4); ++b)
-        bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+    for (int b = 0; b < (one ? 1 : 4); ++b) {
+        if (el[b / 2] == el[b % 2])              /* an element's own block: its scatter map, no search */
+            bk_scatter_matrix(a->s, el[b / 2], w->Kb[b], 1.0, a->Ax);
+        else
+            bk_scatter_coupling(a->s, el[b / 2], el[b % 2], w->Kb[b], 1.0, a->Ax);
+    }
 }
 
 /* The pair's energy gradient g[12] and Hessian H[144] (H may be NULL) in its
@@ -175,88 +187,29 @@ static void assemble_pair(void *ctx, seg_pair *sp)
         }
 }
 
+/* A candidate whose elements' boxes are beyond the barrier's reach (plus the
+ * radii) and that has no pair rubbing adds nothing. */
+static int far_candidate(void *ctx, const seg_pair *sp, double gap)
+{
+    const bc_work *w = ((const assembly *)ctx)->w;
+    const bk_beam_contact_set *set = &w->bm->sets[sp->c];
+    return gap - set->radius[sp->i] - set->radius[sp->j] >= set->shat * (1.0 + 1e-6) &&
+           !(set->mu > 0.0 && bc_lag_any(w, sp->c, sp->i, sp->j));
+}
+
 static int bc_assemble(void *self, bk_system *s, const double *q, const bk_path *path, double *fint, double *Ax)
 {
     (void)path;
     bc_work *w = self;
     bc_points(w, s, q, 0, w->X);
     assembly a = {.w = w, .s = s, .fint = fint, .Ax = Ax};
-    bc_each_pair(w, s->m, assemble_pair, assemble_candidate, &a);
+    bc_each_near_pair(w, s->m, assemble_pair, assemble_candidate, far_candidate, &a);
     return a.bad ? -1 : 0;
 }
-
-/* ---- step limit: no point moves more than M/4; every pair keeps a tenth of its distance ---- */
-
-typedef struct limiter {
-    const bc_work *w;
-    double alpha;
-} limiter;
 
 static double norm3(const double *x)
 {
     return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-}
-
-/* The distance of two segments is a minimum over their points of |P - Q|,
- * and P - Q moves by a function bilinear in the two segments' parameters:
- * so along a correction the distance changes at most by the largest
- * relative motion L of an end of one and an end of the other (a common
- * motion does not count).  A fraction alpha keeps the pair at a tenth of its
- * distance s0 or more when alpha L <= 0.9 s0; beyond that (a pair sliding
- * along the other moves far without approaching) the distance at the end of
- * the step is computed, the fraction halved until it keeps a tenth, and
- * alpha L held below twice the sum of the radii, so that no step takes a
- * centreline through the other and out beyond it (that needs a relative
- * motion of twice the radii at least). */
-static void limit_pair(void *ctx, seg_pair *sp)
-{
-    limiter *l = ctx;
-    const double *D = l->w->D;
-    double L = 0.0;
-    for (int a = 0; a < 2; ++a)
-        for (int b = 2; b < 4; ++b) {
-            const double *da = D + 3 * sp->pidx[a], *db = D + 3 * sp->pidx[b];
-            const double r[3] = {da[0] - db[0], da[1] - db[1], da[2] - db[2]};
-            L = fmax(L, norm3(r));
-        }
-    if (!(L > 0.0) || L * l->alpha <= 0.9 * sp->dist)
-        return;
-    const double safe = sp->dist > 0.0 ? 0.9 * sp->dist / L : 0.0, radii = sp->d - sp->dist;
-    double alpha = fmin(l->alpha, 2.0 * radii / L);
-    while (alpha > safe) {
-        double x[4][3], sg, tau;
-        const double *pts[4] = {x[0], x[1], x[2], x[3]};
-        for (int a = 0; a < 4; ++a)
-            for (int r = 0; r < 3; ++r)
-                x[a][r] = sp->pts[a][r] + alpha * D[3 * sp->pidx[a] + r];
-        if (bc_closest(pts, &sg, &tau) - radii >= 0.1 * sp->dist)
-            break;
-        alpha *= 0.5;
-    }
-    l->alpha = fmax(alpha, safe);
-}
-
-static double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
-{
-    bc_work *w = self;
-    const bk_beam_contact_model *bm = w->bm;
-    bc_points(w, s, q, 0, w->X);
-    bc_points(w, s, dx, 1, w->D);
-    limiter l = {.w = w, .alpha = 1.0};
-    for (int c = 0; c < bm->nset; ++c)
-        for (int p = w->base[c]; p < w->base[c] + bm->sets[c].nelem * bm->sets[c].nsample; ++p) {
-            const double move = norm3(w->D + 3 * p);
-            if (move * l.alpha > 0.25 * w->margin[c])
-                l.alpha = 0.25 * w->margin[c] / move;
-        }
-    /* again until no pair lowers it: each pair then holds at the final fraction */
-    for (int round = 0; round < 20; ++round) {
-        const double before = l.alpha;
-        bc_each_pair(w, s->m, limit_pair, NULL, &l);
-        if (l.alpha == before)
-            break;
-    }
-    return l.alpha;
 }
 
 /* ---- the state: forces on the beams, pairs in reach, smallest distance ---- */

@@ -40,6 +40,23 @@ const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp)
     return w->nlag > 0 ? bsearch(key, w->lag, (size_t)w->nlag, sizeof *w->lag, cmp_key) : NULL;
 }
 
+int bc_lag_any(const bc_work *w, int c, int i, int j)
+{
+    int lo = 0, hi = w->nlag;                /* the first key (c, i, ...) or beyond: keys sort by set, i first */
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        const int *k = w->lag[mid].key;
+        if (k[0] < c || (k[0] == c && k[1] < i))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (; lo < w->nlag && w->lag[lo].key[0] == c && w->lag[lo].key[1] == i; ++lo)
+        if (w->lag[lo].key[3] == j)
+            return 1;
+    return 0;
+}
+
 /* The weights of the pair's four ends in P(sg) - Q(tau). */
 static void weights(double sg, double tau, double *c)
 {
@@ -138,13 +155,21 @@ static void lag_pair(void *ctx, seg_pair *sp)
         lg->n[r] = fa[r] / lam;
 }
 
+/* A candidate beyond the barrier's reach (its elements' boxes, less the
+ * radii) has no pair to lag. */
+static int far_candidate(void *ctx, const seg_pair *sp, double gap)
+{
+    const bk_beam_contact_set *set = &((const lagger *)ctx)->w->bm->sets[sp->c];
+    return gap - set->radius[sp->i] - set->radius[sp->j] >= set->shat * (1.0 + 1e-6);
+}
+
 void bc_accept(void *self, const bk_system *s, const double *q, const bk_path *p)
 {
     (void)p;
     bc_work *w = self;
     bc_points(w, s, q, 0, w->X);
     lagger l = {.w = w, .m = s->m};
-    bc_each_pair(w, s->m, lag_pair, NULL, &l);
+    bc_each_near_pair(w, s->m, lag_pair, NULL, far_candidate, &l);
     if (l.bad) {                                         /* out of memory: no friction from this state on */
         free(l.next);
         l.next = NULL, l.n = 0;

@@ -36,7 +36,8 @@ typedef struct bc_work {
     int npt;                         /* sample points of every set */
     int *base, *ebase;               /* [nset] each set's first point, first element entry */
     int *chain;                      /* [entries] the beam of each element entry of each set */
-    double *N;                       /* [npt BK_MAX_SHAPE] shape functions of each point (constant) */
+    int nsh;                         /* the most shape functions of an element of the sets */
+    double *N;                       /* [npt nsh] shape functions of each point (constant) */
     double *X, *Xref, *D;            /* [3 npt] positions; where the last broad phase saw them; a motion */
     double *margin;                  /* [nset] the broad phase's margin M (m) */
     int have_ref;
@@ -65,6 +66,10 @@ typedef struct seg_pair {
 } seg_pair;
 
 void bc_free(void *self);
+/* The step limiter (beam_contact_limit.c): the fraction of the correction
+ * dx[neq] at q that keeps every sample point within M/4 of its motion and
+ * every candidate pair at more than a tenth of its distance. */
+double bc_step_limit(void *self, const bk_system *s, const double *q, const double *dx);
 /* The contact force (barrier and friction) on the pair's first segment (fa;
  * the second gets its opposite) and its magnitude (0: none); when fn, ft are
  * not NULL, the barrier's and the friction's magnitudes
@@ -84,6 +89,13 @@ void bc_points(bc_work *w, const bk_system *s, const double *v, int on_eq, doubl
  * sp, 1) after its last (at the positions w->X). */
 void bc_each_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
                   void (*cand)(void *, seg_pair *, int), void *ctx);
+/* As bc_each_pair, but a candidate of two elements is left out when
+ * skip(ctx, sp, gap) says so (sp: its set, entries and elements; gap: the
+ * distance between the boxes of the two elements' sample points, a lower
+ * bound of their segments' distances). */
+void bc_each_near_pair(const bc_work *w, const bk_model *m, void (*fn)(void *, seg_pair *),
+                       void (*cand)(void *, seg_pair *, int), int (*skip)(void *, const seg_pair *, double),
+                       void *ctx);
 /* The closest points x0 + sg (x1 - x0), y0 + tau (y1 - y0) of two segments
  * (pts[4] = x0, x1, y0, y1); returns their distance. */
 double bc_closest(const double *const *pts, double *sg, double *tau);
@@ -104,6 +116,9 @@ double bc_pair_energy(const seg_pair *sp, double R, double shat, double ha, doub
  * the friction energy's gradient and Hessian (H may be NULL) added into g[12],
  * H[144] (N, N/m; not over kappa); accept: the lagged states at q. */
 const bc_lag *bc_lag_find(const bc_work *w, const seg_pair *sp);
+/* Whether a pair of segment k of entry i and segment l of entry j of set c
+ * has a lagged state, for any k, l. */
+int bc_lag_any(const bc_work *w, int c, int i, int j);
 /* The pair's slip u_t[3] since its lagged anchor; returns |u_t| (m). */
 double bc_slip(const bc_lag *lg, const seg_pair *sp, double *ut);
 void bc_friction(const bk_beam_contact_set *set, const bc_lag *lg, const seg_pair *sp, double *g, double *H);

@@ -50,7 +50,12 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
         w->pf.stem = "contacts";
         for (int c = 0; c < cm->nset; ++c)
             w->npoint += cm->sets[c].nelem * cm->sets[c].nsample;
-        size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1);
+        size_t np = (size_t)(w->npoint > 0 ? w->npoint : 1), nent = 1;
+        for (int c = 0; c < cm->nset; ++c)
+            nent += (size_t)cm->sets[c].nelem;
+        w->X = malloc(3 * np * sizeof *w->X);
+        w->cand = calloc(nent, sizeof *w->cand);
+        w->lb = calloc(nent, sizeof *w->lb);
         w->fe = malloc(md * sizeof *w->fe);
         w->Ke = malloc(md * md * sizeof *w->Ke);
         size_t ns = 1;
@@ -71,7 +76,8 @@ static int contact_make(bk_system *s, const bk_model_record *rec, void **self, F
     const int shapes = w ? contact_sample_shapes(w, s->m) : -1;
     *self = w;
     if (!w || shapes != 0 || body_couplings(s, cm) < 0 ||
-        !(w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->arm && w->place)) {
+        !(w->tot && w->fe && w->Ke && w->Kc && w->lam && w->nrm && w->xprev && w->arm && w->place && w->X &&
+          w->cand && w->lb)) {
         fprintf(err, "error: contact: out of memory\n");
         return -1;
     }
@@ -83,6 +89,7 @@ static void contact_free(void *self)
     contact_work *w = self;
     if (w) {
         free(w->Kc);
+        free(w->X), free(w->cand), free(w->lb);
         free(w->tot);
         free(w->Nc);
         free(w->Noff);
@@ -106,6 +113,7 @@ typedef struct assembly {
     bk_system *s;
     double *fint, *Ax;
     int touched, bad;
+    int ke_used;                     /* the element's Ke holds terms (zeroed at its first use) */
 } assembly;
 
 /* The equation of local coordinate a of the element block (the element's
@@ -121,7 +129,7 @@ static void assemble_element(void *ctx, point *pt, int end)
 {
     assembly *a = ctx;
     if (!end) {
-        a->touched = 0;
+        a->touched = a->ke_used = 0;
         return;
     }
     if (!a->touched)
@@ -131,17 +139,40 @@ static void assemble_element(void *ctx, point *pt, int end)
     if (pt->prim->body < 0) {
         if (!a->Ax)
             return;
-        const bk_element *et = pt->et;      /* Ke += the blocks: the N_i N_j Kv of every point */
+        const bk_element *et = pt->et;
         const int ns = et->nshape, nd = et->ndof;
+        /* the blocks N_i N_j Kv (i <= j; Kv is a Hessian, so the block (j, i) is (i, j)'s transpose) straight
+         * to the matrix, or to Ke when it holds a rolling point's terms */
+        const int *sl = a->s->eslot + a->s->eslot_off[pt->e];
         for (int i = 0; i < ns; ++i)
-            for (int j = 0; j < ns; ++j) {
+            for (int j = i; j < ns; ++j) {
                 const double *blk = w->Kc + 9 * (i * ns + j);
-                double *Kij = w->Ke + (size_t)et->shape_dof[i] * nd + et->shape_dof[j];
+                const int o1 = et->shape_dof[i] * nd + et->shape_dof[j], o2 = et->shape_dof[j] * nd + et->shape_dof[i];
+                if (a->ke_used) {
+                    for (int r = 0; r < 3; ++r)
+                        for (int c = 0; c < 3; ++c) {
+                            w->Ke[o1 + r * nd + c] += blk[3 * r + c];
+                            if (i < j)
+                                w->Ke[o2 + r * nd + c] += blk[3 * c + r];
+                        }
+                    continue;
+                }
                 for (int r = 0; r < 3; ++r)
-                    for (int c = 0; c < 3; ++c)
-                        Kij[r * nd + c] += blk[3 * r + c];
+                    for (int c = 0; c < 3; ++c) {
+                        const int k = sl[o1 + r * nd + c];
+                        if (k >= 0)
+                            a->Ax[k] += blk[3 * r + c];
+                    }
+                if (i < j)
+                    for (int r = 0; r < 3; ++r)
+                        for (int c = 0; c < 3; ++c) {
+                            const int k = sl[o2 + r * nd + c];
+                            if (k >= 0)
+                                a->Ax[k] += blk[3 * c + r];
+                        }
             }
-        bk_scatter_matrix(a->s, pt->e, w->Ke, 1.0, a->Ax);
+        if (a->ke_used)
+            bk_scatter_matrix(a->s, pt->e, w->Ke, 1.0, a->Ax);
         return;
     }
     const int nd = pt->et->ndof, nb = nd + 7;
@@ -250,9 +281,11 @@ static void assemble_point(void *ctx, point *pt)
         memset(w->fe, 0, (size_t)nb * sizeof *w->fe);
         if (a->Ax && nv == 3)
             memset(w->Kc, 0, 9 * (size_t)et->nshape * (size_t)et->nshape * sizeof *w->Kc);
-        if (a->Ax)
-            memset(w->Ke, 0, (size_t)nb * (size_t)nb * sizeof *w->Ke);
         a->touched = 1;
+    }
+    if (a->Ax && !a->ke_used && (pt->roll || nv > 3)) {
+        memset(w->Ke, 0, (size_t)nb * (size_t)nb * sizeof *w->Ke);
+        a->ke_used = 1;
     }
     if (pt->roll)
         assemble_roll(a, pt);
@@ -264,19 +297,16 @@ static void assemble_point(void *ctx, point *pt)
         w->fe[nd + k - 3] += fv[k];
     if (!a->Ax)
         return;
-    if (nv == 3) {                           /* the blocks N_i N_j Kv, added to Ke after the last point */
-        const int ns = et->nshape, nrow = 9 * ns;
-        double *restrict v = w->Kc + 9 * ns * ns;   /* v = (N_j Kv)_j, then each row of blocks += N_i v */
-        for (int j = 0; j < ns; ++j)
-            for (int k = 0; k < 9; ++k)
-                v[9 * j + k] = pt->N[j] * Kv[k];
-        for (int i = 0; i < ns; ++i) {
-            double *restrict row = w->Kc + (size_t)nrow * i;
-            const double ni = pt->N[i];
+    if (nv == 3) {                           /* the blocks N_i N_j Kv, i <= j, to the matrix after the last point */
+        const int ns = et->nshape;
+        for (int i = 0; i < ns; ++i)
+            for (int j = i; j < ns; ++j) {
+                double *restrict blk = w->Kc + 9 * (i * ns + j);
+                const double nij = pt->N[i] * pt->N[j];
 #pragma omp simd
-            for (int m = 0; m < nrow; ++m)
-                row[m] += ni * v[m];
-        }
+                for (int k = 0; k < 9; ++k)
+                    blk[k] += nij * Kv[k];
+            }
         return;
     }
     for (int av = 0; av < nv; ++av)
@@ -300,8 +330,9 @@ static int contact_assemble(void *self, bk_system *s, const double *q, const bk_
 {
     contact_work *w = self;
     contact_set_placement(w, s->m, path->x);
+    contact_broad(w, s, q);
     assembly a = {.w = w, .s = s, .fint = fint, .Ax = Ax};
-    contact_each_point(w, s, q, assemble_point, assemble_element, &a);
+    contact_each_candidate(w, s, q, assemble_point, assemble_element, &a);
     return a.bad ? -1 : 0;
 }
 
@@ -371,7 +402,8 @@ static void contact_accept(void *self, const bk_system *s, const double *q, cons
 {
     contact_work *w = self;
     contact_set_placement(w, s->m, path->x);
-    contact_each_point(w, s, q, accept_point, NULL, w);
+    contact_broad(w, s, q);              /* (the far points keep their state: it counts once they rub) */
+    contact_each_candidate(w, s, q, accept_point, NULL, w);
 }
 
 /* ---- step limit: every sample point keeps a tenth of its distance ---- */
@@ -424,8 +456,11 @@ static void limit_point(void *ctx, point *pt)
  * iterate's path point). */
 static double contact_step_limit(void *self, const bk_system *s, const double *q, const double *dx)
 {
+    contact_work *w = self;
     limiter l = {.s = s, .dx = dx, .alpha = 1.0};
-    contact_each_point(self, s, q, limit_point, limit_element, &l);
+    contact_broad(w, s, q);
+    contact_limit_candidates(w, s, dx);
+    contact_each_candidate(w, s, q, limit_point, limit_element, &l);
     return l.alpha;
 }
 

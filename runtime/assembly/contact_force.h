@@ -34,4 +34,12 @@ extern const bk_interaction_ops bk_contact_ops;
  * its primitive (m).  For the outputs and the tests. */
 void bk_contact_state(const struct bk_system *s, const double *q, double *F, int *nactive, double *min_distance);
 
+/* The broad phase of the contact with rigid primitives alone at q and the
+ * path point (as assemble runs it first): the number of the sets' elements
+ * that go on to the exact distances of their sample points (those within
+ * the barrier's reach plus their radius of the primitive by their points'
+ * box, or rubbing), or -1 when the system has no such contact.  For the
+ * bench (its share of an iteration) and the tests. */
+int bk_contact_broad_phase(const struct bk_system *s, const double *q, const bk_path *path);
+
 #endif

@@ -1,7 +1,7 @@
 /* contact_impl.h -- what the contact interaction's files share (private to
  * assembly/): its scratch, a sample point as the visitor sees it, the visitor
- * and the point's force (contact_points.c), the output hooks
- * (contact_output.c). */
+ * and the point's force (contact_points.c), the broad phase
+ * (contact_near.c), the output hooks (contact_output.c). */
 #ifndef BK_CONTACT_IMPL_H
 #define BK_CONTACT_IMPL_H
 
@@ -32,6 +32,9 @@ typedef struct contact_work {
                                       * last assembled */
     double *Nc;                      /* the sample points' shape functions, each point's nshape of them */
     long *Noff;                      /* [npoint + 1] where each point's are in Nc */
+    double *X;                       /* [3 npoint] the sample points' positions at the last broad phase */
+    unsigned char *cand;             /* [the sets' elements] 1: a candidate of the last broad phase */
+    double *lb;                      /* [the sets' elements] a lower bound of their points' distances there */
     bk_point_frames pf;              /* ParaView frames contacts_NNNNNN.vtp, contacts.pvd */
 } contact_work;
 
@@ -66,6 +69,24 @@ void contact_set_placement(contact_work *w, const bk_model *m, double x);
  * 0) before an element's first point and element(ctx, pt, 1) after its last. */
 void contact_each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
                         void (*element)(void *, point *, int), void *ctx);
+
+/* The broad phase at q (contact_near.c; the placements set): every sample
+ * point's position into w->X and, per element of every set, w->cand: 1 when
+ * its points' box comes within the barrier's reach plus its section's radius
+ * of the primitive, or one of its points rubs; w->lb a lower bound of the
+ * element's points' distances (gap less radius).  Returns the candidates'
+ * count.  An element that is no candidate has every point beyond the reach. */
+int contact_broad(contact_work *w, const bk_system *s, const double *q);
+
+/* After contact_broad at q, for the step limiter of the correction dx[neq]:
+ * the elements that are no candidates but may move 0.9 of their distance's
+ * lower bound (and every element of a primitive on a body) made candidates. */
+void contact_limit_candidates(contact_work *w, const bk_system *s, const double *dx);
+
+/* As contact_each_point, over the candidates of the last broad phase only
+ * (their points' positions from w->X; run contact_broad at q first). */
+void contact_each_candidate(const contact_work *w, const bk_system *s, const double *q,
+                            void (*fn)(void *, point *), void (*element)(void *, point *, int), void *ctx);
 
 /* Whether point pt feels the contact: within the barrier's reach, or rubbing. */
 int contact_acts(const contact_work *w, const point *pt);

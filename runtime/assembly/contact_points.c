@@ -132,16 +132,16 @@ void contact_point_terms(const contact_work *w, const bk_contact_set *set, int p
 }
 
 
-/* Calls fn(ctx, pt) for every sample point of every set at q (sets, their
- * elements, their samples, in order), and, when not NULL, element(ctx, pt,
- * 0) before an element's first point and element(ctx, pt, 1) after its last. */
-void contact_each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
-                       void (*element)(void *, point *, int), void *ctx)
+/* Every sample point of every set at q, or (only) those of the last broad
+ * phase's candidates (positions from w->X). */
+static void visit(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
+                  void (*element)(void *, point *, int), void *ctx, int only)
 {
     const bk_model *m = s->m;
     const bk_contact_model *cm = w->cm;
     double qe[BK_MAX_ELEMENT_DOF];
     point pt;
+    int entry = 0;
     pt.p = 0;
     for (pt.c = 0; pt.c < cm->nset; ++pt.c) {
         pt.set = &cm->sets[pt.c];
@@ -149,7 +149,11 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
         const double *pl = w->place + BK_CONTACT_PLACEMENT * pt.set->prim;
         if (pt.prim->body >= 0)
             bk_gather(m, pt.prim->body, q, pt.qb);
-        for (pt.i = 0; pt.i < pt.set->nelem; ++pt.i) {
+        for (pt.i = 0; pt.i < pt.set->nelem; ++pt.i, ++entry) {
+            if (only && !w->cand[entry]) {
+                pt.p += pt.set->nsample;
+                continue;
+            }
             pt.e = pt.set->elems[pt.i];
             pt.et = bk_elem_type(m, pt.e);
             const double kl = m->geoms[m->elems[pt.e].geom][BK_GEOM_L] * pt.set->kappa;
@@ -161,10 +165,14 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
                 double xi;
                 pt.wl = kl * sample_at(pt.k, pt.set->nsample, &xi);
                 pt.N = w->Nc + w->Noff[pt.p];
-                pt.x[0] = pt.x[1] = pt.x[2] = 0.0;
-                for (int a = 0; a < pt.et->nshape; ++a)
-                    for (int r = 0; r < 3; ++r)
-                        pt.x[r] += pt.N[a] * qe[pt.et->shape_dof[a] + r];
+                if (only) {
+                    memcpy(pt.x, w->X + 3 * pt.p, sizeof pt.x);
+                } else {
+                    pt.x[0] = pt.x[1] = pt.x[2] = 0.0;
+                    for (int a = 0; a < pt.et->nshape; ++a)
+                        for (int r = 0; r < 3; ++r)
+                            pt.x[r] += pt.N[a] * qe[pt.et->shape_dof[a] + r];
+                }
                 bk_contact_map_point(pt.prim, pl, pt.qb, pt.x, &pt.mp);
                 bk_contact_gap_ref(pt.prim, pt.mp.z, pt.g);
                 pt.dist = pt.g[0] - pt.set->radius[pt.i];
@@ -183,6 +191,21 @@ void contact_each_point(const contact_work *w, const bk_system *s, const double 
                 element(ctx, &pt, 1);
         }
     }
+}
+
+/* Calls fn(ctx, pt) for every sample point of every set at q (sets, their
+ * elements, their samples, in order), and, when not NULL, element(ctx, pt,
+ * 0) before an element's first point and element(ctx, pt, 1) after its last. */
+void contact_each_point(const contact_work *w, const bk_system *s, const double *q, void (*fn)(void *, point *),
+                        void (*element)(void *, point *, int), void *ctx)
+{
+    visit(w, s, q, fn, element, ctx, 0);
+}
+
+void contact_each_candidate(const contact_work *w, const bk_system *s, const double *q,
+                            void (*fn)(void *, point *), void (*element)(void *, point *, int), void *ctx)
+{
+    visit(w, s, q, fn, element, ctx, 1);
 }
 
 /* Whether point pt feels the contact: within the barrier's reach, or rubbing. */

@@ -81,18 +81,40 @@ int bk_scatter_coupling(const bk_system *s, int ea, int eb, const double *K, dou
 {
     const bk_model *m = s->m;
     const int na = bk_elem_type(m, ea)->ndof, nb = bk_elem_type(m, eb)->ndof;
-    int missing = 0;
+    int row[BK_MAX_ELEMENT_DOF], loc[BK_MAX_ELEMENT_DOF], nr = 0, missing = 0;
+    for (int a = 0; a < na; ++a) {           /* ea's equations in increasing order (insertion), with their DOF */
+        const int r = s->eq[m->elems[ea].dofs[a]];
+        if (r < 0)
+            continue;
+        int t = nr++;
+        for (; t > 0 && row[t - 1] > r; --t)
+            row[t] = row[t - 1], loc[t] = loc[t - 1];
+        row[t] = r, loc[t] = a;
+    }
+    if (nr == 0)
+        return 0;
     for (int b = 0; b < nb; ++b) {
         const int col = s->eq[m->elems[eb].dofs[b]];
         if (col < 0)
             continue;
-        for (int a = 0; a < na; ++a) {
-            const int row = s->eq[m->elems[ea].dofs[a]];
-            if (row < 0 || K[a * nb + b] == 0.0)
+        /* the column's rows are sorted: a search for the first, then a walk along them */
+        const int end = s->Ap[col + 1];
+        int lo = s->Ap[col], hi = end;
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (s->Ai[mid] < row[0])
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        for (int t = 0; t < nr; ++t) {
+            const double v = K[loc[t] * nb + b];
+            while (lo < end && s->Ai[lo] < row[t])
+                ++lo;
+            if (v == 0.0)
                 continue;
-            const int k = bk_find_slot(s, row, col);
-            if (k >= 0)
-                Ax[k] += c * K[a * nb + b];
+            if (lo < end && s->Ai[lo] == row[t])
+                Ax[lo] += c * v;
             else
                 ++missing;
         }
