@@ -12,7 +12,8 @@ is not parametrised by arc length exactly, and its curvature is not exactly
 1/R).  Expanded, (kappa - kappa0)^2 = |c|^2/|a|^6 - 2 kappa0 |c|/|a|^3 +
 kappa0^2; the middle term, not differentiable at c = 0, uses
 sqrt(|c|^2 + eta), eta = (1e-8 |c0|)^2 (an error of 5e-17 relative in the
-reference's stationarity).  A straight reference (kappa0 l below 1e-10) has
+reference's stationarity).  A straight reference (kappa0 l below 1e-10 plus
+the turn round-off in r1 - r0 can fake, 2.2e-13 (|r0| + |r1|)/l) has
 kappa0 = 0, the exact energy 1/2 EA eps^2 + 1/2 EI kappa^2 (kappa^2 is a smooth
 function of q, so the element is well defined for straight configurations).
 Only the curvature's magnitude is compared: the cable has no section frame, and
@@ -77,12 +78,14 @@ def hermite():
 # Per Gauss point: w l |a0|, N'_a (4), N''_a (4), 1/|a0|, kappa0, eta, |a0|', kappa0'
 STRIDE = 14
 BETA = 1e-8             # sqrt(eta) = BETA |c0|
-STRAIGHT = 1e-10        # kappa0 l below it: a straight reference, kappa0 = 0
+STRAIGHT = 1e-10        # kappa0 l below it (plus round-off's): a straight reference, kappa0 = 0
+ROUNDOFF_TURN = 1000 * 2.0**-52     # times (|r0| + |r1|)/l: the turn round-off can fake
 
 
 class CurvedFlag(sp.Function):
     """1 where the reference turns by at least STRAIGHT over the element
-    (argument kappa0 l), else 0: the C helper curved_flag() of the element file."""
+    (argument kappa0 l less the turn round-off can fake), else 0: the C helper
+    curved_flag() of the element file."""
     nargs = 1
     c_name = "curved_flag"
 
@@ -114,6 +117,10 @@ def tabulate_program():
                           for i in range(3)])
 
     c3 = interp(hermite3(), {L: l}, "c3_")
+    # the turn that round-off in r1 - r0 can fake: elements far from the origin
+    # against their length (1 mm at 1e5 m: 4e-8 rad)
+    noise = prog.define("noise", ROUNDOFF_TURN * (sp.sqrt(sum(v**2 for v in q0[0:3]))
+                                                  + sp.sqrt(sum(v**2 for v in q0[6:9]))) / l)
     for g, (xg, wg) in enumerate(gauss_unit(NGAUSS)):
         base = STRIDE * g
         sub = {XI: sp.Float(xg), L: l}
@@ -122,7 +129,7 @@ def tabulate_program():
         g0 = prog.define(f"g{g}", sp.sqrt(a0.dot(a0)))
         cr = a0.cross(b0)
         nc = prog.define(f"nc{g}", sp.sqrt(cr.dot(cr)))
-        flag = prog.define(f"fl{g}", CurvedFlag(nc / g0**3 * l))
+        flag = prog.define(f"fl{g}", CurvedFlag(nc / g0**3 * l - noise))
         dg0 = prog.define(f"dg{g}", a0.dot(b0) / g0)
         dnc = cr.dot(a0.cross(c3)) / (nc + 1 - flag)          # d|c0|/dx (where curved)
         prog.output(f"tab[{base}]", sp.Float(wg) * l * g0, op="=")

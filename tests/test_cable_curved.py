@@ -258,3 +258,15 @@ def test_curved_cable_sections_match_differences_of_the_energy():
         m = np.cross(a, Wb(x))
         assert np.max(np.abs(n - sec[9 * g + 3:9 * g + 6])) <= 1e-6 * np.max(np.abs(n)), (g, n, sec[9 * g + 3:9 * g + 6])
         assert np.max(np.abs(m - sec[9 * g + 6:9 * g + 9])) <= 1e-6 * np.max(np.abs(m)), (g, m, sec[9 * g + 6:9 * g + 9])
+
+
+def test_straight_cable_far_from_the_origin_stays_straight():
+    """A straight element along (1, 2, 3)/sqrt(14), 1 mm long at 1e5 m from the
+    origin (round-off in r1 - r0 fakes a turn of 4e-8 rad there): its table has
+    kappa0 = 0 and its derivative 0 (the straight element's energy), as at the origin."""
+    k = Kernel("ancf_cable", "resultant")
+    t = np.array([1.0, 2.0, 3.0]) / math.sqrt(14)
+    for off, l in ((0.0, 1.0), (1.0e5, 1.0e-3)):
+        r0 = np.array([off, -off, 0.3 * off])
+        tab = k.tabulate([l, 0.01, 0.01], np.concatenate([r0, t, r0 + l * t, t])).reshape(4, 14)
+        assert np.all(tab[:, 10] == 0.0) and np.all(tab[:, 13] == 0.0), (off, tab[:, 10], tab[:, 13])

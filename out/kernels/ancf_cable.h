@@ -2,7 +2,7 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_resultant.py, gen/emit_cable.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:2778bcdec1b1ef1e6c994bccaa36af693b41cf6995a4cc3b7fd8e57118fd261b
+ * input hash: sha256:bdfa2f0e663dd584b5c391bbfc9325e261011707e89d989df1ef1ad264c2277f
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
  * cubic Hermite interpolation of seed 001 Eqs. (4)-(6), stress free in its
@@ -18,7 +18,8 @@
  * 1/R).  Expanded, (kappa - kappa0)^2 = |c|^2/|a|^6 - 2 kappa0 |c|/|a|^3 +
  * kappa0^2; the middle term, not differentiable at c = 0, uses
  * sqrt(|c|^2 + eta), eta = (1e-8 |c0|)^2 (an error of 5e-17 relative in the
- * reference's stationarity).  A straight reference (kappa0 l below 1e-10) has
+ * reference's stationarity).  A straight reference (kappa0 l below 1e-10 plus
+ * the turn round-off in r1 - r0 can fake, 2.2e-13 (|r0| + |r1|)/l) has
  * kappa0 = 0, the exact energy 1/2 EA eps^2 + 1/2 EI kappa^2 (kappa^2 is a smooth
  * function of q, so the element is well defined for straight configurations).
  * Only the curvature's magnitude is compared: the cable has no section frame, and
