@@ -13,7 +13,7 @@ from gen.loads import axis_moment
 from gen.program import Program, count_lowered, lower
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
-CABLE_CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_CIRCLE", "BK_CAP_MOMENT_NO_TORSION")
+CABLE_CAPS = ("BK_CAP_SECTION_RECTANGLE", "BK_CAP_SECTION_CIRCLE", "BK_CAP_CURVED", "BK_CAP_MOMENT_NO_TORSION")
 
 
 def describe(elem):
@@ -100,8 +100,10 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
            f"for (int i = 0; i < {nd * nd}; ++i) dQ[i] = 0.0;"]
     c += _function(msig, mom[0], pre)
     c += _function("static void reference(const double *restrict geom, double *restrict q0)", ref, ["(void)geom;"])
+    c += [f"/* 1 where the reference turns by at least {cable.STRAIGHT:g} rad over the element (kappa0 l), else 0 */",
+          "static double curved_flag(double turn) { return turn >= " + repr(cable.STRAIGHT) + " ? 1.0 : 0.0; }", ""]
     c += _function(f"void {name}_full_tabulate(const double *restrict geom, const double *restrict q0, "
-                   "double *restrict tab)", tab, ["(void)q0;"])
+                   "double *restrict tab)", tab)
     desc = describe(elem)
     assert list(desc.shape_dof) == list(shape_dof)
     c += element_descriptor(desc)
@@ -157,8 +159,8 @@ def pair_source(elem, elem_path, mat, mat_path):
            f" * Outputs: f[{nd}]; K[{nd}*{nd}] row-major, upper triangle computed, mirrored.",
            f" * Operations per element call ({nqp} Gauss points): energy {ops['energy']}; force {ops['force']};",
            f" *   force + upper tangent {ops['tangent']}",
-           " * Section resultants (bk_pair.sections) at the Gauss points: n = W_a - d/dx W_b, m = r' x W_b",
-           " *   (a = r', b = r''; gen/cable.py section_program), global axes.", " */"]
+           " * Section resultants (bk_pair.sections) at the Gauss points: n = G W_a - d/dx (G W_b),",
+           " *   m = r' x G W_b (a = r', b = r'', G = |r0'|; gen/cable.py section_program), global axes.", " */"]
     htxt = "\n".join(hdr) + f"""
 #ifndef BK_GEN_{name.upper()}_H
 #define BK_GEN_{name.upper()}_H

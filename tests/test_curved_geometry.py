@@ -177,11 +177,9 @@ def test_bad_paths_give_one_line(path, key, expected):
                             force="[0.0, 0.0, -0.01]"), key, expected)
 
 
-def test_path_refused_for_the_cable_and_with_start():
+def test_path_refused_with_start():
     from test_bad_input import check_error
     geo = "path = [[1.0, 0.0, 0.0], [0.7, 0.7, 0.0], [0.0, 1.0, 0.0]]"
-    check_error(RING.format(law="resultant", elem="ancf_cable", n=4, geometry=geo, force="[0.0, 0.0, -0.01]"),
-                "beam.ring.path", "supports straight beams only; curved beams need ancf3243")
     check_error(RING.format(law="svk", elem="ancf3243", n=4, geometry=geo + "\nstart = [1.0, 0.0, 0.0]",
                             force="[0.0, 0.0, -0.01]"), "beam.ring.start", "either path")
 
