@@ -2,7 +2,7 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_resultant.py, gen/emit_cable.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:85fcdb49e1585eb7352d4c0e04e259aebf7ebb5f42fd533b3a718120fa8e6710
+ * input hash: sha256:b2e12b20ae1531f3256d86c4e4e6edf2743297f446fc1710829bf3c71914859e
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
  * cubic Hermite interpolation of seed 001 Eqs. (4)-(6).
