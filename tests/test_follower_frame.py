@@ -84,7 +84,7 @@ def test_section_frame_jacobian_against_central_differences():
 # section_line() (tendons and chambers on rods): its tangent against the xi-derivative
 # of the line built from frame() and section_frame(), its Jacobian and contracted
 # Hessian against 4th-order central differences (tests/frame_check.c).
-LINE_TOL = (("line_xi", 1e-8), ("line_fd", 1e-8), ("line_h", 1e-7), ("line_c", 1e-14))
+LINE_TOL = (("line_xi", 1e-10), ("line_fd", 1e-10), ("line_h", 1e-9), ("line_c", 1e-14))
 
 
 def test_solver_refuses_a_follower_load_on_an_element_without_section_frame():
