@@ -58,7 +58,8 @@ class PairDesc:
         return f"bk_pair_{self.element}_{self.material}_{self.integration}"
 
 
-ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "section_frame", "moment", "rotary")
+ELEMENT_FUNCTIONS = ("reference", "shape", "mass", "volume", "frame", "section_frame", "section_line", "moment",
+                     "rotary")
 PAIR_FUNCTIONS = ("tabulate", "energy", "force", "force_tangent", "force_lanes", "force_tangent_lanes",
                   "viscous_force", "viscous", "viscous_force_lanes", "viscous_lanes", "invariants", "sections")
 
@@ -176,7 +177,8 @@ def pair_descriptors(params, pairs):
 def index_entry(d):
     """What index.json says of the element's nodes and capabilities (the scene
     compiler reads it): nodes with their fields, section, moments, curved, and
-    whether it has a section_frame() (follower loads)."""
+    whether it has a section_frame() (follower loads) and a section_line()
+    (tendons and chambers on rods)."""
     nodes = [{"xi": xi, "fields": [[f.name, f.dim] for f in d.fields if f.node == n]}
              for n, xi in enumerate(d.node_xi)]
     caps = set(d.caps)
@@ -190,4 +192,5 @@ def index_entry(d):
                                    ("BK_CAP_MOMENT_NO_TORSION", "no_torsion")) if c in caps), "none")
     return {"nodes": nodes, "section": section, "moments": moments, "curved": "BK_CAP_CURVED" in caps,
             "internal": sum(f.dim for f in d.fields if f.node < 0),
-            "section_frame": bool(d.functions.get("section_frame"))}
+            "section_frame": bool(d.functions.get("section_frame")),
+            "section_line": bool(d.functions.get("section_line"))}

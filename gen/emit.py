@@ -367,7 +367,8 @@ def snap_map_lines(elem, rname):
     """The end of a tabulate(): reference-map entries within 1e-12 of the identity's
     are the identity's, so that a straight element's map is exactly I (the sums that
     make J0 round; off the diagonal that noise would couple directions a symmetric
-    problem keeps apart)."""
+    problem keeps apart); then a layer's free isotropic strain e
+    (geom[BK_GEOM_EIGENSTRAIN]) scales the map by 1/(1 + e), the weights by (1 + e)^3."""
     from gen.continuum import MAP_ENTRIES, gradient_slots
     nsl = len(gradient_slots(elem).exprs)
     _, parts, _ = rule_parts(elem, rname)
@@ -385,7 +386,13 @@ def snap_map_lines(elem, rname):
         for k, (J, K) in enumerate(MAP_ENTRIES):
             ref = "1.0" if J == K else "0.0"
             lines.append(f"        if (fabs(m[{k}] - {ref}) <= 1e-12) m[{k}] = {ref};")
-        lines.append("    }")
+        # a free isotropic strain e (BK_GEOM_EIGENSTRAIN): F_e = F F_theta^-1 with
+        # F_theta = (1 + e) I, the energy per stress-free volume times det F_theta
+        lines += ["        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {",
+                  "            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];",
+                  "            *wt *= s * s * s;",
+                  f"            for (int k = 0; k < {len(MAP_ENTRIES)}; ++k) m[k] /= s;",
+                  "        }", "    }"]
     return lines + ["}", ""]
 
 

@@ -24,7 +24,8 @@ def describe(elem):
                        shape_dof=tuple(rod.NODE_DOF * n for n in range(3)),
                        functions={"reference": "reference", "shape": "shape", "mass": "mass",
                                   "volume": "volume", "frame": "bk_rod_frame",
-                                  "section_frame": "section_frame", "moment": "moment",
+                                  "section_frame": "section_frame", "section_line": "section_line",
+                                  "moment": "moment",
                                   "rotary": "rotary"})
 
 
@@ -74,6 +75,9 @@ void {name}_full_tabulate(const double *restrict geom, const double *restrict q0
     c += ["static void section_frame(const double *restrict geom, double xi, const double *restrict q, "
           "double *restrict R, double *restrict dR)", "{",
           f"    bk_rod_section_frame({nd}, geom, xi, q, R, dR);", "}", ""]
+    c += ["static void section_line(const double *restrict geom, double xi, const double *restrict q, "
+          "const double *restrict a, const double *restrict u, double *restrict t, double *restrict dt, "
+          "double *restrict H)", "{", f"    bk_rod_section_line({nd}, geom, xi, q, a, u, t, dt, H);", "}", ""]
     c += ["static void moment(const double *restrict geom, double xi, const double *restrict q, "
           "const double *restrict M, double *restrict Q, double *restrict dQ)", "{",
           "    (void)geom;", f"    bk_rod_moment({nd}, xi, q, M, Q, dQ);", "}", ""]

@@ -5,10 +5,12 @@ element and pair files (gen/emit_rod.py) call."""
 from functools import lru_cache
 from pathlib import Path
 
+import sympy as sp
+
 from gen import rod, rod_energy, rod_frame, rod_inertia, rod_kinematics
 from gen.c_functions import _block, _prologue
 from gen.descriptor import version_guard
-from gen.program import c_double, count_lowered, lower
+from gen.program import c_double, count_lowered, lower, print_c
 from gen.provenance import BANNER, CORE_FILES, core_paths, input_hash
 
 GEN_DIR = Path(__file__).resolve().parent
@@ -74,6 +76,12 @@ def _shared_programs():
          "g[21] = dz/dq^T Gz (J from bk_rod_psi_j)."),
         ("hess_z2q", f"void bk_rod_hess_z2q(int nd, {_D} J, {_D} Hc, {_D} Hz, {_W} K)", lambda: rod_kinematics.hess_z2q_program(),
          "K[nd i + j] = (dz/dq^T Hz dz/dq)_ij + Hc, 0 <= i <= j < 21 (the rest of K untouched)."),
+        ("line", f"void bk_rod_line({_D} v, {_D} a, {_W} t, {_W} Dv)", lambda: rod_frame.line_program(),
+         "t[3] = dP/dxi of the line P = r + a[0] d1 + a[1] d2 and Dv[39] = dt/dv (row-major 3 x 13) from "
+         "v[13] of bk_rod_v with c = (N_0, N_2, N_0', N_1', N_2') at xi."),
+        ("line_hess", f"void bk_rod_line_hess({_D} v, {_D} a, {_D} u, {_W} Hv)",
+         lambda: rod_frame.line_hessian_program(),
+         "Hv[91] = d2(u . t)/dv2 of bk_rod_line's tangent (upper triangle of 13 x 13, packed by rows)."),
         ("gauge_energy", f"double bk_rod_gauge_energy({_D} q, double cg)", lambda: rod_energy.gauge_program(0),
          "Quaternion gauge penalty sum_n w_n cg/4 (|p_n|^2 - 1)^2, w = (1/2, 1, 1/2)."),
         ("gauge_force", f"void bk_rod_gauge_force({_D} q, double cg, {_W} f)", lambda: rod_energy.gauge_program(1),
@@ -166,6 +174,11 @@ def shared_source(unit=SHARED):
                 "/* Section frame R[9] = (d1, d2, d3) of bk_rod_frame at xi and, when dR is not NULL, its",
                 " * Jacobian dR[9*nd], dR[nd k + j] = dR_k/dq_j (bk_element.section_frame) */",
                 f"void bk_rod_section_frame(int nd, {_D} geom, double xi, {_D} q, {_W} R, {_W} dR);",
+                "/* Tangent t[3] = dP/dxi of the line P = r + a[0] d1 + a[1] d2 fixed in the sections,",
+                " * dt[3*nd] = dt/dq when dt is not NULL and H[nd*nd] = d2(u . t)/dq2 (full) when u",
+                " * and H are not NULL (bk_element.section_line) */",
+                f"void bk_rod_section_line(int nd, {_D} geom, double xi, {_D} q, {_D} a, {_D} u, {_W} t, "
+                f"{_W} dt, {_W} H);",
                 "/* Moment M[3] fixed in space on the quaternion of the node nearest xi: Q[nd], dQ[nd*nd] */",
                 f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ);"]
     hdr += ["", "#endif", ""]
@@ -199,6 +212,7 @@ def shared_source(unit=SHARED):
     c += _prologue(sf_r, "        ") + _block(sf_r, "        ") + ["        return;", "    }"]
     c += ["    bk_rod_psi_j(q, psi, J);", "    for (int i = 0; i < 9 * nd; ++i) dR[i] = 0.0;"]
     c += _prologue(sf_j, "    ") + _block(sf_j, "    ") + ["}", ""]
+    c += _line_source()
     c += _gen_fn(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", mom)
     c += [f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)", "{",
           "    double Qn[4], dQn[16];",
@@ -211,6 +225,43 @@ def shared_source(unit=SHARED):
           "        for (int j = 0; j < 4; ++j) dQ[(b + i) * nd + b + j] = dQn[4 * i + j];",
           "    }", "}", ""]
     return "\n".join(hdr), "\n".join(c)
+
+
+def _line_source():
+    """C lines of bk_rod_section_line: c at xi (Lagrange values and xi-derivatives),
+    bk_rod_line's t and dt/dv pulled back to q row by row, and the contracted
+    Hessian through v -> z -> q like the element's tangent."""
+    N, dN = rod.lagrange(sp.Symbol("xi")), rod.lagrange_d(sp.Symbol("xi"))
+    cs = [N[0], N[2], dN[0], dN[1], dN[2]]
+    return [f"void bk_rod_section_line(int nd, {_D} geom, double xi, {_D} q, {_D} a, {_D} u, {_W} t, "
+            f"{_W} dt, {_W} H)", "{",
+            "    (void)geom;",
+            f"    const double c[5] = {{{', '.join(print_c(x) for x in cs)}}};",
+            "    double psi[6], J[48], v[13], Dv[39];",
+            "    bk_rod_psi_j(q, psi, J);",
+            "    bk_rod_v(c, q, psi, v);",
+            "    bk_rod_line(v, a, t, Dv);",
+            "    if (!dt)",
+            "        return;",
+            "    for (int k = 0; k < 3; ++k) {",
+            f"        double Gz[{rod.NZ}] = {{0.0}}, g[{rod.NQ}];",
+            "        bk_rod_grad_v2z(c, Dv + 13 * k, Gz);",
+            "        bk_rod_grad_z2q(J, Gz, g);",
+            f"        for (int j = 0; j < nd; ++j) dt[k * nd + j] = j < {rod.NQ} ? g[j] : 0.0;",
+            "    }",
+            "    if (!u || !H)",
+            "        return;",
+            f"    double Gv[13], Hv[91], Hc[72], Gz[{rod.NZ}] = {{0.0}}, Hz[{len(rod.tri(rod.NZ))}] = {{0.0}};",
+            "    for (int b = 0; b < 13; ++b) Gv[b] = u[0] * Dv[b] + u[1] * Dv[13 + b] + u[2] * Dv[26 + b];",
+            "    bk_rod_line_hess(v, a, u, Hv);",
+            "    bk_rod_grad_v2z(c, Gv, Gz);",
+            "    bk_rod_hess_v2z(c, Hv, Hz);",
+            "    bk_rod_psi_hc(q, Gz, Hc);",
+            "    for (int i = 0; i < nd * nd; ++i) H[i] = 0.0;",
+            "    bk_rod_hess_z2q(nd, J, Hc, Hz, H);",
+            f"    for (int r = 1; r < {rod.NQ}; ++r)",
+            "        for (int s = 0; s < r; ++s) H[r * nd + s] = H[s * nd + r];",
+            "}", ""]
 
 
 def _inertia_source(h, rot):

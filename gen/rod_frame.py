@@ -1,11 +1,13 @@
 """A rod's frame as programs: the centreline position and section frame at xi
 (bk_rod_frame), the orthonormal section frame with its Jacobian
-(bk_rod_section_frame) and a moment fixed in space on a node's quaternion."""
+(bk_rod_section_frame), a moment fixed in space on a node's quaternion, and the
+tangent of a material line fixed in the sections with its derivatives
+(bk_rod_section_line: tendons and chambers on rods)."""
 import sympy as sp
 
 from gen.program import Program
-from gen.rod import NQ, NODE_DOF, NX, PSI_Q, _named, _syms, lagrange, rotation
-from gen.rodmath import Ch, Sh
+from gen.rod import NQ, NODE_DOF, NX, PSI_Q, _named, _syms, lagrange, rotation, tri
+from gen.rodmath import Ch, Sh, Sh1
 
 
 # ----------------------------------------------------------------------------
@@ -75,4 +77,68 @@ def moment_node_program():
         prog.output(f"Q[{i}]", Q[i], op="=")
         for j in range(4):
             prog.output(f"dQ[{4 * i + j}]", sp.diff(Q[i], p[j]), op="=")
+    return prog
+
+
+# ----------------------------------------------------------------------------
+# A material line fixed in the sections (tendons, chambers): its tangent
+
+def _line_layers():
+    """(v symbols, w symbols, {w: expr in v}, t as expressions in w) of the
+    tangent t = dP/dxi of the line P = r + R (0, a1, a2) at a point with
+    coefficients c (v = (r', p_c, psi, psi') of bk_rod_v): t = r' + R_c (dR_e/dxi) A,
+    R_e the rotation of e = exp(psi), differentiated along the unit curve e(xi)
+    (de as in the strain kinematics); r' and p_c pass through."""
+    v = _syms("v", 13)
+    a = _syms("a", 2)
+    psi, dpsi = sp.Matrix(v[7:10]), sp.Matrix(v[10:13])
+    u = psi.dot(psi)
+    du = 2 * psi.dot(dpsi)
+    e_e = [Ch(u)] + list(Sh(u) * psi)
+    de_e = [-Sh(u) / 4 * du] + list(Sh1(u) * du * psi + Sh(u) * dpsi)
+    esym = sp.symbols("le0:4", real=True)
+    desym = sp.symbols("lde0:4", real=True)
+    w_map = dict(zip(list(esym) + list(desym), e_e + de_e))
+    Re = rotation(esym[0], sp.Matrix(esym[1:]), unit=True)
+    dRe = sum((sp.diff(Re, esym[c]) * desym[c] for c in range(4)), sp.zeros(3, 3))
+    A = sp.Matrix([0, a[0], a[1]])
+    t = sp.Matrix(v[0:3]) + rotation(v[3], sp.Matrix(v[4:7])) * (dRe * A)
+    wsyms = list(v[0:7]) + list(esym) + list(desym)
+    return v, wsyms, w_map, list(t)
+
+
+def line_program():
+    """t[3] = dP/dxi and Dv[3*13] = dt/dv (row-major) of the line at the offset
+    a[2] from v[13] (bk_rod_v with c = (N_0, N_2, N_0', N_1', N_2') at xi)."""
+    from gen.chain import pull_back
+    v, wsyms, w_map, t = _line_layers()
+    prog = Program()
+    for x, e in w_map.items():
+        prog.defs.append((x, e))
+    for k in range(3):
+        prog.output(f"t[{k}]", t[k], op="=")
+        tk = sp.Symbol(f"lt{k}", real=True)
+        Gw, _ = pull_back(prog, f"lw{k}", {tk: sp.Integer(1)}, {}, {tk: t[k]}, wsyms, False)
+        Gv, _ = pull_back(prog, f"lv{k}", Gw, {}, w_map, v, False)
+        for b in range(13):
+            prog.output(f"Dv[{13 * k + b}]", Gv.get(v[b], 0), op="=")
+    return prog
+
+
+def line_hessian_program():
+    """Hv[tri13] = d2(u . t)/dv2 (upper triangle, all 91 entries written) of the
+    line's tangent contracted with u[3]."""
+    from gen.chain import pull_back
+    v, wsyms, w_map, t = _line_layers()
+    uu = _syms("u", 3)
+    prog = Program()
+    for x, e in w_map.items():
+        prog.defs.append((x, e))
+    phi = sp.Symbol("lphi", real=True)
+    Gw, Hw = pull_back(prog, "lw", {phi: sp.Integer(1)}, {}, {phi: sum(uu[k] * t[k] for k in range(3))}, wsyms,
+                       True)
+    Hw = {(wsyms[i], wsyms[j]): h for (i, j), h in Hw.items()}
+    _, Hv = pull_back(prog, "lv", Gw, Hw, w_map, v, True)
+    for (a, b), i in tri(13).items():
+        prog.output(f"Hv[{i}]", Hv.get((a, b), 0), op="=")
     return prog

@@ -48,7 +48,7 @@
 #ifndef BK_KERNEL_H
 #define BK_KERNEL_H
 
-#define BK_KERNEL_VERSION 7
+#define BK_KERNEL_VERSION 8
 
 /* Lane kernels (bk_pair.force_lanes, force_tangent_lanes) evaluate BK_LANES
  * elements of one pair per call, so that the compiler vectorizes across
@@ -86,7 +86,14 @@ enum bk_geom_slot {
                                        * part with one point through the height (the
                                        * centreline part of selective reduced
                                        * integration) evaluates every layer          */
-    BK_NGEOM = 11
+    BK_GEOM_EIGENSTRAIN = 11,         /* continuum elements: a free isotropic strain e
+                                       * (thermal expansion alpha dT of a layer): the
+                                       * stress-free state is the reference stretched by
+                                       * 1 + e in every direction, tabulate() scales the
+                                       * reference map by 1/(1 + e) and the weights by
+                                       * (1 + e)^3 (mass and volume stay the reference's);
+                                       * 0: none (version 8)                          */
+    BK_NGEOM = 12
 };
 
 /* Section shapes (capabilities below say which an element takes). */
@@ -176,6 +183,16 @@ typedef struct bk_element {
      * element defines no section axes (the cable). */
     void (*section_frame)(const double *restrict geom, double xi, const double *restrict q,
                           double *restrict R, double *restrict dR);
+    /* A material line fixed in the sections at the offset a[2] along e1, e2 of
+     * section_frame(), P(xi) = r(xi) + a[0] e1 + a[1] e2: its tangent t[3] =
+     * dP/dxi; when dt is not NULL its Jacobian dt[3*ndof], dt[k*ndof + j] =
+     * dt_k/dq_j; when u and H are not NULL also H[ndof*ndof] = d2(u . t)/dq2
+     * (full, symmetric).  Used by tendons and chambers on elements that do not
+     * interpolate across the section (rods; continuum elements route them
+     * through shape()).  NULL: none.  (Version 8 added it.) */
+    void (*section_line)(const double *restrict geom, double xi, const double *restrict q,
+                         const double *restrict a, const double *restrict u, double *restrict t,
+                         double *restrict dt, double *restrict H);
     /* Moment M (N m, fixed in space) on the section at xi: generalized force
      * Q[ndof] and its Jacobian dQ[ndof*ndof] (row-major).  NULL: the element
      * carries no moments. */

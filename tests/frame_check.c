@@ -14,8 +14,15 @@
  *   orth     max |R R^T - I|
  *   gs       max |R - G(d)|, G(d) the Gram-Schmidt frame of frame()'s d (e3 = d3/|d3|,
  *            e1 = d1 - (d1 . e3) e3 normalised, e2 = e3 x e1), written here
+ * and, for an element with a section_line() (a line fixed in the sections at a
+ * random offset a, P = pos + a1 e1 + a2 e2):
+ *   line_xi  max |t - dP/dxi (4th-order central difference in xi of P from frame()
+ *            and section_frame())| / max|t|
+ *   line_fd  max |dt - dt/dq (4th-order central difference of t)| / max|dt|
+ *   line_h   max |H - d(u . dt)/dq (4th-order central difference)| / max|H|, u random
+ *   line_c   max |t, dt (with dt, H) - t, dt (without)|
  * Output: one line per element, "key=value" fields; "section_frame=none" for an
- * element without one. */
+ * element without one, "section_line=none" for one without a section_line(). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -106,6 +113,85 @@ static void gram_schmidt(const double *d, double *G)
     G[5] = G[6] * G[1] - G[7] * G[0];
 }
 
+static const double OFF4[4] = {-2.0, -1.0, 1.0, 2.0}, CF4[4] = {1.0, -8.0, 8.0, -1.0};
+
+/* P = pos + a1 e1 + a2 e2 at xi from frame() and section_frame(). */
+static void line_point(const bk_element *e, const double *geom, double xi, const double *q, const double *a,
+                       double *P)
+{
+    double pos[3], d[9], R[9];
+    e->frame(geom, xi, q, pos, d);
+    e->section_frame(geom, xi, q, R, NULL);
+    for (int k = 0; k < 3; ++k)
+        P[k] = pos[k] + a[0] * R[k] + a[1] * R[3 + k];
+}
+
+/* The section_line() fields of the output line (q: scratch of ndof). */
+static void check_line(const bk_element *e, const double *geom, int nstate, double *q)
+{
+    const int n = e->ndof;
+    double *dt = malloc(3 * (size_t)n * sizeof *dt), *dt0 = malloc(3 * (size_t)n * sizeof *dt0);
+    double *H = malloc((size_t)n * n * sizeof *H), *dtp = malloc(3 * (size_t)n * sizeof *dtp);
+    if (!dt || !dt0 || !H || !dtp) {
+        printf(" line=nomem");
+        free(dt), free(dt0), free(H), free(dtp);
+        return;
+    }
+    rng r = {0xD1B54A32D192ED03ULL ^ (unsigned long long)n};
+    double exi = 0.0, efd = 0.0, eh = 0.0, ec = 0.0;
+    for (int s = 0; s < nstate; ++s) {
+        state(e, geom, &r, s % 2 ? 1e-4 : 0.15, q);
+        const double xi = 0.5 * (1.0 + 0.9 * urand(&r));
+        const double a[2] = {0.4 * geom[BK_GEOM_B] * urand(&r), 0.4 * geom[BK_GEOM_H] * urand(&r)};
+        const double u[3] = {urand(&r), urand(&r), urand(&r)};
+        double t[3], t0[3], D[3] = {0.0, 0.0, 0.0}, big = 0.0, bigd = 0.0, bigh = 0.0, e1 = 0.0, e2 = 0.0, e3 = 0.0;
+        e->section_line(geom, xi, q, a, u, t, dt, H);
+        e->section_line(geom, xi, q, a, NULL, t0, dt0, NULL);
+        for (int k = 0; k < 4; ++k) {
+            double P[3];
+            line_point(e, geom, xi + OFF4[k] * 1e-3, q, a, P);
+            for (int i = 0; i < 3; ++i)
+                D[i] += CF4[k] * P[i] / (12.0 * 1e-3);
+        }
+        for (int k = 0; k < 3; ++k) {
+            big = fmax(big, fabs(t[k]));
+            e1 = fmax(e1, fabs(t[k] - D[k]));
+            ec = fmax(ec, fabs(t[k] - t0[k]));
+        }
+        for (int i = 0; i < 3 * n; ++i) {
+            bigd = fmax(bigd, fabs(dt[i]));
+            ec = fmax(ec, fabs(dt[i] - dt0[i]));
+        }
+        for (int i = 0; i < n * n; ++i)
+            bigh = fmax(bigh, fabs(H[i]));
+        for (int j = 0; j < n; ++j) {
+            const double save = q[j], h = 2e-4 * fmax(1.0, fabs(save));
+            double Dt[3] = {0.0, 0.0, 0.0}, tp[3];
+            double *Du = dt0;               /* d(u . dt)/dq_j column, reusing dt0's first n entries */
+            for (int i = 0; i < n; ++i)
+                Du[i] = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                q[j] = save + OFF4[k] * h;
+                e->section_line(geom, xi, q, a, NULL, tp, dtp, NULL);
+                for (int i = 0; i < 3; ++i)
+                    Dt[i] += CF4[k] * tp[i] / (12.0 * h);
+                for (int i = 0; i < n; ++i)
+                    Du[i] += CF4[k] * (u[0] * dtp[i] + u[1] * dtp[n + i] + u[2] * dtp[2 * n + i]) / (12.0 * h);
+            }
+            q[j] = save;
+            for (int i = 0; i < 3; ++i)
+                e2 = fmax(e2, fabs(dt[i * n + j] - Dt[i]));
+            for (int i = 0; i < n; ++i)
+                e3 = fmax(e3, fabs(H[i * n + j] - Du[i]));
+        }
+        exi = fmax(exi, e1 / big);
+        efd = fmax(efd, e2 / bigd);
+        eh = fmax(eh, e3 / fmax(bigh, 1e-300));
+    }
+    printf(" line_xi=%.3e line_fd=%.3e line_h=%.3e line_c=%.3e", exi, efd, eh, ec);
+    free(dt), free(dt0), free(H), free(dtp);
+}
+
 static int check(const bk_element *e, int nstate)
 {
     const int n = e->ndof;
@@ -168,8 +254,13 @@ static int check(const bk_element *e, int nstate)
         fd = fmax(fd, e4 / big);
         fd2 = fmax(fd2, e2 / big);
     }
-    printf("element=%s states=%d fd=%.3e fd2=%.3e consist=%.3e orth=%.3e gs=%.3e\n", e->name, nstate, fd, fd2,
+    printf("element=%s states=%d fd=%.3e fd2=%.3e consist=%.3e orth=%.3e gs=%.3e", e->name, nstate, fd, fd2,
            consist, orth, gs);
+    if (e->section_line)
+        check_line(e, geom, nstate, q);
+    else
+        printf(" section_line=none");
+    printf("\n");
     free(q);
     free(dR);
     return 0;

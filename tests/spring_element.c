@@ -7,8 +7,8 @@
 /* No lane kernels: force_lanes, force_tangent_lanes stay NULL (one element per call);
  * no section resultants: sections stays NULL (sections.csv has the nodal rows only);
  * no damping: the viscous kernels stay NULL. */
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "tests/spring_element.c is written for runtime/bk_kernel.h version 7"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "tests/spring_element.c is written for runtime/bk_kernel.h version 8"
 #endif
 
 /* d = r_1 - r_0, its length and direction. */

@@ -60,7 +60,8 @@ def test_no_runtime_file_compares_field_or_parameter_names():
 
 def test_header_constants_as_the_generator_reads_them():
     assert contract.version() >= 2
-    assert contract.geom_slots() == ("L", "B", "H", "A", "I1", "I2", "IP", "SHAPE", "BAND_LO", "BAND_HI", "BAND_AXIS")
+    assert contract.geom_slots() == ("L", "B", "H", "A", "I1", "I2", "IP", "SHAPE", "BAND_LO", "BAND_HI", "BAND_AXIS",
+                                     "EIGENSTRAIN")
     assert contract.ngeom() == len(contract.geom_slots())
     assert contract.section_shapes() == {"rectangle": 1, "circle": 2}
     roles = contract.field_roles()

@@ -54,7 +54,8 @@ def build_frame_check(variant="release"):
 def test_section_frame_jacobian_against_central_differences():
     """20 states per element: dR/dq vs 4th-order central differences of R, R
     orthonormal, equal to the Gram-Schmidt frame of frame() and the same with
-    and without the Jacobian; only the cable has no section frame."""
+    and without the Jacobian; only the cable has no section frame.  The rods'
+    section_line() (LINE_TOL); only the rods have one."""
     exe, index = build_frame_check()
     r = subprocess.run([str(exe), "20"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr[-3000:]
@@ -71,7 +72,19 @@ def test_section_frame_jacobian_against_central_differences():
         for k, tol in (("fd", 1e-9), ("consist", 1e-14), ("orth", 1e-13), ("gs", 1e-12)):
             if not float(d[k]) <= tol:
                 bad.append(f"{d['element']}: {k} = {d[k]} > {tol:.0e}")
+        if kind != "rod":
+            assert d.get("section_line") == "none", d
+            continue
+        for k, tol in LINE_TOL:
+            if not float(d[k]) <= tol:
+                bad.append(f"{d['element']}: {k} = {d[k]} > {tol:.0e}")
     assert not bad, "\n".join(bad) + "\n" + r.stdout
+
+
+# section_line() (tendons and chambers on rods): its tangent against the xi-derivative
+# of the line built from frame() and section_frame(), its Jacobian and contracted
+# Hessian against 4th-order central differences (tests/frame_check.c).
+LINE_TOL = (("line_xi", 1e-10), ("line_fd", 1e-10), ("line_h", 1e-9), ("line_c", 1e-14))
 
 
 def test_solver_refuses_a_follower_load_on_an_element_without_section_frame():

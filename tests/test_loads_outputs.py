@@ -624,8 +624,9 @@ def test_bad_amplitudes_tendons_and_followers():
     tendon = (MODELS / "tendon_ancf.toml").read_text()
     check_error(tendon.replace("offset = [0.0, 0.004]", "offset = [0.0, 0.006]"), "load[0].offset",
                 "outside the section")
-    check_error(tendon.replace('element = "ancf3243"', 'element = "gef"').replace('law = "svk"', 'law = "resultant"')
-                .replace('integration = "sri"\n', ""), "load[0].beam", "continuum ANCF beams only")
+    check_error(tendon.replace('element = "ancf3243"', 'element = "ancf_cable"')
+                .replace('law = "svk"', 'law = "resultant"').replace('integration = "sri"\n', ""),
+                "load[0].beam", "and rods (gef, euler_bernoulli, kirchhoff)")
     cable = (MODELS / "cantilever_follower.toml").read_text().replace('element = "gef"', 'element = "ancf_cable"')
     check_error(cable, "load[0].follower", "no section frame")
     dist = (MODELS / "cantilever_distributed.toml").read_text()

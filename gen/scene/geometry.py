@@ -124,8 +124,9 @@ def frame_quaternion(t, d1, d2):
 def section_geometry(sec, l, band=(0.0, 0.0)):
     """geom[] of an element of length l with section sec, in the slot order of
     runtime/bk_kernel.h (gen/contract.py): l, b, h, A, I1, I2, Ip, shape, and the
-    band (lo, hi[, neutral axis]) of the height a layer integrates (A, I1, I2 stay
-    the whole section's: loads and tendons spread over it)."""
+    band (lo, hi[, neutral axis[, eigenstrain]]) of the height a layer integrates
+    (A, I1, I2 stay the whole section's: loads and tendons spread over it) and the
+    layer's free isotropic strain."""
     from gen import contract
     shape, b, h = sec
     if shape == "rectangle":
@@ -136,4 +137,5 @@ def section_geometry(sec, l, band=(0.0, 0.0)):
         I2 = I1
     return contract.geom_vector(L=l, B=b, H=h, A=A, I1=I1, I2=I2, IP=I1 + I2,
                                 SHAPE=contract.section_shapes()[shape], BAND_LO=band[0], BAND_HI=band[1],
-                                BAND_AXIS=band[2] if len(band) > 2 else 0.0)
+                                BAND_AXIS=band[2] if len(band) > 2 else 0.0,
+                                EIGENSTRAIN=band[3] if len(band) > 3 else 0.0)

@@ -9,7 +9,7 @@ coupling of stretching and bending by an off-centre stiff layer, and every
 nonlinearity, come from the continuum itself."""
 from gen.scene.values import _typename, check_keys, get_number, get_str
 
-LAYER_KEYS = ("material", "thickness")
+LAYER_KEYS = ("material", "thickness", "eigenstrain")
 
 
 def beam_layers(ctx, bt, where, materials, einfo, ename, default_material):
@@ -37,6 +37,20 @@ def beam_layers(ctx, bt, where, materials, einfo, ename, default_material):
         out.append((mname, t))
     if rest > 1:
         ctx.fail(key, "at most one layer may leave out its thickness (it fills the rest of the height)")
+    return out
+
+
+def layer_eigenstrains(ctx, bt, where):
+    """The free isotropic strain of each layer (`eigenstrain`, e.g. a thermal
+    expansion alpha dT; 0 where not given): its stress-free state is stretched by
+    1 + e in every direction (runtime/bk_kernel.h BK_GEOM_EIGENSTRAIN)."""
+    out = []
+    for i, lt in enumerate(bt["layers"]):
+        w = f"{where}.layers[{i}]"
+        e = get_number(ctx, lt, "eigenstrain", w, default=0.0) if "eigenstrain" in lt else 0.0
+        if not -0.5 < e < 0.5:
+            ctx.fail(f"{w}.eigenstrain", f"expected a strain between -0.5 and 0.5 (e.g. alpha dT), found {e:g}")
+        out.append(float(e))
     return out
 
 

@@ -2,6 +2,8 @@
 distributed loads along beams, tendons, gravity; each with an amplitude
 (gen/scene/amplitude.py; -1: the default, the load factor in statics and 1 in
 dynamics)."""
+import math
+
 import gen.scene_keys as K
 from gen.scene.mesh import locate, locate_node, parse_point
 from gen.scene.values import (_dot, _norm, _typename, check_keys, get_array_of_tables, get_bool, get_name,
@@ -45,34 +47,49 @@ def _follower(ctx, lt, where, beam):
     return int(fol)
 
 
-def _chamber(ctx, lt, where, beams, amps):
-    """A pneumatic chamber along (part of) a continuum ANCF beam: cross-section area
-    A, centroid at the offset (dy, dz), pressure p (times the amplitude).  Its loads
-    are those of the potential -p A l(q), l the length of the material line through
-    the chamber's centroid (the tendon's line, with tension -p A): at each end cap the
-    force p A outward along that line (an axial force p A and a moment p A e that
-    turn with the section), along a curved chamber the walls' pressure."""
-    beam, pieces = _span(ctx, lt, where, beams)
-    if beam["kind"] != "continuum":
-        ctx.fail(f"{where}.beam", f"chambers act on continuum ANCF beams only (ancf3243, ancf3333, ancf3273, "
-                 f"ancf3363), beam {beam['name']!r} is {beam['element']}")
+def _line_offset(ctx, lt, where, beam, what):
+    """(dy, dz) of a tendon's or chamber's line in the sections of its beam: the
+    beam a continuum ANCF beam or a rod (an element with a section_line()), the
+    point inside the smallest section along the beam."""
+    if beam["kind"] != "continuum" and not beam.get("section_line"):
+        ctx.fail(f"{where}.beam", f"{what} act on continuum ANCF beams (ancf3243, ancf3333, ancf3273, ancf3363) "
+                 f"and rods (gef, euler_bernoulli, kirchhoff) only, beam {beam['name']!r} is {beam['element']}")
     off = lt.get("offset")
     if (not isinstance(off, list) or len(off) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
-        ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, the chamber's centroid along the section axes d1, d2), "
-                 f"found {_typename(off) if not isinstance(off, list) else off}")
+        ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, along the section axes d1, d2), found "
+                 f"{_typename(off) if not isinstance(off, list) else off}")
+    dy, dz = float(off[0]), float(off[1])
+    b = min(sec[1] for sec in beam["sections"])       # the smallest section along the beam
+    h = min(sec[2] for sec in beam["sections"])
+    if beam["sections"][0][0] == "circle":
+        if dy * dy + dz * dz >= 0.25 * b * b:
+            ctx.fail(f"{where}.offset", f"the {what[:-1]} at [{dy:g}, {dz:g}] m lies outside the section of beam "
+                     f"{beam['name']!r} (a circle of diameter {b:g} m: sqrt(dy^2 + dz^2) < {0.5 * b:g})")
+    elif abs(dy) >= 0.5 * b or abs(dz) >= 0.5 * h:
+        ctx.fail(f"{where}.offset", f"the {what[:-1]} at [{dy:g}, {dz:g}] m lies outside the section of "
+                 f"beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
+    return dy, dz
+
+
+def _chamber(ctx, lt, where, beams, amps):
+    """A pneumatic chamber along (part of) a beam: cross-section area A, centroid
+    at the offset (dy, dz), pressure p (times the amplitude).  Its loads are those
+    of the potential -p A l(q), l the length of the material line through the
+    chamber's centroid (the tendon's line, with tension -p A): at each end cap the
+    force p A outward along that line (an axial force p A and a moment p A e that
+    turn with the section), along a curved chamber the walls' pressure."""
+    beam, pieces = _span(ctx, lt, where, beams)
+    dy, dz = _line_offset(ctx, lt, where, beam, "chambers")
     area = get_number(ctx, lt, "area", where, positive=True)
     p = get_number(ctx, lt, "pressure", where)
-    b = min(sec[1] for sec in beam["sections"])
-    h = min(sec[2] for sec in beam["sections"])
-    if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
-        ctx.fail(f"{where}.offset", f"the chamber's centroid at {list(map(float, off))} m lies outside the section "
-                 f"of beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
-    if area >= b * h:
+    secs = beam["sections"]
+    full = min(sec[1] * sec[2] * (0.25 * math.pi if sec[0] == "circle" else 1.0) for sec in secs)
+    if area >= full:
         ctx.fail(f"{where}.area", f"a chamber of {area:g} m^2 does not fit in the section of beam "
-                 f"{beam['name']!r} ({b:g} x {h:g} m = {b * h:g} m^2)")
+                 f"{beam['name']!r} (its smallest section has {full:g} m^2)")
     amp = amps.ref(lt, "amplitude", where)
-    return (amp, -p * area, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces])
+    return (amp, -p * area, [(e, x0, x1, dy, dz) for e, x0, x1 in pieces])
 
 
 def loads(ctx, doc, beams, amps, bodies=None):
@@ -102,22 +119,10 @@ def loads(ctx, doc, beams, amps, bodies=None):
         elif ltype == "tendon":
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             beam, pieces = _span(ctx, lt, where, beams)
-            if beam["kind"] != "continuum":
-                ctx.fail(f"{where}.beam", f"tendons are routed through continuum ANCF beams only (ancf3243, "
-                         f"ancf3333, ancf3273, ancf3363), beam {beam['name']!r} is {beam['element']}")
-            off = lt.get("offset")
-            if (not isinstance(off, list) or len(off) != 2
-                    or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in off)):
-                ctx.fail(f"{where}.offset", f"expected [dy, dz] (m, along the section axes d1, d2), found "
-                         f"{_typename(off) if not isinstance(off, list) else off}")
-            b = min(sec[1] for sec in beam["sections"])       # the smallest section along the beam
-            h = min(sec[2] for sec in beam["sections"])
-            if abs(off[0]) >= 0.5 * b or abs(off[1]) >= 0.5 * h:
-                ctx.fail(f"{where}.offset", f"the tendon at {list(map(float, off))} m lies outside the section of "
-                         f"beam {beam['name']!r} ({b:g} x {h:g} m: |dy| < {0.5 * b:g}, |dz| < {0.5 * h:g})")
+            dy, dz = _line_offset(ctx, lt, where, beam, "tendons")
             T = get_number(ctx, lt, "tension", where, nonneg=True)
             amp = amps.ref(lt, "amplitude", where)
-            tendons.append((amp, T, [(e, x0, x1, float(off[0]), float(off[1])) for e, x0, x1 in pieces]))
+            tendons.append((amp, T, [(e, x0, x1, dy, dz) for e, x0, x1 in pieces]))
         elif ltype == "chamber":
             check_keys(ctx, lt, set(K.LOAD[ltype]), where)
             tendons.append(_chamber(ctx, lt, where, beams, amps))

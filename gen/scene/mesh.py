@@ -7,7 +7,7 @@ import time
 
 import gen.scene_keys as K
 from gen.scene.geometry import arc_geometry, eval_fraction, line_geometry, reference_field, section_geometry
-from gen.scene.layers import beam_layers, element_bands, neutral_axis
+from gen.scene.layers import beam_layers, element_bands, layer_eigenstrains, neutral_axis
 from gen.scene.path import path_geometry
 from gen.scene.materials import locking_warnings, small_strain
 from gen.scene.plausible import beam_warnings
@@ -249,6 +249,7 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             ctx.fail(f"material.{mname}.kelvin_voigt", f"Kelvin-Voigt damping is offered by the ANCF continuum "
                      f"elements; for element {ename} use [dynamic] rayleigh_alpha / rayleigh_beta")
         layers = beam_layers(ctx, bt, where, materials, einfo, ename, mname)
+        eigen = None if layers is None else layer_eigenstrains(ctx, bt, where)
         layer_pidx = [] if layers is None else [layer_pair(ctx, where, index, pairs, ename, integ, materials, ln)
                                                 for ln, _ in layers]
         midx_of = {}
@@ -347,7 +348,7 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
             bands = element_bands(ctx, where, layers, sec_k[2])
             axis = neutral_axis(bands, [layer_modulus(index, materials, ln, sec_k) for ln, _ in layers])
             for j, (band, (ln, _)) in enumerate(zip(bands, layers)):
-                band = band + (axis,)
+                band = band + (axis, eigen[j])
                 lp = layer_pidx[j]
                 gkey = (lp, l, sec_k, shape_key, band)
                 eidx = len(elements) if j == 0 else first_elem + nel + len(layer_records)   # the record's index
@@ -369,7 +370,8 @@ def mesh_beams(ctx, doc, beams_doc, index, materials, mats_doc, sections, log):
                         "first_elem": first_elem, "geo": geo, "elem_lens": lens, "elem_start": starts,
                         "node_at": node_ids_of_beam,
                         "kind": einfo["kind"], "moments": einfo["moments"], "section": sec, "sections": esecs,
-                        "section_frame": einfo["section_frame"], "layer_elems": layer_elems}
+                        "section_frame": einfo["section_frame"], "section_line": einfo.get("section_line", False),
+                        "layer_elems": layer_elems}
 
     m.ndof = ndof
     return m

@@ -2,8 +2,8 @@
 #include "ancf3243.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "generated for runtime/bk_kernel.h version 8: regenerate out/kernels with ./build.sh gen"
 #endif
 
 #if defined(__GNUC__)
@@ -2407,6 +2407,11 @@ void ancf3243_full_tabulate(const double *restrict geom, const double *restrict 
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
 }
 
@@ -3896,6 +3901,11 @@ void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
     for (int p = 0; p < 3; ++p) {
         static const double wq[3] = {0.2777777777777778, 0.4444444444444444, 0.2777777777777778};
@@ -3908,6 +3918,11 @@ void ancf3243_sri_tabulate(const double *restrict geom, const double *restrict q
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
 }
 

@@ -2,7 +2,7 @@
  * element: ancf3243 -- ANCF fully parameterized beam, 2 nodes x (r, r_x, r_y, r_z), 24 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eq. (1)-(3)
  * generator inputs: gen/elements/ancf3243.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:38c7b901b0a3268bf4a02819600fe07c20fba11d6572c824dc25fda4efbb4623
+ * input hash: sha256:0163cfc2559d28f9cd7a86445fc50a429aaf35b066179d81ea984573225c1152
  *
  * Nodal layout (2 nodes, 8 vectors, 24 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z; node 1 (xi=1): r, r_x, r_y, r_z

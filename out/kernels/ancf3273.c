@@ -2,8 +2,8 @@
 #include "ancf3273.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "generated for runtime/bk_kernel.h version 8: regenerate out/kernels with ./build.sh gen"
 #endif
 
 #if defined(__GNUC__)
@@ -5091,6 +5091,11 @@ void ancf3273_full_tabulate(const double *restrict geom, const double *restrict 
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
 }
 
@@ -6815,6 +6820,11 @@ void ancf3273_reduced_tabulate(const double *restrict geom, const double *restri
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
 }
 
@@ -10745,6 +10755,11 @@ void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
     for (int p = 0; p < 4; ++p) {
         static const double wq[4] = {0.25, 0.25, 0.25, 0.25};
@@ -10757,6 +10772,11 @@ void ancf3273_sri_tabulate(const double *restrict geom, const double *restrict q
         if (fabs(m[3] - 1.0) <= 1e-12) m[3] = 1.0;
         if (fabs(m[4] - 0.0) <= 1e-12) m[4] = 0.0;
         if (fabs(m[5] - 1.0) <= 1e-12) m[5] = 1.0;
+        if (geom[BK_GEOM_EIGENSTRAIN] != 0.0) {
+            const double s = 1.0 + geom[BK_GEOM_EIGENSTRAIN];
+            *wt *= s * s * s;
+            for (int k = 0; k < 6; ++k) m[k] /= s;
+        }
     }
 }
 

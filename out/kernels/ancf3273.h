@@ -2,7 +2,7 @@
  * element: ancf3273 -- ANCF two-node beam with quadratic transverse terms, 2 nodes x (r, r_x, r_y, r_z, r_yy, r_yz, r_zz), 42 DOF
  * source: two-node variant of the seed 000 higher-order element (cubic axis as in 001 Eq. 3)
  * generator inputs: gen/elements/ancf3273.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:54e7f052e093a42334d486dc25811d53c88abe0a3559d8c998f43e6f3951435c
+ * input hash: sha256:6737ff1080a1d817d15d2bcce68ee611fd7343b8b0701e8f88c1906e96dbb24a
  *
  * Nodal layout (2 nodes, 14 vectors, 42 DOF):
  *   node 0 (xi=0): r, r_x, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1): r, r_x, r_y, r_z, r_yy, r_yz, r_zz

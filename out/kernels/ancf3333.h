@@ -2,7 +2,7 @@
  * element: ancf3333 -- ANCF three-node beam, 3 nodes x (r, r_y, r_z), 27 DOF
  * source: quadratic-axial / linear-transverse ANCF beam (Orzechowski and Fraczek, Nonlinear Dyn 2015)
  * generator inputs: gen/elements/ancf3333.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:deb9869cd2145bfa98a803e2a738eedac1d4ac4406d3067183924616c9d06caf
+ * input hash: sha256:e863684747ba4e6e5f20c05a16b2d9dd1e5f7abcaa94db0b5a411abedb8c2d84
  *
  * Nodal layout (3 nodes, 9 vectors, 27 DOF):
  *   node 0 (xi=0): r, r_y, r_z; node 1 (xi=1/2): r, r_y, r_z; node 2 (xi=1): r, r_y, r_z

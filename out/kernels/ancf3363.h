@@ -2,7 +2,7 @@
  * element: ancf3363 -- ANCF higher-order beam, 3 nodes x (r, r_y, r_z, r_yy, r_yz, r_zz), 54 DOF
  * source: seed 000_8d1bf0ab6c94edd4.txt (Xu, Liu, Qu 2019)
  * generator inputs: gen/elements/ancf3363.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:c0cdfdc76fe7bbd6c1382186be91bae8e715389ca793bd4b8e6b394a0ad39443
+ * input hash: sha256:026a2103cba1ae0961e9d2d14dab38325a5c133ebedf538b401726d38a147fde
  *
  * Nodal layout (3 nodes, 18 vectors, 54 DOF):
  *   node 0 (xi=0): r, r_y, r_z, r_yy, r_yz, r_zz; node 1 (xi=1/2): r, r_y, r_z, r_yy, r_yz, r_zz; node 2 (xi=1): r, r_y, r_z, r_yy, r_yz, r_zz

@@ -3,8 +3,8 @@
 #include "ancf3363.h"
 #include <math.h>
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "generated for runtime/bk_kernel.h version 8: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf3363_svk_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)

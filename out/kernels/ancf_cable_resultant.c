@@ -4,8 +4,8 @@
 #include <math.h>
 #include "rod_math.h"
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "generated for runtime/bk_kernel.h version 8: regenerate out/kernels with ./build.sh gen"
 #endif
 
 double ancf_cable_resultant_full_energy(const double *restrict q, const double *restrict tab, const double *restrict mat)

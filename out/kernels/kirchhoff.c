@@ -2,8 +2,8 @@
 #include "kirchhoff.h"
 #include "rod_common.h"
 #include "bk_kernel.h"
-#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 7
-#error "generated for runtime/bk_kernel.h version 7: regenerate out/kernels with ./build.sh gen"
+#if !defined(BK_KERNEL_VERSION) || BK_KERNEL_VERSION != 8
+#error "generated for runtime/bk_kernel.h version 8: regenerate out/kernels with ./build.sh gen"
 #endif
 
 static void shape(const double *restrict geom, double xi, double y, double z, double *restrict N)
@@ -45,6 +45,11 @@ static void volume(const double *restrict geom, double *restrict v)
 static void section_frame(const double *restrict geom, double xi, const double *restrict q, double *restrict R, double *restrict dR)
 {
     bk_rod_section_frame(27, geom, xi, q, R, dR);
+}
+
+static void section_line(const double *restrict geom, double xi, const double *restrict q, const double *restrict a, const double *restrict u, double *restrict t, double *restrict dt, double *restrict H)
+{
+    bk_rod_section_line(27, geom, xi, q, a, u, t, dt, H);
 }
 
 static void moment(const double *restrict geom, double xi, const double *restrict q, const double *restrict M, double *restrict Q, double *restrict dQ)
@@ -122,6 +127,7 @@ const bk_element bk_element_kirchhoff = {
     .volume = volume,
     .frame = bk_rod_frame,
     .section_frame = section_frame,
+    .section_line = section_line,
     .moment = moment,
     .rotary = rotary,
 };

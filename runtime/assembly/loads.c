@@ -1,10 +1,11 @@
-/* loads.c -- loads with amplitudes, follower loads, distributed loads, tendons. */
+/* loads.c -- loads with amplitudes, follower loads, distributed loads, tendons (tendons.c). */
 #include "assembly/loads.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "assembly/tendons.h"
 #include "model/amplitude.h"
 
 /* 5-point Gauss-Legendre rule on [-1, 1] */
@@ -126,82 +127,6 @@ static void dist_load(const bk_model *m, const bk_dist_load *d, double fac, scra
         } else {
             add_force(et, w->N, d->value, NULL, wt, Q, NULL);
         }
-    }
-}
-
-/* The tendon's line p(xi) = sum_a Nt_a(xi) r_a at the offset (dy, dz) rides on
- * the affine part of each section -- its least-squares plane fit, as a guide
- * plate glued to the section would: Nt = mean over the section of N + dy <N y>/<y^2>
- * + dz <N z>/<z^2>.  The shape functions are at most quadratic across the section
- * and the section symmetric, so mean N = N(0) + (N_yy <y^2> + N_zz <z^2>) / 2 and
- * <N y>/<y^2> = N_y, the derivatives by central differences over the half widths
- * (exact for quadratics).  Its end forces T dp/dl act on the whole end section,
- * not on one material point of a section that can deform (ancf3363, ancf3273:
- * a point force pinched the finger's tip section to 40 % of its width); for the
- * sections that stay plane (ancf3243, ancf3333) Nt is N(xi, dy, dz). */
-static void tendon_shape(const bk_element *et, const double *g, const bk_tendon_piece *tp, double xi, double *Nt)
-{
-    const int ns = et->nshape;
-    const double hy = 0.5 * g[BK_GEOM_B], hz = 0.5 * g[BK_GEOM_H];
-    const double yy = g[BK_GEOM_I2] / g[BK_GEOM_A], zz = g[BK_GEOM_I1] / g[BK_GEOM_A];
-    double N0[BK_MAX_SHAPE], Nyp[BK_MAX_SHAPE], Nym[BK_MAX_SHAPE], Nzp[BK_MAX_SHAPE], Nzm[BK_MAX_SHAPE];
-    et->shape(g, xi, 0.0, 0.0, N0);
-    et->shape(g, xi, hy, 0.0, Nyp);
-    et->shape(g, xi, -hy, 0.0, Nym);
-    et->shape(g, xi, 0.0, hz, Nzp);
-    et->shape(g, xi, 0.0, -hz, Nzm);
-    for (int a = 0; a < ns; ++a) {
-        double ny = (Nyp[a] - Nym[a]) / (2.0 * hy), nyy = (Nyp[a] - 2.0 * N0[a] + Nym[a]) / (hy * hy);
-        double nz = (Nzp[a] - Nzm[a]) / (2.0 * hz), nzz = (Nzp[a] - 2.0 * N0[a] + Nzm[a]) / (hz * hz);
-        Nt[a] = N0[a] + 0.5 * (nyy * yy + nzz * zz) + tp->dy * ny + tp->dz * nz;
-    }
-}
-
-/* dNt/dxi at xi (five-point stencil, exact for the polynomial shape functions). */
-static void tendon_slope(const bk_element *et, const double *g, const bk_tendon_piece *tp, double xi, double *Nx)
-{
-    static const double off[4] = {-2.0, -1.0, 1.0, 2.0}, cf[4] = {1.0, -8.0, 8.0, -1.0};
-    const double hs = 1e-2;
-    double Nt[BK_MAX_SHAPE];
-    for (int a = 0; a < et->nshape; ++a)
-        Nx[a] = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        tendon_shape(et, g, tp, xi + off[k] * hs, Nt);
-        for (int a = 0; a < et->nshape; ++a)
-            Nx[a] += cf[k] * Nt[a] / (12.0 * hs);
-    }
-}
-
-/* Tendon piece: Q = -T dl/dq, K = dQ/dq = -T d2l/dq2, l = integral over the
- * piece of |p_xi|. */
-static void tendon_piece(const bk_model *m, const bk_tendon_piece *tp, double T, scratch *w, double *Q, double *K)
-{
-    const bk_element *et = bk_elem_type(m, tp->elem);
-    const double *g = m->geoms[m->elems[tp->elem].geom];
-    const int ns = et->nshape, nd = et->ndof;
-    const double half = 0.5 * (tp->xi1 - tp->xi0);
-    double Nx[BK_MAX_SHAPE];
-    for (int p = 0; p < 5; ++p) {
-        double xi = tp->xi0 + half * (1.0 + GX[p]), wt = GW[p] * half;
-        tendon_slope(et, g, tp, xi, Nx);
-        double px[3] = {0.0, 0.0, 0.0};
-        for (int a = 0; a < ns; ++a)
-            for (int k = 0; k < 3; ++k)
-                px[k] += Nx[a] * w->qe[et->shape_dof[a] + k];
-        double len = sqrt(px[0] * px[0] + px[1] * px[1] + px[2] * px[2]);
-        if (!(len > 0.0))
-            continue;
-        double u[3] = {px[0] / len, px[1] / len, px[2] / len};
-        for (int a = 0; a < ns; ++a)
-            for (int k = 0; k < 3; ++k) {
-                int row = et->shape_dof[a] + k;
-                Q[row] -= T * wt * Nx[a] * u[k];
-                if (K)
-                    for (int b = 0; b < ns; ++b)
-                        for (int l = 0; l < 3; ++l)
-                            K[row * nd + et->shape_dof[b] + l] -=
-                                T * wt * Nx[a] * Nx[b] * ((k == l ? 1.0 : 0.0) - u[k] * u[l]) / len;
-            }
     }
 }
 
@@ -337,29 +262,10 @@ void bk_assemble_loads_in(bk_system *s, bk_loads_scratch *ls, const double *q, d
         double T = t->tension * bk_load_factor(m, t->amp, x);
         for (int k = 0; k < t->npiece; ++k) {
             begin(m, t->pieces[k].elem, q, w, Q, K);
-            tendon_piece(m, &t->pieces[k], T, w, Q, K);
+            bk_tendon_piece_load(m, &t->pieces[k], T, w->qe, w->dv, w->Kk, Q, K);
             finish(s, t->pieces[k].elem, Q, K, fint, Ax);
         }
     }
-}
-
-/* Length of a tendon piece with coordinates qe: the quadrature of |p_xi| of
- * tendon_piece (whose Q is -T times its derivative). */
-static double tendon_piece_length(const bk_model *m, const bk_tendon_piece *tp, const double *qe)
-{
-    const bk_element *et = bk_elem_type(m, tp->elem);
-    const double *g = m->geoms[m->elems[tp->elem].geom];
-    const double half = 0.5 * (tp->xi1 - tp->xi0);
-    double Nx[BK_MAX_SHAPE], len = 0.0;
-    for (int p = 0; p < 5; ++p) {
-        double xi = tp->xi0 + half * (1.0 + GX[p]), px[3] = {0.0, 0.0, 0.0};
-        tendon_slope(et, g, tp, xi, Nx);
-        for (int a = 0; a < et->nshape; ++a)
-            for (int l = 0; l < 3; ++l)
-                px[l] += Nx[a] * qe[et->shape_dof[a] + l];
-        len += GW[p] * half * sqrt(px[0] * px[0] + px[1] * px[1] + px[2] * px[2]);
-    }
-    return len;
 }
 
 /* -v . (p(q) - p(q0)) at the point with shape functions N; qe, qe0 gathered. */
@@ -416,7 +322,7 @@ void bk_load_potentials(const bk_system *s, const double *q, double x, double *V
         for (int k = 0; k < t->npiece; ++k) {
             bk_gather(m, t->pieces[k].elem, q, qe);
             bk_gather(m, t->pieces[k].elem, m->q0, qe0);
-            *Vf += T * (tendon_piece_length(m, &t->pieces[k], qe) - tendon_piece_length(m, &t->pieces[k], qe0));
+            *Vf += T * (bk_tendon_piece_length(m, &t->pieces[k], qe) - bk_tendon_piece_length(m, &t->pieces[k], qe0));
         }
     }
 }
@@ -462,7 +368,8 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
         const bk_tendon *t = &m->tendons[i];
         for (int k = 0; k < t->npiece; ++k)
             if (t->pieces[k].elem == e)
-                tendon_piece(m, &t->pieces[k], t->tension * bk_load_factor(m, t->amp, x), &w, Qe, NULL);
+                bk_tendon_piece_load(m, &t->pieces[k], t->tension * bk_load_factor(m, t->amp, x), w.qe, w.dv, w.Kk,
+                                     Qe, NULL);
     }
     scratch_free(&w);
 }

@@ -4,9 +4,10 @@
  * follower) and tendons.  The runtime knows no element formula: positions come
  * from the element's shape(), section frames and the Jacobian of a follower
  * load's direction from section_frame() (generated with its derivative),
- * moments from moment(); the tendon's from the shape functions' xi-derivative
- * by a five-point stencil (exact for the polynomial shape functions of degree
- * <= 4 of the continuum elements). */
+ * moments from moment(); a tendon's line (tendons.c) from the shape functions'
+ * xi-derivative by a five-point stencil (exact for the polynomial shape
+ * functions of degree <= 4 of the continuum elements) or, on rods, from
+ * section_line(). */
 #ifndef BK_LOADS_H
 #define BK_LOADS_H
 

@@ -115,8 +115,10 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
             p->xi1 = rd_num(r, "tendon xi1");
             p->dy = rd_num(r, "tendon dy");
             p->dz = rd_num(r, "tendon dz");
-            if (!r->failed && !(m->pairs[m->elems[p->elem].pair]->element->caps & BK_CAP_SECTION_FIELD))
-                rd_fail(r, "tendon %d: element %d does not interpolate across its section", i, p->elem);
+            const bk_element *et = r->failed ? NULL : m->pairs[m->elems[p->elem].pair]->element;
+            if (et && !(et->caps & BK_CAP_SECTION_FIELD) && !et->section_line)
+                rd_fail(r, "tendon %d: element %d (%s) neither interpolates across its section nor has a "
+                        "section_line()", i, p->elem, et->name);
         }
     }
 
