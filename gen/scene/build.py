@@ -105,7 +105,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None):
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "inputs": list(ctx.inputs), "actuators": acts, "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
         "body_forces": body_point_forces(ctx, doc, mesh.bodies, amps),
-        "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
+        "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k], b["sections"][k][2] / 2)
                      for b in mesh.beams.values() for k in range(b["nelem"])
                      for e in [b["first_elem"] + k] + b["layer_elems"][k]],
     }
