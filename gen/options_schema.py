@@ -16,7 +16,7 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 18      # 18: a section record's half-height (section NAME E S0 S1 R: output/overlap.c);
+MODEL_VERSION = 18      # 18: a section record's half-height and joined group (section NAME E S0 S1 R G: output/overlap.c);
                         # 17: the output record's hdf5 (results.h5);
                         # 16: beam contact in its interaction record (record beam_contact);
                         # 15: dynamic.integrator (generalized_alpha | bathe);

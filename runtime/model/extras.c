@@ -160,5 +160,6 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         c->r = rd_num(r, "section half-height");
         if (!r->failed && !(c->r >= 0.0))
             rd_fail(r, "section %d: negative half-height %g", i, c->r);
+        c->group = rd_inum(r, "section group", 0, MAXN);
     }
 }
