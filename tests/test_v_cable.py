@@ -14,7 +14,6 @@ over the arc length, by the trapezoidal rule on sections.csv's nodes); and, for
 the statics of the apex-up cable (a Lambda), a dynamic run with a small
 imperfection, which leaves the equilibrium statics found."""
 import csv
-import json
 import math
 
 import numpy as np
@@ -197,4 +196,3 @@ def test_summary_created_max_matches_the_energy_rows():
     assert fall <= s["energy"]["created_max"] * 1.000001 + 1e-15, (fall, s["energy"])
     assert fall >= 0.8 * s["energy"]["created_max"], (fall, s["energy"])
     print(f"created_max {s['energy']['created_max']:.4g}, from the rows {fall:.4g}")
-    json.dumps(s)
