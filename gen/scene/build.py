@@ -93,6 +93,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
     scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat, rows)
     inter = interactions.records(ctx, doc, scene_parts)
     check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter), stat)
+    groups = joined_groups(doc, mesh.beams)
     return {
         "name": sname, "analysis": analysis, "ndof": mesh.ndof, "q0": mesh.q0, "length_scale": length_scale,
         "records": [(it.record, it.lines(data, _f)) for it, data in inter],
@@ -102,7 +103,26 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
         "dynamic": dyn, "modal": modal, "qd0": qd0, **output, "warnings": mesh.warnings,
         "amplitudes": amps.rows, "dloads": dloads, "tendons": tendons, "reactions": rows.reactions,
         "inputs": list(ctx.inputs), "point_masses": point_masses(ctx, doc, mesh.beams, mesh.bodies),
-        "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k])
+        "sections": [(b["name"], e, b["elem_start"][k], b["elem_start"][k] + b["elem_lens"][k],
+                      b["sections"][k][2] / 2, groups[b["name"]])
                      for b in mesh.beams.values() for k in range(b["nelem"])
                      for e in [b["first_elem"] + k] + b["layer_elems"][k]],
     }
+
+
+def joined_groups(doc, beams):
+    """A number per beam, the same for beams joined by a [[constraint]] (its a and b
+    points on two beams, transitively): the links of one mechanism, whose
+    overlaps near their joints the output's overlap check does not report
+    (runtime/output/overlap.c)."""
+    group = {n: k for k, n in enumerate(beams)}
+    names = list(beams)
+    for ct in doc.get("constraint", []) if isinstance(doc.get("constraint"), list) else []:
+        ends = [str(ct.get(k, "")).split(":")[0] for k in ("a", "b") if isinstance(ct, dict)]
+        ends = [n for n in ends if n in beams]
+        if len(ends) == 2 and group[ends[0]] != group[ends[1]]:
+            old, new = group[ends[1]], group[ends[0]]
+            for n in names:
+                if group[n] == old:
+                    group[n] = new
+    return group

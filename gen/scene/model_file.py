@@ -115,8 +115,8 @@ def write_model(model, path):
                    + f" {len(lins)} " + " ".join(map(str, lins)) + f" {len(side)} " + " ".join(map(str, side))
                    + f" {nlcon}")
     out.append(f"sections {len(model['sections'])}")
-    for bname, e, s0, s1 in model["sections"]:
-        out.append(f"section {bname} {e} {_f(s0)} {_f(s1)}")
+    for bname, e, s0, s1, r, group in model["sections"]:
+        out.append(f"section {bname} {e} {_f(s0)} {_f(s1)} {_f(r)} {group}")
     from gen.scene.point_masses import point_mass_records
     out += point_mass_records(model.get("point_masses", []), _f)
     records = model.get("records", [])       # the interaction modules' (gen/scene/interactions.py)

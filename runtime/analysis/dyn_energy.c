@@ -18,9 +18,12 @@ void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double
     e->P = P, e->Pd = Pd;
     e->Dnum = e->W - e->D - (T - e->T0) - (U - e->U0);
     e->scale = fmax(e->scale, fmax(fmax(fabs(T), fabs(T - e->T0)), fmax(fabs(U - e->U0), fabs(e->W))));
-    if (e->Dnum < e->Dnum_min)
-        e->Dnum_min = e->Dnum, e->t_min = t;
     e->Dnum_max = fmax(e->Dnum_max, e->Dnum);
+    /* the energy created (the fall below the largest dissipation) as the
+     * step check measures it: over the scale at the time */
+    const double created = (e->Dnum_max - e->Dnum) / (e->scale > 0.0 ? e->scale : 1.0);
+    if (created > e->created)
+        e->created = created, e->t_created = t;
 }
 
 double bk_energy_trial(const bk_energy *e, double t, double h, double T, double U, double P, double Pd,
@@ -59,5 +62,5 @@ void bk_energy_summary(const bk_energy *e, char *text, size_t n)
     const double sc = e->scale > 0.0 ? e->scale : 1.0;
     snprintf(text, n, "{\"work_loads\": %.17g, \"dissipated_damping\": %.17g, \"dissipated_integrator\": %.17g, "
              "\"drift\": %.17g, \"created_max\": %.17g, \"created_at\": %.17g, \"scale\": %.17g}",
-             e->W, e->D, e->Dnum, e->Dnum / sc, -fmin(e->Dnum_min, 0.0) / sc, e->t_min, e->scale);
+             e->W, e->D, e->Dnum, e->Dnum / sc, e->created, e->t_created, e->scale);
 }

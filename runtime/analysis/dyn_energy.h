@@ -25,9 +25,9 @@ typedef struct bk_energy {
     double T0, U0;        /* at t = 0 (U is reported relative to U0)            */
     double P, Pd;         /* applied and damping power at the last state        */
     double W, D, Dnum;    /* work of loads, damping dissipation, integrator's   */
-    double Dnum_min;      /* the most negative D_num so far (energy created)    */
     double Dnum_max;      /* its largest value so far                           */
-    double t_min;         /* when                                               */
+    double created;       /* the largest (Dnum_max - D_num) / scale so far      */
+    double t_created;     /* when (the energy created, as the step check sees)  */
     double scale;         /* the largest |T - T0|, |U - U0|, |W|, T seen        */
 } bk_energy;
 
@@ -56,7 +56,9 @@ void bk_energy_row(const bk_energy *e, bk_output *out, FILE *table, int step, do
                    double Vg, double Vf, double cres);
 /* summary.json "energy": {"work_loads", "dissipated_damping", "dissipated_integrator",
  * "drift", "created_max", "created_at", "scale"}: drift = D_num / scale at the end,
- * created_max = -min(D_num, 0) / scale, written into text (size n). */
+ * created_max = the largest energy created (D_num's fall below its largest value
+ * before, over the scale then: what the step check and its warning measure) and
+ * created_at its time, written into text (size n). */
 void bk_energy_summary(const bk_energy *e, char *text, size_t n);
 
 #endif

@@ -310,14 +310,31 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 snprintf(info->message, sizeof info->message,
                          "static solve failed at step %d, load factor %.6g (last converged %.6g): the load "
                          "increment fell below round-off after repeated cut-backs (last: %s); residual %.3e, "
-                         "last increment %.3e after %d iterations",
+                         "last increment %.3e after %d iterations%s",
                          info->steps + 1, target, lam, st == NEWTON_INADMISSIBLE ? inadm : bk_static_why(st),
-                         a.rnorm, a.dnorm, a.iters);
+                         a.rnorm, a.dnorm, a.iters,
+                         info->negative_eigenvalues > 0 && info->steps > 0
+                             ? "; the last equilibrium was unstable (negative tangent eigenvalues): the structure "
+                               "buckles or snaps there (follow it with static.stable_path = true and an imperfection, "
+                               "or run the scene as dynamic)" : "");
                 goto done;
             }
             if (log)
                 fprintf(log, "  cut-back at load factor %.6g (%s): new increment %.3g\n", target, bk_static_why(st), dlam);
         }
+    }
+    /* an equilibrium is not a result a structure reaches when it is unstable:
+     * the events above say the path lost stability, this says the answer did */
+    if (R.have_stab && info->negative_eigenvalues > 0) {
+        double lc = NAN;
+        for (int k = 0; k < info->nstability && !isfinite(lc); ++k)
+            if (info->stability[k].neg_after > info->stability[k].neg_before)
+                lc = info->stability[k].lam_critical;
+        bk_warn(info, out->console, m->name, "the final equilibrium (load factor %.6g) is unstable: %d negative "
+                "tangent eigenvalue%s (stability lost near load factor %.6g); the structure would buckle or snap "
+                "away from it (e.g. a compressed branch), so it is not the state the loads lead to: follow the "
+                "stable branch with static.stable_path = true and an imperfection, or run the scene as dynamic",
+                lam, info->negative_eigenvalues, info->negative_eigenvalues == 1 ? "" : "s", lc);
     }
     rc = 0;
 done:

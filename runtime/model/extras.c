@@ -159,5 +159,9 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         c->elem = rd_inum(r, "section element", 0, m->nelem - 1);
         c->s0 = rd_num(r, "section start");
         c->s1 = rd_num(r, "section end");
+        c->r = rd_num(r, "section half-height");
+        if (!r->failed && !(c->r >= 0.0))
+            rd_fail(r, "section %d: negative half-height %g", i, c->r);
+        c->group = rd_inum(r, "section group", 0, MAXN);
     }
 }

@@ -113,6 +113,8 @@ typedef struct bk_section_rec {  /* an element of a beam, for sections.csv */
     char beam[64];
     int elem;
     double s0, s1;     /* arc length of its start and end (m) */
+    double r;          /* its section's half-height (m; a circle's radius): output/overlap.c */
+    int group;         /* the same for beams joined by constraints (a mechanism's links) */
 } bk_section_rec;
 
 typedef struct bk_sensor {

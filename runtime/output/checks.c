@@ -16,7 +16,8 @@ int bk_checks_init(bk_checks *c, const bk_system *s)
     c->inv = malloc((size_t)(3 * nqp) * sizeof *c->inv);
     c->qe = malloc((size_t)(s->maxdof > 0 ? s->maxdof : 1) * sizeof *c->qe);
     c->inverted = c->volume = c->strain = c->far = 0;
-    if (!c->inv || !c->qe) {
+    const int ov = bk_overlap_init(&c->overlap, m);
+    if (!c->inv || !c->qe || ov != 0) {
         bk_checks_free(c);
         return -1;
     }
@@ -28,6 +29,7 @@ void bk_checks_free(bk_checks *c)
     free(c->inv);
     free(c->qe);
     c->inv = c->qe = NULL;
+    bk_overlap_free(&c->overlap);
 }
 
 void bk_principal_from_invariants(double I1, double I2, double I3, double *x)
@@ -91,6 +93,7 @@ void bk_checks_state(bk_checks *c, const bk_system *s, const double *q, const ch
     const bk_model *m = s->m;
     if (!c->far)
         far_check(c, s, q, what, t, info, console);
+    bk_overlap_check(&c->overlap, m, q, what, t, info, console);
     if (c->inverted && c->volume && c->strain)
         return;
     for (int e = 0; e < m->nelem; ++e) {

@@ -7,7 +7,9 @@
  *     (bk_pair green_strain_min/max; St. Venant-Kirchhoff: [-0.2, 0.5]).
  *   - a displacement of a node beyond BK_FAR_FACTOR times the model's size
  *     (its length scale): not credible (units, or a load far beyond what the
- *     structure carries).
+ *     structure carries);
+ *   - parts of beams passing through one another (or a beam through itself)
+ *     when no beam contact is modelled (overlap.h).
  * Each kind is reported once, at its first occurrence (element, position, load
  * factor or time, value), on the console and in summary.json "warnings".
  * Elements whose kernels offer no invariants (rod elements) are not checked.
@@ -19,6 +21,7 @@
 #include <stdio.h>
 
 #include "output/output.h"
+#include "output/overlap.h"
 #include "assembly/system.h"
 
 #define BK_J_MIN 0.2
@@ -29,6 +32,7 @@ typedef struct bk_checks {
     double *inv;             /* [3 * largest nqp] invariants of one element (owned) */
     double *qe;              /* [largest element ndof] (owned)                        */
     int inverted, volume, strain, far;   /* reported already */
+    bk_overlap overlap;      /* parts passing through one another (overlap.h) */
 } bk_checks;
 
 int bk_checks_init(bk_checks *c, const bk_system *s);

@@ -1,0 +1,202 @@
+/* overlap.c -- parts of beams passing through one another with no beam
+ * contact modelled (see overlap.h). */
+#include "output/overlap.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assembly/system.h"
+
+#define NS (BK_OVERLAP_SEG + 1)
+
+/* The least distance between the segments a0-a1 and b0-b1 (closest points by
+ * the clamped parameters of the two lines; degenerate segments as points). */
+static double seg_dist(const double *a0, const double *a1, const double *b0, const double *b1)
+{
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; ++k)
+        d1[k] = a1[k] - a0[k], d2[k] = b1[k] - b0[k], r[k] = a0[k] - b0[k];
+    const double a = d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2];
+    const double e = d2[0] * d2[0] + d2[1] * d2[1] + d2[2] * d2[2];
+    const double f = d2[0] * r[0] + d2[1] * r[1] + d2[2] * r[2];
+    const double tiny = 1e-300;
+    double s = 0.0, t = 0.0;
+    if (a <= tiny && e <= tiny) {
+        s = t = 0.0;
+    } else if (a <= tiny) {
+        t = fmin(fmax(f / e, 0.0), 1.0);
+    } else {
+        const double c = d1[0] * r[0] + d1[1] * r[1] + d1[2] * r[2];
+        if (e <= tiny) {
+            s = fmin(fmax(-c / a, 0.0), 1.0);
+        } else {
+            const double b = d1[0] * d2[0] + d1[1] * d2[1] + d1[2] * d2[2], den = a * e - b * b;
+            s = den > 1e-14 * a * e ? fmin(fmax((b * f - c * e) / den, 0.0), 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0)
+                t = 0.0, s = fmin(fmax(-c / a, 0.0), 1.0);
+            else if (t > 1.0)
+                t = 1.0, s = fmin(fmax((b - c) / a, 0.0), 1.0);
+        }
+    }
+    double d2s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double x = r[k] + s * d1[k] - t * d2[k];
+        d2s += x * x;
+    }
+    return sqrt(d2s);
+}
+
+/* The least distance between elements ia and ib in the reference configuration. */
+static double ref_dist(const bk_overlap *o, int ia, int ib)
+{
+    double d = INFINITY;
+    for (int ja = 0; ja < BK_OVERLAP_SEG; ++ja)
+        for (int jb = 0; jb < BK_OVERLAP_SEG; ++jb) {
+            const double *a = o->ref + 3 * (NS * ia + ja), *b = o->ref + 3 * (NS * ib + jb);
+            d = fmin(d, seg_dist(a, a + 3, b, b + 3));
+        }
+    return d;
+}
+
+static void sample(const bk_model *m, const double *q, double *out)
+{
+    for (int i = 0; i < m->nsection; ++i)
+        for (int j = 0; j < NS; ++j)
+            bk_eval_point(m, q, m->sections[i].elem, (double)j / BK_OVERLAP_SEG, out + 3 * (NS * i + j), NULL);
+}
+
+/* Chunks: runs of consecutive elements of one beam no longer than the least
+ * section in them (their element pairs are neighbours by arc length, below),
+ * so that a fine mesh gives the broad phase boxes about as long as wide. */
+static int make_chunks(bk_overlap *o, const bk_model *m)
+{
+    o->nchunk = 0;
+    double cs0 = 0.0, rmin = 0.0;
+    for (int i = 0; i < m->nsection; ++i) {
+        const bk_section_rec *c = &m->sections[i];
+        const int join = i > 0 && strcmp(c->beam, m->sections[i - 1].beam) == 0 && c->s0 >= cs0 &&
+                         c->s0 <= m->sections[i - 1].s1 + 1e-12 * (1.0 + fabs(c->s0)) &&
+                         c->s1 - cs0 <= 2.0 * fmin(rmin, c->r);
+        if (join) {
+            rmin = fmin(rmin, c->r);
+            continue;
+        }
+        o->chunk[o->nchunk++] = i;
+        cs0 = c->s0, rmin = c->r;
+    }
+    o->chunk[o->nchunk] = m->nsection;
+    return o->nchunk;
+}
+
+int bk_overlap_init(bk_overlap *o, const bk_model *m)
+{
+    memset(o, 0, sizeof *o);
+    if (m->nsection < 2 || bk_model_record_find(m, "beam_contact"))
+        return 0;
+    const size_t n = (size_t)m->nsection;
+    o->ref = malloc(n * NS * 3 * sizeof *o->ref);
+    o->cur = malloc(n * NS * 3 * sizeof *o->cur);
+    o->box = malloc(n * sizeof *o->box);
+    o->cbox = malloc(n * sizeof *o->cbox);
+    o->chunk = malloc((n + 1) * sizeof *o->chunk);
+    if (!o->ref || !o->cur || !o->box || !o->cbox || !o->chunk) {
+        bk_overlap_free(o);
+        return -1;
+    }
+    sample(m, m->q0, o->ref);
+    make_chunks(o, m);
+    o->n = m->nsection;
+    return 0;
+}
+
+void bk_overlap_free(bk_overlap *o)
+{
+    free(o->ref);
+    free(o->cur);
+    free(o->box);
+    free(o->cbox);
+    free(o->chunk);
+    free(o->pairs);
+    memset(o, 0, sizeof *o);
+}
+
+static int boxes_meet(const bk_box *a, const bk_box *b)
+{
+    for (int k = 0; k < 3; ++k)
+        if (a->hi[k] < b->lo[k] || b->hi[k] < a->lo[k])
+            return 0;
+    return 1;
+}
+
+/* Elements ia, ib: a pair to compare (not neighbours), then their first two
+ * segments closer than their half-heights (1, with the warning), else 0. */
+static int compare(bk_overlap *o, const bk_model *m, int ia, int ib, const char *what, double t,
+                   bk_run_info *info, FILE *console)
+{
+    const bk_section_rec *A = &m->sections[ia], *B = &m->sections[ib];
+    const double rr = A->r + B->r;
+    const int self = strcmp(A->beam, B->beam) == 0;
+    if (self && fmax(A->s0, B->s0) - fmin(A->s1, B->s1) <= 2.0 * rr)
+        return 0;                           /* neighbours along the beam (so also in the reference) */
+    if (!self && A->group == B->group)
+        return 0;                           /* links of one mechanism */
+    if (!boxes_meet(&o->box[ia], &o->box[ib]) || ref_dist(o, ia, ib) <= 2.0 * rr)
+        return 0;                           /* apart, or neighbours from the start */
+    for (int ja = 0; ja < BK_OVERLAP_SEG; ++ja)
+        for (int jb = 0; jb < BK_OVERLAP_SEG; ++jb) {
+            const double *a = o->cur + 3 * (NS * ia + ja), *b = o->cur + 3 * (NS * ib + jb);
+            const double d = seg_dist(a, a + 3, b, b + 3);
+            if (!(d < rr))
+                continue;
+            const double sa = A->s0 + (ja + 0.5) / BK_OVERLAP_SEG * (A->s1 - A->s0);
+            const double sb = B->s0 + (jb + 0.5) / BK_OVERLAP_SEG * (B->s1 - B->s0);
+            o->reported = 1;
+            bk_warn(info, console, m->name,
+                    "beam '%s' at s = %.4g m (element %d) and beam '%s' at s = %.4g m (element %d) are %.3g m "
+                    "apart at %s %.6g, less than their sections' half-heights (%.3g + %.3g m): %s, and "
+                    "nothing keeps them apart (no beam contact is modelled: add [[beam_contact]] with "
+                    "self = true and the beams)", A->beam, sa, A->elem + 1, B->beam, sb, B->elem + 1, d, what, t,
+                    A->r, B->r, self ? "the beam passes through itself" : "the beams pass through each other");
+            return 1;
+        }
+    return 0;
+}
+
+void bk_overlap_check(bk_overlap *o, const bk_model *m, const double *q, const char *what, double t,
+                      bk_run_info *info, FILE *console)
+{
+    if (o->n == 0 || o->reported)
+        return;
+    sample(m, q, o->cur);
+    for (int c = 0; c < o->nchunk; ++c) {
+        bk_box *cb = &o->cbox[c];
+        for (int k = 0; k < 3; ++k)
+            cb->lo[k] = INFINITY, cb->hi[k] = -INFINITY;
+        for (int i = o->chunk[c]; i < o->chunk[c + 1]; ++i) {
+            const double r = m->sections[i].r;
+            bk_box *b = &o->box[i];
+            for (int k = 0; k < 3; ++k)
+                b->lo[k] = INFINITY, b->hi[k] = -INFINITY;
+            for (int j = 0; j < NS; ++j)
+                for (int k = 0; k < 3; ++k) {
+                    const double x = o->cur[3 * (NS * i + j) + k];
+                    if (!isfinite(x))
+                        return;             /* the admissibility checks name a non-finite state */
+                    b->lo[k] = fmin(b->lo[k], x - r);
+                    b->hi[k] = fmax(b->hi[k], x + r);
+                }
+            for (int k = 0; k < 3; ++k)
+                cb->lo[k] = fmin(cb->lo[k], b->lo[k]), cb->hi[k] = fmax(cb->hi[k], b->hi[k]);
+        }
+    }
+    const int np = bk_broad_pairs(o->cbox, o->nchunk, &o->pairs, &o->cap);
+    for (int p = 0; p < np; ++p) {
+        const int ca = o->pairs[2 * p], cb = o->pairs[2 * p + 1];
+        for (int ia = o->chunk[ca]; ia < o->chunk[ca + 1]; ++ia)
+            for (int ib = o->chunk[cb]; ib < o->chunk[cb + 1]; ++ib)
+                if (compare(o, m, ia, ib, what, t, info, console))
+                    return;
+    }
+}
