@@ -2,26 +2,39 @@
  * element: ancf_cable -- ANCF gradient-deficient beam (cable), 2 nodes x (r, r_x), 12 DOF
  * source: seed 001_7d39798056ad1df0.txt, Eqs. (4)-(6)
  * generator inputs: gen/elements/ancf_cable.py, gen/cable.py, gen/emit_resultant.py, gen/emit_cable.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:b2e12b20ae1531f3256d86c4e4e6edf2743297f446fc1710829bf3c71914859e
+ * input hash: sha256:1ad3aa3d40128696ecf12be2f73a6f04377567366da33325cdabf6ffd1b57b99
  *
  * The ANCF gradient-deficient beam ("cable"): 2 nodes x (r, r_x), 12 DOF, the
- * cubic Hermite interpolation of seed 001 Eqs. (4)-(6).
+ * cubic Hermite interpolation of seed 001 Eqs. (4)-(6), stress free in its
+ * reference configuration, straight or curved.
  *
- * Energy per unit reference length, at Gauss points along the axis:
- *     W = 1/2 EA eps^2 + 1/2 EI kappa^2,
- *     eps = |r'| - 1,    kappa^2 = |r' x r''|^2 / |r'|^6
- * (the exact curvature of the centreline; kappa^2 is a smooth function of q, so
- * the element is well defined for straight configurations).  The cross-section
- * has no orientation: one bending stiffness (EI1 = EI2 is required) and no
- * torsion.  Forces and tangents are derived analytically: W as a function of
- * (r', r''), chained through the constant shape-function derivatives.
+ * Energy per unit reference arc length, at Gauss points along the axis
+ * (x in [0, l] the element's parameter, a = r', b = r'', c = a x b):
+ *     W = 1/2 EA eps^2 + 1/2 EI (kappa - kappa0)^2,
+ *     eps = |a| / |a0| - 1,    kappa = |c| / |a|^3,
+ * and dS = |a0| dx, with a0, kappa0 those of the Hermite interpolation of the
+ * reference coordinates q0 at that point (tabulated from q0: an interpolated arc
+ * is not parametrised by arc length exactly, and its curvature is not exactly
+ * 1/R).  Expanded, (kappa - kappa0)^2 = |c|^2/|a|^6 - 2 kappa0 |c|/|a|^3 +
+ * kappa0^2; the middle term, not differentiable at c = 0, uses
+ * sqrt(|c|^2 + eta), eta = (1e-8 |c0|)^2 (an error of 5e-17 relative in the
+ * reference's stationarity).  A straight reference (kappa0 l below 1e-10 plus
+ * the turn round-off in r1 - r0 can fake, 2.2e-13 (|r0| + |r1|)/l) has
+ * kappa0 = 0, the exact energy 1/2 EA eps^2 + 1/2 EI kappa^2 (kappa^2 is a smooth
+ * function of q, so the element is well defined for straight configurations).
+ * Only the curvature's magnitude is compared: the cable has no section frame, and
+ * |a|, a.b, |b| are the only invariants of (a, b) under rotation, so an objective
+ * energy of (a, b) sees no bending plane: the element is a rod free to twist
+ * (GJ = 0), one bending stiffness (EI1 = EI2 is required), and no torsion.
+ * Forces and tangents are derived analytically: W as a function of (r', r''),
+ * chained through the constant shape-function derivatives.
  */
 #ifndef BK_GEN_ANCF_CABLE_H
 #define BK_GEN_ANCF_CABLE_H
 #include "bk_kernel.h"
 
 extern const bk_element bk_element_ancf_cable;
-/* tab[36] from the reference coordinates q0 */
+/* tab[56] from the reference coordinates q0 */
 void ancf_cable_full_tabulate(const double *restrict geom, const double *restrict q0, double *restrict tab);
 
 #endif
