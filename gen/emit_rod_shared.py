@@ -25,13 +25,16 @@ GEN_DIR = Path(__file__).resolve().parent
 #                (its header includes the other two: the one the element and
 #                pair files include)
 #   rod_inertia  rotary inertia lumped at the nodes
+#   rod_line     a line fixed in the sections (tendons, chambers): its tangent
+#                and derivatives (bk_element.section_line)
 SHARED = "rod_common"
-SHARED_UNITS = ("rod_strain", "rod_inertia", "rod_common")
+SHARED_UNITS = ("rod_strain", "rod_inertia", "rod_common", "rod_line")
 # The generator inputs of the three files (and, with the element and pair
 # emitters, of every rod kernel: gen/emit_resultant.py FAMILY_FILES).
 SHARED_FILES = ("rod.py", "rod_kinematics.py", "rod_energy.py", "rod_frame.py", "rod_inertia.py", "chain.py",
                 "emit_rod_shared.py")
 _STRAIN_FNS = ("v", "strain", "strain_b", "strain_grad", "strain_geo", "grad_v2z", "hess_v2z")
+_LINE_FNS = ("line", "line_hess0", "line_hess1")
 
 _D = "const double *restrict"
 _W = "double *restrict"
@@ -79,9 +82,13 @@ def _shared_programs():
         ("line", f"void bk_rod_line({_D} v, {_D} a, {_W} t, {_W} Dv)", lambda: rod_frame.line_program(),
          "t[3] = dP/dxi of the line P = r + a[0] d1 + a[1] d2 and Dv[39] = dt/dv (row-major 3 x 13) from "
          "v[13] of bk_rod_v with c = (N_0, N_2, N_0', N_1', N_2') at xi."),
-        ("line_hess", f"void bk_rod_line_hess({_D} v, {_D} a, {_D} u, {_W} Hv)",
-         lambda: rod_frame.line_hessian_program(),
-         "Hv[91] = d2(u . t)/dv2 of bk_rod_line's tangent (upper triangle of 13 x 13, packed by rows)."),
+        ("line_hess0", f"void bk_rod_line_hess0({_D} v, {_D} a, {_D} u, {_W} Hv)",
+         lambda: rod_frame.line_hessian_program(0),
+         "Hv[91] = d2(u . t)/dv2 of bk_rod_line's tangent (upper triangle of 13 x 13, packed by rows): "
+         f"rows 0..{rod_frame.LINE_HESS_SPLIT - 1}."),
+        ("line_hess1", f"void bk_rod_line_hess1({_D} v, {_D} a, {_D} u, {_W} Hv)",
+         lambda: rod_frame.line_hessian_program(1),
+         f"The same, rows {rod_frame.LINE_HESS_SPLIT}..12."),
         ("gauge_energy", f"double bk_rod_gauge_energy({_D} q, double cg)", lambda: rod_energy.gauge_program(0),
          "Quaternion gauge penalty sum_n w_n cg/4 (|p_n|^2 - 1)^2, w = (1/2, 1, 1/2)."),
         ("gauge_force", f"void bk_rod_gauge_force({_D} q, double cg, {_W} f)", lambda: rod_energy.gauge_program(1),
@@ -129,9 +136,11 @@ def shared_source(unit=SHARED):
     h = input_hash(shared_paths() + core_paths())
     if unit == "rod_inertia":
         return _inertia_source(h, lower(rod_inertia.rotary_node_program(), ()))
+    if unit == "rod_line":
+        return _line_unit(h)
     strain = unit == "rod_strain"
     progs = _shared_list(
-        [n for n, _, _, _ in _shared_programs() if (n in _STRAIN_FNS) == strain])
+        [n for n, _, _, _ in _shared_programs() if (n in _STRAIN_FNS) == strain and n not in _LINE_FNS])
     gt = rod.gauss_table()
     ng = len(gt)
     what = ("Gauss-point strain kinematics" if strain else
@@ -142,7 +151,7 @@ def shared_source(unit=SHARED):
            f" * input hash: sha256:{h}", " *",
            " * One object for all three elements and every material: their element and pair",
            " * kernels (out/kernels/<element>.c, <element>_<material>.c) call these functions;",
-           " * rod_strain.c, rod_common.c, rod_inertia.c are three files so that they compile in parallel.",
+           " * rod_strain.c, rod_common.c, rod_inertia.c, rod_line.c are four files so that they compile in parallel.",
            " * Layouts (gen/rod.py):",
            " *   q[21+]   element coordinates, node n: r at 7n, quaternion p at 7n + 3 (p_c = node 1)",
            " *   z[19]    (r_0, r_1, r_2, p_c, psi_0, psi_2), psi_i = log(conj(p_c) p_i)",
@@ -163,7 +172,7 @@ def shared_source(unit=SHARED):
                 "    c[0] = t[0];", "    c[1] = t[1];", "    c[2] = t[2] / l;", "    c[3] = t[3] / l;",
                 "    c[4] = t[4] / l;", "    return t[5] * l;", "}", ""]
     else:
-        hdr += ['#include "rod_strain.h"', '#include "rod_inertia.h"', ""]
+        hdr += ['#include "rod_strain.h"', '#include "rod_inertia.h"', '#include "rod_line.h"', ""]
     for n, sig, low, doc in progs:
         hdr += [f"/* {doc} */", sig + ";"]
     if not strain:
@@ -174,11 +183,6 @@ def shared_source(unit=SHARED):
                 "/* Section frame R[9] = (d1, d2, d3) of bk_rod_frame at xi and, when dR is not NULL, its",
                 " * Jacobian dR[9*nd], dR[nd k + j] = dR_k/dq_j (bk_element.section_frame) */",
                 f"void bk_rod_section_frame(int nd, {_D} geom, double xi, {_D} q, {_W} R, {_W} dR);",
-                "/* Tangent t[3] = dP/dxi of the line P = r + a[0] d1 + a[1] d2 fixed in the sections,",
-                " * dt[3*nd] = dt/dq when dt is not NULL and H[nd*nd] = d2(u . t)/dq2 (full) when u",
-                " * and H are not NULL (bk_element.section_line) */",
-                f"void bk_rod_section_line(int nd, {_D} geom, double xi, {_D} q, {_D} a, {_D} u, {_W} t, "
-                f"{_W} dt, {_W} H);",
                 "/* Moment M[3] fixed in space on the quaternion of the node nearest xi: Q[nd], dQ[nd*nd] */",
                 f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ);"]
     hdr += ["", "#endif", ""]
@@ -212,7 +216,6 @@ def shared_source(unit=SHARED):
     c += _prologue(sf_r, "        ") + _block(sf_r, "        ") + ["        return;", "    }"]
     c += ["    bk_rod_psi_j(q, psi, J);", "    for (int i = 0; i < 9 * nd; ++i) dR[i] = 0.0;"]
     c += _prologue(sf_j, "    ") + _block(sf_j, "    ") + ["}", ""]
-    c += _line_source()
     c += _gen_fn(f"static void moment_node({_D} p, {_D} M, {_W} Q, {_W} dQ)", mom)
     c += [f"void bk_rod_moment(int nd, double xi, {_D} q, {_D} M, {_W} Q, {_W} dQ)", "{",
           "    double Qn[4], dQn[16];",
@@ -224,6 +227,34 @@ def shared_source(unit=SHARED):
           "        Q[b + i] = Qn[i];",
           "        for (int j = 0; j < 4; ++j) dQ[(b + i) * nd + b + j] = dQn[4 * i + j];",
           "    }", "}", ""]
+    return "\n".join(hdr), "\n".join(c)
+
+
+def _line_unit(h):
+    """(header, source) of out/kernels/rod_line.{h,c}: the line fixed in the
+    sections (bk_rod_line, bk_rod_line_hess at v; bk_rod_section_line at xi)."""
+    progs = _shared_list(list(_LINE_FNS))
+    hdr = [f"/* {BANNER}",
+           " * shared kinematics of the geometrically exact rods (gef, euler_bernoulli, kirchhoff): a line",
+           " * P = r + a[0] d1 + a[1] d2 fixed in the sections (tendons, chambers)",
+           f" * generator inputs: {', '.join('gen/' + f for f in SHARED_FILES)} + gen core ({', '.join(CORE_FILES)})",
+           f" * input hash: sha256:{h}", " *",
+           " * Layouts as rod_common.h (gen/rod.py).  Operations per call (add + mul + div + call):"]
+    for n, _, low, _ in progs:
+        hdr.append(f" *   bk_rod_{n:<14} {_ops(low)}")
+    hdr += [" */", "#ifndef BK_GEN_ROD_LINE_H", "#define BK_GEN_ROD_LINE_H", ""]
+    for n, sig, low, doc in progs:
+        hdr += [f"/* {doc} */", sig + ";"]
+    hdr += ["/* Tangent t[3] = dP/dxi of the line P = r + a[0] d1 + a[1] d2 fixed in the sections,",
+            " * dt[3*nd] = dt/dq when dt is not NULL and H[nd*nd] = d2(u . t)/dq2 (full) when u",
+            " * and H are not NULL (bk_element.section_line) */",
+            f"void bk_rod_section_line(int nd, {_D} geom, double xi, {_D} q, {_D} a, {_D} u, {_W} t, "
+            f"{_W} dt, {_W} H);", "", "#endif", ""]
+    c = [f"/* {BANNER} (see rod_line.h) */", '#include "rod_common.h"', "#include <math.h>",
+         '#include "rod_math.h"'] + version_guard() + [""]
+    for n, sig, low, _ in progs:
+        c += _gen_fn(sig, low, ret="ge" if sig.startswith("double") else None)
+    c += _line_source()
     return "\n".join(hdr), "\n".join(c)
 
 
@@ -253,7 +284,8 @@ def _line_source():
             "        return;",
             f"    double Gv[13], Hv[91], Hc[72], Gz[{rod.NZ}] = {{0.0}}, Hz[{len(rod.tri(rod.NZ))}] = {{0.0}};",
             "    for (int b = 0; b < 13; ++b) Gv[b] = u[0] * Dv[b] + u[1] * Dv[13 + b] + u[2] * Dv[26 + b];",
-            "    bk_rod_line_hess(v, a, u, Hv);",
+            "    bk_rod_line_hess0(v, a, u, Hv);",
+            "    bk_rod_line_hess1(v, a, u, Hv);",
             "    bk_rod_grad_v2z(c, Gv, Gz);",
             "    bk_rod_hess_v2z(c, Hv, Hz);",
             "    bk_rod_psi_hc(q, Gz, Hc);",

@@ -125,9 +125,10 @@ def line_program():
     return prog
 
 
-def line_hessian_program():
-    """Hv[tri13] = d2(u . t)/dv2 (upper triangle, all 91 entries written) of the
-    line's tangent contracted with u[3]."""
+def line_hessian_program(part=None):
+    """Hv[tri13] = d2(u . t)/dv2 (upper triangle) of the line's tangent
+    contracted with u[3]: all 91 entries, or (part 0, 1) those of rows a < 4,
+    a >= 4 (two functions of a size that compiles fast)."""
     from gen.chain import pull_back
     v, wsyms, w_map, t = _line_layers()
     uu = _syms("u", 3)
@@ -140,5 +141,9 @@ def line_hessian_program():
     Hw = {(wsyms[i], wsyms[j]): h for (i, j), h in Hw.items()}
     _, Hv = pull_back(prog, "lv", Gw, Hw, w_map, v, True)
     for (a, b), i in tri(13).items():
-        prog.output(f"Hv[{i}]", Hv.get((a, b), 0), op="=")
+        if part is None or (a < LINE_HESS_SPLIT) == (part == 0):
+            prog.output(f"Hv[{i}]", Hv.get((a, b), 0), op="=")
     return prog
+
+
+LINE_HESS_SPLIT = 4           # rows of Hv in line_hessian_program's part 0

@@ -220,6 +220,9 @@ SHOWN = {
     ("docs/howto/sweep-dask.md", "# one node: the scheduler (writes its address to a file on the shared file "
                                  "system)"): "needs a Slurm cluster",
     ("docs/howto/tendon-finger.md", "./build.sh run finger_tapered_tendon"): "not yet run by a test",
+    ("docs/howto/robot-arms.md", "./build.sh sweep flexible_arm --grid section.bar.b=0.004,0.005,0.006 \\"):
+        "a sweep of three dynamic runs of the arm; sweep window outputs (peak, amplitude over a window) are "
+        "tested on the motor link (tests/test_actuators.py)",
     ("docs/howto/verify-calculix.md", "./build.sh calculix silicone_cantilever_sag --set "
                                       "constraint.0.cross_section=rigid"): "ccx runs 20-36 minutes (the page says so)",
 }

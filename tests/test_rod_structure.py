@@ -11,7 +11,7 @@ from util import ROOT
 
 KERNELS = ROOT / "out" / "kernels"
 RODS = ("gef", "euler_bernoulli", "kirchhoff")
-SHARED = ("rod_strain.c", "rod_common.c", "rod_inertia.c")
+SHARED = ("rod_strain.c", "rod_common.c", "rod_inertia.c", "rod_line.c")
 MAX_FILE_LINES = 1800        # before the split: 6,384 (euler_bernoulli_resultant.c)
 MAX_FUNCTION_LINES = 800     # before: one 5,594-line force_tangent function
 MAX_OWN_LINES = 300          # element and pair files once the kinematics is shared

@@ -2,7 +2,7 @@
  * element: euler_bernoulli -- nonlinear Euler-Bernoulli beam (shear-rigid), 3 nodes x (r, p) + 4 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.4 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/euler_bernoulli.py, gen/rod.py, gen/rod_kinematics.py, gen/rod_energy.py, gen/rod_frame.py, gen/rod_inertia.py, gen/chain.py, gen/emit_rod_shared.py, gen/emit_resultant.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:e317783915112dda41c4ff7f2adab57f2f54b52688f78115b547c76a7de1623d
+ * input hash: sha256:86edb1bbe0852079fbda4489b30e60e73ef15524b6705953c7d302c5c646e28a
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -2,7 +2,7 @@
  * element: gef -- geometrically exact Simo-Reissner (Timoshenko) beam, 3 nodes x (r, p), 21 DOF
  * source: seed 002_d9cca145703809b0.txt, Sections 5.1-5.3; Jelenic and Crisfield rotation interpolation
  * generator inputs: gen/elements/gef.py, gen/rod.py, gen/rod_kinematics.py, gen/rod_energy.py, gen/rod_frame.py, gen/rod_inertia.py, gen/chain.py, gen/emit_rod_shared.py, gen/emit_resultant.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:ac6361f7ffc69abf444066042fdac502711792caa7f685d84afff2dc8049cb67
+ * input hash: sha256:6a54e71ae5cc016e2e75aa45f340aa4a904820b1fb689728da815bc0bd620576
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -2,7 +2,7 @@
  * element: kirchhoff -- nonlinear Kirchhoff beam (shear-rigid, inextensible), 3 nodes x (r, p) + 6 multipliers
  * source: seed 002_d9cca145703809b0.txt, Section 5.5 (constraints by Lagrange multipliers at Gauss points)
  * generator inputs: gen/elements/kirchhoff.py, gen/rod.py, gen/rod_kinematics.py, gen/rod_energy.py, gen/rod_frame.py, gen/rod_inertia.py, gen/chain.py, gen/emit_rod_shared.py, gen/emit_resultant.py, gen/emit_rod.py + gen core (element.py, continuum.py, invariants.py, program.py, quadrature.py, emit.py, emit_pair.py, emit_sections.py, lanes.py, c_functions.py, provenance.py, loads.py, rodmath.py, descriptor.py, contract.py, uniaxial.py, materials/__init__.py)
- * input hash: sha256:bc997e05d9efd1b8304067025681401e1adb46b4c13c30187701adfe6c35418c
+ * input hash: sha256:981fc876e3e67677e96dd89d2924dbd6a6e37ff97fcc7e81339a0b4e53a24f25
  *
  * Geometrically exact beams (seed 002, chapter 5): Timoshenko (Simo-Reissner),
  * Euler-Bernoulli and Kirchhoff, as one three-node element family.

@@ -79,16 +79,21 @@ int bk_interactions_create(bk_system *s, FILE *err)
         fprintf(err, "error: out of memory while building the system of '%s'\n", s->m->name);
         return -1;
     }
-    /* the modules in ascending order (a handful: by selection) */
-    int last = -2147483647 - 1;
+    /* the modules in ascending (order, place in the table): a handful, by
+     * selection; modules of equal order each come, in the table's order */
+    int last = -2147483647 - 1, lastk = -1;
     for (int made = 0; made < n; ++made) {
         const bk_interaction_module *next = NULL;
-        for (int k = 0; k < n; ++k)
-            if (bk_interaction_table[k]->order > last && (!next || bk_interaction_table[k]->order < next->order))
-                next = bk_interaction_table[k];
+        int nk = -1;
+        for (int k = 0; k < n; ++k) {
+            const int o = bk_interaction_table[k]->order;
+            if ((o > last || (o == last && k > lastk)) && (!next || o < next->order))
+                next = bk_interaction_table[k], nk = k;
+        }
         if (!next)
             break;
         last = next->order;
+        lastk = nk;
         const bk_model_record *rec;
         if (!module_present(next, s->m, &rec))
             continue;
