@@ -212,14 +212,10 @@ SHOWN = {
         "a fit of a dynamic scene: many runs; not yet run by a test",
     ("docs/howto/calibrate.md", "./build.sh fit silicone_fall --data models/data/silicone_fall_rayleigh_calculix.csv \\"):
         "a fit of a dynamic scene: many runs; not yet run by a test",
-    ("docs/howto/gripper-contact.md", "./build.sh run gripper_lift --out out/grip      # dynamic: 0.6 s in 600 "
-                                      "steps of 1 ms"): "not yet run by a test",
-    ("docs/howto/pneumatic-actuator.md", "./build.sh run pneunet_actuator"): "not yet run by a test",
     ("docs/howto/sweep-dask.md", "# mesh and time-step convergence of the soft pendulum: 16 runs, B.uz against each "
                                  "key"): "sweeps of 16 and 50 dynamic runs; not yet run by a test",
     ("docs/howto/sweep-dask.md", "# one node: the scheduler (writes its address to a file on the shared file "
                                  "system)"): "needs a Slurm cluster",
-    ("docs/howto/tendon-finger.md", "./build.sh run finger_tapered_tendon"): "not yet run by a test",
     ("docs/howto/robot-arms.md", "./build.sh sweep flexible_arm --grid section.bar.b=0.004,0.005,0.006 \\"):
         "a sweep of three dynamic runs of the arm; sweep window outputs (peak, amplitude over a window) are "
         "tested on the motor link (tests/test_actuators.py)",
