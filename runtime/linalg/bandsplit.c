@@ -148,6 +148,21 @@ static int block_scales(const bk_bandsplit *b, int X, const double *Ax, double *
     return 0;
 }
 
+/* z[kl] = the last kl rows of U_X^-1 w, w[i - w0] row i (rows below i only:
+ * the back substitution of the block's tail). */
+static void tail_back(const bk_bandsplit_block *x, const double *w, int w0, double *z)
+{
+    const int nb = x->nb, kl = x->kl, kv = x->kl + x->ku, ldab = x->ldab;
+    const double *ab = x->ab;
+    for (int i = nb - 1; i >= nb - kl && i >= 0; --i) {
+        double sum = w[i - w0];
+        const int kend = i + x->kvu < nb - 1 ? i + x->kvu : nb - 1;
+        for (int k = i + 1; k <= kend; ++k)
+            sum -= ab[(kv + i - k) + (long)k * ldab] * z[k - (nb - kl)];
+        z[i - (nb - kl)] = sum / ab[kv + (long)i * ldab];
+    }
+}
+
 /* Block X's band, E and F, scaled; then its LU, W, Z and C (bandsplit.h). */
 static int block_factor(bk_bandsplit *b, int X, const double *Ax)
 {
@@ -250,15 +265,7 @@ static int block_factor(bk_bandsplit *b, int X, const double *Ax)
             if (a != 0.0)
                 axpy_sub(km, a, ab + kv + 1 + (long)j * ldab, w + j - j0 + 1);
         }
-        /* Z: the last kl rows of U^-1 W (rows below i only) */
-        double *z = x->Z + (long)c * Lk;
-        for (int i = nb - 1; i >= nb - kl && i >= 0; --i) {
-            double sum = w[i - j0];
-            const int kend = i + kvu < nb - 1 ? i + kvu : nb - 1;
-            for (int k = i + 1; k <= kend; ++k)
-                sum -= ab[(kv + i - k) + (long)k * ldab] * z[k - (nb - kl)];
-            z[i - (nb - kl)] = sum / ab[kv + (long)i * ldab];
-        }
+        tail_back(x, w, j0, x->Z + (long)c * Lk);     /* Z: the last kl rows of U^-1 W */
     }
     /* C = F Z (s x s) */
     for (int c = 0; c < s; ++c)
@@ -375,13 +382,7 @@ static void block_forward(bk_bandsplit *b, int X, const double *x_in)
         if (y[j] != 0.0)
             axpy_sub(km, y[j], ab + kv + 1 + (long)j * ldab, y + j + 1);
     }
-    for (int i = nb - 1; i >= nb - kl && i >= 0; --i) {
-        double sum = y[i];
-        const int kend = i + x->kvu < nb - 1 ? i + x->kvu : nb - 1;
-        for (int k = i + 1; k <= kend; ++k)
-            sum -= ab[(kv + i - k) + (long)k * ldab] * x->z[k - (nb - kl)];
-        x->z[i - (nb - kl)] = sum / ab[kv + (long)i * ldab];
-    }
+    tail_back(x, y, 0, x->z);
 }
 
 /* y -= W xs, then U^-1 y into x (old order). */

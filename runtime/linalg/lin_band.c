@@ -2,13 +2,12 @@
  * linsolve.h, bandlu.h). */
 #include "linalg/linsolve.h"
 
-/* Counters and status after a band factorization that returned rc. */
-static int band_status(bk_linsolver *s, int rc)
+int bk_lin_band_status(bk_linsolver *s, int rc, double rcond)
 {
     s->nfactor++;
     if (s->nfactor == 1)
-        s->nfull = 1;                    /* the only one that sets up storage (in bk_lin_band_init) */
-    s->rcond = rc == 0 ? s->band.rcond : 0.0;
+        s->nfull = 1;                    /* the only one that sets up storage (at init) */
+    s->rcond = rc == 0 ? rcond : 0.0;
     s->rcond_factor = s->rcond;
     if (rc == 2)
         return BK_LIN_ERROR;
@@ -17,7 +16,8 @@ static int band_status(bk_linsolver *s, int rc)
 
 static int band_factor(bk_linsolver *s, double *Ax)
 {
-    return band_status(s, bk_band_factor(&s->band, Ax));
+    const int rc = bk_band_factor(&s->band, Ax);       /* (before its rcond is read) */
+    return bk_lin_band_status(s, rc, s->band.rcond);
 }
 
 static int band_solve(bk_linsolver *s, double *b)
@@ -30,7 +30,8 @@ static int band_solve(bk_linsolver *s, double *b)
 
 static int band_factor_solve(bk_linsolver *s, double *Ax, double *b)
 {
-    return band_status(s, bk_band_factor_solve(&s->band, Ax, b));
+    const int rc = bk_band_factor_solve(&s->band, Ax, b);
+    return bk_lin_band_status(s, rc, s->band.rcond);
 }
 
 static void band_free(bk_linsolver *s)

@@ -3,21 +3,10 @@
  * threads and a separator. */
 #include "linalg/linsolve.h"
 
-static int split_status(bk_linsolver *s, int rc)
-{
-    s->nfactor++;
-    if (s->nfactor == 1)
-        s->nfull = 1;                    /* the only one that sets up storage (at init) */
-    s->rcond = rc == 0 ? s->split.rcond : 0.0;
-    s->rcond_factor = s->rcond;
-    if (rc == 2)
-        return BK_LIN_ERROR;
-    return rc == 1 || !(s->rcond > 1e-300) ? BK_LIN_SINGULAR : BK_LIN_OK;
-}
-
 static int split_factor(bk_linsolver *s, double *Ax)
 {
-    return split_status(s, bk_bandsplit_factor(&s->split, Ax));
+    const int rc = bk_bandsplit_factor(&s->split, Ax);  /* (before its rcond is read) */
+    return bk_lin_band_status(s, rc, s->split.rcond);
 }
 
 static int split_solve(bk_linsolver *s, double *b)

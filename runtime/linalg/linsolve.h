@@ -96,6 +96,9 @@ int bk_lin_band_init(bk_linsolver *s, int required);
  * storage freed); BK_LIN_OK, or -1 (out of memory, or too short to split:
  * s->band kept). */
 int bk_lin_bandsplit_init(bk_linsolver *s);
+/* The band backends' counters and status after a factorization that returned
+ * rc (0, 1 singular, 2 non-finite; bandlu.h, bandsplit.h) with pivot ratio rcond. */
+int bk_lin_band_status(bk_linsolver *s, int rc, double rcond);
 int bk_lin_klu_init(bk_linsolver *s);
 int bk_lin_dense_init(bk_linsolver *s);
 
