@@ -34,7 +34,7 @@ DEFAULT_SCENE=cantilever_bend_100N
 # Debian packages the project needs (build, generator, tests, plots).
 PACKAGES=(gcc libc6-dev binutils python3 python3-sympy python3-numpy python3-scipy python3-matplotlib
           python3-pytest python3-pytest-xdist libsuitesparse-dev libgsl-dev valgrind paraview calculix-ccx
-          python3-distributed liblapack-dev libhdf5-dev python3-h5py)
+          python3-dask python3-distributed liblapack-dev libhdf5-dev python3-h5py)
 EX_USAGE=64
 
 usage() {
