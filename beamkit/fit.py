@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from beamkit.api import ROOT, BeamkitError, Scene, format_value, set_strings
-from beamkit.sweep import check_bounds, run_id
+from beamkit.sweep import check_bounds, run_id, unit_of
 
 TIME_COLUMNS = ("t", "time", "load_factor")
 COMPONENTS = ("x", "y", "z", "ux", "uy", "uz")
@@ -386,6 +386,14 @@ def _current_value(doc, sets, key):
     return float(node) if isinstance(node, (int, float)) and not isinstance(node, bool) else None
 
 
+def fit_title(res, name):
+    """fit.png's title: the scene's name, the rms residual, each fitted value
+    with its standard error and unit."""
+    vals = ", ".join(f"{k.split('.')[-1]} = {res.values[k]:.4g} ± {res.stderr[k]:.2g} {unit_of(k)}".rstrip()
+                     for k in res.keys)
+    return f"{name}: rms {res.rms:.3g} m\n{vals}"
+
+
 def plot_fit(res, sc):
     """fit.png: each measured component against time, with the fitted model's history."""
     import matplotlib
@@ -405,8 +413,7 @@ def plot_fit(res, sc):
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("load factor" if d.time_column == "load_factor" else "time (s)")
-    title = ", ".join(f"{k.split('.')[-1]} = {res.values[k]:.4g} ± {res.stderr[k]:.2g}" for k in res.keys)
-    fig.suptitle(f"{sc.name or Path(str(sc.path)).stem}: rms {res.rms:.3g} m\n{title}", fontsize=9)
+    fig.suptitle(fit_title(res, sc.name or Path(str(sc.path)).stem), fontsize=9)
     fig.tight_layout()
     p = Path(res.dir) / "fit.png"
     fig.savefig(p, dpi=100)

@@ -366,7 +366,7 @@ def _num(v):
         return None
 
 
-_UNITS = {"E": "Pa", "G": "Pa", "mu": "Pa", "lambda": "Pa", "c10": "Pa", "c01": "Pa", "kappa": "Pa",
+_UNITS = {"E": "Pa", "G": "Pa", "mu": "Pa", "lambda": "Pa", "c10": "Pa", "c01": "Pa", "kappa": "Pa", "kelvin_voigt": "s",
           "lambda_m": "", "nu": "", "rho": "kg/m³", "EA": "N", "GA1": "N", "GA2": "N", "GJ": "N m²", "EI1": "N m²",
           "EI2": "N m²", "b": "m", "h": "m", "radius": "m", "start": "m", "end": "m", "tension": "N",
           "pressure": "Pa", "area": "m²", "offset": "m", "value": "N or N m", "elements": "",

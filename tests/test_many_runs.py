@@ -289,6 +289,18 @@ def test_fit_recovers_synthetic_parameters_within_three_standard_errors():
     assert not res.at_bound and res.success
 
 
+def test_fit_plot_title_carries_units():
+    """fit.png's title names the scene and gives each value with its unit."""
+    from types import SimpleNamespace
+    from beamkit.fit import fit_title
+    res = SimpleNamespace(keys=["material.s.E", "material.s.kelvin_voigt", "beam.b.elements"], rms=6.6e-7,
+                          values={"material.s.E": 1194395.0, "material.s.kelvin_voigt": 4.777e-3,
+                                  "beam.b.elements": 8.0},
+                          stderr={"material.s.E": 178.0, "material.s.kelvin_voigt": 1.27e-4, "beam.b.elements": 0.5})
+    assert fit_title(res, "finger") == ("finger: rms 6.6e-07 m\nE = 1.194e+06 ± 1.8e+02 Pa, "
+                                        "kelvin_voigt = 0.004777 ± 0.00013 s, elements = 8 ± 0.5")
+
+
 def test_fit_honours_max_runs_exactly():
     """--max-runs counts solver runs, the Jacobian's included (10 used to make 18):
     a budget the fit reaches stops it with the best run so far, not converged; a
