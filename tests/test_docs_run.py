@@ -196,7 +196,8 @@ def _run(cmd, cwd, root=ROOT):
         argv[0] = str(root / "bin" / "beamkit")
     elif argv[0] == "/usr/bin/python3":
         # as typed in the repository's top folder: no PYTHONPATH, no BK_ variables
-        env = {k: v for k, v in ENV.items() if k != "PYTHONPATH" and not k.startswith("BK_")}
+        env = {k: v for k, v in ENV.items()
+               if k not in ("PYTHONPATH", "PYTHONPYCACHEPREFIX") and not k.startswith("BK_")}
         cwd = root
     else:
         raise AssertionError(f"a runnable block runs ./build.sh, bin/beamkit or /usr/bin/python3 only: {cmd}")
