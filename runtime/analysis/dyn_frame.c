@@ -1,0 +1,486 @@
+/* dyn_frame.c -- the rotating frame of a dynamic run (dynamic.frame): the
+ * frame's rotation at a time, the inertia forces in it (translational frame
+ * forces and the rotary inertia turned in and out), the inertial state and
+ * multipliers for the outputs (the equations: dyn_frame.h). */
+#include "analysis/dyn_frame.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model/amplitude.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* The constraint's angle theta(t) and its k-th derivative (as the constraint's
+ * rows evaluate it: assembly/constraints.c), the derivatives from the right (an
+ * amplitude's kinks and first knot have none: amplitude.h; the run goes forward,
+ * and a spin-up starts with the rate after t = 0). */
+static double theta(const bk_dyn_frame *c, double t, int k)
+{
+    if (k > 0)
+        t = nextafter(t, INFINITY);
+    const double w = 2.0 * M_PI * c->freq;
+    double th = k == 0 ? c->rate * t + c->amp * sin(w * t) : k == 1 ? c->rate + c->amp * w * cos(w * t)
+                                                                   : -c->amp * w * w * sin(w * t);
+    if (c->ampl)
+        th += c->scale * bk_amp_eval(c->ampl, t, k);
+    return th;
+}
+
+/* The block kind of an element field: 1 position, 2 a vector that turns (a
+ * gradient), 3 a quaternion, 0 a coordinate the frame does not turn. */
+static int field_kind(const bk_element *et, int k)
+{
+    const bk_field_role r = et->field_role[k];
+    if (et->field_dim[k] == 3 && r == BK_FIELD_POSITION)
+        return 1;
+    if (et->field_dim[k] == 3 && bk_field_is_gradient(r))
+        return 2;
+    return et->field_dim[k] == 4 && r == BK_FIELD_QUATERNION ? 3 : 0;
+}
+
+static const double UNTURNED[3] = {1.0, 0.0, 0.0};   /* the d-th derivative of T on such a coordinate */
+
+/* The d-th time derivative of T on a block of the kind, row-major dim x dim. */
+static const double *blockmat(const bk_dyn_frame *f, int kind, int d, int *dim)
+{
+    *dim = kind == 3 ? 4 : kind ? 3 : 1;
+    return kind == 3 ? f->L[d] : kind ? f->R[d] : UNTURNED + d;
+}
+
+/* y = B x (trans: B^T x) for B the d-th derivative of T on an element's blocks. */
+static void vapply(const bk_dyn_frame *f, const bk_element *et, int d, int trans, const double *x, double *y)
+{
+    for (int k = 0; k < et->nfield; ++k) {
+        int dim;
+        const double *B = blockmat(f, field_kind(et, k), d, &dim);
+        const int o = et->field_dof[k];
+        for (int i = 0; i < dim; ++i) {
+            double s = 0.0;
+            for (int j = 0; j < dim; ++j)
+                s += (trans ? B[j * dim + i] : B[i * dim + j]) * x[o + j];
+            y[o + i] = s;
+        }
+    }
+}
+
+/* out += c A B (A, out: ndof x ndof row-major), B the d-th derivative of T. */
+static void rmul_add(const bk_dyn_frame *f, const bk_element *et, int d, double c, const double *A, double *out)
+{
+    const int nd = et->ndof;
+    if (c == 0.0)
+        return;
+    for (int k = 0; k < et->nfield; ++k) {
+        int dim;
+        const double *B = blockmat(f, field_kind(et, k), d, &dim);
+        const int o = et->field_dof[k];
+        for (int i = 0; i < nd; ++i)
+            for (int j = 0; j < dim; ++j) {
+                double s = 0.0;
+                for (int l = 0; l < dim; ++l)
+                    s += A[i * nd + o + l] * B[l * dim + j];
+                out[i * nd + o + j] += c * s;
+            }
+    }
+}
+
+/* out = T^T A. */
+static void tmul(const bk_dyn_frame *f, const bk_element *et, const double *A, double *out)
+{
+    const int nd = et->ndof;
+    for (int k = 0; k < et->nfield; ++k) {
+        int dim;
+        const double *B = blockmat(f, field_kind(et, k), 0, &dim);
+        const int o = et->field_dof[k];
+        for (int j = 0; j < dim; ++j)
+            for (int c = 0; c < nd; ++c) {
+                double s = 0.0;
+                for (int l = 0; l < dim; ++l)
+                    s += B[l * dim + j] * A[(o + l) * nd + c];
+                out[(o + j) * nd + c] = s;
+            }
+    }
+}
+
+/* y = q less the axis point on the positions (element blocks). */
+static void element_y(const bk_dyn_frame *f, const bk_element *et, const double *qe, double *y, double sign)
+{
+    memcpy(y, qe, (size_t)et->ndof * sizeof *y);
+    for (int k = 0; k < et->nfield; ++k)
+        if (field_kind(et, k) == 1)
+            for (int i = 0; i < 3; ++i)
+                y[et->field_dof[k] + i] -= sign * f->c[i];
+}
+
+static void quat_lmat(const double *a, double *L)
+{
+    const double M[16] = {a[0], -a[1], -a[2], -a[3], a[1], a[0], -a[3], a[2],
+                          a[2], a[3], a[0], -a[1], a[3], -a[2], a[1], a[0]};
+    memcpy(L, M, sizeof M);
+}
+
+void bk_frame_at(bk_dyn_frame *f, double t)
+{
+    if (!f || !f->on)
+        return;
+    f->t = t;
+    const double ph = theta(f, t, 0) - f->th0, d1 = theta(f, t, 1), d2 = theta(f, t, 2);
+    const double *n = f->n;
+    const double K[9] = {0.0, -n[2], n[1], n[2], 0.0, -n[0], -n[1], n[0], 0.0};
+    double K2[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            K2[3 * i + j] = n[i] * n[j] - (i == j);
+    const double cp = cos(ph), sp = sin(ph), ch = cos(0.5 * ph), sh = sin(0.5 * ph);
+    for (int i = 0; i < 9; ++i) {
+        f->R[0][i] = (i % 4 == 0) + sp * K[i] + (1.0 - cp) * K2[i];
+        f->R[1][i] = d1 * (cp * K[i] + sp * K2[i]);
+        f->R[2][i] = d2 * (cp * K[i] + sp * K2[i]) + d1 * d1 * (cp * K2[i] - sp * K[i]);
+    }
+    double r[3][4] = {{ch}, {-0.5 * d1 * sh}, {-0.5 * d2 * sh - 0.25 * d1 * d1 * ch}};
+    for (int i = 0; i < 3; ++i) {
+        r[0][1 + i] = sh * n[i];
+        r[1][1 + i] = 0.5 * d1 * ch * n[i];
+        r[2][1 + i] = (0.5 * d2 * ch - 0.25 * d1 * d1 * sh) * n[i];
+    }
+    for (int d = 0; d < 3; ++d)
+        quat_lmat(r[d], f->L[d]);
+}
+
+double bk_frame_ctime(const bk_dyn_frame *f, double t)
+{
+    return f && f->on ? 0.0 : t;
+}
+
+/* A global block's dimension, the d-th derivative of T on it and its y. */
+static const double *block_y(const bk_dyn_frame *f, int b, int d, const double *q, double *y, int *dim)
+{
+    const int *bl = f->block[b];
+    const double *B = blockmat(f, bl[0], d, dim);
+    for (int i = 0; i < *dim; ++i)
+        y[i] = q[bl[1 + i]] - (bl[0] == 1 ? f->c[i] : 0.0);
+    return B;
+}
+
+static void matvec(const double *B, int dim, const double *x, double *y, int trans)
+{
+    for (int i = 0; i < dim; ++i) {
+        y[i] = 0.0;
+        for (int j = 0; j < dim; ++j)
+            y[i] += (trans ? B[j * dim + i] : B[i * dim + j]) * x[j];
+    }
+}
+
+void bk_frame_velocity(const bk_dyn_frame *f, const bk_model *m, const double *q, const double *qd, double *va)
+{
+    memcpy(va, qd, (size_t)m->ndof * sizeof *va);
+    for (int b = 0; b < f->nblock; ++b) {
+        int dim;
+        double y[4], u[4], v[4];
+        const double *B1 = block_y(f, b, 1, q, y, &dim), *B0 = blockmat(f, f->block[b][0], 0, &dim);
+        matvec(B1, dim, y, u, 0);
+        matvec(B0, dim, u, v, 1);
+        for (int i = 0; i < dim; ++i)
+            va[f->block[b][1 + i]] += v[i];
+    }
+}
+
+void bk_frame_initial(bk_dyn_frame *f, const bk_system *s, const double *q, double *qd)
+{
+    const bk_model *m = s->m;
+    bk_frame_at(f, 0.0);
+    for (int b = 0; b < f->nblock; ++b) {           /* q' = T^T (q_a' - T' y) */
+        int dim;
+        double y[4], u[4], v[4];
+        const double *B1 = block_y(f, b, 1, q, y, &dim), *B0 = blockmat(f, f->block[b][0], 0, &dim);
+        matvec(B1, dim, y, u, 0);
+        for (int i = 0; i < dim; ++i)
+            u[i] = qd[f->block[b][1 + i]] - u[i];
+        matvec(B0, dim, u, v, 1);
+        for (int i = 0; i < dim; ++i)
+            qd[f->block[b][1 + i]] = v[i];
+    }
+    const bk_reaction *rc = f->rc;
+    for (int k = 0; k < rc->nlin; ++k)
+        qd[m->lincons[rc->lin[k]].dof[0]] = 0.0;
+    for (int i = 0; f->joint && i < 7; ++i)
+        qd[m->nlcons[rc->nlcon].dof[i]] = 0.0;
+}
+
+void bk_frame_held_rows(const bk_dyn_frame *f, const bk_system *s, double *r)
+{
+    const bk_reaction *rc = f->rc;
+    for (int k = 0; k < rc->nlin; ++k)
+        r[s->nfree + rc->lin[k]] = 0.0;
+    for (int k = f->row0; f->joint && k < s->jrow[rc->nlcon + 1]; ++k)
+        r[s->nfree + k] = 0.0;
+}
+
+void bk_frame_inertial(bk_dyn_frame *f, const bk_system *s, const double *q, const double *qd, const double *qdd,
+                       const double *nu)
+{
+    const size_t nd = (size_t)s->m->ndof;
+    memcpy(f->qa, q, nd * sizeof *q);
+    memcpy(f->qda, qd, nd * sizeof *q);
+    memcpy(f->qdda, qdd, nd * sizeof *q);
+    if (nu && s->ncon)
+        memcpy(f->nua, nu, (size_t)s->ncon * sizeof *nu);
+    if (nu && f->joint)                         /* the joint's point rows turn with R, the others not */
+        matvec(f->R[0], 3, nu + f->row0, f->nua + f->row0, 0);
+    for (int b = 0; b < f->nblock; ++b) {
+        const int *bl = f->block[b];
+        int dim;
+        double y[4], x[4], v[4], a[4], u[4];
+        const double *B0 = block_y(f, b, 0, q, y, &dim);
+        const double *B1 = blockmat(f, bl[0], 1, &dim), *B2 = blockmat(f, bl[0], 2, &dim);
+        for (int i = 0; i < dim; ++i)
+            x[i] = qd[bl[1 + i]], a[i] = qdd[bl[1 + i]];
+        for (int i = 0; i < dim; ++i) {
+            double p = bl[0] == 1 ? f->c[i] : 0.0, pd = 0.0, pdd = 0.0;
+            for (int j = 0; j < dim; ++j) {
+                p += B0[i * dim + j] * y[j];
+                pd += B1[i * dim + j] * y[j] + B0[i * dim + j] * x[j];
+                pdd += B2[i * dim + j] * y[j] + 2.0 * B1[i * dim + j] * x[j] + B0[i * dim + j] * a[j];
+            }
+            f->qa[bl[1 + i]] = p, f->qda[bl[1 + i]] = pd, f->qdda[bl[1 + i]] = pdd;
+        }
+        if (!nu || f->joint || f->rowof[bl[1]] < 0)
+            continue;
+        for (int i = 0; i < dim; ++i)             /* the rows' generalized forces turned back */
+            v[i] = nu[f->rowof[bl[1 + i]]];
+        matvec(B0, dim, v, u, 0);
+        for (int i = 0; i < dim; ++i)
+            f->nua[f->rowof[bl[1 + i]]] = u[i];
+    }
+}
+
+void bk_frame_forces(bk_dyn_frame *f, const bk_system *s, const double *q, const double *qd, double gp, double kp,
+                     double *fint, double *Ax)
+{
+    const bk_model *m = s->m;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_element *et = bk_elem_type(m, e);
+        const int nd = et->ndof;
+        bk_gather(m, e, q, f->z);
+        element_y(f, et, f->z, f->y, 1.0);
+        bk_gather(m, e, qd, f->g);
+        vapply(f, et, 1, 0, f->g, f->z);                /* z = T'' y + 2 T' q' */
+        vapply(f, et, 2, 0, f->y, f->g);
+        for (int i = 0; i < nd; ++i)
+            f->z[i] = 2.0 * f->z[i] + f->g[i];
+        bk_element_mass(m, e, f->W, f->Me);
+        for (int i = 0; i < nd; ++i) {
+            double v = 0.0;
+            for (int j = 0; j < nd; ++j)
+                v += f->Me[i * nd + j] * f->z[j];
+            f->y[i] = v;
+        }
+        vapply(f, et, 0, 1, f->y, f->g);
+        bk_scatter(m, e, f->g, 1.0, fint);
+        if (Ax && (kp != 0.0 || gp != 0.0)) {
+            memset(f->W, 0, (size_t)nd * nd * sizeof *f->W);
+            rmul_add(f, et, 2, kp, f->Me, f->W);
+            rmul_add(f, et, 1, 2.0 * gp, f->Me, f->W);
+            tmul(f, et, f->W, f->S);
+            bk_scatter_matrix(s, e, f->S, 1.0, Ax);
+        }
+    }
+}
+
+void bk_frame_rotary_in(bk_dyn_frame *f, const bk_element *et, double *qe, double *qde, double *qdde)
+{
+    const int nd = et->ndof;
+    element_y(f, et, qe, f->y, 1.0);
+    vapply(f, et, 2, 0, f->y, f->z);                    /* q_a'' = T'' y + 2 T' q' + T q'' */
+    vapply(f, et, 1, 0, qde, f->g);
+    for (int i = 0; i < nd; ++i)
+        f->z[i] += 2.0 * f->g[i];
+    vapply(f, et, 0, 0, qdde, f->g);
+    for (int i = 0; i < nd; ++i)
+        qdde[i] = f->z[i] + f->g[i];
+    vapply(f, et, 1, 0, f->y, f->z);                    /* q_a' = T' y + T q' */
+    vapply(f, et, 0, 0, qde, f->g);
+    for (int i = 0; i < nd; ++i)
+        qde[i] = f->z[i] + f->g[i];
+    vapply(f, et, 0, 0, f->y, f->z);                    /* q_a = T y + offset */
+    element_y(f, et, f->z, qe, -1.0);
+}
+
+void bk_frame_rotary_out(bk_dyn_frame *f, const bk_element *et, double *fe, double *Mq, double *Cq, double *Kq)
+{
+    const int nd = et->ndof;
+    const size_t nn = (size_t)nd * nd * sizeof *Mq;
+    vapply(f, et, 0, 1, fe, f->g);
+    memcpy(fe, f->g, (size_t)nd * sizeof *fe);
+    double *S = f->S, *W = f->W, *X = f->Me;
+    memset(S, 0, nn), memset(W, 0, nn), memset(X, 0, nn);
+    rmul_add(f, et, 0, 1.0, Kq, S);                     /* Kq T + Cq T' + Mq T'' */
+    rmul_add(f, et, 1, 1.0, Cq, S);
+    rmul_add(f, et, 2, 1.0, Mq, S);
+    rmul_add(f, et, 0, 1.0, Cq, W);                     /* Cq T + 2 Mq T' */
+    rmul_add(f, et, 1, 2.0, Mq, W);
+    rmul_add(f, et, 0, 1.0, Mq, X);                     /* Mq T */
+    tmul(f, et, S, Kq);
+    tmul(f, et, W, Cq);
+    tmul(f, et, X, Mq);
+}
+
+void bk_frame_free(bk_dyn_frame *f)
+{
+    double **p[] = {&f->qa, &f->qda, &f->qdda, &f->nua, &f->y, &f->z, &f->g, &f->Me, &f->W, &f->S};
+    for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
+        free(*p[i]);
+        *p[i] = NULL;
+    }
+    free(f->block), free(f->rowof);
+    f->block = NULL, f->rowof = NULL;
+}
+
+/* The axis of linear rows turning a quaternion (p(phi) = (cos phi/2, sin phi/2 n) p0:
+ * rc = p0, rs = (0, n) p0) or a vector (v(phi) = ... + (v0 - (n.v0) n) cos phi + n x v0
+ * sin phi) of the block b; 0, or -1 when they give none. */
+static int rows_axis(bk_dyn_frame *f, const bk_model *m, const int *bl)
+{
+    double rc[4], rs[4], a[3];
+    const int dim = bl[0] == 3 ? 4 : 3;
+    for (int i = 0; i < dim; ++i)
+        rc[i] = m->lincons[f->rowof[bl[1 + i]]].rc, rs[i] = m->lincons[f->rowof[bl[1 + i]]].rs;
+    if (dim == 4)                       /* vec(rs conj(rc)) / |rc|^2 */
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, k = (i + 2) % 3;
+            a[i] = -rs[0] * rc[1 + i] + rc[0] * rs[1 + i] - (rs[1 + j] * rc[1 + k] - rs[1 + k] * rc[1 + j]);
+        }
+    else
+        for (int i = 0; i < 3; ++i)
+            a[i] = rc[(i + 1) % 3] * rs[(i + 2) % 3] - rc[(i + 2) % 3] * rs[(i + 1) % 3];
+    const double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(an > 1e-12))
+        return -1;
+    for (int i = 0; i < 3; ++i)
+        f->n[i] = a[i] / an;
+    return 0;
+}
+
+/* The coordinate blocks the frame turns (each once), the axis of linear rows;
+ * refuses blocks held off the axis or turned by the rows in part. */
+static int frame_blocks(bk_dyn_frame *f, const bk_system *s, char *msg, size_t n)
+{
+    const bk_model *m = s->m;
+    char *seen = calloc((size_t)m->ndof + 1, 1);
+    if (!seen)
+        return snprintf(msg, n, "out of memory"), -1;
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_element *et = bk_elem_type(m, e);
+        for (int k = 0; k < et->nfield; ++k) {
+            const int kind = field_kind(et, k), *d = m->elems[e].dofs + et->field_dof[k];
+            if (!kind || seen[d[0]])
+                continue;
+            seen[d[0]] = 1;
+            int *bl = f->block[f->nblock++];
+            bl[0] = kind;
+            for (int i = 0; i < (kind == 3 ? 4 : 3); ++i)
+                bl[1 + i] = d[i];
+        }
+    }
+    free(seen);
+    int axis = f->joint;                /* (a joint: from its ground side) */
+    for (int b = 0; b < f->nblock && !axis; ++b)
+        if (f->block[b][0] > 1 && f->rowof[f->block[b][1]] >= 0)
+            axis = rows_axis(f, m, f->block[b]) == 0;
+    if (!axis)
+        return snprintf(msg, n, "dynamic.frame = \"%s\": the constraint turns no nodal rotation or vector (its "
+                        "axis)", m->dyn.frame), -1;
+    const double tol = 1e-9 * fmax(1.0, m->length_scale);
+    for (int b = 0; b < f->nblock; ++b) {
+        const int *bl = f->block[b], dim = bl[0] == 3 ? 4 : 3;
+        int held = 0, rows = 0;
+        double y[4];
+        for (int i = 0; i < dim; ++i)
+            held += s->eq[bl[1 + i]] < 0, rows += f->rowof[bl[1 + i]] >= 0;
+        for (int i = 0; i < dim; ++i)
+            y[i] = m->q0[bl[1 + i]] - (bl[0] == 1 ? f->c[i] : 0.0);
+        const double *c = f->n, ax[3] = {c[1] * y[2] - c[2] * y[1], c[2] * y[0] - c[0] * y[2], c[0] * y[1] - c[1] * y[0]};
+        if ((rows && rows != dim) || (held && (bl[0] == 3 || held != dim || sqrt(ax[0] * ax[0] + ax[1] * ax[1] +
+                                                                                   ax[2] * ax[2]) > tol)))
+            return snprintf(msg, n, "dynamic.frame = \"%s\": DOF %d is %s; in the rotating frame only the "
+                            "frame's own constraint may hold a coordinate, and whole (on the axis)", m->dyn.frame,
+                            bl[1], rows ? "turned by the constraint only in part" : "held off the frame's axis"),
+                   -1;
+    }
+    return 0;
+}
+
+/* The drive, axis and point of the frame from its constraint: a joint to the
+ * ground (the point and axis of the ground's side), or linear rows (the node,
+ * the axis of a block they turn); 0, or -1 with msg. */
+static int frame_constraint(bk_dyn_frame *f, const bk_system *s, char *msg, size_t n)
+{
+    const bk_model *m = s->m;
+    const bk_reaction *rc = f->rc;
+    for (size_t i = 0; i < (size_t)m->ndof; ++i)
+        f->rowof[i] = -1;
+    if (rc->nlcon >= 0) {
+        const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+        for (int i = 7; i < 14; ++i)
+            if (jc->dof[i] >= 0)
+                return snprintf(msg, n, "dynamic.frame = \"%s\": the constraint joins two parts; expected one to "
+                                "the ground", m->dyn.frame), -1;
+        f->joint = 1, f->row0 = s->jrow[rc->nlcon];
+        f->rate = jc->rate, f->amp = jc->amp, f->freq = jc->freq, f->scale = jc->scale, f->ampl = jc->dampl;
+        const double *ax = jc->prm + 21, an = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+        for (int i = 0; i < 3; ++i)     /* the ground's joint point and third axis */
+            f->c[i] = jc->x0[7 + i], f->n[i] = ax[i] / an;
+        return 0;
+    }
+    const bk_lincon *drive = NULL;
+    for (int k = 0; k < rc->nlin; ++k) {
+        const bk_lincon *lc = &m->lincons[rc->lin[k]];
+        if (lc->nterm != 1 || lc->c0[0] != 1.0 || lc->cc[0] != 0.0 || lc->cs[0] != 0.0)
+            return snprintf(msg, n, "dynamic.frame = \"%s\": its row %d is not one coordinate's prescribed value",
+                            m->dyn.frame, rc->lin[k]), -1;
+        f->rowof[lc->dof[0]] = rc->lin[k];
+        if (!drive && lc->kappa != 0.0)
+            drive = lc;
+    }
+    if (!drive)
+        return snprintf(msg, n, "dynamic.frame = \"%s\": the constraint turns no coordinate", m->dyn.frame), -1;
+    f->rate = drive->rate, f->amp = drive->amp, f->freq = drive->freq, f->scale = drive->angle;
+    f->ampl = drive->ampl;
+    bk_eval_point(m, m->q0, rc->elem, rc->xi, f->c, NULL);
+    return 0;
+}
+
+int bk_frame_init(bk_dyn_frame *f, const bk_system *s, char *msg, size_t n)
+{
+    const bk_model *m = s->m;
+    memset(f, 0, sizeof *f);
+    if (!bk_model_in_time(m) || strcmp(m->dyn.frame, "none") == 0 || m->dyn.frame[0] == 0)
+        return 0;
+    for (int c = 0; c < m->nreaction && !f->rc; ++c)
+        if (strcmp(m->reactions[c].name, m->dyn.frame) == 0)
+            f->rc = &m->reactions[c];
+    if (!f->rc || strcmp(f->rc->type, "prescribed_rotation") != 0)
+        return snprintf(msg, n, "dynamic.frame = \"%s\": expected the name of a prescribed_rotation to the ground",
+                        m->dyn.frame), -1;
+    const size_t nd = (size_t)m->ndof, md = (size_t)s->maxdof, nc = (size_t)(s->ncon ? s->ncon : 1);
+    f->block = malloc((nd / 3 + 1) * sizeof *f->block);
+    f->rowof = malloc(nd * sizeof *f->rowof);
+    f->qa = malloc(nd * sizeof *f->qa), f->qda = malloc(nd * sizeof *f->qa), f->qdda = malloc(nd * sizeof *f->qa);
+    f->nua = malloc(nc * sizeof *f->nua);
+    f->y = malloc(md * sizeof *f->y), f->z = malloc(md * sizeof *f->y), f->g = malloc(md * sizeof *f->y);
+    f->Me = malloc(md * md * sizeof *f->Me), f->W = malloc(md * md * sizeof *f->Me);
+    f->S = malloc(md * md * sizeof *f->Me);
+    if (!f->block || !f->rowof || !f->qa || !f->qda || !f->qdda || !f->nua || !f->y || !f->z || !f->g || !f->Me ||
+        !f->W || !f->S)
+        return snprintf(msg, n, "out of memory"), -1;
+    if (frame_constraint(f, s, msg, n) != 0 || frame_blocks(f, s, msg, n) != 0)
+        return -1;
+    f->th0 = theta(f, 0.0, 0);
+    f->on = 1;
+    bk_frame_at(f, 0.0);
+    return 0;
+}
