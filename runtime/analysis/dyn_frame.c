@@ -68,6 +68,15 @@ static void vapply(const bk_dyn_frame *f, const bk_element *et, int d, int trans
     }
 }
 
+/* x[0 .. n-1] (stride) all zero: the inertia matrices are sparse by blocks */
+static int zero(const double *x, int n, int stride)
+{
+    for (int i = 0; i < n; ++i)
+        if (x[i * stride] != 0.0)
+            return 0;
+    return 1;
+}
+
 /* out += c A B (A, out: ndof x ndof row-major), B the d-th derivative of T. */
 static void rmul_add(const bk_dyn_frame *f, const bk_element *et, int d, double c, const double *A, double *out)
 {
@@ -79,7 +88,7 @@ static void rmul_add(const bk_dyn_frame *f, const bk_element *et, int d, double 
         const double *B = blockmat(f, field_kind(et, k), d, &dim);
         const int o = et->field_dof[k];
         for (int i = 0; i < nd; ++i)
-            for (int j = 0; j < dim; ++j) {
+            for (int j = 0; j < dim && !zero(A + i * nd + o, dim, 1); ++j) {
                 double s = 0.0;
                 for (int l = 0; l < dim; ++l)
                     s += A[i * nd + o + l] * B[l * dim + j];
@@ -96,8 +105,16 @@ static void tmul(const bk_dyn_frame *f, const bk_element *et, const double *A, d
         int dim;
         const double *B = blockmat(f, field_kind(et, k), 0, &dim);
         const int o = et->field_dof[k];
+        if (zero(A + o * nd, dim * nd, 1)) {
+            memset(out + o * nd, 0, (size_t)(dim * nd) * sizeof *out);
+            continue;
+        }
         for (int j = 0; j < dim; ++j)
             for (int c = 0; c < nd; ++c) {
+                if (zero(A + o * nd + c, dim, nd)) {
+                    out[(o + j) * nd + c] = 0.0;
+                    continue;
+                }
                 double s = 0.0;
                 for (int l = 0; l < dim; ++l)
                     s += B[l * dim + j] * A[(o + l) * nd + c];
@@ -316,6 +333,8 @@ void bk_frame_rotary_out(bk_dyn_frame *f, const bk_element *et, double *fe, doub
     const size_t nn = (size_t)nd * nd * sizeof *Mq;
     vapply(f, et, 0, 1, fe, f->g);
     memcpy(fe, f->g, (size_t)nd * sizeof *fe);
+    if (!Mq)
+        return;
     double *S = f->S, *W = f->W, *X = f->Me;
     memset(S, 0, nn), memset(W, 0, nn), memset(X, 0, nn);
     rmul_add(f, et, 0, 1.0, Kq, S);                     /* Kq T + Cq T' + Mq T'' */

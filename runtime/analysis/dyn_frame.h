@@ -73,7 +73,8 @@ void bk_frame_inertial(bk_dyn_frame *f, const bk_system *s, const double *q, con
 void bk_frame_forces(bk_dyn_frame *f, const bk_system *s, const double *q, const double *qd, double gp, double kp,
                      double *fint, double *Ax);
 /* An element's coordinates and their rates into the inertial frame (before its
- * rotary inertia kernel), and the kernel's force and Jacobians back. */
+ * rotary inertia kernel), and the kernel's force and Jacobians back (Mq NULL:
+ * the force only). */
 void bk_frame_rotary_in(bk_dyn_frame *f, const bk_element *et, double *qe, double *qde, double *qdde);
 void bk_frame_rotary_out(bk_dyn_frame *f, const bk_element *et, double *fe, double *Mq, double *Cq, double *Kq);
 

@@ -321,7 +321,7 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
                 bk_frame_rotary_in(w->frame, et, w->qe, w->qde, w->qdde);
             et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
             if (w->frame)
-                bk_frame_rotary_out(w->frame, et, w->fe, w->K1, w->K2, w->K3);
+                bk_frame_rotary_out(w->frame, et, w->fe, Ax ? w->K1 : NULL, w->K2, w->K3);
             Trot += mat->rho * T;
             bk_scatter(m, e, w->fe, mat->rho, fint);
             if (Ax) {
