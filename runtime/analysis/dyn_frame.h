@@ -45,6 +45,12 @@ typedef struct bk_dyn_frame {
     double *y, *z, *g, *Me, *W, *S;  /* element scratch: maxdof (y, z, g), maxdof^2      */
 } bk_dyn_frame;
 
+/* The constraint's angle theta(t) and its k-th time derivative (k = 0, 1, 2). */
+double bk_frame_angle(const bk_dyn_frame *f, double t, int k);
+/* The kind of block an element field is to the frame: 1 a position, 2 a vector
+ * that turns (a gradient), 3 a quaternion, 0 a coordinate it does not turn. */
+int bk_frame_field_kind(const bk_element *et, int k);
+
 /* The frame of the model's dynamic.frame (f->on = 0 for "none"): 0, or -1
  * with the reason in msg (not a prescribed rotation to the ground, rows it
  * cannot turn, held DOFs off the axis, out of memory). */
