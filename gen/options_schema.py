@@ -211,9 +211,9 @@ OPTIONS = (
             "the same accuracy; more iterations, far fewer factorizations (soft pendulum 1 s at dt = 1 ms: 602 "
             "instead of 2045, 0.18 s instead of 0.51 s).  `every_iteration`: full Newton",
             choices=("reuse", "every_iteration")),
-    dynamic("frame", "str", "none", "the name of a `prescribed_rotation` [[constraint]] (to the ground, on a beam "
-            "node): the equations of motion are solved in the frame turning with it (its angle θ(t), axis through the "
-            "node), where its node is held still and every mass feels the frame's centrifugal, Euler and Coriolis "
+    dynamic("frame", "str", "none", "the name of a `prescribed_rotation` [[constraint]] to the ground: the "
+            "equations of motion are solved in the frame turning with it (by its angle θ(t) about its axis), where "
+            "the part it drives is held still and every mass feels the frame's centrifugal, Euler and Coriolis "
             "forces — a steady spin is then a constant state, exact at any step (a beam on a hub: "
             "`models/spinning_hub.toml`); results are reported in the inertial frame.  Other constraints to the "
             "ground, loads other than tendons and chambers, gravity and interactions are refused in it "
