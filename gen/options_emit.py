@@ -99,7 +99,8 @@ def header():
             continue
         out.append(f"typedef struct {struct} {{")
         for o in S.table_options(table):
-            out.append(f"    {(_ctype(o) + ' ' + o.key + ';'):<32}/* {_comment(o)} */")
+            decl = f"char {o.key}[{o.size}];" if o.type == "str" else f"{_ctype(o)} {o.key};"
+            out.append(f"    {decl:<32}/* {_comment(o)} */")
         out += [f"}} {struct};", ""]
     out += ["enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_OPT_STR };", "",
             "/* The option records' fields in model-file order:",

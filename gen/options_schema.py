@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 20      # 20: a section record's half-height and joined group (section NAME E S0 S1 R G: output/overlap.c);
+MODEL_VERSION = 21      # 21: dynamic.frame (the hub's rotating frame: runtime/analysis/dyn_frame.c);
+                        # 20: a section record's half-height and joined group (section NAME E S0 S1 R G: output/overlap.c);
                         # 19: geom records carry a layer's eigenstrain (BK_GEOM_EIGENSTRAIN; bk_kernel.h 8);
                         # 18: actuators and forces at body points in their interaction records
                         #     (record actuator, record body_force), no longer records of the model;
@@ -210,6 +211,14 @@ OPTIONS = (
             "the same accuracy; more iterations, far fewer factorizations (soft pendulum 1 s at dt = 1 ms: 602 "
             "instead of 2045, 0.18 s instead of 0.51 s).  `every_iteration`: full Newton",
             choices=("reuse", "every_iteration")),
+    dynamic("frame", "str", "none", "the name of a `prescribed_rotation` [[constraint]] to the ground: the "
+            "equations of motion are solved in the frame turning with it (by its angle θ(t) about its axis), where "
+            "the part it drives is held still and every mass feels the frame's centrifugal, Euler and Coriolis "
+            "forces — a steady spin is then a constant state, exact at any step (a beam on a hub: "
+            "`models/spinning_hub.toml`); results are reported in the inertial frame.  Other constraints to the "
+            "ground, loads other than tendons and chambers, gravity and interactions are refused in it "
+            "(docs/explanation/robustness.md)", size=64, only_for="dynamic", inactive="none",
+            default_doc="`\"none\"` (inertial frame)"),
     dynamic("output_every", "int", 1, "write every n-th step (the last is always written)", lo=1, hi=10**9),
     Opt("output", "vtk_every", "int", _vtk_every, "a ParaView frame every n-th output step (0: none); the last "
         "step always gets one", record="output", lo=0, hi=10**9,
@@ -267,6 +276,8 @@ def _check(ctx, tbl, o, values):
     default = None if default is REQUIRED or callable(default) else default
     if o.type == "choice":
         return get_str(ctx, tbl, o.key, where, default=default, choices=o.choices)
+    if o.type == "str":
+        return get_str(ctx, tbl, o.key, where, default=default)
     if o.type == "int":
         hi = values[f"{o.table}.{o.hi}"] if isinstance(o.hi, str) else o.hi
         return get_int(ctx, tbl, o.key, where, default=default, lo=o.lo, hi=hi)

@@ -10,7 +10,9 @@
  *   dyn_check MODEL_FILE T THETA OMEGA DT
  * prints "max_abs_err max_abs_entry worst_row worst_col n_bad" (n_bad: the
  * entries off by more than 1e-4 max(|entry|, 1)) and exits 0; DT the step,
- * rho_inf the model's.  DYN_CHECK_ALL=1 lists the entries off by 1e-6. */
+ * rho_inf the model's; with dynamic.frame the residual in the rotating frame at
+ * T (the state then relative to the frame).  DYN_CHECK_ALL=1 lists the entries
+ * off by 1e-6. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,6 +61,13 @@ int main(int argc, char **argv)
     if (bk_dyn_work_alloc(&w, s) != 0 || !fdof || nquat < 0 || !q || !r0 || !rp || !rm || !A || !Ax || !isq)
         return 1;
     w.r = calloc((size_t)neq, sizeof *w.r), w.Ax = Ax;
+    bk_dyn_frame frame;                 /* dynamic.frame: the residual in the rotating frame */
+    char msg[512];
+    if (bk_frame_init(&frame, s, msg, sizeof msg) != 0) {
+        fprintf(stderr, "%s\n", msg);
+        return 1;
+    }
+    w.frame = frame.on ? &frame : NULL;
     bk_dyn_assemble_mass(s, w.Mx, w.K1, w.K2);
     bk_dyn_compact_mass(s, &w, w.Mx);
     const double rho = m->dyn.rho_inf;
@@ -139,6 +148,7 @@ int main(int argc, char **argv)
     free(w.r);
     w.r = NULL;
     bk_dyn_work_free(&w);
+    bk_frame_free(&frame);
     free(q), free(r0), free(rp), free(rm), free(A), free(Ax), free(isq), free(fdof), free(quat);
     bk_system_free(s);
     bk_model_free(m);

@@ -13,6 +13,7 @@ from gen.scene.buckling import buckling_options
 from gen.scene import interactions
 from gen.scene.cost import cost_check
 from gen.scene.files import apply_overrides, load_index, read_toml
+from gen.scene.frame import rotating_frame
 from gen.scene.joints import constraints
 from gen.scene.loads import loads
 from gen.scene.materials import material_params, sections as parse_sections
@@ -92,6 +93,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
     scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat, rows)
     inter = interactions.records(ctx, doc, scene_parts)
+    rotating_frame(ctx, doc, dyn, rows, inter, analysis)
     check_static(ctx, mesh, rows, analysis, any(it.holds for it, _ in inter), stat)
     groups = joined_groups(doc, mesh.beams)
     return {

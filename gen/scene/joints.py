@@ -23,6 +23,7 @@ class Rows:
         self.lincons = []
         self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint, name)
         self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
+        self.keep_rows = False  # the rotating frame's constraint (dynamic.frame): its driven rows stay rows
 
     def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1,
             ru=0.0, uampid=-1):
@@ -34,7 +35,7 @@ class Rows:
         if not terms:
             return
         if len(terms) == 1 and terms[0][2] == 0 and terms[0][3] == 0 and rc == 0 and rs == 0 and ru == 0 \
-                and abs(r0 - terms[0][1] * self.q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
+                and not (self.keep_rows and kappa) and abs(r0 - terms[0][1] * self.q0[terms[0][0]]) <= 1e-12 * max(1.0, abs(r0)):
             self.fixed.add(terms[0][0])
             return
         self.lincons.append((terms, (r0, rc, rs), (kappa, rate, amp, freq, angle, float(ampid), ru,
@@ -446,6 +447,8 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     names = set()
     from gen.scene.actuators import AXIS_KIND, actuated_joints
     actuated = actuated_joints(doc)       # joints with a motor need their frames: nonlinear rows
+    dyn = doc.get("dynamic")
+    frame = dyn.get("frame") if isinstance(dyn, dict) and analysis == "dynamic" else None
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
         ctype = get_str(ctx, ct, "type", where, choices=tuple(JOINTS) + ("fixed", "universal", "prismatic",
@@ -464,7 +467,10 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
         fixed0, nlin0 = set(rows.fixed), len(rows.lincons)
         rows.side = None
+        # the frame's constraint keeps every driven row (whole quaternions and vectors: runtime/analysis/dyn_frame.c)
+        rows.keep_rows = name == frame
         JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
+        rows.keep_rows = False
         e, xi = locate(beam, s)
         rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
                                list(range(nlin0, len(rows.lincons))), rows.side, -1, name))

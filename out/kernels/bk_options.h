@@ -5,7 +5,7 @@
 #ifndef BK_OPTIONS_H
 #define BK_OPTIONS_H
 
-#define BK_MODEL_VERSION 20       /* model file format */
+#define BK_MODEL_VERSION 21       /* model file format */
 
 enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2, BK_ANALYSIS_BUCKLING = 3 };   /* scene.analysis */
 enum bk_predictor { BK_PREDICTOR_NONE = 0, BK_PREDICTOR_SECANT = 1 };   /* static.predictor */
@@ -80,6 +80,7 @@ typedef struct bk_dynamic_opts {
     int max_iterations;             /* dynamic.max_iterations */
     int max_cutbacks;               /* dynamic.max_cutbacks */
     int jacobian;                   /* dynamic.jacobian: enum bk_jacobian */
+    char frame[64];                 /* dynamic.frame */
     int output_every;               /* dynamic.output_every */
 } bk_dynamic_opts;
 
@@ -137,6 +138,7 @@ enum bk_option_type { BK_OPT_INT, BK_OPT_FLOAT, BK_OPT_BOOL, BK_OPT_CHOICE, BK_O
     X("dynamic", "max_iterations", BK_OPT_INT, dyn.max_iterations, 1.0, 0, 10000.0, NULL) \
     X("dynamic", "max_cutbacks", BK_OPT_INT, dyn.max_cutbacks, 0.0, 0, 60.0, NULL) \
     X("dynamic", "jacobian", BK_OPT_CHOICE, dyn.jacobian, 0.0, 0, 1.0, "reuse every_iteration") \
+    X("dynamic", "frame", BK_OPT_STR, dyn.frame, 0.0, 0, 0.0, NULL) \
     X("dynamic", "output_every", BK_OPT_INT, dyn.output_every, 1.0, 0, 1000000000.0, NULL) \
     X("output", "vtk_every", BK_OPT_INT, output.vtk_every, 0.0, 0, 1000000000.0, NULL) \
     X("output", "hdf5", BK_OPT_BOOL, output.hdf5, 0.0, 0, 1.0, NULL) \

@@ -48,11 +48,9 @@ int bk_dyn_bathe_step(dyn_problem *dp, bk_nl *nl, const bk_nl_opts *nlo, double 
     }
     /* the mid state's powers (the last residual was at the converged state) */
     mid->t = t + h1;
-    mid->P = bk_dyn_dot_free(s, dp->fdof, w->fext, w->qd) - w->p_inter - w->p_con;
+    mid->P = bk_dyn_dot_free(s, dp->fdof, w->fext, bk_dyn_power_velocity(s, w, q, mid->t)) - w->p_inter - w->p_con;
     mid->Pd = w->p_damp;
-    bk_dyn_mass_matvec(s, w, dp->fdof, w->qd, w->tmp);
-    mid->T = 0.5 * bk_dyn_dot_free(s, dp->fdof, w->qd, w->tmp) + bk_dyn_element_dynamics(s, w, q, 0, 0, 0, w->tmp,
-                                                                                        NULL);
+    mid->T = bk_dyn_kinetic(s, w, dp->fdof, q, mid->t);
     mid->U = bk_strain_energy(s, q);
     memcpy(w->q_m, q, (size_t)nd * sizeof *q);
     memcpy(w->qd_m, w->qd, (size_t)nd * sizeof *q);

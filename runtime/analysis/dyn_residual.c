@@ -24,23 +24,26 @@ int bk_dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q,
     double *A = matrix || rb != 0.0 ? w->Ax : NULL;
     if (bk_assemble_internal(s, q, w->fint, A) != 0)
         return -1;
+    const double *pv = bk_dyn_power_velocity(s, w, q, tn);      /* (sets the frame's time) */
     w->p_damp = 0.0;
     if (rb != 0.0) {                    /* stiffness-proportional Rayleigh damping */
         bk_dyn_free_matvec(s, fdof, w->Ax, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += rb * w->tmp[i];
-        w->p_damp = rb * bk_dyn_dot_free(s, fdof, w->tmp, w->qd);
+        w->p_damp = rb * bk_dyn_dot_free(s, fdof, w->tmp, pv);
         if (matrix)
             for (long k = 0; k < s->nnz; ++k)
                 w->Ax[k] *= 1.0 + gp * rb;
     }
     A = matrix ? w->Ax : NULL;
     const bk_path path = {.factor = 1.0, .x = tn, .qd = w->qd, .gp = gp};
-    const double p_before = bk_dyn_dot_free(s, fdof, w->fint, w->qd);
+    const double p_before = bk_dyn_dot_free(s, fdof, w->fint, pv);
     if (bk_assemble_interactions(s, q, &path, w->fint, A) != 0)
         return -1;
-    w->p_inter = bk_dyn_dot_free(s, fdof, w->fint, w->qd) - p_before;
+    w->p_inter = bk_dyn_dot_free(s, fdof, w->fint, pv) - p_before;
     bk_dyn_element_dynamics(s, w, q, gp, bp, 1.0, w->fint, A);
+    if (w->frame)                       /* the frame's forces, inertia like M q'' */
+        bk_frame_forces(w->frame, s, q, w->qd, gp, 1.0, w->fint, A);
     w->p_damp += w->p_visc;
     bk_dyn_mass_matvec(s, w, fdof, w->qdd, w->tmp);
     for (int i = 0; i < nd; ++i)
@@ -49,7 +52,7 @@ int bk_dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q,
         bk_dyn_mass_matvec(s, w, fdof, w->qd, w->tmp);
         for (int i = 0; i < nd; ++i)
             w->fint[i] += ra * w->tmp[i];
-        w->p_damp += ra * bk_dyn_dot_free(s, fdof, w->tmp, w->qd);
+        w->p_damp += ra * bk_dyn_dot_free(s, fdof, w->tmp, pv);
     }
     if (matrix)
         for (long k = 0; k < s->nnz; ++k)
@@ -59,10 +62,10 @@ int bk_dyn_residual(bk_system *s, dyn_work *w, const int *fdof, const double *q,
             w->r[s->eq[i]] = w->fint[i] - w->fext[i];
     double c_before = 0.0, c_after = 0.0;
     for (int j = 0; j < s->nfree; ++j)
-        c_before += w->r[j] * w->qd[fdof[j]];
-    bk_assemble_constraints(s, q, w->nu, tn, w->r, A);
+        c_before += w->r[j] * pv[fdof[j]];
+    bk_assemble_constraints(s, q, w->nu, bk_frame_ctime(w->frame, tn), w->r, A);
     for (int j = 0; j < s->nfree; ++j)
-        c_after += w->r[j] * w->qd[fdof[j]];
+        c_after += w->r[j] * pv[fdof[j]];
     w->p_con = c_after - c_before;
     *rnorm = bk_norm2(w->r, s->nfree);
     return isfinite(*rnorm) ? 0 : -1;

@@ -64,6 +64,22 @@ static const char *dyn_why(int c)
     }
 }
 
+/* A state's outputs (forces: reactions and sections too), in the inertial frame
+ * (a rotating frame's state turned back: dyn_frame.h). */
+static void dyn_output(bk_output *out, bk_system *s, dyn_work *w, int step, double t, const double *q,
+                       const double *nu, int forces)
+{
+    const double *qd = w->qd, *qdd = w->qdd;
+    if (w->frame) {
+        bk_frame_at(w->frame, t);
+        bk_frame_inertial(w->frame, s, q, qd, qdd, nu);
+        q = w->frame->qa, qd = w->frame->qda, qdd = w->frame->qdda, nu = nu ? w->frame->nua : NULL;
+    }
+    if (forces)
+        bk_output_forces(out, s, step, t, q, qd, qdd, nu);
+    bk_output_step(out, step, t, q);
+}
+
 int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log)
 {
     const bk_model *m = s->m;
@@ -80,6 +96,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int *quat = bk_quat_list(s, &nquat);
     FILE *energy = bk_output_table(out, "energy.csv", bk_energy_header(), stderr);
     bk_energy eb = {0};
+    bk_dyn_frame frame = {0};
     if (!energy) {
         snprintf(info->message, sizeof info->message, "cannot write energy.csv");
         goto done;
@@ -88,6 +105,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         snprintf(info->message, sizeof info->message, "out of memory");
         goto done;
     }
+    if (bk_frame_init(&frame, s, info->message, sizeof info->message) != 0)
+        goto done;
+    w.frame = frame.on ? &frame : NULL;
     if (s->neq == 0) {
         snprintf(info->message, sizeof info->message, "every DOF is fixed: nothing to integrate");
         goto done;
@@ -122,6 +142,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
 
     memcpy(q, m->q0, (size_t)nd * sizeof *q);
     memcpy(w.qd, m->qd0, (size_t)nd * sizeof *q);
+    if (w.frame)
+        bk_frame_initial(w.frame, s, q, w.qd);
     bk_external_load(s, w.fext);
     bk_gravity_load(s, w.fgrav);
     bk_dyn_assemble_mass(s, w.Mx, w.K1, w.K2);
@@ -144,6 +166,8 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         const bk_path path = {.factor = 1.0, .x = t, .qd = w.qd};
         bk_assemble_interactions(s, q, &path, w.fint, NULL);
         bk_dyn_element_dynamics(s, &w, q, 0.0, 1.0, 0.0, w.fint, w.Ax);   /* q'' = 0 here: rotary mass into Ax */
+        if (w.frame)
+            bk_frame_forces(w.frame, s, q, w.qd, 0.0, 0.0, w.fint, NULL);
         for (int k = 0; k < (int)s->nnz; ++k)
             w.Ax[k] += w.Mx[k];
         for (int j = 0; j < s->nfree; ++j)
@@ -153,8 +177,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         for (int i = 0; i < nd; ++i)
             if (s->eq[i] >= 0)
                 w.r[s->eq[i]] = w.fext[i] - w.fint[i] - ra * w.tmp[i];
-        bk_assemble_constraints(s, q, w.nu, t, NULL, w.Ax);
-        bk_constraint_accel_rhs(s, q, w.qd, t, w.r);   /* G q'' = -(d/dt G) q' - ... */
+        bk_assemble_constraints(s, q, w.nu, bk_frame_ctime(w.frame, t), NULL, w.Ax);
+        bk_constraint_accel_rhs(s, q, w.qd, bk_frame_ctime(w.frame, t), w.r);
+        if (w.frame)
+            bk_frame_held_rows(w.frame, s, w.r);   /* G q'' = -(d/dt G) q' - ... */
         if (bk_lin_factor(ls, w.Ax) != BK_LIN_OK || bk_lin_solve(ls, w.r) != BK_LIN_OK) {
             snprintf(info->message, sizeof info->message,
                      "initial accelerations: singular mass/constraint system (is every DOF given mass or held?)");
@@ -169,11 +195,9 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int e_warned = 0, e_warned_num = 0;
     double w_con = 0.0, pcon_last = 0.0;   /* the work of prescribed motions (constraint forces) so far, their power */
     bk_interactions_accept(s, q, &(bk_path){.factor = 1.0, .x = 0.0});   /* the lagged states (friction) */
-    bk_output_forces(out, s, 0, 0.0, q, w.qd, w.qdd, s->ncon ? w.r + s->nfree : NULL);  /* initial multipliers */
-    bk_output_step(out, 0, 0.0, q);
+    dyn_output(out, s, &w, 0, 0.0, q, s->ncon ? w.r + s->nfree : NULL, 1);  /* initial multipliers */
     {
-        bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
-        double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+        double T = bk_dyn_kinetic(s, &w, fdof, q, 0.0);
         /* the powers of the initial state, with the initial multipliers (in w.r) */
         double rn, P0 = 0.0, Pd0 = 0.0;
         if (w.nc)
@@ -237,10 +261,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         bk_energy eb_trial;
         double pcon_trial = pcon_last;
         if (st == DYN_OK) {     /* the energy balance over the step, at the converged state's powers */
-            const double P = bk_dyn_dot_free(s, fdof, w.fext, w.qd) - w.p_inter - w.p_con, Pd = w.p_damp;
+            const double P = bk_dyn_dot_free(s, fdof, w.fext, bk_dyn_power_velocity(s, &w, q, tn)) - w.p_inter
+                             - w.p_con, Pd = w.p_damp;
             pcon_trial = -w.p_con;
-            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
-            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double T = bk_dyn_kinetic(s, &w, fdof, q, tn);
             bk_energy eb_from = eb;
             if (bathe)      /* the balance over the two sub-steps */
                 bk_energy_step(&eb_from, mid.t, mid.t - t, mid.T, mid.U - U0, mid.P, mid.Pd);
@@ -350,15 +374,13 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         step++;
         info->steps = step;
         info->load_factor = t;
-        double cr = bk_constraint_residual(s, q, t);
+        double cr = bk_constraint_residual(s, q, bk_frame_ctime(w.frame, t));
         info->max_constraint_residual = fmax(info->max_constraint_residual, cr);
         if (step % o->output_every == 0 || t >= o->t_end * (1.0 - 1e-12)) {
-            bk_output_forces(out, s, step, t, q, w.qd, w.qdd, w.nu);
-            bk_output_step(out, step, t, q);
+            dyn_output(out, s, &w, step, t, q, w.nu, 1);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
-            bk_dyn_mass_matvec(s, &w, fdof, w.qd, w.tmp);
-            double T = 0.5 * bk_dyn_dot_free(s, fdof, w.qd, w.tmp) + bk_dyn_element_dynamics(s, &w, q, 0, 0, 0, w.tmp, NULL);
+            double T = bk_dyn_kinetic(s, &w, fdof, q, t);
             double U = bk_strain_energy(s, q) - U0;
             double Vg = 0.0, Vf = 0.0;
             for (int i = 0; i < nd; ++i) {
@@ -402,13 +424,19 @@ done:
     /* a failed or interrupted run keeps its last accepted step even when the
      * output stride skipped it */
     if (rc != 0 && step > written)
-        bk_output_step(out, step, t, q);
+        dyn_output(out, s, &w, step, t, q, NULL, 0);
+    if (w.frame) {                  /* the caller's q in the inertial frame (its summary, final state) */
+        bk_frame_at(w.frame, t);
+        bk_frame_inertial(w.frame, s, q, w.qd, w.qdd, NULL);
+        memcpy(q, frame.qa, (size_t)nd * sizeof *q);
+    }
     info->converged = rc == 0;
     info->factorizations = nl.ls.nfactor;
     info->analyses = nl.ls.nanalyze;
     if (have_nl)
         bk_nl_free(&nl);
     bk_checks_free(&chk);
+    bk_frame_free(&frame);
     free(fdof);
     free(quat);
     bk_dyn_work_free(&w);

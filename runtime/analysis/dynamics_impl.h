@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 
+#include "analysis/dyn_frame.h"
 #include "assembly/system.h"
 #include "solver/nonlinear.h"
 #include "solver/norms.h"
@@ -32,6 +33,10 @@ typedef struct dyn_work {
     /* powers at the last residual (dyn_energy.h): of the interactions' and the
      * constraints' forces as they enter the residual, of damping (Rayleigh, viscous) */
     double p_inter, p_con, p_damp, p_visc;
+    /* the rotating frame (dyn_frame.h; NULL: inertial), and the velocity the powers
+     * are taken with there (the inertial one in the frame's axes, bk_frame_velocity) */
+    bk_dyn_frame *frame;
+    double *va;
 } dyn_work;
 
 void bk_dyn_work_free(dyn_work *w);
@@ -55,6 +60,10 @@ int *bk_dyn_free_dofs(const bk_system *s);
  * the guess far outside the admissible states). */
 void bk_dyn_predict(const bk_system *s, dyn_work *w, double *q, double h, double am, double af, double bet,
                     double gam, int position);
+/* The kinetic energy at q, w->qd, time t (in a rotating frame the inertial one),
+ * and the velocity the powers are taken with (w->qd, in the frame w->va at t). */
+double bk_dyn_kinetic(const bk_system *s, dyn_work *w, const int *fdof, const double *q, double t);
+const double *bk_dyn_power_velocity(const bk_system *s, dyn_work *w, const double *q, double t);
 double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q, double gp, double bp,
                                double kp, double *fint, double *Ax);
 

@@ -19,7 +19,7 @@ void bk_dyn_work_free(dyn_work *w)
 {
     double **p[] = {&w->qd, &w->qdd, &w->a, &w->nu, &w->q_s, &w->qd_s, &w->qdd_s, &w->a_s, &w->nu_s,
                     &w->q_m, &w->qd_m, &w->fint, &w->fext, &w->fgrav, &w->Mx, &w->tmp, &w->qe,
-                    &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3};
+                    &w->qde, &w->qdde, &w->fe, &w->K1, &w->K2, &w->K3, &w->va};
     for (size_t i = 0; i < sizeof p / sizeof *p; ++i) {
         free(*p[i]);
         *p[i] = NULL;
@@ -115,14 +115,14 @@ int bk_dyn_work_alloc(dyn_work *w, const bk_system *s)
     w->qd = dalloc(nd), w->qdd = dalloc(nd), w->a = dalloc(nd), w->nu = dalloc(nc);
     w->q_s = dalloc(nd), w->qd_s = dalloc(nd), w->qdd_s = dalloc(nd), w->a_s = dalloc(nd);
     w->nu_s = dalloc(nc);
-    w->q_m = dalloc(nd), w->qd_m = dalloc(nd);
+    w->q_m = dalloc(nd), w->qd_m = dalloc(nd), w->va = dalloc(nd);
     w->fint = dalloc(nd), w->fext = dalloc(nd), w->fgrav = dalloc(nd);
     w->Mx = dalloc(nnz), w->tmp = dalloc(nd > ne ? nd : ne);
     w->qe = dalloc(md), w->qde = dalloc(md), w->qdde = dalloc(md), w->fe = dalloc(md);
     w->K1 = dalloc(md * md), w->K2 = dalloc(md * md), w->K3 = dalloc(md * md);
     double *all[] = {w->qd, w->qdd, w->a, w->nu, w->q_s, w->qd_s, w->qdd_s, w->a_s, w->nu_s, w->q_m, w->qd_m, w->fint,
                      w->fext, w->fgrav, w->Mx, w->tmp, w->qe, w->qde, w->qdde,
-                     w->fe, w->K1, w->K2, w->K3};
+                     w->fe, w->K1, w->K2, w->K3, w->va};
     for (size_t i = 0; i < sizeof all / sizeof *all; ++i)
         if (!all[i])
             return -1;
@@ -317,7 +317,11 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
         }
         if (et->rotary) {
             double T = 0.0;
+            if (w->frame)           /* in the inertial frame and back (dyn_frame.h) */
+                bk_frame_rotary_in(w->frame, et, w->qe, w->qde, w->qdde);
             et->rotary(m->geoms[el->geom], w->qe, w->qde, w->qdde, w->fe, w->K1, w->K2, w->K3, &T);
+            if (w->frame)
+                bk_frame_rotary_out(w->frame, et, w->fe, Ax ? w->K1 : NULL, w->K2, w->K3);
             Trot += mat->rho * T;
             bk_scatter(m, e, w->fe, mat->rho, fint);
             if (Ax) {
@@ -331,6 +335,21 @@ double bk_dyn_element_dynamics(const bk_system *s, dyn_work *w, const double *q,
     return Trot;
 }
 
+const double *bk_dyn_power_velocity(const bk_system *s, dyn_work *w, const double *q, double t)
+{
+    if (!w->frame)
+        return w->qd;
+    bk_frame_at(w->frame, t);
+    bk_frame_velocity(w->frame, s->m, q, w->qd, w->va);
+    return w->va;
+}
+
+double bk_dyn_kinetic(const bk_system *s, dyn_work *w, const int *fdof, const double *q, double t)
+{
+    const double *v = bk_dyn_power_velocity(s, w, q, t);
+    bk_dyn_mass_matvec(s, w, fdof, v, w->tmp);
+    return 0.5 * bk_dyn_dot_free(s, fdof, v, w->tmp) + bk_dyn_element_dynamics(s, w, q, 0, 0, 0, w->tmp, NULL);
+}
 
 void bk_dyn_predict(const bk_system *s, dyn_work *w, double *q, double h, double am, double af, double bet,
                     double gam, int position)
