@@ -21,7 +21,8 @@ class Rows:
         self.amps = amps
         self.fixed = set()
         self.lincons = []
-        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint, name)
+        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint,
+        #                         name, joints: how many joints from `joint` on)
         self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
 
     def row(self, terms, r0=0.0, rc=0.0, rs=0.0, kappa=0.0, rate=0.0, amp=0.0, freq=0.0, angle=0.0, ampid=-1,
@@ -379,7 +380,8 @@ def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None, actuated=False):
             if not e["rot"]:
                 why = " with an actuator" if actuated else ""
                 ctx.fail(f"{where}.{side}", f"a {ctype} joint{why} needs a rotation on both sides; {e['what']} "
-                         f"has none (use gef, euler_bernoulli, kirchhoff beams or a body)")
+                         "has none (use gef, euler_bernoulli, kirchhoff beams or a body; an ANCF point takes "
+                         "spherical, a clamp, and fixed to a rod point or a body)")
     if "at" in ct:
         X = get_vec3(ctx, ct, "at", where, bound=1e9)
     else:
@@ -445,6 +447,7 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     rows.nlcons = []
     names = set()
     from gen.scene.actuators import AXIS_KIND, actuated_joints
+    from gen.scene.weld import is_weld, weld
     actuated = actuated_joints(doc)       # joints with a motor need their frames: nonlinear rows
     for ci, ct in enumerate(get_array_of_tables(ctx, doc, "constraint")):
         where = f"constraint[{ci}]"
@@ -454,11 +457,14 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         name = _name(ctx, ct, where, ci, names)
+        if is_weld(ct, mesh, ctype):
+            weld(ctx, ct, where, mesh, rows, ctype, ci, name)
+            continue
         linear = _is_linear(ct, mesh, ctype)
         motor = ctype in AXIS_KIND and name in actuated   # (other types refuse it: gen/scene/actuators.py)
         if not linear or motor:
             joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows, actuated=motor and linear)
-            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name))
+            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name, 1))
             rows.nlcons.append(joint)
             continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
@@ -467,5 +473,5 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         JOINTS[ctype](ctx, ct, where, mesh, rows, beam, s, gid)
         e, xi = locate(beam, s)
         rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
-                               list(range(nlin0, len(rows.lincons))), rows.side, -1, name))
+                               list(range(nlin0, len(rows.lincons))), rows.side, -1, name, 0))
     return rows
