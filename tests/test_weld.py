@@ -3,7 +3,6 @@ kinds of gen/body.py), each against a reference that is not our own element:
 the cantilever closed forms of beam theory (bending, shear, torsion with the
 continuum sections' polar moment), central differences of the generated
 constraint functions, and rigid motions built here."""
-import ctypes
 import math
 import tempfile
 from pathlib import Path
@@ -12,7 +11,7 @@ import numpy as np
 import pytest
 
 from test_bad_input import check_error
-from test_bodies import NPARAM, NX, _joint_kinds, _p
+from test_bodies import NX, _joint_kinds, check_joint_derivatives, joint_g
 from util import BUILD, ensure_dir, run_scene
 
 E, B, L = 7.2e10, 0.01, 1.0
@@ -236,12 +235,7 @@ def test_weld_constraints_against_rigid_motions_and_central_differences(element,
         nrow, ev, he = kinds[kind]
         prm = np.array(list(prm24) + [0.0, 0.0])
         x0 = np.array(x0, float)
-
-        def g_of(xx):
-            g, G = np.zeros(nrow), np.zeros(nrow * NX)
-            xx = np.ascontiguousarray(xx)
-            ev(_p(xx), _p(prm), _p(g), _p(G))
-            return g, G.reshape(nrow, NX)
+        g_of = joint_g(nrow, ev, prm)
         g0, G0 = g_of(x0)
         assert np.abs(g0).max() < 1e-12, (kind, g0)
         qQ = _quat([0.3, -1.0, 0.5], 1.1)
@@ -262,22 +256,7 @@ def test_weld_constraints_against_rigid_motions_and_central_differences(element,
             rows.append(row)
         total += nrow
         for trial in range(2):
-            x = x0 + 0.3 * rng.normal(size=NX)
-            nu = rng.normal(size=nrow)
-            H = np.zeros(NX * NX)
-            he(_p(np.ascontiguousarray(x)), _p(prm), _p(nu), _p(H))
-            H = H.reshape(NX, NX)
-            _, G = g_of(x)
-            h = 1e-6
-            Gfd, Hfd = np.zeros((nrow, NX)), np.zeros((NX, NX))
-            for j in range(NX):
-                ej = np.zeros(NX)
-                ej[j] = h
-                (gp, Gp), (gm, Gm) = g_of(x + ej), g_of(x - ej)
-                Gfd[:, j] = (gp - gm) / (2 * h)
-                Hfd[:, j] = (Gp.T @ nu - Gm.T @ nu) / (2 * h)
-            assert np.abs(G - Gfd).max() <= 1e-7 * max(1.0, np.abs(G).max()), kind
-            assert np.abs(H - Hfd).max() <= 1e-6 * max(1.0, np.abs(H).max()), kind
+            check_joint_derivatives(nrow, ev, he, x0 + 0.3 * rng.normal(size=NX), prm, rng.normal(size=nrow), kind)
     assert np.linalg.matrix_rank(np.array(rows), tol=1e-9) == total
     expected = 3 + (2 if element == "ancf_cable" else 6 if element in ("ancf3243", "ancf3333") else 15)
     assert total == expected
