@@ -6,9 +6,8 @@ rows with rows.row(...) or holds DOFs with rows.fixed; JOINTS maps each
 `type` (gen/scene_keys.py CONSTRAINT) to its function.  Adding a joint: a
 function here, its keys in scene_keys.CONSTRAINT, a test.
 """
-import math
-
 import gen.scene_keys as K
+from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
 from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
                               get_number, get_str, get_vec3)
 
@@ -306,45 +305,6 @@ def _drive(ctx, ct, where, rows, ctype):
     if key in ct and ampid < 0:
         ampid = rows.amps.ref({"a": {"type": "ramp"}}, "a", where) if rows.amps else -1
     return (rate, amp, freq, scale, ampid)
-
-
-def _quat_rotation(p):
-    s0, x, y, z = p
-    n = s0 * s0 + x * x + y * y + z * z
-    s0, x, y, z = (c / math.sqrt(n) for c in p)
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - s0 * z), 2 * (x * z + s0 * y)],
-            [2 * (x * y + s0 * z), 1 - 2 * (x * x + z * z), 2 * (y * z - s0 * x)],
-            [2 * (x * z - s0 * y), 2 * (y * z + s0 * x), 1 - 2 * (x * x + y * y)]]
-
-
-def _endpoint(ctx, key, spec, mesh, ctype):
-    """A frame of a joint: {what, X, R, dofs (7 or None for the ground), rot}."""
-    if spec is None:
-        return {"what": "the ground", "X": None, "R": None, "dofs": None, "rot": True, "id": "ground"}
-    if isinstance(spec, str) and ":" not in spec and spec in mesh.bodies:
-        b = mesh.bodies[spec]
-        base = mesh.dof_of_node[b["gid"]]
-        return {"what": f"body {spec!r}", "X": b["X"], "R": b["R"], "dofs": list(range(base, base + 7)),
-                "rot": True, "id": ("node", b["gid"]), "where": (b["elem"], 0.0)}
-    if isinstance(spec, str) and ":" not in spec:
-        ctx.fail(key, f"expected BEAM:start, BEAM:end, BEAM:<arc length in m> or a body name, found {spec!r} "
-                 f"(bodies: {', '.join(mesh.bodies) or 'none'})")
-    beam, s_, gid = mesh.node_of(ctx, key, spec, f"{ctype} joint")
-    from gen.scene.mesh import locate
-    where = locate(beam, s_)
-    fd = mesh.field_dofs(gid)
-    X = mesh.nodes[gid][0]
-    if "p" in fd:
-        p = [mesh.q0[d] for d in fd["p"]]
-        return {"what": f"beam point {spec!r}", "X": X, "R": _quat_rotation(p), "dofs": fd["r"] + fd["p"],
-                "rot": True, "id": ("node", gid), "where": where}
-    return {"what": f"beam point {spec!r} (element {beam['element']}, no nodal rotation)", "X": X,
-            "R": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "dofs": fd["r"] + [-1] * 4,
-            "rot": False, "id": ("node", gid), "where": where}
-
-
-def _mtv(R, v):
-    return [sum(R[i][k] * v[i] for i in range(3)) for k in range(3)]
 
 
 def _joint_axes(ctx, ct, where, ctype):

@@ -18,6 +18,7 @@ One [[constraint]] is several joints (a spherical joint for the position and
 weld_vectors / weld_vector / weld_tangent for the section, each at most
 BK_JOINT_MAXROW rows); its reaction sums them on side a's DOFs.
 """
+from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
 from gen.scene.values import _cross, _norm, _sub
 
 SECTION_FIELDS = ("r_y", "r_z", "r_yy", "r_yz", "r_zz")
@@ -59,7 +60,6 @@ def _across(t):
 def weld(ctx, ct, where, mesh, rows, ctype, ci, name):
     """The joints of an ANCF-to-frame weld appended to rows.nlcons and its
     reaction (on side a, about the ANCF node) to rows.reactions."""
-    from gen.scene.joints import _endpoint, _mtv
     from gen.scene.mesh import locate
     if "cross_section" in ct:
         ctx.fail(f"{where}.cross_section", "expected no cross_section with b (a weld holds the section rigid)")
