@@ -286,3 +286,20 @@ def test_weld_bad_input_one_line():
     check_error(body.replace('type = "fixed"\na = "arm:end"', 'type = "revolute"\naxis = [0.0, 1.0, 0.0]\n'
                              'a = "arm:end"'), "constraint[1].a",
                 "a revolute joint needs a rotation on both sides.*fixed to a rod point or a body")
+
+
+def test_body_welded_to_an_ancf_tip_vibrates_as_the_frequency_equation_says():
+    """Modal: models/tip_mass_cantilever.toml with its steel beam as ancf3243 (St.
+    Venant-Kirchhoff, nu = 0, 20 elements) and its body welded by the ANCF weld:
+    the first bending frequency (both planes) against the Euler-Bernoulli frequency
+    equation with the tip mass and its rotary inertia (4.40045 Hz) within 0.1 %
+    (measured 3.1e-4)."""
+    from test_bodies import J_TIP, M_TIP, tip_mass_frequency
+    from util import ROOT
+    text = (ROOT / "models" / "tip_mass_cantilever.toml").read_text()
+    text = text.replace('element = "gef"', 'element = "ancf3243"').replace('law = "resultant"', 'law = "svk"') \
+        .replace("nu = 0.3", "nu = 0.0")
+    s = _run(text, "tip_mass_ancf")
+    f = s["frequencies_hz"]
+    ref = tip_mass_frequency(M_TIP, J_TIP)
+    assert abs(f[0] / ref - 1) < 1e-3 and abs(f[1] / ref - 1) < 1e-3, (f, ref)
