@@ -38,6 +38,17 @@ is the same row with (c, s) replaced by their k-th derivatives:
   prescribed_translation  u_2.v_3 = u_3.v_1 = u_1.v_2 = 0, d.u_1 = d.u_2 = 0,
                           -c d.u_3 - s = 0                       (6), c, s = 1, x:
                           a moved along axis 3 by x relative to b (d = o_b - o_a)
+
+Welds of an ANCF node to a frame b (gen/scene/weld.py): the joint's position
+rows are a spherical joint's (side a the ANCF node's r with a constant
+identity quaternion, c_a = 0); the section rows read x[0..5] as nodal vectors
+u, v of the ANCF node and x[10..13] as p_b (x[6..9] unused), with w_1 =
+prm[6..8], w_2 = prm[9..11] their reference directions in b's frame
+(R_b0^T u_0, R_b0^T v_0):
+  weld_vectors  R_b w_1 - u = 0, R_b w_2 - v = 0           (6): two section vectors turn with b
+  weld_vector   R_b w_1 - u = 0                            (3): one
+  weld_tangent  (R_b w_1).u = (R_b w_2).u = 0              (2): a cable's r_x = u stays along b's
+                rotated reference tangent (w_1, w_2 across it), its length free
 """
 import sympy as sp
 
@@ -79,6 +90,13 @@ def joint_rows(name, x, prm):
         return list(d) + _orientation(u, v)
     if name == "prismatic":
         return _orientation(u, v) + [d.dot(u[0]), d.dot(u[1])]
+    if name in WELD_TYPES:
+        Rb = rotation(x[10], sp.Matrix(x[11:14]))
+        w1, w2 = Rb * sp.Matrix(prm[6:9]), Rb * sp.Matrix(prm[9:12])
+        a, b = sp.Matrix(x[0:3]), sp.Matrix(x[3:6])
+        if name == "weld_tangent":
+            return [w1.dot(a), w2.dot(a)]
+        return list(w1 - a) + (list(w2 - b) if name == "weld_vectors" else [])
     c, s = prm[24], prm[25]
     if name == "prescribed_rotation":
         return list(d) + [u[0].dot(v[2]), u[1].dot(v[2]), c * v[1].dot(u[0]) - s * v[0].dot(u[0])]
@@ -87,14 +105,16 @@ def joint_rows(name, x, prm):
     raise KeyError(name)
 
 
+WELD_TYPES = ("weld_vectors", "weld_vector", "weld_tangent")
 JOINT_TYPES = ("spherical", "revolute", "universal", "fixed", "prismatic", "prescribed_rotation",
-               "prescribed_translation")
+               "prescribed_translation") + WELD_TYPES
 DRIVEN = {"prescribed_rotation": 1, "prescribed_translation": 2}   # bk_joint_kind.driven
 
 
 def joint_nrow(name):
     return {"spherical": 3, "revolute": 5, "universal": 4, "fixed": 6, "prismatic": 5,
-            "prescribed_rotation": 6, "prescribed_translation": 6}[name]
+            "prescribed_rotation": 6, "prescribed_translation": 6, "weld_vectors": 6, "weld_vector": 3,
+            "weld_tangent": 2}[name]
 
 
 def joint_program(name, order):

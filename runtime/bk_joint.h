@@ -15,6 +15,10 @@
  *   g[nrow]             the constraint values, zero when the joint holds;
  *   G[nrow * NX]        dg/dx, row-major;
  *   H[NX * NX]          sum_k nu[k] d2 g_k / dx2 (full, symmetric).
+ * The welds of an ANCF node to a frame (weld_vectors, weld_vector,
+ * weld_tangent) read x[0 .. 5] as nodal vectors of the ANCF node and x[10 .. 13]
+ * as p_b (x[6 .. 9] unused), prm[6 .. 11] as their reference directions in
+ * frame b (gen/body.py); the runtime treats every kind alike.
  * A driven joint's last row is linear and homogeneous in (c, s): its k-th
  * time derivative (and that of its Jacobian) is the same row evaluated with
  * the k-th time derivatives of (c, s).

@@ -39,45 +39,56 @@ def _p(a):
     return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
 
 
+def joint_g(nrow, ev, prm):
+    """x -> (g, G) of a joint kernel's eval at the parameters prm."""
+    def g_of(xx):
+        g, G = np.zeros(nrow), np.zeros(nrow * NX)
+        ev(_p(np.ascontiguousarray(xx, dtype=float)), _p(prm), _p(g), _p(G))
+        return g, G.reshape(nrow, NX)
+    return g_of
+
+
+def check_joint_derivatives(nrow, ev, he, x, prm, nu, name):
+    """A joint kernel's G and Hessian term sum nu_k d2 g_k at x against central
+    differences of g and of G^T nu; the Hessian term symmetric."""
+    g_of = joint_g(nrow, ev, prm)
+    _, G0 = g_of(x)
+    H = np.zeros(NX * NX)
+    he(_p(np.ascontiguousarray(x, dtype=float)), _p(prm), _p(nu), _p(H))
+    H = H.reshape(NX, NX)
+    h = 1e-6
+    Gfd, Hfd = np.zeros((nrow, NX)), np.zeros((NX, NX))
+    for j in range(NX):
+        e = np.zeros(NX)
+        e[j] = h
+        (gp, Gp), (gm, Gm) = g_of(x + e), g_of(x - e)
+        Gfd[:, j] = (gp - gm) / (2 * h)
+        Hfd[:, j] = (Gp.T @ nu - Gm.T @ nu) / (2 * h)
+    assert np.abs(G0 - Gfd).max() <= 1e-7 * max(1.0, np.abs(G0).max()), name
+    assert np.abs(H - Hfd).max() <= 1e-6 * max(1.0, np.abs(H).max()), name
+    assert np.abs(H - H.T).max() <= 1e-12 * max(1.0, np.abs(H).max()), name
+
+
 def test_joint_kernels_match_finite_differences():
     """G = dg/dx and H = sum nu_k d2g_k/dx2 of every generated joint against central
     differences of g and of G^T nu, at random frames (quaternions not of unit
     length), offsets, axes and drive values (c, s); g is invariant under rescaling either
-    quaternion."""
+    quaternion (of p_b alone for the welds of an ANCF node, whose x[0..5] are nodal
+    vectors: tests/test_weld.py checks them at the scenes' parameters too)."""
     _, kinds = _joint_kinds()
     assert set(kinds) == {"spherical", "revolute", "universal", "fixed", "prismatic", "prescribed_rotation",
-                          "prescribed_translation"}
+                          "prescribed_translation", "weld_vectors", "weld_vector", "weld_tangent"}
     rng = np.random.default_rng(7)
     for name, (nrow, ev, he) in sorted(kinds.items()):
         for trial in range(3):
             x = rng.normal(size=NX)
             prm = rng.normal(size=NPARAM)
-            nu = rng.normal(size=nrow)
-
-            def g_of(xx):
-                g, G = np.zeros(nrow), np.zeros(nrow * NX)
-                xx = np.ascontiguousarray(xx)
-                ev(_p(xx), _p(prm), _p(g), _p(G))
-                return g, G.reshape(nrow, NX)
-            g0, G0 = g_of(x)
-            H = np.zeros(NX * NX)
-            he(_p(x), _p(prm), _p(nu), _p(H))
-            H = H.reshape(NX, NX)
-            h = 1e-6
-            Gfd = np.zeros((nrow, NX))
-            Hfd = np.zeros((NX, NX))
-            for j in range(NX):
-                e = np.zeros(NX)
-                e[j] = h
-                gp, Gp = g_of(x + e)
-                gm, Gm = g_of(x - e)
-                Gfd[:, j] = (gp - gm) / (2 * h)
-                Hfd[:, j] = (Gp.T @ nu - Gm.T @ nu) / (2 * h)
-            assert np.abs(G0 - Gfd).max() <= 1e-7 * max(1.0, np.abs(G0).max()), name
-            assert np.abs(H - Hfd).max() <= 1e-6 * max(1.0, np.abs(H).max()), name
-            assert np.abs(H - H.T).max() <= 1e-12 * max(1.0, np.abs(H).max()), name
+            g_of = joint_g(nrow, ev, prm)
+            g0, _ = g_of(x)
+            check_joint_derivatives(nrow, ev, he, x, prm, rng.normal(size=nrow), name)
             xs = x.copy()
-            xs[3:7] *= 1.7
+            if not name.startswith("weld"):
+                xs[3:7] *= 1.7
             xs[10:14] *= 0.6
             assert np.allclose(g_of(xs)[0], g0, rtol=1e-12, atol=1e-12), name
 
@@ -381,8 +392,10 @@ def test_bad_bodies_and_joints():
                 "constraint[1].axis", "nonzero")
     check_error(TIP.replace('type = "fixed"\na = "arm:end"\nb = "tip"', 'type = "fixed"\na = "tip"'),
                 "constraint[1].at", "needs the joint point")
-    check_error(TIP.replace('element = "gef"', 'element = "ancf3243"').replace('law = "resultant"', 'law = "svk"'),
-                "constraint[1].a", "needs a rotation on both sides")
+    check_error(TIP.replace('element = "gef"', 'element = "ancf3243"').replace('law = "resultant"', 'law = "svk"')
+                .replace('type = "fixed"\na = "arm:end"\nb = "tip"',
+                         'type = "revolute"\na = "arm:end"\nb = "tip"\naxis = [0.0, 1.0, 0.0]'),
+                "constraint[1].a", "needs a rotation on both sides; .*fixed to a rod point or a body")
     check_error(UNI.replace("axis_b = [0.0, 1.0, 0.0]", "axis_b = [1.0, 1.0, 0.0]"), "constraint[0].axis_b",
                 "perpendicular")
     check_error(UNI.replace('a = "bob"', 'a = "rob"'), "constraint[0].a", "a body name")

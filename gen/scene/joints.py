@@ -6,9 +6,8 @@ rows with rows.row(...) or holds DOFs with rows.fixed; JOINTS maps each
 `type` (gen/scene_keys.py CONSTRAINT) to its function.  Adding a joint: a
 function here, its keys in scene_keys.CONSTRAINT, a test.
 """
-import math
-
 import gen.scene_keys as K
+from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
 from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
                               get_number, get_str, get_vec3)
 
@@ -21,7 +20,8 @@ class Rows:
         self.amps = amps
         self.fixed = set()
         self.lincons = []
-        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint, name)
+        self.reactions = []     # per [[constraint]]: (index, type, point, element, xi, fixed, lincons, side, joint,
+        #                         name, joints: how many joints from `joint` on)
         self.side = None        # DOFs of the side-a body of a joint between bodies (None: all)
         self.keep_rows = False  # the rotating frame's constraint (dynamic.frame): its driven rows stay rows
 
@@ -308,45 +308,6 @@ def _drive(ctx, ct, where, rows, ctype):
     return (rate, amp, freq, scale, ampid)
 
 
-def _quat_rotation(p):
-    s0, x, y, z = p
-    n = s0 * s0 + x * x + y * y + z * z
-    s0, x, y, z = (c / math.sqrt(n) for c in p)
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - s0 * z), 2 * (x * z + s0 * y)],
-            [2 * (x * y + s0 * z), 1 - 2 * (x * x + z * z), 2 * (y * z - s0 * x)],
-            [2 * (x * z - s0 * y), 2 * (y * z + s0 * x), 1 - 2 * (x * x + y * y)]]
-
-
-def _endpoint(ctx, key, spec, mesh, ctype):
-    """A frame of a joint: {what, X, R, dofs (7 or None for the ground), rot}."""
-    if spec is None:
-        return {"what": "the ground", "X": None, "R": None, "dofs": None, "rot": True, "id": "ground"}
-    if isinstance(spec, str) and ":" not in spec and spec in mesh.bodies:
-        b = mesh.bodies[spec]
-        base = mesh.dof_of_node[b["gid"]]
-        return {"what": f"body {spec!r}", "X": b["X"], "R": b["R"], "dofs": list(range(base, base + 7)),
-                "rot": True, "id": ("node", b["gid"]), "where": (b["elem"], 0.0)}
-    if isinstance(spec, str) and ":" not in spec:
-        ctx.fail(key, f"expected BEAM:start, BEAM:end, BEAM:<arc length in m> or a body name, found {spec!r} "
-                 f"(bodies: {', '.join(mesh.bodies) or 'none'})")
-    beam, s_, gid = mesh.node_of(ctx, key, spec, f"{ctype} joint")
-    from gen.scene.mesh import locate
-    where = locate(beam, s_)
-    fd = mesh.field_dofs(gid)
-    X = mesh.nodes[gid][0]
-    if "p" in fd:
-        p = [mesh.q0[d] for d in fd["p"]]
-        return {"what": f"beam point {spec!r}", "X": X, "R": _quat_rotation(p), "dofs": fd["r"] + fd["p"],
-                "rot": True, "id": ("node", gid), "where": where}
-    return {"what": f"beam point {spec!r} (element {beam['element']}, no nodal rotation)", "X": X,
-            "R": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "dofs": fd["r"] + [-1] * 4,
-            "rot": False, "id": ("node", gid), "where": where}
-
-
-def _mtv(R, v):
-    return [sum(R[i][k] * v[i] for i in range(3)) for k in range(3)]
-
-
 def _joint_axes(ctx, ct, where, ctype):
     """Columns E1, E2, E3 (global) of the joint frame; the joint axis is E3."""
     if ctype in ("spherical", "fixed"):
@@ -380,7 +341,8 @@ def nonlinear_joint(ctx, ct, where, mesh, ctype, rows=None, actuated=False):
             if not e["rot"]:
                 why = " with an actuator" if actuated else ""
                 ctx.fail(f"{where}.{side}", f"a {ctype} joint{why} needs a rotation on both sides; {e['what']} "
-                         f"has none (use gef, euler_bernoulli, kirchhoff beams or a body)")
+                         "has none (use gef, euler_bernoulli, kirchhoff beams or a body; an ANCF point takes "
+                         "spherical, a clamp, and fixed to a rod point or a body)")
     if "at" in ct:
         X = get_vec3(ctx, ct, "at", where, bound=1e9)
     else:
@@ -446,6 +408,7 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
     rows.nlcons = []
     names = set()
     from gen.scene.actuators import AXIS_KIND, actuated_joints
+    from gen.scene.weld import is_weld, weld
     actuated = actuated_joints(doc)       # joints with a motor need their frames: nonlinear rows
     dyn = doc.get("dynamic")
     frame = dyn.get("frame") if isinstance(dyn, dict) and analysis == "dynamic" else None
@@ -457,11 +420,14 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         if "a" not in ct:
             ctx.fail(f"{where}.a", "missing; expected a point like 'arm:start'")
         name = _name(ctx, ct, where, ci, names)
+        if is_weld(ct, mesh, ctype):
+            weld(ctx, ct, where, mesh, rows, ctype, ci, name)
+            continue
         linear = _is_linear(ct, mesh, ctype)
         motor = ctype in AXIS_KIND and name in actuated   # (other types refuse it: gen/scene/actuators.py)
         if not linear or motor:
             joint, (e, xi) = nonlinear_joint(ctx, ct, where, mesh, ctype, rows, actuated=motor and linear)
-            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name))
+            rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], None, len(rows.nlcons), name, 1))
             rows.nlcons.append(joint)
             continue
         beam, s, gid = mesh.node_of(ctx, f"{where}.a", ct["a"], ctype)
@@ -473,5 +439,5 @@ def constraints(ctx, doc, mesh, amps=None, analysis="static"):
         rows.keep_rows = False
         e, xi = locate(beam, s)
         rows.reactions.append((ci, ctype, ct["a"], e, xi, sorted(rows.fixed - fixed0),
-                               list(range(nlin0, len(rows.lincons))), rows.side, -1, name))
+                               list(range(nlin0, len(rows.lincons))), rows.side, -1, name, 0))
     return rows

@@ -109,11 +109,11 @@ def write_model(model, path):
         out.append(f"tendon {amp} {_f(T)} {len(pieces)}")
         out += [f"piece {e} {_f(x0)} {_f(x1)} {_f(dy)} {_f(dz)}" for e, x0, x1, dy, dz in pieces]
     out.append(f"reactions {len(model['reactions'])}")
-    for ci, ctype, at, e, xi, fixed, lins, side, nlcon, name in model["reactions"]:
+    for ci, ctype, at, e, xi, fixed, lins, side, nlcon, name, njoint in model["reactions"]:
         side = side or []
         out.append(f"reaction {ci} {ctype} {name} {at} {e} {_f(xi)} {len(fixed)} " + " ".join(map(str, fixed))
                    + f" {len(lins)} " + " ".join(map(str, lins)) + f" {len(side)} " + " ".join(map(str, side))
-                   + f" {nlcon}")
+                   + f" {nlcon} {njoint}")
     out.append(f"sections {len(model['sections'])}")
     for bname, e, s0, s1, r, group in model["sections"]:
         out.append(f"section {bname} {e} {_f(s0)} {_f(s1)} {_f(r)} {group}")

@@ -147,6 +147,7 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         for (int k = 0; k < c->nside && !r->failed; ++k)
             c->side[k] = rd_inum(r, "reaction side DOF", 0, m->ndof - 1);
         c->nlcon = rd_inum(r, "reaction joint", -1, m->nnlcon - 1);
+        c->njoint = rd_inum(r, "reaction joints", 0, c->nlcon < 0 ? 0 : m->nnlcon - c->nlcon);
     }
 
     rd_expect(r, "sections");

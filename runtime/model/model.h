@@ -105,8 +105,11 @@ typedef struct bk_reaction {
     double xi;
     int nfixed, nlin, nside;
     int *fixed, *lin;
-    int *side;         /* DOFs of body a when the joint is between bodies (nside 0: all) */
-    int nlcon;         /* its joint nonlinear in q (model->nlcons), -1: none */
+    int *side;         /* DOFs of body a when the joint is between bodies (nside 0: all; of a
+                        * joint nonlinear in q: its x[0 .. 6]) */
+    int nlcon;         /* its first joint nonlinear in q (model->nlcons), -1: none */
+    int njoint;        /* its joints nonlinear in q, nlcons[nlcon .. nlcon + njoint - 1] (a weld
+                        * of an ANCF node is several: gen/scene/weld.py) */
 } bk_reaction;
 
 typedef struct bk_section_rec {  /* an element of a beam, for sections.csv */

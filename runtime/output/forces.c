@@ -307,17 +307,21 @@ static void write_reactions(bk_forces *f, bk_system *s, int step, double x, cons
                 bk_forces_map_dof(f, q, d, r, x0, F, M);
             }
         }
-        if (rc->nlcon >= 0) {             /* a joint nonlinear in q: -s G^T nu on frame a's (r, p) */
-            const bk_nlcon *jc = &m->nlcons[rc->nlcon];
+        for (int j = rc->nlcon; j >= 0 && j < rc->nlcon + rc->njoint; ++j) {
+            /* a joint nonlinear in q: -s G^T nu on frame a's (r, p), or on the side's DOFs */
+            const bk_nlcon *jc = &m->nlcons[j];
             double xj[BK_JOINT_NX], g[BK_JOINT_MAXROW], G[BK_JOINT_MAXROW * BK_JOINT_NX], prm[BK_JOINT_NPARAM];
             for (int i = 0; i < BK_JOINT_NX; ++i)
                 xj[i] = jc->dof[i] >= 0 ? q[jc->dof[i]] : jc->x0[i];
             bk_joint_params(jc, x, 0, prm);
             jc->kind->eval(xj, prm, g, G);
-            const int row0 = s->jrow[rc->nlcon];
-            for (int i = 0; i < 7; ++i) {
+            const int row0 = s->jrow[j];
+            for (int i = 0; i < BK_JOINT_NX; ++i) {
                 const int d = jc->dof[i];
-                if (d < 0)
+                int ok = d >= 0 && rc->nside == 0 && i < 7;
+                for (int k = 0; k < rc->nside && d >= 0 && !ok; ++k)
+                    ok = rc->side[k] == d;
+                if (!ok)
                     continue;
                 double r = 0.0;
                 for (int k = 0; k < jc->kind->nrow; ++k)
