@@ -320,3 +320,17 @@ def test_rotated_composite_cantilever_deflects_the_rotated_way():
     u0 = np.array(_run(src.read_text(), "composite")["sensors"]["tip"]["displacement"])
     u1 = np.array(_run(rot.read_text(), "composite_rotated")["sensors"]["tip"]["displacement"])
     assert np.abs(u1 - np.array(R) @ u0).max() < 1e-7 * np.abs(u0).max(), (u1, np.array(R) @ u0)
+
+
+def test_weld_of_a_uniform_ancf3363_warns_as_a_rigid_clamp_does():
+    """A weld holds the ANCF section rigid as a rigid clamp does, so a uniformly
+    meshed ancf3363 segment at a weld gets the clamp's grading warning
+    (tests/test_clamp_grading.py, the measured boundary layer); a segment graded
+    toward the weld does not."""
+    text = _two_segments("euler_bernoulli", "ancf3363", False, "fixed")
+    s = _run(text, "eb_3363_warn")
+    w = [x for x in s["warnings"] if "a weld (the section held rigid" in x]
+    assert len(w) == 1 and "beam s2" in w[0] and "beam.grading = 20" in w[0], s["warnings"]
+    graded = text.replace('name = "s2"\n', 'name = "s2"\ngrading = 20\n')
+    s = _run(graded, "eb_3363_graded")
+    assert not any("a weld (the section held rigid" in x for x in s["warnings"]), s["warnings"]

@@ -118,3 +118,5 @@ def weld(ctx, ct, where, mesh, rows, ctype, ci, name):
     else:
         e, xi = fr["where"]
     rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], side, first, name, len(rows.nlcons) - first))
+    from gen.scene.joints import graded_clamp_warning        # (joints.py imports this module)
+    graded_clamp_warning(mesh, where, beam, s, "a weld (the section held rigid, as a clamp holds it)")
