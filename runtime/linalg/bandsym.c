@@ -71,18 +71,14 @@ void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const do
     }
 }
 
-int bk_bandsym_factor(bk_bandsym *b, const double *band)
+int bk_band_ldlt(double *ab, int n, int kd, int ldab, double *D, double *restrict l)
 {
-    const int n = b->n, kd = b->kd, ldab = b->ldab;
-    double *ab = b->ab, *restrict l = b->piv;
-    if (band != ab)
-        memcpy(ab, band, (size_t)ldab * (size_t)n * sizeof *ab);
     for (int r = 0; r < ldab + BK_BAND_LANES; ++r)
         l[r] = 0.0;
     for (int j = 0; j < n; ++j) {
         double *col = ab + (long)j * ldab;           /* col[r] = A(j + r, j) */
         const double d = col[0];
-        b->D[j] = d;
+        D[j] = d;
         if (d == 0.0 || !isfinite(d))
             return -1;
         const int km = kd < n - 1 - j ? kd : n - 1 - j;
@@ -109,6 +105,13 @@ int bk_bandsym_factor(bk_bandsym *b, const double *band)
         }
     }
     return 0;
+}
+
+int bk_bandsym_factor(bk_bandsym *b, const double *band)
+{
+    if (band != b->ab)
+        memcpy(b->ab, band, (size_t)b->ldab * (size_t)b->n * sizeof *b->ab);
+    return bk_band_ldlt(b->ab, b->n, b->kd, b->ldab, b->D, b->piv);
 }
 
 void bk_bandsym_solve(bk_bandsym *b, double *x)
