@@ -172,7 +172,9 @@ static void run(const char *name, int kind)
     bk_symsplit own, lent;
     const long lens[2] = {(long)ldab * m + 5, (long)ldab * (n - m - kd)};
     double *store[2] = {malloc((size_t)lens[0] * sizeof(double)), malloc((size_t)lens[1] * sizeof(double))};
-    int plan = bk_symsplit_plan(&own, n, kd, ldab, m, NULL, NULL) | bk_symsplit_plan(&lent, n, kd, ldab, m, store, lens);
+    int plan = bk_symsplit_plan(&own, n, kd, ldab, m, NULL, NULL) |
+               bk_symsplit_plan(&lent, n, kd, ldab, m, store, lens);
+    const int borrowed = lent.blk[0].borrowed && lent.blk[1].borrowed && !own.blk[0].borrowed;
     omp_set_num_threads(1);
     int f1 = plan == 0 ? bk_symsplit_factor(&own, band) : -9;
     omp_set_num_threads(2);
@@ -234,8 +236,8 @@ static void run(const char *name, int kind)
         }
     }
     printf("case=%s n=%d kd=%d plan=%d factor=%d neg=%d sturm=%d band_neg=%d logdet=%.3e sign=%d res=%.3e "
-           "same_threads=%d\n", name, n, kd, plan, f1, f1 == 0 ? neg : -1, nst, band_neg,
-           fabs(logdet - ld) / fmax(1.0, fabs(ld)), (dsign < 0.0) == (sgn < 0), res, same);
+           "same_threads=%d lent=%d\n", name, n, kd, plan, f1, f1 == 0 ? neg : -1, nst, band_neg,
+           fabs(logdet - ld) / fmax(1.0, fabs(ld)), (dsign < 0.0) == (sgn < 0), res, same, borrowed);
     bk_symsplit_free(&own);
     bk_symsplit_free(&lent);
     bk_bandsym_free(&bs1);

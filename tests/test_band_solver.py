@@ -149,7 +149,7 @@ def test_split_band_ldlt_inertia_matches_a_sturm_count():
         assert int(d["neg"]) == int(d["sturm"]) == int(d["band_neg"]), (case, d)
         assert d["sign"] == "1" and float(d["logdet"]) <= 1e-9, (case, d)
         assert float(d["res"]) <= (1e-7 if case == "kkt" else 1e-12), (case, d)
-        assert d["same_threads"] == "1", (case, d)
+        assert d["same_threads"] == "1" and d["lent"] == "1", (case, d)
     assert 0 < int(res["indefinite"]["neg"]) < int(res["indefinite"]["n"]), res["indefinite"]
     assert int(res["kkt"]["neg"]) >= 2 * 33, res["kkt"]          # at least one per multiplier
     assert res["zero"]["factor"] == "-1" and res["nonfinite"]["factor"] == "-1", res
