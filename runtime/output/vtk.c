@@ -352,20 +352,13 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
     }
     if (!mv) {
         put_u64(fp, sz_cell);
-        double qe[BK_MAX_ELEMENT_DOF];
+        bk_vtk_energy_density(m, q, pts, par);        /* (pts: free now; nelem <= 3 npts) */
         for (int e = 0; e < m->nelem; ++e) {
-            const bk_elem *el = &m->elems[e];
-            const bk_pair *p = m->pairs[el->pair];
-            bk_gather(m, e, q, qe);
-            const double *g = m->geoms[el->geom];
-            /* a layer (bk_kernel.h): its energy over its band's volume */
-            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) /
-                          (g[BK_GEOM_L] * g[BK_GEOM_A] * (1.0 - g[BK_GEOM_BAND_LO] - g[BK_GEOM_BAND_HI]));
             int r = bk_vtk_ring_points(m, e), nc = (NX - 1) * r + 1;
             double vals[(NX - 1) * MAX_RING + 1];
             for (int c = 0; c < nc; ++c)
-                vals[c] = dens;
-            fwrite(vals, sizeof dens, (size_t)nc, fp);
+                vals[c] = pts[e];
+            fwrite(vals, sizeof *vals, (size_t)nc, fp);
         }
     }
     fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (bk_vtk_topology) */

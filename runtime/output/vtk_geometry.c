@@ -223,6 +223,21 @@ void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv
     }
 }
 
+void bk_vtk_energy_density(const bk_model *m, const double *q, double *dens, int par)
+{
+#pragma omp parallel for schedule(static) if (par && m->nelem >= 256)
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        double qe[BK_MAX_ELEMENT_DOF];
+        bk_gather(m, e, q, qe);
+        const double *g = m->geoms[el->geom];
+        /* a layer (bk_kernel.h): its energy over its band's volume */
+        dens[e] = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) /
+                  (g[BK_GEOM_L] * g[BK_GEOM_A] * (1.0 - g[BK_GEOM_BAND_LO] - g[BK_GEOM_BAND_HI]));
+    }
+}
+
 /* Cells and connectivity entries of every frame of the model. */
 void bk_vtk_frame_cells(const bk_model *m, long *ncell, long *nconn)
 {

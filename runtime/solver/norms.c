@@ -81,6 +81,7 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
     const bk_model *m = s->m;
     double mx = 0.0;
     (void)n;
+#pragma omp parallel for schedule(static) reduction(max : mx) if (m->nelem >= 4096)
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         const bk_element *et = m->pairs[el->pair]->element;
@@ -91,7 +92,7 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
                 double v = a[d[i]] - (b ? b[d[i]] : 0.0);
                 ss += v * v;
             }
-            mx = fmax(mx, ss);
+            mx = ss > mx ? ss : mx;          /* (a NaN is passed over, as fmax does) */
         }
     }
     return sqrt(mx);
