@@ -81,7 +81,6 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
     const bk_model *m = s->m;
     double mx = 0.0;
     (void)n;
-#pragma omp parallel for schedule(static) reduction(max : mx) if (m->nelem >= 4096)
     for (int e = 0; e < m->nelem; ++e) {
         const bk_elem *el = &m->elems[e];
         const bk_element *et = m->pairs[el->pair]->element;
@@ -92,7 +91,7 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
                 double v = a[d[i]] - (b ? b[d[i]] : 0.0);
                 ss += v * v;
             }
-            mx = ss > mx ? ss : mx;          /* (a NaN is passed over, as fmax does) */
+            mx = fmax(mx, ss);
         }
     }
     return sqrt(mx);
@@ -102,10 +101,8 @@ double bk_norm_matrix_max(const bk_norms *n, const bk_system *s, const double *A
 {
     /* four partial sums per group: one chain of dependent additions over every
      * matrix entry was a tenth of a small model's solve (it runs for every new
-     * matrix); a large model's groups on the threads (a maximum: the same
-     * for any thread count) */
+     * matrix) */
     double mx = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : mx) if (n->ngroup >= 4096)
     for (int g = 0; g < n->ngroup; ++g) {
         double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
         int dim = n->gstart[g + 1] - n->gstart[g];
