@@ -156,56 +156,75 @@ int bk_make_pattern(bk_system *s)
         return -1;
     }
     /* each column's rows without repeats (seen: the last column a row was
-     * seen in), then sorted: they come as a few ascending runs, one per
-     * element, which an insertion sort takes in about linear time (qsort was a
-     * tenth of a small model's run) */
-    int *seen = malloc(((size_t)s->neq + 1) * sizeof *seen);
+     * seen in, one array a thread), then sorted: they come as a few ascending
+     * runs, one per element, which an insertion sort takes in about linear
+     * time (qsort was a tenth of a small model's run); the columns on the
+     * threads, then packed in order */
+    int nth = 1;
+#ifdef _OPENMP
+    if (m->nelem >= BK_PAR_MIN_ELEMS)
+        nth = omp_get_max_threads() > 1 ? omp_get_max_threads() : 1;
+#endif
+    int *seen = malloc((size_t)nth * ((size_t)s->neq + 1) * sizeof *seen);
     if (!seen) {
         free(cnt);
         free(off);
         free(rows);
         return -1;
     }
-    for (int j = 0; j < s->neq; ++j)
-        seen[j] = -1;
+    BK_OMP(omp parallel num_threads(nth) if (nth > 1))
+    {
+        int *sn = seen, neq = s->neq;
+#ifdef _OPENMP
+        sn += (size_t)omp_get_thread_num() * ((size_t)neq + 1);
+#endif
+        for (int j = 0; j < neq; ++j)
+            sn[j] = -1;
+        BK_OMP(omp for schedule(static))
+        for (int j = 0; j < neq; ++j) {
+            int *col = rows + off[j];
+            long n = cnt[j], u = 0;
+            for (long k = 0; k < n; ++k)
+                if (sn[col[k]] != j) {
+                    sn[col[k]] = j;
+                    col[u++] = col[k];
+                }
+            if (u > 64)
+                qsort(col, (size_t)u, sizeof *col, cmp_int);
+            else
+                for (long k = 1; k < u; ++k) {
+                    const int v = col[k];
+                    long i = k;
+                    for (; i > 0 && col[i - 1] > v; --i)
+                        col[i] = col[i - 1];
+                    col[i] = v;
+                }
+            cnt[j] = u;
+        }
+    }
     long nnz = 0;
     for (int j = 0; j < s->neq; ++j) {
-        int *col = rows + off[j];
-        long n = cnt[j], u = 0;
-        for (long k = 0; k < n; ++k)
-            if (seen[col[k]] != j) {
-                seen[col[k]] = j;
-                col[u++] = col[k];
-            }
-        if (u > 64)
-            qsort(col, (size_t)u, sizeof *col, cmp_int);
-        else
-            for (long k = 1; k < u; ++k) {
-                const int v = col[k];
-                long i = k;
-                for (; i > 0 && col[i - 1] > v; --i)
-                    col[i] = col[i - 1];
-                col[i] = v;
-            }
         s->Ap[j] = (int)nnz;
-        memmove(rows + nnz, col, (size_t)u * sizeof *col);
-        nnz += u;
+        memmove(rows + nnz, rows + off[j], (size_t)cnt[j] * sizeof *rows);
+        nnz += cnt[j];
     }
     s->Ap[s->neq] = (int)nnz;
     s->nnz = nnz;
-    free(seen);
     free(cnt);
     free(off);
     s->Ai = realloc(rows, (size_t)(nnz ? nnz : 1) * sizeof *rows);
     if (!s->Ai) {
         free(rows);
+        free(seen);
         return -1;
     }
 
-    /* Scatter maps. */
+    /* Scatter maps (seen, one array a thread, is their scratch). */
     s->eslot_off = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_off);
-    if (!s->eslot_off)
+    if (!s->eslot_off) {
+        free(seen);
         return -1;
+    }
     long tot = 0;
     for (int e = 0; e < m->nelem; ++e) {
         int nd = m->pairs[m->elems[e].pair]->element->ndof;
@@ -214,33 +233,39 @@ int bk_make_pattern(bk_system *s)
     }
     s->eslot_off[m->nelem] = (int)tot;
     s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
-    if (!s->eslot)
+    if (!s->eslot) {
+        free(seen);
         return -1;
+    }
     {
-        /* at[row]: the slot of row in the column at hand (one pass over the
-         * column instead of a bisection per entry); a slot outside that
-         * column's range is another column's */
-        int *at = malloc(((size_t)s->neq + 1) * sizeof *at);
-        if (!at)
-            return -1;
-        for (int j = 0; j < s->neq; ++j)
-            at[j] = -1;
-        for (int e = 0; e < m->nelem; ++e) {
-            const bk_elem *el = &m->elems[e];
-            int nd = m->pairs[el->pair]->element->ndof;
-            int *sl = s->eslot + s->eslot_off[e];
-            for (int c = 0; c < nd; ++c) {
-                const int col = s->eq[el->dofs[c]];
-                const int lo = col >= 0 ? s->Ap[col] : 0, hi = col >= 0 ? s->Ap[col + 1] : 0;
-                for (int p = lo; p < hi; ++p)
-                    at[s->Ai[p]] = p;
-                for (int r = 0; r < nd; ++r) {
-                    const int row = s->eq[el->dofs[r]], p = row >= 0 ? at[row] : -1;
-                    sl[r * nd + c] = p >= lo && p < hi ? p : -1;
+        /* a[row]: the slot of row in the column at hand (one pass over the column instead of a
+         * bisection per entry); a slot outside that column's range is another column's */
+        BK_OMP(omp parallel num_threads(nth) if (nth > 1))
+        {
+            int *a = seen;
+#ifdef _OPENMP
+            a += (size_t)omp_get_thread_num() * ((size_t)s->neq + 1);
+#endif
+            for (int j = 0; j < s->neq; ++j)
+                a[j] = -1;
+            BK_OMP(omp for schedule(static))
+            for (int e = 0; e < m->nelem; ++e) {
+                const bk_elem *el = &m->elems[e];
+                int nd = m->pairs[el->pair]->element->ndof;
+                int *sl = s->eslot + s->eslot_off[e];
+                for (int c = 0; c < nd; ++c) {
+                    const int col = s->eq[el->dofs[c]];
+                    const int lo = col >= 0 ? s->Ap[col] : 0, hi = col >= 0 ? s->Ap[col + 1] : 0;
+                    for (int p = lo; p < hi; ++p)
+                        a[s->Ai[p]] = p;
+                    for (int r = 0; r < nd; ++r) {
+                        const int row = s->eq[el->dofs[r]], p = row >= 0 ? a[row] : -1;
+                        sl[r * nd + c] = p >= lo && p < hi ? p : -1;
+                    }
                 }
             }
         }
-        free(at);
+        free(seen);
     }
     /* The first term of every slot in element order is stored, not added
      * (assembly zeroes only the slots no element touches): efirst marks it. */

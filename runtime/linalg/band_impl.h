@@ -1,6 +1,6 @@
 /* band_impl.h -- what the band LU (bandlu.c) and the band LDL^T (bandsym.c)
  * share (private to linalg/): the inner loop of their eliminations, the
- * reverse Cuthill-McKee ordering and the half bandwidths of an ordering. */
+ * symmetric band elimination (with symsplit.c), the reverse Cuthill-McKee ordering and the half bandwidths of an ordering. */
 #ifndef BK_BAND_IMPL_H
 #define BK_BAND_IMPL_H
 
@@ -12,6 +12,13 @@ static inline void axpy_sub(int m, double a, const double *restrict x, double *r
     for (int r = 0; r < m; ++r)
         y[r] -= a * x[r];
 }
+
+/* L D L^T without pivoting of the symmetric band ab[ldab n] (lower triangle,
+ * column c at ab + c ldab, row c + r at [r]; half bandwidth kd; ldab a
+ * multiple of BK_BAND_LANES above kd), in place: L below the diagonal, D[n]
+ * the pivots; l[ldab + BK_BAND_LANES] scratch.  0, or -1 at a zero or
+ * non-finite pivot (D holds the pivots up to it). */
+int bk_band_ldlt(double *ab, int n, int kd, int ldab, double *D, double *l);
 
 /* A reverse Cuthill-McKee ordering of the pattern (n columns Ap, Ai): perm[n];
  * 0, or -1 when out of memory. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "linalg/band_impl.h"
+#include "linalg/bandsplit.h"
 
 int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const int *order, int kd, long max_storage)
 {
@@ -47,42 +48,75 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
     return 0;
 }
 
+/* Halves the off-diagonal entries of band column c: each holds a + a^T (or a
+ * alone); the diagonal is its own transpose. */
+static void halve_column(double *col, int ldab)
+{
+    const double d = col[0];
+#pragma omp simd
+    for (int r = 0; r < ldab; ++r)
+        col[r] *= 0.5;
+    col[0] = d;
+}
+
 void bk_bandsym_fill(const bk_bandsym *b, const int *Ap, const int *Ai, const double *Ax, double *band)
 {
-    const int n = b->n, ldab = b->ldab, *restrict iperm = b->iperm;
-    memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
-    for (int j = 0; j < n; ++j) {
-        const int c = iperm[j];
-        for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
-            /* (r, c) and (c, r) share the lower entry */
-            const int r = iperm[Ai[p]], lo = r < c ? r : c, hi = r < c ? c : r;
-            band[(hi - lo) + (long)lo * ldab] += Ax[p];
+    const int n = b->n, ldab = b->ldab, *restrict iperm = b->iperm, *restrict perm = b->perm;
+    if (n < BK_BANDSPLIT_MIN) {
+        memset(band, 0, (size_t)ldab * (size_t)n * sizeof *band);
+        for (int j = 0; j < n; ++j) {
+            const int c = iperm[j];
+            for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+                /* (r, c) and (c, r) share the lower entry */
+                const int r = iperm[Ai[p]], lo = r < c ? r : c, hi = r < c ? c : r;
+                band[(hi - lo) + (long)lo * ldab] += Ax[p];
+            }
         }
+        for (int c = 0; c < n; ++c)
+            halve_column(band + (long)c * ldab, ldab);
+        return;
     }
-    /* each off-diagonal entry holds a + a^T (or a alone): half of it; the
-     * diagonal is its own transpose */
-    for (int c = 0; c < n; ++c) {
-        double *col = band + (long)c * ldab;
-        const double d = col[0];
-#pragma omp simd
-        for (int r = 0; r < ldab; ++r)
-            col[r] *= 0.5;
-        col[0] = d;
+    /* a long band on the threads, by band column c (the pattern's column
+     * perm[c]): first its entries on and below the diagonal into column c,
+     * then those above into the column of their row; each place gets at most
+     * one entry in each pass, and a sum of two is the same whatever their
+     * order: the same bits as above, on any number of threads */
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+        for (int c = 0; c < n; ++c) {
+            double *col = band + (long)c * ldab;
+            memset(col, 0, (size_t)ldab * sizeof *col);
+            const int j = perm[c];
+            for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+                const int r = iperm[Ai[p]];
+                if (r >= c)
+                    col[r - c] += Ax[p];
+            }
+        }
+#pragma omp for schedule(static)
+        for (int c = 0; c < n; ++c) {
+            const int j = perm[c];
+            for (int p = Ap[j]; p < Ap[j + 1]; ++p) {
+                const int r = iperm[Ai[p]];
+                if (r < c)
+                    band[(c - r) + (long)r * ldab] += Ax[p];
+            }
+        }
+#pragma omp for schedule(static)
+        for (int c = 0; c < n; ++c)
+            halve_column(band + (long)c * ldab, ldab);
     }
 }
 
-int bk_bandsym_factor(bk_bandsym *b, const double *band)
+int bk_band_ldlt(double *ab, int n, int kd, int ldab, double *D, double *restrict l)
 {
-    const int n = b->n, kd = b->kd, ldab = b->ldab;
-    double *ab = b->ab, *restrict l = b->piv;
-    if (band != ab)
-        memcpy(ab, band, (size_t)ldab * (size_t)n * sizeof *ab);
     for (int r = 0; r < ldab + BK_BAND_LANES; ++r)
         l[r] = 0.0;
     for (int j = 0; j < n; ++j) {
         double *col = ab + (long)j * ldab;           /* col[r] = A(j + r, j) */
         const double d = col[0];
-        b->D[j] = d;
+        D[j] = d;
         if (d == 0.0 || !isfinite(d))
             return -1;
         const int km = kd < n - 1 - j ? kd : n - 1 - j;
@@ -109,6 +143,13 @@ int bk_bandsym_factor(bk_bandsym *b, const double *band)
         }
     }
     return 0;
+}
+
+int bk_bandsym_factor(bk_bandsym *b, const double *band)
+{
+    if (band != b->ab)
+        memcpy(b->ab, band, (size_t)b->ldab * (size_t)b->n * sizeof *b->ab);
+    return bk_band_ldlt(b->ab, b->n, b->kd, b->ldab, b->D, b->piv);
 }
 
 void bk_bandsym_solve(bk_bandsym *b, double *x)

@@ -61,3 +61,8 @@ bk_band *bk_lin_band(bk_linsolver *s)
 {
     return s->ops == &bk_lin_band_ops ? &s->band : NULL;
 }
+
+bk_bandsplit *bk_lin_split(bk_linsolver *s)
+{
+    return s->ops == &bk_lin_bandsplit_ops ? &s->split : NULL;
+}

@@ -86,6 +86,9 @@ const char *bk_lin_name(const bk_linsolver *s);
  * stability service takes its ordering and borrows its storage between
  * factorizations (stability.h). */
 bk_band *bk_lin_band(bk_linsolver *s);
+/* The split band LU when that backend was chosen, else NULL: the stability
+ * service takes its order and cut and borrows its blocks' storage. */
+bk_bandsplit *bk_lin_split(bk_linsolver *s);
 
 /* The backends (used by bk_lin_init_kind). */
 extern const bk_lin_ops bk_lin_band_ops, bk_lin_bandsplit_ops, bk_lin_klu_ops, bk_lin_dense_ops;

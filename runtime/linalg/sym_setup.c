@@ -73,12 +73,29 @@ static void free_pattern(bk_symsolver *f)
 /* A narrow band: the values now and the factor go into the band LU's storage
  * when it holds both (lu: the Newton solver's plan, or NULL), so that a
  * factorization touches no memory of its own (a page touched the first time
- * costs more than the whole band factorization of a small model: 1-10 us). */
-static int use_band(bk_symsolver *f, bk_band *lu)
+ * costs more than the whole band factorization of a small model: 1-10 us).
+ * A long band (BK_BANDSPLIT_MIN unknowns and more) in two halves and a
+ * separator: the split band LU's cut, and its blocks' storage for the halves'
+ * factors (sp: the Newton solver's, or NULL: the cut in the middle, storage of
+ * its own). */
+static int use_band(bk_symsolver *f, bk_band *lu, bk_bandsplit *sp)
 {
     size_t len = (size_t)f->band.ldab * (size_t)(f->n > 0 ? f->n : 1);
     f->use_band = 1;
     f->nval = (long)len;
+    if (f->n >= BK_BANDSPLIT_MIN) {
+        const int kd = f->band.kd;
+        double *store[2] = {sp ? sp->blk[0].ab : NULL, sp ? sp->blk[1].ab : NULL};
+        const long lens[2] = {sp ? (long)sp->blk[0].ldab * sp->blk[0].nb : 0,
+                              sp ? (long)sp->blk[1].ldab * sp->blk[1].nb : 0};
+        const int m = sp && sp->s == kd ? sp->m : (f->n - kd) / 2;
+        const int rc = bk_symsplit_plan(&f->split, f->n, kd, f->band.ldab, m, sp && sp->s == kd ? store : NULL,
+                                        lens);
+        f->use_split = rc == 0;
+        if (rc != 0 && f->n >= 2 * kd + 4)
+            return -1;                   /* (out of memory; a band too short stays whole) */
+        lu = NULL;
+    }
     if (lu && lu->ab && (size_t)lu->ldab * (size_t)lu->n >= 2 * len + BK_BAND_LANES) {
         /* whole vectors from a 64-byte boundary, as the plan's own array */
         double *ab = lu->ab + (BK_BAND_LANES - (uintptr_t)lu->ab / sizeof *ab % BK_BAND_LANES) % BK_BAND_LANES;
@@ -99,13 +116,14 @@ static int use_band(bk_symsolver *f, bk_band *lu)
  * Cuthill-McKee order; kd its half bandwidth when known, else -1) when narrow
  * enough: 0 (its buffers made), 1 (not narrow: nothing kept), -1 (out of
  * memory). */
-static int band_plan(bk_symsolver *f, const int *Ap, const int *Ai, const int *order, int kd, bk_band *lu)
+static int band_plan(bk_symsolver *f, const int *Ap, const int *Ai, const int *order, int kd, bk_band *lu,
+                     bk_bandsplit *sp)
 {
     int bp = bk_bandsym_plan(&f->band, f->n, Ap, Ai, order, kd, BK_BAND_MAX_STORAGE);
     if (bp < 0)
         return -1;
     if (bp == 0 && f->band.kd <= BK_BAND_MAX_WIDTH / 2)
-        return use_band(f, lu);
+        return use_band(f, lu, sp);
     if (bp == 0)
         bk_bandsym_free(&f->band);
     return 1;
@@ -164,14 +182,19 @@ int bk_sym_init(bk_symsolver *f, int n, const int *Ap, const int *Ai, const char
      * of the symmetric pattern's own (beams): a band L D L^T, any symmetric
      * order has the same inertia (Sylvester).  Else AMD on the whole pattern. */
     bk_band *lu = ls ? bk_lin_band(ls) : NULL;
+    bk_bandsplit *sp = ls ? bk_lin_split(ls) : NULL;
     if (lu && (lu->n != n || lu->Ap != Ap || lu->Ai != Ai))
         lu = NULL;                       /* a plan of another pattern: its widths are not this one's */
-    int bp = lu ? band_plan(f, Ap, Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku, lu) : 1;
+    if (sp && (sp->n != n || sp->Ap != Ap || sp->Ai != Ai))
+        sp = NULL;
+    int bp = lu   ? band_plan(f, Ap, Ai, lu->perm, lu->kl > lu->ku ? lu->kl : lu->ku, lu, NULL)
+             : sp ? band_plan(f, Ap, Ai, sp->perm, sp->kl > sp->ku ? sp->kl : sp->ku, NULL, sp)
+                  : 1;
     if (bp <= 0)
         return bp;
     if (sym_pattern(f) != 0)
         return -1;
-    if (!lu && (bp = band_plan(f, f->Bp, f->Bi, NULL, -1, NULL)) <= 0) {
+    if (!lu && !sp && (bp = band_plan(f, f->Bp, f->Bi, NULL, -1, NULL, NULL)) <= 0) {
         free_pattern(f);
         return bp;
     }
@@ -193,6 +216,7 @@ void bk_sym_free(bk_symsolver *f)
     free(f->z);
     free(f->Li);
     free(f->Lx);
+    bk_symsplit_free(&f->split);         /* (its borrowed blocks stay the split band LU's) */
     if (f->lender)
         f->band.ab = NULL;               /* the band LU's */
     else if (f->use_band)

@@ -83,6 +83,8 @@ void bk_sym_fill(const bk_symsolver *f, const double *Ax, const char *reg, doubl
 
 int bk_sym_factor(bk_symsolver *f, const double *vals)
 {
+    if (f->use_split)
+        return bk_symsplit_factor(&f->split, vals);
     if (f->use_band)
         return bk_bandsym_factor(&f->band, vals) != 0 ? -1 : 0;
     const int n = f->n;
@@ -93,7 +95,7 @@ int bk_sym_factor(bk_symsolver *f, const double *vals)
 
 const double *bk_sym_pivots(const bk_symsolver *f)
 {
-    return f->use_band ? f->band.D : f->D;
+    return f->use_split ? f->split.D : f->use_band ? f->band.D : f->D;
 }
 
 int bk_sym_negative(const bk_symsolver *f)
@@ -108,6 +110,15 @@ int bk_sym_negative(const bk_symsolver *f)
 void bk_sym_solve(bk_symsolver *f, const double *x, double *y)
 {
     const int n = f->n;
+    if (f->use_split) {                  /* (in the band's order: its scratch w) */
+        double *w = f->band.w;
+        for (int i = 0; i < n; ++i)
+            w[i] = x[f->band.perm[i]];
+        bk_symsplit_solve(&f->split, w);
+        for (int i = 0; i < n; ++i)
+            y[f->band.perm[i]] = w[i];
+        return;
+    }
     if (f->use_band) {
         if (y != x)
             memcpy(y, x, (size_t)n * sizeof *y);

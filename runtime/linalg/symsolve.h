@@ -8,7 +8,11 @@
  *           order; when the band LU's storage holds them, the factor and the
  *           values now are placed there (borrowed), so a factorization touches
  *           no fresh memory (the band LU must then factor anew after any of
- *           these calls: bk_sym_begin tells it);
+ *           these calls: bk_sym_begin tells it); a band of BK_BANDSPLIT_MIN
+ *           unknowns and more is factored in two halves and a separator on
+ *           two threads (symsplit.h: in the split band LU's order and cut,
+ *           its blocks' storage borrowed for the halves' factors, when the
+ *           Newton solver uses it; the same bits for any thread count);
  *   sparse  SuiteSparse LDL on the symmetric pattern with AMD ordering, the
  *           unknowns marked `first` eliminated first (each in its AMD rank).
  *
@@ -27,15 +31,17 @@
 #define BK_SYMSOLVE_H
 
 #include "linalg/linsolve.h"
+#include "linalg/symsplit.h"
 
 typedef struct bk_symsolver {
-    int n, use_band;
+    int n, use_band, use_split;      /* use_split: the band in two halves (symsplit.h) */
     long nval;                       /* doubles in a values array */
     double *now;                     /* [nval] the values now (owned, or the band LU's) */
     double *scratch;                 /* [nval] (sparse: owned; band: the factor, band.ab) */
     bk_band *lender;                 /* NULL, or the band LU whose storage holds now and the factor */
     const int *Ap, *Ai;              /* the matrix's pattern (not owned) */
     bk_bandsym band;
+    bk_symsplit split;
     /* sparse: the symmetric pattern with every diagonal, and for each of its
      * entries the positions of (i,j) and (j,i) in the matrix's values */
     int *Bp, *Bi, *src, *srct;

@@ -11,6 +11,10 @@
 #include "base/json.h"
 #include "assembly/loads.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
 {
     memset(f, 0, sizeof *f);
@@ -36,10 +40,17 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
         if (m->pairs[m->elems[e].pair]->sections && m->pairs[m->elems[e].pair]->nsample > maxsample)
             maxsample = m->pairs[m->elems[e].pair]->nsample;
     f->maxsample = maxsample;
-    f->sres = malloc(9 * (size_t)maxsample * sizeof *f->sres);
+    f->nthread = 1;
+#ifdef _OPENMP
+    f->nthread = omp_get_max_threads() > 1 ? omp_get_max_threads() : 1;
+#endif
+    const size_t nt = (size_t)f->nthread, ne = (size_t)(m->nelem ? m->nelem : 1);
+    f->sbuf = calloc(nt * (6 * md + 4 * md * md), sizeof *f->sbuf);
+    f->sres = malloc(nt * 9 * (size_t)maxsample * sizeof *f->sres);
+    f->spos = malloc((6 + 3 * (size_t)maxsample) * ne * sizeof *f->spos);
     f->ssec = malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
     if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||
-        !f->ssec) {
+        !f->ssec || !f->sbuf || !f->spos) {
         fprintf(err, "error: out of memory for the reactions and section forces\n");
         return -1;
     }
@@ -119,6 +130,8 @@ void bk_forces_close(bk_forces *f)
     free(f->last);
     free(f->sec);
     free(f->sres);
+    free(f->sbuf);
+    free(f->spos);
     free(f->ssec);
     free(f->relem);
     free(f->rmass);

@@ -57,7 +57,11 @@ typedef struct bk_forces {
     double *sec;                  /* [12 nelem] N, Q2, Q3, T, M2, M3 at the start and the end of each
                                    * element at output step sec_step (for the ParaView frames) */
     int sec_step;
-    double *sres;                 /* [9 maxsample] the output of a pair's sections() */
+    int nthread;                  /* the section forces' threads (OpenMP's most; 1 serial) */
+    double *sbuf;                 /* [nthread (6 maxdof + 4 maxdof^2)] their element buffers */
+    double *sres;                 /* [nthread 9 maxsample] the output of a pair's sections(), per thread */
+    double *spos;                 /* [(6 + 3 maxsample) nelem] the rows' points: the element's ends, its
+                                   * sample points (sections.c) */
     int maxsample;                /* the most sample points of a pair's sections() (at least 1) */
     double *ssec;                 /* [6 maxsample nelem] N, Q2, Q3, T, M2, M3 of the element's own stress
                                    * resultants at its sample points, step sec_step (NaN: none) */

@@ -11,6 +11,10 @@
 #include "model/amplitude.h"
 #include "base/csvrow.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 /* The force and moment the element's node `node` (first or last) exerts on it,
  * about the node's position xn. */
 static void node_action(const bk_forces *f, const bk_model *m, int e, int node, const double *q, const double *ge,
@@ -91,88 +95,120 @@ static void section_row(FILE *fp, bk_rowqueue *rq, int step, double t, const cha
     bk_row_end(&r);
 }
 
-/* The rows of the element's own stress resultants (bk_pair.sections) at its
- * sample points: source = the pair's label. */
-static void write_stress_rows(bk_forces *f, const bk_model *m, const bk_section_rec *sr, int step, double x,
-                              const double *qe)
+/* The element's own stress resultants (bk_pair.sections) at its sample points
+ * into f->ssec and their points into pos (sres: the thread's scratch). */
+static void stress_values(bk_forces *f, const bk_model *m, int e, const double *qe, double *sres, double *pos)
 {
-    const int e = sr->elem;
     const bk_elem *el = &m->elems[e];
     const bk_pair *p = m->pairs[el->pair];
     if (!p->sections)
         return;
-    p->sections(m->geoms[el->geom], qe, m->tabs[el->geom], m->mats[el->mat].params, f->sres);
+    p->sections(m->geoms[el->geom], qe, m->tabs[el->geom], m->mats[el->mat].params, sres);
     for (int k = 0; k < p->nsample; ++k) {
-        const double *o = f->sres + 9 * k, xi = p->sample_xi[k];
-        double out[6];
-        section_components(m, e, qe, xi, o + 3, o + 6, 1.0, out);
-        for (int i = 0; i < 6; ++i)
-            f->ssec[6 * ((size_t)f->maxsample * (size_t)e + (size_t)k) + i] = out[i];
-        section_row(f->sections, f->rq, step, x, sr->beam, e, p->sample_source, k, xi, sr->s0 + xi * (sr->s1 - sr->s0), o,
-                    out);
+        const double *o = sres + 9 * k;
+        section_components(m, e, qe, p->sample_xi[k], o + 3, o + 6, 1.0,
+                           f->ssec + 6 * ((size_t)f->maxsample * (size_t)e + (size_t)k));
+        for (int i = 0; i < 3; ++i)
+            pos[3 * k + i] = o[i];
     }
 }
 
+/* Section record k's section forces: its element's nodal actions at both ends
+ * into f->sec and their points into f->spos, its own stress resultants (buf,
+ * sres: the thread's scratch). */
+static void section_values(bk_forces *f, bk_system *s, int k, double x, const double *q, const double *qd,
+                           const double *qdd, double *buf, double *sres)
+{
+    const bk_model *m = s->m;
+    size_t md = (size_t)s->maxdof;
+    double *ge = buf, *Qe = ge + md, *qe = Qe + md, *qde = qe + md, *qdde = qde + md;
+    double *K1 = qdde + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
+    const double ra = m->dyn.rayleigh_alpha, rb = m->dyn.rayleigh_beta;
+    const bk_section_rec *sr = &m->sections[k];
+    const int e = sr->elem;
+    const bk_elem *el = &m->elems[e];
+    const bk_pair *p = m->pairs[el->pair];
+    const bk_element *et = p->element;
+    const bk_mat *mat = &m->mats[el->mat];
+    const int ne = et->ndof;
+    double *pos = f->spos + (6 + 3 * (size_t)f->maxsample) * (size_t)e;
+    bk_gather(m, e, q, qe);
+    if (qdd && rb != 0.0)
+        p->force_tangent(qe, m->tabs[el->geom], mat->params, ge, K1);
+    else
+        p->force(qe, m->tabs[el->geom], mat->params, ge);
+    if (qdd) {
+        bk_gather(m, e, qd, qde);
+        bk_gather(m, e, qdd, qdde);
+        if (rb != 0.0)
+            for (int i = 0; i < ne; ++i)
+                for (int j = 0; j < ne; ++j)
+                    ge[i] += rb * K1[i * ne + j] * qde[j];
+        bk_element_mass(m, e, K1, Me);
+        for (int j = 0; j < ne; ++j)
+            Qe[j] = qdde[j] + ra * qde[j];           /* (Qe is free until the viscous forces) */
+        bk_forces_rows_times(ne, Me, Qe, ge, 0);
+        if (mat->nvisc > 0 && p->viscous) {
+            p->viscous_force(qe, qde, m->tabs[el->geom], mat->visc, Qe);
+            for (int i = 0; i < ne; ++i)
+                ge[i] += Qe[i];
+        }
+        if (et->rotary) {
+            double T = 0.0;
+            et->rotary(m->geoms[el->geom], qe, qde, qdde, Qe, K1, K2, K3, &T);
+            for (int i = 0; i < ne; ++i)
+                ge[i] += mat->rho * Qe[i];
+        }
+    }
+    bk_element_loads(s, q, x, e, Qe);
+    for (int i = 0; i < ne; ++i)
+        ge[i] -= Qe[i];
+    for (int end = 0; end < 2; ++end) {
+        double *xn = pos + 3 * end, F[3], M[3];
+        xn[0] = xn[1] = xn[2] = NAN;
+        node_action(f, m, e, end ? et->nnode - 1 : 0, q, ge, xn, F, M);
+        section_components(m, e, qe, et->node_xi[end ? et->nnode - 1 : 0], F, M, end ? 1.0 : -1.0,
+                           f->sec + 12 * (size_t)e + 6 * end);
+    }
+    if (f->sections)
+        stress_values(f, m, e, qe, sres, pos + 6);
+}
+
+/* The section forces of every section record, on the threads (each record's
+ * own computation: the same bits for any thread count), then their rows in
+ * the records' order. */
 void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
                            const double *qdd)
 {
     const bk_model *m = s->m;
-    size_t md = (size_t)s->maxdof;
-    double *ge = f->buf, *Qe = ge + md, *qe = Qe + md, *qde = qe + md, *qdde = qde + md;
-    double *K1 = qdde + md, *K2 = K1 + md * md, *K3 = K2 + md * md, *Me = K3 + md * md;
-    const double ra = m->dyn.rayleigh_alpha, rb = m->dyn.rayleigh_beta;
-    for (int k = 0; k < m->nsection; ++k) {
+    const size_t nb = 6 * (size_t)s->maxdof + 4 * (size_t)s->maxdof * (size_t)s->maxdof;
+    const int nsec = m->nsection;
+#pragma omp parallel num_threads(f->nthread) if (nsec >= 256)
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+        double *buf = f->sbuf + (size_t)t * nb, *sres = f->sres + (size_t)t * 9 * (size_t)f->maxsample;
+#pragma omp for schedule(static)
+        for (int k = 0; k < nsec; ++k)
+            section_values(f, s, k, x, q, qd, qdd, buf, sres);
+    }
+    for (int k = 0; f->sections && k < nsec; ++k) {
         const bk_section_rec *sr = &m->sections[k];
         const int e = sr->elem;
-        const bk_elem *el = &m->elems[e];
-        const bk_pair *p = m->pairs[el->pair];
+        const bk_pair *p = m->pairs[m->elems[e].pair];
         const bk_element *et = p->element;
-        const bk_mat *mat = &m->mats[el->mat];
-        const int ne = et->ndof;
-        bk_gather(m, e, q, qe);
-        if (qdd && rb != 0.0)
-            p->force_tangent(qe, m->tabs[el->geom], mat->params, ge, K1);
-        else
-            p->force(qe, m->tabs[el->geom], mat->params, ge);
-        if (qdd) {
-            bk_gather(m, e, qd, qde);
-            bk_gather(m, e, qdd, qdde);
-            if (rb != 0.0)
-                for (int i = 0; i < ne; ++i)
-                    for (int j = 0; j < ne; ++j)
-                        ge[i] += rb * K1[i * ne + j] * qde[j];
-            bk_element_mass(m, e, K1, Me);
-            for (int j = 0; j < ne; ++j)
-                Qe[j] = qdde[j] + ra * qde[j];           /* (Qe is free until the viscous forces) */
-            bk_forces_rows_times(ne, Me, Qe, ge, 0);
-            if (mat->nvisc > 0 && p->viscous) {
-                p->viscous_force(qe, qde, m->tabs[el->geom], mat->visc, Qe);
-                for (int i = 0; i < ne; ++i)
-                    ge[i] += Qe[i];
-            }
-            if (et->rotary) {
-                double T = 0.0;
-                et->rotary(m->geoms[el->geom], qe, qde, qdde, Qe, K1, K2, K3, &T);
-                for (int i = 0; i < ne; ++i)
-                    ge[i] += mat->rho * Qe[i];
-            }
+        const double *pos = f->spos + (6 + 3 * (size_t)f->maxsample) * (size_t)e;
+        for (int end = 0; end < 2; ++end)
+            section_row(f->sections, f->rq, step, x, sr->beam, e, "nodal", end, et->node_xi[end ? et->nnode - 1 : 0],
+                        end ? sr->s1 : sr->s0, pos + 3 * end, f->sec + 12 * (size_t)e + 6 * end);
+        for (int j = 0; p->sections && j < p->nsample; ++j) {
+            const double xi = p->sample_xi[j];
+            section_row(f->sections, f->rq, step, x, sr->beam, e, p->sample_source, j, xi,
+                        sr->s0 + xi * (sr->s1 - sr->s0), pos + 6 + 3 * j,
+                        f->ssec + 6 * ((size_t)f->maxsample * (size_t)e + (size_t)j));
         }
-        bk_element_loads(s, q, x, e, Qe);
-        for (int i = 0; i < ne; ++i)
-            ge[i] -= Qe[i];
-        for (int end = 0; end < 2; ++end) {
-            double xn[3] = {NAN, NAN, NAN}, F[3], M[3], out[6];
-            node_action(f, m, e, end ? et->nnode - 1 : 0, q, ge, xn, F, M);
-            double xi = et->node_xi[end ? et->nnode - 1 : 0];
-            section_components(m, e, qe, xi, F, M, end ? 1.0 : -1.0, out);
-            for (int i = 0; i < 6; ++i)
-                f->sec[12 * (size_t)e + 6 * end + i] = out[i];
-            if (f->sections)
-                section_row(f->sections, f->rq, step, x, sr->beam, e, "nodal", end, xi, end ? sr->s1 : sr->s0, xn, out);
-        }
-        if (f->sections)
-            write_stress_rows(f, m, sr, step, x, qe);
     }
     f->sec_step = step;
 }
-

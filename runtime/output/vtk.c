@@ -54,7 +54,7 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     v->topo = malloc(v->ntopo);
     if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
         return -1;
-    bk_vtk_frame_points(m, m->q0, NULL, 0, v->ref);
+    bk_vtk_frame_points(m, m->q0, NULL, 0, v->ref, 1);
     bk_vtk_topology(m, v->topo);
     /* the appended arrays of the largest frame (a mode's: points, displacement,
      * mode shape; a step's: points, displacement, four section arrays, the
@@ -246,7 +246,7 @@ static void put_u64(FILE *fp, uint64_t n)
 
 static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *const *fname, const double *fval,
                          const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample,
-                         double *pts)
+                         double *pts, int par)
 {
     const bk_model *m = v->m;
     const long npts = v->npts, ncell = v->ncell, nconn = v->nconn;
@@ -315,7 +315,7 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
             for (size_t i = 0; i < n3; ++i)
                 pts[i] -= v->ref[i];
         else
-            bk_vtk_frame_points(m, q, mv, pass, pts);
+            bk_vtk_frame_points(m, q, mv, pass, pts, par);   /* (par: on the threads) */
         fwrite(pts, sizeof(double), n3, fp);
     }
     for (int a = 0; sec && a < 2; ++a) {
@@ -352,20 +352,13 @@ static void vtu_contents(const bk_vtk *v, FILE *fp, int nfield, const char *cons
     }
     if (!mv) {
         put_u64(fp, sz_cell);
-        double qe[BK_MAX_ELEMENT_DOF];
+        bk_vtk_energy_density(m, q, pts, par);        /* (pts: free now; nelem <= 3 npts) */
         for (int e = 0; e < m->nelem; ++e) {
-            const bk_elem *el = &m->elems[e];
-            const bk_pair *p = m->pairs[el->pair];
-            bk_gather(m, e, q, qe);
-            const double *g = m->geoms[el->geom];
-            /* a layer (bk_kernel.h): its energy over its band's volume */
-            double dens = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) /
-                          (g[BK_GEOM_L] * g[BK_GEOM_A] * (1.0 - g[BK_GEOM_BAND_LO] - g[BK_GEOM_BAND_HI]));
             int r = bk_vtk_ring_points(m, e), nc = (NX - 1) * r + 1;
             double vals[(NX - 1) * MAX_RING + 1];
             for (int c = 0; c < nc; ++c)
-                vals[c] = dens;
-            fwrite(vals, sizeof dens, (size_t)nc, fp);
+                vals[c] = pts[e];
+            fwrite(vals, sizeof *vals, (size_t)nc, fp);
         }
     }
     fwrite(v->topo, 1, v->ntopo, fp);     /* cells: the same for every frame (bk_vtk_topology) */
@@ -378,7 +371,7 @@ static void frame_job(const void *job, FILE *fp)
     const bk_vtk_job *j = job;
     const mode_view mv = {j->qp, j->qm, j->eps, j->norm, j->scale};
     vtu_contents(j->v, fp, j->nfield, j->fname, j->fval, j->q, j->is_mode ? &mv : NULL, j->with_sec ? j->sec : NULL,
-                 j->with_ssec ? j->ssec : NULL, j->maxsample, j->pts);
+                 j->with_ssec ? j->ssec : NULL, j->maxsample, j->pts, 0);
 }
 
 /* The frame file `path`: its inputs copied for the background writer's thread,
@@ -421,7 +414,7 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
     }
     char iobuf[1 << 16];                 /* a few large writes instead of many small ones */
     setvbuf(fp, iobuf, _IOFBF, sizeof iobuf);
-    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts);
+    vtu_contents(v, fp, nfield, fname, fval, q, mv, sec, ssec, maxsample, v->pts, 1);
     if (fclose(fp) != 0) {                        /* (flushes iobuf before it goes out of scope) */
         record_failure(v, path, errno);
         return -1;

@@ -12,6 +12,10 @@
 #include "assembly/system.h"
 #include "output/vtk.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -187,24 +191,50 @@ void bk_vtk_stress_value(const bk_model *m, const double *ssec, int maxsample, i
  * centreline point last in each ring): 3 bk_vtk_npoints doubles into x; a step
  * frame's (mv NULL) for coordinates q, else a mode frame's pass `pass`
  * (point_value). */
-void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x)
+void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x, int par)
 {
-    long np = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const double *g = m->geoms[m->elems[e].geom];
-        int r = bk_vtk_ring_points(m, e);
-        for (int k = 0; k < NX; ++k) {
-            double xi = (double)k / (NX - 1);
-            for (int j = 0; j <= r; ++j) {
-                double y = 0.0, z = 0.0;
-                if (j < r)
-                    ring_yz(g, r, j, &y, &z);
-                if (mv)
-                    point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
-                else
-                    section_point(m, q, e, xi, y, z, x + 3 * np++);
+    const int ne = m->nelem;
+#pragma omp parallel if (par && ne >= 256)
+    {
+        int e0 = 0, e1 = ne;
+#ifdef _OPENMP
+        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        e0 = (int)((long)ne * t / nt), e1 = (int)((long)ne * (t + 1) / nt);
+#endif
+        long np = 0;                                 /* the points of the elements before this part's */
+        for (int e = 0; e < e0; ++e)
+            np += (long)NX * (bk_vtk_ring_points(m, e) + 1);
+        for (int e = e0; e < e1; ++e) {
+            const double *g = m->geoms[m->elems[e].geom];
+            int r = bk_vtk_ring_points(m, e);
+            for (int k = 0; k < NX; ++k) {
+                double xi = (double)k / (NX - 1);
+                for (int j = 0; j <= r; ++j) {
+                    double y = 0.0, z = 0.0;
+                    if (j < r)
+                        ring_yz(g, r, j, &y, &z);
+                    if (mv)
+                        point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
+                    else
+                        section_point(m, q, e, xi, y, z, x + 3 * np++);
+                }
             }
         }
+    }
+}
+
+void bk_vtk_energy_density(const bk_model *m, const double *q, double *dens, int par)
+{
+#pragma omp parallel for schedule(static) if (par && m->nelem >= 256)
+    for (int e = 0; e < m->nelem; ++e) {
+        const bk_elem *el = &m->elems[e];
+        const bk_pair *p = m->pairs[el->pair];
+        double qe[BK_MAX_ELEMENT_DOF];
+        bk_gather(m, e, q, qe);
+        const double *g = m->geoms[el->geom];
+        /* a layer (bk_kernel.h): its energy over its band's volume */
+        dens[e] = p->energy(qe, m->tabs[el->geom], m->mats[el->mat].params) /
+                  (g[BK_GEOM_L] * g[BK_GEOM_A] * (1.0 - g[BK_GEOM_BAND_LO] - g[BK_GEOM_BAND_HI]));
     }
 }
 

@@ -24,8 +24,11 @@ typedef struct mode_view {
 
 int bk_vtk_ring_points(const bk_model *m, int e);
 void bk_vtk_stress_value(const bk_model *m, const double *ssec, int maxsample, int e, int a, double xi, double *x);
-void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x);
+void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv, int pass, double *x, int par);
 void bk_vtk_frame_cells(const bk_model *m, long *ncell, long *nconn);
+/* The strain energy density of every element at q into dens[nelem] (J/m^3; on
+ * the threads when par). */
+void bk_vtk_energy_density(const bk_model *m, const double *q, double *dens, int par);
 size_t bk_vtk_index_size(long npts);
 size_t bk_vtk_topology(const bk_model *m, unsigned char *buf);
 

@@ -101,8 +101,10 @@ double bk_norm_matrix_max(const bk_norms *n, const bk_system *s, const double *A
 {
     /* four partial sums per group: one chain of dependent additions over every
      * matrix entry was a tenth of a small model's solve (it runs for every new
-     * matrix) */
+     * matrix); a large model's groups on the threads (a maximum: the same for
+     * any thread count; one parallel region a new matrix) */
     double mx = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : mx) if (n->ngroup >= 4096)
     for (int g = 0; g < n->ngroup; ++g) {
         double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
         int dim = n->gstart[g + 1] - n->gstart[g];

@@ -30,8 +30,9 @@
  * storage, borrowed, so that a check touches no fresh memory but the
  * accepted matrix; a check then makes the band LU factor from scratch next
  * time, which the static solver does anyway: it factors every Newton matrix
- * it makes, nonlinear.h opts.reuse = 0); the checker keeps the values at the
- * last accepted check.
+ * it makes, nonlinear.h opts.reuse = 0; a long band's halves are factored on
+ * two threads in the split band LU's block storage: symsplit.h); the checker
+ * keeps the values at the last accepted check.
  *
  * Ownership: the checker owns every array it allocates and its symmetric
  * solver (bk_stability_free); it keeps a pointer to the system, which must
