@@ -58,7 +58,9 @@ Commands:
                          pytest's summary ("N passed, N failed in ...").  Options go
                          to pytest: -k EXPR (tests whose name matches, e.g.
                          -k "cantilever and not full"), -m "not slow" (skip the slow
-                         tests), -x (stop at the first failure), -n 1 (one worker)
+                         tests), -x (stop at the first failure), -n 1 (one worker);
+                         a test file or node id (tests/test_weld.py,
+                         tests/test_weld.py::test_x) runs just those
   run SCENE [options]    build the per-scene solver if stale and run it; SCENE is a
                          name in models/ or a path to a .toml file
       --set KEY=VALUE      override a numeric scene value (repeatable), e.g.
@@ -213,12 +215,22 @@ case "$cmd" in
         install_deps
         # pytest (Debian's python3-pytest) with python3-pytest-xdist on both
         # cores; tests/pytest.ini holds the options and markers.
+        # A test file or node id (tests/test_weld.py, ...::test_x; from the
+        # caller's directory) runs just those; otherwise the whole tests/ folder.
         workers=(-n "${BK_TEST_WORKERS:-2}")
+        args=() where=("$ROOT/tests") value=0
         for a in "$@"; do
             case "$a" in -n|-n*|--numprocesses*) workers=() ;; esac
+            if [ "$value" = 0 ] && [ "${a#-}" = "$a" ]; then
+                f="${a%%::*}"
+                case "$f" in /*) ;; *) [ -e "$BK_CALLER_CWD/$f" ] && a="$BK_CALLER_CWD/$a" ;; esac
+                [ -e "${a%%::*}" ] && where=()
+            fi
+            case "$a" in -k|-m|-n|-p|-o|-c|-W|--durations|--maxfail|--deselect|--ignore|--rootdir) value=1 ;; *) value=0 ;; esac
+            args+=("$a")
         done
         set +e
-        "$PY" -m pytest -c "$ROOT/tests/pytest.ini" --rootdir "$ROOT/tests" "${workers[@]}" "$@" "$ROOT/tests"
+        "$PY" -m pytest -c "$ROOT/tests/pytest.ini" --rootdir "$ROOT/tests" "${workers[@]}" "${args[@]}" "${where[@]}"
         rc=$?
         set -e
         if [ "$rc" -eq 5 ]; then

@@ -27,6 +27,20 @@ def test_relative_scene_and_out_paths_are_the_callers():
     assert r.returncode == 1 and str(work / "missing.toml") in r.stderr, r.stderr
 
 
+def test_a_test_file_given_to_build_sh_test_runs_only_that_file():
+    """`./build.sh test tests/FILE.py` (or a node id, or a path from the caller's
+    directory) collects that file's tests, not the whole tests/ folder as well;
+    with no path the whole folder (checked against the files' own test
+    functions, counted here by their `def test_` lines)."""
+    own = (ROOT / "tests" / "test_numfmt.py").read_text().count("\ndef test_")
+    for args, cwd in ((["tests/test_numfmt.py"], ROOT), (["test_numfmt.py"], ROOT / "tests"),
+                      ([str(ROOT / "tests" / "test_numfmt.py")], BUILD)):
+        r = run_cli(["test", *args, "--collect-only", "-q", "-n", "0"], cwd=cwd, env={"BK_CALLER_CWD": ""})
+        assert r.returncode == 0 and f"{own} tests collected" in r.stdout, (args, r.stdout[-500:])
+    r = run_cli(["test", "-k", "test_numfmt.py", "--collect-only", "-q", "-n", "0"])
+    assert f"{own}/" in r.stdout and "deselected" in r.stdout, r.stdout[-500:]
+
+
 def test_usage_errors_exit_64_and_are_listed_in_help():
     for args in (["run", "cantilever_bend_10N", "--bogus"], ["bogus-command"], ["run"]):
         r = run_cli(args)
