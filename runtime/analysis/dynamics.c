@@ -420,4 +420,16 @@ static int runs_dynamic(const bk_model *m)
     return m->analysis == BK_ANALYSIS_DYNAMIC;
 }
 
-const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic};
+/* Time runs to t_end in steps of dt, a state output every output_every: the
+ * frames are known; sections.csv without frames at the stride of 50 frames
+ * (gen/options_schema.py DYNAMIC_FRAMES). */
+static void plan_dynamic(const bk_model *m, bk_output_plan *p)
+{
+    const double states = m->dyn.t_end / (m->dyn.dt * m->dyn.output_every);
+    p->frames = (int)fmin(1e9, states / (m->output.vtk_every > 0 ? m->output.vtk_every : 1)) + 1;
+    p->room = p->frames + 3;
+    p->end = m->dyn.t_end > 0.0 ? m->dyn.t_end : 0.0;
+    p->sections_every = (int)fmax(1.0, ceil(states / 50.0));
+}
+
+const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic, plan_dynamic};
