@@ -104,9 +104,9 @@ def test_no_analysis_switch_outside_the_table_and_the_model():
 # the output ask the interactions (assembly/interaction.h: what each depends
 # on, their rate along the path) and the constraints (system.h) instead, so a
 # new load type needs no edit there.
-LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|ntendon|tendons|has_gravity|"
-                            r"gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|nlcons)\b"
-                            r"|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present)\s*\(")
+LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|"
+                            r"ntendon|tendons|has_gravity|gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|"
+                            r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present)\s*\(")
 # file -> why it may read them
 LOAD_READERS = {
     "output/forces.c": "the reactions: each constraint's force, from its own rows",
@@ -141,3 +141,32 @@ def test_the_load_list_guard_sees_a_reader():
         assert LOAD_FIELDS_RE.search(line), line
     for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec"):
         assert not LOAD_FIELDS_RE.search(line), line
+
+
+# Options of one analysis read below the analyses: file -> why it may
+ANALYSIS_OPTION_READERS = {
+    "output/forces.c": "dynamic.rayleigh_alpha/beta: the damping forces in the reactions",
+    "output/sections.c": "dynamic.rayleigh_alpha/beta: the damping forces in the section forces",
+    "solver/stability.c": "static.eigenvalues: an option of the stability service itself",
+    "solver/stability_setup.c": "static.eigenvalues: an option of the stability service itself",
+}
+
+
+def test_output_and_solver_read_no_analysis_options():
+    """The output learns what an analysis writes from the analysis (its
+    module's plan, analysis.h / output.h: the end of its path, its frames,
+    modes, stability), not by reading static.method, cycles, dynamic.t_end or
+    modal.modes: a guard that fails on such a read outside the files named in
+    ANALYSIS_OPTION_READERS."""
+    pat = re.compile(r"\bBK_METHOD_\w+|->\s*(stat|dyn|modal)\s*\.\s*\w+")
+    assert pat.search("m->stat.method") and pat.search("v->m->modal.modes") and not pat.search("o->plan.end")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] not in ("output", "solver") or rel in ANALYSIS_OPTION_READERS:
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "analysis options read in output/ or solver/ (tell the output through the plan):\n" + \
+        "\n".join(bad)
