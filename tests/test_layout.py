@@ -106,7 +106,8 @@ def test_no_analysis_switch_outside_the_table_and_the_model():
 # new load type needs no edit there.
 LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|"
                             r"ntendon|tendons|has_gravity|gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|"
-                            r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present)\s*\(")
+                            r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present|"
+                            r"load_potentials)\s*\(")
 # file -> why it may read them
 LOAD_READERS = {
     "output/forces.c": "the reactions: each constraint's force, from its own rows",

@@ -41,7 +41,6 @@
 #include "base/interrupt.h"
 #include "linalg/linsolve.h"
 #include "solver/nonlinear.h"
-#include "assembly/loads.h"
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
 #include "solver/step_control.h"
@@ -365,7 +364,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
                 Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
             }
-            bk_load_potentials(s, q, t, &Vg, &Vf);
+            bk_interactions_potentials(s, q, t, &Vg, &Vf);
             bk_energy_row(&eb, out, energy, step, t, T, U, Vg, Vf, cr);
             /* contact with a step too long for its barrier can create energy (the
              * barrier's own energy is not in the total: a bounce gains) */

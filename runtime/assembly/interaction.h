@@ -50,6 +50,10 @@
  *               state, given its data: bits BK_DEPENDS_* below (the analyses
  *               ask the loops below, never the model's load lists);
  *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer).
+ *   potential   (optional) the potential at q and the path variable x of
+ *               its forces that have one, relative to the reference state,
+ *               added to *Vg (gravity) or *Vf (other forces): the dynamic
+ *               energy balance's external potentials.
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -109,6 +113,7 @@ typedef struct bk_interaction_ops {
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
     unsigned (*depends)(const void *self, const struct bk_system *s);
+    void (*potential)(void *self, const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
 } bk_interaction_ops;
 
 /* An interaction module: its operations; its place in every sum (ascending
@@ -177,6 +182,8 @@ int bk_interactions_tangent_on_path(const struct bk_system *s);
  * fol[ndof] is scratch. */
 void bk_interactions_path_rate(struct bk_system *s, const double *q, double lam, const double *fext, double *rl,
                                double *fol);
+/* Every interaction's potential at (q, x) added to *Vg and *Vf. */
+void bk_interactions_potentials(const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
 /* Every interaction's accept after an accepted state. */
 void bk_interactions_accept(const struct bk_system *s, const double *q, const bk_path *p);
 

@@ -65,8 +65,14 @@ static unsigned loads_depends(const void *self, const bk_system *s)
     return BK_DEPENDS_X | BK_DEPENDS_Q;
 }
 
+static void loads_potential(void *self, const bk_system *s, const double *q, double x, double *Vg, double *Vf)
+{
+    (void)self;
+    bk_load_potentials(s, q, x, Vg, Vf);
+}
+
 static const bk_interaction_ops loads_ops = {.name = "loads", .assemble = loads_assemble, .free = loads_free,
-                                             .depends = loads_depends};
+                                             .depends = loads_depends, .potential = loads_potential};
 
 static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
@@ -264,4 +270,11 @@ void bk_interactions_path_rate(bk_system *s, const double *q, double lam, const 
                     rl[s->eq[i]] += sgn * fol[i] / (2.0 * d);
         }
     }
+}
+
+void bk_interactions_potentials(const bk_system *s, const double *q, double x, double *Vg, double *Vf)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops->potential)
+            s->inter[k].ops->potential(s->inter[k].self, s, q, x, Vg, Vf);
 }

@@ -9,7 +9,6 @@
 #include "model/amplitude.h"
 #include "base/csvrow.h"
 #include "base/json.h"
-#include "assembly/loads.h"
 
 int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
 {
