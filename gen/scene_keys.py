@@ -68,8 +68,9 @@ def union(by_type):
 
 def all_keys():
     """{table: keys} for every table but the law parameters of [material.NAME]."""
-    return {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
-            "constraint": union(CONSTRAINT), "load": union(LOAD), "static": STATIC, "dynamic": DYNAMIC,
-            "modal": MODAL, "output": OUTPUT, "initial_velocity": INITIAL_VELOCITY, "sensor": SENSOR,
-            "amplitude": union(AMPLITUDE), "buckling": BUCKLING,
-            "actuator": ACTUATOR, "point_mass": POINT_MASS}
+    tables = {"scene": SCENE, "material": MATERIAL_COMMON, "section": union(SECTION), "beam": BEAM, "body": BODY,
+              "constraint": union(CONSTRAINT), "load": union(LOAD), "initial_velocity": INITIAL_VELOCITY,
+              "sensor": SENSOR, "amplitude": union(AMPLITUDE), "actuator": ACTUATOR, "point_mass": POINT_MASS}
+    # every options table of the schema (static, dynamic, modal, buckling, output, an analysis' own)
+    tables.update({t: S.scene_keys(t) for t in S.TABLES if t != "scene"})
+    return tables

@@ -65,8 +65,11 @@ int main(int argc, char **argv)
         bk_model_free(m);
         return 1;
     }
+    const bk_analysis_module *an = bk_analysis_for(m);
+    bk_output_plan plan;
+    bk_analysis_plan(an, m, &plan);              /* what it will write, told to the output */
     bk_output out;
-    if (bk_output_open(&out, m, out_dir, !quiet && !verbose, stderr) != 0) {
+    if (bk_output_open(&out, m, &plan, out_dir, !quiet && !verbose, stderr) != 0) {
         bk_output_close(&out);
         bk_system_free(s);
         bk_model_free(m);
@@ -82,7 +85,6 @@ int main(int argc, char **argv)
         return 1;
     }
     bk_run_info info = {0};
-    const bk_analysis_module *an = bk_analysis_for(m);
     int rc = 1;
     if (an)
         rc = an->run(s, q, &out, &info, verbose ? stderr : NULL);

@@ -98,3 +98,76 @@ def test_no_analysis_switch_outside_the_table_and_the_model():
         for m in re.finditer(r"analysis\s*[=!]=|\bBK_(STATIC|DYNAMIC|MODAL)\b", text):
             bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
     assert not bad, "analysis switches below the analyses:\n" + "\n".join(bad)
+
+
+# The model's load and constraint lists (model.h): the analyses, the solver and
+# the output ask the interactions (assembly/interaction.h: what each depends
+# on, their rate along the path) and the constraints (system.h) instead, so a
+# new load type needs no edit there.
+LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|"
+                            r"ntendon|tendons|has_gravity|gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|"
+                            r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present|"
+                            r"load_potentials)\s*\(")
+# file -> why it may read them
+LOAD_READERS = {
+    "output/forces.c": "the reactions: each constraint's force, from its own rows",
+    "output/joint_out.c": "the joints' reactions in their own axes",
+}
+
+
+def test_analyses_and_output_ask_the_interactions_not_the_load_lists():
+    """A guard that fails when a file of analysis/, solver/ or output/ (other
+    than the reaction outputs named in LOAD_READERS) reads the model's loads,
+    tendons or constraints, or calls a load type's own assembly."""
+    bad, used = [], set()
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] not in ("analysis", "solver", "output"):
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in LOAD_FIELDS_RE.finditer(text):
+            if rel in LOAD_READERS:
+                used.add(rel)
+                continue
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "load or constraint lists read outside assembly/ (ask the interactions):\n" + "\n".join(bad)
+    assert used == set(LOAD_READERS), f"allowed but no longer reading them: {sorted(set(LOAD_READERS) - used)}"
+
+
+def test_the_load_list_guard_sees_a_reader():
+    """The pattern of the guard above matches the reads it forbids (it could
+    otherwise pass on any file)."""
+    for line in ("if (m->nmoment > 0)", "s->m->nnlcon", "m->forces[i].amp", "bk_assemble_follower(s, q, 1.0, f, 0)",
+                 "m -> ntendon"):
+        assert LOAD_FIELDS_RE.search(line), line
+    for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec"):
+        assert not LOAD_FIELDS_RE.search(line), line
+
+
+# Options of one analysis read below the analyses: file -> why it may
+ANALYSIS_OPTION_READERS = {
+    "output/forces.c": "dynamic.rayleigh_alpha/beta: the damping forces in the reactions",
+    "output/sections.c": "dynamic.rayleigh_alpha/beta: the damping forces in the section forces",
+    "solver/stability.c": "static.eigenvalues: an option of the stability service itself",
+    "solver/stability_setup.c": "static.eigenvalues: an option of the stability service itself",
+}
+
+
+def test_output_and_solver_read_no_analysis_options():
+    """The output learns what an analysis writes from the analysis (its
+    module's plan, analysis.h / output.h: the end of its path, its frames,
+    modes, stability), not by reading static.method, cycles, dynamic.t_end or
+    modal.modes: a guard that fails on such a read outside the files named in
+    ANALYSIS_OPTION_READERS."""
+    pat = re.compile(r"\bBK_METHOD_\w+|->\s*(stat|dyn|modal)\s*\.\s*\w+")
+    assert pat.search("m->stat.method") and pat.search("v->m->modal.modes") and not pat.search("o->plan.end")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] not in ("output", "solver") or rel in ANALYSIS_OPTION_READERS:
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "analysis options read in output/ or solver/ (tell the output through the plan):\n" + \
+        "\n".join(bad)

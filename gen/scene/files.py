@@ -35,8 +35,10 @@ def apply_overrides(doc, sets, path):
         node = doc
         for depth, p in enumerate(parts[:-1]):
             if isinstance(node, dict):
-                if p not in node and p in ("static", "dynamic", "modal", "buckling", "output") and depth == 0:
-                    node[p] = {}
+                if p not in node and depth == 0:
+                    from gen.options_schema import TABLES      # an options table the scene may leave out
+                    if p in TABLES and p != "scene":
+                        node[p] = {}
                 if p not in node:
                     raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")
                 node = node[p]

@@ -4,6 +4,7 @@
 #include "analysis/analysis.h"
 
 #include <stddef.h>
+#include <string.h>
 
 const bk_analysis_module *bk_analysis_for(const bk_model *m)
 {
@@ -11,4 +12,11 @@ const bk_analysis_module *bk_analysis_for(const bk_model *m)
         if (bk_analysis_table[k]->runs(m))
             return bk_analysis_table[k];
     return NULL;
+}
+
+void bk_analysis_plan(const bk_analysis_module *an, const bk_model *m, bk_output_plan *p)
+{
+    memset(p, 0, sizeof *p);
+    if (an && an->plan)
+        an->plan(m, p);
 }

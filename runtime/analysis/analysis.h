@@ -28,6 +28,10 @@ typedef struct bk_analysis_module {
      * (on failure) the message.  Returns 0 when the analysis completed, 1
      * otherwise. */
     int (*run)(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log);
+    /* (optional) What it will write, for the output opened before it runs
+     * (output.h bk_output_plan: the end of its path, its frames, ...); NULL:
+     * nothing known. */
+    void (*plan)(const bk_model *m, bk_output_plan *p);
 } bk_analysis_module;
 
 /* The table of every module (generated; in the order of their files). */
@@ -37,5 +41,8 @@ extern const int bk_analysis_count;
 /* The module that runs the model's analysis, or NULL (then none of the table
  * claims it: a model file of another solver). */
 const bk_analysis_module *bk_analysis_for(const bk_model *m);
+
+/* The plan of module an (may be NULL) for m into *p (zeroed first). */
+void bk_analysis_plan(const bk_analysis_module *an, const bk_model *m, bk_output_plan *p);
 
 #endif

@@ -7,34 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "assembly/loads.h"
 #include "linalg/linsolve.h"
 
-/* dr/dlam at (q, nu, lam) into rl[neq]: the dead and follower loads, and, by
- * central differences in lam, the loads of loads.c (amplitudes, follower and
- * distributed loads, tendons) and the load-factor dependence of rheonomic
- * constraints. */
+/* dr/dlam at (q, nu, lam) into rl[neq]: the dead loads and the interactions'
+ * rate along the path (interaction.h bk_interactions_path_rate: exact for
+ * loads proportional to the factor, by central differences for those with
+ * amplitudes), and, by central differences in lam, the load-factor
+ * dependence of rheonomic constraints. */
 void bk_load_derivative(bk_system *s, work *w, const double *q, double lam, double *rl, double *fol,
                             double *tmp)
 {
-    const bk_model *m = s->m;
-    memset(fol, 0, (size_t)m->ndof * sizeof *fol);
-    bk_assemble_follower(s, q, 1.0, fol, NULL);
-    for (int i = 0; i < m->ndof; ++i)
-        if (s->eq[i] >= 0)
-            rl[s->eq[i]] = fol[i] - w->fext[i];
-    for (int c = 0; c < s->ncon; ++c)
-        rl[s->nfree + c] = 0.0;
-    {
-        double d = 1e-6 * fmax(1.0, fabs(lam));
-        for (int sgn = 1; sgn >= -1; sgn -= 2) {
-            memset(fol, 0, (size_t)m->ndof * sizeof *fol);
-            bk_assemble_loads(s, q, lam + sgn * d, fol, NULL);
-            for (int i = 0; i < m->ndof; ++i)
-                if (s->eq[i] >= 0)
-                    rl[s->eq[i]] += sgn * fol[i] / (2.0 * d);
-        }
-    }
+    bk_interactions_path_rate(s, q, lam, w->fext, rl, fol);
     if (s->ncon > 0) {
         double d = 1e-6 * fmax(1.0, fabs(lam));
         memset(tmp, 0, (size_t)s->neq * sizeof *tmp);

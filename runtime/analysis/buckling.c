@@ -271,11 +271,12 @@ static int buckling(bk_system *s, double *q, bk_output *out, bk_run_info *info, 
                  "buckling analysis is dense and limited to %d free DOFs; this model has %d", BK_BUCKLING_MAXDOF, n);
         return 1;
     }
-    if (m->nnlcon > 0) {
+    const int njoint = bk_constraints_nonlinear(s);
+    if (njoint > 0) {
         snprintf(info->message, sizeof info->message,
                  "buckling analysis takes linear constraints only (clamps, joints of beam nodes to the ground, "
-                 "rigid joints of rod nodes); this model has %d joint%s nonlinear in q", m->nnlcon,
-                 m->nnlcon == 1 ? "" : "s");
+                 "rigid joints of rod nodes); this model has %d joint%s nonlinear in q", njoint,
+                 njoint == 1 ? "" : "s");
         return 1;
     }
     if (base_state(s, q, out, info, log, &x0) != 0)
@@ -392,4 +393,11 @@ static int runs_buckling(const bk_model *m)
     return m->analysis == BK_ANALYSIS_BUCKLING;
 }
 
-const bk_analysis_module bk_analysis_buckling = {"buckling", runs_buckling, bk_solve_buckling};
+/* Its modes (and the preload's static steps' frames). */
+static void plan_buckling(const bk_model *m, bk_output_plan *p)
+{
+    p->room = m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+    p->modes = m->modal.modes;
+}
+
+const bk_analysis_module bk_analysis_buckling = {"buckling", runs_buckling, bk_solve_buckling, plan_buckling};

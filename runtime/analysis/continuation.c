@@ -79,7 +79,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
     int switch_mult = 0;                                 /* eigenvalues crossing at the switched bifurcation */
     attempt a = {0};
     bk_stability_result sres;
-    if (bk_norm2(w->fext, nd) == 0.0 && m->nmoment == 0 && s->ncon == 0) {
+    if (bk_norm2(w->fext, nd) == 0.0 && !bk_interactions_load_on_path(s) && s->ncon == 0) {
         snprintf(info->message, sizeof info->message,
                  "static.method = \"arc_length\": the scene has no load to scale (expected a force, moment or "
                  "gravity load)");
@@ -411,4 +411,12 @@ static int runs_continuation(const bk_model *m)
     return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_ARC_LENGTH;
 }
 
-const bk_analysis_module bk_analysis_continuation = {"continuation", runs_continuation, bk_solve_continuation};
+/* The path's end is not known (the arc length decides); room for the steps. */
+static void plan_continuation(const bk_model *m, bk_output_plan *p)
+{
+    p->room = m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+    p->stability = m->stat.stability;
+}
+
+const bk_analysis_module bk_analysis_continuation = {"continuation", runs_continuation, bk_solve_continuation,
+                                                     plan_continuation};

@@ -6,7 +6,6 @@
 #include <math.h>
 #include <string.h>
 
-#include "assembly/loads.h"
 #include "solver/norms.h"
 
 /* Residual of one Newton iteration at q (t_{n+1} = tn) into w->r (free rows, then the

@@ -41,7 +41,6 @@
 #include "base/interrupt.h"
 #include "linalg/linsolve.h"
 #include "solver/nonlinear.h"
-#include "assembly/loads.h"
 #include "solver/norms.h"
 #include "assembly/quaternion.h"
 #include "solver/step_control.h"
@@ -387,7 +386,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
                 Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
                 Vf -= (w.fext[i] - w.fgrav[i]) * (q[i] - m->q0[i]);
             }
-            bk_load_potentials(s, q, t, &Vg, &Vf);
+            bk_interactions_potentials(s, q, t, &Vg, &Vf);
             bk_energy_row(&eb, out, energy, step, t, T, U, Vg, Vf, cr);
             /* contact with a step too long for its barrier can create energy (the
              * barrier's own energy is not in the total: a bounce gains) */
@@ -448,4 +447,16 @@ static int runs_dynamic(const bk_model *m)
     return m->analysis == BK_ANALYSIS_DYNAMIC;
 }
 
-const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic};
+/* Time runs to t_end in steps of dt, a state output every output_every: the
+ * frames are known; sections.csv without frames at the stride of 50 frames
+ * (gen/options_schema.py DYNAMIC_FRAMES). */
+static void plan_dynamic(const bk_model *m, bk_output_plan *p)
+{
+    const double states = m->dyn.t_end / (m->dyn.dt * m->dyn.output_every);
+    p->frames = (int)fmin(1e9, states / (m->output.vtk_every > 0 ? m->output.vtk_every : 1)) + 1;
+    p->room = p->frames + 3;
+    p->end = m->dyn.t_end > 0.0 ? m->dyn.t_end : 0.0;
+    p->sections_every = (int)fmax(1.0, ceil(states / 50.0));
+}
+
+const bk_analysis_module bk_analysis_dynamic = {"dynamic", runs_dynamic, bk_solve_dynamic, plan_dynamic};

@@ -242,7 +242,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         /* Joints nonlinear in q carry a geometric stiffness sum_k lam_k d2 g_k/dq2
          * in a loaded state: the multipliers from G^T lam = f_ext - f_int at the
          * static equilibrium (least squares on the QR above; independent rows). */
-        if (m->nnlcon > 0 && m->modal.about == BK_ABOUT_STATIC && r == nc && nc <= n) {
+        if (bk_constraints_nonlinear(s) > 0 && m->modal.about == BK_ABOUT_STATIC && r == nc && nc <= n) {
             gsl_vector *b = gsl_vector_calloc((size_t)n), *lam = gsl_vector_alloc((size_t)nc);
             gsl_vector *res = gsl_vector_alloc((size_t)n);
             double *fext = calloc((size_t)m->ndof, sizeof *fext);
@@ -251,9 +251,9 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
                 snprintf(info->message, sizeof info->message, "out of memory");
                 goto done;
             }
+            const bk_path at = {.factor = 1.0, .x = 1.0};      /* the static state: load factor 1 */
             bk_assemble_internal(s, q, fint, NULL);
-            bk_assemble_follower(s, q, 1.0, fint, NULL);
-            bk_actuators_at_rest(s, q, 1.0, fint, NULL, NULL);
+            bk_assemble_interactions(s, q, &at, fint, NULL);
             bk_external_load(s, fext);
             for (int i = 0; i < m->ndof; ++i)
                 if (s->eq[i] >= 0)
@@ -390,4 +390,11 @@ static int runs_modal(const bk_model *m)
     return m->analysis == BK_ANALYSIS_MODAL;
 }
 
-const bk_analysis_module bk_analysis_modal = {"modal", runs_modal, bk_solve_modal};
+/* Its modes (and, about a static state, the static load steps' frames). */
+static void plan_modal(const bk_model *m, bk_output_plan *p)
+{
+    p->room = m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+    p->modes = m->modal.modes;
+}
+
+const bk_analysis_module bk_analysis_modal = {"modal", runs_modal, bk_solve_modal, plan_modal};

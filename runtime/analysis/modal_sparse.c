@@ -114,7 +114,7 @@ int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, doub
                  "\"dense\"");
         return 1;
     }
-    if (m->nnlcon > 0 && m->modal.about == BK_ABOUT_STATIC) {
+    if (bk_constraints_nonlinear(s) > 0 && m->modal.about == BK_ABOUT_STATIC) {
         snprintf(msg, nmsg, "the sparse modal solver does not take joints nonlinear in the coordinates about a "
                  "static state (their geometric stiffness needs the multipliers): use modal.solver = \"dense\"");
         return 1;

@@ -357,4 +357,13 @@ static int runs_static(const bk_model *m)
     return m->analysis == BK_ANALYSIS_STATIC && m->stat.method == BK_METHOD_LOAD_CONTROL;
 }
 
-const bk_analysis_module bk_analysis_static = {"static", runs_static, bk_run_static};
+/* The load factor runs 0 -> 1 (load cycles: back and forth); a frame per load
+ * step, which the step control may change. */
+static void plan_static(const bk_model *m, bk_output_plan *p)
+{
+    p->end = m->stat.cycles == 0 ? 1.0 : 0.0;
+    p->stability = m->stat.stability;
+    p->room = m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
+}
+
+const bk_analysis_module bk_analysis_static = {"static", runs_static, bk_run_static, plan_static};

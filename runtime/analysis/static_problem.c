@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "assembly/loads.h"
 #include "assembly/quaternion.h"
 #include "base/clock.h"
 #include "solver/norms.h"
@@ -172,7 +171,7 @@ int bk_static_newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, do
     bk_nl_result res;
     /* joints nonlinear in q: start from the multipliers that balance the loads
      * (their geometric stiffness holds mechanisms like a hanging pendulum) */
-    if (s->m->nnlcon > 0 && bk_static_residual(s, w, q, w->nu, lam, 0) == 0)
+    if (bk_constraints_nonlinear(s) > 0 && bk_static_residual(s, w, q, w->nu, lam, 0) == 0)
         bk_constraint_multipliers(s, q, lam, w->r, w->nu);
     bk_nl_solve(nl, &p, &no, 0.0, 1, &row, &res);
     a->iters = res.iters;
@@ -188,28 +187,15 @@ int bk_static_newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, do
 }
 
 /* Whether the Newton matrix depends on neither the load factor nor the
- * multipliers: no load with a stiffness or a varying factor (moments, follower,
- * distributed and tendon loads, gravity with an amplitude, forces with one), no
- * joint nonlinear in q, no constraint coefficient that changes with the load
- * factor.  The matrix at q0 of the first load step's first Newton iteration is
- * then, to the bit, the reference state's. */
+ * multipliers: no interaction whose Jacobian changes along the path (moments,
+ * follower, distributed and tendon loads, loads with amplitudes, moving
+ * contact, ...: interaction.h), no joint nonlinear in q, no constraint
+ * coefficient that changes with the load factor.  The matrix at q0 of the
+ * first load step's first Newton iteration is then, to the bit, the
+ * reference state's. */
 int bk_static_matrix_free_of_load(const bk_system *s)
 {
-    const bk_model *m = s->m;
-    if (m->nmoment > 0 || m->ndload > 0 || m->ntendon > 0 || m->nnlcon > 0 || (m->has_gravity && m->gravity_amp))
-        return 0;
-    for (int i = 0; i < m->nforce; ++i)
-        if (m->forces[i].amp >= 0 || m->forces[i].follower)
-            return 0;
-    for (int c = 0; c < m->nlincon; ++c) {
-        const bk_lincon *lc = &m->lincons[c];
-        if (lc->kappa == 0.0 || (lc->rate == 0.0 && lc->amp == 0.0 && !lc->ampl))
-            continue;                    /* the angle is constant: so are the coefficients */
-        for (int k = 0; k < lc->nterm; ++k)
-            if (lc->cc[k] != 0.0 || lc->cs[k] != 0.0)
-                return 0;
-    }
-    return 1;
+    return !bk_interactions_tangent_on_path(s) && bk_constraints_nonlinear(s) == 0 && !bk_constraints_on_path(s);
 }
 
 /* Stability of the equilibrium q at load factor lam (not yet accepted):

@@ -32,21 +32,21 @@
 
 int bk_static_trust_refusal(const bk_system *s, char *msg, size_t n)
 {
-    const bk_model *m = s->m;
-    const char *what = NULL;
-    if (m->nnlcon > 0)
-        what = "joints nonlinear in the unknowns (their multipliers are not in the energy)";
-    else if (m->has_gravity && m->gravity_amp)
-        what = "gravity with an amplitude";
-    for (int i = 0; !what && i < m->nforce; ++i)
-        if (m->forces[i].follower || m->forces[i].amp >= 0)
-            what = m->forces[i].follower ? "a follower force" : "a force with an amplitude";
-    for (int k = 0; !what && k < s->ninter; ++k)
-        what = s->inter[k].ops->name;
-    if (!what)
+    /* the potential below counts the elements' strain energy and the dead
+     * loads' work: every interaction (loads with amplitudes, follower loads,
+     * contact, ...) has forces outside it */
+    if (bk_constraints_nonlinear(s) > 0) {
+        snprintf(msg, n, "static.globalization = \"trust_region\" needs loads with a potential (dead forces and "
+                 "gravity): the scene has joints nonlinear in the unknowns (their multipliers are not in the "
+                 "energy)");
+        return 1;
+    }
+    if (s->ninter == 0)
         return 0;
     snprintf(msg, n, "static.globalization = \"trust_region\" needs loads with a potential (dead forces and "
-             "gravity): the scene has %s", what);
+             "gravity): the scene has the interaction \"%s\" (loads with amplitudes, follower, distributed and "
+             "tendon loads, moments on sections, contact, springs, actuators: forces the energy does not count)",
+             s->inter[0].ops->name);
     return 1;
 }
 

@@ -219,9 +219,16 @@ static void act_free(void *self)
     free(w);
 }
 
+/* The effort and the set-point follow amplitudes of x; the joint coordinate q. */
+static unsigned act_depends(const void *self, const bk_system *s)
+{
+    (void)self, (void)s;
+    return BK_DEPENDS_X | BK_DEPENDS_Q;
+}
+
 static const bk_interaction_ops act_ops = {.name = "actuators", .assemble = act_assemble, .accept = act_accept,
                                            .tables = act_tables, .rows = act_rows, .summary_key = "actuators",
-                                           .summary = act_summary, .free = act_free};
+                                           .summary = act_summary, .free = act_free, .depends = act_depends};
 
 /* The actuators of s (its interaction of this module), or NULL. */
 static const act_work *actuators_of(const bk_system *s)

@@ -467,7 +467,7 @@ static int bc_summary(void *self, const bk_system *s, const double *q, char *buf
 static const bk_interaction_ops bc_ops = {.name = "body_contact", .assemble = bc_assemble,
                                           .step_limit = bc_step_limit, .accept = bc_accept, .tables = bc_tables,
                                           .rows = bc_rows, .summary_key = "body_contact", .uncounted_energy = 1,
-                                          .summary = bc_summary, .free = bc_free};
+                                          .summary = bc_summary, .free = bc_free, .depends = bk_depends_on_q};
 
 /* The interaction module: made when the model has the record "body_contact". */
 const bk_interaction_module bk_interaction_body_contact = {.ops = &bc_ops, .order = 31, .record = "body_contact",

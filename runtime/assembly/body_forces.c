@@ -77,7 +77,15 @@ static void bf_free(void *self)
     free(w);
 }
 
-static const bk_interaction_ops bf_ops = {.name = "body forces", .assemble = bf_assemble, .free = bf_free};
+/* Amplitudes of x; the body point turns with the body (q). */
+static unsigned bf_depends(const void *self, const bk_system *s)
+{
+    (void)self, (void)s;
+    return BK_DEPENDS_X | BK_DEPENDS_Q;
+}
+
+static const bk_interaction_ops bf_ops = {.name = "body forces", .assemble = bf_assemble, .free = bf_free,
+                                          .depends = bf_depends};
 
 /* The record (see the top), checked against the model's elements and amplitudes. */
 static void read_body_forces(bk_reader *r, const bk_model *m, body_forces *w)

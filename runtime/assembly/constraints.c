@@ -301,3 +301,22 @@ double bk_constraint_residual(const bk_system *s, const double *q, double t)
     return worst;
 }
 
+
+int bk_constraints_nonlinear(const bk_system *s)
+{
+    return s->m->nnlcon;
+}
+
+int bk_constraints_on_path(const bk_system *s)
+{
+    const bk_model *m = s->m;
+    for (int c = 0; c < m->nlincon; ++c) {
+        const bk_lincon *lc = &m->lincons[c];
+        if (lc->kappa == 0.0 || (lc->rate == 0.0 && lc->amp == 0.0 && !lc->ampl))
+            continue;                    /* the angle is constant: so are the coefficients */
+        for (int k = 0; k < lc->nterm; ++k)
+            if (lc->cc[k] != 0.0 || lc->cs[k] != 0.0)
+                return 1;
+    }
+    return 0;
+}

@@ -464,11 +464,25 @@ static double contact_step_limit(void *self, const bk_system *s, const double *q
     return l.alpha;
 }
 
+/* The gaps depend on q; on x too when a primitive moves (its placement's amplitude). */
+static unsigned contact_depends(const void *self, const bk_system *s)
+{
+    const contact_work *w = self;
+    (void)s;
+    unsigned d = BK_DEPENDS_Q;
+    for (int i = 0; i < w->cm->nprim; ++i)
+        for (int k = 0; k < 3; ++k)
+            if (w->cm->prims[i].motion[k] != 0.0 || w->cm->prims[i].turn[k] != 0.0)
+                d |= BK_DEPENDS_X;
+    return d;
+}
+
 const bk_interaction_ops bk_contact_ops = {.name = "contact", .assemble = contact_assemble,
                                            .step_limit = contact_step_limit, .accept = contact_accept,
                                            .tables = contact_tables, .rows = contact_rows, .frame = contact_frame,
                                            .summary_key = "contact", .uncounted_energy = 1,
-                                           .summary = contact_summary, .free = contact_free};
+                                           .summary = contact_summary, .free = contact_free,
+                                           .depends = contact_depends};
 
 /* The interaction module: made when the model has the record "contact". */
 const bk_interaction_module bk_interaction_contact = {.ops = &bk_contact_ops, .order = 30, .record = "contact",

@@ -46,6 +46,14 @@
  *               measured from the last accepted state: a prediction can jump
  *               over what the limit guards (beam-to-beam contact: one beam
  *               predicted beyond another, at a positive distance again).
+ *   depends     (optional) what its forces depend on besides the elements'
+ *               state, given its data: bits BK_DEPENDS_* below (the analyses
+ *               ask the loops below, never the model's load lists);
+ *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer).
+ *   potential   (optional) the potential at q and the path variable x of
+ *               its forces that have one, relative to the reference state,
+ *               added to *Vg (gravity) or *Vf (other forces): the dynamic
+ *               energy balance's external potentials.
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -76,6 +84,18 @@ typedef struct bk_path {
     double gp;
 } bk_path;
 
+/* What an interaction's forces depend on (its depends()):
+ *   FACTOR  they are p->factor times those at factor 1, whatever x: work of
+ *           external loads scaled by the load factor (a load that
+ *           continuation can scale; its rate in the factor is exact);
+ *   X       they change with the path variable p->x (amplitudes, prescribed
+ *           placements; statics: the load factor, dynamics: the time);
+ *   Q       they change with the configuration (follower loads, moments on
+ *           sections, contact, springs): its Jacobian is not zero. */
+#define BK_DEPENDS_FACTOR 1u
+#define BK_DEPENDS_X 2u
+#define BK_DEPENDS_Q 4u
+
 typedef struct bk_interaction_ops {
     const char *name;
     int (*assemble)(void *self, struct bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax);
@@ -92,6 +112,8 @@ typedef struct bk_interaction_ops {
                                       * state may carry one beam through another, unseen by the limit) */
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
+    unsigned (*depends)(const void *self, const struct bk_system *s);
+    void (*potential)(void *self, const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
 } bk_interaction_ops;
 
 /* An interaction module: its operations; its place in every sum (ascending
@@ -140,6 +162,28 @@ int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame,
 int bk_interactions_cut_predictors(const struct bk_system *s);
 /* 1 when an interaction of s stores energy the energy balance does not count. */
 int bk_interactions_uncounted_energy(const struct bk_system *s);
+/* A depends() for the modules whose forces depend on q alone (springs,
+ * contact between beams): BK_DEPENDS_Q. */
+unsigned bk_depends_on_q(const void *self, const struct bk_system *s);
+/* What an interaction depends on (its depends(), or the safe answer). */
+unsigned bk_interaction_depends(const struct bk_system *s, int k);
+/* 1 when an interaction of s adds forces that change along a path at fixed
+ * q (with the load factor or the path variable x): a load to scale. */
+int bk_interactions_load_on_path(const struct bk_system *s);
+/* 1 when an interaction's Jacobian changes along a path at fixed q (it
+ * depends on q and on the factor or x): the Newton matrix at q is then not
+ * the same at every load factor. */
+int bk_interactions_tangent_on_path(const struct bk_system *s);
+/* The rate along the static path (factor = x = lam) of the residual's load
+ * terms at q, over the equations: rl[eq[i]] = d/dlam of the interactions'
+ * part of fint (exact for those proportional to the factor, by central
+ * differences with step 1e-6 max(1, |lam|) for those depending on x) minus
+ * fext[i], the dead loads of unit factor; rl's constraint rows are zeroed.
+ * fol[ndof] is scratch. */
+void bk_interactions_path_rate(struct bk_system *s, const double *q, double lam, const double *fext, double *rl,
+                               double *fol);
+/* Every interaction's potential at (q, x) added to *Vg and *Vf. */
+void bk_interactions_potentials(const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
 /* Every interaction's accept after an accepted state. */
 void bk_interactions_accept(const struct bk_system *s, const double *q, const bk_path *p);
 

@@ -3,6 +3,7 @@
  * order, and the loops over them (see interaction.h). */
 #include "assembly/interaction.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +20,14 @@ static int follower_assemble(void *self, bk_system *s, const double *q, const bk
     return 0;
 }
 
-static const bk_interaction_ops follower_ops = {.name = "moments", .assemble = follower_assemble};
+static unsigned follower_depends(const void *self, const bk_system *s)
+{
+    (void)self, (void)s;
+    return BK_DEPENDS_FACTOR | BK_DEPENDS_Q;     /* lam Q(q): turn with the section */
+}
+
+static const bk_interaction_ops follower_ops = {.name = "moments", .assemble = follower_assemble,
+                                                .depends = follower_depends};
 
 static int has_moments(const bk_model *m)
 {
@@ -49,7 +57,22 @@ static void loads_free(void *self)
     bk_loads_scratch_free(self);
 }
 
-static const bk_interaction_ops loads_ops = {.name = "loads", .assemble = loads_assemble, .free = loads_free};
+/* Amplitudes of x; follower and distributed loads and tendons depend on q (a
+ * dead force with an amplitude does not: counted with them, the safe side). */
+static unsigned loads_depends(const void *self, const bk_system *s)
+{
+    (void)self, (void)s;
+    return BK_DEPENDS_X | BK_DEPENDS_Q;
+}
+
+static void loads_potential(void *self, const bk_system *s, const double *q, double x, double *Vg, double *Vf)
+{
+    (void)self;
+    bk_load_potentials(s, q, x, Vg, Vf);
+}
+
+static const bk_interaction_ops loads_ops = {.name = "loads", .assemble = loads_assemble, .free = loads_free,
+                                             .depends = loads_depends, .potential = loads_potential};
 
 static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
@@ -186,4 +209,72 @@ int bk_interactions_cut_predictors(const bk_system *s)
     for (int k = 0; k < s->ninter; ++k)
         any |= s->inter[k].ops->cut_predictors;
     return any;
+}
+
+unsigned bk_depends_on_q(const void *self, const bk_system *s)
+{
+    (void)self, (void)s;
+    return BK_DEPENDS_Q;
+}
+
+unsigned bk_interaction_depends(const bk_system *s, int k)
+{
+    const bk_interaction *it = &s->inter[k];
+    return it->ops->depends ? it->ops->depends(it->self, s) : BK_DEPENDS_Q | BK_DEPENDS_X;
+}
+
+int bk_interactions_load_on_path(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        any |= (bk_interaction_depends(s, k) & (BK_DEPENDS_FACTOR | BK_DEPENDS_X)) != 0;
+    return any;
+}
+
+int bk_interactions_tangent_on_path(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k) {
+        const unsigned d = bk_interaction_depends(s, k);
+        any |= (d & BK_DEPENDS_Q) && (d & (BK_DEPENDS_FACTOR | BK_DEPENDS_X));
+    }
+    return any;
+}
+
+void bk_interactions_path_rate(bk_system *s, const double *q, double lam, const double *fext, double *rl,
+                               double *fol)
+{
+    const bk_model *m = s->m;
+    /* proportional to the factor: the forces at factor 1 are the rate */
+    memset(fol, 0, (size_t)m->ndof * sizeof *fol);
+    const bk_path one = {.factor = 1.0, .x = lam};
+    for (int k = 0; k < s->ninter; ++k)
+        if ((bk_interaction_depends(s, k) & (BK_DEPENDS_FACTOR | BK_DEPENDS_X)) == BK_DEPENDS_FACTOR)
+            s->inter[k].ops->assemble(s->inter[k].self, s, q, &one, fol, NULL);
+    for (int i = 0; i < m->ndof; ++i)
+        if (s->eq[i] >= 0)
+            rl[s->eq[i]] = fol[i] - fext[i];
+    for (int c = 0; c < s->ncon; ++c)
+        rl[s->nfree + c] = 0.0;
+    /* depending on x: central differences along the path */
+    const double d = 1e-6 * fmax(1.0, fabs(lam));
+    for (int k = 0; k < s->ninter; ++k) {
+        if (!(bk_interaction_depends(s, k) & BK_DEPENDS_X))
+            continue;
+        for (int sgn = 1; sgn >= -1; sgn -= 2) {
+            const bk_path p = {.factor = lam + sgn * d, .x = lam + sgn * d};
+            memset(fol, 0, (size_t)m->ndof * sizeof *fol);
+            s->inter[k].ops->assemble(s->inter[k].self, s, q, &p, fol, NULL);
+            for (int i = 0; i < m->ndof; ++i)
+                if (s->eq[i] >= 0)
+                    rl[s->eq[i]] += sgn * fol[i] / (2.0 * d);
+        }
+    }
+}
+
+void bk_interactions_potentials(const bk_system *s, const double *q, double x, double *Vg, double *Vf)
+{
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops->potential)
+            s->inter[k].ops->potential(s->inter[k].self, s, q, x, Vg, Vf);
 }

@@ -180,7 +180,7 @@ static void spring_free(void *self)
 static const bk_interaction_ops spring_ops = {.name = "springs", .assemble = spring_assemble,
                                               .tables = spring_tables, .rows = spring_rows,
                                               .summary_key = "springs", .summary = spring_summary,
-                                              .free = spring_free};
+                                              .free = spring_free, .depends = bk_depends_on_q};
 
 /* The record: 'springs N', then per spring 'spring NAME EA XIA EB XIB X Y Z K L0'. */
 static void read_springs(bk_reader *r, const bk_system *s, springs *w)

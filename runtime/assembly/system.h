@@ -155,6 +155,15 @@ double bk_constraint_coef(const bk_lincon *c, int k, double t);
  * drive's th(t) (0 when not driven). */
 double bk_joint_params(const bk_nlcon *c, double t, int k, double *prm);
 
+/* The number of joints nonlinear in q (constraint rows after the linear
+ * ones, with a geometric stiffness from their multipliers). */
+int bk_constraints_nonlinear(const bk_system *s);
+
+/* 1 when a linear constraint's coefficients change along the path (a
+ * rotating constraint whose angle has a rate or an amplitude): the Newton
+ * matrix then changes with the path variable at fixed q. */
+int bk_constraints_on_path(const bk_system *s);
+
 /* Largest |G(t) q - g(t)| over the constraint rows. */
 double bk_constraint_residual(const bk_system *s, const double *q, double t);
 

@@ -9,7 +9,6 @@
 #include "model/amplitude.h"
 #include "base/csvrow.h"
 #include "base/json.h"
-#include "assembly/loads.h"
 
 #ifdef _OPENMP
 #include <omp.h>

@@ -14,7 +14,7 @@
 #include "base/interrupt.h"
 #include "assembly/system.h"
 
-static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err);
+static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, FILE *err);
 
 /* Adds the time since t0 to the run's output time (summary.json output_s). */
 static void spent(bk_output *o, double t0)
@@ -51,26 +51,22 @@ static void spent_flush(bk_output *o, double t0)
     o->t_output += now - t0;
 }
 
-int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err)
+int bk_output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, int progress,
+                   FILE *err)
 {
     memset(o, 0, sizeof *o);
     o->progress = !progress ? 0 : isatty(2) ? 1 : 2;
     o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
-    int rc = output_open(o, m, dir, err);
+    int rc = output_open(o, m, plan, dir, err);
     spent(o, o->t_start);
     return rc;
 }
 
-static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *err)
+static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, FILE *err)
 {
-    /* the frames a dynamic run writes (known from the start), and the room for
-     * them (a static run: its load steps, which the step control may change) */
-    const int known = bk_model_in_time(m)
-                          ? (int)fmin(1e9, m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) /
-                                               (m->output.vtk_every > 0 ? m->output.vtk_every : 1)) + 1
-                          : 0;
-    const int frames = known ? known + 3 : m->stat.load_steps * (1 + 2 * m->stat.cycles) + 4;
-    if (bk_vtk_open(&o->vtk, m, dir, m->output.vtk_every, frames, known) != 0) {
+    /* the frames the analysis writes when it knows them from the start, and
+     * the room for them (its plan) */
+    if (bk_vtk_open(&o->vtk, m, dir, m->output.vtk_every, plan->room, plan->frames) != 0) {
         fprintf(err, "error: out of memory for the ParaView frames\n");
         return -1;
     }
@@ -105,16 +101,18 @@ static int output_open(bk_output *o, const bk_model *m, const char *dir, FILE *e
     o->vtk.ssec = o->forces.ssec;
     o->vtk.maxsample = o->forces.maxsample;
     /* section forces at the steps that get a ParaView frame; without frames at
-     * the stride their default would have (gen/options_schema.py _vtk_every:
-     * 50 frames in dynamics, DYNAMIC_FRAMES; every equilibrium in statics) --
+     * the stride their default would have (the analysis' plan: e.g. 50 frames
+     * in dynamics, gen/options_schema.py DYNAMIC_FRAMES; every equilibrium in
+     * statics) --
      * it was 100 here, so a run without frames computed twice the section
      * forces of one with them (its output took longer) */
     if (m->output.vtk_every > 0)
         o->sections_every = m->output.vtk_every;
-    else if (bk_model_in_time(m))
-        o->sections_every = (int)fmax(1.0, ceil(m->dyn.t_end / (m->dyn.dt * m->dyn.output_every) / 50.0));
     else
-        o->sections_every = 1;
+        o->sections_every = plan->sections_every > 1 ? plan->sections_every : 1;
+    o->plan = *plan;
+    o->vtk.end = plan->end;
+    o->vtk.modes = plan->modes;
     return 0;
 }
 
@@ -369,7 +367,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
         fprintf(fp, "  \"warnings_dropped\": %d,\n", info->warnings_dropped);
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
     fprintf(fp, "  \"output_s\": %.6f,\n", info->output_s);
-    if (bk_model_in_load(o->m) && o->m->stat.stability)
+    if (o->plan.stability)
         fprintf(fp, "  \"stability_s\": %.6f,\n", info->stability_s);
     fprintf(fp, "  \"steps\": %d,\n", info->steps);
     fprintf(fp, "  \"newton_iterations\": %d,\n", info->newton_iterations);

@@ -15,6 +15,20 @@
 #include "model/model.h"
 #include "output/vtk.h"
 
+/* What the running analysis tells the output of the states it will write
+ * (its module's plan, analysis/analysis.h), so that no output code tests the
+ * kind of analysis or reads its options. */
+typedef struct bk_output_plan {
+    double end;              /* the path variable at the run's end: a frame's progress is t / end (0: unknown,
+                              * e.g. continuation, load cycles) */
+    int frames;              /* ParaView frames of states it writes, when known from the start (else 0) */
+    int room;                /* frames to make room for at the start (more are made room for as they come) */
+    int sections_every;      /* output states between two of sections.csv when output.vtk_every does not set
+                              * it (0: every state) */
+    int modes;               /* mode frames it writes (progress: mode / modes; 0: none) */
+    int stability;           /* 1: it checks the stability of its states (summary.json: stability_s) */
+} bk_output_plan;
+
 typedef struct bk_output {
     const bk_model *m;
     char dir[1024];
@@ -36,6 +50,7 @@ typedef struct bk_output {
     double t_flush;          /* wall clock of the last flush of the result tables */
     double t_output;         /* wall time spent in the bk_output_* calls so far (s) */
     bk_forces forces;        /* reactions.csv, sections.csv (forces.h) */
+    bk_output_plan plan;     /* the analysis' (bk_output_open) */
     int sections_every, forces_calls;   /* sections.csv every n-th output step (with the frames) */
     int write_failed;        /* a ParaView frame could not be written (reported by bk_output_final) */
     const bk_system *sys;    /* the system of the last bk_output_forces: its interactions add to the frames */
@@ -52,7 +67,8 @@ typedef struct bk_output {
  * nothing before the first interval has passed. */
 #define BK_PROGRESS_TTY_S 2.0
 #define BK_PROGRESS_LOG_S 10.0
-int bk_output_open(bk_output *o, const bk_model *m, const char *dir, int progress, FILE *err);
+int bk_output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, int progress,
+                   FILE *err);
 /* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
  * only after the first second, only on a terminal. */
 /* After an accepted step: the fraction done, the step, the time or load

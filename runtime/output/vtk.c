@@ -444,13 +444,7 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     char path[1200];
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
-    const bk_model *m = v->m;
-    double frac = -1.0;
-    if (bk_model_in_time(m) && m->dyn.t_end > 0.0)
-        frac = t / m->dyn.t_end;
-    else if (bk_model_in_load(m) && m->stat.method != BK_METHOD_ARC_LENGTH && m->stat.cycles == 0)
-        frac = t;                                    /* the load factor, 0 -> 1 */
-    maybe_background(v, frac);
+    maybe_background(v, v->end > 0.0 ? t / v->end : -1.0);    /* the analysis' plan (output.h) */
     static const char *const names[] = {"TIME"};
     if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
         return -1;
@@ -484,7 +478,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const d
     double fval[BK_VTK_MODE_FIELDS];
     int nf = bk_vtk_mode_fields(mode, nval, names, vals, scale, caps, fname, fval);
     mode_view mv = {qp, qm, eps, norm, scale};
-    maybe_background(v, v->m->modal.modes > 0 ? (double)mode / v->m->modal.modes : -1.0);
+    maybe_background(v, v->modes > 0 ? (double)mode / v->modes : -1.0);
     if (write_vtu(v, path, nf, fname, fval, q, &mv, NULL, NULL, 0) != 0)
         return -1;
     if (mode > v->nmode)

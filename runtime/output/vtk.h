@@ -35,6 +35,8 @@ typedef struct bk_vtk {
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
+    double end;              /* the path variable at the run's end (progress t / end; 0: unknown) */
+    int modes;               /* mode frames the run writes (0: none) */
     bk_filewriter fw;        /* owned when background and no ext */
     bk_filewriter *ext;      /* not owned, or NULL: a writer thread to share (buffers of at least
                               * frame_bytes; the output's: results.h5's) instead of one of its own */
