@@ -112,6 +112,8 @@ LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmo
 LOAD_READERS = {
     "output/forces.c": "the reactions: each constraint's force, from its own rows",
     "output/joint_out.c": "the joints' reactions in their own axes",
+    "analysis/dyn_frame_setup.c": "the rotating frame is defined by its driven constraint (axis, point, drive)",
+    "analysis/dyn_frame.c": "the rotating frame holds its own constraint's coordinates at their t = 0 rows",
 }
 
 

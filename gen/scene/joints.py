@@ -8,6 +8,7 @@ function here, its keys in scene_keys.CONSTRAINT, a test.
 """
 import gen.scene_keys as K
 from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
+from gen.scene.held_section import graded_clamp_warning
 from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
                               get_number, get_str, get_vec3)
 
@@ -80,20 +81,6 @@ def clamp(ctx, ct, where, mesh, rows, beam, s, gid):
                 row([(dl[i], nrm[i], 0.0, 0.0) for i in range(3)])
         else:                   # r_yy, r_yz, r_zz: the section stays plane, free in its plane
             row([(dl[i], t[i], 0.0, 0.0) for i in range(3)])
-
-
-def graded_clamp_warning(mesh, where, beam, s, what="a rigid clamp"):
-    """A rigid clamp (or a weld, which holds the section the same way) at an end of
-    a uniformly meshed ancf3363 beam: the section held whole there starts a 3-D boundary layer its elements resolve only when short
-    (measured against CalculiX, tests/test_silicone_large.py)."""
-    lens = beam["elem_lens"]
-    if beam["element"] != "ancf3363" or len(lens) < 2 or max(lens) > 1.5 * min(lens):
-        return
-    end = "start" if s <= 0.5 * beam["length"] else "end"
-    mesh.warnings.append(f"{where}: {what} at the {end} of beam {beam['name']} (ancf3363, uniform mesh): "
-                         "the boundary layer of the held section makes 10 uniform elements 6.7 % too stiff against "
-                         f"a solid model; grade toward the clamp (beam.grading = {20 if end == 'start' else 0.05}: "
-                         "0.48 %) or use cross_section = \"free\"")
 
 
 def _quat_mul(p, r):

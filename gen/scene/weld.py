@@ -18,6 +18,7 @@ One [[constraint]] is several joints (a spherical joint for the position and
 weld_vectors / weld_vector / weld_tangent for the section, each at most
 BK_JOINT_MAXROW rows); its reaction sums them on side a's DOFs.
 """
+from gen.scene.held_section import graded_clamp_warning
 from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
 from gen.scene.values import _cross, _norm, _sub
 
@@ -118,5 +119,4 @@ def weld(ctx, ct, where, mesh, rows, ctype, ci, name):
     else:
         e, xi = fr["where"]
     rows.reactions.append((ci, ctype, ct["a"], e, xi, [], [], side, first, name, len(rows.nlcons) - first))
-    from gen.scene.joints import graded_clamp_warning        # (joints.py imports this module)
     graded_clamp_warning(mesh, where, beam, s, "a weld (the section held rigid, as a clamp holds it)")
