@@ -183,16 +183,21 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
     const bk_model *m = s->m;
     const size_t nb = 6 * (size_t)s->maxdof + 4 * (size_t)s->maxdof * (size_t)s->maxdof;
     const int nsec = m->nsection;
-#pragma omp parallel num_threads(f->nthread) if (nsec >= 256)
-    {
-        int t = 0;
+    if (nsec >= 256) {
+#pragma omp parallel num_threads(f->nthread)
+        {
+            int t = 0;
 #ifdef _OPENMP
-        t = omp_get_thread_num();
+            t = omp_get_thread_num();
 #endif
-        double *buf = f->sbuf + (size_t)t * nb, *sres = f->sres + (size_t)t * 9 * (size_t)f->maxsample;
+            double *buf = f->sbuf + (size_t)t * nb, *sres = f->sres + (size_t)t * 9 * (size_t)f->maxsample;
 #pragma omp for schedule(static)
+            for (int k = 0; k < nsec; ++k)
+                section_values(f, s, k, x, q, qd, qdd, buf, sres);
+        }
+    } else {            /* no parallel region (libgomp allocates a team even when it runs alone) */
         for (int k = 0; k < nsec; ++k)
-            section_values(f, s, k, x, q, qd, qdd, buf, sres);
+            section_values(f, s, k, x, q, qd, qdd, f->sbuf, f->sres);
     }
     for (int k = 0; f->sections && k < nsec; ++k) {
         const bk_section_rec *sr = &m->sections[k];

@@ -97,33 +97,50 @@ double bk_norm_dof_max(const bk_norms *n, const bk_system *s, const double *a, c
     return sqrt(mx);
 }
 
+/* The mean square of the matrix entries in the columns of group g, in four
+ * partial sums: one chain of dependent additions over every matrix entry was a
+ * tenth of a small model's solve (it runs for every new matrix). */
+static double group_mean_square(const bk_norms *n, const bk_system *s, const double *Ax, int g)
+{
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    const int dim = n->gstart[g + 1] - n->gstart[g];
+    for (int k = n->gstart[g]; k < n->gstart[g + 1]; ++k) {
+        const int j = n->geq[k], len = s->Ap[j + 1] - s->Ap[j];
+        const double *x = Ax + s->Ap[j];
+        int p = 0;
+        for (; p + 4 <= len; p += 4) {
+            s0 += x[p] * x[p];
+            s1 += x[p + 1] * x[p + 1];
+            s2 += x[p + 2] * x[p + 2];
+            s3 += x[p + 3] * x[p + 3];
+        }
+        for (; p < len; ++p)
+            s0 += x[p] * x[p];
+    }
+    return ((s0 + s1) + (s2 + s3)) / dim;
+}
+
 double bk_norm_matrix_max(const bk_norms *n, const bk_system *s, const double *Ax)
 {
-    /* four partial sums per group: one chain of dependent additions over every
-     * matrix entry was a tenth of a small model's solve (it runs for every new
-     * matrix); a large model's groups on the threads (a maximum: the same for
-     * any thread count; one parallel region a new matrix) */
+    /* a large model's groups on the threads (a maximum: the same for any thread
+     * count; one parallel region a new matrix); a small model's without entering
+     * a parallel region at all: libgomp allocates a team for a region even when
+     * its if clause is false, and this runs at every new matrix
+     * (tests/test_bench_alloc.py) */
     double mx = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : mx) if (n->ngroup >= 4096)
-    for (int g = 0; g < n->ngroup; ++g) {
-        double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-        int dim = n->gstart[g + 1] - n->gstart[g];
-        for (int k = n->gstart[g]; k < n->gstart[g + 1]; ++k) {
-            const int j = n->geq[k], len = s->Ap[j + 1] - s->Ap[j];
-            const double *x = Ax + s->Ap[j];
-            int p = 0;
-            for (; p + 4 <= len; p += 4) {
-                s0 += x[p] * x[p];
-                s1 += x[p + 1] * x[p + 1];
-                s2 += x[p + 2] * x[p + 2];
-                s3 += x[p + 3] * x[p + 3];
-            }
-            for (; p < len; ++p)
-                s0 += x[p] * x[p];
+    if (n->ngroup >= 4096) {
+#pragma omp parallel for schedule(static) reduction(max : mx)
+        for (int g = 0; g < n->ngroup; ++g) {
+            const double v = group_mean_square(n, s, Ax, g);
+            if (v > mx)
+                mx = v;
         }
-        const double v = ((s0 + s1) + (s2 + s3)) / dim;
-        if (v > mx)
-            mx = v;
+    } else {
+        for (int g = 0; g < n->ngroup; ++g) {
+            const double v = group_mean_square(n, s, Ax, g);
+            if (v > mx)
+                mx = v;
+        }
     }
     return sqrt(mx);
 }
