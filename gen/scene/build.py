@@ -86,9 +86,9 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
                              "counts the eigenvalues of the symmetric part of the tangent (flutter is not detected)")
     stiff = [i for i, t in enumerate(load_types) if t in ("moment", "tendon", "chamber") or i in follower]
     if stiff and analysis == "modal" and modal["about"] == "static":
-        mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state uses the stiffness of "
-                             "the elastic forces only, without the load stiffness of moments, follower loads and "
-                             "tendons")
+        mesh.warnings.append(f"load[{stiff[0]}]: the modal analysis about the static state takes the load "
+                             "stiffness of moments, follower loads, tendons and chambers symmetrized: their "
+                             "non-symmetric part (non-conservative; flutter) is left out")
     length_scale = max([b["length"] for b in mesh.beams.values()] +
                        [max(1e-3, b_["geom_edge"], max(abs(x) for x in b_["X"])) for b_ in mesh.bodies.values()])
     scene_parts = interactions.Scene(mesh.beams, mesh.bodies, length_scale, amps, analysis, stat, rows)

@@ -31,7 +31,6 @@
 #include <string.h>
 
 #include "analysis/static.h"
-#include "assembly/actuators.h"
 
 #define BK_MODAL_MAXDOF 4000
 
@@ -71,6 +70,23 @@ static void gt_add(void *ctx, int eq, double v)
 static void k_add(void *ctx, int i, int j, double v)
 {
     *gsl_matrix_ptr((gsl_matrix *)ctx, (size_t)i, (size_t)j) += v;
+}
+
+/* The interactions' stiffness at the modal state (bk_modal_interactions) into
+ * the dense K[nfree nfree]; fint[ndof] scratch.  0, or -1. */
+static int add_interactions(bk_system *s, const double *q, double *fint, gsl_matrix *K)
+{
+    double *Ax = calloc((size_t)(s->nnz > 0 ? s->nnz : 1), sizeof *Ax);
+    if (!Ax || bk_modal_interactions(s, q, fint, Ax) != 0) {
+        free(Ax);
+        return -1;
+    }
+    for (int j = 0; j < s->nfree; ++j)
+        for (int k = s->Ap[j]; k < s->Ap[j + 1]; ++k)
+            if (s->Ai[k] < s->nfree)
+                k_add(K, s->Ai[k], j, Ax[k]);
+    free(Ax);
+    return 0;
 }
 
 /* The frequencies summary.json lists (every mode is in modes.csv). */
@@ -200,9 +216,13 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
             add_element_block(s, e, Mq, rho, M);
         }
     }
-    /* the joint motors' stiffness (their springs kp and the torque's) at rest */
-    const double x_modal = m->modal.about == BK_ABOUT_STATIC ? 1.0 : 0.0;
-    bk_actuators_at_rest(s, q, x_modal, NULL, k_add, K);
+    /* the interactions' stiffness (springs, joint motors, contact, loads that
+     * turn with the structure), assembled on the pattern, its free block added */
+    if (add_interactions(s, q, fint, K) != 0) {
+        snprintf(info->message, sizeof info->message, "out of memory, or an interaction's stiffness is not "
+                 "finite at the modal state");
+        goto done;
+    }
     /* symmetrize (kernels are symmetric to round-off) */
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j) {

@@ -20,4 +20,11 @@ int bk_solve_modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, F
 int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, double *X, int *got, int *steps,
                     char *msg, size_t nmsg);
 
+/* Every interaction's stiffness at the state the modes are about (springs,
+ * joint motors, contact, and at a static state the configuration-dependent
+ * loads at its load factor 1): the tangent each assembles, added into Ax[nnz]
+ * (in/out, on the pattern); fint[ndof] is scratch.  0, or -1 on a non-finite
+ * interaction (modal_sparse.c). */
+int bk_modal_interactions(bk_system *s, const double *q, double *fint, double *Ax);
+
 #endif

@@ -21,8 +21,7 @@
  *
  * Limits (refused with a message): constraints of deficient rank (A is then
  * singular: the dense solver handles them), joints nonlinear in q about a
- * static state (their geometric stiffness needs the multipliers), actuators
- * (their stiffness at rest is the dense solver's).
+ * static state (their geometric stiffness needs the multipliers).
  */
 #include "analysis/modal.h"
 
@@ -30,7 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "assembly/actuators.h"
+#include "assembly/interaction.h"
 #include "linalg/lanczos.h"
 #include "linalg/linsolve.h"
 
@@ -69,14 +68,22 @@ static int shift_invert(void *ctx, const double *x, double *y)
     return 0;
 }
 
-/* K (the elements' tangent) into Ax and M into Mx, both on the pattern; the
+int bk_modal_interactions(bk_system *s, const double *q, double *fint, double *Ax)
+{
+    const double x = s->m->modal.about == BK_ABOUT_STATIC ? 1.0 : 0.0;
+    const bk_path at = {.factor = x, .x = x};
+    memset(fint, 0, (size_t)s->m->ndof * sizeof *fint);
+    return bk_assemble_interactions(s, q, &at, fint, Ax);
+}
+
+/* K (the elements' and the interactions' tangent) into Ax and M into Mx, both on the pattern; the
  * traces of their free diagonals.  -1 on a non-finite tangent. */
 static int matrices(bk_system *s, const double *q, double *Ax, double *Mx, double *fint, double *work,
                     double *trK, double *trM)
 {
     const bk_model *m = s->m;
     const int md = s->maxdof;
-    if (bk_assemble_internal(s, q, fint, Ax) != 0)
+    if (bk_assemble_internal(s, q, fint, Ax) != 0 || bk_modal_interactions(s, q, fint, Ax) != 0)
         return -1;
     memset(Mx, 0, (size_t)s->nnz * sizeof *Mx);
     double *me = work, *Me = work + (size_t)md * md, *Cq = Me + (size_t)md * md, *Kq = Cq + (size_t)md * md;
@@ -109,11 +116,6 @@ int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, doub
     const int n = s->nfree;
     const size_t md = (size_t)(s->maxdof > 0 ? s->maxdof : 1);
     *got = *steps = 0;
-    if (bk_actuators_present(s)) {
-        snprintf(msg, nmsg, "the sparse modal solver does not take the actuators' stiffness: use modal.solver = "
-                 "\"dense\"");
-        return 1;
-    }
     if (bk_constraints_nonlinear(s) > 0 && m->modal.about == BK_ABOUT_STATIC) {
         snprintf(msg, nmsg, "the sparse modal solver does not take joints nonlinear in the coordinates about a "
                  "static state (their geometric stiffness needs the multipliers): use modal.solver = \"dense\"");

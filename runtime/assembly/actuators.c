@@ -23,7 +23,8 @@
  *   dfint/dx' = kd g g^T   (times gp in the Newton matrix).
  * A rotation's s is the unwrapped angle: atan2 of the kernel's (X, Y), taken
  * nearest to the last accepted state's angle. */
-#include "assembly/actuators.h"
+#include "assembly/interaction.h"
+#include "assembly/system.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -229,51 +230,6 @@ static unsigned act_depends(const void *self, const bk_system *s)
 static const bk_interaction_ops act_ops = {.name = "actuators", .assemble = act_assemble, .accept = act_accept,
                                            .tables = act_tables, .rows = act_rows, .summary_key = "actuators",
                                            .summary = act_summary, .free = act_free, .depends = act_depends};
-
-/* The actuators of s (its interaction of this module), or NULL. */
-static const act_work *actuators_of(const bk_system *s)
-{
-    for (int k = 0; k < s->ninter; ++k)
-        if (s->inter[k].ops == &act_ops)
-            return s->inter[k].self;
-    return NULL;
-}
-
-int bk_actuators_present(const bk_system *s)
-{
-    const act_work *w = actuators_of(s);
-    return w && w->n > 0;
-}
-
-void bk_actuators_at_rest(const bk_system *s, const double *q, double x, double *fint,
-                          void (*add)(void *ctx, int i, int j, double v), void *ctx)
-{
-    const bk_model *m = s->m;
-    const int nx = BK_JOINT_NX;
-    const act_work *w = actuators_of(s);
-    for (int i = 0; w && i < w->n; ++i) {
-        const bk_actuator *a = &w->acts[i];
-        const bk_nlcon *c = &m->nlcons[a->nlcon];
-        const act_state ref = {0};
-        double xj[BK_JOINT_NX], g[BK_JOINT_NX], H[BK_JOINT_NX * BK_JOINT_NX], raw;
-        joint_x(c, q, 0, xj);
-        const double sv = coordinate(a, c, &ref, xj, g, H, &raw);
-        const double as = a->samp >= 0 ? bk_amp_eval(&m->amps[a->samp], x, 0) : 1.0;
-        const double tau = a->effort0 * bk_load_factor(m, a->eamp, x) + a->kp * (a->setpoint * as - sv);
-        for (int k = 0; k < nx; ++k) {
-            const int ek = c->dof[k] >= 0 ? s->eq[c->dof[k]] : -1;
-            if (fint && c->dof[k] >= 0)
-                fint[c->dof[k]] -= tau * g[k];
-            if (!add || ek < 0 || ek >= s->nfree)
-                continue;
-            for (int l = 0; l < nx; ++l) {
-                const int el = c->dof[l] >= 0 ? s->eq[c->dof[l]] : -1;
-                if (el >= 0 && el < s->nfree)
-                    add(ctx, ek, el, -tau * H[nx * k + l] + a->kp * g[k] * g[l]);
-            }
-        }
-    }
-}
 
 /* The record (see the top): the actuators, checked against the model's joints
  * and amplitudes. */
