@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "analysis/static.h"
+#include "assembly/interaction.h"
 
 #define BK_MODAL_MAXDOF 4000
 
@@ -184,6 +185,10 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
     } else {
         memcpy(q, m->q0, (size_t)m->ndof * sizeof *q);
         bk_output_step(out, 0, 0.0, q);
+    }
+    if (bk_interactions_prepare(s, q) != 0) {        /* (contact's pairs at q: the pattern may grow) */
+        snprintf(info->message, sizeof info->message, "out of memory for the interactions at the modal state");
+        return 1;
     }
     if (sparse)
         return modal_sparse(s, q, out, info, log, freqs, nfreq);

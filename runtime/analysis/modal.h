@@ -23,8 +23,8 @@ int bk_modal_sparse(bk_system *s, const double *q, int want, double *omega, doub
 /* Every interaction's stiffness at the state the modes are about (springs,
  * joint motors, contact, and at a static state the configuration-dependent
  * loads at its load factor 1): the tangent each assembles, added into Ax[nnz]
- * (in/out, on the pattern); fint[ndof] is scratch.  0, or -1 on a non-finite
- * interaction (modal_sparse.c). */
+ * (in/out, on the pattern, after bk_interactions_prepare at q); fint[ndof] is
+ * scratch.  0, or -1 on a non-finite interaction (modal_sparse.c). */
 int bk_modal_interactions(bk_system *s, const double *q, double *fint, double *Ax);
 
 #endif
