@@ -4,13 +4,11 @@ a spring used to be left out without a word.  References: the closed forms of
 a mass on springs, sqrt(k/m), and the Euler-Bernoulli frequency equation of a
 cantilever with a spring at its tip, solved here."""
 import math
-import tempfile
-from pathlib import Path
 
 import pytest
 from scipy.optimize import brentq
 
-from util import BUILD, ensure_dir, run_scene
+from util import run_text
 
 BODY = """[scene]
 analysis = "modal"
@@ -70,11 +68,7 @@ solver = "SOLVER"
 
 
 def _run(text, name):
-    d = Path(tempfile.mkdtemp(prefix=f"bk-modal-{name}-", dir=ensure_dir(BUILD / "runs")))
-    (d / f"{name}.toml").write_text(text)
-    s, _ = run_scene(d / f"{name}.toml", out=d / "out")
-    assert s["converged"], s
-    return s
+    return run_text(text, name, "bk-modal")
 
 
 def test_mass_on_three_springs_has_the_frequencies_sqrt_k_over_m():

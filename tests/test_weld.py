@@ -4,15 +4,13 @@ the cantilever closed forms of beam theory (bending, shear, torsion with the
 continuum sections' polar moment), central differences of the generated
 constraint functions, and rigid motions built here."""
 import math
-import tempfile
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from test_bad_input import check_error
 from test_bodies import NX, _joint_kinds, check_joint_derivatives, joint_g
-from util import BUILD, ensure_dir, run_scene
+from util import BUILD, ensure_dir, run_text
 
 E, B, L = 7.2e10, 0.01, 1.0
 EI, GA, GJ = E * B**4 / 12, 5 / 6 * E / 2 * B * B, E / 2 * B**4 / 6
@@ -56,11 +54,7 @@ def _con(kind, a, b=None, extra=""):
 
 
 def _run(text, name):
-    d = Path(tempfile.mkdtemp(prefix=f"bk-weld-{name}-", dir=ensure_dir(BUILD / "runs")))
-    (d / f"{name}.toml").write_text(text)
-    s, _ = run_scene(d / f"{name}.toml", out=d / "out")
-    assert s["converged"], name
-    return s
+    return run_text(text, name, "bk-weld")
 
 
 def _two_segments(first, second, a_first=True, kind="fixed", P=0.01):

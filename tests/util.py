@@ -37,6 +37,16 @@ def run_scene(scene, sets=(), out=None, extra=()):
     return load_run(out)
 
 
+def run_text(text, name, prefix="bk-text"):
+    """Write scene text to a fresh directory as NAME.toml, run it (its results in
+    out/ there) and return its summary, which must say converged."""
+    d = Path(tempfile.mkdtemp(prefix=f"{prefix}-{name}-", dir=ensure_dir(BUILD / "runs")))
+    (d / f"{name}.toml").write_text(text)
+    s, _ = run_scene(d / f"{name}.toml", out=d / "out")
+    assert s["converged"], name
+    return s
+
+
 def run_memcheck(scene, sets=(), out=None, threads=None, timeout=900):
     """`./build.sh run SCENE --memcheck`: the valgrind build of the solver
     (-march=x86-64-v3, never -march=native: valgrind cannot decode AVX-512) run
