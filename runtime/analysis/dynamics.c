@@ -258,17 +258,17 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
         if (st == DYN_OK && !bk_checks_admissible(&chk, s, q, inadm, sizeof inadm))
             st = DYN_INADMISSIBLE;
         bk_energy eb_trial;
-        double pcon_trial = pcon_last;
+        double pcon_trial = pcon_last, U_trial = NAN, T_trial = NAN;
         if (st == DYN_OK) {     /* the energy balance over the step, at the converged state's powers */
             const double P = bk_dyn_dot_free(s, fdof, w.fext, bk_dyn_power_velocity(s, &w, q, tn)) - w.p_inter
                              - w.p_con, Pd = w.p_damp;
             pcon_trial = -w.p_con;
-            double T = bk_dyn_kinetic(s, &w, fdof, q, tn);
+            const double T = T_trial = bk_dyn_kinetic(s, &w, fdof, q, tn);
             bk_energy eb_from = eb;
             if (bathe)      /* the balance over the two sub-steps */
                 bk_energy_step(&eb_from, mid.t, mid.t - t, mid.T, mid.U - U0, mid.P, mid.Pd);
-            double created = bk_energy_trial(&eb_from, tn, bathe ? tn - mid.t : h, T, bk_strain_energy(s, q) - U0, P,
-                                             Pd, &eb_trial);
+            U_trial = bk_strain_energy(s, q) - U0;
+            double created = bk_energy_trial(&eb_from, tn, bathe ? tn - mid.t : h, T, U_trial, P, Pd, &eb_trial);
             if (created > BK_ENERGY_CREATED) {
                 st = DYN_ENERGY;
                 snprintf(inadm, sizeof inadm, "the integrator created %.3g J (%.3g %% of the largest energy, %.3g J; "
@@ -379,8 +379,10 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
             dyn_output(out, s, &w, step, t, q, w.nu, 1);
             bk_checks_state(&chk, s, q, "t =", t, info, out->console);
             written = step;
-            double T = bk_dyn_kinetic(s, &w, fdof, q, t);
-            double U = bk_strain_energy(s, q) - U0;
+            /* the accepted state's energies, computed for the step's energy balance
+             * (again only where quaternions were renormalized since) */
+            double T = nquat == 0 ? T_trial : bk_dyn_kinetic(s, &w, fdof, q, t);
+            double U = nquat == 0 ? U_trial : bk_strain_energy(s, q) - U0;
             double Vg = 0.0, Vf = 0.0;
             for (int i = 0; i < nd; ++i) {
                 Vg -= w.fgrav[i] * (q[i] - m->q0[i]);
