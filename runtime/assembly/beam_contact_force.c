@@ -364,9 +364,9 @@ static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *
 {
     (void)s;
     bc_work *w = self;
-    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    w->table = bk_tables_find(ts, bk_contacts_csv.name);
     if (!w->table)
-        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
+        w->table = bk_tables_open(ts, dir, &bk_contacts_csv, 1, err);
     return w->table ? 0 : -1;
 }
 
