@@ -173,3 +173,22 @@ def test_output_and_solver_read_no_analysis_options():
             bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
     assert not bad, "analysis options read in output/ or solver/ (tell the output through the plan):\n" + \
         "\n".join(bad)
+
+
+def test_output_asks_the_plan_not_the_model_for_the_path():
+    """Whether the states form a path, and in what, the output learns from the
+    analysis (its plan's `path`, output.h), not from the model: a guard that
+    fails on a call of bk_model_on_path, bk_model_in_time or bk_model_in_load
+    in output/."""
+    pat = re.compile(r"\bbk_model_(on_path|in_time|in_load)\s*\(")
+    assert pat.search("if (bk_model_on_path(m))") and pat.search("bk_model_in_time (o->m)")
+    assert not pat.search("o->plan.path != BK_PATH_NONE")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] != "output":
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "output/ asks the model for the path (use the plan's path):\n" + "\n".join(bad)

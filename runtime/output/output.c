@@ -86,14 +86,14 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
     }
     for (int k = 0; k < m->nsensor; ++k)
         bk_eval_sensor(m, m->q0, &m->sensors[k], o->sensor_p0 + 3 * k, NULL);
-    if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
+    if (bk_forces_open(&o->forces, m, plan->path, dir, &o->tables, err) != 0)
         return -1;
     o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
     if (m->output.hdf5) {
         /* one writer thread for results.h5, the frames and the tables' rows
          * (the frames' buffers in it when they would have a thread of their own) */
         const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
-        if (bk_h5_open(&o->h5, m, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
+        if (bk_h5_open(&o->h5, m, plan->path == BK_PATH_TIME, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
             return -1;
         o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
         if (share)
@@ -141,8 +141,8 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, double dt
     o->progress_shown = 1;
     double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
     fprintf(stderr, "%s%s: %s %.6g (%.0f %%), step %d, %s %.3g, %.0f iterations/s, residual %.1e, %.0f s left%s",
-            o->progress == 1 ? "\r" : "", o->m->name, bk_model_in_time(o->m) ? "t" : "load factor", t,
-            100.0 * frac, step, bk_model_in_time(o->m) ? "dt" : "increment", dt, o->progress_iters / el, residual,
+            o->progress == 1 ? "\r" : "", o->m->name, o->plan.path == BK_PATH_TIME ? "t" : "load factor", t,
+            100.0 * frac, step, o->plan.path == BK_PATH_TIME ? "dt" : "increment", dt, o->progress_iters / el, residual,
             eta, o->progress == 1 ? "   " : "\n");
     fflush(stderr);
 }
@@ -158,7 +158,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 
 void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
-    if (bk_model_on_path(o->m))
+    if (o->plan.path != BK_PATH_NONE)
         bk_output_last_frame(o, step, t, q);
     double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
@@ -282,7 +282,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
     fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
     /* every number through json_num: a non-finite value is null (JSON has no NaN) */
-    fprintf(fp, "  \"%s\": ", bk_model_in_time(m) ? "time" : "load_factor");
+    fprintf(fp, "  \"%s\": ", o->plan.path == BK_PATH_TIME ? "time" : "load_factor");
     bk_json_num(fp, info->load_factor);
     fprintf(fp, ",\n  \"max_constraint_residual\": ");
     bk_json_num(fp, info->max_constraint_residual);

@@ -19,6 +19,9 @@
  * (its module's plan, analysis/analysis.h), so that no output code tests the
  * kind of analysis or reads its options. */
 typedef struct bk_output_plan {
+    int path;                /* the kind of its states' path (bk_options.h enum bk_path_kind): BK_PATH_NONE
+                              * (modal, buckling: no path, no sections.csv, joints.csv or last frame),
+                              * BK_PATH_LOAD (the load factor), BK_PATH_TIME (time: velocities, inertia) */
     double end;              /* the path variable at the run's end: a frame's progress is t / end (0: unknown,
                               * e.g. continuation, load cycles) */
     int frames;              /* ParaView frames of states it writes, when known from the start (else 0) */
