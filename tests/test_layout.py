@@ -107,7 +107,7 @@ def test_no_analysis_switch_outside_the_table_and_the_model():
 LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|"
                             r"ntendon|tendons|has_gravity|gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|"
                             r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present|"
-                            r"load_potentials)\s*\(")
+                            r"load_potentials|element_loads)\s*\(")
 # file -> why it may read them
 LOAD_READERS = {
     "output/forces.c": "the reactions: each constraint's force, from its own rows",
@@ -120,7 +120,9 @@ LOAD_READERS = {
 def test_analyses_and_output_ask_the_interactions_not_the_load_lists():
     """A guard that fails when a file of analysis/, solver/ or output/ (other
     than the reaction outputs named in LOAD_READERS) reads the model's loads,
-    tendons or constraints, or calls a load type's own assembly."""
+    tendons or constraints, or calls a load type's own assembly (or its
+    forces along an element: the section forces ask the interactions'
+    element_loads)."""
     bad, used = [], set()
     for p in _runtime_files():
         rel = p.relative_to(RUNTIME).as_posix()
@@ -140,9 +142,10 @@ def test_the_load_list_guard_sees_a_reader():
     """The pattern of the guard above matches the reads it forbids (it could
     otherwise pass on any file)."""
     for line in ("if (m->nmoment > 0)", "s->m->nnlcon", "m->forces[i].amp", "bk_assemble_follower(s, q, 1.0, f, 0)",
-                 "m -> ntendon"):
+                 "m -> ntendon", "bk_element_loads(s, q, x, e, Qe)"):
         assert LOAD_FIELDS_RE.search(line), line
-    for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec"):
+    for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec",
+                 "it->ops->element_loads(it->self, s, q, x, e, Qe)"):
         assert not LOAD_FIELDS_RE.search(line), line
 
 

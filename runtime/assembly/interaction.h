@@ -49,11 +49,20 @@
  *   depends     (optional) what its forces depend on besides the elements'
  *               state, given its data: bits BK_DEPENDS_* below (the analyses
  *               ask the loops below, never the model's load lists);
- *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer).
+ *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer); 0: it
+ *               adds no force (the loads of a model whose loads are all dead
+ *               loads of the load factor: there to answer element_loads).
  *   potential   (optional) the potential at q and the path variable x of
  *               its forces that have one, relative to the reference state,
  *               added to *Vg (gravity) or *Vf (other forces): the dynamic
  *               energy balance's external potentials.
+ *   element_loads  (optional) its forces that act along element e (inside
+ *               it, or spread over it: what the element's own section forces
+ *               carry besides its nodal forces) at q and the path variable x,
+ *               over e's DOFs, added to Qe[ndof of e]: the section forces
+ *               (output/sections.c) subtract them from the element's nodal
+ *               forces.  Called from several threads at once (for different
+ *               elements): it must not write self.
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -114,6 +123,8 @@ typedef struct bk_interaction_ops {
     void (*free)(void *self);
     unsigned (*depends)(const void *self, const struct bk_system *s);
     void (*potential)(void *self, const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
+    void (*element_loads)(const void *self, const struct bk_system *s, const double *q, double x, int e,
+                          double *Qe);
 } bk_interaction_ops;
 
 /* An interaction module: its operations; its place in every sum (ascending
