@@ -195,3 +195,21 @@ def test_output_asks_the_plan_not_the_model_for_the_path():
         for m in pat.finditer(text):
             bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
     assert not bad, "output/ asks the model for the path (use the plan's path):\n" + "\n".join(bad)
+
+
+def test_output_and_analyses_know_no_interaction_by_its_record():
+    """The layers above assembly/ ask the interactions (interaction.h: e.g.
+    keeps_apart for the overlap check, element_loads for the section forces),
+    not the model for an interaction's record by name: a guard that fails on a
+    call of bk_model_record_find in output/, analysis/ or solver/."""
+    pat = re.compile(r"\bbk_model_record_find\s*\(")
+    assert pat.search('bk_model_record_find(m, "beam_contact")') and not pat.search("bk_interactions_keep_apart(s)")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] not in ("output", "analysis", "solver"):
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "an interaction's record looked up above assembly/ (ask the interactions):\n" + "\n".join(bad)

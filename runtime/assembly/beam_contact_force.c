@@ -424,4 +424,5 @@ const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assembl
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
                                                 .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
                                                 .summary_key = "contact", .uncounted_energy = 1, .cut_predictors = 1,
+                                                .keeps_apart = 1,
                                                 .summary = bc_summary, .free = bc_free, .depends = bk_depends_on_q};

@@ -46,6 +46,9 @@
  *               measured from the last accepted state: a prediction can jump
  *               over what the limit guards (beam-to-beam contact: one beam
  *               predicted beyond another, at a positive distance again).
+ *   keeps_apart  1 when it keeps the beams' sections apart (beam-to-beam
+ *               contact): the output's check for beams passing through one
+ *               another (output/overlap.h) is then off.
  *   depends     (optional) what its forces depend on besides the elements'
  *               state, given its data: bits BK_DEPENDS_* below (the analyses
  *               ask the loops below, never the model's load lists);
@@ -119,6 +122,7 @@ typedef struct bk_interaction_ops {
     int uncounted_energy;            /* 1: it stores energy the energy balance does not count (a barrier) */
     int cut_predictors;              /* 1: the analyses' predictors are cut to its step limit (a predicted
                                       * state may carry one beam through another, unseen by the limit) */
+    int keeps_apart;                 /* 1: it keeps the beams' sections apart (beam-to-beam contact) */
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
     unsigned (*depends)(const void *self, const struct bk_system *s);
@@ -171,6 +175,8 @@ double bk_interactions_step_limit(const struct bk_system *s, const double *q, co
 int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
 /* 1 when an interaction of s asks the analyses to cut their predictors. */
 int bk_interactions_cut_predictors(const struct bk_system *s);
+/* 1 when an interaction of s keeps the beams' sections apart. */
+int bk_interactions_keep_apart(const struct bk_system *s);
 /* 1 when an interaction of s stores energy the energy balance does not count. */
 int bk_interactions_uncounted_energy(const struct bk_system *s);
 /* A depends() for the modules whose forces depend on q alone (springs,

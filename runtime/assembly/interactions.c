@@ -210,6 +210,14 @@ int bk_interactions_frame(const bk_system *s, const char *dir, int frame, double
     return bad ? -1 : 0;
 }
 
+int bk_interactions_keep_apart(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        any |= s->inter[k].ops->keeps_apart;
+    return any;
+}
+
 int bk_interactions_uncounted_energy(const bk_system *s)
 {
     int any = 0;
