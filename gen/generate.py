@@ -1,6 +1,7 @@
 """Generate out/kernels/: every element, every element x material pair, and index.json;
-and from the options schema out/kernels/bk_options.h and docs/reference/options.md
-(gen/options_emit.py).
+from the options schema out/kernels/bk_options.h and docs/reference/options.md
+(gen/options_emit.py); from the result tables' registrations in runtime/ the
+table of CSV files of docs/reference/outputs.md (gen/outputs_emit.py).
 
 Incremental: a file whose header carries the hash of its current generator
 inputs is not re-derived.  `check` re-derives everything in memory and compares
@@ -244,7 +245,8 @@ def generate(outdir, check=False, force=False, log=print, only=None):
     if only:
         return stale
     from gen.options_emit import files as option_files   # the options schema's header and key reference
-    for p, txt in option_files(outdir).items():
+    from gen.outputs_emit import files as output_files   # the outputs reference's tables, from their registrations
+    for p, txt in {**option_files(outdir), **output_files()}.items():
         if check:
             if not p.exists() or p.read_text(encoding="utf-8") != txt:
                 stale.append(str(p))

@@ -19,13 +19,12 @@
 #include "linalg/bandlu.h"
 #include "linalg/linsolve.h"
 
+#include "band_test_util.h"
+
 static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
 static double urand(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return bt_urand(&rng);
 }
 
 /* Dense solve with complete pivoting, A (n x n, row-major) overwritten. */
@@ -122,21 +121,6 @@ static int jacobi_negative(int n, double *A)
     return neg;
 }
 
-/* Dense pattern-and-values matrix D (row-major) to CSC (entries where mask). */
-static void to_csc(int n, const double *D, const char *mask, int *Ap, int *Ai, double *Ax)
-{
-    int k = 0;
-    for (int j = 0; j < n; ++j) {
-        Ap[j] = k;
-        for (int i = 0; i < n; ++i)
-            if (mask[i * n + j]) {
-                Ai[k] = i;
-                Ax[k++] = D[i * n + j];
-            }
-    }
-    Ap[n] = k;
-}
-
 enum { CHAIN, KKT, INDEFINITE, SCALED, SINGULAR };
 
 static void run(const char *name, int kind)
@@ -144,35 +128,10 @@ static void run(const char *name, int kind)
     const int nodes = 9, bs = 12, nd = nodes * bs, nm = kind == KKT ? 3 : 0, n = nd + nm;
     double *D = calloc((size_t)n * n, sizeof *D);
     char *mask = calloc((size_t)n * n, 1);
-    int *scr = malloc((size_t)n * sizeof *scr);
-    /* scrambled numbering of the unknowns */
-    for (int i = 0; i < n; ++i)
-        scr[i] = i;
-    for (int i = n - 1; i > 0; --i) {
-        int j = (int)(urand() * (i + 1));
-        int t = scr[i];
-        scr[i] = scr[j];
-        scr[j] = t;
-    }
+    int *scr = bt_scramble(n, &rng);                        /* scrambled numbering of the unknowns */
 #define AT(i, j) D[scr[i] * n + scr[j]]
 #define ON(i, j) mask[scr[i] * n + scr[j]] = 1
-    for (int e = 0; e + 1 < nodes; ++e)
-        for (int a = 0; a < 2 * bs; ++a)
-            for (int c = 0; c < 2 * bs; ++c) {
-                int i = e * bs + a, j = e * bs + c;
-                double v = urand() - 0.5;
-                if (kind == INDEFINITE || kind == KKT) {      /* symmetric values */
-                    if (c < a)
-                        continue;
-                    AT(i, j) += v;
-                    if (i != j)
-                        AT(j, i) += v;
-                    ON(j, i);
-                } else {
-                    AT(i, j) += v;
-                }
-                ON(i, j);
-            }
+    bt_chain(D, mask, n, scr, nodes, bs, kind == INDEFINITE || kind == KKT ? BT_SYMMETRIC : BT_UNSYMMETRIC, &rng);
     for (int i = 0; i < nd; ++i)
         AT(i, i) += kind == INDEFINITE ? 1.0 : 6.0;       /* INDEFINITE: a shift that leaves negative eigenvalues */
     if (kind == KKT)
@@ -191,22 +150,15 @@ static void run(const char *name, int kind)
     if (kind == SINGULAR)
         for (int i = 0; i < n; ++i)
             AT(i, 5) = 0.0;
-    int nnz = 0;
-    for (long k = 0; k < (long)n * n; ++k)
-        nnz += mask[k];
-    int *Ap = malloc((size_t)(n + 1) * sizeof *Ap), *Ai = malloc((size_t)nnz * sizeof *Ai);
-    double *Ax = malloc((size_t)nnz * sizeof *Ax);
-    to_csc(n, D, mask, Ap, Ai, Ax);
+    int *Ap, *Ai;
+    double *Ax;
+    const int nnz = bt_csc(n, D, mask, &Ap, &Ai, &Ax);
     double *xt = malloc((size_t)n * sizeof *xt), *b = malloc((size_t)n * sizeof *b);
     double *xr = malloc((size_t)n * sizeof *xr), *bd = malloc((size_t)n * sizeof *bd);
     for (int i = 0; i < n; ++i)
         xt[i] = urand() - 0.5;
-    for (int i = 0; i < n; ++i) {
-        b[i] = 0.0;
-        for (int j = 0; j < n; ++j)
-            b[i] += D[i * n + j] * xt[j];
-        bd[i] = b[i];
-    }
+    bt_matvec(n, D, xt, b);
+    memcpy(bd, b, (size_t)n * sizeof *bd);
     bk_band band;
     int plan = bk_band_plan(&band, n, Ap, Ai, 1L << 24);
     int fac = plan == 0 ? bk_band_factor(&band, Ax) : -9;
@@ -267,11 +219,7 @@ static void run(const char *name, int kind)
     bk_linsolver ls;
     int li = bk_lin_init(&ls, n, Ap, Ai);
     double *c = malloc((size_t)n * sizeof *c);
-    for (int i = 0; i < n; ++i) {
-        c[i] = 0.0;
-        for (int j = 0; j < n; ++j)
-            c[i] += D[i * n + j] * xt[j];
-    }
+    bt_matvec(n, D, xt, c);
     double *Ax2 = malloc((size_t)nnz * sizeof *Ax2);
     memcpy(Ax2, Ax, (size_t)nnz * sizeof *Ax2);
     int lf = li == BK_LIN_OK ? bk_lin_factor(&ls, Ax2) : -9;
@@ -287,11 +235,7 @@ static void run(const char *name, int kind)
     for (int k = 0; k < 3; ++k) {
         bk_linsolver lk;
         double *ck = malloc((size_t)n * sizeof *ck);
-        for (int i = 0; i < n; ++i) {
-            ck[i] = 0.0;
-            for (int j = 0; j < n; ++j)
-                ck[i] += D[i * n + j] * xt[j];
-        }
+        bt_matvec(n, D, xt, ck);
         memcpy(Ax2, Ax, (size_t)nnz * sizeof *Ax2);
         if (bk_lin_init_kind(&lk, n, Ap, Ai, kinds[k]) == BK_LIN_OK && bk_lin_factor(&lk, Ax2) == BK_LIN_OK &&
             bk_lin_solve(&lk, ck) == BK_LIN_OK) {
@@ -309,7 +253,7 @@ static void run(const char *name, int kind)
         /* the multipliers' zero diagonal regularized as the stability check does */
         for (int k = 0; k < nm; ++k)
             AT(nd + k, nd + k) = -1e-8;
-        to_csc(n, D, mask, Ap, Ai, Ax);
+        bt_to_csc(n, D, mask, Ap, Ai, Ax);
         bk_bandsym bs;
         int sym_plan = bk_bandsym_plan(&bs, n, Ap, Ai, NULL, -1, 1L << 24);
         double *band = sym_plan == 0 ? malloc((size_t)bs.ldab * n * sizeof *band) : NULL;
@@ -332,11 +276,7 @@ static void run(const char *name, int kind)
             for (int i = 0; i < n; ++i)
                 sym_neg += bs.D[i] < 0.0;
             double *y = malloc((size_t)n * sizeof *y);
-            for (int i = 0; i < n; ++i) {
-                y[i] = 0.0;
-                for (int j = 0; j < n; ++j)
-                    y[i] += D[i * n + j] * xt[j];
-            }
+            bt_matvec(n, D, xt, y);
             bk_bandsym_solve(&bs, y);
             sym_err = 0.0;
             for (int i = 0; i < n; ++i)

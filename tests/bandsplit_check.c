@@ -23,13 +23,12 @@
 #include "linalg/bandlu.h"
 #include "linalg/bandsplit.h"
 
+#include "band_test_util.h"
+
 static unsigned long long rng = 0x2545F4914F6CDD1DULL;
 static double urand(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return bt_urand(&rng);
 }
 
 /* Dense LU with row pivoting, row by row elimination on a row-major copy. */
@@ -77,22 +76,10 @@ static void run(const char *name, int kind)
     const int nodes = 60, bs = 12, nd = nodes * bs, nm = kind == KKT ? 3 * (nodes - 1) : 0, n = nd + nm;
     double *D = calloc((size_t)n * n, sizeof *D);
     char *mask = calloc((size_t)n * n, 1);
-    int *scr = malloc((size_t)n * sizeof *scr);
-    for (int i = 0; i < n; ++i)
-        scr[i] = i;
-    for (int i = n - 1; i > 0; --i) {
-        int j = (int)(urand() * (i + 1)), t = scr[i];
-        scr[i] = scr[j];
-        scr[j] = t;
-    }
+    int *scr = bt_scramble(n, &rng);
 #define AT(i, j) D[(long)scr[i] * n + scr[j]]
 #define ON(i, j) mask[(long)scr[i] * n + scr[j]] = 1
-    for (int e = 0; e + 1 < nodes; ++e)
-        for (int a = 0; a < 2 * bs; ++a)
-            for (int c = 0; c < 2 * bs; ++c) {
-                AT(e * bs + a, e * bs + c) += urand() - 0.5;
-                ON(e * bs + a, e * bs + c);
-            }
+    bt_chain(D, mask, n, scr, nodes, bs, BT_UNSYMMETRIC, &rng);
     for (int i = 0; i < nd; ++i)
         AT(i, i) += kind == WEAK ? 1e-4 * urand() : 6.0;
     if (kind == KKT)                                      /* multiplier: unknown k of node e equals that of e + 1 */
@@ -112,31 +99,15 @@ static void run(const char *name, int kind)
     if (kind == SINGULAR)
         for (int i = 0; i < n; ++i)
             AT(i, 7 * bs) = 0.0;
-    int nnz = 0;
-    for (long k = 0; k < (long)n * n; ++k)
-        nnz += mask[k];
-    int *Ap = malloc((size_t)(n + 1) * sizeof *Ap), *Ai = malloc((size_t)nnz * sizeof *Ai);
-    double *Ax = malloc((size_t)nnz * sizeof *Ax);
-    int p = 0;
-    for (int j = 0; j < n; ++j) {
-        Ap[j] = p;
-        for (int i = 0; i < n; ++i)
-            if (mask[(long)i * n + j]) {
-                Ai[p] = i;
-                Ax[p++] = D[(long)i * n + j];
-            }
-    }
-    Ap[n] = p;
+    int *Ap, *Ai;
+    double *Ax;
+    const int nnz = bt_csc(n, D, mask, &Ap, &Ai, &Ax);
     if (kind == NONFINITE)
         Ax[nnz / 2] = NAN;
     double *xt = malloc((size_t)n * sizeof *xt), *b = malloc((size_t)n * sizeof *b);
     for (int i = 0; i < n; ++i)
         xt[i] = urand() - 0.5;
-    for (int i = 0; i < n; ++i) {
-        b[i] = 0.0;
-        for (int j = 0; j < n; ++j)
-            b[i] += D[(long)i * n + j] * xt[j];
-    }
+    bt_matvec(n, D, xt, b);
     bk_band band;
     bk_band_plan(&band, n, Ap, Ai, 1L << 26);
     bk_bandsplit sp;

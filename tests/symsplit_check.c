@@ -30,13 +30,12 @@
 #include "linalg/bandlu.h"
 #include "linalg/symsplit.h"
 
+#include "band_test_util.h"
+
 static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
 static double urand(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return bt_urand(&rng);
 }
 
 /* Householder tridiagonalization of the symmetric A (row-major, destroyed):
@@ -118,19 +117,9 @@ static void run(const char *name, int kind)
     const int nodes = 34, bs = 6, nd = nodes * bs, nm = kind == KKT ? 2 * (nodes - 1) : 0, n = nd + nm;
     double *A = calloc((size_t)n * n, sizeof *A);
     char *mask = calloc((size_t)n * n, 1);
-    int *scr = malloc((size_t)n * sizeof *scr);
-    for (int i = 0; i < n; ++i)
-        scr[i] = i;
-    for (int i = n - 1; i > 0; --i) {
-        int j = (int)(urand() * (i + 1)), t = scr[i];
-        scr[i] = scr[j];
-        scr[j] = t;
-    }
+    int *scr = bt_scramble(n, &rng);
 #define SET(i, j, v) set(A, mask, n, scr[i], scr[j], (v))
-    for (int e = 0; e + 1 < nodes; ++e)                  /* neighbouring nodes' blocks */
-        for (int a = 0; a < 2 * bs; ++a)
-            for (int c = 0; c < a; ++c)
-                SET(e * bs + a, e * bs + c, urand() - 0.5);
+    bt_chain(A, mask, n, scr, nodes, bs, BT_SYMMETRIC_SET, &rng);     /* neighbouring nodes' blocks */
     for (int i = 0; i < nd; ++i) {
         const double sgn = kind == KKT || urand() < 0.6 ? 1.0 : -1.0;
         SET(i, i, sgn * (kind == INDEFINITE ? 0.5 + urand() : 8.0 + urand()));
@@ -146,21 +135,9 @@ static void run(const char *name, int kind)
     if (kind == ZERO)                                    /* (the pattern kept) */
         for (int i = 0, z = scr[5 * bs + 2]; i < n; ++i)
             A[(long)i * n + z] = A[(long)z * n + i] = 0.0;
-    int nnz = 0;
-    for (long k = 0; k < (long)n * n; ++k)
-        nnz += mask[k];
-    int *Ap = malloc((size_t)(n + 1) * sizeof *Ap), *Ai = malloc((size_t)nnz * sizeof *Ai);
-    double *Ax = malloc((size_t)nnz * sizeof *Ax);
-    int p = 0;
-    for (int j = 0; j < n; ++j) {
-        Ap[j] = p;
-        for (int i = 0; i < n; ++i)
-            if (mask[(long)i * n + j]) {
-                Ai[p] = i;
-                Ax[p++] = A[(long)i * n + j];
-            }
-    }
-    Ap[n] = p;
+    int *Ap, *Ai;
+    double *Ax;
+    const int nnz = bt_csc(n, A, mask, &Ap, &Ai, &Ax);
     if (kind == NONFINITE)
         Ax[nnz / 2] = NAN;
 
@@ -191,11 +168,7 @@ static void run(const char *name, int kind)
     double *x1 = malloc((size_t)n * sizeof *x1), *x2 = malloc((size_t)n * sizeof *x2);
     for (int i = 0; i < n; ++i)
         xt[i] = urand() - 0.5;
-    for (int i = 0; i < n; ++i) {
-        b[i] = 0.0;
-        for (int j = 0; j < n; ++j)
-            b[i] += A[(long)i * n + j] * xt[j];
-    }
+    bt_matvec(n, A, xt, b);
     double res = NAN;
     int same = f1 == f2 && (f1 != 0 || memcmp(own.D, lent.D, (size_t)n * sizeof *own.D) == 0);
     if (f1 == 0 && f2 == 0) {

@@ -2,8 +2,10 @@
 (docs/reference/options.md) list exactly the keys the scene reader accepts
 (gen/scene_keys.py and the laws' parameter keys), so a key is never undocumented
 or documented but refused; the files generated from the options schema are
-fresh."""
+fresh, and so is its table of CSV files, made from the tables' registrations."""
 import re
+
+import pytest
 
 from gen import scene_keys as K
 from gen.materials import all_materials
@@ -77,3 +79,28 @@ def test_output_reference_mentions_outputs_and_limits():
     for needle in ("results.pvd", "step_NNNNNN.vtu", "vtk_every", "[[initial_velocity]]", "1,000,000",
                    "about 50 frames"):
         assert needle in text, needle
+
+
+def test_output_tables_are_generated_from_their_registrations():
+    """The CSV files of docs/reference/outputs.md as `./build.sh gen` makes
+    them from the tables' BK_TABLE registrations (what `--check` checks); the
+    reader takes adjacent literals, skips comments and the macro's #define,
+    and refuses anything but string literals; every table spec of runtime/ is
+    a BK_TABLE (so the page sees every table a run can open)."""
+    from gen.outputs_emit import SpecError, files, specs_in
+    for path, text in files().items():
+        assert path.read_text(encoding="utf-8") == text, f"{path} is stale: run ./build.sh gen"
+    src = ('#define BK_TABLE(a, b, c) {a, b, c}\n/* BK_TABLE("no.csv", "x", "y\\n") */\n'
+           'static const bk_table_spec t = BK_TABLE("a.csv", "runs " "with `[[x]]`", "step,"\n'
+           '    "time\\n"); // BK_TABLE(\n')
+    assert specs_in(src) == [("a.csv", "runs with `[[x]]`", "step,time", 3)]
+    for bad in ('BK_TABLE(NAME, "x", "y\\n")', 'BK_TABLE("a.csv", "x")', 'BK_TABLE("a.csv", "x", "no newline")'):
+        with pytest.raises(SpecError):
+            specs_in(bad)
+    made = []
+    for p in sorted((ROOT / "runtime").rglob("*.[ch]")):
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in re.finditer(r"\bbk_table_spec\s+(\w+)\s*=\s*(\w+)", text):
+            assert m.group(2) == "BK_TABLE", f"{p}: table spec {m.group(1)} not written with BK_TABLE"
+            made.append(m.group(1))
+    assert len(made) >= 15, made

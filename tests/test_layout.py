@@ -107,7 +107,7 @@ def test_no_analysis_switch_outside_the_table_and_the_model():
 LOAD_FIELDS_RE = re.compile(r"(?:\b(?:m|model)|->\s*m)\s*->\s*(nforce|forces|nmoment|moments|ndload|dloads|"
                             r"ntendon|tendons|has_gravity|gravity|gravity_amp|gravity_ampid|nlincon|lincons|nnlcon|"
                             r"nlcons)\b|\bbk_(assemble_follower|assemble_loads|assemble_loads_in|loads_present|"
-                            r"load_potentials)\s*\(")
+                            r"load_potentials|element_loads)\s*\(")
 # file -> why it may read them
 LOAD_READERS = {
     "output/forces.c": "the reactions: each constraint's force, from its own rows",
@@ -120,7 +120,9 @@ LOAD_READERS = {
 def test_analyses_and_output_ask_the_interactions_not_the_load_lists():
     """A guard that fails when a file of analysis/, solver/ or output/ (other
     than the reaction outputs named in LOAD_READERS) reads the model's loads,
-    tendons or constraints, or calls a load type's own assembly."""
+    tendons or constraints, or calls a load type's own assembly (or its
+    forces along an element: the section forces ask the interactions'
+    element_loads)."""
     bad, used = [], set()
     for p in _runtime_files():
         rel = p.relative_to(RUNTIME).as_posix()
@@ -140,9 +142,10 @@ def test_the_load_list_guard_sees_a_reader():
     """The pattern of the guard above matches the reads it forbids (it could
     otherwise pass on any file)."""
     for line in ("if (m->nmoment > 0)", "s->m->nnlcon", "m->forces[i].amp", "bk_assemble_follower(s, q, 1.0, f, 0)",
-                 "m -> ntendon"):
+                 "m -> ntendon", "bk_element_loads(s, q, x, e, Qe)"):
         assert LOAD_FIELDS_RE.search(line), line
-    for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec"):
+    for line in ("m->nsensor", "bk_assemble_interactions(s, q, &p, f, 0)", "m->forcesx", "o->forces.sec",
+                 "it->ops->element_loads(it->self, s, q, x, e, Qe)"):
         assert not LOAD_FIELDS_RE.search(line), line
 
 
@@ -173,3 +176,40 @@ def test_output_and_solver_read_no_analysis_options():
             bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
     assert not bad, "analysis options read in output/ or solver/ (tell the output through the plan):\n" + \
         "\n".join(bad)
+
+
+def test_output_asks_the_plan_not_the_model_for_the_path():
+    """Whether the states form a path, and in what, the output learns from the
+    analysis (its plan's `path`, output.h), not from the model: a guard that
+    fails on a call of bk_model_on_path, bk_model_in_time or bk_model_in_load
+    in output/."""
+    pat = re.compile(r"\bbk_model_(on_path|in_time|in_load)\s*\(")
+    assert pat.search("if (bk_model_on_path(m))") and pat.search("bk_model_in_time (o->m)")
+    assert not pat.search("o->plan.path != BK_PATH_NONE")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] != "output":
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "output/ asks the model for the path (use the plan's path):\n" + "\n".join(bad)
+
+
+def test_output_and_analyses_know_no_interaction_by_its_record():
+    """The layers above assembly/ ask the interactions (interaction.h: e.g.
+    keeps_apart for the overlap check, element_loads for the section forces),
+    not the model for an interaction's record by name: a guard that fails on a
+    call of bk_model_record_find in output/, analysis/ or solver/."""
+    pat = re.compile(r"\bbk_model_record_find\s*\(")
+    assert pat.search('bk_model_record_find(m, "beam_contact")') and not pat.search("bk_interactions_keep_apart(s)")
+    bad = []
+    for p in _runtime_files():
+        rel = p.relative_to(RUNTIME).as_posix()
+        if rel.split("/")[0] not in ("output", "analysis", "solver"):
+            continue
+        text = re.sub(r"/\*.*?\*/", "", p.read_text(), flags=re.S)
+        for m in pat.finditer(text):
+            bad.append(f"runtime/{rel}:{text[:m.start()].count(chr(10)) + 1}: {m.group(0)}")
+    assert not bad, "an interaction's record looked up above assembly/ (ask the interactions):\n" + "\n".join(bad)

@@ -157,3 +157,26 @@ def test_the_40N_tendon_finger_curling_through_itself_is_flagged():
     w = [w for w in s["warnings"] if "nothing keeps them apart" in w]
     assert len(w) == 1 and "beam 'f'" in w[0] and "passes through itself" in w[0] and " at t = " in w[0], w
     print(w[0])
+
+
+def test_the_check_is_off_when_an_interaction_keeps_sections_apart():
+    """Regression guard (no independent reference): the check is off when an
+    interaction keeps the sections apart (beam contact, interaction.h
+    keeps_apart), whichever beams it covers.  The crossing of the test above
+    pressed 60 mm (flagged there; beam contact needs static.stability = false,
+    so both runs have it) with a third, distant beam in self contact:
+    no overlap warning, and the crossing's deflection unchanged by the
+    distant beam (the same tip position as without it, to 1e-12 m)."""
+    unit = 0.5 ** 2 * (3 * 1.0 - 0.5) / (6 * EI_RD)
+    base = CROSS.format(P=-0.06 / unit).replace("load_steps = 12\n", "load_steps = 12\nstability = false\n") + \
+        '[[sensor]]\nname = "tip"\nat = "above:end"\n'
+    extra = ('[[beam]]\nname = "far"\nelement = "gef"\nmaterial = "alu"\nsection = "rd"\n'
+             'start = [0.0, 5.0, 0.0]\nend = [1.0, 5.0, 0.0]\nup = [0.0, 0.0, 1.0]\nelements = 8\n'
+             '[[constraint]]\ntype = "clamp"\na = "far:start"\n'
+             '[[beam_contact]]\nbeams = ["far"]\nself = true\n')
+    s0, w0 = _run(base, "cross_60mm_sensor")
+    s1, w1 = _run(base + extra, "cross_60mm_far_contact")
+    assert s0["converged"] and len(w0) == 1, s0["warnings"]
+    assert s1["converged"] and not w1, s1["warnings"]
+    p0, p1 = s0["sensors"]["tip"]["position"], s1["sensors"]["tip"]["position"]
+    assert max(abs(a - b) for a, b in zip(p0, p1)) < 1e-12, (p0, p1)

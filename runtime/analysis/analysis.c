@@ -17,6 +17,7 @@ const bk_analysis_module *bk_analysis_for(const bk_model *m)
 void bk_analysis_plan(const bk_analysis_module *an, const bk_model *m, bk_output_plan *p)
 {
     memset(p, 0, sizeof *p);
+    p->path = bk_analysis_path(m->analysis);   /* (the path kind the schema gives each analysis) */
     if (an && an->plan)
         an->plan(m, p);
 }

@@ -224,8 +224,11 @@ static int modes(bk_system *s, work *w, const double *q, bk_output *out, bk_run_
     }
     int want = nf < m->modal.modes ? nf : m->modal.modes;
     qsort(fac, (size_t)want, sizeof *fac, by_report_order);
-    static const char *const names[] = {"load_factor"};
-    if (bk_output_modes_begin(out, 1, names, info->message, sizeof info->message) != 0)
+    static const bk_table_spec modes_csv = BK_TABLE("modes.csv", "buckling", "mode,load_factor,scale_m\n");
+    static const bk_table_spec mode_sensors_csv =
+        BK_TABLE("mode_sensors.csv", "buckling",
+                 "mode,load_factor,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
+    if (bk_output_modes_begin(out, &modes_csv, &mode_sensors_csv, info->message, sizeof info->message) != 0)
         goto done;
     for (int r = 0; r < want; ++r) {
         double n2r = 0.0;

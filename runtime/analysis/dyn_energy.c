@@ -34,11 +34,10 @@ double bk_energy_trial(const bk_energy *e, double t, double h, double T, double 
     return (trial->Dnum_max - trial->Dnum) / (trial->scale > 0.0 ? trial->scale : 1.0);
 }
 
-const char *bk_energy_header(void)
-{
-    return "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual,work_loads,"
-           "dissipated_damping,dissipated_integrator\n";
-}
+const bk_table_spec bk_energy_csv =
+    BK_TABLE("energy.csv", "dynamics",
+             "step,time,kinetic,strain,gravity,load_potential,total,constraint_residual,work_loads,"
+             "dissipated_damping,dissipated_integrator\n");
 
 void bk_energy_row(const bk_energy *e, bk_output *out, FILE *table, int step, double t, double T, double U,
                    double Vg, double Vf, double cres)

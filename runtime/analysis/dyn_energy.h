@@ -49,9 +49,10 @@ void bk_energy_step(bk_energy *e, double t, double h, double T, double U, double
  * the energy scale. */
 double bk_energy_trial(const bk_energy *e, double t, double h, double T, double U, double P, double Pd,
                        bk_energy *trial);
-/* The header of energy.csv and one of its rows (T, U relative to U0, the
- * gravity and load potentials, their total, the balance, the constraint residual). */
-const char *bk_energy_header(void);
+/* energy.csv (its registration, base/tables.h) and one of its rows (T, U
+ * relative to U0, the gravity and load potentials, their total, the balance,
+ * the constraint residual). */
+extern const bk_table_spec bk_energy_csv;
 void bk_energy_row(const bk_energy *e, bk_output *out, FILE *table, int step, double t, double T, double U,
                    double Vg, double Vf, double cres);
 /* summary.json "energy": {"work_loads", "dissipated_damping", "dissipated_integrator",

@@ -93,7 +93,7 @@ int bk_solve_dynamic(bk_system *s, double *q, bk_output *out, bk_run_info *info,
     int step = 0, cuts = 0, written = 0;
     double t = 0.0, h = o->dt;
     int *quat = bk_quat_list(s, &nquat);
-    FILE *energy = bk_output_table(out, "energy.csv", bk_energy_header(), stderr);
+    FILE *energy = bk_output_table(out, &bk_energy_csv, stderr);
     bk_energy eb = {0};
     bk_dyn_frame frame = {0};
     if (!energy) {

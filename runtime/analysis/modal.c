@@ -106,7 +106,10 @@ static void put_mode(const bk_system *s, bk_output *out, const double *q, int k,
         freqs[(*nfreq)++] = omega / (2.0 * M_PI);
 }
 
-static const char *const mode_values[] = {"frequency_hz", "omega"};
+static const bk_table_spec modes_csv = BK_TABLE("modes.csv", "modal", "mode,frequency_hz,omega,scale_m\n");
+static const bk_table_spec mode_sensors_csv =
+    BK_TABLE("mode_sensors.csv", "modal",
+             "mode,frequency_hz,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n");
 
 /* The sparse path (modal_sparse.c) and its outputs. */
 static int modal_sparse(bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log, double *freqs,
@@ -119,7 +122,7 @@ static int modal_sparse(bk_system *s, double *q, bk_output *out, bk_run_info *in
     if (!om || !X || !shape)
         snprintf(info->message, sizeof info->message, "out of memory for %d modes of %d free DOFs", want, n);
     else if (bk_modal_sparse(s, q, want, om, X, &got, &steps, info->message, sizeof info->message) == 0 &&
-             bk_output_modes_begin(out, 2, mode_values, info->message, sizeof info->message) == 0) {
+             bk_output_modes_begin(out, &modes_csv, &mode_sensors_csv, info->message, sizeof info->message) == 0) {
         for (int k = 0; k < got; ++k)
             put_mode(s, out, q, k + 1, om[k], X + (size_t)k * (size_t)n, shape, freqs, nfreq);
         info->steps = got;
@@ -343,7 +346,7 @@ static int modal(bk_system *s, double *q, bk_output *out, bk_run_info *info, FIL
         goto done;
     }
     double *x = calloc((size_t)n, sizeof *x);
-    if (!x || bk_output_modes_begin(out, 2, mode_values, info->message, sizeof info->message) != 0) {
+    if (!x || bk_output_modes_begin(out, &modes_csv, &mode_sensors_csv, info->message, sizeof info->message) != 0) {
         if (!x)
             snprintf(info->message, sizeof info->message, "out of memory");
         free(shape), free(x);

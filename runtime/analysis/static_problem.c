@@ -286,6 +286,12 @@ static void newton_row(void *ctx, const bk_nl_row *row, int iter, double rnorm, 
     bk_output_row_end(w->out, &r, t0, 0);
 }
 
+static const bk_table_spec newton_csv =
+    BK_TABLE("newton.csv", "statics", "attempt,step,load_factor,iteration,residual,reference,increment,alpha,rcond\n");
+static const bk_table_spec stability_csv =
+    BK_TABLE("stability.csv", "statics with `static.stability` (the default)",
+             "step,load_factor,negative_eigenvalues,eig_min,eig_max\n");
+
 int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_run_info *info, FILE *log,
                     int reference_on_first, int tables)
 {
@@ -297,14 +303,12 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
     R->ref.st = &R->stab;
     w->out = out;
     if (tables) {
-        if (!(w->newton_csv = bk_output_table(out, "newton.csv", "attempt,step,load_factor,iteration,residual,"
-                                              "reference,increment,alpha,rcond\n", stderr))) {
+        if (!(w->newton_csv = bk_output_table(out, &newton_csv, stderr))) {
             snprintf(info->message, sizeof info->message, "cannot write newton.csv");
             return 1;
         }
         if (o->stability &&
-            !(w->stability_csv = bk_output_table(out, "stability.csv", "step,load_factor,negative_eigenvalues,"
-                                                 "eig_min,eig_max\n", stderr))) {
+            !(w->stability_csv = bk_output_table(out, &stability_csv, stderr))) {
             snprintf(info->message, sizeof info->message, "cannot write stability.csv");
             return 1;
         }

@@ -41,12 +41,15 @@ int bk_static_trust_refusal(const bk_system *s, char *msg, size_t n)
                  "energy)");
         return 1;
     }
-    if (s->ninter == 0)
+    int k = 0;
+    while (k < s->ninter && bk_interaction_depends(s, k) == 0)
+        ++k;                         /* (one that adds no force: the loads of dead loads alone) */
+    if (k == s->ninter)
         return 0;
     snprintf(msg, n, "static.globalization = \"trust_region\" needs loads with a potential (dead forces and "
              "gravity): the scene has the interaction \"%s\" (loads with amplitudes, follower, distributed and "
              "tendon loads, moments on sections, contact, springs, actuators: forces the energy does not count)",
-             s->inter[0].ops->name);
+             s->inter[k].ops->name);
     return 1;
 }
 

@@ -155,13 +155,16 @@ static void act_accept(void *self, const bk_system *s, const double *q, const bk
     }
 }
 
+static const bk_table_spec actuators_csv =
+    BK_TABLE("actuators.csv", "statics and dynamics with `[[actuator]]`",
+             "step,time,actuator,joint,motion,value,rate,effort,power\n");
+
 static int act_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     act_work *w = self;
     if (!bk_model_on_path(s->m))
         return 0;
-    w->table = bk_tables_open(ts, dir, "actuators.csv", "step,time,actuator,joint,motion,value,rate,effort,"
-                              "power\n", 1, err);
+    w->table = bk_tables_open(ts, dir, &actuators_csv, 1, err);
     return w->table ? 0 : -1;
 }
 

@@ -364,9 +364,9 @@ static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *
 {
     (void)s;
     bc_work *w = self;
-    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    w->table = bk_tables_find(ts, bk_contacts_csv.name);
     if (!w->table)
-        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
+        w->table = bk_tables_open(ts, dir, &bk_contacts_csv, 1, err);
     return w->table ? 0 : -1;
 }
 
@@ -424,4 +424,5 @@ const bk_interaction_ops bk_beam_contact_ops = {.name = "beam_contact", .assembl
                                                 .prepare = bc_prepare, .step_limit = bc_step_limit, .accept = bc_accept,
                                                 .tables = bc_tables, .rows = bc_rows, .frame = bc_frame,
                                                 .summary_key = "contact", .uncounted_energy = 1, .cut_predictors = 1,
+                                                .keeps_apart = 1,
                                                 .summary = bc_summary, .free = bc_free, .depends = bk_depends_on_q};

@@ -379,12 +379,15 @@ static void bc_accept(void *self, const bk_system *s, const double *q, const bk_
 
 /* ---- outputs ---- */
 
+static const bk_table_spec body_contacts_csv =
+    BK_TABLE("body_contacts.csv", "runs with `[[body_contact]]`",
+             "step,time,set,body,point,x,y,z,distance,normal_force,tangential_force,state,fx,fy,fz\n");
+
 static int bc_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     bc_work *w = self;
-    w->table = bk_tables_open(ts, dir, "body_contacts.csv", "step,time,set,body,point,x,y,z,distance,normal_force,"
-                              "tangential_force,state,fx,fy,fz\n", 1, err);
+    w->table = bk_tables_open(ts, dir, &body_contacts_csv, 1, err);
     return w->table ? 0 : -1;
 }
 

@@ -13,6 +13,7 @@
 #define BK_CONTACT_FORCE_H
 
 #include "assembly/interaction.h"
+#include "base/tables.h"
 
 struct bk_system;
 struct bk_model;
@@ -21,10 +22,7 @@ struct bk_model;
  * interaction opens it first writes the header): the last three columns name
  * the second beam, its element and segment of a beam-to-beam row (primitive
  * -1), empty for a primitive's. */
-#define BK_CONTACTS_CSV "contacts.csv"
-#define BK_CONTACTS_HEADER                                                                                        \
-    "step,time,set,primitive,element,point,x,y,z,distance,normal_force,tangential_force,state,fx,fy,fz,beam_b,"   \
-    "element_b,segment_b\n"
+extern const bk_table_spec bk_contacts_csv;     /* (contact_output.c) */
 
 extern const bk_interaction_ops bk_contact_ops;
 

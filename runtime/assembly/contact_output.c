@@ -43,15 +43,22 @@ int contact_summary(void *self, const bk_system *s, const double *q, char *buf, 
  * beam's of beam-to-beam rows, contact_force.h).  contact_totals.csv: per output step and
  * set, the sums over its points: the normal force, the force on the beams,
  * the points within the barrier's reach, and the smallest distance. */
+const bk_table_spec bk_contacts_csv =
+    BK_TABLE("contacts.csv", "runs with `[[contact]]` or `[[beam_contact]]`",
+             "step,time,set,primitive,element,point,x,y,z,distance,normal_force,tangential_force,state,fx,fy,fz,"
+             "beam_b,element_b,segment_b\n");
+static const bk_table_spec contact_totals_csv =
+    BK_TABLE("contact_totals.csv", "runs with contact",
+             "step,time,set,primitive,normal_force,fx,fy,fz,active_points,min_distance\n");
+
 int contact_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     contact_work *w = self;
-    w->table = bk_tables_find(ts, BK_CONTACTS_CSV);
+    w->table = bk_tables_find(ts, bk_contacts_csv.name);
     if (!w->table)
-        w->table = bk_tables_open(ts, dir, BK_CONTACTS_CSV, BK_CONTACTS_HEADER, 1, err);
-    w->totals = bk_tables_open(ts, dir, "contact_totals.csv", "step,time,set,primitive,normal_force,fx,fy,fz,"
-                               "active_points,min_distance\n", 1, err);
+        w->table = bk_tables_open(ts, dir, &bk_contacts_csv, 1, err);
+    w->totals = bk_tables_open(ts, dir, &contact_totals_csv, 1, err);
     return w->table && w->totals ? 0 : -1;
 }
 

@@ -46,14 +46,26 @@
  *               measured from the last accepted state: a prediction can jump
  *               over what the limit guards (beam-to-beam contact: one beam
  *               predicted beyond another, at a positive distance again).
+ *   keeps_apart  1 when it keeps the beams' sections apart (beam-to-beam
+ *               contact): the output's check for beams passing through one
+ *               another (output/overlap.h) is then off.
  *   depends     (optional) what its forces depend on besides the elements'
  *               state, given its data: bits BK_DEPENDS_* below (the analyses
  *               ask the loops below, never the model's load lists);
- *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer).
+ *               NULL: BK_DEPENDS_Q | BK_DEPENDS_X (the safe answer); 0: it
+ *               adds no force (the loads of a model whose loads are all dead
+ *               loads of the load factor: there to answer element_loads).
  *   potential   (optional) the potential at q and the path variable x of
  *               its forces that have one, relative to the reference state,
  *               added to *Vg (gravity) or *Vf (other forces): the dynamic
  *               energy balance's external potentials.
+ *   element_loads  (optional) its forces that act along element e (inside
+ *               it, or spread over it: what the element's own section forces
+ *               carry besides its nodal forces) at q and the path variable x,
+ *               over e's DOFs, added to Qe[ndof of e]: the section forces
+ *               (output/sections.c) subtract them from the element's nodal
+ *               forces.  Called from several threads at once (for different
+ *               elements): it must not write self.
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).
@@ -110,10 +122,13 @@ typedef struct bk_interaction_ops {
     int uncounted_energy;            /* 1: it stores energy the energy balance does not count (a barrier) */
     int cut_predictors;              /* 1: the analyses' predictors are cut to its step limit (a predicted
                                       * state may carry one beam through another, unseen by the limit) */
+    int keeps_apart;                 /* 1: it keeps the beams' sections apart (beam-to-beam contact) */
     int (*summary)(void *self, const struct bk_system *s, const double *q, char *buf, size_t n);
     void (*free)(void *self);
     unsigned (*depends)(const void *self, const struct bk_system *s);
     void (*potential)(void *self, const struct bk_system *s, const double *q, double x, double *Vg, double *Vf);
+    void (*element_loads)(const void *self, const struct bk_system *s, const double *q, double x, int e,
+                          double *Qe);
 } bk_interaction_ops;
 
 /* An interaction module: its operations; its place in every sum (ascending
@@ -160,6 +175,8 @@ double bk_interactions_step_limit(const struct bk_system *s, const double *q, co
 int bk_interactions_frame(const struct bk_system *s, const char *dir, int frame, double t, const double *q, FILE *err);
 /* 1 when an interaction of s asks the analyses to cut their predictors. */
 int bk_interactions_cut_predictors(const struct bk_system *s);
+/* 1 when an interaction of s keeps the beams' sections apart. */
+int bk_interactions_keep_apart(const struct bk_system *s);
 /* 1 when an interaction of s stores energy the energy balance does not count. */
 int bk_interactions_uncounted_energy(const struct bk_system *s);
 /* A depends() for the modules whose forces depend on q alone (springs,

@@ -44,7 +44,8 @@ static int make_follower(bk_system *s, const bk_model_record *rec, void **self, 
 const bk_interaction_module bk_interaction_moments = {.ops = &follower_ops, .order = 10, .present = has_moments,
                                                       .make = make_follower};
 
-/* ---- loads with amplitudes, follower and distributed loads, tendons (loads.c), at p->x ---- */
+/* ---- loads with amplitudes, follower and distributed loads, tendons (loads.c), at p->x; the forces of
+ * every load record along an element (the section forces') ---- */
 
 static int loads_assemble(void *self, bk_system *s, const double *q, const bk_path *p, double *fint, double *Ax)
 {
@@ -58,11 +59,20 @@ static void loads_free(void *self)
 }
 
 /* Amplitudes of x; follower and distributed loads and tendons depend on q (a
- * dead force with an amplitude does not: counted with them, the safe side). */
+ * dead force with an amplitude does not: counted with them, the safe side).
+ * Nothing when the model's loads are all dead loads of the load factor (then
+ * the interaction adds no force: it is there to answer element_loads). */
 static unsigned loads_depends(const void *self, const bk_system *s)
 {
-    (void)self, (void)s;
-    return BK_DEPENDS_X | BK_DEPENDS_Q;
+    (void)self;
+    return bk_loads_present(s->m) ? BK_DEPENDS_X | BK_DEPENDS_Q : 0u;
+}
+
+/* Every load record along element e, the dead ones too (bk_element_loads). */
+static void loads_on_element(const void *self, const bk_system *s, const double *q, double x, int e, double *Qe)
+{
+    (void)self;
+    bk_element_loads(s, q, x, e, Qe);
 }
 
 static void loads_potential(void *self, const bk_system *s, const double *q, double x, double *Vg, double *Vf)
@@ -72,7 +82,8 @@ static void loads_potential(void *self, const bk_system *s, const double *q, dou
 }
 
 static const bk_interaction_ops loads_ops = {.name = "loads", .assemble = loads_assemble, .free = loads_free,
-                                             .depends = loads_depends, .potential = loads_potential};
+                                             .depends = loads_depends, .potential = loads_potential,
+                                             .element_loads = loads_on_element};
 
 static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FILE *err)
 {
@@ -83,8 +94,12 @@ static int make_loads(bk_system *s, const bk_model_record *rec, void **self, FIL
     return *self ? 0 : -1;
 }
 
-const bk_interaction_module bk_interaction_loads = {.ops = &loads_ops, .order = 20, .present = bk_loads_present,
-                                                    .make = make_loads};
+/* Present with any load record of the model (bk_element_loads_present): it
+ * assembles those of bk_assemble_loads (the dead loads of unit factor are the
+ * analyses' fext, system.h bk_external_load; the constant moments the
+ * "moments" module's) and answers element_loads for all of them. */
+const bk_interaction_module bk_interaction_loads = {.ops = &loads_ops, .order = 20,
+                                                    .present = bk_element_loads_present, .make = make_loads};
 
 /* Whether the model has the module's interaction, and the record it reads. */
 static int module_present(const bk_interaction_module *im, const bk_model *m, const bk_model_record **rec)
@@ -193,6 +208,14 @@ int bk_interactions_frame(const bk_system *s, const char *dir, int frame, double
         if (s->inter[k].ops->frame)
             bad |= s->inter[k].ops->frame(s->inter[k].self, s, dir, frame, t, q, err) != 0;
     return bad ? -1 : 0;
+}
+
+int bk_interactions_keep_apart(const bk_system *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->ninter; ++k)
+        any |= s->inter[k].ops->keeps_apart;
+    return any;
 }
 
 int bk_interactions_uncounted_energy(const bk_system *s)

@@ -338,7 +338,6 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
     const bk_element *et = bk_elem_type(m, e);
     const int nd = et->ndof;
     scratch w;
-    memset(Qe, 0, (size_t)nd * sizeof *Qe);
     if (scratch_init(&w, nd) != 0) {
         scratch_free(&w);
         for (int i = 0; i < nd; ++i)
@@ -372,4 +371,9 @@ void bk_element_loads(const bk_system *s, const double *q, double x, int e, doub
                                      Qe, NULL);
     }
     scratch_free(&w);
+}
+
+int bk_element_loads_present(const bk_model *m)
+{
+    return m->has_gravity || m->nforce > 0 || m->nmoment > 0 || m->ndload > 0 || m->ntendon > 0;
 }

@@ -29,10 +29,13 @@ void bk_assemble_loads_in(bk_system *s, bk_loads_scratch *ls, const double *q, d
 int bk_loads_present(const bk_model *m);
 
 /* The loads element e carries itself (distributed loads, tendon pieces, gravity,
- * point forces and moments strictly inside it) at x, over its DOFs, into
- * Qe[ndof] (overwritten): what the section forces subtract from the element's
- * nodal forces. */
+ * point forces and moments strictly inside it; dead or varying, whichever
+ * interaction or the dead load vector assembles them) at x, over its DOFs,
+ * added to Qe[ndof]: the loads interaction's answer to element_loads
+ * (interaction.h).  Thread-safe (scratch of its own per call). */
 void bk_element_loads(const bk_system *s, const double *q, double x, int e, double *Qe);
+/* 1 when the model has a load record that bk_element_loads answers for. */
+int bk_element_loads_present(const bk_model *m);
 
 /* The potentials at x of the loads of bk_assemble_loads that have one,
  * relative to the reference state m->q0: added to *Vg, gravity with an

@@ -123,11 +123,14 @@ static int spring_assemble(void *self, bk_system *s, const double *q, const bk_p
     return 0;
 }
 
+static const bk_table_spec springs_csv =
+    BK_TABLE("springs.csv", "runs with `[[spring]]`", "step,time,spring,length,extension,tension\n");
+
 static int spring_tables(void *self, const bk_system *s, bk_tables *ts, const char *dir, FILE *err)
 {
     (void)s;
     springs *w = self;
-    w->table = bk_tables_open(ts, dir, "springs.csv", "step,time,spring,length,extension,tension\n", 1, err);
+    w->table = bk_tables_open(ts, dir, &springs_csv, 1, err);
     return w->table ? 0 : -1;
 }
 

@@ -31,8 +31,9 @@ static void put(bk_tables *ts, const char *name, const char *header, FILE *fp, c
     t->rows = rows;
 }
 
-FILE *bk_tables_open(bk_tables *ts, const char *dir, const char *name, const char *header, int rows, FILE *err)
+FILE *bk_tables_open(bk_tables *ts, const char *dir, const bk_table_spec *spec, int rows, FILE *err)
 {
+    const char *name = spec->name, *header = spec->header;
     if (grow(ts) != 0) {
         fprintf(err, "error: out of memory\n");
         return NULL;

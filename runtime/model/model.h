@@ -235,7 +235,8 @@ int bk_model_bind_joints(bk_model *m, const bk_joint_kind *const *kinds, int nki
  * per state) and whether the path's parameter is time (dynamics) or the load
  * factor: the kind of path the options schema gives each analysis
  * (bk_options.h bk_analysis_path).  The analyses themselves are chosen by
- * their modules (analysis/analysis.h). */
+ * their modules (analysis/analysis.h).  The output does not ask these: the
+ * analysis tells it the kind in its plan (output/output.h, tests/test_layout.py). */
 static inline int bk_model_on_path(const bk_model *m)
 {
     return bk_analysis_path(m->analysis) != BK_PATH_NONE;

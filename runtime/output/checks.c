@@ -16,7 +16,7 @@ int bk_checks_init(bk_checks *c, const bk_system *s)
     c->inv = malloc((size_t)(3 * nqp) * sizeof *c->inv);
     c->qe = malloc((size_t)(s->maxdof > 0 ? s->maxdof : 1) * sizeof *c->qe);
     c->inverted = c->volume = c->strain = c->far = 0;
-    const int ov = bk_overlap_init(&c->overlap, m);
+    const int ov = bk_overlap_init(&c->overlap, s);
     if (!c->inv || !c->qe || ov != 0) {
         bk_checks_free(c);
         return -1;

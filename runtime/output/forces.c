@@ -14,7 +14,13 @@
 #include <omp.h>
 #endif
 
-int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
+static const bk_table_spec reactions_csv =
+    BK_TABLE("reactions.csv", "runs with a `[[constraint]]`",
+             "step,time,constraint,name,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n");
+static const bk_table_spec sections_csv =
+    BK_TABLE("sections.csv", "statics and dynamics", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,Q3,T,M2,M3\n");
+
+int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, bk_tables *ts, FILE *err)
 {
     memset(f, 0, sizeof *f);
     f->m = m;
@@ -73,7 +79,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
     }
     free(held);
     /* dynamics: their mass matrices, constant, once (the residual of every step uses them) */
-    if (bk_model_in_time(m) && f->nrelem > 0) {
+    if (path == BK_PATH_TIME && f->nrelem > 0) {
         f->rmass = malloc((size_t)f->nrelem * md * md * sizeof *f->rmass);
         if (!f->rmass) {
             fprintf(err, "error: out of memory for the reactions and section forces\n");
@@ -104,14 +110,12 @@ int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *
         }
     }
     if (m->nreaction > 0 &&
-        !(f->reactions = bk_tables_open(ts, dir, "reactions.csv",
-                                        "step,time,constraint,name,type,at,x,y,z,Fx,Fy,Fz,Mx,My,Mz\n", 1, err)))
+        !(f->reactions = bk_tables_open(ts, dir, &reactions_csv, 1, err)))
         return -1;
-    if (bk_joints_open(f, m, dir, ts, err) != 0)
+    if (path != BK_PATH_NONE && bk_joints_open(f, m, dir, ts, err) != 0)
         return -1;
-    if (m->nsection > 0 && bk_model_on_path(m) &&
-        !(f->sections = bk_tables_open(ts, dir, "sections.csv", "step,time,beam,element,source,point,xi,s,x,y,z,N,Q2,"
-                                       "Q3,T,M2,M3\n", 1, err)))
+    if (m->nsection > 0 && path != BK_PATH_NONE &&
+        !(f->sections = bk_tables_open(ts, dir, &sections_csv, 1, err)))
         return -1;
     return 0;
 }

@@ -67,9 +67,11 @@ typedef struct bk_forces {
                                    * resultants at its sample points, step sec_step (NaN: none) */
 } bk_forces;
 
-/* Opens reactions.csv and sections.csv (when the model has reactions and
- * sections) in dir, registered in ts.  0, or -1 with a message on err. */
-int bk_forces_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err);
+/* Opens reactions.csv and, for a path (path: its kind, bk_options.h enum
+ * bk_path_kind, from the analysis' plan, output.h), joints.csv and
+ * sections.csv (when the model has reactions, joints and sections) in dir,
+ * registered in ts.  0, or -1 with a message on err. */
+int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, bk_tables *ts, FILE *err);
 /* Rows of reactions.csv and, when with_sections, of sections.csv for the
  * state q at x (time or load factor); qd, qdd: velocities and accelerations
  * (NULL in statics); nu: the constraint multipliers (NULL: unknown, the linear

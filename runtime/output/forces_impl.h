@@ -20,7 +20,8 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
                         const double *qdd);
 
 /* joints.csv (joint_out.c): opened when the model has a joint with an axis
- * (0, or -1 with a message on err); a row per such joint at each output step
+ * (called for an analysis whose states form a path; 0, or -1 with a message
+ * on err); a row per such joint at each output step
  * after the reactions (f->last); the "joints" member of summary.json (peak
  * |effort| and its time, with a trailing comma). */
 int bk_joints_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err);

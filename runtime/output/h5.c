@@ -191,13 +191,14 @@ static void sink_end(void *tab)
 
 static void hand_over(bk_h5 *h, int flush);
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
+int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const bk_tables *tables, size_t cap,
+               FILE *err)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
     h->tables = tables;
     h->ndof = m->ndof;
-    h->with_qd = bk_model_in_time(m);
+    h->with_qd = in_time;
     h->qd_step = -1;
     h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end};
     snprintf(h->path, sizeof h->path, "%s/results.h5", dir);

@@ -30,7 +30,9 @@
  * keeps every row; one killed outright keeps the rows up to its last flush.
  *
  * Sizes and directions:
- *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
+ *   bk_h5_open      in: m, in_time (1: the states are in time, with
+ *                   velocities: the analysis' plan, output.h), dir, tables
+ *                   (the run's registry: the mirrored
  *                   tables' names and headers; not owned, must outlive h);
  *                   cap: the bytes of its writer's file buffers (filewriter.h:
  *                   the thread is shared with the ParaView frames, vtk.h ext).
@@ -94,7 +96,7 @@ typedef struct bk_h5 {
     char path[1100];
     const bk_model *m;
     const bk_tables *tables;
-    int ndof, with_qd;
+    int ndof, with_qd;        /* with_qd: in time (bk_h5_open's in_time) */
     bk_filewriter fw;         /* owned: the HDF5 thread */
     bk_h5_job job[4];         /* make, write set 0, write set 1, close */
     long ticket[2];           /* the write of each set handed over (0: none pending) */
@@ -118,7 +120,8 @@ typedef struct bk_h5 {
     char failure[200];        /*   which */
 } bk_h5;
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err);
+int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const bk_tables *tables, size_t cap,
+               FILE *err);
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
 void bk_h5_flush(bk_h5 *h);

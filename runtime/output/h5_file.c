@@ -252,7 +252,7 @@ static void make_file(bk_h5 *h)
     h->tables_group = tg >= 0 ? tg : 0;
     int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
              attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&
-             attr_str(f, "time_name", bk_model_in_time(m) ? "time" : "load_factor") == 0 &&
+             attr_str(f, "time_name", h->with_qd ? "time" : "load_factor") == 0 &&
              attr_str(f, "units", "SI: m, kg, s, N, Pa, J; time in s; load factor 0 to 1; angles in rad "
                                   "unless a column says deg") == 0 &&
              attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0 &&

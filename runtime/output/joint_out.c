@@ -56,20 +56,23 @@ static void cross3(const double *a, const double *b, double *c)
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+static const bk_table_spec joints_csv =
+    BK_TABLE("joints.csv", "statics and dynamics with a joint that has an axis",
+             "step,time,constraint,name,type,motion,value,rate,effort,power\n");
+
 int bk_joints_open(bk_forces *f, const bk_model *m, const char *dir, bk_tables *ts, FILE *err)
 {
     int n = 0;
     for (int c = 0; c < m->nreaction; ++c)
         n += m->reactions[c].nlcon >= 0 && joint_axis_kind(&m->nlcons[m->reactions[c].nlcon]);
-    if (n == 0 || !bk_model_on_path(m))
+    if (n == 0)
         return 0;
     f->jstate = calloc(4 * (size_t)m->nreaction, sizeof *f->jstate);
     if (!f->jstate) {
         fprintf(err, "error: out of memory for joints.csv\n");
         return -1;
     }
-    f->joints = bk_tables_open(ts, dir, "joints.csv", "step,time,constraint,name,type,motion,value,rate,effort,"
-                               "power\n", 1, err);
+    f->joints = bk_tables_open(ts, dir, &joints_csv, 1, err);
     return f->joints ? 0 : -1;
 }
 

@@ -51,6 +51,10 @@ static void spent_flush(bk_output *o, double t0)
     o->t_output += now - t0;
 }
 
+static const bk_table_spec sensors_csv =
+    BK_TABLE("sensors.csv", "every run",
+             "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z\n");
+
 int bk_output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, int progress,
                    FILE *err)
 {
@@ -72,8 +76,7 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
     }
     o->m = m;
     snprintf(o->dir, sizeof o->dir, "%s", dir);
-    o->sensors = bk_tables_open(&o->tables, dir, "sensors.csv", "step,time,sensor,x,y,z,ux,uy,uz,d1x,d1y,d1z,d2x,"
-                                "d2y,d2z,d3x,d3y,d3z\n", 1, err);
+    o->sensors = bk_tables_open(&o->tables, dir, &sensors_csv, 1, err);
     if (!o->sensors)
         return -1;
     o->sensor_p0 = malloc((3 * (size_t)m->nsensor + 1) * sizeof *o->sensor_p0);
@@ -83,14 +86,14 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
     }
     for (int k = 0; k < m->nsensor; ++k)
         bk_eval_sensor(m, m->q0, &m->sensors[k], o->sensor_p0 + 3 * k, NULL);
-    if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
+    if (bk_forces_open(&o->forces, m, plan->path, dir, &o->tables, err) != 0)
         return -1;
     o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
     if (m->output.hdf5) {
         /* one writer thread for results.h5, the frames and the tables' rows
          * (the frames' buffers in it when they would have a thread of their own) */
         const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
-        if (bk_h5_open(&o->h5, m, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
+        if (bk_h5_open(&o->h5, m, plan->path == BK_PATH_TIME, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
             return -1;
         o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
         if (share)
@@ -138,8 +141,8 @@ void bk_output_progress(bk_output *o, double frac, int step, double t, double dt
     o->progress_shown = 1;
     double el = now - o->t_start, eta = frac > 1e-9 ? el * (1.0 - frac) / frac : 0.0;
     fprintf(stderr, "%s%s: %s %.6g (%.0f %%), step %d, %s %.3g, %.0f iterations/s, residual %.1e, %.0f s left%s",
-            o->progress == 1 ? "\r" : "", o->m->name, bk_model_in_time(o->m) ? "t" : "load factor", t,
-            100.0 * frac, step, bk_model_in_time(o->m) ? "dt" : "increment", dt, o->progress_iters / el, residual,
+            o->progress == 1 ? "\r" : "", o->m->name, o->plan.path == BK_PATH_TIME ? "t" : "load factor", t,
+            100.0 * frac, step, o->plan.path == BK_PATH_TIME ? "dt" : "increment", dt, o->progress_iters / el, residual,
             eta, o->progress == 1 ? "   " : "\n");
     fflush(stderr);
 }
@@ -155,7 +158,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
 
 void bk_output_final(bk_output *o, int step, double t, const double *q)
 {
-    if (bk_model_on_path(o->m))
+    if (o->plan.path != BK_PATH_NONE)
         bk_output_last_frame(o, step, t, q);
     double t0 = bk_clock_s();
     bk_vtk_flush(&o->vtk);
@@ -221,10 +224,10 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
     spent(o, t0);
 }
 
-FILE *bk_output_table(bk_output *o, const char *name, const char *header, FILE *err)
+FILE *bk_output_table(bk_output *o, const bk_table_spec *spec, FILE *err)
 {
     double t0 = bk_clock_s();
-    FILE *fp = bk_tables_open(&o->tables, o->dir, name, header, 1, err);
+    FILE *fp = bk_tables_open(&o->tables, o->dir, spec, 1, err);
     spent(o, t0);
     return fp;
 }
@@ -241,102 +244,6 @@ void bk_output_row_end(bk_output *o, bk_row *r, double t0, int flush)
         spent_flush(o, t0);
     else
         spent(o, t0);
-}
-
-/* DIR/NAME opened with its header and registered (written with fprintf, not
- * queued); NULL with a message in err. */
-static FILE *mode_table(bk_output *o, const char *name, const char *header, char *err, size_t nerr)
-{
-    char path[1200];
-    snprintf(path, sizeof path, "%s/%s", o->dir, name);
-    FILE *fp = fopen(path, "w");
-    if (!fp) {
-        snprintf(err, nerr, "%s: cannot write: %s", path, strerror(errno));
-        return NULL;
-    }
-    if (bk_tables_add(&o->tables, name, fp, 0) != 0) {
-        snprintf(err, nerr, "out of memory for the mode output");
-        return NULL;
-    }
-    fputs(header, fp);
-    return fp;
-}
-
-int bk_output_modes_begin(bk_output *o, int nval, const char *const *names, char *err, size_t nerr)
-{
-    if (nval < 1 || nval > BK_MODE_VALUES) {
-        snprintf(err, nerr, "%d values per mode (expected 1 to %d)", nval, BK_MODE_VALUES);
-        return -1;
-    }
-    o->mode_nval = nval;
-    o->mode_names = names;
-    char head[400], shead[300];
-    int len = snprintf(head, sizeof head, "mode");
-    for (int k = 0; k < nval; ++k)
-        len += snprintf(head + len, sizeof head - (size_t)len, ",%s", names[k]);
-    snprintf(head + len, sizeof head - (size_t)len, ",scale_m\n");
-    snprintf(shead, sizeof shead, "mode,%s,sensor,x,y,z,dx,dy,dz,shape_x,shape_y,shape_z\n", names[0]);
-    if (!(o->modes = mode_table(o, "modes.csv", head, err, nerr)) ||
-        !(o->mode_sensors = mode_table(o, "mode_sensors.csv", shead, err, nerr)))
-        return -1;
-    o->mode_q = malloc(2 * (size_t)o->m->ndof * sizeof *o->mode_q);
-    if (!o->mode_q) {
-        snprintf(err, nerr, "out of memory for the mode output");
-        return -1;
-    }
-    return 0;
-}
-
-double bk_output_mode(bk_output *o, int mode, const double *vals, const double *q, const double *phi)
-{
-    double t0 = bk_clock_s();
-    const bk_model *m = o->m;
-    int n = m->ndof;
-    double *qp = o->mode_q, *qm = o->mode_q + n, pmax = 0.0;
-    for (int i = 0; i < n; ++i)
-        pmax = fmax(pmax, fabs(phi[i]));
-    /* a perturbation of 1e-6 of the model length (in the largest DOF) for the
-     * central differences of the point positions along the mode */
-    double eps = pmax > 0.0 ? 1e-6 * m->length_scale / pmax : 0.0, T = 0.0, R = 0.0;
-    for (int i = 0; i < n; ++i) {
-        qp[i] = q[i] + eps * phi[i];
-        qm[i] = q[i] - eps * phi[i];
-    }
-    if (eps > 0.0)
-        bk_vtk_mode_extent(m, qp, qm, eps, &T, &R);
-    double norm = T > 0.0 ? T : 1.0, scale = 0.0;
-    if (T > 0.0) {
-        scale = BK_MODE_SIZE * m->length_scale;
-        if (R / T * scale > BK_MODE_ROTATION)
-            scale = BK_MODE_ROTATION * T / R;
-    }
-    if (eps == 0.0)
-        eps = 1.0;                              /* zero vector: qp = qm = q, shape 0 */
-    if (o->modes) {
-        fprintf(o->modes, "%d", mode);
-        for (int k = 0; k < o->mode_nval; ++k)
-            fprintf(o->modes, ",%.17g", vals[k]);
-        fprintf(o->modes, ",%.9g\n", scale);
-        fflush(o->modes);
-    }
-    if (o->mode_sensors) {
-        for (int k = 0; k < m->nsensor; ++k) {
-            const bk_sensor *s = &m->sensors[k];
-            double x[3], a[3], b[3], sh[3];
-            bk_eval_sensor(m, q, s, x, NULL);
-            bk_eval_sensor(m, qp, s, a, NULL);
-            bk_eval_sensor(m, qm, s, b, NULL);
-            for (int i = 0; i < 3; ++i)
-                sh[i] = (a[i] - b[i]) / (2.0 * eps * norm);
-            fprintf(o->mode_sensors, "%d,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", mode, vals[0],
-                    s->name, x[0] + scale * sh[0], x[1] + scale * sh[1], x[2] + scale * sh[2], scale * sh[0],
-                    scale * sh[1], scale * sh[2], sh[0], sh[1], sh[2]);
-        }
-        fflush(o->mode_sensors);
-    }
-    bk_vtk_mode(&o->vtk, mode, o->mode_nval, o->mode_names, vals, scale, norm, q, qp, qm, eps);
-    spent(o, t0);
-    return scale;
 }
 
 int bk_output_summary(const bk_output *o, const bk_run_info *info, const double *q, FILE *err)
@@ -375,7 +282,7 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"factorizations\": %d,\n", info->factorizations);
     fprintf(fp, "  \"symbolic_analyses\": %d,\n", info->analyses);
     /* every number through json_num: a non-finite value is null (JSON has no NaN) */
-    fprintf(fp, "  \"%s\": ", bk_model_in_time(m) ? "time" : "load_factor");
+    fprintf(fp, "  \"%s\": ", o->plan.path == BK_PATH_TIME ? "time" : "load_factor");
     bk_json_num(fp, info->load_factor);
     fprintf(fp, ",\n  \"max_constraint_residual\": ");
     bk_json_num(fp, info->max_constraint_residual);

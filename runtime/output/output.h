@@ -19,6 +19,9 @@
  * (its module's plan, analysis/analysis.h), so that no output code tests the
  * kind of analysis or reads its options. */
 typedef struct bk_output_plan {
+    int path;                /* the kind of its states' path (bk_options.h enum bk_path_kind): BK_PATH_NONE
+                              * (modal, buckling: no path, no sections.csv, joints.csv or last frame),
+                              * BK_PATH_LOAD (the load factor), BK_PATH_TIME (time: velocities, inertia) */
     double end;              /* the path variable at the run's end: a frame's progress is t / end (0: unknown,
                               * e.g. continuation, load cycles) */
     int frames;              /* ParaView frames of states it writes, when known from the start (else 0) */
@@ -29,6 +32,9 @@ typedef struct bk_output_plan {
     int stability;           /* 1: it checks the stability of its states (summary.json: stability_s) */
 } bk_output_plan;
 
+#define BK_MODE_VALUES 4
+#define BK_MODE_NAME 32
+
 typedef struct bk_output {
     const bk_model *m;
     char dir[1024];
@@ -37,8 +43,9 @@ typedef struct bk_output {
     FILE *modes;             /* modal analyses only (registered in tables) */
     FILE *mode_sensors;      /* modal analyses only (registered in tables) */
     double *mode_q;          /* owned; modal: [2 ndof] q + eps phi, q - eps phi */
-    int mode_nval;           /* values per mode and their names (bk_output_modes_begin) */
-    const char *const *mode_names;
+    int mode_nval;           /* values per mode and their names (bk_output_modes_begin: from modes.csv's header) */
+    char mode_name[BK_MODE_VALUES][BK_MODE_NAME];
+    const char *mode_names[BK_MODE_VALUES];
     double *sensor_p0;       /* owned: [3 nsensor] the sensors' reference positions */
     bk_vtk vtk;              /* ParaView frames */
     int progress;            /* 1: an updating progress line on stderr (a terminal), 2: a line
@@ -90,20 +97,21 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
  * header line and registered (tables.h: closed with the others, its rows
  * queued to the writer thread once it runs).  The stream, or NULL with a
  * message on err. */
-FILE *bk_output_table(bk_output *o, const char *name, const char *header, FILE *err);
+FILE *bk_output_table(bk_output *o, const bk_table_spec *spec, FILE *err);
 /* A row of such a table (csvrow.h: then bk_row_num, ...), and its end: the
  * row written (or queued), the tables flushed when due (flush), the time
  * since t0 (bk_clock_s) counted as output time. */
 void bk_output_row(bk_output *o, bk_row *r, FILE *table);
 void bk_output_row_end(bk_output *o, bk_row *r, double t0, int flush);
-/* Opens modes.csv and mode_sensors.csv for modes that each carry nval values
- * named names[nval] (1 <= nval <= BK_MODE_VALUES; the analysis's: a modal
- * analysis "frequency_hz", "omega"; the names must outlive the output) and
- * allocates the mode buffers; -1 on failure (a message in err).  Headers:
- * modes.csv "mode,NAMES...,scale_m", mode_sensors.csv "mode,NAMES[0],sensor,
- * x,y,z,dx,dy,dz,shape_x,shape_y,shape_z". */
-#define BK_MODE_VALUES 4
-int bk_output_modes_begin(bk_output *o, int nval, const char *const *names, char *err, size_t nerr);
+/* Opens modes.csv and mode_sensors.csv with the analysis' specs of them (its
+ * registrations, base/tables.h) and allocates the mode buffers; -1 on failure
+ * (a message in err).  The values each mode carries are named by the modes
+ * table's header "mode,NAMES...,scale_m" (1 to BK_MODE_VALUES names of fewer
+ * than BK_MODE_NAME characters; a modal analysis "frequency_hz,omega"); the
+ * sensors table's header must be "mode,NAMES[0],sensor,x,y,z,dx,dy,dz,
+ * shape_x,shape_y,shape_z". */
+int bk_output_modes_begin(bk_output *o, const bk_table_spec *modes, const bk_table_spec *sensors, char *err,
+                          size_t nerr);
 /* Mode `mode` (1, 2, ...) with its values vals[nval] and vector phi[ndof]
  * (any scale) about the state q: normalizes it to a largest point translation
  * of 1 (mode_shape), scales it for display to a largest translation of

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "assembly/interaction.h"
 #include "assembly/system.h"
 
 #define NS (BK_OVERLAP_SEG + 1)
@@ -90,10 +91,11 @@ static int make_chunks(bk_overlap *o, const bk_model *m)
     return o->nchunk;
 }
 
-int bk_overlap_init(bk_overlap *o, const bk_model *m)
+int bk_overlap_init(bk_overlap *o, const bk_system *s)
 {
+    const bk_model *m = s->m;
     memset(o, 0, sizeof *o);
-    if (m->nsection < 2 || bk_model_record_find(m, "beam_contact"))
+    if (m->nsection < 2 || bk_interactions_keep_apart(s))
         return 0;
     const size_t n = (size_t)m->nsection;
     o->ref = malloc(n * NS * 3 * sizeof *o->ref);

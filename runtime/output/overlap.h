@@ -16,8 +16,8 @@
  * two beams joined by constraints (directly or through others: the links of
  * a mechanism, gen/scene/build.py joined_groups) are not compared with each
  * other at all, only each with itself and with the other beams.  The first overlap is reported once
- * (beams, arc lengths, distance, time or load factor).  Off when the model has
- * beam contact.  Cost: linear in the elements per check, plus the sort of the
+ * (beams, arc lengths, distance, time or load factor).  Off when an
+ * interaction keeps the sections apart (beam contact).  Cost: linear in the elements per check, plus the sort of the
  * broad phase. */
 #ifndef BK_OVERLAP_H
 #define BK_OVERLAP_H
@@ -40,9 +40,11 @@ typedef struct bk_overlap {
     int *pairs, cap;         /* the broad phase's pairs (owned) */
 } bk_overlap;
 
-/* Off (n = 0) for a model with beam contact or fewer than two elements.
+/* Off (n = 0) for a system with an interaction that keeps the sections apart
+ * (beam contact: interaction.h keeps_apart) or fewer than two elements.
  * Returns 0, or -1 when out of memory. */
-int bk_overlap_init(bk_overlap *o, const bk_model *m);
+struct bk_system;
+int bk_overlap_init(bk_overlap *o, const struct bk_system *s);
 void bk_overlap_free(bk_overlap *o);
 
 /* Checks the state q at load factor / time t (`what`: "load factor", "t ="):

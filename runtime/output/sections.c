@@ -160,7 +160,10 @@ static void section_values(bk_forces *f, bk_system *s, int k, double x, const do
                 ge[i] += mat->rho * Qe[i];
         }
     }
-    bk_element_loads(s, q, x, e, Qe);
+    memset(Qe, 0, (size_t)ne * sizeof *Qe);      /* the interactions' forces along the element */
+    for (int k = 0; k < s->ninter; ++k)
+        if (s->inter[k].ops->element_loads)
+            s->inter[k].ops->element_loads(s->inter[k].self, s, q, x, e, Qe);
     for (int i = 0; i < ne; ++i)
         ge[i] -= Qe[i];
     for (int end = 0; end < 2; ++end) {
