@@ -191,11 +191,10 @@ static void sink_end(void *tab)
 
 static void hand_over(bk_h5 *h, int flush);
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
+int bk_h5_start(bk_h5 *h, const bk_model *m, const char *dir, FILE *err)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
-    h->tables = tables;
     h->ndof = m->ndof;
     h->with_qd = bk_model_in_time(m);
     h->qd_step = -1;
@@ -213,7 +212,8 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *ta
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
+    /* (the frames' buffers, when they share the thread, come with bk_h5_open) */
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, 1, 1) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
         h->open = 1;                          /* (bk_h5_close frees) */
         h->failed = 1;
@@ -224,9 +224,19 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *ta
     h->job[1] = (bk_h5_job){h, 1, 0};
     h->job[2] = (bk_h5_job){h, 1, 1};
     h->job[3] = (bk_h5_job){h, 2, 0};
+    h->job[4] = (bk_h5_job){h, 3, 0};
     h->open = 1;
     bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
     return 0;
+}
+
+void bk_h5_open(bk_h5 *h, const bk_tables *tables, size_t cap)
+{
+    if (!h->open)
+        return;
+    h->tables = tables;
+    if (cap > 1 && h->fw.threaded)
+        bk_filewriter_reserve(&h->fw, cap);   /* (without them the frames keep a writer of their own) */
 }
 
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd)
@@ -277,13 +287,14 @@ void bk_h5_flush(bk_h5 *h)
         hand_over(h, 1);
 }
 
-/* The set being filled to the thread (flush: then the file is flushed), and
- * the other set, once written, to be filled. */
+/* The set being filled to the thread (flush 1: then the file is flushed; 2:
+ * the run's last rows, the sizes of the datasets not yet made), and the other
+ * set, once written, to be filled. */
 static void hand_over(bk_h5 *h, int flush)
 {
     const int k = h->cur;
     h->flush[k] = flush;
-    h->unflushed = !flush;
+    h->unflushed = flush != 1;
     h->ticket[k] = bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[1 + k]);
     h->cur = k ^ 1;
     if (h->ticket[h->cur] > 0)            /* the other set: written by now? */
@@ -299,10 +310,10 @@ int bk_h5_close(bk_h5 *h, FILE *err)
     int rc = 0;
     if (h->open) {
         if (h->fw.ready) {
-            hand_over(h, 0);              /* (closing the file flushes it) */
-            bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]);
+            hand_over(h, 2);              /* the last rows (closing the file flushes it) */
+            bk_filewriter_wait(&h->fw, bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]));
+            bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[4]);   /* HDF5 ended by bk_h5_end */
         }
-        bk_filewriter_close(&h->fw);      /* (drains: the file is closed) */
         h->open = 0;
         if (!h->failed && h->oom) {
             h->failed = 1;
@@ -314,6 +325,13 @@ int bk_h5_close(bk_h5 *h, FILE *err)
             rc = -1;
         }
     }
+    return rc;
+}
+
+void bk_h5_end(bk_h5 *h)
+{
+    bk_h5_close(h, NULL);
+    bk_filewriter_close(&h->fw);          /* (drains: HDF5 ended) */
     for (int k = 0; k < h->ntab; ++k) {
         free(h->tab[k].buf[0]);
         free(h->tab[k].buf[1]);
@@ -327,8 +345,5 @@ int bk_h5_close(bk_h5 *h, FILE *err)
         free(h->qd[k]);
     }
     free(h->qd_last);
-    const bk_tables *tables = h->tables;
     memset(h, 0, sizeof *h);
-    h->tables = tables;
-    return rc;
 }
