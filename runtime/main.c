@@ -58,25 +58,17 @@ int main(int argc, char **argv)
         bk_model_free(m);
         return 1;
     }
-    /* results.h5's thread started now: HDF5's start and the file's making go
-     * on beside the set-up and the solve */
-    bk_output out;
-    if (bk_output_begin(&out, m, out_dir, stderr) != 0) {
-        bk_output_discard(&out);
-        bk_model_free(m);
-        return 1;
-    }
     if (!quiet && m->nelem > 100000)
         fprintf(stderr, "setting up %d elements, %d DOFs (sparse pattern, KLU analysis)...\n", m->nelem, m->ndof);
     bk_system *s = bk_system_create(m, stderr);
     if (!s) {
-        bk_output_discard(&out);
         bk_model_free(m);
         return 1;
     }
     const bk_analysis_module *an = bk_analysis_for(m);
     bk_output_plan plan;
     bk_analysis_plan(an, m, &plan);              /* what it will write, told to the output */
+    bk_output out;
     if (bk_output_open(&out, m, &plan, out_dir, !quiet && !verbose, stderr) != 0) {
         bk_output_close(&out);
         bk_system_free(s);

@@ -125,30 +125,6 @@ int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
     return 0;
 }
 
-int bk_filewriter_reserve(bk_filewriter *w, size_t cap)
-{
-    if (cap <= w->cap)
-        return 0;
-    unsigned char *nb[BK_FILEWRITER_BUFFERS] = {0};
-    int ok = 1;
-    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
-        ok = ok && (nb[b] = malloc(cap)) != NULL;
-    if (ok && w->ready)
-        pthread_mutex_lock(&w->mu);       /* (the thread reads them under the lock's order) */
-    for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b) {
-        unsigned char *old = ok ? w->buf[b] : nb[b];
-        if (ok)
-            w->buf[b] = nb[b];
-        free(old);
-    }
-    if (ok) {
-        w->cap = cap;
-        if (w->ready)
-            pthread_mutex_unlock(&w->mu);
-    }
-    return ok ? 0 : -1;
-}
-
 int bk_filewriter_slot(bk_filewriter *w)
 {
     pthread_mutex_lock(&w->mu);

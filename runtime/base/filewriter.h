@@ -16,10 +16,6 @@
  *                         every submit write at once in the caller's thread
  *                         (as when no thread could be made).  0, or -1 when out
  *                         of memory (bk_filewriter_close frees what was made).
- *   bk_filewriter_reserve in: cap: the buffers made cap bytes each when
- *                         they are smaller (before any file is handed over:
- *                         the thread may have run calls); 0, or -1 when out of
- *                         memory (the old buffers kept).
  *   bk_filewriter_slot    out: the index (0 .. BK_FILEWRITER_BUFFERS-1) of a free
  *                         buffer, now the caller's (waits while both are being
  *                         written); the caller's job memory of that index is
@@ -38,8 +34,7 @@
  *   bk_filewriter_drain   waits until every file and call handed over is done;
  *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
- * No allocation after open (and reserve) but for a job's stream on its
- * buffer (fmemopen).
+ * No allocation after open but for a job's stream on its buffer (fmemopen).
  * The signal mask is the opener's (the solver blocks SIGINT/SIGTERM before:
  * interrupt.h). */
 #ifndef BK_FILEWRITER_H
@@ -85,7 +80,6 @@ typedef struct bk_filewriter {
 } bk_filewriter;
 
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
-int bk_filewriter_reserve(bk_filewriter *w, size_t cap);
 int bk_filewriter_slot(bk_filewriter *w);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
 long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);

@@ -191,10 +191,11 @@ static void sink_end(void *tab)
 
 static void hand_over(bk_h5 *h, int flush);
 
-int bk_h5_start(bk_h5 *h, const bk_model *m, const char *dir, FILE *err)
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
+    h->tables = tables;
     h->ndof = m->ndof;
     h->with_qd = bk_model_in_time(m);
     h->qd_step = -1;
@@ -212,8 +213,7 @@ int bk_h5_start(bk_h5 *h, const bk_model *m, const char *dir, FILE *err)
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    /* (the frames' buffers, when they share the thread, come with bk_h5_open) */
-    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, 1, 1) != 0) {
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
         h->open = 1;                          /* (bk_h5_close frees) */
         h->failed = 1;
@@ -225,18 +225,8 @@ int bk_h5_start(bk_h5 *h, const bk_model *m, const char *dir, FILE *err)
     h->job[2] = (bk_h5_job){h, 1, 1};
     h->job[3] = (bk_h5_job){h, 2, 0};
     h->job[4] = (bk_h5_job){h, 3, 0};
-    h->open = 1;
-    bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+    h->open = 1;                          /* (HDF5 started at the first set handed over) */
     return 0;
-}
-
-void bk_h5_open(bk_h5 *h, const bk_tables *tables, size_t cap)
-{
-    if (!h->open)
-        return;
-    h->tables = tables;
-    if (cap > 1 && h->fw.threaded)
-        bk_filewriter_reserve(&h->fw, cap);   /* (without them the frames keep a writer of their own) */
 }
 
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd)
@@ -292,6 +282,10 @@ void bk_h5_flush(bk_h5 *h)
  * set, once written, to be filled. */
 static void hand_over(bk_h5 *h, int flush)
 {
+    if (!h->lib) {                        /* the first set: HDF5 started, the file made */
+        h->lib = 1;
+        bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+    }
     const int k = h->cur;
     h->flush[k] = flush;
     h->unflushed = flush != 1;
@@ -309,7 +303,12 @@ int bk_h5_close(bk_h5 *h, FILE *err)
 {
     int rc = 0;
     if (h->open) {
-        if (h->fw.ready) {
+        /* a run whose rows all came now: the file in one piece, here (the
+         * writer is idle: the frames are written, the rows' queue stopped) */
+        int by_library = h->lib;
+        if (h->fw.ready && !h->lib)
+            by_library = bk_h5_write_whole(h, h->cur) == 1;
+        if (h->fw.ready && by_library) {
             hand_over(h, 2);              /* the last rows (closing the file flushes it) */
             bk_filewriter_wait(&h->fw, bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]));
             bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[4]);   /* HDF5 ended by bk_h5_end */

@@ -13,52 +13,48 @@
  *                     int64 or 64-byte strings, as the first row had them):
  *                     the very values the CSV prints
  *
- * Every HDF5 call is made by the writer thread h owns (filewriter.h: the
- * run's one writer thread, which the ParaView frames and the tables' rows
- * share), one at a time.  The thread is started as soon as the model is read
- * (bk_h5_start, before the system is set up), so that HDF5's own start (about
- * 0.4 ms), the file's making (0.4 ms) and its attributes and /dofs run beside
- * the set-up and the solve.  The rows (states, and the tables' rows given to
- * the mirror, csvrow.h bk_rowsink, on the solve thread whether or not the
- * writer thread formats their text) are kept in one of two sets of buffers;
+ * The rows (states, and the tables' rows given to the mirror, csvrow.h
+ * bk_rowsink, on the solve thread whether or not the writer thread formats
+ * their text) are kept in one of two sets of buffers.  A run whose rows all
+ * come at its end (fewer than BK_H5_HANDOVER states, shorter than the flush
+ * interval: most static runs and short dynamic ones) gets its file in one
+ * piece at bk_h5_close, without the HDF5 library (h5_whole.c, h5_plain.h:
+ * contiguous datasets of exactly their rows): the library's start, its object
+ * bookkeeping and its end took 2-3 ms of CPU time, more than such a run's
+ * solve.  Otherwise every HDF5 call is made by the writer thread h owns
+ * (filewriter.h: the run's one writer thread, which the ParaView frames and
+ * the tables' rows share), one at a time, from the first set handed over on:
  * when the run's tables are flushed (output.c: every 0.5 s of wall time), when
- * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
- * the thread, which appends it and flushes the file (H5Fflush), and the other
- * set is filled meanwhile; every BK_H5_HANDOVER states (and the rows since)
- * are handed over too, without the flush, so that the writing goes on beside
- * the solve.  A dataset is made at its first rows: chunked and extensible
- * (chunks of about 32 kB), or, when those are the run's last (a short run's
- * states and tables, a table first written at the end), contiguous and of
- * exactly their size, written in one piece (a short run's file holds no
- * half-empty chunks; h5py reads the same datasets, only their maxshape is
- * fixed).  A run shorter than the flush interval writes the same bytes each
- * time (no modification times are kept); in a longer one the file's layout
- * (not its values) depends on when the timed flushes came.  A run that is
- * interrupted or fails keeps every row; one killed outright keeps the rows up
- * to its last flush.
+ * BK_H5_ROWS rows of one are buffered, every BK_H5_HANDOVER states (unflushed,
+ * so that the writing goes on beside the solve), and at the end, the set being
+ * filled is handed to the thread, which appends it (and, when flushed,
+ * flushes the file: H5Fflush), and the other set is filled meanwhile.  A
+ * dataset is made at its first rows: chunked and extensible, or contiguous of
+ * exactly its rows when those are the run's last.  h5py reads the same
+ * datasets, types, values and attributes either way (only the layout and
+ * maxshape differ).  A run shorter than the flush interval writes the same
+ * bytes each time (no modification times are kept); in a longer one the
+ * file's layout (not its values) depends on when the timed flushes came.  A
+ * run that is interrupted or fails keeps every row; one killed outright keeps
+ * the rows up to its last flush (none, and no file, in its first 0.5 s).
  *
  * Sizes and directions:
- *   bk_h5_start     in: m (must outlive h; read by the thread meanwhile),
- *                   dir.  Starts the thread, which makes the file.  0, or -1
- *                   when out of memory (message on err; bk_h5_end frees).
- *   bk_h5_open      in: tables (the run's registry: the mirrored tables' names
- *                   and headers; not owned, must outlive h), given before any
- *                   row; cap: the bytes of its writer's file buffers
- *                   (filewriter.h: the thread is shared with the ParaView
- *                   frames, vtk.h ext; without memory for them the frames
- *                   keep a writer of their own).  A failure to make the file
- *                   is reported by bk_h5_close.
+ *   bk_h5_open      in: m, dir, tables (the run's registry: the mirrored
+ *                   tables' names and headers; not owned, must outlive h);
+ *                   cap: the bytes of its writer's file buffers (filewriter.h:
+ *                   the thread is shared with the ParaView frames, vtk.h ext).
+ *                   0, or -1 when out of memory (message on err).
  *   bk_h5_velocity  in: the velocities qd[ndof] of the state of output step
  *                   `step` given next (dynamics; copied).
  *   bk_h5_state     in: step, t, q[ndof] (copied).
  *   bk_h5_flush     hands the rows so far to the thread.
- *   bk_h5_close     hands over the rest, waits until the file is written and
- *                   closed; 0, or -1 with "error: DIR/results.h5: cannot
- *                   write: REASON" on err (if not NULL).  HDF5 is then ended
- *                   by the thread meanwhile.  Safe on a closed or never
- *                   started h.
- *   bk_h5_end       closes (if still open), waits until HDF5 is ended, ends
- *                   the thread, frees.  Safe on a never started h (zeroed). */
+ *   bk_h5_close     writes the file in one piece or hands over the rest and
+ *                   waits until the file is written and closed; 0, or -1 with
+ *                   "error: DIR/results.h5: cannot write: REASON" on err (if
+ *                   not NULL).  HDF5, if started, is ended by the thread
+ *                   meanwhile.  Safe on a closed or never opened h.
+ *   bk_h5_end       closes (if still open), waits until the thread has ended
+ *                   (and HDF5), frees.  Safe on a never opened h (zeroed). */
 #ifndef BK_H5_H
 #define BK_H5_H
 
@@ -111,6 +107,7 @@ typedef struct bk_h5 {
     const bk_tables *tables;
     int ndof, with_qd;
     bk_filewriter fw;         /* owned: the HDF5 thread */
+    int lib;                  /* HDF5 started: a set was handed to the thread before the end */
     bk_h5_job job[5];         /* make, write set 0, write set 1, close, end */
     long ticket[2];           /* the write of each set handed over (0: none pending) */
     int flush[2];             /* 1: the file is flushed after the set's write; 2: the set is the last */
@@ -133,8 +130,7 @@ typedef struct bk_h5 {
     char failure[200];        /*   which */
 } bk_h5;
 
-int bk_h5_start(bk_h5 *h, const bk_model *m, const char *dir, FILE *err);
-void bk_h5_open(bk_h5 *h, const bk_tables *tables, size_t cap);
+int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *tables, size_t cap, FILE *err);
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
 void bk_h5_flush(bk_h5 *h);

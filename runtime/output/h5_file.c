@@ -148,77 +148,21 @@ static int whole(hid_t where, const char *name, hid_t ftype, hid_t mtype, hsize_
     return rc;
 }
 
-static const char *field_name(int role)
-{
-    switch (role) {
-    case BK_FIELD_POSITION: return "r";
-    case BK_FIELD_R_X: return "r_x";
-    case BK_FIELD_R_Y: return "r_y";
-    case BK_FIELD_R_Z: return "r_z";
-    case BK_FIELD_R_YY: return "r_yy";
-    case BK_FIELD_R_YZ: return "r_yz";
-    case BK_FIELD_R_ZZ: return "r_zz";
-    case BK_FIELD_QUATERNION: return "p";
-    case BK_FIELD_MULTIPLIER: return "lambda";
-    default: return "";
-    }
-}
-
-/* /dofs: per DOF its node (numbered in the order the elements first reach
- * them; a node's fields run until a field role repeats), beam (sections
- * records; "" for bodies outside a beam), first element, field and component. */
+/* /dofs (h5_whole.c bk_h5_dofs). */
 static int write_dofs(bk_h5 *h)
 {
-    const bk_model *m = h->m;
-    size_t nd = (size_t)m->ndof;
-    int *node = malloc((nd + 1) * sizeof *node), *elem = malloc((nd + 1) * sizeof *elem);
-    char *beam = calloc(nd + 1, BK_H5_STR), *field = calloc(nd + 1, 8), *comp = calloc(nd + 1, 2);
+    const size_t nd = (size_t)h->m->ndof;
+    bk_h5_dofs d;
     int rc = -1;
-    if (!node || !elem || !beam || !field || !comp)
+    if (bk_h5_dofs_make(h->m, &d) != 0)
         goto out;
-    for (size_t d = 0; d < nd; ++d)
-        node[d] = elem[d] = -1;
-    const char *beam_of_none = "";
-    int nnode = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_element *et = bk_elem_type(m, e);
-        const char *bname = beam_of_none;
-        for (int k = 0; k < m->nsection; ++k)
-            if (m->sections[k].elem == e) {
-                bname = m->sections[k].beam;
-                break;
-            }
-        unsigned seen = 0;            /* the roles of the node being walked */
-        int cur = -1;                 /* its number */
-        for (int k = 0; k < et->nfield; ++k) {
-            int role = et->field_role[k];
-            if (cur < 0 || (seen >> role & 1u)) {
-                seen = 0;
-                int d0 = m->elems[e].dofs[et->field_dof[k]];
-                cur = node[d0] >= 0 ? node[d0] : nnode++;
-            }
-            seen |= 1u << role;
-            const char *cn = role == BK_FIELD_QUATERNION ? "wxyz" : "xyz";
-            for (int c = 0; c < et->field_dim[k]; ++c) {
-                int d = m->elems[e].dofs[et->field_dof[k] + c];
-                if (elem[d] >= 0)
-                    continue;
-                elem[d] = e;
-                node[d] = role == BK_FIELD_MULTIPLIER ? -1 : cur;
-                snprintf(beam + (size_t)d * BK_H5_STR, BK_H5_STR, "%s", bname);
-                snprintf(field + (size_t)d * 8, 8, "%s", field_name(role));
-                if (role != BK_FIELD_MULTIPLIER && c < (int)strlen(cn))
-                    comp[(size_t)d * 2] = cn[c];
-            }
-        }
-    }
     hid_t g = make_group(h->file, "dofs");
     hid_t s64 = str_type(), s8 = H5Tcopy(H5T_C_S1), s2 = H5Tcopy(H5T_C_S1);
     if (g >= 0 && s64 >= 0 && s8 >= 0 && s2 >= 0 && H5Tset_size(s8, 8) >= 0 && H5Tset_size(s2, 2) >= 0 &&
-        whole(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, nd, node) == 0 &&
-        whole(g, "element", H5T_STD_I32LE, H5T_NATIVE_INT, nd, elem) == 0 &&
-        whole(g, "beam", s64, s64, nd, beam) == 0 && whole(g, "field", s8, s8, nd, field) == 0 &&
-        whole(g, "component", s2, s2, nd, comp) == 0)
+        whole(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, nd, d.node) == 0 &&
+        whole(g, "element", H5T_STD_I32LE, H5T_NATIVE_INT, nd, d.elem) == 0 &&
+        whole(g, "beam", s64, s64, nd, d.beam) == 0 && whole(g, "field", s8, s8, nd, d.field) == 0 &&
+        whole(g, "component", s2, s2, nd, d.comp) == 0)
         rc = 0;
     if (s2 >= 0)
         H5Tclose(s2);
@@ -229,11 +173,7 @@ static int write_dofs(bk_h5 *h)
     if (g >= 0)
         H5Gclose(g);
 out:
-    free(node);
-    free(elem);
-    free(beam);
-    free(field);
-    free(comp);
+    bk_h5_dofs_free(&d);
     return rc;
 }
 
@@ -257,8 +197,7 @@ static void make_file(bk_h5 *h)
     int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
              attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&
              attr_str(f, "time_name", bk_model_in_time(m) ? "time" : "load_factor") == 0 &&
-             attr_str(f, "units", "SI: m, kg, s, N, Pa, J; time in s; load factor 0 to 1; angles in rad "
-                                  "unless a column says deg") == 0 &&
+             attr_str(f, "units", BK_H5_UNITS) == 0 &&
              attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0;
     if (!ok)
         fail(h, "HDF5 failed to lay out the file");

@@ -51,28 +51,10 @@ static void spent_flush(bk_output *o, double t0)
     o->t_output += now - t0;
 }
 
-int bk_output_begin(bk_output *o, const bk_model *m, const char *dir, FILE *err)
-{
-    double t0 = bk_clock_s();
-    memset(o, 0, sizeof *o);
-    int rc = m->output.hdf5 ? bk_h5_start(&o->h5, m, dir, err) : 0;
-    spent(o, t0);
-    return rc;
-}
-
-void bk_output_discard(bk_output *o)
-{
-    const int made = o->h5.open;
-    char path[sizeof o->h5.path];
-    snprintf(path, sizeof path, "%s", o->h5.path);
-    bk_h5_end(&o->h5);
-    if (made)
-        unlink(path);
-}
-
 int bk_output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, int progress,
                    FILE *err)
 {
+    memset(o, 0, sizeof *o);
     o->progress = !progress ? 0 : isatty(2) ? 1 : 2;
     o->t_start = o->t_last = o->t_flush = bk_clock_s();   /* the first flush BK_FLUSH_INTERVAL in */
     int rc = output_open(o, m, plan, dir, err);
@@ -104,12 +86,12 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
     if (bk_forces_open(&o->forces, m, dir, &o->tables, err) != 0)
         return -1;
     o->forces.rq = &o->rq;               /* (formatted here until the queue is started) */
-    if (o->h5.open) {
-        /* one writer thread for results.h5 (started by bk_output_begin), the
-         * frames and the tables' rows (the frames' buffers in it when they
-         * would have a thread of their own) */
+    if (m->output.hdf5) {
+        /* one writer thread for results.h5, the frames and the tables' rows
+         * (the frames' buffers in it when they would have a thread of their own) */
         const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
-        bk_h5_open(&o->h5, &o->tables, share ? o->vtk.frame_bytes : 1);
+        if (bk_h5_open(&o->h5, m, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
+            return -1;
         o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
         if (share)
             o->vtk.ext = &o->h5.fw;
@@ -490,7 +472,7 @@ int bk_output_close_tables(bk_output *o, FILE *err)
 void bk_output_close(bk_output *o)
 {
     bk_output_close_tables(o, NULL);     /* (before their buffers are freed) */
-    bk_h5_end(&o->h5);                   /* (HDF5 ended meanwhile) */
+    bk_h5_end(&o->h5);                   /* (HDF5, if started, ended meanwhile) */
     free(o->mode_q);
     o->mode_q = NULL;
     free(o->sensor_p0);

@@ -67,17 +67,8 @@ typedef struct bk_output {
  * nothing before the first interval has passed. */
 #define BK_PROGRESS_TTY_S 2.0
 #define BK_PROGRESS_LOG_S 10.0
-/* bk_output_begin: as soon as the model is read, before the system is set
- * up: zeroes o and starts results.h5's thread (output.hdf5; h5.h bk_h5_start),
- * which makes the file meanwhile; 0, or -1 out of memory (message on err).
- * bk_output_open then opens the rest (o begun; no file of the run is made
- * before it but results.h5; bk_output_discard instead removes that one). */
-int bk_output_begin(bk_output *o, const bk_model *m, const char *dir, FILE *err);
 int bk_output_open(bk_output *o, const bk_model *m, const bk_output_plan *plan, const char *dir, int progress,
                    FILE *err);
-/* A run that ends before bk_output_open (its set-up failed): results.h5's
- * thread ended and the file removed, as if never begun. */
-void bk_output_discard(bk_output *o);
 /* Progress at fraction frac (0..1) of the run; prints at most 4 times a second,
  * only after the first second, only on a terminal. */
 /* After an accepted step: the fraction done, the step, the time or load
@@ -134,7 +125,7 @@ int bk_output_close_tables(bk_output *o, FILE *err);
  * runs, called at every output step. */
 void bk_output_rows_to_writer(bk_output *o);
 /* Closes what is still open (the tables too, unreported), waits for results.h5's
- * thread to end HDF5 and frees. */
+ * thread to end and frees. */
 void bk_output_close(bk_output *o);
 
 #endif
