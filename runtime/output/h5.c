@@ -213,7 +213,7 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, const char *dir, const bk_tables *ta
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 0) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
         h->open = 1;                          /* (bk_h5_close frees) */
         h->failed = 1;
@@ -284,6 +284,7 @@ static void hand_over(bk_h5 *h, int flush)
 {
     if (!h->lib) {                        /* the first set: HDF5 started, the file made */
         h->lib = 1;
+        bk_filewriter_start(&h->fw);      /* (if not yet: frames, rows) */
         bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
     }
     const int k = h->cur;
