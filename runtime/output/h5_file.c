@@ -16,6 +16,7 @@ _Static_assert(sizeof(hid_t) == sizeof(bk_h5_id), "hid_t is not 64 bits: HDF5 ol
  * as a row of it is, so a short run's file and time stay small with small
  * chunks, and a long run's writes are a chunk or more at a time. */
 #define CHUNK_BYTES (32 << 10)
+#define CHUNK_CACHE 2
 #define CHUNK_ROWS(rowbytes) ((hsize_t)fmax(1.0, floor((double)CHUNK_BYTES / (double)(rowbytes))))
 
 /* The first failure is kept (reported by bk_h5_close). */
@@ -48,11 +49,17 @@ static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t wid
     int rank = width ? 2 : 1;
     hsize_t dims[2] = {fixed, width}, maxd[2] = {fixed ? fixed : H5S_UNLIMITED, width}, chunk[2] = {chunk_rows, width};
     hid_t space = H5Screate_simple(rank, dims, maxd);
-    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE), access = H5Pcreate(H5P_DATASET_ACCESS);
     hid_t ds = -1;
-    if (space >= 0 && plist >= 0 && (fixed || H5Pset_chunk(plist, rank, chunk) >= 0) &&
-        H5Pset_obj_track_times(plist, 0) >= 0)
-        ds = H5Dcreate2(where, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    /* a chunk cache of CHUNK_CACHE chunks: a chunk is written as soon as it
+     * is full (by the thread, beside the solve), not all at the file's close */
+    if (space >= 0 && plist >= 0 && access >= 0 && (fixed || H5Pset_chunk(plist, rank, chunk) >= 0) &&
+        H5Pset_obj_track_times(plist, 0) >= 0 &&
+        (fixed || H5Pset_chunk_cache(access, 521, CHUNK_CACHE * chunk_rows * H5Tget_size(type) * (width ? width : 1),
+                                     1.0) >= 0))
+        ds = H5Dcreate2(where, name, type, space, H5P_DEFAULT, plist, access);
+    if (access >= 0)
+        H5Pclose(access);
     if (plist >= 0)
         H5Pclose(plist);
     if (space >= 0)
