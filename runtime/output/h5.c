@@ -16,20 +16,24 @@ static size_t cell_size(int type)
 }
 
 /* Room for one more row of t in the set being filled: its buffer grows to
- * BK_H5_ROWS rows, then the set is handed over.  Before the first row's types
- * are known a row takes the most room a row can (every cell a string). */
+ * BK_H5_ROWS rows or BK_H5_TABLE_BYTES, whichever holds more, then the set is
+ * handed over.  Before the first row's types are known a row takes the most
+ * room a row can (every cell a string). */
 static int table_room(bk_h5 *h, bk_h5_table *t)
 {
     if (t->nbuf[h->cur] < t->cap[h->cur])
         return 0;
-    if (t->cap[h->cur] >= BK_H5_ROWS) {
+    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    const int most = (int)fmax((double)BK_H5_ROWS, (double)BK_H5_TABLE_BYTES / (double)rowb);
+    if (t->cap[h->cur] >= most) {
         bk_h5_flush(h);
         if (t->nbuf[h->cur] < t->cap[h->cur])
             return 0;
     }
     const int k = h->cur;
     int cap = t->cap[k] ? 2 * t->cap[k] : 64;
-    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    if (cap > most && t->cap[k] < most)
+        cap = most;
     unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
     if (!b) {
         h->oom = 1;

@@ -16,8 +16,9 @@
  * The rows (states, and the tables' rows given to the mirror, csvrow.h
  * bk_rowsink, on the solve thread whether or not the writer thread formats
  * their text) are kept in one of two sets of buffers.  A run whose rows all
- * come at its end (fewer than BK_H5_HANDOVER states, shorter than the flush
- * interval: most static runs and short dynamic ones) gets its file in one
+ * come at its end (fewer than BK_H5_HANDOVER states, no table's buffer full,
+ * shorter than the flush interval: most static runs and short dynamic ones)
+ * gets its file in one
  * piece at bk_h5_close, without the HDF5 library (h5_whole.c, h5_plain.h:
  * contiguous datasets of exactly their rows): the library's start, its object
  * bookkeeping and its end took 2-3 ms of CPU time, more than such a run's
@@ -25,8 +26,9 @@
  * (filewriter.h: the run's one writer thread, which the ParaView frames and
  * the tables' rows share), one at a time, from the first set handed over on:
  * when the run's tables are flushed (output.c: every 0.5 s of wall time), when
- * BK_H5_ROWS rows of one are buffered, every BK_H5_HANDOVER states (unflushed,
- * so that the writing goes on beside the solve), and at the end, the set being
+ * a table's buffer is full (BK_H5_ROWS rows or BK_H5_TABLE_BYTES), every
+ * BK_H5_HANDOVER states (unflushed, so that the writing goes on beside the
+ * solve), and at the end, the set being
  * filled is handed to the thread, which appends it (and, when flushed,
  * flushes the file: H5Fflush), and the other set is filled meanwhile.  A
  * dataset is made at its first rows: chunked and extensible, or contiguous of
@@ -66,7 +68,8 @@
 #include "base/tables.h"
 #include "model/model.h"
 
-#define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
+#define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written, */
+#define BK_H5_TABLE_BYTES (4 << 20)   /*   or a table's rows of this many bytes if more */
 #define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 
