@@ -25,7 +25,8 @@ void bk_h5_dofs_free(bk_h5_dofs *d);
 
 /* The whole file from set k when every row is in it (no set handed to the
  * thread before): 0 written, -1 it could not be (h->failed, failure), 1 left
- * to the library (no states, out of memory, a compound too large). */
+ * to the library (no states, out of memory, a compound too large, a column
+ * name twice). */
 int bk_h5_write_whole(bk_h5 *h, int k);
 
 #endif

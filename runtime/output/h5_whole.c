@@ -94,7 +94,8 @@ static const bk_h5p_type I32 = {BK_H5P_I32, 4, 0, 0, 0, 0, 0}, I64 = {BK_H5P_I64
                          F64 = {BK_H5P_F64, 8, 0, 0, 0, 0, 0}, S64 = {BK_H5P_STR, BK_H5_STR, BK_H5P_NULLPAD, 0, 0, 0, 0},
                          S8 = {BK_H5P_STR, 8, BK_H5P_NULLTERM, 0, 0, 0, 0}, S2 = {BK_H5P_STR, 2, BK_H5P_NULLTERM, 0, 0, 0, 0};
 
-/* /tables: a dataset per table with rows in set k; its address, 0 when out of memory. */
+/* /tables: a dataset per table with rows in set k; its address, 0 when out of
+ * memory or a table has a column name twice (left to the library). */
 static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
 {
     int n = 0, ok = 1;
@@ -110,6 +111,9 @@ static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
         const bk_h5p_type **mt = malloc((size_t)t->ncol * sizeof *mt);
         if ((ok = mn && off && mt)) {
             for (int c = 0; c < t->ncol; ++c) {
+                for (int b = 0; b < c; ++b)       /* (a name twice: HDF5's refusal, reported by the library) */
+                    if (strcmp(t->col[b].name, t->col[c].name) == 0)
+                        ok = 0;
                 mn[c] = t->col[c].name;
                 off[c] = t->col[c].off;
                 mt[c] = t->col[c].type == 1 ? &F64 : t->col[c].type == 2 ? &I64 : &S64;
@@ -117,7 +121,8 @@ static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
             bk_h5p_type row = {BK_H5P_COMPOUND, t->rowbytes, 0, t->ncol, mn, off, mt};
             uint64_t dims[1] = {(uint64_t)t->nbuf[k]};
             names[n] = t->name;
-            addrs[n++] = bk_h5p_dataset(p, &row, 1, dims, t->buf[k]);
+            if (ok)
+                addrs[n++] = bk_h5p_dataset(p, &row, 1, dims, t->buf[k]);
         }
         free(mn);
         free(off);
@@ -130,7 +135,8 @@ static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
 }
 
 /* 0 written; -1 it could not be (h->failure); 1 not made this way (no
- * states, out of memory, a type too large for a message): the library makes it. */
+ * states, out of memory, a type too large for a message, a column name
+ * twice): the library makes it (or reports why it cannot). */
 int bk_h5_write_whole(bk_h5 *h, int k)
 {
     const bk_model *m = h->m;
