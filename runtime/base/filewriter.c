@@ -114,15 +114,22 @@ int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
         return -1;
     }
     w->ready = 1;
-    if (threaded) {
-        pthread_attr_t at;
-        if (pthread_attr_init(&at) == 0) {
-            pthread_attr_setstacksize(&at, WRITER_STACK);
-            w->threaded = pthread_create(&w->thread, &at, writer_main, w) == 0;
-            pthread_attr_destroy(&at);
-        }
-    }
+    if (threaded)
+        bk_filewriter_start(w);
     return 0;
+}
+
+int bk_filewriter_start(bk_filewriter *w)
+{
+    if (w->threaded || !w->ready)
+        return w->threaded;
+    pthread_attr_t at;
+    if (pthread_attr_init(&at) == 0) {
+        pthread_attr_setstacksize(&at, WRITER_STACK);
+        w->threaded = pthread_create(&w->thread, &at, writer_main, w) == 0;
+        pthread_attr_destroy(&at);
+    }
+    return w->threaded;
 }
 
 int bk_filewriter_slot(bk_filewriter *w)

@@ -16,6 +16,8 @@
  *                         every submit write at once in the caller's thread
  *                         (as when no thread could be made).  0, or -1 when out
  *                         of memory (bk_filewriter_close frees what was made).
+ *   bk_filewriter_start   an unthreaded writer's thread started (from the
+ *                         opener's thread, between jobs); 1 when it runs.
  *   bk_filewriter_slot    out: the index (0 .. BK_FILEWRITER_BUFFERS-1) of a free
  *                         buffer, now the caller's (waits while both are being
  *                         written); the caller's job memory of that index is
@@ -80,6 +82,7 @@ typedef struct bk_filewriter {
 } bk_filewriter;
 
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
+int bk_filewriter_start(bk_filewriter *w);
 int bk_filewriter_slot(bk_filewriter *w);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
 long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);

@@ -16,20 +16,24 @@ static size_t cell_size(int type)
 }
 
 /* Room for one more row of t in the set being filled: its buffer grows to
- * BK_H5_ROWS rows, then the set is handed over.  Before the first row's types
- * are known a row takes the most room a row can (every cell a string). */
+ * BK_H5_ROWS rows or BK_H5_TABLE_BYTES, whichever holds more, then the set is
+ * handed over.  Before the first row's types are known a row takes the most
+ * room a row can (every cell a string). */
 static int table_room(bk_h5 *h, bk_h5_table *t)
 {
     if (t->nbuf[h->cur] < t->cap[h->cur])
         return 0;
-    if (t->cap[h->cur] >= BK_H5_ROWS) {
+    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    const int most = (int)fmax((double)BK_H5_ROWS, (double)BK_H5_TABLE_BYTES / (double)rowb);
+    if (t->cap[h->cur] >= most) {
         bk_h5_flush(h);
         if (t->nbuf[h->cur] < t->cap[h->cur])
             return 0;
     }
     const int k = h->cur;
     int cap = t->cap[k] ? 2 * t->cap[k] : 64;
-    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+    if (cap > most && t->cap[k] < most)
+        cap = most;
     unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
     if (!b) {
         h->oom = 1;
@@ -214,7 +218,7 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const 
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
-    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 1) != 0) {
+    if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 0) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
         h->open = 1;                          /* (bk_h5_close frees) */
         h->failed = 1;
@@ -225,8 +229,8 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const 
     h->job[1] = (bk_h5_job){h, 1, 0};
     h->job[2] = (bk_h5_job){h, 1, 1};
     h->job[3] = (bk_h5_job){h, 2, 0};
-    h->open = 1;
-    bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+    h->job[4] = (bk_h5_job){h, 3, 0};
+    h->open = 1;                          /* (HDF5 started at the first set handed over) */
     return 0;
 }
 
@@ -278,13 +282,19 @@ void bk_h5_flush(bk_h5 *h)
         hand_over(h, 1);
 }
 
-/* The set being filled to the thread (flush: then the file is flushed), and
- * the other set, once written, to be filled. */
+/* The set being filled to the thread (flush 1: then the file is flushed; 2:
+ * the run's last rows, the sizes of the datasets not yet made), and the other
+ * set, once written, to be filled. */
 static void hand_over(bk_h5 *h, int flush)
 {
+    if (!h->lib) {                        /* the first set: HDF5 started, the file made */
+        h->lib = 1;
+        bk_filewriter_start(&h->fw);      /* (if not yet: frames, rows) */
+        bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+    }
     const int k = h->cur;
     h->flush[k] = flush;
-    h->unflushed = !flush;
+    h->unflushed = flush != 1;
     h->ticket[k] = bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[1 + k]);
     h->cur = k ^ 1;
     if (h->ticket[h->cur] > 0)            /* the other set: written by now? */
@@ -299,11 +309,16 @@ int bk_h5_close(bk_h5 *h, FILE *err)
 {
     int rc = 0;
     if (h->open) {
-        if (h->fw.ready) {
-            hand_over(h, 0);              /* (closing the file flushes it) */
-            bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]);
+        /* a run whose rows all came now: the file in one piece, here (the
+         * writer is idle: the frames are written, the rows' queue stopped) */
+        int by_library = h->lib;
+        if (h->fw.ready && !h->lib)
+            by_library = bk_h5_write_whole(h, h->cur) == 1;
+        if (h->fw.ready && by_library) {
+            hand_over(h, 2);              /* the last rows (closing the file flushes it) */
+            bk_filewriter_wait(&h->fw, bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[3]));
+            bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[4]);   /* HDF5 ended by bk_h5_end */
         }
-        bk_filewriter_close(&h->fw);      /* (drains: the file is closed) */
         h->open = 0;
         if (!h->failed && h->oom) {
             h->failed = 1;
@@ -315,6 +330,13 @@ int bk_h5_close(bk_h5 *h, FILE *err)
             rc = -1;
         }
     }
+    return rc;
+}
+
+void bk_h5_end(bk_h5 *h)
+{
+    bk_h5_close(h, NULL);
+    bk_filewriter_close(&h->fw);          /* (drains: HDF5 ended) */
     for (int k = 0; k < h->ntab; ++k) {
         free(h->tab[k].buf[0]);
         free(h->tab[k].buf[1]);
@@ -328,8 +350,5 @@ int bk_h5_close(bk_h5 *h, FILE *err)
         free(h->qd[k]);
     }
     free(h->qd_last);
-    const bk_tables *tables = h->tables;
     memset(h, 0, sizeof *h);
-    h->tables = tables;
-    return rc;
 }

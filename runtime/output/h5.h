@@ -13,21 +13,32 @@
  *                     int64 or 64-byte strings, as the first row had them):
  *                     the very values the CSV prints
  *
- * Every HDF5 call is made by the writer thread h owns (filewriter.h: the
- * run's one writer thread, which the ParaView frames and the tables' rows
- * share), one at a time, so HDF5's own start (0.4 ms), the file's making and
- * every write run beside the solve.  The rows (states, and the tables' rows given to the
- * mirror, csvrow.h bk_rowsink, on the solve thread whether or not the writer
- * thread formats their text) are kept in one of two sets of buffers; when the
- * run's tables are flushed (output.c: every 0.5 s of wall time), when
- * BK_H5_ROWS rows of one are buffered, and at the end, that set is handed to
- * the thread, which appends it and flushes the file (H5Fflush), and the other
- * set is filled meanwhile; every BK_H5_HANDOVER states (and the rows since)
- * are handed over too, without the flush, so that the writing goes on beside
- * the solve.  A run shorter than the flush interval writes the same bytes each
- * time (no modification times are kept); in a longer one the file's layout
- * (not its values) depends on when the timed flushes came.  A run that is interrupted or fails
- * keeps every row; one killed outright keeps the rows up to its last flush.
+ * The rows (states, and the tables' rows given to the mirror, csvrow.h
+ * bk_rowsink, on the solve thread whether or not the writer thread formats
+ * their text) are kept in one of two sets of buffers.  A run whose rows all
+ * come at its end (fewer than BK_H5_HANDOVER states, no table's buffer full,
+ * shorter than the flush interval: most static runs and short dynamic ones)
+ * gets its file in one
+ * piece at bk_h5_close, without the HDF5 library (h5_whole.c, h5_plain.h:
+ * contiguous datasets of exactly their rows): the library's start, its object
+ * bookkeeping and its end took 2-3 ms of CPU time, more than such a run's
+ * solve.  Otherwise every HDF5 call is made by the writer thread h owns
+ * (filewriter.h: the run's one writer thread, which the ParaView frames and
+ * the tables' rows share), one at a time, from the first set handed over on:
+ * when the run's tables are flushed (output.c: every 0.5 s of wall time), when
+ * a table's buffer is full (BK_H5_ROWS rows or BK_H5_TABLE_BYTES), every
+ * BK_H5_HANDOVER states (unflushed, so that the writing goes on beside the
+ * solve), and at the end, the set being
+ * filled is handed to the thread, which appends it (and, when flushed,
+ * flushes the file: H5Fflush), and the other set is filled meanwhile.  A
+ * dataset is made at its first rows: chunked and extensible, or contiguous of
+ * exactly its rows when those are the run's last.  h5py reads the same
+ * datasets, types, values and attributes either way (only the layout and
+ * maxshape differ).  A run shorter than the flush interval writes the same
+ * bytes each time (no modification times are kept); in a longer one the
+ * file's layout (not its values) depends on when the timed flushes came.  A
+ * run that is interrupted or fails keeps every row; one killed outright keeps
+ * the rows up to its last flush (none, and no file, in its first 0.5 s).
  *
  * Sizes and directions:
  *   bk_h5_open      in: m, in_time (1: the states are in time, with
@@ -36,16 +47,18 @@
  *                   tables' names and headers; not owned, must outlive h);
  *                   cap: the bytes of its writer's file buffers (filewriter.h:
  *                   the thread is shared with the ParaView frames, vtk.h ext).
- *                   The file is made by the thread: a failure to is reported by
- *                   bk_h5_close.  0, or -1 when out of memory (message on err).
+ *                   0, or -1 when out of memory (message on err).
  *   bk_h5_velocity  in: the velocities qd[ndof] of the state of output step
  *                   `step` given next (dynamics; copied).
  *   bk_h5_state     in: step, t, q[ndof] (copied).
  *   bk_h5_flush     hands the rows so far to the thread.
- *   bk_h5_close     hands over the rest, waits until the file is written and
- *                   closed, ends the thread, frees; 0, or -1 with "error:
- *                   DIR/results.h5: cannot write: REASON" on err (if not NULL).
- *                   Safe on a closed or never opened h. */
+ *   bk_h5_close     writes the file in one piece or hands over the rest and
+ *                   waits until the file is written and closed; 0, or -1 with
+ *                   "error: DIR/results.h5: cannot write: REASON" on err (if
+ *                   not NULL).  HDF5, if started, is ended by the thread
+ *                   meanwhile.  Safe on a closed or never opened h.
+ *   bk_h5_end       closes (if still open), waits until the thread has ended
+ *                   (and HDF5), frees.  Safe on a never opened h (zeroed). */
 #ifndef BK_H5_H
 #define BK_H5_H
 
@@ -57,7 +70,8 @@
 #include "base/tables.h"
 #include "model/model.h"
 
-#define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written */
+#define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written, */
+#define BK_H5_TABLE_BYTES (4 << 20)   /*   or a table's rows of this many bytes if more */
 #define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 
@@ -87,7 +101,7 @@ typedef struct bk_h5_table {
 struct bk_h5;
 typedef struct bk_h5_job {
     struct bk_h5 *h;
-    int what;                 /* 0 make the file, 1 write set `set`, 2 close the file */
+    int what;                 /* 0 make the file, 1 write set `set`, 2 close the file, 3 end HDF5 */
     int set;
 } bk_h5_job;
 
@@ -98,9 +112,10 @@ typedef struct bk_h5 {
     const bk_tables *tables;
     int ndof, with_qd;        /* with_qd: in time (bk_h5_open's in_time) */
     bk_filewriter fw;         /* owned: the HDF5 thread */
-    bk_h5_job job[4];         /* make, write set 0, write set 1, close */
+    int lib;                  /* HDF5 started: a set was handed to the thread before the end */
+    bk_h5_job job[5];         /* make, write set 0, write set 1, close, end */
     long ticket[2];           /* the write of each set handed over (0: none pending) */
-    int flush[2];             /* the file is flushed after the set's write */
+    int flush[2];             /* 1: the file is flushed after the set's write; 2: the set is the last */
     int cur;                  /* the set being filled */
     int cap;                  /* states per set */
     int nbuf[2];              /* states buffered per set */
@@ -126,5 +141,6 @@ void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
 void bk_h5_flush(bk_h5 *h);
 int bk_h5_close(bk_h5 *h, FILE *err);
+void bk_h5_end(bk_h5 *h);
 
 #endif

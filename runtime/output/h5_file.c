@@ -16,6 +16,7 @@ _Static_assert(sizeof(hid_t) == sizeof(bk_h5_id), "hid_t is not 64 bits: HDF5 ol
  * as a row of it is, so a short run's file and time stay small with small
  * chunks, and a long run's writes are a chunk or more at a time. */
 #define CHUNK_BYTES (32 << 10)
+#define CHUNK_CACHE 2
 #define CHUNK_ROWS(rowbytes) ((hsize_t)fmax(1.0, floor((double)CHUNK_BYTES / (double)(rowbytes))))
 
 /* The first failure is kept (reported by bk_h5_close). */
@@ -40,17 +41,25 @@ static hid_t make_group(hid_t where, const char *name)
     return g;
 }
 
-/* A chunked dataset of rows of `width` cells (width 0: one cell a row, 1-d),
- * extensible in rows; 0 on failure. */
-static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t width, hsize_t chunk_rows)
+/* A dataset of rows of `width` cells (width 0: one cell a row, 1-d): chunked
+ * and extensible in rows from 0 (fixed 0), or contiguous of `fixed` rows when
+ * they are all known (the run's last rows); 0 on failure. */
+static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t width, hsize_t chunk_rows, hsize_t fixed)
 {
     int rank = width ? 2 : 1;
-    hsize_t dims[2] = {0, width}, maxd[2] = {H5S_UNLIMITED, width}, chunk[2] = {chunk_rows, width};
+    hsize_t dims[2] = {fixed, width}, maxd[2] = {fixed ? fixed : H5S_UNLIMITED, width}, chunk[2] = {chunk_rows, width};
     hid_t space = H5Screate_simple(rank, dims, maxd);
-    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE), access = H5Pcreate(H5P_DATASET_ACCESS);
     hid_t ds = -1;
-    if (space >= 0 && plist >= 0 && H5Pset_chunk(plist, rank, chunk) >= 0 && H5Pset_obj_track_times(plist, 0) >= 0)
-        ds = H5Dcreate2(where, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    /* a chunk cache of CHUNK_CACHE chunks: a chunk is written as soon as it
+     * is full (by the thread, beside the solve), not all at the file's close */
+    if (space >= 0 && plist >= 0 && access >= 0 && (fixed || H5Pset_chunk(plist, rank, chunk) >= 0) &&
+        H5Pset_obj_track_times(plist, 0) >= 0 &&
+        (fixed || H5Pset_chunk_cache(access, 521, CHUNK_CACHE * chunk_rows * H5Tget_size(type) * (width ? width : 1),
+                                     1.0) >= 0))
+        ds = H5Dcreate2(where, name, type, space, H5P_DEFAULT, plist, access);
+    if (access >= 0)
+        H5Pclose(access);
     if (plist >= 0)
         H5Pclose(plist);
     if (space >= 0)
@@ -58,11 +67,14 @@ static hid_t make_dataset(hid_t where, const char *name, hid_t type, hsize_t wid
     return ds >= 0 ? ds : 0;
 }
 
-/* Appends rows [n, width] (width 0: 1-d) of buf to ds, which holds `have` rows. */
-static int append(hid_t ds, hid_t memtype, hsize_t have, hsize_t n, hsize_t width, const void *buf)
+/* Appends rows [n, width] (width 0: 1-d) of buf to ds, which holds `have`
+ * rows (fixed: ds is contiguous of exactly these rows, written whole). */
+static int append(hid_t ds, hid_t memtype, hsize_t have, hsize_t n, hsize_t width, const void *buf, int fixed)
 {
     if (n == 0)
         return 0;
+    if (fixed)
+        return H5Dwrite(ds, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0 ? 0 : -1;
     int rank = width ? 2 : 1;
     hsize_t size[2] = {have + n, width}, start[2] = {have, 0}, count[2] = {n, width};
     if (H5Dset_extent(ds, size) < 0)
@@ -143,77 +155,21 @@ static int whole(hid_t where, const char *name, hid_t ftype, hid_t mtype, hsize_
     return rc;
 }
 
-static const char *field_name(int role)
-{
-    switch (role) {
-    case BK_FIELD_POSITION: return "r";
-    case BK_FIELD_R_X: return "r_x";
-    case BK_FIELD_R_Y: return "r_y";
-    case BK_FIELD_R_Z: return "r_z";
-    case BK_FIELD_R_YY: return "r_yy";
-    case BK_FIELD_R_YZ: return "r_yz";
-    case BK_FIELD_R_ZZ: return "r_zz";
-    case BK_FIELD_QUATERNION: return "p";
-    case BK_FIELD_MULTIPLIER: return "lambda";
-    default: return "";
-    }
-}
-
-/* /dofs: per DOF its node (numbered in the order the elements first reach
- * them; a node's fields run until a field role repeats), beam (sections
- * records; "" for bodies outside a beam), first element, field and component. */
+/* /dofs (h5_whole.c bk_h5_dofs). */
 static int write_dofs(bk_h5 *h)
 {
-    const bk_model *m = h->m;
-    size_t nd = (size_t)m->ndof;
-    int *node = malloc((nd + 1) * sizeof *node), *elem = malloc((nd + 1) * sizeof *elem);
-    char *beam = calloc(nd + 1, BK_H5_STR), *field = calloc(nd + 1, 8), *comp = calloc(nd + 1, 2);
+    const size_t nd = (size_t)h->m->ndof;
+    bk_h5_dofs d;
     int rc = -1;
-    if (!node || !elem || !beam || !field || !comp)
+    if (bk_h5_dofs_make(h->m, &d) != 0)
         goto out;
-    for (size_t d = 0; d < nd; ++d)
-        node[d] = elem[d] = -1;
-    const char *beam_of_none = "";
-    int nnode = 0;
-    for (int e = 0; e < m->nelem; ++e) {
-        const bk_element *et = bk_elem_type(m, e);
-        const char *bname = beam_of_none;
-        for (int k = 0; k < m->nsection; ++k)
-            if (m->sections[k].elem == e) {
-                bname = m->sections[k].beam;
-                break;
-            }
-        unsigned seen = 0;            /* the roles of the node being walked */
-        int cur = -1;                 /* its number */
-        for (int k = 0; k < et->nfield; ++k) {
-            int role = et->field_role[k];
-            if (cur < 0 || (seen >> role & 1u)) {
-                seen = 0;
-                int d0 = m->elems[e].dofs[et->field_dof[k]];
-                cur = node[d0] >= 0 ? node[d0] : nnode++;
-            }
-            seen |= 1u << role;
-            const char *cn = role == BK_FIELD_QUATERNION ? "wxyz" : "xyz";
-            for (int c = 0; c < et->field_dim[k]; ++c) {
-                int d = m->elems[e].dofs[et->field_dof[k] + c];
-                if (elem[d] >= 0)
-                    continue;
-                elem[d] = e;
-                node[d] = role == BK_FIELD_MULTIPLIER ? -1 : cur;
-                snprintf(beam + (size_t)d * BK_H5_STR, BK_H5_STR, "%s", bname);
-                snprintf(field + (size_t)d * 8, 8, "%s", field_name(role));
-                if (role != BK_FIELD_MULTIPLIER && c < (int)strlen(cn))
-                    comp[(size_t)d * 2] = cn[c];
-            }
-        }
-    }
     hid_t g = make_group(h->file, "dofs");
     hid_t s64 = str_type(), s8 = H5Tcopy(H5T_C_S1), s2 = H5Tcopy(H5T_C_S1);
     if (g >= 0 && s64 >= 0 && s8 >= 0 && s2 >= 0 && H5Tset_size(s8, 8) >= 0 && H5Tset_size(s2, 2) >= 0 &&
-        whole(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, nd, node) == 0 &&
-        whole(g, "element", H5T_STD_I32LE, H5T_NATIVE_INT, nd, elem) == 0 &&
-        whole(g, "beam", s64, s64, nd, beam) == 0 && whole(g, "field", s8, s8, nd, field) == 0 &&
-        whole(g, "component", s2, s2, nd, comp) == 0)
+        whole(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, nd, d.node) == 0 &&
+        whole(g, "element", H5T_STD_I32LE, H5T_NATIVE_INT, nd, d.elem) == 0 &&
+        whole(g, "beam", s64, s64, nd, d.beam) == 0 && whole(g, "field", s8, s8, nd, d.field) == 0 &&
+        whole(g, "component", s2, s2, nd, d.comp) == 0)
         rc = 0;
     if (s2 >= 0)
         H5Tclose(s2);
@@ -224,11 +180,7 @@ static int write_dofs(bk_h5 *h)
     if (g >= 0)
         H5Gclose(g);
 out:
-    free(node);
-    free(elem);
-    free(beam);
-    free(field);
-    free(comp);
+    bk_h5_dofs_free(&d);
     return rc;
 }
 
@@ -237,7 +189,7 @@ out:
 static void make_file(bk_h5 *h)
 {
     const bk_model *m = h->m;
-    /* HDF5 is started and ended on this thread (H5close in close_file): its
+    /* HDF5 is started and ended on this thread (H5close: the last job): its
      * exit handler would make per-thread state for the main thread at exit */
     H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);       /* failures are reported by return codes, once */
@@ -247,21 +199,28 @@ static void make_file(bk_h5 *h)
         return;
     }
     h->file = f;
-    const hsize_t nd = (hsize_t)m->ndof;
     hid_t tg = make_group(f, "tables");
     h->tables_group = tg >= 0 ? tg : 0;
     int ok = tg >= 0 && attr_str(f, "scene", m->name) == 0 &&
              attr_str(f, "analysis", bk_analysis_name(m->analysis)) == 0 &&
              attr_str(f, "time_name", h->with_qd ? "time" : "load_factor") == 0 &&
-             attr_str(f, "units", "SI: m, kg, s, N, Pa, J; time in s; load factor 0 to 1; angles in rad "
-                                  "unless a column says deg") == 0 &&
-             attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0 &&
-             (h->ds_step = make_dataset(f, "step", H5T_STD_I64LE, 0, CHUNK_ROWS(8))) != 0 &&
-             (h->ds_time = make_dataset(f, "time", H5T_IEEE_F64LE, 0, CHUNK_ROWS(8))) != 0 &&
-             (h->ds_q = make_dataset(f, "q", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0 &&
-             (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd))) != 0);
+             attr_str(f, "units", BK_H5_UNITS) == 0 &&
+             attr_int(f, "format", 1) == 0 && attr_int(f, "ndof", m->ndof) == 0 && write_dofs(h) == 0;
     if (!ok)
         fail(h, "HDF5 failed to lay out the file");
+}
+
+/* The states' datasets at their first rows: contiguous when these are the
+ * last (fixed: their number), else chunked; 0 or -1. */
+static int make_states(bk_h5 *h, hsize_t fixed)
+{
+    const hsize_t nd = (hsize_t)h->ndof;
+    hid_t f = h->file;
+    return (h->ds_step = make_dataset(f, "step", H5T_STD_I64LE, 0, CHUNK_ROWS(8), fixed)) != 0 &&
+           (h->ds_time = make_dataset(f, "time", H5T_IEEE_F64LE, 0, CHUNK_ROWS(8), fixed)) != 0 &&
+           (h->ds_q = make_dataset(f, "q", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd), fixed)) != 0 &&
+           (!h->with_qd || (h->ds_qd = make_dataset(f, "qd", H5T_IEEE_F64LE, nd, CHUNK_ROWS(8 * nd), fixed)) != 0)
+               ? 0 : -1;
 }
 
 static void write_set(bk_h5 *h, int k)
@@ -269,10 +228,18 @@ static void write_set(bk_h5 *h, int k)
     if (h->failed || !h->file)
         return;
     hsize_t nd = (hsize_t)h->ndof, n = (hsize_t)h->nbuf[k], have = (hsize_t)h->nstate;
-    if (append(h->ds_step, H5T_NATIVE_LONG, have, n, 0, h->step[k]) != 0 ||
-        append(h->ds_time, H5T_NATIVE_DOUBLE, have, n, 0, h->time[k]) != 0 ||
-        append(h->ds_q, H5T_NATIVE_DOUBLE, have, n, nd, h->q[k]) != 0 ||
-        (h->with_qd && append(h->ds_qd, H5T_NATIVE_DOUBLE, have, n, nd, h->qd[k]) != 0)) {
+    /* the run's last rows, for datasets not yet made: all their rows (none
+     * left: chunked and empty, as before any) */
+    const int last = h->flush[k] == 2;
+    const int fixed = last && !h->ds_step && n > 0;
+    if (!h->ds_step && make_states(h, fixed ? n : 0) != 0) {
+        fail(h, "HDF5 failed to lay out the states");
+        return;
+    }
+    if (append(h->ds_step, H5T_NATIVE_LONG, have, n, 0, h->step[k], fixed) != 0 ||
+        append(h->ds_time, H5T_NATIVE_DOUBLE, have, n, 0, h->time[k], fixed) != 0 ||
+        append(h->ds_q, H5T_NATIVE_DOUBLE, have, n, nd, h->q[k], fixed) != 0 ||
+        (h->with_qd && append(h->ds_qd, H5T_NATIVE_DOUBLE, have, n, nd, h->qd[k], fixed) != 0)) {
         fail(h, "HDF5 failed to append the states");
         return;
     }
@@ -286,6 +253,7 @@ static void write_set(bk_h5 *h, int k)
         bk_h5_table *t = &h->tab[j];
         if (t->ncol == 0 || t->nbuf[k] == 0)
             continue;
+        const int tfixed = last && !t->ds;
         if (!t->ds) {
             /* the row's compound type: a member per column, named by the header */
             hid_t ct = H5Tcreate(H5T_COMPOUND, t->rowbytes);
@@ -294,19 +262,20 @@ static void write_set(bk_h5 *h, int k)
                 ok = H5Tinsert(ct, t->col[c].name, t->col[c].off,
                                t->col[c].type == 1 ? H5T_NATIVE_DOUBLE : t->col[c].type == 2 ? H5T_NATIVE_INT64 : s64)
                      >= 0;
-            if (ok && (t->ds = make_dataset(h->tables_group, t->name, ct, 0, CHUNK_ROWS(t->rowbytes))) != 0)
+            if (ok && (t->ds = make_dataset(h->tables_group, t->name, ct, 0, CHUNK_ROWS(t->rowbytes),
+                                          tfixed ? (hsize_t)t->nbuf[k] : 0)) != 0)
                 t->type = ct;
             else if (ct >= 0)
                 H5Tclose(ct);
         }
-        if (!t->ds || append(t->ds, t->type, (hsize_t)t->nrow, (hsize_t)t->nbuf[k], 0, t->buf[k]) != 0) {
+        if (!t->ds || append(t->ds, t->type, (hsize_t)t->nrow, (hsize_t)t->nbuf[k], 0, t->buf[k], tfixed) != 0) {
             fail(h, "HDF5 failed to append a table's rows");
             break;
         }
         t->nrow += t->nbuf[k];
     }
     H5Tclose(s64);
-    if (!h->failed && h->flush[k] && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
+    if (!h->failed && h->flush[k] == 1 && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
         fail(h, "HDF5 failed to flush the file");
 }
 
@@ -325,7 +294,6 @@ static void close_file(bk_h5 *h)
     if (h->file > 0 && H5Fclose(h->file) < 0)
         fail(h, "HDF5 failed to close the file");
     h->file = 0;
-    H5close();
 }
 
 void bk_h5_run_job(const void *arg, FILE *unused)
@@ -336,7 +304,10 @@ void bk_h5_run_job(const void *arg, FILE *unused)
         make_file(j->h);
     else if (j->what == 1)
         write_set(j->h, j->set);
-    else
+    else if (j->what == 2)
         close_file(j->h);
+    else {
+        H5close();                                /* (started on this thread: make_file) */
+    }
 }
 

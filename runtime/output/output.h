@@ -132,7 +132,8 @@ int bk_output_close_tables(bk_output *o, FILE *err);
 /* (output.c's, in rows_writer.c) The tables' rows to a writer thread once one
  * runs, called at every output step. */
 void bk_output_rows_to_writer(bk_output *o);
-/* Closes what is still open (the tables too, unreported) and frees. */
+/* Closes what is still open (the tables too, unreported), waits for results.h5's
+ * thread to end and frees. */
 void bk_output_close(bk_output *o);
 
 #endif

@@ -4,7 +4,9 @@
 
 /* The tables' rows are formatted by a writer thread (csvrow.h bk_rowqueue)
  * from the first output step that one runs: the frames' (vtk.h: a run with
- * enough frames), else results.h5's (h5.h), else, in a run without frames,
+ * enough frames), else results.h5's (h5.h: started for them from the
+ * BK_ROWS_THREAD_AFTER-th output step on, if not by then for HDF5; a short
+ * run formats its few rows itself), else, in a run without frames,
  * one of the output's own from its BK_ROWS_THREAD_AFTER-th output step on (a
  * dynamic run without frames formatted its rows on the solve thread: its
  * output took longer than with them).  From then on the tables are that
@@ -17,7 +19,8 @@ void bk_output_rows_to_writer(bk_output *o)
     bk_filewriter *w = NULL;
     if (o->vtk.background && o->vtk.wp->threaded)
         w = o->vtk.wp;
-    else if (o->h5.open && o->h5.fw.threaded)
+    else if (o->h5.open && (o->h5.fw.threaded || ++o->row_steps >= BK_ROWS_THREAD_AFTER) &&
+             bk_filewriter_start(&o->h5.fw))
         w = &o->h5.fw;
     else if (o->vtk.every <= 0 && !o->own_tried && ++o->row_steps >= BK_ROWS_THREAD_AFTER) {
         o->own_tried = 1;

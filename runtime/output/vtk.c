@@ -105,7 +105,7 @@ static void maybe_background(bk_vtk *v, double frac)
     }
     v->tried_background = 1;
     if (v->ext) {                        /* the output's writer (results.h5's thread) */
-        if (!v->ext->threaded || v->ext->cap < v->frame_bytes)
+        if (v->ext->cap < v->frame_bytes || !bk_filewriter_start(v->ext))
             return;
         v->wp = v->ext;
     } else if (bk_filewriter_open(&v->fw, v->frame_bytes, 1) == 0)
