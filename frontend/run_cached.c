@@ -8,11 +8,15 @@
  * front end does for such a run (gen/pipeline.py run(reuse=True), gen/cli.py
  * run_and_report): clears the results directory, writes the cached model file
  * into it, runs the solver with SIGINT/SIGTERM passed on, and prints the
- * summary (console_summary.h) -- the same files, output and exit status.
+ * summary (console_summary.h) -- the same files, output and exit status.  The
+ * solver writes the scene's warnings into summary.json itself (they are in the
+ * model file), so a --quiet run, which prints nothing after the solve, becomes
+ * the solver (exec with SIGINT/SIGTERM blocked: a signal stays pending until
+ * the solver polls it) instead of waiting for it.
  *
  * Anything else -- a command line of another form, a scene not run before or
- * changed since, an entry with scene warnings, a results directory with
- * foreign files, a missing solver -- goes to the Python front end unchanged:
+ * changed since, a results directory with foreign files, a missing solver --
+ * goes to the Python front end unchanged:
  * this program runs `build.sh run ARGS...` with BK_NO_FAST_RUN=1.
  *
  * Usage (from build.sh, in the repository, BK_ROOT = the repository):
@@ -194,23 +198,23 @@ static int write_file(const char *path, const char *data, size_t n)
 }
 
 /* gen/pipeline.py write_interrupted_summary: a summary.json for a run stopped
- * by a signal before the solver wrote one. */
-static void interrupted_summary(const char *dir, const entry *e, int rc)
+ * by a signal before the solver wrote one; 1 when it wrote one. */
+static int interrupted_summary(const char *dir, const entry *e, int rc)
 {
     char path[PATH_MAX + 32];
     snprintf(path, sizeof path, "%s/summary.json", dir);
     if (access(path, F_OK) == 0)
-        return;
+        return 0;
     const char *sig = rc == 130 ? "SIGINT" : "SIGTERM";
     FILE *f = fopen(path, "w");
     if (!f)
-        return;
+        return 0;
     fprintf(f, "{\n \"scene\": \"%s\",\n \"analysis\": \"%s\",\n \"converged\": false,\n \"interrupted\": true,\n"
                " \"signal\": \"%s\",\n \"steps\": 0,\n \"newton_iterations\": 0,\n \"cutbacks\": 0,\n"
                " \"wall_s\": 0.0,\n \"sensors\": {},\n \"warnings\": [],\n"
                " \"error\": \"interrupted by %s before the solve started\"\n}\n",
             e->name, e->analysis, sig, sig);
-    fclose(f);
+    return fclose(f) == 0;
 }
 
 /* The solver on the model file, signals passed on; the exit status as the
@@ -224,6 +228,17 @@ static int run_solver(const char *solver, const char *dir, const args *a)
         cmd[3] = "--verbose";
     else if (a->quiet)
         cmd[3] = "--quiet";
+    if (a->quiet) {             /* nothing to do after the solve: become the solver */
+        sigset_t stop;
+        sigemptyset(&stop);
+        sigaddset(&stop, SIGINT);
+        sigaddset(&stop, SIGTERM);
+        sigprocmask(SIG_BLOCK, &stop, NULL);
+        fflush(NULL);
+        execv(solver, cmd);
+        sigprocmask(SIG_UNBLOCK, &stop, NULL);
+        return -1;
+    }
     struct sigaction sa = {0}, old_int, old_term;
     sa.sa_handler = pass_on;
     sigemptyset(&sa.sa_mask);
@@ -343,9 +358,8 @@ int main(int argc, char **argv)
     why = "the solver could not be started";
     if (rc < 0)
         goto done;
-    if (rc == 130 || rc == 143)
-        interrupted_summary(dest, &e, rc);
-    if (bk_add_scene_warnings(dest, e.warning, e.nwarnings) != 0)
+    if ((rc == 130 || rc == 143) && interrupted_summary(dest, &e, rc) &&
+        bk_add_scene_warnings(dest, e.warning, e.nwarnings) != 0)
         fprintf(stderr, "warning: %s/summary.json: the scene's warnings could not be added to it\n", dest);
     if (!a.quiet) {
         size_t n = strlen(dest);

@@ -16,7 +16,8 @@ Adding an option: one `Opt` row here (and the code that uses it).
 """
 
 # Model file format (gen/scene/model_file.py writes it, runtime/model reads it).
-MODEL_VERSION = 22      # 22: a reaction record's count of joints (a weld of an ANCF node is several);
+MODEL_VERSION = 23      # 23: the scene reader's warnings (warnings N, warning TEXT: the solver puts them in summary.json);
+                        # 22: a reaction record's count of joints (a weld of an ANCF node is several);
                         # 21: dynamic.frame (the hub's rotating frame: runtime/analysis/dyn_frame.c);
                         # 20: a section record's half-height and joined group (section NAME E S0 S1 R G: output/overlap.c);
                         # 19: geom records carry a layer's eigenstrain (BK_GEOM_EIGENSTRAIN; bk_kernel.h 8);

@@ -127,10 +127,10 @@ def memcheck_command(solver_cmd):
 
 def write_interrupted_summary(out, name, analysis, signo):
     """summary.json of a run interrupted before the solver wrote one (during
-    meshing or the build): no step was taken."""
+    meshing or the build): no step was taken.  True when it wrote one."""
     path = os.path.join(str(out), "summary.json")
     if os.path.exists(path):
-        return
+        return False
     import json
     sig = SIGNAL_NAME.get(signo, str(signo))
     with open(path, "w", encoding="utf-8") as fh:
@@ -138,6 +138,7 @@ def write_interrupted_summary(out, name, analysis, signo):
             "scene": name, "analysis": analysis, "converged": False, "interrupted": True, "signal": sig,
             "steps": 0, "newton_iterations": 0, "cutbacks": 0, "wall_s": 0.0, "sensors": {},
             "warnings": [], "error": f"interrupted by {sig} before the solve started"}, indent=1) + "\n")
+    return True
 
 
 def _scene_name(path):
@@ -321,9 +322,10 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
             if threads:                # (the command line's process: its environment is the solver's)
                 os.environ["OMP_NUM_THREADS"] = str(int(threads))
             rc = sig.run(cmd)
-    if console and rc in EXIT_SIGNAL.values():
-        write_interrupted_summary(dest, run_name, analysis, signal.SIGINT if rc == 130 else signal.SIGTERM)
-    if warnings:                       # (most scenes have none: no module to import)
+    # (the solver lists the scene's warnings in its summary.json: they travel in the model file)
+    if console and rc in EXIT_SIGNAL.values() and \
+            write_interrupted_summary(dest, run_name, analysis, signal.SIGINT if rc == 130 else signal.SIGTERM) \
+            and warnings:
         from gen.run_summary import add_scene_warnings
         add_scene_warnings(dest, warnings)
     return Outcome(rc, dest, run_name, analysis, warnings, stderr, hit is not None)

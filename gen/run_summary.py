@@ -1,6 +1,8 @@
 """What `./build.sh run` prints after a solve, and the scene warnings it adds to
-summary.json; standard library os only, so that the run pipeline
-(gen/pipeline.py) can use it on a repeated run without the scene compiler."""
+a summary.json the front end wrote itself (a run interrupted before the solver
+started: the solver lists them in its own, from the model file); standard
+library os only, so that the run pipeline (gen/pipeline.py) can use it on a
+repeated run without the scene compiler."""
 import os
 
 
@@ -23,7 +25,7 @@ _WARNINGS = '\n  "warnings": ['
 
 def add_scene_warnings(out, warnings):
     """The scene reader's warnings (likely locking element choices, ...) go first
-    into summary.json "warnings", beside the solver's.  The solver writes that
+    into summary.json "warnings", beside any others, as the solver lists them.  The solver writes that
     array one string a line (its strings have no raw newline), so it is edited as
     text: no json import on the run path, the solver's layout kept."""
     path = os.path.join(str(out), "summary.json")

@@ -26,6 +26,11 @@ def _value(v):
     return str(v)
 
 
+def _line(text):
+    """text on one line: backslash and newline escaped (runtime/model/extras.c reads it back)."""
+    return text.replace("\\", "\\\\").replace("\n", "\\n")
+
+
 def _option_records(model):
     """The option records, each `record key=value ...`, from the model's values
     (scene and output keys at its top level, the others in model[table])."""
@@ -123,6 +128,9 @@ def write_model(model, path):
     out.append(f"records {len(records)}")
     for name, lines in records:
         out += [f"record {name}"] + lines + ["end_record"]
+    warnings = model.get("warnings", [])     # the scene reader's: the solver lists them first in summary.json
+    out.append(f"warnings {len(warnings)}")
+    out += ["warning " + _line(w) for w in warnings]
     out.append("end")
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(out) + "\n")

@@ -5,7 +5,7 @@
 #ifndef BK_OPTIONS_H
 #define BK_OPTIONS_H
 
-#define BK_MODEL_VERSION 22       /* model file format */
+#define BK_MODEL_VERSION 23       /* model file format */
 
 enum bk_analysis { BK_ANALYSIS_STATIC = 0, BK_ANALYSIS_DYNAMIC = 1, BK_ANALYSIS_MODAL = 2, BK_ANALYSIS_BUCKLING = 3 };   /* scene.analysis */
 enum bk_predictor { BK_PREDICTOR_NONE = 0, BK_PREDICTOR_SECANT = 1 };   /* static.predictor */

@@ -1,6 +1,7 @@
 /* extras.c -- the model file's records after the sensors: amplitudes,
  * distributed loads, tendons, reactions and the beams' elements (for
- * sections.csv), checked against the elements and kernels read before. */
+ * sections.csv), checked against the elements and kernels read before; and
+ * the scene reader's warnings, the file's last records. */
 #include "model/reader.h"
 
 #include <string.h>
@@ -164,5 +165,20 @@ void bk_model_read_extras(bk_reader *r, bk_model *m)
         if (!r->failed && !(c->r >= 0.0))
             rd_fail(r, "section %d: negative half-height %g", i, c->r);
         c->group = rd_inum(r, "section group", 0, MAXN);
+    }
+}
+
+/* The scene reader's warnings (`warnings N`, then N lines `warning TEXT`):
+ * summary.json lists them first (output.c), as the front ends did. */
+void bk_model_read_scene_warnings(bk_reader *r, bk_model *m)
+{
+    rd_expect(r, "warnings");
+    int n = rd_inum(r, "warnings", 0, MAXN);
+    m->scene_warnings = rd_xcalloc(r, (size_t)n, sizeof *m->scene_warnings);
+    for (int i = 0; i < n && !r->failed; ++i) {
+        rd_expect(r, "warning");
+        char *w = rd_line(r);
+        if (w)
+            m->scene_warnings[m->nscene_warning++] = w;
     }
 }

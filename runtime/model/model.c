@@ -287,6 +287,7 @@ bk_model *bk_model_read(const char *path, const bk_pair *const *avail, int navai
     bk_model_read_extras(r, m);
     bk_model_read_point_masses(r, m);
     bk_model_read_records(r, m);
+    bk_model_read_scene_warnings(r, m);
     rd_expect(r, "end");
     free(r->buf);
     if (r->failed) {
@@ -301,6 +302,9 @@ void bk_model_free(bk_model *m)
     if (!m)
         return;
     bk_model_records_free(m);
+    for (int i = 0; i < m->nscene_warning; ++i)
+        free(m->scene_warnings[i]);
+    free(m->scene_warnings);
     free(m->pmass);
     free(m->q0);
     free(m->qd0);

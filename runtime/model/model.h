@@ -215,6 +215,8 @@ typedef struct bk_model {
     bk_output_opts output;
     int nrecord;
     bk_model_record *records;    /* the interaction modules' records, in the file's order */
+    int nscene_warning;
+    char **scene_warnings;       /* the scene reader's warnings (owned), first in summary.json */
 } bk_model;
 
 /* The record named `name`, or NULL when the model has none. */

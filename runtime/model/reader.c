@@ -204,3 +204,30 @@ void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what)
     else if (t)
         memcpy(dst, t, strlen(t) + 1);
 }
+
+/* The rest of the current line after one space (a text record such as
+ * `warning TEXT`): "\\" and "\n" in it read as a backslash and a newline
+ * (gen/scene/model_file.py _line).  Malloc'd; NULL after an error. */
+char *rd_line(bk_reader *r)
+{
+    if (r->failed)
+        return NULL;
+    const char *p = r->buf + r->pos, *e = r->buf + r->len;
+    if (p < e && *p == ' ')
+        ++p;
+    const char *nl = memchr(p, '\n', (size_t)(e - p));
+    size_t n = nl ? (size_t)(nl - p) : (size_t)(e - p);
+    char *s = rd_xcalloc(r, n + 1, 1);
+    if (!s)
+        return NULL;
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+        char c = p[i];
+        if (c == '\\' && i + 1 < n && (p[i + 1] == '\\' || p[i + 1] == 'n'))
+            c = p[++i] == 'n' ? '\n' : '\\';
+        s[k++] = c;
+    }
+    s[k] = '\0';
+    r->pos = (size_t)(p + n - r->buf);
+    return s;
+}

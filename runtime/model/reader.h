@@ -35,10 +35,12 @@ double rd_num(bk_reader *r, const char *what);
 int rd_inum(bk_reader *r, const char *what, int lo, int hi);
 void *rd_xcalloc(bk_reader *r, size_t n, size_t size);
 void rd_copy_token(bk_reader *r, char *dst, size_t n, const char *what);
+char *rd_line(bk_reader *r);                /* the rest of the line, unescaped (malloc'd), or NULL */
 
 /* The records after the header, by job (options.c, extras.c). */
 void bk_model_read_options(bk_reader *r, bk_model *m);
 void bk_model_read_extras(bk_reader *r, bk_model *m);
+void bk_model_read_scene_warnings(bk_reader *r, bk_model *m);  /* extras.c */
 void bk_model_read_records(bk_reader *r, bk_model *m);       /* records.c */
 void bk_model_records_free(bk_model *m);
 

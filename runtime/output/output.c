@@ -264,12 +264,23 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
     fprintf(fp, "  \"interrupted\": %s,\n", info->interrupted ? "true" : "false");
     if (info->interrupted)
         fprintf(fp, "  \"signal\": \"%s\",\n", bk_interrupt_name(info->interrupted));
+    /* the scene reader's warnings first, then the solver's not among them */
     fprintf(fp, "  \"warnings\": [");
+    int listed = 0;
+    for (int k = 0; k < m->nscene_warning; ++k) {
+        fprintf(fp, "%s\n    ", listed++ ? "," : "");
+        bk_json_string(fp, m->scene_warnings[k]);
+    }
     for (int k = 0; k < info->nwarning; ++k) {
-        fprintf(fp, "%s\n    ", k ? "," : "");
+        int seen = 0;
+        for (int j = 0; j < m->nscene_warning && !seen; ++j)
+            seen = strcmp(m->scene_warnings[j], info->warnings[k]) == 0;
+        if (seen)
+            continue;
+        fprintf(fp, "%s\n    ", listed++ ? "," : "");
         bk_json_string(fp, info->warnings[k]);
     }
-    fprintf(fp, "%s],\n", info->nwarning ? "\n  " : "");
+    fprintf(fp, "%s],\n", listed ? "\n  " : "");
     if (info->warnings_dropped)
         fprintf(fp, "  \"warnings_dropped\": %d,\n", info->warnings_dropped);
     fprintf(fp, "  \"wall_s\": %.6f,\n", info->wall_s);
