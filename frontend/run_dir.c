@@ -142,7 +142,17 @@ int bk_prepare_run_dir(const char *dir)
     } else if (make_dirs(dir) != 0) {
         goto done;
     }
-    FILE *f = fopen(marker, "w");
+    /* (kept when it holds its text: truncating a file costs ext4 ~0.25 ms) */
+    char now[sizeof MARKER_TEXT];
+    FILE *f = fopen(marker, "rb");
+    size_t got = f ? fread(now, 1, sizeof now, f) : 0;
+    if (f)
+        fclose(f);
+    if (got == sizeof MARKER_TEXT - 1 && !memcmp(now, MARKER_TEXT, got)) {
+        rc = 0;
+        goto done;
+    }
+    f = fopen(marker, "w");
     if (!f)
         goto done;
     fputs(MARKER_TEXT, f);
