@@ -2,11 +2,11 @@
  * made before: the launcher build.sh starts first for `run`.
  *
  * A run is identical when the run cache (out/cache/run/, written by
- * gen/cache.py record()) has an entry for its key: the scene file's path and
- * bytes, the --set strings and the state of every file the model and the
- * solver are made from (run_key.h).  Then this program does what the Python
- * front end does for such a run (gen/pipeline.py run(reuse=True), gen/cli.py
- * run_and_report): clears the results directory, writes the cached model file
+ * gen/cache.py record()) has an entry for its key -- the scene file's path and
+ * bytes, the --set strings and the state of every file of gen/ and runtime/
+ * (run_key.h) -- whose solver and kernel files are in the state it records.
+ * Then this program does what the Python front end does for such a run
+ * (gen/pipeline.py run(reuse=True), gen/cli.py run_and_report): clears the results directory, writes the cached model file
  * into it, runs the solver with SIGINT/SIGTERM passed on, and prints the
  * summary (console_summary.h) -- the same files, output and exit status.  The
  * solver writes the scene's warnings into summary.json itself (they are in the
@@ -16,8 +16,8 @@
  *
  * Anything else -- a command line of another form, a scene not run before or
  * changed since, a results directory with foreign files, a missing solver --
- * goes to the Python front end unchanged:
- * this program runs `build.sh run ARGS...` with BK_NO_FAST_RUN=1.
+ * goes to the Python front end unchanged: this program runs
+ * `build.sh run ARGS...` with BK_NO_FAST_RUN=1.
  *
  * Usage (from build.sh, in the repository, BK_ROOT = the repository):
  *   run_cached SCENE [--set K=V]... [--out DIR] [--threads N] [--quiet|--verbose]
@@ -55,6 +55,8 @@ typedef struct {                /* an entry of the run cache (gen/cache.py write
     long long size, mtime_ns;
     char **warning;           /* the scene reader's warnings (malloc'd, nwarnings of them) */
     int nwarnings;
+    char *kernels;            /* the kernel lines' "NAME SIZE MTIME_NS", one a line (malloc'd) */
+    size_t kernels_len;
 } entry;
 
 static void free_entry(entry *e)
@@ -62,7 +64,9 @@ static void free_entry(entry *e)
     for (int i = 0; i < e->nwarnings; i++)
         free(e->warning[i]);
     free(e->warning);
+    free(e->kernels);
     e->warning = NULL;
+    e->kernels = NULL;
     e->nwarnings = 0;
 }
 
@@ -141,7 +145,8 @@ static int field(const char *line, size_t n, const char *name, char *dst, size_t
     return 1;
 }
 
-/* gen/cache.py read_entry: one "field value" line each, then "warning ..." lines. */
+/* gen/cache.py read_entry: one "field value" line each, then "warning ..."
+ * and "kernel NAME SIZE MTIME_NS" lines. */
 static int read_entry(const char *path, entry *e)
 {
     size_t len;
@@ -176,16 +181,53 @@ static int read_entry(const char *path, entry *e)
             v[n >= 8 ? n - 8 : 0] = '\0';
             e->warning[e->nwarnings++] = v;
         }
+        if (n > 7 && !strncmp(line, "kernel ", 7)) {
+            char *k = realloc(e->kernels, e->kernels_len + n - 7 + 2);
+            if (!k) {
+                seen = 0;
+                break;
+            }
+            e->kernels = k;
+            memcpy(k + e->kernels_len, line + 7, n - 7);
+            e->kernels_len += n - 7;
+            k[e->kernels_len++] = '\n';
+            k[e->kernels_len] = '\0';
+        }
         line += n + (nl != NULL);
     }
     free(text);
-    if (seen != 0x7f || strcmp(version, "1")) {
+    if (seen != 0x7f || strcmp(version, "2") || !e->kernels) {
         free_entry(e);
         return -1;
     }
     e->size = atoll(size);
     e->mtime_ns = atoll(mtime);
     return 0;
+}
+
+/* gen/cache.py lookup: every kernel file of the entry is in the state it
+ * records (size and modification time); 0 when so. */
+static int kernels_unchanged(const char *root, const entry *e)
+{
+    char dir[PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/out/kernels", root);
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return -1;
+    int rc = 0;
+    for (char *line = e->kernels; rc == 0 && *line;) {
+        char *nl = strchr(line, '\n'), name[256];
+        long long size, ns;
+        struct stat st;
+        *nl = '\0';
+        if (sscanf(line, "%255s %lld %lld", name, &size, &ns) != 3 || fstatat(fd, name, &st, 0) != 0 ||
+            st.st_size != size || (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != ns)
+            rc = -1;
+        *nl = '\n';
+        line = nl + 1;
+    }
+    close(fd);
+    return rc;
 }
 
 static int write_file(const char *path, const char *data, size_t n)
@@ -319,7 +361,8 @@ int main(int argc, char **argv)
     why = "no identical earlier run (scene, --set values, gen/, runtime/, out/kernels/), or its solver was "
           "rebuilt since";
     if (read_entry(cache_dir, &e) != 0 || stat(e.solver, &st) != 0 || st.st_size != e.size ||
-        (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != e.mtime_ns)
+        (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != e.mtime_ns ||
+        kernels_unchanged(root, &e) != 0)
         goto done;
     size_t model_len;
     sprintf(cache_dir, "%s/out/cache/run/%s.dat", root, key);

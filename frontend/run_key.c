@@ -1,8 +1,8 @@
 /* run_key.c -- the run cache's key (see run_key.h): SHA-256 of a tag, the
  * scene's path and bytes, the --set strings, and the fingerprint of the files
- * a model and a solver are made from (gen/, runtime/ with their subfolders but
- * __pycache__, out/kernels/ alone): "path\0size\0mtime_ns" per file, sorted,
- * joined by newlines. */
+ * of gen/ and runtime/ (with their subfolders but __pycache__):
+ * "path\0size\0mtime_ns" per file, sorted, joined by newlines.  (The files of
+ * out/kernels/ a run is made from are in its entry: run_cached.c.) */
 #define _DEFAULT_SOURCE            /* d_type, DT_DIR */
 #include "run_key.h"
 #include "sha256.h"
@@ -126,7 +126,7 @@ static int read_file(const char *path, bk_sha256 *h)
 
 int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets, char key[33])
 {
-    static const char tag[] = "beamkit-run-cache 1";
+    static const char tag[] = "beamkit-run-cache 2";
     bk_sha256 h;
     bk_sha256_init(&h);
     bk_sha256_update(&h, tag, sizeof tag);              /* (with its NUL) */
@@ -139,7 +139,7 @@ int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets
 
     items it = {.cut = strlen(root) + 1};
     static const struct { const char *dir; int recursive; } sources[] = {
-        {"gen", 1}, {"runtime", 1}, {"out/kernels", 0}};
+        {"gen", 1}, {"runtime", 1}};
     for (size_t s = 0; s < sizeof sources / sizeof *sources; s++) {
         size_t lr = strlen(root), ls = strlen(sources[s].dir);
         char *dir = malloc(lr + ls + 2);

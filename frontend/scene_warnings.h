@@ -1,6 +1,8 @@
 /* scene_warnings.h -- the scene reader's warnings of a repeated run put first
- * into summary.json "warnings", beside the solver's: the launcher's copy of
- * gen/run_summary.py add_scene_warnings() (the same bytes; tests compare).
+ * into summary.json "warnings", beside any others: the launcher's copy of
+ * gen/run_summary.py add_scene_warnings() (the same bytes; tests compare),
+ * for a summary.json the launcher wrote itself (a run interrupted before the
+ * solver started; the solver lists them in its own, from the model file).
  *
  * bk_add_scene_warnings(run_dir, warnings, n)
  *   run_dir   in  the run directory (its summary.json is rewritten)

@@ -16,11 +16,16 @@ their file is unchanged.  out/bin/SCENE (-sanitize, -memcheck) links to the
 solver of the scene's last `./build.sh run`.
 
 Runs.  out/cache/run/KEY.dat is the model file an earlier run wrote, KEY.run
-its solver, scene name, analysis and scene warnings.  A run is "the same" when
-these are byte-identical: the scene file's path and contents, every --set, and
-the state (name, size, modification time) of every file the model and the
-solver are made from: gen/ (the scene compiler and the build rules), runtime/
-and out/kernels/.  The solver binary must still be the one that run used (same
+its solver, scene name, analysis, scene warnings and kernel files.  A run is
+"the same" when these are byte-identical: the scene file's path and contents,
+every --set, and the state (name, size, modification time) of every file of
+gen/ (the scene compiler and the build rules) and runtime/; and the files of
+out/kernels/ the run was made from are in the state the entry records (the
+kernel index the scene compiler reads, and what the solver is linked from:
+bk_options.h, the scene's pairs' kernels, the joint and runtime kernels every
+solver binds, and their headers, as gen/solver_fresh.py checks them; the
+others cannot change the run, and stat-ing all of out/kernels/ was ~0.15 ms of
+a repeated run).  The solver binary must still be the one that run used (same
 size and modification time: a relinked solver is another binary).
 `./build.sh run` finds such a run without Python first (frontend/, a copy
 of key(), fingerprint() and the entry format in C; tests/test_run_cached.py
@@ -102,7 +107,8 @@ def link_scene(name, exe, variant="release"):
 # Records of earlier runs (out/cache/run/).
 
 CACHE = os.path.join(ROOT, "out", "cache", "run")
-SOURCES = (("gen", True), ("runtime", True), (os.path.join("out", "kernels"), False))
+KERNELS = os.path.join(ROOT, "out", "kernels")
+SOURCES = (("gen", True), ("runtime", True))
 MAX_MODEL_BYTES = 8 << 20          # larger models are not cached (their solve dominates anyway)
 MAX_ENTRIES = 400                  # the oldest entries beyond these are removed
 PRUNE_SLACK = 40                   # ... when there are this many more
@@ -146,7 +152,7 @@ def fingerprint(root=ROOT, sources=SOURCES):
 
 
 def key(scene, scene_bytes, sets, fp):
-    h = sha256(b"beamkit-run-cache 1\0")
+    h = sha256(b"beamkit-run-cache 2\0")
     h.update(scene.encode() + b"\0" + scene_bytes + b"\0")
     for s in sets:
         h.update(s.encode() + b"\0")
@@ -168,10 +174,14 @@ def lookup(scene, sets):
             entry = read_entry(fh.read())
         with open(os.path.join(CACHE, k + ".dat"), "rb") as fh:
             model = fh.read()
-        st = os.stat(entry["solver"])
+            st = os.stat(entry["solver"])
+        if [st.st_size, st.st_mtime_ns] != entry["solver_stat"]:
+            return None
+        for name, state in entry["kernels"]:
+            st = os.stat(os.path.join(KERNELS, name))
+            if [st.st_size, st.st_mtime_ns] != state:
+                return None
     except (OSError, ValueError, KeyError, IndexError):
-        return None
-    if [st.st_size, st.st_mtime_ns] != entry["solver_stat"]:
         return None
     return entry, model
 
@@ -180,23 +190,50 @@ ENTRY_FIELDS = ("version", "scene", "solver", "solver_size", "solver_mtime_ns", 
 
 
 def write_entry(e):
-    """An entry as text: one `field value` line each, then one line per warning."""
+    """An entry as text: one `field value` line each, then one line per warning
+    and one `kernel NAME SIZE MTIME_NS` per kernel file."""
     lines = [f"{f} {e[f]}" for f in ENTRY_FIELDS] + ["warning " + w.replace("\n", " ") for w in e["warnings"]]
+    lines += [f"kernel {n} {size} {ns}" for n, (size, ns) in e["kernels"]]
     return "\n".join(lines) + "\n"
 
 
 def read_entry(text):
-    e = {"warnings": []}
+    e = {"warnings": [], "kernels": []}
     for line in text.splitlines():
         f, _, v = line.partition(" ")
         if f == "warning":
             e["warnings"].append(v)
+        elif f == "kernel":
+            n, size, ns = v.split(" ")
+            e["kernels"].append((n, [int(size), int(ns)]))
         elif f in ENTRY_FIELDS:
             e[f] = v
-    if e.get("version") != "1" or any(f not in e for f in ENTRY_FIELDS):
+    if e.get("version") != "2" or any(f not in e for f in ENTRY_FIELDS) or not e["kernels"]:
         raise ValueError("not a run-cache entry")
     e["solver_stat"] = [int(e["solver_size"]), int(e["solver_mtime_ns"])]
     return e
+
+
+def kernel_files(exe):
+    """The names of the files of out/kernels/ a run with the solver `exe` is made
+    from (sorted): the kernel index, and what gen/solver_fresh.py checks the
+    solver against (its pairs from its .pairs stamp)."""
+    import json
+    from gen.solver_fresh import BuildError, kernel_files as pair_files, kernel_headers
+    with open(exe + ".pairs", encoding="utf-8") as fh:
+        pairs = fh.read().split("\n")[2:]
+    with open(os.path.join(KERNELS, "index.json"), encoding="utf-8") as fh:
+        index = json.load(fh)
+    names = {"index.json", "bk_options.h"}
+    try:
+        files = pair_files([p for p in pairs if p], index)
+    except BuildError as e:
+        raise ValueError(str(e)) from None
+    for f in files:
+        src = os.path.join(KERNELS, f)
+        names.add(f)
+        names.update(os.path.basename(h) for h in kernel_headers(src) if os.path.dirname(h) == KERNELS)
+    return sorted(names)
 
 
 def record(scene, sets, model_path, exe, name, analysis, warnings):
@@ -212,9 +249,13 @@ def record(scene, sets, model_path, exe, name, analysis, warnings):
         k = key(scene, text, list(sets), fingerprint_once())
         os.makedirs(CACHE, exist_ok=True)
         st = os.stat(exe)
-        entry = {"version": "1", "scene": scene, "solver": os.path.abspath(exe), "solver_size": st.st_size,
+        kernels = []
+        for n in kernel_files(exe):
+            ks = os.stat(os.path.join(KERNELS, n))
+            kernels.append((n, (ks.st_size, ks.st_mtime_ns)))
+        entry = {"version": "2", "scene": scene, "solver": os.path.abspath(exe), "solver_size": st.st_size,
                  "solver_mtime_ns": st.st_mtime_ns, "name": name, "analysis": analysis,
-                 "warnings": list(warnings)}
+                 "warnings": list(warnings), "kernels": kernels}
         for ext, data in ((".dat", None), (".run", write_entry(entry))):
             tmp = os.path.join(CACHE, f"{k}{ext}.{os.getpid()}.tmp")
             if data is None:
@@ -225,7 +266,7 @@ def record(scene, sets, model_path, exe, name, analysis, warnings):
                     fh.write(data)
             os.replace(tmp, os.path.join(CACHE, k + ext))
         prune()
-    except OSError:
+    except (OSError, ValueError, KeyError):
         pass                           # no cache: the next run takes the full path
 
 
