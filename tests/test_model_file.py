@@ -77,3 +77,22 @@ def test_option_records_are_checked_by_the_generated_descriptor_table():
     r = _solve(solver, out, text.replace(" max_iterations=25 ", " max_iterations=0 ", 1))
     assert r.returncode == 1 and "static.max_iterations: expected an integer in [1, 10000], found '0'" in r.stderr, \
         r.stderr
+
+
+def test_scene_warnings_travel_in_the_model_file_and_lead_summary_warnings():
+    """The scene reader's warnings are the model file's last records (one line
+    each, backslash and newline escaped) and the solver lists them first in
+    summary.json, as written, each once beside its own warnings."""
+    out, solver = _run()
+    text = (out / "model.dat").read_text()
+    assert text.endswith("\nwarnings 0\nend\n"), text[-200:]
+    odd = 'a back\\slash, a "quote",\na second line and ünïcode'
+    scene = ["locking ahead", odd]
+    lines = "".join("warning " + model_file._line(w) + "\n" for w in scene)
+    assert lines.count("\n") == 2
+    r = _solve(solver, out, text.replace("\nwarnings 0\n", f"\nwarnings 2\n{lines}", 1))
+    assert r.returncode == 0, r.stderr
+    s = json.loads((out / "w" / "summary.json").read_text(encoding="utf-8"))
+    assert s["warnings"] == scene
+    r = _solve(solver, out, text.replace("\nwarnings 0\n", "\nwarnings 2\nwarning only one\n", 1))
+    assert r.returncode == 1 and "expected keyword 'warning', found 'end'" in r.stderr, r.stderr

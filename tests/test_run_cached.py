@@ -187,3 +187,35 @@ def test_launcher_is_clean_under_sanitizers_and_valgrind():
         r = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, timeout=300)
         assert r.returncode == 0, (cmd[0], r.stderr[-3000:])
         assert "frequency (Hz)" in r.stdout and "ERROR: AddressSanitizer" not in r.stderr
+
+
+@pytest.mark.parametrize("signo,status", [(2, 130), (15, 143)], ids=["SIGINT", "SIGTERM"])
+def test_a_quiet_repeated_run_becomes_the_solver_and_stops_on_a_signal(signo, status):
+    """--quiet prints nothing after the solve, so the launcher execs the solver:
+    the command's process is the solver itself, started with SIGINT / SIGTERM
+    blocked (a signal stays pending until its poll).  Signalled mid-run it stops
+    as the Python front end's run does: exit 130 / 143, summary.json
+    interrupted, the scene's warnings first in it (from the model file)."""
+    import signal
+    import time
+    sets = ["--set", "dynamic.t_end=4", "--set", "dynamic.output_every=1"]
+    out = out_dir()
+    r = run_cli(["run", "pendulum_soft_ancf", "--quiet", "--out", str(out)] + sets, env=PYTHON)  # records it
+    assert r.returncode == 0, r.stderr[-2000:]
+    scene_warnings = [w for w in json.loads((out / "summary.json").read_text())["warnings"] if "locking" in w]
+    assert scene_warnings
+    out = out_dir()
+    p = subprocess.Popen([str(ROOT / "build.sh"), "run", "pendulum_soft_ancf", "--quiet", "--out", str(out)] + sets,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=dict(ENV, **ONLY),
+                         start_new_session=True)
+    t0 = time.time()
+    while not ((out / "sensors.csv").exists() and sum(1 for _ in open(out / "sensors.csv")) > 40):
+        assert p.poll() is None and time.time() - t0 < 120, "the run ended before it could be interrupted"
+        time.sleep(0.01)
+    assert os.path.basename(os.readlink(f"/proc/{p.pid}/exe")).startswith("solver_")
+    os.kill(p.pid, signo)
+    so, se = p.communicate(timeout=120)
+    assert p.returncode == status and so == "" and "run-cached:" not in se, (p.returncode, se[-2000:])
+    s = json.loads((out / "summary.json").read_text())
+    assert s["interrupted"] is True and s["signal"] == signal.Signals(signo).name and s["steps"] >= 20
+    assert s["warnings"][:len(scene_warnings)] == scene_warnings
