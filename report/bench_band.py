@@ -22,11 +22,36 @@ OPENBLAS_DIRS = ["/usr/lib/x86_64-linux-gnu/openblas-pthread", "/usr/lib/x86_64-
                  "/usr/lib/x86_64-linux-gnu/openblas-serial"]
 
 
-def _openblas_dir():
-    for d in [os.environ.get("BK_OPENBLAS_DIR")] + OPENBLAS_DIRS:
-        if d and (Path(d) / "libopenblas.so").exists():
+# Debian's OpenBLAS unpacked into out/ (not installed: installing it would make it
+# the system's libblas.so.3 and liblapack.so.3 for every program, numpy too).
+FETCHED = ROOT / "out" / "openblas"
+FETCHED_DIR = FETCHED / "usr" / "lib" / "x86_64-linux-gnu" / "openblas-pthread"
+
+
+def _fetch_openblas(log):
+    """Debian's libopenblas0-pthread downloaded (apt-get download) and unpacked into
+    out/openblas; False (said in the log) when that fails, e.g. without the archive."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        r = subprocess.run(["apt-get", "download", "libopenblas0-pthread"], cwd=tmp, capture_output=True, text=True)
+        debs = list(Path(tmp).glob("libopenblas0-pthread_*.deb"))
+        if r.returncode != 0 or not debs:
+            log(f"  band: OpenBLAS not installed and not downloadable ({(r.stderr or '').strip()[-200:]})")
+            return False
+        FETCHED.mkdir(parents=True, exist_ok=True)
+        subprocess.run(["dpkg-deb", "-x", str(debs[0]), str(FETCHED)], check=True)
+        log(f"  band: OpenBLAS unpacked from {debs[0].name} into {FETCHED}")
+    return (FETCHED_DIR / "libopenblas.so.0").exists()
+
+
+def _openblas_dir(log=print):
+    """A folder holding libopenblas.so.0: BK_OPENBLAS_DIR, Debian's installed OpenBLAS,
+    or Debian's package unpacked into out/openblas (fetched when none is there)."""
+    dirs = [os.environ.get("BK_OPENBLAS_DIR")] + OPENBLAS_DIRS + [str(FETCHED_DIR)]
+    for d in dirs:
+        if d and (Path(d) / "libopenblas.so.0").exists():
             return d
-    return None
+    return str(FETCHED_DIR) if _fetch_openblas(log) else None
 
 
 def matrices(log, scenes=SCENES, work=WORK / "band"):
@@ -53,8 +78,9 @@ def matrices(log, scenes=SCENES, work=WORK / "band"):
     return files
 
 
-def programs():
-    """{LAPACK name: bench_band executable} (reference LAPACK, OpenBLAS if installed)."""
+def programs(log=print):
+    """{LAPACK name: bench_band executable} (reference LAPACK, and OpenBLAS: installed,
+    or Debian's package unpacked into out/openblas)."""
     from gen.solver_build import BUILD, CC, WARN
     out = BUILD / "release" / "bench"
     out.mkdir(parents=True, exist_ok=True)
@@ -64,10 +90,10 @@ def programs():
     exe = out / "bench_band_reference"
     subprocess.run([CC] + flags + src + ["-o", str(exe), "-llapack", "-lblas", "-lm"], check=True)
     progs["reference LAPACK 3"] = exe
-    d = _openblas_dir()
+    d = _openblas_dir(log)
     if d:
         exe = out / "bench_band_openblas"
-        subprocess.run([CC] + flags + src + ["-o", str(exe), f"-L{d}", f"-Wl,-rpath,{d}", "-lopenblas", "-lm"],
+        subprocess.run([CC] + flags + src + ["-o", str(exe), f"-L{d}", f"-Wl,-rpath,{d}", "-l:libopenblas.so.0", "-lm"],
                        check=True)
         progs["OpenBLAS"] = exe
     return progs
@@ -75,7 +101,7 @@ def programs():
 
 def band_vs_lapack(quick, log):
     """Rows {problem, lapack, n, kl, ku, band_s, lapack_s, ratio, solution_difference}."""
-    mats, progs = matrices(log), programs()
+    mats, progs = matrices(log), programs(log)
     rows = []
     for label, mat in mats.items():
         for lib, exe in progs.items():
@@ -110,8 +136,8 @@ def markdown(res):
     L += ["", ("The band LU is the faster on every matrix and stays the solver's."
                if faster else "LAPACK is faster on some matrix above: the solver should take it there."), ""]
     if not openblas:
-        L += ["OpenBLAS is not installed here (Debian `libopenblas-dev`; or `BK_OPENBLAS_DIR`): reference LAPACK "
-              "only.", ""]
+        L += ["OpenBLAS is neither installed here (Debian `libopenblas-dev`; or `BK_OPENBLAS_DIR`) nor could "
+              "Debian's `libopenblas0-pthread` be downloaded into out/openblas: reference LAPACK only.", ""]
     return L
 
 
