@@ -44,14 +44,15 @@ def _fetch_openblas(log):
     return (FETCHED_DIR / "libopenblas.so.0").exists()
 
 
-def _openblas_dir(log=print):
+def _openblas_dir(log=print, fetch=False):
     """A folder holding libopenblas.so.0: BK_OPENBLAS_DIR, Debian's installed OpenBLAS,
-    or Debian's package unpacked into out/openblas (fetched when none is there)."""
+    or Debian's package unpacked into out/openblas (fetched when none is there and
+    `fetch`: the bench does, a test does not)."""
     dirs = [os.environ.get("BK_OPENBLAS_DIR")] + OPENBLAS_DIRS + [str(FETCHED_DIR)]
     for d in dirs:
         if d and (Path(d) / "libopenblas.so.0").exists():
             return d
-    return str(FETCHED_DIR) if _fetch_openblas(log) else None
+    return str(FETCHED_DIR) if fetch and _fetch_openblas(log) else None
 
 
 def matrices(log, scenes=SCENES, work=WORK / "band"):
@@ -78,7 +79,7 @@ def matrices(log, scenes=SCENES, work=WORK / "band"):
     return files
 
 
-def programs(log=print):
+def programs(log=print, fetch=False):
     """{LAPACK name: bench_band executable} (reference LAPACK, and OpenBLAS: installed,
     or Debian's package unpacked into out/openblas)."""
     from gen.solver_build import BUILD, CC, WARN
@@ -90,7 +91,7 @@ def programs(log=print):
     exe = out / "bench_band_reference"
     subprocess.run([CC] + flags + src + ["-o", str(exe), "-llapack", "-lblas", "-lm"], check=True)
     progs["reference LAPACK 3"] = exe
-    d = _openblas_dir(log)
+    d = _openblas_dir(log, fetch)
     if d:
         exe = out / "bench_band_openblas"
         subprocess.run([CC] + flags + src + ["-o", str(exe), f"-L{d}", f"-Wl,-rpath,{d}", "-l:libopenblas.so.0", "-lm"],
@@ -101,7 +102,7 @@ def programs(log=print):
 
 def band_vs_lapack(quick, log):
     """Rows {problem, lapack, n, kl, ku, band_s, lapack_s, ratio, solution_difference}."""
-    mats, progs = matrices(log), programs(log)
+    mats, progs = matrices(log), programs(log, fetch=True)
     rows = []
     for label, mat in mats.items():
         for lib, exe in progs.items():
