@@ -38,6 +38,7 @@ typedef struct bk_overlap {
     int nchunk, *chunk;      /* runs of elements: chunk c is chunk[c] .. chunk[c + 1] - 1 (owned) */
     bk_box *cbox;            /* [nchunk] their boxes, for the broad phase (owned) */
     int *pairs, cap;         /* the broad phase's pairs (owned) */
+    int *beam;               /* [n] the element's beam as a number (equal names, equal numbers; owned) */
 } bk_overlap;
 
 /* Off (n = 0) for a system with an interaction that keeps the sections apart
