@@ -96,8 +96,12 @@ static int make_chunks(bk_overlap *o, const bk_model *m)
                          c->s1 - cs0 <= 2.0 * fmin(rmin, c->r);
         if (join) {
             rmin = fmin(rmin, c->r);
+            o->crmin[o->nchunk - 1] = rmin;
+            o->cord[o->nchunk - 1] &= c->s0 >= m->sections[i - 1].s0 && c->s1 >= m->sections[i - 1].s1;
             continue;
         }
+        o->crmin[o->nchunk] = c->r;
+        o->cord[o->nchunk] = 1;
         o->chunk[o->nchunk++] = i;
         cs0 = c->s0, rmin = c->r;
     }
@@ -145,7 +149,9 @@ int bk_overlap_init(bk_overlap *o, const bk_system *s)
     o->cbox = malloc(n * sizeof *o->cbox);
     o->chunk = malloc((n + 1) * sizeof *o->chunk);
     o->beam = malloc(n * sizeof *o->beam);
-    if (!o->ref || !o->cur || !o->box || !o->cbox || !o->chunk || !o->beam) {
+    o->crmin = malloc(n * sizeof *o->crmin);
+    o->cord = malloc(n);
+    if (!o->ref || !o->cur || !o->box || !o->cbox || !o->chunk || !o->beam || !o->crmin || !o->cord) {
         bk_overlap_free(o);
         return -1;
     }
@@ -168,6 +174,8 @@ void bk_overlap_free(bk_overlap *o)
     free(o->chunk);
     free(o->pairs);
     free(o->beam);
+    free(o->crmin);
+    free(o->cord);
     memset(o, 0, sizeof *o);
 }
 
@@ -246,9 +254,28 @@ void bk_overlap_check(bk_overlap *o, const bk_model *m, const double *q, const c
     const int np = bk_broad_pairs(o->cbox, o->nchunk, &o->pairs, &o->cap);
     for (int p = 0; p < np; ++p) {
         const int ca = o->pairs[2 * p], cb = o->pairs[2 * p + 1];
-        for (int ia = o->chunk[ca]; ia < o->chunk[ca + 1]; ++ia)
-            for (int ib = o->chunk[cb]; ib < o->chunk[cb + 1]; ++ib)
+        const int a0 = o->chunk[ca], a1 = o->chunk[ca + 1], b0 = o->chunk[cb], b1 = o->chunk[cb + 1];
+        /* Two ordered chunks of one beam, one after the other along it: the
+         * pairs whose gap in arc length is within twice the chunks' least
+         * half-heights are neighbours (compare would pass them at once); for
+         * each ia they are a run at the end of cb's elements next to ca's,
+         * and that run only grows with ia (a 10,000-element beam's check
+         * went through ~3 million of them).  The others in the same order. */
+        const int along = o->beam[a0] == o->beam[b0] && o->cord[ca] && o->cord[cb];
+        const double near = 2.0 * (o->crmin[ca] + o->crmin[cb]);
+        const bk_section_rec *S = m->sections;
+        const int after = along && S[a1 - 1].s1 <= S[b0].s0, before = along && !after && S[b1 - 1].s1 <= S[a0].s0;
+        int lo = b0, hi = before ? b0 : b1;      /* cb's elements compared with ia: lo .. hi - 1 */
+        for (int ia = a0; ia < a1; ++ia) {
+            if (after)                           /* cb after ca: its first ones are neighbours */
+                while (lo < b1 && S[lo].s0 - S[ia].s1 <= near)
+                    ++lo;
+            else if (before)                     /* cb before ca: its last ones */
+                while (hi < b1 && S[ia].s0 - S[hi].s1 > near)
+                    ++hi;
+            for (int ib = lo; ib < hi; ++ib)
                 if (compare(o, m, ia, ib, what, t, info, console))
                     return;
+        }
     }
 }

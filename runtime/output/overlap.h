@@ -39,6 +39,8 @@ typedef struct bk_overlap {
     bk_box *cbox;            /* [nchunk] their boxes, for the broad phase (owned) */
     int *pairs, cap;         /* the broad phase's pairs (owned) */
     int *beam;               /* [n] the element's beam as a number (equal names, equal numbers; owned) */
+    double *crmin;           /* [nchunk] the least half-height in chunk c (owned) */
+    unsigned char *cord;     /* [nchunk] 1: its elements' s0 and s1 never decrease (owned) */
 } bk_overlap;
 
 /* Off (n = 0) for a system with an interaction that keeps the sections apart
