@@ -1,7 +1,7 @@
 /* rowqueue_check.c -- the result tables' rows handed to a writer thread
  * (csvrow.h bk_rowqueue) against the same rows printed with glibc's fprintf.
  *
- *   rowqueue_check DIR NROWS
+ *   rowqueue_check DIR NROWS [STEP_BYTES]
  *
  * Writes NROWS random rows (integers, "%.17g" numbers, "%.Ne" and "%.Ng" with
  * random precisions, names up to 5000 bytes: longer than a string piece and
@@ -10,7 +10,8 @@
  * over now and then; and the same rows into three other files with fprintf.
  * Prints "rows=N bytes=B chunks=C differ=D" (D: tables whose bytes differ) and
  * exits 0 only when D is 0 and more than two chunks were handed over (the rows
- * spanned chunk boundaries). */
+ * spanned chunk boundaries).  STEP_BYTES (default 0: the queue's two chunks)
+ * is bk_rowqueue_start's hint: a larger one cycles through more chunks. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -64,8 +65,8 @@ static long same(const char *a, const char *b)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s DIR NROWS\n", argv[0]);
+    if (argc != 3 && argc != 4) {
+        fprintf(stderr, "usage: %s DIR NROWS [STEP_BYTES]\n", argv[0]);
         return 2;
     }
     const long nrows = atol(argv[2]);
@@ -82,7 +83,7 @@ int main(int argc, char **argv)
     bk_filewriter w;
     bk_rowqueue q;
     FILE *queued[3] = {fp[0][1], fp[1][1], fp[2][1]};
-    if (bk_filewriter_open(&w, 1, 1) != 0 || !w.threaded || bk_rowqueue_start(&q, &w, queued, 3) != 0) {
+    if (bk_filewriter_open(&w, 1, 1) != 0 || !w.threaded || bk_rowqueue_start(&q, &w, queued, 3, argc == 4 ? (size_t)atol(argv[3]) : 0) != 0) {
         fprintf(stderr, "no writer thread or no memory\n");
         return 2;
     }
@@ -130,6 +131,7 @@ int main(int argc, char **argv)
             bk_rowqueue_submit(&q, 1);
     }
     const long chunks = w.calls;
+    printf("cycle=%d ", q.nchunk);
     bk_rowqueue_stop(&q);
     bk_filewriter_close(&w);
     long bytes = 0;

@@ -213,7 +213,7 @@ static void format_chunk(const void *arg, FILE *unused)
             fflush(q->fp[t]);
 }
 
-int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n)
+int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n, size_t step_bytes)
 {
     const bk_rowsink *sink = q->sink;
     memset(q, 0, sizeof *q);
@@ -221,15 +221,17 @@ int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n)
     for (int k = 0; k < n && q->nfp < BK_ROWQ_TABLES; ++k)
         if (fp[k])
             q->fp[q->nfp++] = fp[k];
-    q->chunk[0] = malloc(BK_ROWQ_CHUNK);
-    q->chunk[1] = malloc(BK_ROWQ_CHUNK);
-    q->row = malloc(sizeof *q->row);
-    if (!q->chunk[0] || !q->chunk[1] || !q->row) {
+    const size_t want = 2 + step_bytes / BK_ROWQ_CHUNK;
+    q->nchunk = want < BK_ROWQ_CHUNKS ? (int)want : BK_ROWQ_CHUNKS;
+    int ok = (q->row = malloc(sizeof *q->row)) != NULL;
+    for (int k = 0; k < q->nchunk; ++k) {
+        ok = ok && (q->chunk[k] = malloc(BK_ROWQ_CHUNK)) != NULL;
+        q->job[k] = (struct bk_rowqueue_job){q, k};
+    }
+    if (!ok) {
         bk_rowqueue_stop(q);
         return -1;
     }
-    for (int k = 0; k < 2; ++k)
-        q->job[k] = (struct bk_rowqueue_job){q, k};
     q->w = w;
     return 0;
 }
@@ -244,10 +246,10 @@ void bk_rowqueue_submit(bk_rowqueue *q, int flush)
     const int k = q->cur;
     q->len[k] = q->pos;
     q->flush[k] = flush;
-    q->ticket[k] = bk_filewriter_call(q->w, format_chunk, &q->job[k]);
-    q->cur = k ^ 1;
+    q->ticket[k] = q->last = bk_filewriter_call(q->w, format_chunk, &q->job[k]);
+    q->cur = (k + 1) % q->nchunk;
     q->pos = 0;
-    if (q->ticket[q->cur] > 0)           /* the other chunk: formatted by now? */
+    if (q->ticket[q->cur] > 0)           /* the next chunk: formatted by now? */
         bk_filewriter_wait(q->w, q->ticket[q->cur]);
     q->ticket[q->cur] = 0;
 }
@@ -256,10 +258,10 @@ void bk_rowqueue_stop(bk_rowqueue *q)
 {
     if (q->w) {
         bk_rowqueue_submit(q, 0);        /* (not flushed: the caller's fclose does, and reports a failure's errno) */
-        bk_filewriter_wait(q->w, q->ticket[q->cur ^ 1]);
+        bk_filewriter_wait(q->w, q->last);
     }
-    free(q->chunk[0]);
-    free(q->chunk[1]);
+    for (int k = 0; k < BK_ROWQ_CHUNKS; ++k)
+        free(q->chunk[k]);
     free(q->row);
     const bk_rowsink *sink = q->sink;
     memset(q, 0, sizeof *q);

@@ -24,7 +24,12 @@
  * Sizes and directions:
  *   bk_rowqueue_start   in: w (the thread, not owned: it must outlive the queue's
  *                       use), fp[n] (n <= BK_ROWQ_TABLES; NULL entries are
- *                       skipped).  0, or -1 when out of memory (the rows stay
+ *                       skipped), step_bytes: about what an output step
+ *                       records (a 10,000-element beam's sections.csv: 3 MB),
+ *                       to have chunks enough for it (2 .. BK_ROWQ_CHUNKS)
+ *                       so that the caller goes on while the thread formats
+ *                       (with two it waited for the thread at every
+ *                       chunk).  0, or -1 when out of memory (the rows stay
  *                       formatted here).
  *   bk_rowqueue_submit  hands over the chunk being filled; flush: the thread
  *                       then flushes every stream (the 0.5 s flush of output.c).
@@ -42,6 +47,7 @@
 
 #define BK_ROWQ_TABLES 8
 #define BK_ROWQ_CHUNK (128 << 10)
+#define BK_ROWQ_CHUNKS 32          /* the most chunks a queue cycles through */
 
 struct bk_filewriter;
 
@@ -63,14 +69,16 @@ typedef struct bk_rowqueue {
     struct bk_filewriter *w;           /* NULL: not started (rows are formatted by the caller) */
     FILE *fp[BK_ROWQ_TABLES];          /* the streams whose rows are queued */
     int nfp;
-    unsigned char *chunk[2];           /* owned: [BK_ROWQ_CHUNK] each */
-    size_t len[2];                     /* bytes handed over in chunk k */
-    int flush[2];                      /* chunk k: flush the streams after it */
-    long ticket[2];                    /* the call formatting chunk k (0: none) */
+    int nchunk;                        /* chunks in the cycle (2 .. BK_ROWQ_CHUNKS) */
+    unsigned char *chunk[BK_ROWQ_CHUNKS];   /* owned: [BK_ROWQ_CHUNK] each */
+    size_t len[BK_ROWQ_CHUNKS];        /* bytes handed over in chunk k */
+    int flush[BK_ROWQ_CHUNKS];         /* chunk k: flush the streams after it */
+    long ticket[BK_ROWQ_CHUNKS];       /* the call formatting chunk k (0: none) */
+    long last;                         /* the last chunk's call (0: none) */
     int cur;                           /* the chunk being filled, */
     size_t pos;                        /*   its bytes so far */
     int unflushed;                     /* chunks handed over since the last flush without one */
-    struct bk_rowqueue_job { struct bk_rowqueue *q; int k; } job[2];
+    struct bk_rowqueue_job { struct bk_rowqueue *q; int k; } job[BK_ROWQ_CHUNKS];
     /* the thread's: the row being formatted (its fields may span two chunks) */
     struct bk_row *row;                /* owned */
     const bk_rowsink *sink;            /* not owned: the rows' mirror, or NULL (kept by start and stop) */
@@ -87,7 +95,7 @@ typedef struct bk_row {
     void *mirror;            /*   or NULL */
 } bk_row;
 
-int bk_rowqueue_start(bk_rowqueue *q, struct bk_filewriter *w, FILE *const *fp, int n);
+int bk_rowqueue_start(bk_rowqueue *q, struct bk_filewriter *w, FILE *const *fp, int n, size_t step_bytes);
 void bk_rowqueue_submit(bk_rowqueue *q, int flush);
 void bk_rowqueue_stop(bk_rowqueue *q);
 /* 1 when q is started and fp is one of its streams (the writer thread's). */

@@ -47,7 +47,7 @@
 #include <stdio.h>
 
 #define BK_FILEWRITER_BUFFERS 2
-#define BK_FILEWRITER_CALLS 2
+#define BK_FILEWRITER_CALLS 36    /* (a row queue's chunks, csvrow.h BK_ROWQ_CHUNKS, and results.h5's) */
 #define BK_FILEWRITER_QUEUE (BK_FILEWRITER_BUFFERS + BK_FILEWRITER_CALLS)
 #define BK_FILEWRITER_PATH 1200
 

@@ -35,5 +35,7 @@ void bk_output_rows_to_writer(bk_output *o)
     /* the tables written with bk_row (the mode tables are not) */
     FILE *list[BK_ROWQ_TABLES];
     int n = bk_tables_rows(&o->tables, list, BK_ROWQ_TABLES);
-    bk_rowqueue_start(&o->rq, w, list, n);
+    /* what a step records: mostly sections.csv's rows (a number 10 bytes) */
+    const size_t rows = (size_t)o->m->nsection * (2 + (size_t)o->forces.maxsample) + (size_t)o->m->nsensor;
+    bk_rowqueue_start(&o->rq, w, list, n, o->forces.sections ? 20 * 10 * rows : 0);
 }
