@@ -1,7 +1,6 @@
-/* system.c -- equation numbering, the sparse pattern of the Newton matrix
- * (made by pattern.c),
- * each element's and joint's scatter map into it, the evaluation groups and
- * their buffers (bk_system_create, bk_system_free; system.h). */
+/* system.c -- the algebraic system of a model: equation numbering, the
+ * pattern and scatter maps (made by pattern.c), the evaluation groups and
+ * their buffers, the parts (bk_system_create, bk_system_free; system.h). */
 #include "assembly/system.h"
 
 #include <limits.h>
