@@ -1,7 +1,7 @@
 /* partition.c -- the parts of the parallel assembly: contiguous runs of
  * element groups of about equal cost, and the staging of the terms that two
  * parts share, so that every sum is made in element order whatever the
- * thread count (system.h). */
+ * thread count; the owner marks DOF by DOF on the threads (system.h). */
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -81,29 +81,55 @@ int bk_make_parts(bk_system *s)
         free(down);
         return -1;
     }
-    for (int p = 0; p < np; ++p)
-        for (int e = s->group[s->part[p]]; e < s->group[s->part[p + 1]]; ++e) {
-            const int nd = bk_elem_type(m, e)->ndof, *sl = s->eslot + s->eslot_off[e], *d = m->elems[e].dofs;
-            for (int k = 0; k < nd * nd; ++k)
-                if (sl[k] >= 0)
-                    mark_owner(&sown[sl[k]], p);
-            for (int k = 0; k < nd; ++k)
-                mark_owner(&down[d[k]], p);
-        }
-    /* elements with a shared slot or DOF get a scatter map with stage codes */
-    long nmap = 0, nstage = 0;
+    /* owner codes DOF by DOF on the threads (a code does not depend on the
+     * order of the marks): a DOF's from its elements, the slots of its column
+     * (no other DOF's elements write them) from the column's entries of its
+     * elements' maps.  Only code 255 (shared) is used below: a DOF whose
+     * elements (in element order) begin and end in one part, and its column,
+     * are left unmarked; every element of a slot has the slot's column DOF, so
+     * an element with a shared slot has a shared DOF. */
+    int *ep = malloc(((size_t)m->nelem + 1) * sizeof *ep);
     s->pel = malloc(((size_t)m->nelem + 1) * sizeof *s->pel);
-    if (!s->pel)
+    if (!ep || !s->pel) {
+        free(ep);
         goto fail;
+    }
+    for (int p = 0; p < np; ++p)
+        for (int e = s->group[s->part[p]]; e < s->group[s->part[p + 1]]; ++e)
+            ep[e] = p;
+    const int nth = s->nthreads;
+    BK_OMP(omp parallel for num_threads(nth) schedule(static) if (nth > 1))
+    for (int d = 0; d < m->ndof; ++d) {
+        const int i0 = s->dinc_ptr[d], i1 = s->dinc_ptr[d + 1];
+        if (i0 == i1 || ep[s->dinc[2 * i0]] == ep[s->dinc[2 * i1 - 2]])
+            continue;
+        for (int i = i0; i < i1; ++i) {
+            const int e = s->dinc[2 * i], c = s->dinc[2 * i + 1], nd = bk_elem_type(m, e)->ndof;
+            const int *sl = s->eslot + s->eslot_off[e];
+            mark_owner(&down[d], ep[e]);
+            for (int r = 0; r < nd; ++r)
+                if (sl[r * nd + c] >= 0)
+                    mark_owner(&sown[sl[r * nd + c]], ep[e]);
+        }
+    }
+    free(ep);
+    /* elements with a shared slot or DOF get a scatter map with stage codes
+     * (their counts on the threads, then the offsets in element order) */
+    BK_OMP(omp parallel for num_threads(nth) schedule(static) if (nth > 1))
     for (int e = 0; e < m->nelem; ++e) {
         const int nd = bk_elem_type(m, e)->ndof, *sl = s->eslot + s->eslot_off[e], *d = m->elems[e].dofs;
         long ns = 0;
-        for (int k = 0; k < nd * nd; ++k)
-            ns += sl[k] >= 0 && sown[sl[k]] == 255;
         for (int k = 0; k < nd; ++k)
             ns += down[d[k]] == 255;
+        for (int k = 0; k < nd * nd && ns; ++k)
+            ns += sl[k] >= 0 && sown[sl[k]] == 255;
+        s->pel[e] = ns;
+    }
+    long nmap = 0, nstage = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+        const long ns = s->pel[e];
         s->pel[e] = ns ? nmap : -1;
-        nmap += ns ? (long)nd * nd + nd : 0;
+        nmap += ns ? (long)bk_elem_type(m, e)->ndof * (bk_elem_type(m, e)->ndof + 1) : 0;
         nstage += ns;
     }
     s->pmap = malloc((size_t)(nmap ? nmap : 1) * sizeof *s->pmap);

@@ -61,7 +61,7 @@ static inline int bk_find_slot(const bk_system *s, int row, int col)
     return lo < s->Ap[col + 1] && s->Ai[lo] == row ? lo : -1;
 }
 
-/* The pattern and its scatter maps (system.c): made from the model and
+/* The pattern and its scatter maps (pattern.c): made from the model and
  * s->couple; freed (and the pointers cleared). */
 int bk_make_pattern(bk_system *s);
 void bk_free_pattern(bk_system *s);
