@@ -73,6 +73,7 @@ int bk_system_couple(bk_system *s, int n, const int *pairs)
     bk_free_parts(s);
     if (bk_make_pattern(s) != 0 || bk_make_parts(s) != 0)
         return -1;
+    bk_free_incidence(s);
     s->pattern_gen++;
     return 1;
 }

@@ -347,6 +347,13 @@ done:
     return rc;
 }
 
+void bk_free_incidence(bk_system *s)
+{
+    free(s->dinc_ptr);
+    free(s->dinc);
+    s->dinc_ptr = s->dinc = NULL;
+}
+
 void bk_free_pattern(bk_system *s)
 {
     free(s->Ap);

@@ -95,6 +95,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
 #endif
     if (bk_make_parts(s) != 0)
         goto oom;
+    bk_free_incidence(s);
     {
         /* one evaluation slot per thread (one when serial) */
         const size_t np = (size_t)(s->npart > 1 ? s->nthreads : 1);

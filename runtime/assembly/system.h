@@ -36,7 +36,8 @@ typedef struct bk_system {
     int *diag;               /* [nfree] CSC index of each free DOF's diagonal  */
     int *dinc_ptr, *dinc;    /* the elements at each DOF d, in element order:
                               * dinc[2 i] the element, dinc[2 i + 1] d's place in
-                              * it, i in [dinc_ptr[d], dinc_ptr[d + 1]) */
+                              * it, i in [dinc_ptr[d], dinc_ptr[d + 1]); made with the
+                              * pattern, freed once the parts are made */
     /* joints nonlinear in q (model->nlcons): constraint rows nlincon.., one
      * block per joint: its first row jrow[j] (jrow[nnlcon] = ncon) and CSC
      * slots jslot[jslot_off[j]..]: NX x NX of the Hessian term, then nrow x NX
