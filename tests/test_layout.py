@@ -12,8 +12,8 @@ RUNTIME = ROOT / "runtime"
 # folder -> the folders it may include (besides its own and the kernel contract)
 MAY_CALL = {
     "base": set(),
-    "linalg": set(),
-    "model": set(),
+    "linalg": {"base"},
+    "model": {"base"},
     "assembly": {"model", "linalg", "base"},
     "solver": {"assembly", "linalg", "base", "model"},
     "output": {"assembly", "model", "base"},

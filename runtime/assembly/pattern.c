@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "assembly/system_impl.h"
+#include "base/bigalloc.h"
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -100,7 +101,7 @@ static int dof_incidence(bk_system *s)
     }
     for (int d = 0; d < m->ndof; ++d)
         ptr[d + 1] += ptr[d];
-    int *inc = malloc(2 * (size_t)(ptr[m->ndof] ? ptr[m->ndof] : 1) * sizeof *inc);
+    int *inc = bk_big_malloc(2 * (size_t)(ptr[m->ndof] ? ptr[m->ndof] : 1) * sizeof *inc);
     if (!inc) {
         free(ptr);
         return -1;
@@ -145,7 +146,7 @@ int bk_make_pattern(bk_system *s)
 #endif
     cdof = malloc(((size_t)neq + 1) * sizeof *cdof);
     zc = malloc(((size_t)neq + 1) * sizeof *zc);
-    mk = malloc(2 * (size_t)nth * ((size_t)neq + 1) * sizeof *mk);   /* two markers a thread */
+    mk = bk_big_malloc(2 * (size_t)nth * ((size_t)neq + 1) * sizeof *mk);   /* two markers a thread */
     s->Ap = malloc(((size_t)neq + 1) * sizeof *s->Ap);
     s->eslot_off = malloc(((size_t)m->nelem + 1) * sizeof *s->eslot_off);
     s->diag = malloc((size_t)(s->nfree ? s->nfree : 1) * sizeof *s->diag);
@@ -195,9 +196,9 @@ int bk_make_pattern(bk_system *s)
         tot += (long)nd * nd;
     }
     s->eslot_off[m->nelem] = (int)tot;
-    s->Ai = malloc((size_t)(nnz ? nnz : 1) * sizeof *s->Ai);
-    s->eslot = malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
-    s->efirst = calloc((size_t)(tot ? tot : 1), 1);
+    s->Ai = bk_big_malloc((size_t)(nnz ? nnz : 1) * sizeof *s->Ai);
+    s->eslot = bk_big_malloc((size_t)(tot ? tot : 1) * sizeof *s->eslot);
+    s->efirst = bk_big_calloc((size_t)(tot ? tot : 1), 1);
     if (!s->Ai || !s->eslot || !s->efirst)
         goto done;
     /* pass 2: the rows (a[row]: its slot in the column at hand; a slot outside

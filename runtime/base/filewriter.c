@@ -1,5 +1,6 @@
 /* filewriter.c -- whole files written by a background thread (filewriter.h). */
 #include "base/filewriter.h"
+#include "base/bigalloc.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -105,7 +106,7 @@ int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
     memset(w, 0, sizeof *w);
     w->cap = cap;
     for (int b = 0; b < BK_FILEWRITER_BUFFERS; ++b)
-        if (!(w->buf[b] = malloc(cap > 0 ? cap : 1)))
+        if (!(w->buf[b] = bk_big_malloc(cap > 0 ? cap : 1)))
             return -1;
     if (pthread_mutex_init(&w->mu, NULL) != 0)
         return -1;

@@ -1,6 +1,7 @@
 /* bandlu.c -- band LU with partial pivoting after a reverse Cuthill-McKee
  * ordering (see bandlu.h). */
 #include "linalg/bandlu.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -125,7 +126,7 @@ int bk_band_plan(bk_band *b, int n, const int *Ap, const int *Ai, long max_stora
         bk_band_free(b);
         return 1;
     }
-    b->ab = malloc((size_t)b->ldab * (size_t)(n > 0 ? n : 1) * sizeof *b->ab);
+    b->ab = bk_big_malloc((size_t)b->ldab * (size_t)(n > 0 ? n : 1) * sizeof *b->ab);
     b->rs = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->rs);
     b->ipiv = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->ipiv);
     b->w = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->w);

@@ -1,6 +1,7 @@
 /* bandsplit.c -- the band LU of a long band in two halves and a separator,
  * the halves on two threads (see bandsplit.h). */
 #include "linalg/bandsplit.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -38,7 +39,7 @@ static int block_plan(bk_bandsplit_block *x, int nb, int kl, int ku, int first, 
     x->j0 = nb - ku - kl > 0 ? nb - ku - kl : 0;
     x->t = nb - x->j0;
     size_t S = (size_t)s, L = (size_t)(kl > 0 ? kl : 1), U = (size_t)(ku > 0 ? ku : 1);
-    x->ab = malloc((size_t)x->ldab * (size_t)nb * sizeof *x->ab);
+    x->ab = bk_big_malloc((size_t)x->ldab * (size_t)nb * sizeof *x->ab);
     x->ipiv = malloc((size_t)nb * sizeof *x->ipiv);
     x->E = malloc(S * U * sizeof *x->E);
     x->F = malloc(S * L * sizeof *x->F);

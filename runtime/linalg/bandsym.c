@@ -2,6 +2,7 @@
  * checks: plan, fill from the sparse matrix, factor, solve, product (see
  * bandlu.h). */
 #include "linalg/bandlu.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -37,7 +38,7 @@ int bk_bandsym_plan(bk_bandsym *b, int n, const int *Ap, const int *Ai, const in
         bk_bandsym_free(b);
         return 1;
     }
-    b->ab = aligned_alloc(64, (size_t)b->ldab * N * sizeof *b->ab);
+    b->ab = bk_big_advise(aligned_alloc(64, (size_t)b->ldab * N * sizeof *b->ab), (size_t)b->ldab * N * sizeof *b->ab);
     b->D = malloc(N * sizeof *b->D);
     b->w = malloc(N * sizeof *b->w);
     b->piv = aligned_alloc(64, (size_t)(b->ldab + BK_BAND_LANES) * sizeof *b->piv);

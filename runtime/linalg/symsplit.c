@@ -1,6 +1,7 @@
 /* symsplit.c -- the symmetric band L D L^T of a long band in two halves and a
  * separator, the halves on two threads (see symsplit.h). */
 #include "linalg/symsplit.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -23,7 +24,7 @@ static int block_plan(bk_symsplit_block *x, int nb, int first, int step, int s, 
         x->ab = store;
         x->borrowed = 1;
     } else
-        x->ab = malloc(len * sizeof *x->ab);
+        x->ab = bk_big_malloc(len * sizeof *x->ab);
     x->W = malloc(S * S * sizeof *x->W);
     x->V = malloc(S * S * sizeof *x->V);
     x->C = malloc(S * S * sizeof *x->C);

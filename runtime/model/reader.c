@@ -2,6 +2,7 @@
  * fields `key=value`, numbers and integers with their ranges, and the one error
  * line (see reader.h). */
 #include "model/reader.h"
+#include "base/bigalloc.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -23,12 +24,12 @@ int rd_load(bk_reader *r)
     }
     /* the whole file in memory (read in pieces: its size need not be known) */
     size_t cap = 1 << 16;
-    r->buf = malloc(cap);
+    r->buf = bk_big_malloc(cap);
     while (r->buf) {
         r->len += fread(r->buf + r->len, 1, cap - r->len - 1, fp);
         if (r->len < cap - 1)
             break;
-        char *nb = realloc(r->buf, cap *= 2);
+        char *nb = bk_big_realloc(r->buf, cap *= 2);
         if (!nb)
             free(r->buf);
         r->buf = nb;
@@ -213,7 +214,7 @@ void *rd_xcalloc(bk_reader *r, size_t n, size_t size)
 {
     if (r->failed)
         return NULL;
-    void *p = calloc(n ? n : 1, size);
+    void *p = bk_big_calloc(n ? n : 1, size);
     if (!p)
         rd_fail(r, "out of memory (%zu x %zu bytes)", n, size);
     return p;

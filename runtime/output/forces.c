@@ -1,5 +1,6 @@
 /* forces.c -- reactions and section forces (see forces.h). */
 #include "output/forces_impl.h"
+#include "base/bigalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -38,7 +39,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, b
     /* element buffers: q, qd, qdd, force, work, and four ndof^2 matrices */
     f->buf = calloc(6 * md + 4 * md * md, sizeof *f->buf);
     f->last = calloc((size_t)(m->nreaction ? m->nreaction : 1), sizeof *f->last);
-    f->sec = malloc(12 * (size_t)m->nelem * sizeof *f->sec);
+    f->sec = bk_big_malloc(12 * (size_t)m->nelem * sizeof *f->sec);
     f->sec_step = -1;
     int maxsample = 1;
     for (int e = 0; e < m->nelem; ++e)
@@ -52,8 +53,8 @@ int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, b
     const size_t nt = (size_t)f->nthread, ne = (size_t)(m->nelem ? m->nelem : 1);
     f->sbuf = calloc(nt * (6 * md + 4 * md * md), sizeof *f->sbuf);
     f->sres = malloc(nt * 9 * (size_t)maxsample * sizeof *f->sres);
-    f->spos = malloc((6 + 3 * (size_t)maxsample) * ne * sizeof *f->spos);
-    f->ssec = malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
+    f->spos = bk_big_malloc((6 + 3 * (size_t)maxsample) * ne * sizeof *f->spos);
+    f->ssec = bk_big_malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
     if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||
         !f->ssec || !f->sbuf || !f->spos) {
         fprintf(err, "error: out of memory for the reactions and section forces\n");

@@ -1,6 +1,7 @@
 /* h5.c -- results.h5 (see h5.h): the rows kept on the solve thread and handed
  * to the HDF5 thread (h5_file.c). */
 #include "output/h5_impl.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -34,7 +35,7 @@ static int table_room(bk_h5 *h, bk_h5_table *t)
     int cap = t->cap[k] ? 2 * t->cap[k] : 64;
     if (cap > most && t->cap[k] < most)
         cap = most;
-    unsigned char *b = realloc(t->buf[k], (size_t)cap * rowb);
+    unsigned char *b = bk_big_realloc(t->buf[k], (size_t)cap * rowb);
     if (!b) {
         h->oom = 1;
         return -1;
@@ -213,8 +214,8 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const 
     for (int k = 0; k < 2; ++k) {
         h->step[k] = malloc((size_t)h->cap * sizeof *h->step[k]);
         h->time[k] = malloc((size_t)h->cap * sizeof *h->time[k]);
-        h->q[k] = malloc((size_t)h->cap * nd * sizeof *h->q[k] + 1);
-        h->qd[k] = h->with_qd ? malloc((size_t)h->cap * nd * sizeof *h->qd[k] + 1) : NULL;
+        h->q[k] = bk_big_malloc((size_t)h->cap * nd * sizeof *h->q[k] + 1);
+        h->qd[k] = h->with_qd ? bk_big_malloc((size_t)h->cap * nd * sizeof *h->qd[k] + 1) : NULL;
         ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
     }
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;

@@ -4,6 +4,7 @@
  * (numbers, strings) and 3 (compounds), fill value 3, layout 3 (contiguous),
  * attribute 3, link info 0, group info 0, link 1. */
 #include "output/h5_plain.h"
+#include "base/bigalloc.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +27,7 @@ static unsigned char *room(bk_h5p *p, size_t k)
         size_t cap = p->cap ? p->cap : 4096;
         while (cap < p->n + k)
             cap *= 2;
-        unsigned char *d = realloc(p->data, cap);
+        unsigned char *d = bk_big_realloc(p->data, cap);
         if (!d) {
             p->oom = 1;
             return NULL;

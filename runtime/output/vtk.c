@@ -18,6 +18,7 @@
  * MODE_SCALE (m).
  */
 #include "output/vtk.h"
+#include "base/bigalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -48,10 +49,10 @@ int bk_vtk_open(bk_vtk *v, const bk_model *m, const char *dir, int every, int ca
     v->npts = bk_vtk_npoints(m);
     bk_vtk_frame_cells(m, &v->ncell, &v->nconn);
     size_t np = (size_t)v->npts;
-    v->ref = malloc((3 * np + 1) * sizeof *v->ref);
-    v->pts = malloc((3 * np + 1) * sizeof *v->pts);
+    v->ref = bk_big_malloc((3 * np + 1) * sizeof *v->ref);
+    v->pts = bk_big_malloc((3 * np + 1) * sizeof *v->pts);
     v->ntopo = bk_vtk_topology(m, NULL);
-    v->topo = malloc(v->ntopo);
+    v->topo = bk_big_malloc(v->ntopo);
     if (!v->times || !v->frames || !v->ref || !v->pts || !v->topo)
         return -1;
     bk_vtk_frame_points(m, m->q0, NULL, 0, v->ref, 1);
@@ -119,7 +120,7 @@ static void maybe_background(bk_vtk *v, double frac)
     size_t nq = (size_t)m->ndof, ne = (size_t)m->nelem, ns = 6 * (size_t)(v->maxsample > 0 ? v->maxsample : 1) * ne;
     size_t each = 3 * nq + 12 * ne + ns + 3 * (size_t)v->npts + 1;
     v->jobs = calloc(BK_FILEWRITER_BUFFERS, sizeof *v->jobs);
-    double *mem = v->jobs ? malloc(BK_FILEWRITER_BUFFERS * each * sizeof *mem) : NULL;
+    double *mem = v->jobs ? bk_big_malloc(BK_FILEWRITER_BUFFERS * each * sizeof *mem) : NULL;
     if (!mem) {
         free(v->jobs);
         v->jobs = NULL;

@@ -1,5 +1,6 @@
 /* nonlinear.c -- the one Newton solver of every analysis (see nonlinear.h). */
 #include "solver/nonlinear.h"
+#include "base/bigalloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -29,7 +30,7 @@ int bk_nl_init(bk_nl *nl, bk_system *s, char *msg, size_t nmsg)
     size_t ne = (size_t)(s->neq > 0 ? s->neq : 1), nnz = (size_t)(s->nnz > 0 ? s->nnz : 1);
     nl->r = calloc(ne, sizeof(double));
     nl->dx = calloc(ne, sizeof(double));
-    nl->Ax = calloc(nnz, sizeof(double));
+    nl->Ax = bk_big_calloc(nnz, sizeof(double));
     if (!nl->r || !nl->dx || !nl->Ax || bk_norms_init(&nl->norms, s) != 0) {
         snprintf(msg, nmsg, "out of memory");
         return -1;
@@ -52,7 +53,7 @@ static int prepare(bk_nl *nl, const double *q)
         return -1;
     if (nl->pattern_gen == s->pattern_gen)
         return 0;
-    double *Ax = realloc(nl->Ax, (size_t)(s->nnz > 0 ? s->nnz : 1) * sizeof *Ax);
+    double *Ax = bk_big_realloc(nl->Ax, (size_t)(s->nnz > 0 ? s->nnz : 1) * sizeof *Ax);
     if (!Ax)
         return -1;
     nl->Ax = Ax;

@@ -1,0 +1,45 @@
+/* bigalloc.c -- large arrays backed by transparent huge pages (see bigalloc.h). */
+#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE (glibc hides them in strict C11) */
+#include "base/bigalloc.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
+#define HUGE_PAGE ((uintptr_t)2 << 20)
+
+/* The advice on the whole 2 MiB pages inside [p, p + bytes); a failure (no
+ * transparent huge pages here) leaves small pages, nothing else. */
+void *bk_big_advise(void *p, size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (p && bytes >= BK_BIG_BYTES) {
+        const uintptr_t lo = ((uintptr_t)p + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
+        const uintptr_t hi = ((uintptr_t)p + bytes) & ~(HUGE_PAGE - 1);
+        if (hi > lo)
+            (void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
+    }
+#else
+    (void)bytes;
+#endif
+    return p;
+}
+
+void *bk_big_malloc(size_t bytes)
+{
+    return bk_big_advise(malloc(bytes), bytes);
+}
+
+void *bk_big_calloc(size_t n, size_t size)
+{
+    /* (calloc checks n * size for overflow; on success it does not overflow) */
+    void *p = calloc(n, size);
+    return p ? bk_big_advise(p, n * size) : NULL;
+}
+
+void *bk_big_realloc(void *p, size_t bytes)
+{
+    return bk_big_advise(realloc(p, bytes), bytes);
+}

@@ -1,0 +1,37 @@
+/* bigalloc.h -- allocation of the arrays that grow with the model (the Newton
+ * matrix's values and pattern, the band factors' storage, the output's buffers
+ * of a frame or a step's rows).
+ *
+ * Each is malloc, calloc or realloc, after which the kernel is asked
+ * (madvise MADV_HUGEPAGE, Linux) to back the block's whole 2 MiB pages with
+ * transparent huge pages when they are first touched.  The first touch of a
+ * 4 kB page is a page fault; in a virtual machine a fault costs 1-3 us, and a
+ * 10,000-element static run touches about 68,000 such pages (half its wall
+ * time on two threads went to faults).  A 2 MiB page takes one fault for 512
+ * small ones.  Blocks below BK_BIG_BYTES, and systems without the advice (or
+ * with transparent huge pages off: madvise fails and is ignored), get plain
+ * pages; the contents and results are the same either way.
+ *
+ * Sizes and directions:
+ *   bk_big_malloc   in: bytes.  Out: a block as malloc's (NULL when out of memory).
+ *   bk_big_calloc   in: n, size.  Out: a zeroed block of n * size bytes, as calloc's.
+ *   bk_big_realloc  in: p (NULL or a block from any of these or malloc), bytes.
+ *                   Out: as realloc's; the advice covers the new block.
+ *   bk_big_advise   in: p (NULL or a block of `bytes` from aligned_alloc, say,
+ *                   not yet touched).  Out: p, with the advice given.
+ * Every block is freed with free(). */
+#ifndef BK_BIGALLOC_H
+#define BK_BIGALLOC_H
+
+#include <stddef.h>
+
+/* Smallest block given the advice: two huge pages (a smaller block holds at
+ * most one whole 2 MiB page at an unknown offset). */
+#define BK_BIG_BYTES ((size_t)4 << 20)
+
+void *bk_big_malloc(size_t bytes);
+void *bk_big_calloc(size_t n, size_t size);
+void *bk_big_realloc(void *p, size_t bytes);
+void *bk_big_advise(void *p, size_t bytes);
+
+#endif

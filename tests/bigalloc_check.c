@@ -1,0 +1,105 @@
+/* bigalloc_check.c -- harness of tests/test_bigalloc.py: the large arrays of
+ * runtime/base/bigalloc.c hold what malloc's, calloc's and realloc's blocks
+ * hold, and (where the kernel offers transparent huge pages) are backed by
+ * them once touched.
+ *
+ * usage: bigalloc_check MIB
+ * Allocates blocks of MIB MiB with bk_big_malloc, bk_big_calloc and
+ * bk_big_realloc (a small block grown to MIB MiB, and a large one shrunk to
+ * a quarter), writes and reads a pattern in each, and prints key=value
+ * lines: bad (bytes that differ from what was written, or a calloc byte not
+ * zero, or a realloc'd byte not kept), huge_kb (AnonHugePages of the
+ * mappings that hold the blocks, /proc/self/smaps; -1 when unreadable),
+ * thp (the kernel's mode: always, madvise or never; "none" when unknown). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/bigalloc.h"
+
+static unsigned char pat(size_t i)
+{
+    return (unsigned char)(i * 2654435761u >> 13);
+}
+
+/* AnonHugePages (kB) of the mappings that overlap one of the n blocks, from /proc/self/smaps. */
+static long huge_kb(const void *const *blocks, const size_t *sizes, int n)
+{
+    FILE *f = fopen("/proc/self/smaps", "r");
+    if (!f)
+        return -1;
+    char line[512];
+    unsigned long a = 0, b = 0;
+    int inside = 0;
+    long kb = 0;
+    while (fgets(line, sizeof line, f)) {
+        unsigned long x, y;
+        long v;
+        if (sscanf(line, "%lx-%lx ", &x, &y) == 2) {    /* a mapping's first line (a field's: "Name: ...") */
+            a = x, b = y, inside = 0;
+            for (int k = 0; k < n; ++k) {
+                unsigned long lo = (unsigned long)blocks[k], hi = lo + sizes[k];
+                if (lo < b && hi > a)
+                    inside = 1;
+            }
+        } else if (inside && sscanf(line, "AnonHugePages: %ld kB", &v) == 1)
+            kb += v;
+    }
+    fclose(f);
+    return kb;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s MIB\n", argv[0]);
+        return 2;
+    }
+    const size_t n = (size_t)atol(argv[1]) << 20;
+    long bad = 0;
+    unsigned char *m = bk_big_malloc(n), *c = bk_big_calloc(n / 8, 8), *r = bk_big_realloc(NULL, 4096);
+    unsigned char *s = bk_big_malloc(n);
+    if (!m || !c || !r || !s) {
+        fprintf(stderr, "out of memory\n");
+        return 1;
+    }
+    for (size_t i = 0; i < 4096; ++i)
+        r[i] = pat(i);
+    r = bk_big_realloc(r, n);                       /* grown: the first 4096 bytes kept */
+    for (size_t i = 0; i < n; ++i)
+        s[i] = pat(i + 7);
+    s = bk_big_realloc(s, n / 4);                   /* shrunk: the first quarter kept */
+    if (!r || !s) {
+        fprintf(stderr, "out of memory\n");
+        return 1;
+    }
+    for (size_t i = 0; i < 4096; ++i)
+        bad += r[i] != pat(i);
+    for (size_t i = 0; i < n / 4; ++i)
+        bad += s[i] != pat(i + 7);
+    for (size_t i = 0; i < n; ++i)
+        bad += c[i] != 0;
+    for (size_t i = 0; i < n; ++i)
+        m[i] = pat(i), c[i] = pat(i + 1), r[i] = pat(i + 2);
+    for (size_t i = 0; i < n; ++i)
+        bad += (m[i] != pat(i)) + (c[i] != pat(i + 1)) + (r[i] != pat(i + 2));
+    const void *blocks[3] = {m, c, r};
+    const size_t sizes[3] = {n, n, n};
+    char mode[16] = "none";
+    FILE *f = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+    if (f) {
+        char l[128];
+        if (fgets(l, sizeof l, f)) {
+            char *a = strchr(l, '['), *b = a ? strchr(a, ']') : NULL;
+            if (a && b && b - a - 1 < (long)sizeof mode)
+                memcpy(mode, a + 1, (size_t)(b - a - 1)), mode[b - a - 1] = 0;
+        }
+        fclose(f);
+    }
+    printf("bad=%ld\nhuge_kb=%ld\nthp=%s\n", bad, huge_kb(blocks, sizes, 3), mode);
+    free(m);
+    free(c);
+    free(r);
+    free(s);
+    return 0;
+}
