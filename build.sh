@@ -182,6 +182,20 @@ install_deps() {
     fi
 }
 
+# install_deps once: the commands that need the Debian packages but run often
+# (run, gen, scenes, ...) check a stamp (out/.deps-installed: the package
+# list it was made for) instead of asking dpkg each time; a fresh clone or a
+# changed list installs what is missing first.
+DEPS_STAMP="$ROOT/out/.deps-installed"
+ensure_deps() {      # (--always: ask dpkg whatever the stamp says)
+    local want="${PACKAGES[*]}" have=
+    [ -f "$DEPS_STAMP" ] && read -r have < "$DEPS_STAMP"
+    [ "$have" = "$want" ] && [ "${1:-}" != --always ] && return 0
+    install_deps
+    mkdir -p "${DEPS_STAMP%/*}"
+    printf '%s\n' "$want" > "$DEPS_STAMP"
+}
+
 # The launcher of repeated runs (frontend/run_cached.c), built on first use;
 # when it cannot be built, runs take the Python front end (same results).
 build_run_cached() {
@@ -204,7 +218,7 @@ build_run_cached() {
 cmd="${1:-}"
 case "$cmd" in
     "")
-        install_deps
+        ensure_deps --always
         "$PY" -m gen.cli gen
         "$PY" -m gen.cli run "$DEFAULT_SCENE"
         case ":$PATH:" in
@@ -216,11 +230,11 @@ case "$cmd" in
         usage
         ;;
     deps)
-        install_deps
+        ensure_deps --always
         ;;
     test)
         shift
-        install_deps
+        ensure_deps --always
         # pytest (Debian's python3-pytest) with python3-pytest-xdist on both
         # cores; tests/pytest.ini holds the options and markers.
         # A test file or node id (tests/test_weld.py, ...::test_x; from the
@@ -260,6 +274,7 @@ case "$cmd" in
         if [ -z "${BK_NO_FAST_RUN:-}" ] && build_run_cached "$ROOT/out/bin/run-cached"; then
             BK_ROOT="$ROOT" exec "$ROOT/out/bin/run-cached" "$@"
         fi
+        ensure_deps
         # gen/cli.py (an identical earlier run is reused without the scene
         # compiler); -S: no site packages (the run path needs none), frozen
         # modules: the interpreter's own start-up modules from its binary (1.5 ms
@@ -270,16 +285,20 @@ case "$cmd" in
         ;;
     gen)
         shift
+        ensure_deps
         exec "$PY" -m gen.cli gen "$@"
         ;;
     sweep|fit)
+        ensure_deps
         exec "$PY" -m beamkit.cli "$@"
         ;;
     scenes)
+        ensure_deps
         exec "$PY" -m gen.cli scenes
         ;;
     plot)
         shift
+        ensure_deps
         exec "$PY" -m report.plot "$@"
         ;;
     animate)
@@ -292,23 +311,26 @@ case "$cmd" in
         ;;
     hard)
         shift
+        ensure_deps
         exec "$PY" -m report.hard "$@"
         ;;
     calculix)
         # (paths on its command line are the caller's: run from there)
         shift
+        ensure_deps
         cd "$BK_CALLER_CWD"
         exec "$PY" -m calculix "$@"
         ;;
     report)
         shift
+        ensure_deps
         "$PY" -m report.seed_tables "$@"
         "$PY" -m report.verification "$@"
         exec "$PY" -m report.dynamics "$@"
         ;;
     bench)
         shift
-        install_deps
+        ensure_deps --always
         "$PY" -m gen.cli gen
         exec "$PY" -m report.bench "$@"
         ;;

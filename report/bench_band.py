@@ -85,7 +85,8 @@ def programs(log=print, fetch=False):
     from gen.solver_build import BUILD, CC, WARN
     out = BUILD / "release" / "bench"
     out.mkdir(parents=True, exist_ok=True)
-    src = [str(ROOT / "bench" / "band_lapack.c"), str(ROOT / "runtime" / "linalg" / "bandlu.c")]
+    src = [str(ROOT / "bench" / "band_lapack.c"), str(ROOT / "runtime" / "linalg" / "bandlu.c"),
+           str(ROOT / "runtime" / "base" / "bigalloc.c")]
     flags = ["-O2", "-march=native", "-fopenmp"] + WARN + ["-I" + str(ROOT / "runtime")]
     progs = {}
     exe = out / "bench_band_reference"
