@@ -2,7 +2,8 @@
 (seed Table 3 at -100 N, 10,000 ancf3243 x svk elements, every default output
 on) run by its per-scene solver with 1 OpenMP thread on one core (the
 process held to it: its writer thread shares it) and with 2 threads on both,
-the two interleaved; the ratio of the median whole-process walls (target >= 1.4), and
+the two interleaved; the ratio of the median whole-process walls (target >= 1.4;
+also the ratio of the fastest runs, as a shared machine's load only adds time), and
 where the one-thread run's wall goes, so a miss comes with what stands in the
 way:
 
@@ -63,7 +64,7 @@ def end_to_end(work, quick, log, srows=()):
     work = work / "threads"
     solver, model = _build_run(TABLE3, [f"beam.arm.elements={n}"], work / "build")
     res = {1: [], 2: []}
-    for _ in range(3 if quick else 5):
+    for _ in range(3 if quick else 7):
         for th in (1, 2):
             res[th].append(_one(solver, model, work / f"t{th}", th))
     med = {th: statistics.median(r[0] for r in res[th]) for th in res}
@@ -72,6 +73,10 @@ def end_to_end(work, quick, log, srows=()):
     row = {"elements": n, "target": TARGET, "wall_1_s": med[1], "wall_2_s": med[2],
            "cpu_1_s": statistics.median(r[1] for r in res[1]), "cpu_2_s": statistics.median(r[1] for r in res[2]),
            "speedup": med[1] / med[2], "newton_iterations": s1["newton_iterations"], "load": load,
+           # the fastest of each (the machine may be shared: another tenant's load only adds time,
+           # and reaches a 2-thread run, which needs both cores, more than a 1-thread one)
+           "wall_1_min_s": min(r[0] for r in res[1]), "wall_2_min_s": min(r[0] for r in res[2]),
+           "speedup_min": min(r[0] for r in res[1]) / min(r[0] for r in res[2]),
            "split": s1["dofs"] >= SPLIT_MIN,
            "solver_wall_1_s": statistics.median(r[2]["wall_s"] for r in res[1]),
            "output_1_s": statistics.median(r[2]["output_s"] for r in res[1]),
@@ -107,6 +112,8 @@ def target_row(r, met):
     return (f"both cores end to end ≥ {r['target']:g}× one on a {r['elements']:,}-element static scene "
             f"(Table 3, every default output)",
             f"{r['speedup']:.2f}× ({r['wall_1_s']:.3f} s with 1 thread on one core against {r['wall_2_s']:.3f} s with 2 "
-            f"on two, medians of interleaved whole runs; process CPU {r['cpu_1_s']:.3f} / {r['cpu_2_s']:.3f} s; {r['newton_iterations']} Newton "
+            f"on two, medians of interleaved whole runs; the fastest of each: {r.get('speedup_min', float('nan')):.2f}×, "
+            f"{r.get('wall_1_min_s', float('nan')):.3f} / {r.get('wall_2_min_s', float('nan')):.3f} s; "
+            f"process CPU {r['cpu_1_s']:.3f} / {r['cpu_2_s']:.3f} s; {r['newton_iterations']} Newton "
             f"iterations; load average {r.get('load', float('nan')):.1f} at the end){prof}",
             met(r["speedup"] >= r["target"] and r["elements"] >= ELEMENTS))
