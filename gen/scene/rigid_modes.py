@@ -46,10 +46,84 @@ def rigid_velocities(mesh):
     return modes
 
 
+def _coordinates(mesh):
+    """({DOF: (field kind "r", "v" or "p", the field's first DOF)} of the
+    coordinates a rigid motion moves, the centre of the positions), as
+    rigid_velocities groups them."""
+    q0 = mesh.q0
+    where, pos = {}, []
+    for g in range(len(mesh.nodes)):
+        for f, dofs in mesh.field_dofs(g).items():
+            if f == "p":
+                for d in dofs:
+                    where[d] = ("p", dofs[0])
+            elif len(dofs) == 3:
+                for d in dofs:
+                    where[d] = ("r" if f == "r" else "v", dofs[0])
+                if f == "r":
+                    pos.append(dofs[0])
+    c = [sum(q0[d + k] for d in pos) / len(pos) if pos else 0.0 for k in range(3)]
+    return where, c
+
+
+def _velocity_row(q0, where, c, d):
+    """Coordinate d's velocity under the six rigid motions (column d of
+    rigid_velocities), in plain Python."""
+    row = [0.0] * 6
+    kind, d0 = where.get(d, (None, d))
+    j = d - d0
+    if kind in ("r", "v"):
+        v = [q0[d0 + k] - (c[k] if kind == "r" else 0.0) for k in range(3)]
+        if kind == "r":
+            row[j] = 1.0                             # translation j moves component j
+        for k in range(3):                           # rotation k: (e_k x v)[j]
+            row[3 + k] = -v[(k + 2) % 3] if j == (k + 1) % 3 else v[(k + 1) % 3] if j == (k + 2) % 3 else 0.0
+    elif kind == "p":                                # quaternion (s, u): (0, w) p / 2
+        s, u = q0[d0], [q0[d0 + 1 + k] for k in range(3)]
+        for k in range(3):
+            if j == 0:
+                row[3 + k] = -0.5 * u[k]
+            else:
+                i = j - 1
+                cross = -u[(k + 2) % 3] if i == (k + 1) % 3 else u[(k + 1) % 3] if i == (k + 2) % 3 else 0.0
+                row[3 + k] = 0.5 * ((s if i == k else 0.0) + cross)
+    return row
+
+
+def fixed_hold_all(mesh, fixed, rel=1e-3):
+    """True when the fixed coordinates alone clearly hold all six rigid motions:
+    their rows of the rigid velocities span the six motions, each new direction
+    with at least `rel` of its row's length left after the earlier ones are
+    taken out (Gram-Schmidt).  A clamp does (its position rows hold the
+    translations, its gradient rows the rotations), so a clamped scene needs no
+    numpy (about 100 ms of a run that changes only numbers); anything less
+    clear-cut is left to free_motions' SVDs, which decide as before."""
+    if len(fixed) < 6:
+        return False
+    where, c = _coordinates(mesh)
+    basis = []
+    for d in fixed:
+        row = _velocity_row(mesh.q0, where, c, d)
+        n0 = sum(x * x for x in row) ** 0.5
+        if n0 == 0.0:
+            continue
+        for b in basis:
+            dot = sum(x * y for x, y in zip(row, b))
+            row = [x - dot * y for x, y in zip(row, b)]
+        n = sum(x * x for x in row) ** 0.5
+        if n > rel * n0:
+            basis.append([x / n for x in row])
+            if len(basis) == 6:
+                return True
+    return False
+
+
 def free_motions(mesh, fixed, lincons):
     """Descriptions of the rigid motions no constraint holds (empty: none).
     Only motions that move some coordinate count (a straight cable turning
     about its own axis moves none)."""
+    if fixed_hold_all(mesh, fixed):
+        return []
     import numpy as np
     modes = rigid_velocities(mesh)                       # 6 x ndof
     _u, s, vt = np.linalg.svd(modes.T, full_matrices=False)
