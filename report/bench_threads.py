@@ -111,8 +111,9 @@ def target_row(r, met):
                 f"as serial the bound is {r['amdahl_bound']:.2f}×")
     return (f"both cores end to end ≥ {r['target']:g}× one on a {r['elements']:,}-element static scene "
             f"(Table 3, every default output)",
-            f"{r['speedup']:.2f}× ({r['wall_1_s']:.3f} s with 1 thread on one core against {r['wall_2_s']:.3f} s with 2 "
-            f"on two, medians of interleaved whole runs; the fastest of each: {r.get('speedup_min', float('nan')):.2f}×, "
+            f"{r['speedup']:.2f}× ({r['wall_1_s']:.3f} s with 1 thread on one core against {r['wall_2_s']:.3f} s "
+            f"with 2 on two, medians of interleaved whole runs; the fastest of each: "
+            f"{r.get('speedup_min', float('nan')):.2f}×, "
             f"{r.get('wall_1_min_s', float('nan')):.3f} / {r.get('wall_2_min_s', float('nan')):.3f} s; "
             f"process CPU {r['cpu_1_s']:.3f} / {r['cpu_2_s']:.3f} s; {r['newton_iterations']} Newton "
             f"iterations; load average {r.get('load', float('nan')):.1f} at the end){prof}",
