@@ -5,9 +5,11 @@
  * 130 / 143 interrupted by SIGINT / SIGTERM (results so far kept, summary.json
  * says "interrupted": true; see interrupt.h).
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/clock.h"
 #include "analysis/analysis.h"
@@ -23,6 +25,24 @@ extern const int bk_nlinked_pairs;
 extern const bk_joint_kind *const bk_joint_kinds[];
 extern const int bk_njoint_kinds;
 
+
+/* The results directory: made when missing (its parent must exist), refused
+ * when it is something else; checked before the model is read, so that a run
+ * of a large model does not set up for seconds and then fail to write. */
+static int results_dir(const char *dir, FILE *err)
+{
+    struct stat st;
+    if (stat(dir, &st) == 0) {
+        if (S_ISDIR(st.st_mode))
+            return 0;
+        fprintf(err, "error: %s: the results directory is not a directory\n", dir);
+        return -1;
+    }
+    if (errno == ENOENT && mkdir(dir, 0777) == 0)
+        return 0;
+    fprintf(err, "error: %s: cannot make the results directory: %s\n", dir, strerror(errno));
+    return -1;
+}
 
 int main(int argc, char **argv)
 {
@@ -46,6 +66,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: %s MODEL_FILE OUT_DIR [--verbose | --quiet]\n", argv[0]);
         return 1;
     }
+    if (results_dir(out_dir, stderr) != 0)
+        return 1;
     double t0 = bk_clock_s();
     if (bk_interrupt_block() != 0) {
         fprintf(stderr, "error: cannot block SIGINT/SIGTERM for a clean interruption\n");

@@ -2,6 +2,7 @@
 exit codes that tell bad input, usage errors and failed solves apart."""
 import json
 import shutil
+import subprocess
 import tempfile
 from pathlib import Path
 
@@ -141,3 +142,23 @@ def test_the_run_line_counts_in_the_singular_for_one():
     r = run_cli(["run", "cantilever_bend_10N", "--out",
                  str(Path(tempfile.mkdtemp(prefix="bk-two-", dir=ensure_dir(BUILD / "runs"))))])
     assert r.returncode == 0 and "converged; 2 steps, " in r.stdout and " 10 elements, " in r.stdout, r.stdout
+
+
+def test_the_solver_makes_a_missing_results_directory_and_refuses_a_file():
+    """The per-scene solver run directly (out/bin/SCENE MODEL OUT_DIR): a missing
+    OUT_DIR is made (its parent exists); a file, or a missing parent, is refused at
+    once with one error line naming it (exit 1), before the model is read."""
+    work = Path(tempfile.mkdtemp(prefix="bk-solver-dir-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "cantilever_bend_10N", "--quiet", "--out", str(work / "first")])
+    assert r.returncode == 0, r.stderr
+    solver, model = ROOT / "out" / "bin" / "cantilever_bend_10N", work / "first" / "model.dat"
+    r = subprocess.run([str(solver), str(model), str(work / "made"), "--quiet"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    a = json.loads((work / "first" / "summary.json").read_text())
+    b = json.loads((work / "made" / "summary.json").read_text())
+    assert a["sensors"] == b["sensors"] and a["converged"] and b["converged"]
+    (work / "file").write_text("not a directory\n")
+    for target, words in ((work / "file", "is not a directory"), (work / "no" / "such", "cannot make")):
+        r = subprocess.run([str(solver), str(model), str(target), "--quiet"], capture_output=True, text=True)
+        lines = [l for l in r.stderr.splitlines() if l.startswith("error")]
+        assert r.returncode == 1 and len(lines) == 1 and str(target) in lines[0] and words in lines[0], r.stderr
