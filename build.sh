@@ -137,7 +137,7 @@ Commands:
   bench [--quick]        the speed-against-error report: work-precision diagrams,
                          kernel timings, scaling, toolchain times, in
                          out/report/bench.md (+ bench_*.csv, bench_*.png);
-                         about 10 minutes on 2 cores, --quick about 1 minute
+                         about 6 minutes on 2 cores, --quick about 1 minute
   --help                 this text
 
 Results of a run: out/runs/SCENE/summary.json and sensors.csv (see docs/reference/outputs.md).
