@@ -203,7 +203,7 @@ int bk_assemble_internal(bk_system *s, const double *q, double *fint, double *Ax
     const bk_model *m = s->m;
     int bad = 0;
     const int ng = s->ngroup, tangent = Ax != NULL;
-    const size_t sq = s->slot_q, sK = s->slot_K, st = s->slot_tab, sm = (size_t)BK_LANES * BK_MAT_MAXPARAM;
+    const size_t sq = s->slot_q, sK = s->slot_K, st = s->slot_tab, sm = s->slot_mat;
     if (Ax)                            /* slots no element writes (constraint rows) */
         for (long k = 0; k < s->nzslot; ++k)
             Ax[s->zslot[k]] = 0.0;

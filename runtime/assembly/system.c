@@ -85,7 +85,7 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
             e += n;
         }
         s->group[s->ngroup] = m->nelem;
-        s->slot_q = sq, s->slot_K = sK, s->slot_tab = st;
+        s->slot_q = sq, s->slot_K = sK, s->slot_tab = st, s->slot_mat = (size_t)BK_LANES * BK_MAT_MAXPARAM;
     }
     s->nthreads = 1;
 #ifdef _OPENMP
@@ -99,11 +99,21 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     {
         /* one evaluation slot per thread (one when serial) */
         const size_t np = (size_t)(s->npart > 1 ? s->nthreads : 1);
+        if (np > 1) {
+            /* the threads' slots BK_SLOT_GAP apart: adjacent ones (bq's 1.5 kB
+             * apart for ancf3243) made the 10,000-element assembly on 2 threads
+             * take 9.4 ms instead of 6.9 -- the second thread's groups 14 us
+             * each instead of 6 (the cores' prefetchers pulling in each
+             * other's lines, by the look of it: the cost went with the gap,
+             * none from 32 kB on) */
+            const size_t gap = BK_SLOT_GAP / sizeof(double);
+            s->slot_q += gap, s->slot_K += gap, s->slot_tab += gap, s->slot_mat += gap;
+        }
         s->bq = alloc_lanes(np * s->slot_q);
         s->bf = alloc_lanes(np * s->slot_q);
         s->bK = alloc_lanes(np * s->slot_K);
         s->btab = alloc_lanes(np * s->slot_tab);
-        s->bmat = alloc_lanes(np * BK_LANES * BK_MAT_MAXPARAM);
+        s->bmat = alloc_lanes(np * s->slot_mat);
         if (!s->bq || !s->bf || !s->bK || !s->btab || !s->bmat)
             goto oom;
     }
