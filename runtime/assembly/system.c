@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "assembly/system_impl.h"
+#include "base/bigalloc.h"
 
 #include "linalg/linsolve.h"
 
@@ -99,16 +100,10 @@ bk_system *bk_system_create(const bk_model *m, FILE *err)
     {
         /* one evaluation slot per thread (one when serial) */
         const size_t np = (size_t)(s->npart > 1 ? s->nthreads : 1);
-        if (np > 1) {
-            /* the threads' slots BK_SLOT_GAP apart: adjacent ones (bq's 1.5 kB
-             * apart for ancf3243) made the 10,000-element assembly on 2 threads
-             * take 9.4 ms instead of 6.9 -- the second thread's groups 14 us
-             * each instead of 6 (the cores' prefetchers pulling in each
-             * other's lines, by the look of it: the cost went with the gap,
-             * none from 32 kB on) */
-            const size_t gap = BK_SLOT_GAP / sizeof(double);
-            s->slot_q += gap, s->slot_K += gap, s->slot_tab += gap, s->slot_mat += gap;
-        }
+        /* the threads' slots apart (bigalloc.h: adjacent ones made the
+         * 10,000-element assembly on 2 threads take 9.4 ms instead of 6.9) */
+        s->slot_q = bk_thread_stride(s->slot_q, (int)np), s->slot_K = bk_thread_stride(s->slot_K, (int)np);
+        s->slot_tab = bk_thread_stride(s->slot_tab, (int)np), s->slot_mat = bk_thread_stride(s->slot_mat, (int)np);
         s->bq = alloc_lanes(np * s->slot_q);
         s->bf = alloc_lanes(np * s->slot_q);
         s->bK = alloc_lanes(np * s->slot_K);

@@ -53,7 +53,7 @@ typedef struct bk_system {
     int *group;              /* [ngroup+1] first element of each group        */
     size_t slot_q, slot_K, slot_tab, slot_mat; /* doubles from one thread's slot of
                               * bq/bf, bK, btab, bmat to the next's (a group's
-                              * size, and with threads BK_SLOT_GAP beyond it)   */
+                              * size, and with threads BK_THREAD_GAP beyond it) */
     double *bq, *bf, *bK;    /* per-thread evaluation buffers (one slot each)  */
     double *btab, *bmat;     /* lane-ordered tables and material parameters   */
     /* Parallel assembly (nthreads > 1 and enough elements): npart contiguous

@@ -19,9 +19,6 @@
  * a descheduled thread holds up the barrier: a 32-element gef pendulum spent
  * half its time spinning in libgomp with 2 threads on 2 busy cores). */
 #define BK_PAR_MIN_ELEMS 256
-/* Bytes between one thread's evaluation buffers and the next thread's (system.h
- * slot_*): 64 kB, twice the gap from which the measured slowdown was gone. */
-#define BK_SLOT_GAP ((size_t)64 << 10)
 /* Most parts of the parallel assembly (one per thread; owner codes of a byte). */
 #define BK_MAX_PARTS 250
 /* Parts per thread: the threads take parts as they finish the last (dynamic

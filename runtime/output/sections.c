@@ -184,7 +184,6 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
                            const double *qdd)
 {
     const bk_model *m = s->m;
-    const size_t nb = 6 * (size_t)s->maxdof + 4 * (size_t)s->maxdof * (size_t)s->maxdof;
     const int nsec = m->nsection;
     if (nsec >= 256) {
 #pragma omp parallel num_threads(f->nthread)
@@ -193,7 +192,7 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
 #ifdef _OPENMP
             t = omp_get_thread_num();
 #endif
-            double *buf = f->sbuf + (size_t)t * nb, *sres = f->sres + (size_t)t * 9 * (size_t)f->maxsample;
+            double *buf = f->sbuf + (size_t)t * f->sbuf_stride, *sres = f->sres + (size_t)t * f->sres_stride;
 #pragma omp for schedule(static)
             for (int k = 0; k < nsec; ++k)
                 section_values(f, s, k, x, q, qd, qdd, buf, sres);
