@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/bigalloc.h"
+
 /* The symmetric pattern of (Ap, Ai) with every diagonal (Bp, Bi) and for each
  * entry the positions of (i,j) and (j,i) in the matrix's values.  (j,i) is
  * found with a cursor per column i that only moves down: the columns j are
@@ -104,7 +106,7 @@ static int use_band(bk_symsolver *f, bk_band *lu, bk_bandsplit *sp)
         f->now = ab + len;
         f->lender = lu;
     } else {
-        f->now = malloc(len * sizeof *f->now);
+        f->now = bk_big_malloc(len * sizeof *f->now);   /* (a 10,000-element band: 35 MB) */
         if (!f->now)
             return -1;
     }
