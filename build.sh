@@ -190,7 +190,12 @@ DEPS_STAMP="$ROOT/out/.deps-installed"
 ensure_deps() {      # (--always: ask dpkg whatever the stamp says)
     local want="${PACKAGES[*]}" have=
     [ -f "$DEPS_STAMP" ] && read -r have < "$DEPS_STAMP"
-    [ "$have" = "$want" ] && [ "${1:-}" != --always ] && return 0
+    if [ "$have" = "$want" ] && [ "${1:-}" != --always ]; then
+        # (renewed when build.sh is newer: out/bin/run-cached starts Python
+        # itself only with a stamp no older than build.sh)
+        [ "$DEPS_STAMP" -nt "$ROOT/build.sh" ] || touch "$DEPS_STAMP"
+        return 0
+    fi
     install_deps
     mkdir -p "${DEPS_STAMP%/*}"
     printf '%s\n' "$want" > "$DEPS_STAMP"
@@ -279,7 +284,9 @@ case "$cmd" in
         # compiler); -S: no site packages (the run path needs none), frozen
         # modules: the interpreter's own start-up modules from its binary (1.5 ms
         # of a 10 ms start here); gen.cli imported, not run as a script, so that
-        # its bytecode comes from out/pycache (a script is compiled at every start: 2-7 ms)
+        # its bytecode comes from out/pycache (a script is compiled at every start: 2-7 ms).
+        # frontend/run_cached.c (fall_back) starts the same command itself once
+        # the package stamp is current: keep the two in step
         exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))' \
             run "$@"
         ;;

@@ -219,3 +219,42 @@ def test_a_quiet_repeated_run_becomes_the_solver_and_stops_on_a_signal(signo, st
     s = json.loads((out / "summary.json").read_text())
     assert s["interrupted"] is True and s["signal"] == signal.Signals(signo).name and s["steps"] >= 20
     assert s["warnings"][:len(scene_warnings)] == scene_warnings
+
+
+@pytest.mark.skipif(shutil.which("strace") is None, reason="strace is not installed")
+def test_a_new_run_starts_python_without_the_shells_once_the_packages_are_stamped():
+    """A run the launcher cannot take (a new --set value) starts Python directly, as
+    build.sh's `run` does, when build.sh's package stamp is no older than build.sh;
+    else through build.sh (which checks the packages).  Both give the same results,
+    and a relative --out is the caller's either way."""
+    launcher()
+    stamp = ROOT / "out" / ".deps-installed"
+    assert stamp.exists(), "build.sh's first run writes out/.deps-installed"
+    work = out_dir()
+
+    def run(tag, value):
+        trace = work / f"{tag}.trace"
+        r = subprocess.run(["strace", "-f", "-qq", "-e", "trace=execve", "-o", str(trace), str(ROOT / "build.sh"),
+                            "run", "cantilever_bend_100N_nu03", "--quiet", "--out", tag,
+                            "--set", f"material.alu.E={value!r}"],
+                           capture_output=True, text=True, cwd=work, timeout=600,
+                           env={k: v for k, v in ENV.items() if k != "BK_CALLER_CWD"})   # (work is the caller's)
+        assert r.returncode == 0, r.stderr[-2000:]
+        started = [line.split('execve("', 1)[1].split('"', 1)[0] for line in trace.read_text().splitlines()
+                   if 'execve("' in line and "= 0" in line]
+        return started, json.loads((work / tag / "summary.json").read_text())
+
+    value = 7.2e10 * (1 + 1e-9 * (os.getpid() % 100000 + 1))     # a value no earlier run used
+    direct, s1 = run("direct", value)
+    assert "/usr/bin/python3" in direct and "/bin/bash" not in direct, direct
+    before = stamp.stat()
+    build_sh = (ROOT / "build.sh").stat()
+    try:
+        os.utime(stamp, ns=(before.st_atime_ns, build_sh.st_mtime_ns - 10**9))   # older than build.sh
+        shells, s2 = run("shells", value * (1 + 1e-9))
+    finally:
+        os.utime(stamp, ns=(before.st_atime_ns, before.st_mtime_ns))
+    assert "/bin/bash" in shells and "/usr/bin/python3" in shells, shells
+    assert s1["converged"] and s2["converged"]
+    tip1, tip2 = s1["sensors"]["tip"]["displacement"][2], s2["sensors"]["tip"]["displacement"][2]
+    assert abs(tip1 - tip2) <= 1e-6 * abs(tip1)          # E differs by 1e-9 relative
