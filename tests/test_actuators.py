@@ -280,7 +280,8 @@ setpoint = {th0!r}
 
 def test_bad_actuators():
     """One clear line each: an actuator on a joint without an axis, on a driven
-    joint, on a constraint that does not exist, a set-point without a gain."""
+    joint, on a constraint that does not exist, a set-point without a gain, a
+    name not of 1 to 63 letters, digits, '_', '.' or '-'."""
     sph = LINK.replace('type = "revolute"', 'type = "spherical"').replace('axis = [0.0, 0.0, 1.0]\n', "")
     check_error(sph + '[[actuator]]\njoint = "hinge"\neffort = 1.0\n', "actuator[0].joint",
                 "spherical joint: an actuator needs a joint with an axis")
@@ -288,6 +289,10 @@ def test_bad_actuators():
                 "no constraint named 'knee'")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nsetpoint = 1.0\n', "actuator[0].kp", "needs a gain")
     check_error(LINK + '[[actuator]]\njoint = "hinge"\nkp = -1.0\n', "actuator[0].kp", "")
+    # names: 1 to 63 of letters, digits, '_', '.', '-' (a space, 64 letters, an empty one, a non-ASCII letter)
+    for bad in ("the motor", "m" * 64, "", "moteur\u00e9"):
+        check_error(LINK + f'[[actuator]]\nname = "{bad}"\njoint = "hinge"\neffort = 1.0\n', "actuator[0].name",
+                    "expected 1 to 63 letters, digits")
 
 
 BEAM_JOINT = """[scene]
