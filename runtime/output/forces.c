@@ -50,11 +50,14 @@ int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, b
 #ifdef _OPENMP
     f->nthread = omp_get_max_threads() > 1 ? omp_get_max_threads() : 1;
 #endif
-    const size_t nt = (size_t)f->nthread, ne = (size_t)(m->nelem ? m->nelem : 1);
-    f->sbuf_stride = bk_thread_stride(6 * md + 4 * md * md, f->nthread);
-    f->sres_stride = bk_thread_stride(9 * (size_t)maxsample, f->nthread);
-    f->sbuf = calloc(nt * f->sbuf_stride, sizeof *f->sbuf);
-    f->sres = malloc(nt * f->sres_stride * sizeof *f->sres);
+    const size_t ne = (size_t)(m->nelem ? m->nelem : 1);
+    /* a slot per thread when the section forces run on the threads, apart
+     * (bigalloc.h); else one (no gap: a small run touches no more memory) */
+    const int slots = m->nsection >= BK_SECTIONS_PAR_MIN ? f->nthread : 1;
+    f->sbuf_stride = bk_thread_stride(6 * md + 4 * md * md, slots);
+    f->sres_stride = bk_thread_stride(9 * (size_t)maxsample, slots);
+    f->sbuf = calloc((size_t)slots * f->sbuf_stride, sizeof *f->sbuf);
+    f->sres = malloc((size_t)slots * f->sres_stride * sizeof *f->sres);
     f->spos = bk_big_malloc((6 + 3 * (size_t)maxsample) * ne * sizeof *f->spos);
     f->ssec = bk_big_malloc(6 * (size_t)maxsample * (size_t)(m->nelem ? m->nelem : 1) * sizeof *f->ssec);
     if (!f->fld || !f->kind || !f->comp || !f->res || !f->fext || !f->buf || !f->last || !f->sec || !f->sres ||

@@ -58,8 +58,9 @@ typedef struct bk_forces {
                                    * element at output step sec_step (for the ParaView frames) */
     int sec_step;
     int nthread;                  /* the section forces' threads (OpenMP's most; 1 serial) */
-    double *sbuf;                 /* [nthread sbuf_stride] their element buffers (6 maxdof + 4 maxdof^2 each) */
-    double *sres;                 /* [nthread sres_stride] the output of a pair's sections() (9 maxsample each) */
+    double *sbuf;                 /* [nthread sbuf_stride] their element buffers (6 maxdof + 4 maxdof^2 each;
+                                   * one slot when the section forces are serial: forces_impl.h) */
+    double *sres;                 /* [nthread sres_stride] the output of a pair's sections() (9 maxsample each; idem) */
     size_t sbuf_stride, sres_stride;   /* doubles from one thread's slot to the next's (bigalloc.h) */
     double *spos;                 /* [(6 + 3 maxsample) nelem] the rows' points: the element's ends, its
                                    * sample points (sections.c) */

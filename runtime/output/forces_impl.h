@@ -9,6 +9,10 @@
 
 enum { K_NONE = 0, K_POS = 1, K_GRAD = 2, K_QUAT = 3 };
 
+/* Section records from which the section forces are computed on the threads
+ * (bk_forces_sections); fewer: serially, in the first thread slot only. */
+#define BK_SECTIONS_PAR_MIN 256
+
 /* F, M (about x0) of the generalized force value r at global DOF d (forces.h). */
 void bk_forces_map_dof(const bk_forces *f, const double *q, int d, double r, const double *x0, double *F, double *M);
 /* y[i] (+)= sum_j A[i n + j] v[j] over the n rows of A (n x n, row-major),

@@ -185,7 +185,7 @@ void bk_forces_sections(bk_forces *f, bk_system *s, int step, double x, const do
 {
     const bk_model *m = s->m;
     const int nsec = m->nsection;
-    if (nsec >= 256) {
+    if (nsec >= BK_SECTIONS_PAR_MIN) {
 #pragma omp parallel num_threads(f->nthread)
         {
             int t = 0;
