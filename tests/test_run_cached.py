@@ -266,3 +266,19 @@ def test_a_new_run_starts_python_without_the_shells_once_the_packages_are_stampe
     assert s1["converged"] and s2["converged"]
     tip1, tip2 = s1["sensors"]["tip"]["displacement"][2], s2["sensors"]["tip"]["displacement"][2]
     assert abs(tip1 - tip2) <= 1e-6 * abs(tip1)          # E differs by 1e-9 relative
+
+
+def test_the_launcher_starts_python_as_build_sh_does():
+    """frontend/run_cached.c (fall_back) starts the Python front end itself with
+    build.sh run's command line: the interpreter, its flags and the -c code are
+    the same strings in both files (a change to one must be made in the other)."""
+    import re
+    sh = (ROOT / "build.sh").read_text()
+    m = re.search(r'exec "\$PY" (-S -X frozen_modules=on) -c \'([^\']*)\' \\\s*\n\s*run "\$@"', sh)
+    assert m, "build.sh run's Python command line not found"
+    flags, code = m.group(1).split(), m.group(2)
+    assert re.search(r'^PY=/usr/bin/python3$', sh, re.M)
+    c = (FRONTEND / "run_cached.c").read_text()
+    args = re.findall(r'cmd\[k\+\+\] = "([^"]*)";', c)
+    assert args == flags + ["-c", code, "run"], (args, flags, code)
+    assert 'static const char py[] = "/usr/bin/python3";' in c
