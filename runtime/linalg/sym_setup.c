@@ -106,7 +106,7 @@ static int use_band(bk_symsolver *f, bk_band *lu, bk_bandsplit *sp)
         f->now = ab + len;
         f->lender = lu;
     } else {
-        f->now = bk_big_malloc(len * sizeof *f->now);   /* (a 10,000-element band: 35 MB) */
+        f->now = bk_big_malloc(len * sizeof *f->now);   /* (a 10,000-element band: 23 MB) */
         if (!f->now)
             return -1;
     }

@@ -56,8 +56,9 @@ static int stability_init(bk_stability *st, const bk_system *s, bk_linsolver *ls
     if (bk_sym_init(&st->sym, n, s->Ap, s->Ai, st->ismult, ls) != 0)
         return -1;
     /* (on huge pages, as the values now it takes turns with: bk_sym_keep_now
-     * swaps them, so each check of a long band filled fresh memory -- 8,600
-     * page faults and 66-70 ms of a 10,000-element run's two checks) */
+     * swaps them, so each check of a long band filled fresh memory -- a
+     * 10,000-element run's checks took 5,100-5,900 page faults and 66-70 ms
+     * each on small pages, 22-50 ms on huge ones) */
     st->prev = bk_big_malloc((size_t)(st->sym.nval > 0 ? st->sym.nval : 1) * sizeof *st->prev);
     return st->prev ? 0 : -1;
 }
