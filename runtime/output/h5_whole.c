@@ -40,15 +40,6 @@ void bk_h5_dofs_free(bk_h5_dofs *d)
     memset(d, 0, sizeof *d);
 }
 
-/* s into a zeroed cell of `cell` bytes, cut to leave its terminator. */
-static void put_cut(char *dst, const char *s, size_t cell)
-{
-    size_t n = 0;
-    while (n + 1 < cell && s[n])
-        ++n;
-    memcpy(dst, s, n);
-}
-
 int bk_h5_dofs_make(const bk_model *m, bk_h5_dofs *d)
 {
     size_t nd = (size_t)m->ndof;
@@ -95,10 +86,10 @@ int bk_h5_dofs_make(const bk_model *m, bk_h5_dofs *d)
                     continue;
                 elem[q] = e;
                 node[q] = role == BK_FIELD_MULTIPLIER ? -1 : cur;
-                /* (into zeroed cells: a copy cut to leave the terminator; snprintf
-                 * here took 25 ms of the writer thread at 10,000 elements) */
-                put_cut(d->beam + (size_t)q * BK_H5_STR, bname, BK_H5_STR);
-                put_cut(d->field + (size_t)q * 8, field_name(role), 8);
+                /* (null-padded, cut to leave the terminator, as snprintf did:
+                 * snprintf here took 25 ms of the writer thread at 10,000 elements) */
+                strncpy(d->beam + (size_t)q * BK_H5_STR, bname, BK_H5_STR - 1);
+                strncpy(d->field + (size_t)q * 8, field_name(role), 7);
                 if (role != BK_FIELD_MULTIPLIER && c < (int)strlen(cn))
                     d->comp[(size_t)q * 2] = cn[c];
             }
