@@ -285,7 +285,7 @@ case "$cmd" in
         # modules: the interpreter's own start-up modules from its binary (1.5 ms
         # of a 10 ms start here); gen.cli imported, not run as a script, so that
         # its bytecode comes from out/pycache (a script is compiled at every start: 2-7 ms).
-        # frontend/run_cached.c (fall_back) starts the same command itself once
+        # frontend/python_start.c starts the same command itself once
         # the package stamp is current: keep the two in step
         exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))' \
             run "$@"

@@ -26,6 +26,7 @@
  * stderr instead of going to Python (tests; "why is my run not fast"). */
 #define _DEFAULT_SOURCE
 #include "console_summary.h"
+#include "python_start.h"
 #include "read_file.h"
 #include "run_dir.h"
 #include "run_key.h"
@@ -310,70 +311,22 @@ static int run_solver(const char *solver, const char *dir, const args *a)
     return sig == SIGINT ? 130 : sig == SIGTERM ? 143 : (-sig) & 0xff;
 }
 
-/* 1 when build.sh's Debian packages are known installed: its stamp
- * (out/.deps-installed, written by its ensure_deps) exists and is no older
- * than build.sh, whose package list it records. */
-static int deps_stamped(const char *root)
-{
-    char path[PATH_MAX];
-    struct stat st, sb;
-    snprintf(path, sizeof path, "%s/out/.deps-installed", root);
-    if (stat(path, &st) != 0)
-        return 0;
-    snprintf(path, sizeof path, "%s/build.sh", root);
-    if (stat(path, &sb) != 0)
-        return 0;
-    return st.st_mtim.tv_sec > sb.st_mtim.tv_sec ||
-           (st.st_mtim.tv_sec == sb.st_mtim.tv_sec && st.st_mtim.tv_nsec >= sb.st_mtim.tv_nsec);
-}
-
-/* The Python front end, with the same arguments.  With the packages stamped
- * installed it is started here as build.sh's `run` starts it (the same
- * interpreter, flags and environment: keep them in step), which saves the
- * start of /bin/sh and /bin/bash (7 ms of an 80 ms run with a new --set value
- * on a virtual machine); otherwise through build.sh, which installs them. */
+/* The Python front end, with the same arguments: started here as build.sh's
+ * `run` starts it when the packages are stamped installed (python_start.h),
+ * else through build.sh, which installs them. */
 static int fall_back(const char *root, int argc, char **argv)
 {
+    setenv("BK_NO_FAST_RUN", "1", 1);
+    bk_start_python_front_end(root, argc, argv);
     char build[PATH_MAX];
     snprintf(build, sizeof build, "%s/build.sh", root ? root : ".");
-    char **cmd = calloc((size_t)argc + 8, sizeof *cmd);
+    char **cmd = calloc((size_t)argc + 3, sizeof *cmd);
     if (!cmd)
         return 1;
-    setenv("BK_NO_FAST_RUN", "1", 1);
-    if (root && *root == '/' && deps_stamped(root)) {
-        static const char py[] = "/usr/bin/python3";
-        char pypath[PATH_MAX + 16], cache[PATH_MAX + 16];
-        const char *old = getenv("PYTHONPATH");
-        if (old && *old)
-            snprintf(pypath, sizeof pypath, "%s:%s", root, old);
-        else
-            snprintf(pypath, sizeof pypath, "%s", root);
-        snprintf(cache, sizeof cache, "%s/out/pycache", root);
-        int k = 0;
-        cmd[k++] = (char *)py;
-        cmd[k++] = "-S";
-        cmd[k++] = "-X";
-        cmd[k++] = "frozen_modules=on";
-        cmd[k++] = "-c";
-        cmd[k++] = "import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))";
-        cmd[k++] = "run";
-        for (int i = 0; i < argc; i++)
-            cmd[k++] = argv[i];
-        char here[PATH_MAX];        /* the caller's directory, as build.sh passes it on */
-        if (!getenv("BK_CALLER_CWD") && getcwd(here, sizeof here))
-            setenv("BK_CALLER_CWD", here, 1);
-        if (chdir(root) == 0 && setenv("PYTHONPATH", pypath, 1) == 0 && setenv("PYTHONPYCACHEPREFIX", cache, 1) == 0 &&
-            unsetenv("PYTHONDONTWRITEBYTECODE") == 0) {
-            fflush(NULL);
-            execv(py, cmd);
-        }
-        /* (not started: build.sh below does it all again) */
-    }
     cmd[0] = build;
     cmd[1] = "run";
     for (int i = 0; i < argc; i++)
         cmd[i + 2] = argv[i];
-    cmd[argc + 2] = NULL;
     fflush(NULL);
     execv(build, cmd);
     fprintf(stderr, "error: cannot start %s: %s\n", build, strerror(errno));

@@ -269,7 +269,7 @@ def test_a_new_run_starts_python_without_the_shells_once_the_packages_are_stampe
 
 
 def test_the_launcher_starts_python_as_build_sh_does():
-    """frontend/run_cached.c (fall_back) starts the Python front end itself with
+    """frontend/python_start.c starts the Python front end itself with
     build.sh run's command line: the interpreter, its flags and the -c code are
     the same strings in both files (a change to one must be made in the other)."""
     import re
@@ -278,7 +278,7 @@ def test_the_launcher_starts_python_as_build_sh_does():
     assert m, "build.sh run's Python command line not found"
     flags, code = m.group(1).split(), m.group(2)
     assert re.search(r'^PY=/usr/bin/python3$', sh, re.M)
-    c = (FRONTEND / "run_cached.c").read_text()
+    c = (FRONTEND / "python_start.c").read_text()
     args = re.findall(r'cmd\[k\+\+\] = "([^"]*)";', c)
     assert args == flags + ["-c", code, "run"], (args, flags, code)
-    assert 'static const char py[] = "/usr/bin/python3";' in c
+    assert '#define PYTHON "/usr/bin/python3"' in c
