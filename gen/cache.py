@@ -218,12 +218,14 @@ def kernel_files(exe):
     """The names of the files of out/kernels/ a run with the solver `exe` is made
     from (sorted): the kernel index, and what gen/solver_fresh.py checks the
     solver against (its pairs from its .pairs stamp)."""
-    import json
+    from gen.scene import SceneError, load_index   # (parsed once per index: no json import each run)
     from gen.solver_fresh import BuildError, kernel_files as pair_files, kernel_headers
     with open(exe + ".pairs", encoding="utf-8") as fh:
         pairs = fh.read().split("\n")[2:]
-    with open(os.path.join(KERNELS, "index.json"), encoding="utf-8") as fh:
-        index = json.load(fh)
+    try:
+        index = load_index()
+    except SceneError as e:
+        raise ValueError(str(e)) from None
     names = {"index.json", "bk_options.h"}
     try:
         files = pair_files([p for p in pairs if p], index)

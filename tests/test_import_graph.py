@@ -82,3 +82,27 @@ def test_run_pipeline_modules_import_alone():
         opt = ["-S"] if m in light else []          # build.sh run starts without the site packages
         r = subprocess.run([PY] + opt + ["-c", code], capture_output=True, text=True, env=ENV, cwd=ROOT)
         assert r.returncode == 0, (m, r.stderr[-2000:])
+
+
+def test_run_with_new_set_value_imports_no_slow_stdlib_module(tmp_path):
+    """A run that changes only a number (the scene compiled again, the solver
+    reused) imports none of the standard library modules whose import alone was
+    3-5 ms of it each (re with enum, json, collections, importlib, pathlib): the
+    scene compiler and the run cache do without them.  Regression guard of the
+    front end's speed; `./build.sh bench` times it."""
+    out = tmp_path / "run"
+    code = ("import sys\n"
+            "from gen.cli import main\n"
+            f"rc = main(['run', 'cantilever_bend_100N_nu03', '--quiet', '--out', {str(out)!r}, "
+            "'--set', 'material.alu.E=7.2000000123e10'])\n"
+            "slow = ('re', 'enum', 'json', 'collections', 'importlib', 'pathlib', 'sympy')\n"
+            "print(rc, [m for m in slow if m in sys.modules])\n")
+    env = dict(ENV, BK_NO_FAST_RUN="1")
+    # the first run may build the solver and parse the scene and kernel index
+    # anew (gen/derived.py); the second is the one a user repeats
+    for _ in range(2):
+        r = subprocess.run([PY, "-S", "-X", "frozen_modules=on", "-c", code], capture_output=True, text=True,
+                           env=env, cwd=ROOT)
+        assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.split("\n")[0] == "0 []", (r.stdout, r.stderr[-2000:])
+    assert (out / "summary.json").exists()

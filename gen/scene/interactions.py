@@ -10,9 +10,8 @@ file finds the modules by that line, so adding an interaction touches no other
 Python file: the scene key check (gen/scene_keys.py), the scene compiler
 (build.py) and the model file (model_file.py) loop over `modules()`.
 """
-import importlib
 import os
-from collections import namedtuple
+import sys
 
 # A scene module's interaction: table (the scene's [[table]] name), keys (the
 # keys a table may hold; () for a part of a table whose keys another module
@@ -24,9 +23,17 @@ from collections import namedtuple
 # order (the order of the records; the C modules sum in their own order),
 # doc (the key reference: rows (keys, unit, default, meaning), markdown, links
 # relative to the repository) and title (a line saying what the table is).
-Interaction = namedtuple("Interaction", "table keys record build lines holds order doc title", defaults=((), ""))
-# (plain strings, no re and no pathlib: every scene compile imports this file,
-# and those two imports were 10 ms of a run with a new --set value)
+class Interaction:
+    __slots__ = ("table", "keys", "record", "build", "lines", "holds", "order", "doc", "title")
+
+    def __init__(self, table, keys, record, build, lines, holds, order, doc=(), title=""):
+        self.table, self.keys, self.record, self.build, self.lines = table, keys, record, build, lines
+        self.holds, self.order, self.doc, self.title = holds, order, doc, title
+
+
+# (plain classes and strings, no collections, importlib, re or pathlib: every
+# scene compile imports this file, and those imports were 13 ms of a run with
+# a new --set value)
 _HERE = os.path.dirname(os.path.realpath(__file__))
 REFERENCE = os.path.join(os.path.dirname(os.path.dirname(_HERE)), "docs", "reference", "interactions.md")
 
@@ -34,7 +41,12 @@ REFERENCE = os.path.join(os.path.dirname(os.path.dirname(_HERE)), "docs", "refer
 # and bodies, the model length, the amplitudes, the analysis and its static
 # options, the constraints' rows (gen/scene/joints.py constraints: reactions,
 # joints nonlinear in q).
-Scene = namedtuple("Scene", "beams bodies length_scale amps analysis stat joints")
+class Scene:
+    __slots__ = ("beams", "bodies", "length_scale", "amps", "analysis", "stat", "joints")
+
+    def __init__(self, beams, bodies, length_scale, amps, analysis, stat, joints):
+        self.beams, self.bodies, self.length_scale, self.amps = beams, bodies, length_scale, amps
+        self.analysis, self.stat, self.joints = analysis, stat, joints
 
 _DECL = "INTERACTION = Interaction("       # at the start of a line
 _MODULES = None
@@ -54,7 +66,9 @@ def modules():
                 continue
             with open(os.path.join(_HERE, name), encoding="utf-8") as f:
                 if _declares(f.read()):
-                    found.append(importlib.import_module(f"gen.scene.{name[:-3]}").INTERACTION)
+                    mod = f"gen.scene.{name[:-3]}"
+                    __import__(mod)
+                    found.append(sys.modules[mod].INTERACTION)
         _MODULES = sorted(found, key=lambda it: (it.order, it.table))
     return _MODULES
 
