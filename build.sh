@@ -287,7 +287,7 @@ case "$cmd" in
         # its bytecode comes from out/pycache (a script is compiled at every start: 2-7 ms).
         # frontend/python_start.c starts the same command itself once
         # the package stamp is current: keep the two in step
-        exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))' \
+        exec "$PY" -S -X frozen_modules=on -c 'import sys; from gen.cli import run_command; run_command(sys.argv[1:])' \
             run "$@"
         ;;
     gen)

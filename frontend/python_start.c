@@ -47,7 +47,7 @@ void bk_start_python_front_end(const char *root, int argc, char **argv)
         cmd[k++] = "-X";
         cmd[k++] = "frozen_modules=on";
         cmd[k++] = "-c";
-        cmd[k++] = "import sys; from gen.cli import main; sys.exit(main(sys.argv[1:]))";
+        cmd[k++] = "import sys; from gen.cli import run_command; run_command(sys.argv[1:])";
         cmd[k++] = "run";
         for (int i = 0; i < argc; i++)
             cmd[k++] = argv[i];

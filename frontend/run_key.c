@@ -124,8 +124,38 @@ static int read_file(const char *path, bk_sha256 *h)
     return n < 0 ? -1 : 0;
 }
 
-int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets, char key[33])
+/* The fingerprint's text for the environment: "PID:" and the items joined by
+ * newlines, tabs for their NULs; NULL when a path holds a tab or a newline (or
+ * memory runs out). */
+static char *env_text(const items *it)
 {
+    size_t len = 32;
+    for (size_t i = 0; i < it->n; i++)
+        len += it->v[i].len + 1;
+    char *t = malloc(len), *w = t;
+    if (!t)
+        return NULL;
+    w += sprintf(w, "%ld:", (long)getpid());
+    for (size_t i = 0; i < it->n; i++) {
+        if (i)
+            *w++ = '\n';
+        const char *x = it->v[i].text;
+        for (size_t k = 0; k < it->v[i].len; k++) {
+            if (x[k] == '\t' || x[k] == '\n') {
+                free(t);
+                return NULL;
+            }
+            *w++ = x[k] ? x[k] : '\t';
+        }
+    }
+    *w = '\0';
+    return t;
+}
+
+int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets, char key[33], char **fp)
+{
+    if (fp)
+        *fp = NULL;
     static const char tag[] = "beamkit-run-cache 2";
     bk_sha256 h;
     bk_sha256_init(&h);
@@ -167,6 +197,8 @@ int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets
         bk_sha256_hex(&h, hex);
         memcpy(key, hex, 32);
         key[32] = '\0';
+        if (fp)
+            *fp = env_text(&it);
     }
     for (size_t i = 0; i < it.n; i++)
         free(it.v[i].text);

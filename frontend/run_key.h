@@ -7,10 +7,15 @@
  *   scene  in   the scene file's real path
  *   sets   in   the --set strings, in command-line order (nsets of them)
  *   key    out  33 chars: 32 hex digits + NUL
+ *   fp     out  (NULL: not wanted) the fingerprint as the Python front end
+ *               takes it from the environment (gen/cache.py fingerprint_once):
+ *               "PID:" then the text with tabs for its NULs, PID this
+ *               process's, malloc'd (the caller frees it); NULL when a path
+ *               holds a tab or a newline
  * Returns 0, or -1 when the scene file cannot be read or memory runs out. */
 #ifndef BK_RUN_KEY_H
 #define BK_RUN_KEY_H
 
-int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets, char key[33]);
+int bk_run_key(const char *root, const char *scene, char *const *sets, int nsets, char key[33], char **fp);
 
 #endif

@@ -71,6 +71,10 @@ def kernel_headers(src):
     """Headers (paths) a generated kernel file `src` includes with "..." (its own,
     its element's, rod_common.h, rod_math.h, bk_kernel.h): an object is stale
     when one is newer."""
+    st = os.stat(src)
+    memo = (src, st.st_size, st.st_mtime_ns)
+    if memo in _HEADERS:                                 # (a run asks twice: freshness, run cache)
+        return list(_HEADERS[memo])
     deps = [os.path.splitext(src)[0] + ".h", os.path.join(RUNTIME, "bk_kernel.h"),
             os.path.join(RUNTIME, "bk_joint.h")]
     with open(src, encoding="utf-8") as fh:             # the includes are at the top (files are MBs)
@@ -80,13 +84,30 @@ def kernel_headers(src):
             h = os.path.join(KERNELS, line.split('"')[1])
             if os.path.exists(h) and h not in deps:
                 deps.append(h)
+    _HEADERS[memo] = tuple(deps)
     return deps
+
+
+_HEADERS = {}                          # kernel_headers by (file, size, mtime_ns)
 
 
 LOCK = os.path.join(ROOT, "out", "build", ".lock")
 
 
-def linked_after_sources(pairs, out_path, index, variant, lock=True):
+def runtime_mtimes(fp):
+    """Modification times (ns) of runtime/'s sources and gen/solver_build.py
+    from a run-cache fingerprint's text (gen/cache.py fingerprint)."""
+    out = []
+    for item in fp.split("\n"):
+        path, _, rest = item.partition("\0")
+        name = path.rpartition("/")[2]
+        if (path.startswith("runtime/") and name.endswith((".c", ".h")) and not name.startswith(".")) \
+                or path == "gen/solver_build.py":
+            out.append(int(rest.rpartition("\0")[2]))
+    return out
+
+
+def linked_after_sources(pairs, out_path, index, variant, lock=True, fp=None):
     """The solver at out_path (a str) was linked for these pairs (sorted) and this
     build variant after the last change of every file it is made from (the
     runtime, the pairs' kernels and their headers, the kernel index, the build
@@ -94,27 +115,34 @@ def linked_after_sources(pairs, out_path, index, variant, lock=True):
     the ~5 ms of checking each object).  Any doubt: False, and the full check
     runs.  lock: hold out/build/.lock shared meanwhile, so that a solver being
     linked by another process (gen/solver_build.py holds it exclusively) is
-    not taken for a built one; False from within that lock."""
+    not taken for a built one; False from within that lock.  fp: the
+    fingerprint of gen/ and runtime/ (gen/cache.py) taken just now, for the
+    times of runtime/ and gen/solver_build.py instead of stat-ing them again."""
     if lock:
         import fcntl
         try:
             with open(LOCK, "a") as fh:
                 fcntl.flock(fh, fcntl.LOCK_SH)
-                return linked_after_sources(pairs, out_path, index, variant, lock=False)
+                return linked_after_sources(pairs, out_path, index, variant, lock=False, fp=fp)
         except OSError:
             return False
     try:
         with open(out_path + ".pairs", encoding="utf-8") as fh:
             if fh.read() != stamp_text(variant, pairs):
                 return False
-        t = os.stat(out_path).st_mtime
-        srcs = [os.path.join(d, n) for d, _, names in os.walk(RUNTIME) for n in names
-                if n.endswith((".c", ".h")) and not n.startswith(".")]
-        srcs += [os.path.join(GEN, "solver_build.py"), os.path.join(KERNELS, "index.json"),
-                 os.path.join(KERNELS, "bk_options.h")]
+        t = os.stat(out_path).st_mtime_ns
+        if fp:
+            srcs = []
+            if any(ns > t for ns in runtime_mtimes(fp)):
+                return False
+        else:
+            srcs = [os.path.join(d, n) for d, _, names in os.walk(RUNTIME) for n in names
+                    if n.endswith((".c", ".h")) and not n.startswith(".")]
+            srcs.append(os.path.join(GEN, "solver_build.py"))
+        srcs += [os.path.join(KERNELS, "index.json"), os.path.join(KERNELS, "bk_options.h")]
         for f in kernel_files(pairs, index):
             src = os.path.join(KERNELS, f)
             srcs += [src] + kernel_headers(src)
-        return all(os.stat(f).st_mtime <= t for f in srcs)
+        return all(os.stat(f).st_mtime_ns <= t for f in srcs)
     except (OSError, BuildError):
         return False

@@ -22,14 +22,24 @@ def law_range(lo, hi, unit):
             else f"a number in ({lo:g}, {hi:g})")
     return test, text + (f" ({unit})" if unit else "")
 
+def _is_keyword(name):
+    """keyword.iskeyword(name) (the printer writes lambda_ for lambda), without
+    importing keyword: the first module of the standard library's folder a run
+    imports lists that folder, 1 ms of every scene compile."""
+    try:
+        compile(name + " = 0", "<name>", "exec")
+        return False
+    except SyntaxError:
+        return name.isidentifier()
+
+
 def law_eval(exprs, names, values):
     """Values of the generated expressions of a law (out/kernels/index.json
     "materials": Python expressions written by gen/generate.py, math only) for
     the variables `names` = `values`."""
-    import keyword
     env = {"math": math, "__builtins__": {}}
     for n, v in zip(names, values):
-        env[n + "_" if keyword.iskeyword(n) else n] = float(v)
+        env[n + "_" if _is_keyword(n) else n] = float(v)
     return [float(eval(e, env)) for e in exprs]      # noqa: S307 -- the project's own generated text
 
 

@@ -113,10 +113,10 @@ def locate_node(beam, frac):
 
 def locate(beam, s):
     """(global element index, xi) of arc length s on a beam."""
-    import bisect
+    from gen.scene.path import bisect_right
     starts = beam["elem_start"]
     n = beam["nelem"]
-    k = min(max(bisect.bisect_right(starts, s + 1e-12 * beam["length"]) - 1, 0), n - 1)
+    k = min(max(bisect_right(starts, s + 1e-12 * beam["length"]) - 1, 0), n - 1)
     l = beam["elem_lens"][k]
     xi = min(max((s - starts[k]) / l, 0.0), 1.0)
     return beam["first_elem"] + k, xi

@@ -2,7 +2,10 @@
 points (not-a-knot ends, chord-length parameter), taken by arc length, with a
 section frame carried along it by parallel transport (the rotation-minimizing
 frame, by double reflections on a fine subdivision) from the start's `up`."""
-import bisect
+try:                                   # bisect's C half: importing bisect.py, the first module of the
+    from _bisect import bisect_right   # standard library's folder a run needs, lists that folder
+except ImportError:                    # (1 ms of every scene compile)  # pragma: no cover
+    from bisect import bisect_right
 import math
 
 from gen.scene.values import _cross, _dot, _norm, _scale, _sub, _typename
@@ -81,7 +84,7 @@ class PathGeometry:
         return ("path", id(self), k)
 
     def _seg(self, v):
-        i = min(max(bisect.bisect_right(self.u, v) - 1, 0), len(self.u) - 2)
+        i = min(max(bisect_right(self.u, v) - 1, 0), len(self.u) - 2)
         return i, v - self.u[i], self.u[i + 1] - self.u[i]
 
     def point(self, v):
@@ -128,7 +131,7 @@ class PathGeometry:
 
     def param(self, s):
         """Spline parameter at arc length s (Newton from the fine table)."""
-        k = min(max(bisect.bisect_right(self.ts, s) - 1, 0), len(self.ts) - 2)
+        k = min(max(bisect_right(self.ts, s) - 1, 0), len(self.ts) - 2)
         v = self.tu[k] + (self.tu[k + 1] - self.tu[k]) * (s - self.ts[k]) / (self.ts[k + 1] - self.ts[k])
         for _ in range(8):
             r = self.ts[k] + self._length(self.tu[k], v) - s
