@@ -282,3 +282,52 @@ def test_the_launcher_starts_python_as_build_sh_does():
     args = re.findall(r'cmd\[k\+\+\] = "([^"]*)";', c)
     assert args == flags + ["-c", code, "run"], (args, flags, code)
     assert '#define PYTHON "/usr/bin/python3"' in c
+
+
+def test_python_takes_the_fingerprint_only_from_its_own_launcher():
+    """gen/cache.py launcher_fingerprint: BK_FINGERPRINT ("PID:" and the
+    fingerprint with tabs for its NULs, frontend/run_key.c) is taken when PID is
+    the process's own -- the launcher execs Python, which keeps its pid -- and
+    is then the fingerprint of the run key; with another pid (a value left in a
+    user's environment) it is ignored and the folders are walked.  Either way
+    it leaves the environment, so that no child inherits it."""
+    code = ("import os, sys\n"
+            "from gen import cache\n"
+            "real = cache.fingerprint()\n"
+            "fake = real.replace('runtime/', 'runtime/x', 1)\n"       # a fingerprint unlike the real one
+            "pid = os.getpid() + int(sys.argv[1])\n"
+            "os.environ['BK_FINGERPRINT'] = f'{pid}:' + fake.replace(chr(0), chr(9))\n"
+            "got = cache.fingerprint_once()\n"
+            "print(got == fake, got == real, 'BK_FINGERPRINT' in os.environ)\n")
+    for offset, expected in ((0, "True False False"), (1, "False True False")):
+        r = subprocess.run(["/usr/bin/python3", "-S", "-c", code, str(offset)], capture_output=True, text=True,
+                           env=ENV, cwd=ROOT, timeout=120)
+        assert r.returncode == 0, r.stderr[-2000:]
+        assert r.stdout.split("\n")[0] == expected, (offset, r.stdout)
+
+
+@pytest.mark.skipif(not _strace_works(), reason="strace is not installed or may not trace here")
+def test_a_new_run_keys_its_record_with_the_launchers_fingerprint():
+    """A run the launcher hands to Python (a new --set value) records its entry
+    under the launcher's own key (so the launcher finds it the next time), and
+    Python does not walk gen/ and runtime/ again: after its start no directory
+    of runtime/ is opened."""
+    launcher()
+    work = out_dir()
+    value = 7.2e10 * (1 + 1e-9 * (os.getpid() % 100000 + 7))     # a value no earlier run used
+    sets = [f"material.alu.E={value!r}"]
+    trace = work / "run.trace"
+    r = subprocess.run(["strace", "-f", "-qq", "-e", "trace=execve,openat", "-o", str(trace), str(ROOT / "build.sh"),
+                        "run", "cantilever_bend_100N_nu03", "--quiet", "--out", str(work / "run"), "--set", sets[0]],
+                       capture_output=True, text=True, timeout=600, env=ENV)
+    assert r.returncode == 0, r.stderr[-2000:]
+    lines = trace.read_text().splitlines()
+    start = next(i for i, line in enumerate(lines) if 'execve("/usr/bin/python3"' in line)
+    walked = [line for line in lines[start:] if f'"{ROOT}/runtime' in line and "O_DIRECTORY" in line]
+    assert not walked, walked[:3]
+    key = print_key(ROOT / "models" / "cantilever_bend_100N_nu03.toml", sets)
+    assert (ROOT / "out" / "cache" / "run" / f"{key}.run").exists()
+    r = subprocess.run([str(ROOT / "build.sh"), "run", "cantilever_bend_100N_nu03", "--quiet", "--out",
+                        str(work / "again"), "--set", sets[0]], capture_output=True, text=True, timeout=600,
+                       env=dict(ENV, **ONLY))
+    assert r.returncode == 0, r.stderr[-2000:]            # the launcher took it
