@@ -44,7 +44,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
     if sets:
         apply_overrides(doc, sets, path)
     index = load_index()
-    check_keys(ctx, doc, set(K.TOP) | {it.table for it in interactions.modules()}, "(top level)")
+    check_keys(ctx, doc, set(K.TOP) | interactions.tables(), "(top level)")
     scene = get_table(ctx, doc, "scene")
     check_keys(ctx, scene, set(K.SCENE), "scene")
     analysis = get_str(ctx, scene, "analysis", "scene", default="static",

@@ -49,7 +49,7 @@ class Scene:
         self.analysis, self.stat, self.joints = analysis, stat, joints
 
 _DECL = "INTERACTION = Interaction("       # at the start of a line
-_MODULES = None
+_DECLARED = None
 
 
 def _declares(text):
@@ -57,42 +57,63 @@ def _declares(text):
 
 
 def _declaring(listing):
-    """Names of the modules of gen/scene/ that declare an interaction (sorted),
-    from their sources; listing: the folder's "name size mtime_ns" lines."""
+    """[module, table] of each module of gen/scene/ that declares an interaction
+    (by name), from their sources: the table is the declaration's `table="..."`
+    (None when it is not written so: then the module is always imported).
+    listing: the folder's "name size mtime_ns" lines."""
     found = []
     for line in listing.decode().split("\n"):
         name = line.partition(" ")[0]
         with open(os.path.join(_HERE, name), encoding="utf-8") as f:
-            if _declares(f.read()):
-                found.append(name[:-3])
+            text = f.read()
+        if _declares(text):
+            decl = text[text.index(_DECL):]
+            table = decl.partition('table="')[2].partition('"')[0] if 'table="' in decl[:200] else None
+            found.append([name[:-3], table or None])
     return found
 
 
-def modules():
-    """Every interaction module of gen/scene/, in their order (then by name).
-    Which modules declare one is kept by the state (name, size, time) of the
-    folder's files (gen/derived.py): reading all 31 of them was 1.2 ms of
+def _declared():
+    """_declaring() of the folder now.  Kept by the state (name, size, time) of
+    the folder's files (gen/derived.py): reading all 31 of them was 1.2 ms of
     every scene compile."""
-    global _MODULES
-    if _MODULES is None:
+    global _DECLARED
+    if _DECLARED is None:
         from gen.derived import derived
         with os.scandir(_HERE) as it:
             listing = sorted(f"{e.name} {e.stat().st_size} {e.stat().st_mtime_ns}" for e in it
                              if e.name.endswith(".py") and not e.name.startswith(".")
                              and e.name != "interactions.py" and e.is_file())
-        found = []
-        for name in derived("interactions", "\n".join(listing).encode(), _declaring):
-            mod = f"gen.scene.{name}"
+        _DECLARED = derived("interaction_tables", "\n".join(listing).encode(), _declaring)
+    return _DECLARED
+
+
+def tables():
+    """The scene tables of every interaction module (without importing them)."""
+    return {table for _, table in _declared() if table} | {it.table for it in modules(tables_only=True)}
+
+
+def modules(doc=None, tables_only=False):
+    """Every interaction module of gen/scene/, in their order (then by name).
+    doc: only those whose table the scene has (each module's build finds
+    nothing without its table, so the others need not be imported: 1.5 ms of a
+    scene compile).  tables_only: only those whose table is not known from the
+    declaration's text."""
+    found = []
+    for name, table in _declared():
+        if (tables_only and table) or (doc is not None and table and table not in doc):
+            continue
+        mod = f"gen.scene.{name}"
+        if mod not in sys.modules:
             __import__(mod)
-            found.append(sys.modules[mod].INTERACTION)
-        _MODULES = sorted(found, key=lambda it: (it.order, it.table))
-    return _MODULES
+        found.append(sys.modules[mod].INTERACTION)
+    return sorted(found, key=lambda it: (it.order, it.table))
 
 
 def records(ctx, doc, scene):
     """[(module, data)] of the interactions the scene has, in their order."""
     out = []
-    for it in modules():
+    for it in modules(doc):
         data = it.build(ctx, doc, scene)
         if data:
             out.append((it, data))
