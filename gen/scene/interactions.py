@@ -8,7 +8,10 @@ A module of gen/scene/ declares itself with a line that starts with
 (None: the scene has none) and one from the data to the record's lines.  This
 file finds the modules by that line, so adding an interaction touches no other
 Python file: the scene key check (gen/scene_keys.py), the scene compiler
-(build.py) and the model file (model_file.py) loop over `modules()`.
+(build.py) and the model file (model_file.py) loop over `modules()`.  Write
+the table as `table="NAME"` in the declaration: a scene compile then imports
+only the modules of the tables the scene has (`tables()` reads the names from
+the declarations).
 """
 import os
 import sys
