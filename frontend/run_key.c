@@ -125,13 +125,18 @@ static int read_file(const char *path, bk_sha256 *h)
 }
 
 /* The fingerprint's text for the environment: "PID:" and the items joined by
- * newlines, tabs for their NULs; NULL when a path holds a tab or a newline (or
- * memory runs out). */
+ * newlines, tabs for their NULs; NULL when a path holds a tab or a newline,
+ * when the text is longer than BK_ENV_FINGERPRINT_MAX (an environment string
+ * may hold 128 kB: a longer one would make the exec of Python fail; ~15 kB
+ * now), or when memory runs out. */
+#define BK_ENV_FINGERPRINT_MAX ((size_t)64 << 10)
 static char *env_text(const items *it)
 {
     size_t len = 32;
     for (size_t i = 0; i < it->n; i++)
         len += it->v[i].len + 1;
+    if (len > BK_ENV_FINGERPRINT_MAX)
+        return NULL;
     char *t = malloc(len), *w = t;
     if (!t)
         return NULL;

@@ -11,7 +11,7 @@
  *               takes it from the environment (gen/cache.py fingerprint_once):
  *               "PID:" then the text with tabs for its NULs, PID this
  *               process's, malloc'd (the caller frees it); NULL when a path
- *               holds a tab or a newline
+ *               holds a tab or a newline or the text passes 64 kB
  * Returns 0, or -1 when the scene file cannot be read or memory runs out. */
 #ifndef BK_RUN_KEY_H
 #define BK_RUN_KEY_H
