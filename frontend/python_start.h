@@ -7,7 +7,7 @@
  * When build.sh's Debian packages are known installed -- its stamp
  * out/.deps-installed (written by ensure_deps) exists and is no older than
  * build.sh, whose package list it records -- replaces this process with
- * /usr/bin/python3 -S -X frozen_modules=on -c '<gen.cli main>' run ARGS, in
+ * /usr/bin/python3 -S -X frozen_modules=on -c '<gen.cli run_command>' run ARGS, in
  * root, with build.sh's environment (PYTHONPATH with root first,
  * PYTHONPYCACHEPREFIX=root/out/pycache, no PYTHONDONTWRITEBYTECODE,
  * BK_CALLER_CWD the caller's directory unless given).  Keep this command line
