@@ -258,8 +258,16 @@ def test_a_new_run_starts_python_without_the_shells_once_the_packages_are_stampe
     before = stamp.stat()
     build_sh = (ROOT / "build.sh").stat()
     try:
-        os.utime(stamp, ns=(before.st_atime_ns, build_sh.st_mtime_ns - 10**9))   # older than build.sh
-        shells, s2 = run("shells", value * (1 + 1e-9))
+        # another test's build.sh (the other worker's) renews a stale stamp
+        # (ensure_deps): when it does so between the ageing below and the
+        # launcher's look at the stamp, the run rightly starts Python directly;
+        # then the stamp is aged again (a launcher that ignored the stamp
+        # would start Python directly every time)
+        for attempt in range(6):
+            os.utime(stamp, ns=(before.st_atime_ns, build_sh.st_mtime_ns - 10**9))   # older than build.sh
+            shells, s2 = run(f"shells{attempt}", value * (1 + 1e-9 * (attempt + 1)))
+            if "/bin/bash" in shells:
+                break
     finally:
         os.utime(stamp, ns=(before.st_atime_ns, before.st_mtime_ns))
     assert "/bin/bash" in shells and "/usr/bin/python3" in shells, shells
