@@ -425,25 +425,20 @@ done:                                   /* (rc < 0: the run goes to Python) */
     free(model);
     free(cache_dir);
     free(a.sets);
-    if (rc >= 0) {
-        free(fp);
+    /* for Python, the fingerprint computed for the key, so that it need not
+     * walk gen/ and runtime/ again (1.8 ms); its pid is this one's, which the
+     * exec of Python keeps, directly or through build.sh */
+    if (rc < 0 && fp)
+        setenv("BK_FINGERPRINT", fp, 1);
+    free(fp);
+    if (rc >= 0)
         return rc;
-    }
-    if (print_key) {
-        free(fp);
+    if (print_key)
         return 1;
-    }
     const char *only = getenv("BK_RUN_CACHED_ONLY");
     if (only && !strcmp(only, "1")) {
         fprintf(stderr, "run-cached: %s\n", why);
-        free(fp);
         return 3;
     }
-    /* the fingerprint computed for the key, so that Python need not walk gen/
-     * and runtime/ again (1.8 ms); its pid is this one's, which the exec of
-     * Python keeps, directly or through build.sh */
-    if (fp)
-        setenv("BK_FINGERPRINT", fp, 1);
-    free(fp);
     return fall_back(root, nuser, user);
 }

@@ -12,11 +12,7 @@ about the axis and its opposite on b, or a force (N) along the axis.
 
 import gen.scene_keys as K
 from gen.scene.interactions import Interaction
-from gen.scene.values import check_keys, get_array_of_tables, get_number, get_str
-
-# an actuator name's letters (a plain set: every scene compile imports this file,
-# and `re` was 7 ms of a run with a new --set value)
-_NAME_CHARS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-")
+from gen.scene.values import check_keys, get_array_of_tables, get_number, get_str, plain_name
 
 # joint types an actuator may act on: the coordinate it drives
 AXIS_KIND = {"revolute": "rotation", "prismatic": "translation"}
@@ -48,7 +44,7 @@ def actuators(ctx, doc, rows, amps):
         where = f"actuator[{i}]"
         check_keys(ctx, at, set(K.ACTUATOR), where)
         name = get_str(ctx, at, "name", where, default=f"actuator{i}")
-        if not (1 <= len(name) <= 63 and all(c in _NAME_CHARS for c in name)):
+        if not plain_name(name):
             ctx.fail(f"{where}.name", f"expected 1 to 63 letters, digits, '_', '.' or '-', found {name!r}")
         if name in names:
             ctx.fail(f"{where}.name", f"the name {name!r} is given to two actuators")

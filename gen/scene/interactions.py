@@ -91,25 +91,26 @@ def _declared():
     return _DECLARED
 
 
+def _module(name):
+    """The interaction of the module gen/scene/NAME.py (imported when not yet)."""
+    mod = f"gen.scene.{name}"
+    if mod not in sys.modules:
+        __import__(mod)
+    return sys.modules[mod].INTERACTION
+
+
 def tables():
-    """The scene tables of every interaction module (without importing them)."""
-    return {table for _, table in _declared() if table} | {it.table for it in modules(tables_only=True)}
+    """The scene tables of every interaction module (a module is imported only
+    when its declaration does not write its table as a literal)."""
+    return {table or _module(name).table for name, table in _declared()}
 
 
-def modules(doc=None, tables_only=False):
+def modules(doc=None):
     """Every interaction module of gen/scene/, in their order (then by name).
     doc: only those whose table the scene has (each module's build finds
     nothing without its table, so the others need not be imported: 1.5 ms of a
-    scene compile).  tables_only: only those whose table is not known from the
-    declaration's text."""
-    found = []
-    for name, table in _declared():
-        if (tables_only and table) or (doc is not None and table and table not in doc):
-            continue
-        mod = f"gen.scene.{name}"
-        if mod not in sys.modules:
-            __import__(mod)
-        found.append(sys.modules[mod].INTERACTION)
+    scene compile)."""
+    found = [_module(name) for name, table in _declared() if doc is None or not table or table in doc]
     return sorted(found, key=lambda it: (it.order, it.table))
 
 

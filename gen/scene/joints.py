@@ -10,7 +10,7 @@ import gen.scene_keys as K
 from gen.scene.joint_frames import endpoint as _endpoint, mtv as _mtv
 from gen.scene.held_section import graded_clamp_warning
 from gen.scene.values import (_cross, _dot, _norm, _scale, _skew, _sub, check_keys, get_array_of_tables,
-                              get_number, get_str, get_vec3)
+                              get_number, get_str, get_vec3, plain_name)
 
 
 class Rows:
@@ -373,14 +373,10 @@ def _is_linear(ct, mesh, ctype):
     return False
 
 
-# (a set, not re: re's import was 5 ms of every scene compile)
-_NAME_CHARS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-")
-
-
 def _name(ctx, ct, where, ci, names):
     """The constraint's `name` (letters, digits, _ . -; unique), default constraintN."""
     name = get_str(ctx, ct, "name", where, default=f"constraint{ci}")
-    if not 1 <= len(name) <= 63 or not set(name) <= _NAME_CHARS:
+    if not plain_name(name):
         ctx.fail(f"{where}.name", f"expected 1 to 63 letters, digits, '_', '.' or '-', found {name!r}")
     if name in names:
         ctx.fail(f"{where}.name", f"the name {name!r} is given to two constraints")

@@ -22,6 +22,7 @@ def law_range(lo, hi, unit):
             else f"a number in ({lo:g}, {hi:g})")
     return test, text + (f" ({unit})" if unit else "")
 
+
 def _is_keyword(name):
     """keyword.iskeyword(name) (the printer writes lambda_ for lambda), without
     importing keyword: the first module of the standard library's folder a run

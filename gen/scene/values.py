@@ -20,6 +20,12 @@ class _NameRule:
 NAME_RE = _NameRule()
 
 
+def plain_name(s):
+    """A joint's or an actuator's name: 1 to 63 letters, digits, '_', '.' or '-'
+    (any of them first; the regular expression [A-Za-z0-9_.-]{1,63})."""
+    return 0 < len(s) <= 63 and all(c in _NAME_REST for c in s)
+
+
 class SceneError(Exception):
     pass
 
