@@ -457,6 +457,7 @@ static void plan_dynamic(const bk_model *m, bk_output_plan *p)
     const double states = m->dyn.t_end / (m->dyn.dt * m->dyn.output_every);
     p->frames = (int)fmin(1e9, states / (m->output.vtk_every > 0 ? m->output.vtk_every : 1)) + 1;
     p->room = p->frames + 3;
+    p->states = (int)fmin(1e9, states) + 1;
     p->end = m->dyn.t_end > 0.0 ? m->dyn.t_end : 0.0;
     p->sections_every = (int)fmax(1.0, ceil(states / 50.0));
 }

@@ -133,7 +133,7 @@ int bk_filewriter_start(bk_filewriter *w)
     return w->threaded;
 }
 
-int bk_filewriter_slot(bk_filewriter *w)
+int bk_filewriter_slot(bk_filewriter *w, int wait)
 {
     pthread_mutex_lock(&w->mu);
     int b = -1;
@@ -141,7 +141,7 @@ int bk_filewriter_slot(bk_filewriter *w)
         for (int k = 0; k < BK_FILEWRITER_BUFFERS && b < 0; ++k)
             if (w->state[k] == 0)
                 b = k;
-        if (b >= 0 || !w->threaded)
+        if (b >= 0 || !w->threaded || !wait)
             break;
         pthread_cond_wait(&w->cv, &w->mu);
     }
@@ -212,6 +212,16 @@ void bk_filewriter_wait(bk_filewriter *w, long ticket)
     while (w->calls_done < ticket)
         pthread_cond_wait(&w->cv, &w->mu);
     pthread_mutex_unlock(&w->mu);
+}
+
+int bk_filewriter_done(bk_filewriter *w, long ticket)
+{
+    if (!w->threaded)
+        return 1;
+    pthread_mutex_lock(&w->mu);
+    const int done = w->calls_done >= ticket;
+    pthread_mutex_unlock(&w->mu);
+    return done;
 }
 
 int bk_filewriter_drain(bk_filewriter *w)

@@ -18,10 +18,12 @@
  *                         of memory (bk_filewriter_close frees what was made).
  *   bk_filewriter_start   an unthreaded writer's thread started (from the
  *                         opener's thread, between jobs); 1 when it runs.
- *   bk_filewriter_slot    out: the index (0 .. BK_FILEWRITER_BUFFERS-1) of a free
- *                         buffer, now the caller's (waits while both are being
- *                         written); the caller's job memory of that index is
- *                         free to fill until it is submitted.
+ *   bk_filewriter_slot    in: wait (0: none is waited for).  out: the index
+ *                         (0 .. BK_FILEWRITER_BUFFERS-1) of a free buffer, now
+ *                         the caller's (with wait, waits while every buffer is
+ *                         being written), or -1 when none is free and wait
+ *                         is 0; the caller's job memory of that index
+ *                         is free to fill until it is submitted.
  *   bk_filewriter_submit_job  in: slot from bk_filewriter_slot; path; make, called
  *                         once (in the thread, or here when unthreaded) with job
  *                         and a stream to write the file's contents to.  0, or
@@ -33,6 +35,8 @@
  *                         waits while BK_FILEWRITER_CALLS calls are queued).
  *   bk_filewriter_wait    in: ticket of bk_filewriter_call: waits until that call
  *                         has returned.
+ *   bk_filewriter_done    in: ticket: 1 when that call has returned (or the
+ *                         writer is unthreaded), else 0; no wait.
  *   bk_filewriter_drain   waits until every file and call handed over is done;
  *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
@@ -83,10 +87,11 @@ typedef struct bk_filewriter {
 
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded);
 int bk_filewriter_start(bk_filewriter *w);
-int bk_filewriter_slot(bk_filewriter *w);
+int bk_filewriter_slot(bk_filewriter *w, int wait);
 int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_filewriter_make make, const void *job);
 long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);
 void bk_filewriter_wait(bk_filewriter *w, long ticket);
+int bk_filewriter_done(bk_filewriter *w, long ticket);
 int bk_filewriter_drain(bk_filewriter *w);
 void bk_filewriter_close(bk_filewriter *w);
 

@@ -195,9 +195,10 @@ static void sink_end(void *tab)
 /* ---- the solve thread's side ---- */
 
 static void hand_over(bk_h5 *h, int flush);
+static void start_library(bk_h5 *h);
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const bk_tables *tables, size_t cap,
-               FILE *err)
+int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, int states, const char *dir, const bk_tables *tables,
+               size_t cap, FILE *err)
 {
     memset(h, 0, sizeof *h);
     h->m = m;
@@ -231,7 +232,9 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const 
     h->job[2] = (bk_h5_job){h, 1, 1};
     h->job[3] = (bk_h5_job){h, 2, 0};
     h->job[4] = (bk_h5_job){h, 3, 0};
-    h->open = 1;                          /* (HDF5 started at the first set handed over) */
+    h->open = 1;                          /* (HDF5 started at the first set handed over, */
+    if (states > BK_H5_HANDOVER)          /*   or now when the run will hand sets over) */
+        start_library(h);
     return 0;
 }
 
@@ -266,7 +269,7 @@ void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
     /* every BK_H5_HANDOVER states to the thread, unflushed: the writing goes
      * on beside the solve instead of after it (at fixed counts, so that a run
      * shorter than the flush interval writes the same bytes each time) */
-    if (h->nbuf[s] >= BK_H5_HANDOVER)
+    if (h->nbuf[s] >= BK_H5_HANDOVER && (h->ticket[s ^ 1] <= 0 || bk_filewriter_done(&h->fw, h->ticket[s ^ 1])))
         hand_over(h, 0);
 }
 
@@ -283,16 +286,21 @@ void bk_h5_flush(bk_h5 *h)
         hand_over(h, 1);
 }
 
+/* HDF5 started and the file made by the thread (its first job). */
+static void start_library(bk_h5 *h)
+{
+    h->lib = 1;
+    bk_filewriter_start(&h->fw);          /* (if not yet: frames, rows) */
+    bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
+}
+
 /* The set being filled to the thread (flush 1: then the file is flushed; 2:
  * the run's last rows, the sizes of the datasets not yet made), and the other
  * set, once written, to be filled. */
 static void hand_over(bk_h5 *h, int flush)
 {
-    if (!h->lib) {                        /* the first set: HDF5 started, the file made */
-        h->lib = 1;
-        bk_filewriter_start(&h->fw);      /* (if not yet: frames, rows) */
-        bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[0]);
-    }
+    if (!h->lib)                          /* the first set */
+        start_library(h);
     const int k = h->cur;
     h->flush[k] = flush;
     h->unflushed = flush != 1;

@@ -27,22 +27,30 @@
  * the tables' rows share), one at a time, from the first set handed over on:
  * when the run's tables are flushed (output.c: every 0.5 s of wall time), when
  * a table's buffer is full (BK_H5_ROWS rows or BK_H5_TABLE_BYTES), every
- * BK_H5_HANDOVER states (unflushed, so that the writing goes on beside the
- * solve), and at the end, the set being
+ * BK_H5_HANDOVER states once the other set is written (unflushed, so that
+ * the writing goes on beside the solve; while the thread is still at the
+ * other set, the states go on filling this one up to its room), and at the
+ * end, the set being
  * filled is handed to the thread, which appends it (and, when flushed,
  * flushes the file: H5Fflush), and the other set is filled meanwhile.  A
  * dataset is made at its first rows: chunked and extensible, or contiguous of
  * exactly its rows when those are the run's last.  h5py reads the same
  * datasets, types, values and attributes either way (only the layout and
- * maxshape differ).  A run shorter than the flush interval writes the same
- * bytes each time (no modification times are kept); in a longer one the
- * file's layout (not its values) depends on when the timed flushes came.  A
+ * maxshape differ).  A run written in one piece (no modification times are
+ * kept) writes the same bytes each time; in a longer one the file's layout
+ * (not its values) depends on when the timed flushes came and on how far
+ * the thread was behind.  A
  * run that is interrupted or fails keeps every row; one killed outright keeps
- * the rows up to its last flush (none, and no file, in its first 0.5 s).
+ * the rows up to its last flush (none in its first 0.5 s, when the file, if
+ * made, may not be readable).
  *
  * Sizes and directions:
  *   bk_h5_open      in: m, in_time (1: the states are in time, with
- *                   velocities: the analysis' plan, output.h), dir, tables
+ *                   velocities: the analysis' plan, output.h), states (the
+ *                   output states the run gives when known from the start,
+ *                   else 0: with more than BK_H5_HANDOVER, HDF5 is started on
+ *                   the thread now, 5-10 ms of its time that would otherwise
+ *                   come in the middle of the run), dir, tables
  *                   (the run's registry: the mirrored
  *                   tables' names and headers; not owned, must outlive h);
  *                   cap: the bytes of its writer's file buffers (filewriter.h:
@@ -135,8 +143,8 @@ typedef struct bk_h5 {
     char failure[200];        /*   which */
 } bk_h5;
 
-int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, const char *dir, const bk_tables *tables, size_t cap,
-               FILE *err);
+int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, int states, const char *dir, const bk_tables *tables,
+               size_t cap, FILE *err);
 void bk_h5_velocity(bk_h5 *h, int step, const double *qd);
 void bk_h5_state(bk_h5 *h, int step, double t, const double *q);
 void bk_h5_flush(bk_h5 *h);

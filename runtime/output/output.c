@@ -93,7 +93,8 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
         /* one writer thread for results.h5, the frames and the tables' rows
          * (the frames' buffers in it when they would have a thread of their own) */
         const int share = o->vtk.every > 0 && o->vtk.frame_bytes <= BK_VTK_BACKGROUND_MAX;
-        if (bk_h5_open(&o->h5, m, plan->path == BK_PATH_TIME, dir, &o->tables, share ? o->vtk.frame_bytes : 1, err) != 0)
+        if (bk_h5_open(&o->h5, m, plan->path == BK_PATH_TIME, plan->states, dir, &o->tables,
+                       share ? o->vtk.frame_bytes : 1, err) != 0)
             return -1;
         o->rq.sink = &o->h5.sink;        /* every table's rows mirrored into results.h5 */
         if (share)

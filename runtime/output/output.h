@@ -25,6 +25,7 @@ typedef struct bk_output_plan {
     double end;              /* the path variable at the run's end: a frame's progress is t / end (0: unknown,
                               * e.g. continuation, load cycles) */
     int frames;              /* ParaView frames of states it writes, when known from the start (else 0) */
+    int states;              /* output states it gives, when known from the start (else 0) */
     int room;                /* frames to make room for at the start (more are made room for as they come) */
     int sections_every;      /* output states between two of sections.csv when output.vtk_every does not set
                               * it (0: every state) */

@@ -52,7 +52,8 @@ typedef struct bk_vtk {
  * first when it is known to write many),
  * frames up to this size are made and written by a background thread
  * (filewriter.h: two buffers of a frame each; the frames' inputs are copied
- * for it), larger ones directly. */
+ * for it; a frame that finds both still taken is written directly), larger
+ * ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
 /* capacity: room for this many frames (the arrays grow if exceeded);
