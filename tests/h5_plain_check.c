@@ -14,6 +14,10 @@
  *   /many/d0..d9     int32 [1]: k (a group of more than 8 links)
  *   /none            empty group
  *   /zero            int64 [0]
+ *   /big             float64 [3000, 4]: row i, column j holds i / 2 - j (96 kB:
+ *                    written from in place, h5_plain.h BK_H5P_BY_REFERENCE)
+ *   /bigrows         compound [400] as /rows, (k, k / 4, "pt<k>", -k): also in
+ *                    place, between the object headers
  * Also prints "checksums equal" when bk_h5p_checksum agrees with the
  * library's own (H5_checksum_lookup3) for every length 0..299 of random bytes.
  * Exit status 0, or 1 when a write failed. */
@@ -43,7 +47,8 @@ static char pad64[2][64] = {"arm", "a longer name"};
 static char term8[2][8] = {"r_x", "lambda"};
 static const char *const many_names[10] = {"d0", "d1", "d2", "d3", "d4", "d5", "d6", "d7", "d8", "d9"};
 
-static int write_plain(const char *path, const double *dbl, const row *rows)
+static int write_plain(const char *path, const double *dbl, const row *rows, const double *big,
+                       const row *bigrows)
 {
     static const bk_h5p_type I32 = {BK_H5P_I32, 4, 0, 0, 0, 0, 0}, I64 = {BK_H5P_I64, 8, 0, 0, 0, 0, 0},
                              F64 = {BK_H5P_F64, 8, 0, 0, 0, 0, 0},
@@ -56,12 +61,15 @@ static int write_plain(const char *path, const double *dbl, const row *rows)
     bk_h5p p;
     bk_h5p_begin(&p);
     uint64_t d3[1] = {3}, d2[1] = {2}, m23[2] = {2, 3}, d1[1] = {1}, d0[1] = {0}, many[10];
+    uint64_t mbig[2] = {3000, 4}, d400[1] = {400};
     for (int k = 0; k < 10; ++k) {
         int32_t v = k;
         many[k] = bk_h5p_dataset(&p, &I32, 1, d1, &v);
     }
-    const char *names[] = {"ints32", "ints64", "doubles", "pad64", "term8", "rows", "many", "none", "zero"};
-    uint64_t addrs[9];
+    const char *names[] = {"ints32", "ints64", "doubles", "pad64", "term8", "rows", "many", "none", "zero",
+                           "big", "bigrows"};
+    uint64_t addrs[11];
+    addrs[9] = bk_h5p_dataset(&p, &F64, 2, mbig, big);
     addrs[0] = bk_h5p_dataset(&p, &I32, 1, d3, i32);
     addrs[1] = bk_h5p_dataset(&p, &I64, 1, d2, i64);
     addrs[2] = bk_h5p_dataset(&p, &F64, 2, m23, dbl);
@@ -71,10 +79,11 @@ static int write_plain(const char *path, const double *dbl, const row *rows)
     addrs[6] = bk_h5p_group(&p, 10, many_names, many, 0, NULL);
     addrs[7] = bk_h5p_group(&p, 0, NULL, NULL, 0, NULL);
     addrs[8] = bk_h5p_dataset(&p, &I64, 1, d0, NULL);
+    addrs[10] = bk_h5p_dataset(&p, &rt, 1, d400, bigrows);
     const bk_h5p_attr at[3] = {{"name", "beam", 0}, {"empty", "", 0}, {"count", NULL, -5}};
-    uint64_t root = bk_h5p_group(&p, 9, names, addrs, 3, at);
-    FILE *fp = bk_h5p_finish(&p, root) == 0 ? fopen(path, "wb") : NULL;
-    int ok = fp && fwrite(p.data, 1, p.n, fp) == p.n;
+    uint64_t root = bk_h5p_group(&p, 11, names, addrs, 3, at);
+    FILE *fp = bk_h5p_finish(&p, root) == 0 && p.nref == 2 ? fopen(path, "wb") : NULL;
+    int ok = fp && bk_h5p_write(&p, fileno(fp)) == 0;
     if (fp && fclose(fp) != 0)
         ok = 0;
     bk_h5p_free(&p);
@@ -105,7 +114,7 @@ static int lib_attr(hid_t obj, const char *name, const char *text, int64_t value
     return rc;
 }
 
-static int write_lib(const char *path, const double *dbl, const row *rows)
+static int write_lib(const char *path, const double *dbl, const row *rows, const double *big, const row *bigrows)
 {
     hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (f < 0)
@@ -119,12 +128,13 @@ static int write_lib(const char *path, const double *dbl, const row *rows)
     H5Tinsert(rt, "time", offsetof(row, time), H5T_NATIVE_DOUBLE);
     H5Tinsert(rt, "name", offsetof(row, name), s64);
     H5Tinsert(rt, "x", offsetof(row, x), H5T_NATIVE_DOUBLE);
-    hsize_t d3[1] = {3}, d2[1] = {2}, m23[2] = {2, 3}, d1[1] = {1}, d0[1] = {0};
+    hsize_t d3[1] = {3}, d2[1] = {2}, m23[2] = {2, 3}, d1[1] = {1}, d0[1] = {0}, mbig[2] = {3000, 4}, d400[1] = {400};
     int rc = lib_attr(f, "name", "beam", 0) | lib_attr(f, "empty", "", 0) | lib_attr(f, "count", NULL, -5) |
              lib_dataset(f, "ints32", H5T_NATIVE_INT32, 1, d3, i32) | lib_dataset(f, "ints64", H5T_NATIVE_INT64, 1, d2, i64) |
              lib_dataset(f, "doubles", H5T_NATIVE_DOUBLE, 2, m23, dbl) | lib_dataset(f, "pad64", s64, 1, d2, pad64) |
              lib_dataset(f, "term8", s8, 1, d2, term8) | lib_dataset(f, "rows", rt, 1, d3, rows) |
-             lib_dataset(f, "zero", H5T_NATIVE_INT64, 1, d0, NULL);
+             lib_dataset(f, "zero", H5T_NATIVE_INT64, 1, d0, NULL) |
+             lib_dataset(f, "big", H5T_NATIVE_DOUBLE, 2, mbig, big) | lib_dataset(f, "bigrows", rt, 1, d400, bigrows);
     hid_t g = H5Gcreate2(f, "many", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     for (int k = 0; k < 10; ++k) {
         int32_t v = k;
@@ -155,6 +165,18 @@ int main(int argc, char **argv)
         snprintf(rows[k].name, sizeof rows[k].name, "pt%d", k);
         rows[k].x = -k;
     }
+    static double big[3000 * 4];
+    for (int i = 0; i < 3000; ++i)
+        for (int j = 0; j < 4; ++j)
+            big[4 * i + j] = i / 2.0 - j;
+    static row bigrows[400];
+    memset(bigrows, 0, sizeof bigrows);
+    for (int k = 0; k < 400; ++k) {
+        bigrows[k].step = k;
+        bigrows[k].time = k / 4.0;
+        snprintf(bigrows[k].name, sizeof bigrows[k].name, "pt%d", k);
+        bigrows[k].x = -k;
+    }
     unsigned char b[300];
     srand(1);
     int same = 1;
@@ -164,7 +186,7 @@ int main(int argc, char **argv)
         same = same && H5_checksum_lookup3(b, n, 0) == bk_h5p_checksum(b, n);
     }
     printf("%s\n", same ? "checksums equal" : "checksums differ");
-    int rc = write_plain(argv[1], dbl, rows) | write_lib(argv[2], dbl, rows);
+    int rc = write_plain(argv[1], dbl, rows, big, bigrows) | write_lib(argv[2], dbl, rows, big, bigrows);
     H5close();
     return rc ? 1 : 0;
 }

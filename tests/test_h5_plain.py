@@ -2,7 +2,8 @@
 library (a short run's results.h5: runtime/output/h5_whole.c), against the
 library itself: tests/h5_plain_check.c (AddressSanitizer + UBSan) writes the same
 attributes, datasets (int32, int64, float64 with inf, nan and -0, null-padded and
-null-terminated strings, a compound, a 2-d array, an empty one) and groups (one
+null-terminated strings, a compound, a 2-d array, an empty one; two of them
+large enough to be written from in place, not copied) and groups (one
 of more than 8 links, an empty one) with each; h5py (libhdf5 reading, which
 checks every checksum) reads them alike, and as the values written.  A run's
 results.h5 made in one piece equals the CSVs and the states in
@@ -83,3 +84,8 @@ def test_plain_file_holds_the_values_written():
         assert sorted(f["many"]) == [f"d{k}" for k in range(10)]
         assert [int(f["many"][f"d{k}"][0]) for k in range(10)] == list(range(10))
         assert len(f["none"]) == 0 and f["zero"].shape == (0,)
+        i, j = np.mgrid[0:3000, 0:4]
+        assert f["big"].shape == (3000, 4) and np.array_equal(f["big"][()], i / 2 - j)
+        r = f["bigrows"][()]
+        assert list(r["step"]) == list(range(400)) and list(r["x"]) == [-k for k in range(400)]
+        assert list(r["name"]) == [f"pt{k}".encode() for k in range(400)]

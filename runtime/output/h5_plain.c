@@ -6,8 +6,10 @@
 #include "output/h5_plain.h"
 #include "base/bigalloc.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/uio.h>
 
 #define UNDEF UINT64_MAX         /* an undefined address */
 #define SUPERBLOCK 48
@@ -38,6 +40,25 @@ static unsigned char *room(bk_h5p *p, size_t k)
     unsigned char *at = p->data + p->n;
     p->n += k;
     return at;
+}
+
+/* k bytes of data written in their place from src (bk_h5p_write) */
+static void refer(bk_h5p *p, const void *src, uint64_t k)
+{
+    if (p->oom)
+        return;
+    if (p->nref == p->capref) {
+        int cap = p->capref ? 2 * p->capref : 16;
+        bk_h5p_ref *r = realloc(p->ref, (size_t)cap * sizeof *r);
+        if (!r) {
+            p->oom = 1;
+            return;
+        }
+        p->ref = r;
+        p->capref = cap;
+    }
+    p->ref[p->nref++] = (bk_h5p_ref){p->n, src, (size_t)k};
+    p->reflen += k;
 }
 
 static void put(bk_h5p *p, const void *src, size_t k)
@@ -181,6 +202,7 @@ static size_t ohdr_begin(bk_h5p *p)
     return at;
 }
 
+/* ... its address (no data is referred to within a header) */
 static uint64_t ohdr_end(bk_h5p *p, size_t at)
 {
     set_le(p, at + 6, p->n - at - 10, 4);
@@ -188,7 +210,7 @@ static uint64_t ohdr_end(bk_h5p *p, size_t at)
         uint32_t sum = bk_h5p_checksum(p->data + at, p->n - at);
         put_le(p, sum, 4);
     }
-    return at;
+    return at + p->reflen;
 }
 
 static void put_attr(bk_h5p *p, const bk_h5p_attr *a)
@@ -233,8 +255,10 @@ uint64_t bk_h5p_dataset(bk_h5p *p, const bk_h5p_type *type, int rank, const uint
     uint64_t bytes = type->size;
     for (int k = 0; k < rank; ++k)
         bytes *= dims[k];
-    uint64_t where = bytes ? p->n : UNDEF;
-    if (bytes)
+    uint64_t where = bytes ? p->n + p->reflen : UNDEF;
+    if (bytes >= BK_H5P_BY_REFERENCE)
+        refer(p, data, bytes);
+    else if (bytes)
         put(p, data, bytes);
     size_t h = ohdr_begin(p);
     size_t m = msg_begin(p, MSG_DATASPACE, 0);
@@ -293,14 +317,51 @@ int bk_h5p_finish(bk_h5p *p, uint64_t root)
     memcpy(s, "\x89HDF\r\n\x1a\n\x02\x08\x08\x00", 12);   /* version 2, 8-byte addresses and lengths */
     le(s + 12, 0, 8);                                      /* base address */
     le(s + 20, UNDEF, 8);                                  /* no superblock extension */
-    le(s + 28, p->n, 8);                                   /* end of file */
+    le(s + 28, p->n + p->reflen, 8);                       /* end of file */
     le(s + 36, root, 8);                                   /* the root group's object header */
     le(s + 44, bk_h5p_checksum(s, 44), 4);
     return 0;
 }
 
+int bk_h5p_write(const bk_h5p *p, int fd)
+{
+    /* the pieces in file order: data[0 .. ref 0's at), ref 0, data[.. ref 1's at), ... */
+    struct iovec v[64];
+    int nv = 0, r = 0;
+    size_t at = 0;
+    while (r <= p->nref) {
+        while (nv < 63 && r <= p->nref) {
+            size_t end = r < p->nref ? p->ref[r].at : p->n;
+            if (end > at)
+                v[nv++] = (struct iovec){p->data + at, end - at};
+            at = end;
+            if (r < p->nref && p->ref[r].len)
+                v[nv++] = (struct iovec){(void *)p->ref[r].data, p->ref[r].len};
+            ++r;
+        }
+        int k = 0;
+        while (k < nv) {                          /* (a short write: the rest again) */
+            ssize_t w = writev(fd, v + k, nv - k);
+            if (w < 0 && errno == EINTR)
+                continue;
+            if (w <= 0)
+                return w < 0 && errno ? errno : EIO;
+            size_t done = (size_t)w;
+            for (; k < nv && done >= v[k].iov_len; ++k)
+                done -= v[k].iov_len;
+            if (k < nv) {
+                v[k].iov_base = (unsigned char *)v[k].iov_base + done;
+                v[k].iov_len -= done;
+            }
+        }
+        nv = 0;
+    }
+    return 0;
+}
+
 void bk_h5p_free(bk_h5p *p)
 {
+    free(p->ref);
     free(p->data);
     memset(p, 0, sizeof *p);
 }

@@ -16,18 +16,27 @@
  * double, a fixed-size string (null-padded or null-terminated, ASCII) or a
  * compound of such cells at given offsets (one level).
  *
+ * A dataset's data of BK_H5P_BY_REFERENCE bytes or more is not copied: the
+ * file's bytes are p->data with each such block written in its place
+ * (bk_h5p_write).  Copying it into fresh memory first cost as much as writing
+ * it (on a VM each new page costs a fault of ~10 us: 4 ms for 1.4 MB).
+ *
  * Sizes and directions:
  *   bk_h5p_begin    out: p emptied and the superblock's room made.
  *   bk_h5p_dataset  in: its type, rank 0 (a scalar), 1 or 2, dims[rank], the
  *                   data (rows in order, as the type lays them out; NULL when
- *                   a dimension is 0).  The object header's address.
+ *                   a dimension is 0; when BK_H5P_BY_REFERENCE bytes or more,
+ *                   not copied: it must stay as it is until bk_h5p_write).
+ *                   The object header's address.
  *   bk_h5p_group    in: n links (names, object header addresses), na
  *                   attributes.  The object header's address.
  *   bk_h5p_finish   in: root: the root group's address: the superblock filled
  *                   in.  0, or -1 when some memory could not be had or a
  *                   type is too large for its message (toolarge).
- *   bk_h5p_free     frees p's memory.
- * The bytes are p->data[0 .. p->n). */
+ *   bk_h5p_write    in: fd, open for writing at the file's start: the whole
+ *                   file written (p->data and the data in its places).  0,
+ *                   or the errno of the failed write.
+ *   bk_h5p_free     frees p's memory (not the data it refers to). */
 #ifndef BK_H5_PLAIN_H
 #define BK_H5_PLAIN_H
 
@@ -55,9 +64,22 @@ typedef struct bk_h5p_attr {
     int64_t value;             /*   an int64 one */
 } bk_h5p_attr;
 
+#define BK_H5P_BY_REFERENCE ((size_t)16 << 10)
+
+/* A dataset's data written in its place: before p->data[at]. */
+typedef struct bk_h5p_ref {
+    size_t at;
+    const void *data;          /* not owned */
+    size_t len;
+} bk_h5p_ref;
+
 typedef struct bk_h5p {
-    unsigned char *data;       /* owned */
+    unsigned char *data;       /* owned: the file but the data referred to */
     size_t n, cap;
+    bk_h5p_ref *ref;           /* owned: [nref] in the order of at */
+    int nref, capref;
+    uint64_t reflen;           /* bytes referred to so far (a byte's address: its offset in data + the
+                                * bytes referred to before it) */
     int oom;                   /* some memory could not be had */
     int toolarge;              /* a message over 64 kB (a compound of thousands of members) */
 } bk_h5p;
@@ -67,6 +89,7 @@ uint64_t bk_h5p_dataset(bk_h5p *p, const bk_h5p_type *type, int rank, const uint
 uint64_t bk_h5p_group(bk_h5p *p, int n, const char *const *names, const uint64_t *addrs, int na,
                       const bk_h5p_attr *attrs);
 int bk_h5p_finish(bk_h5p *p, uint64_t root);
+int bk_h5p_write(const bk_h5p *p, int fd);
 void bk_h5p_free(bk_h5p *p);
 /* HDF5's checksum of metadata (Bob Jenkins' lookup3 hashlittle, initval 0). */
 uint32_t bk_h5p_checksum(const void *data, size_t len);

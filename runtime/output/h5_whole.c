@@ -164,7 +164,6 @@ int bk_h5_write_whole(bk_h5 *h, int k)
     da[2] = bk_h5p_dataset(&p, &S64, 1, one, d.beam);
     da[3] = bk_h5p_dataset(&p, &S8, 1, one, d.field);
     da[4] = bk_h5p_dataset(&p, &S2, 1, one, d.comp);
-    bk_h5_dofs_free(&d);
     const char *rn[] = {"tables", "dofs", "step", "time", "q", "qd"};
     ra[0] = tables_group(&p, h, k);
     ra[1] = bk_h5p_group(&p, 5, dn, da, 0, NULL);
@@ -182,22 +181,15 @@ int bk_h5_write_whole(bk_h5 *h, int k)
     uint64_t root = bk_h5p_group(&p, h->with_qd ? 6 : 5, rn, ra, 6, at);
     if (ra[0] == 0 || bk_h5p_finish(&p, root) != 0) {
         bk_h5p_free(&p);
+        bk_h5_dofs_free(&d);
         return 1;                     /* (the library makes it) */
     }
     int fd = open(h->path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    size_t done = 0;
-    while (fd >= 0 && done < p.n) {
-        ssize_t w = write(fd, p.data + done, p.n - done);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            break;
-        done += (size_t)w;
-    }
-    int e = fd < 0 || done < p.n ? (errno ? errno : EIO) : 0;
+    int e = fd < 0 ? errno : bk_h5p_write(&p, fd);
     if (fd >= 0 && close(fd) != 0 && !e)
         e = errno;
     bk_h5p_free(&p);
+    bk_h5_dofs_free(&d);              /* (written from in place: bk_h5p_write) */
     if (e && !h->failed) {
         h->failed = 1;
         snprintf(h->failure, sizeof h->failure, "%s", strerror(e));
