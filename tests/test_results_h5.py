@@ -172,6 +172,29 @@ def test_sigint_keeps_every_written_step_in_results_h5():
         assert np.isfinite(f["qd"][()]).all()
 
 
+def test_a_table_the_writer_thread_mirrors_is_written_by_it_past_4_mb():
+    """From a static run's 8th output step its tables' rows go to results.h5's
+    thread, which formats them and mirrors them into results.h5 (csvrow.h, h5.h).
+    200 elements, 30 fixed load steps: 1000 rows of sections.csv a state, so the
+    thread's rows pass 4 MB (16,912 rows) before the run ends; the thread then
+    makes the file itself and appends them.  The tables equal the CSVs, and the
+    states, handed over only at the end, are contiguous while sections is chunked
+    (the solve thread's own rows would have handed a set over at 4 MB, and the
+    states would be chunked too).  A run slower than the 0.5 s flush interval
+    hands sets over anyway: tried up to 3 times for one that is not."""
+    sets = ["beam.arm.elements=200", "static.step_control=fixed", "static.load_steps=30", "static.stability=false"]
+    for _ in range(3):
+        out = _run("cantilever_bend_10N", sets)
+        check_tables_equal_csv(out)
+        if json.loads((out / "summary.json").read_text())["wall_s"] < 0.4:
+            break
+    else:
+        pytest.skip("three runs took 0.4 s or more: the timed flushes hand sets over")
+    with h5py.File(out / "results.h5", "r") as f:
+        assert f["tables/sections"].shape == (31 * 1000,) and f["tables/sections"].chunks is not None
+        assert f["q"].chunks is None and list(f["step"][()]) == list(range(31))
+
+
 def test_hdf5_false_writes_no_file_and_the_same_csvs():
     a = _run("cantilever_bend_100N")
     b = _run("cantilever_bend_100N", ["output.hdf5=false"])

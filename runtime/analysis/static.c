@@ -290,7 +290,7 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 else
                     incr[0] = 0;
                 snprintf(info->message, sizeof info->message,
-                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %.400s; "
                          "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s%s",
                          info->steps + 1, target, lam, what, a.rnorm, a.rtol_abs, incr, a.iters,
                          a.iters == 1 ? "" : "s", cuts_in_row, cuts_in_row == 1 ? "" : "s",

@@ -176,12 +176,15 @@ static void format_chunk(const void *arg, FILE *unused)
         switch (tag) {
         case T_BEGIN:
             fmt_begin(r, q->fp[p[1]]);
+            q->mrow = q->mirror[p[1]] ? q->sink->tbegin(q->mirror[p[1]]) : NULL;
             p += 2;
             break;
         case T_NUM:
         case T_E:
         case T_G:
             memcpy(&v, p + 2, 8);
+            if (q->mrow)
+                q->sink->num(q->mrow, v);
             if (tag == T_NUM)
                 fmt_num(r, v);
             else if (tag == T_E)
@@ -192,17 +195,24 @@ static void format_chunk(const void *arg, FILE *unused)
             break;
         case T_INT:
             memcpy(&iv, p + 2, 8);
+            if (q->mrow)
+                q->sink->integer(q->mrow, iv);
             fmt_int(r, iv);
             p += 10;
             break;
         case T_STR:
         case T_STRMORE: {
             const size_t len = (size_t)p[1] | (size_t)p[2] << 8;
+            if (q->mrow && tag == T_STR)
+                q->sink->str(q->mrow, (const char *)p + 3, len);
             fmt_str(r, (const char *)p + 3, len, tag == T_STR);
             p += 3 + len;
             break;
         }
         default:                         /* T_END */
+            if (q->mrow)
+                q->sink->end(q->mrow);
+            q->mrow = NULL;
             fmt_end(r);
             p += 2;
             break;
@@ -232,6 +242,8 @@ int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n, 
         bk_rowqueue_stop(q);
         return -1;
     }
+    for (int t = 0; t < q->nfp && sink && sink->table; ++t)   /* (before the thread has any row) */
+        q->mirror[t] = sink->table(sink->ctx, q->fp[t], w);
     q->w = w;
     return 0;
 }
@@ -285,17 +297,17 @@ void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q)
     fmt_begin(r, fp);
     r->sink = NULL;
     r->mirror = NULL;
-    if (q && q->sink && (r->mirror = q->sink->begin(q->sink->ctx, fp)) != NULL)
-        r->sink = q->sink;
-    if (!q || !q->w)
-        return;
-    for (int t = 0; t < q->nfp; ++t)
+    for (int t = 0; q && q->w && t < q->nfp; ++t)
         if (q->fp[t] == fp) {
             r->q = q;
             r->table = t;
             rq_tag(q, T_BEGIN, t);
-            return;
+            if (q->mirror[t])
+                return;                  /* (mirrored by the thread) */
+            break;
         }
+    if (q && q->sink && (r->mirror = q->sink->begin(q->sink->ctx, fp)) != NULL)
+        r->sink = q->sink;
 }
 
 void bk_row_num(bk_row *r, double v)
@@ -321,7 +333,7 @@ void bk_row_int(bk_row *r, long v)
 void bk_row_str(bk_row *r, const char *s)
 {
     if (r->mirror)
-        r->sink->str(r->mirror, s);
+        r->sink->str(r->mirror, s, strlen(s));
     if (r->q)
         rq_str(r->q, s, strlen(s));
     else

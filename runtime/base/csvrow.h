@@ -23,7 +23,9 @@
  *
  * Sizes and directions:
  *   bk_rowqueue_start   in: w (the thread, not owned: it must outlive the queue's
- *                       use), fp[n] (n <= BK_ROWQ_TABLES; NULL entries are
+ *                       use; the sink may have it mirror the rows too: a
+ *                       mirrored table's rows then cost the caller only
+ *                       their recording), fp[n] (n <= BK_ROWQ_TABLES; NULL entries are
  *                       skipped), step_bytes: about what an output step
  *                       records (a 10,000-element beam's sections.csv: 3 MB),
  *                       to have chunks enough for it (2 .. BK_ROWQ_CHUNKS)
@@ -52,17 +54,25 @@
 struct bk_filewriter;
 
 /* A mirror of the tables' rows (the run's results.h5: output/h5.h): given the
- * values of every row begun with a queue that has a sink, as they are written
- * (before formatting, on the caller's thread), whether the row is formatted
- * here or queued.  begin: the mirror of the table written to fp (NULL: that
- * table is not mirrored); then one call per field, and end. */
+ * values of every row begun with a queue that has a sink.  A row formatted
+ * here, or queued for a thread that does not mirror its table, is given as it
+ * is written (on the caller's thread): begin gives the mirror's row (NULL:
+ * that table is not mirrored); then one call per field, and end.  A queued
+ * row of a table the thread mirrors (table, at bk_rowqueue_start) is given by
+ * the queue's thread as it formats the row: tbegin gives the mirror's row
+ * (NULL: not mirrored), then the fields and end as above (the first STR_PIECE
+ * bytes of a long string). */
 typedef struct bk_rowsink {
     void *ctx;
     void *(*begin)(void *ctx, FILE *fp);
-    void (*num)(void *tab, double v);        /* bk_row_num, bk_row_e, bk_row_g */
-    void (*integer)(void *tab, long v);
-    void (*str)(void *tab, const char *s);
-    void (*end)(void *tab);
+    void (*num)(void *row, double v);        /* bk_row_num, bk_row_e, bk_row_g */
+    void (*integer)(void *row, long v);
+    void (*str)(void *row, const char *s, size_t len);
+    void (*end)(void *row);
+    /* at bk_rowqueue_start, on the caller's thread: the mirror of fp's table
+     * when the thread w is to give its rows, else NULL (NULL: none is) */
+    void *(*table)(void *ctx, FILE *fp, const struct bk_filewriter *w);
+    void *(*tbegin)(void *table);            /* on w's thread */
 } bk_rowsink;
 
 typedef struct bk_rowqueue {
@@ -82,6 +92,9 @@ typedef struct bk_rowqueue {
     /* the thread's: the row being formatted (its fields may span two chunks) */
     struct bk_row *row;                /* owned */
     const bk_rowsink *sink;            /* not owned: the rows' mirror, or NULL (kept by start and stop) */
+    void *mirror[BK_ROWQ_TABLES];      /* per stream: its table's mirror given by the thread (sink->table),
+                                        * or NULL: given by the caller */
+    void *mrow;                        /* the thread's: the mirror's row being given, or NULL */
 } bk_rowqueue;
 
 typedef struct bk_row {

@@ -9,39 +9,60 @@
 
 #include "model/model.h"
 
-/* ---- the tables' mirror (csvrow.h bk_rowsink), on the solve thread ---- */
+/* ---- the tables' mirror (csvrow.h bk_rowsink) ---- */
 
 static size_t cell_size(int type)
 {
     return type == 3 ? BK_H5_STR : 8;
 }
 
-/* Room for one more row of t in the set being filled: its buffer grows to
- * BK_H5_ROWS rows or BK_H5_TABLE_BYTES, whichever holds more, then the set is
- * handed over.  Before the first row's types are known a row takes the most
- * room a row can (every cell a string). */
+/* The most rows a table's buffer holds before they are handed over (or, the
+ * thread's, written): BK_H5_ROWS or BK_H5_TABLE_BYTES, whichever holds more.
+ * Before the first row's types are known a row takes the most room a row can
+ * (every cell a string). */
+static size_t row_room(const bk_h5_table *t)
+{
+    return t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
+}
+
+static long most_rows(const bk_h5_table *t)
+{
+    return (long)fmax((double)BK_H5_ROWS, (double)BK_H5_TABLE_BYTES / (double)row_room(t));
+}
+
+/* *buf of *cap rows grown (doubled, to `most` at the most once below it);
+ * 0, or -1 out of memory. */
+static int grow(const bk_h5_table *t, unsigned char **buf, long *cap, long most)
+{
+    long c = *cap ? 2 * *cap : 64;
+    if (c > most && *cap < most)
+        c = most;
+    unsigned char *b = bk_big_realloc(*buf, (size_t)c * row_room(t));
+    if (!b)
+        return -1;
+    *buf = b;
+    *cap = c;
+    return 0;
+}
+
+/* Room for one more row of t in the set being filled: full at most_rows, the
+ * set is handed over. */
 static int table_room(bk_h5 *h, bk_h5_table *t)
 {
     if (t->nbuf[h->cur] < t->cap[h->cur])
         return 0;
-    size_t rowb = t->rowbytes ? t->rowbytes : (size_t)t->ncol * BK_H5_STR;
-    const int most = (int)fmax((double)BK_H5_ROWS, (double)BK_H5_TABLE_BYTES / (double)rowb);
+    const long most = most_rows(t);
     if (t->cap[h->cur] >= most) {
         bk_h5_flush(h);
         if (t->nbuf[h->cur] < t->cap[h->cur])
             return 0;
     }
-    const int k = h->cur;
-    int cap = t->cap[k] ? 2 * t->cap[k] : 64;
-    if (cap > most && t->cap[k] < most)
-        cap = most;
-    unsigned char *b = bk_big_realloc(t->buf[k], (size_t)cap * rowb);
-    if (!b) {
+    long cap = t->cap[h->cur];
+    if (grow(t, &t->buf[h->cur], &cap, most) != 0) {
         h->oom = 1;
         return -1;
     }
-    t->buf[k] = b;
-    t->cap[k] = cap;
+    t->cap[h->cur] = (int)cap;
     return 0;
 }
 
@@ -62,7 +83,7 @@ static bk_h5_table *new_table(bk_h5 *h, FILE *fp)
     settle_thread(h);
     if (h->ntab == h->captab) {
         int cap = h->captab ? 2 * h->captab : 8;
-        bk_h5_table *nt = realloc(h->tab, (size_t)cap * sizeof *nt);
+        bk_h5_table **nt = realloc(h->tab, (size_t)cap * sizeof *nt);
         if (!nt) {
             h->oom = 1;
             return NULL;
@@ -70,8 +91,13 @@ static bk_h5_table *new_table(bk_h5 *h, FILE *fp)
         h->tab = nt;
         h->captab = cap;
     }
-    bk_h5_table *t = &h->tab[h->ntab++];
-    memset(t, 0, sizeof *t);
+    bk_h5_table *t = calloc(1, sizeof *t);
+    if (!t) {
+        h->oom = 1;
+        return NULL;
+    }
+    h->tab[h->ntab++] = t;
+    t->h = h;
     t->fp = fp;
     const bk_table *rt = bk_tables_of(h->tables, fp);
     if (!rt || !rt->header)
@@ -98,23 +124,74 @@ static bk_h5_table *new_table(bk_h5 *h, FILE *fp)
     return t;
 }
 
+static bk_h5_table *table_of(bk_h5 *h, FILE *fp)
+{
+    for (int k = 0; k < h->ntab; ++k)
+        if (h->tab[k]->fp == fp)
+            return h->tab[k];
+    return new_table(h, fp);
+}
+
+/* A row of t begins in the thread's rows (write: their most written when
+ * full, which the thread alone may: h5_file.c). */
+static bk_h5_cursor *thread_row(bk_h5_table *t, int write)
+{
+    if (t->ntb == t->tcap) {
+        const long most = most_rows(t);
+        if (!(write && t->tcap >= most && bk_h5_write_thread_rows(t->h, t) == 0) &&
+            grow(t, &t->tbuf, &t->tcap, most) != 0) {
+            t->toom = 1;
+            return NULL;
+        }
+    }
+    t->ct = (bk_h5_cursor){t, 0, -1, t->tbuf + (size_t)t->ntb * t->stride};   /* (stride 0 before the first row) */
+    return &t->ct;
+}
+
 static void *sink_begin(void *ctx, FILE *fp)
 {
     bk_h5 *h = ctx;
     if (!h->open)
         return NULL;
-    bk_h5_table *t = NULL;
-    for (int k = 0; k < h->ntab && !t; ++k)
-        if (h->tab[k].fp == fp)
-            t = &h->tab[k];
-    if (!t && !(t = new_table(h, fp)))
+    bk_h5_table *t = table_of(h, fp);
+    if (!t || t->ncol == 0)
         return NULL;
-    if (t->ncol == 0 || table_room(h, t) != 0)
+    if (t->threaded) {                    /* (a row after the queue's end: the thread is idle once settled) */
+        settle_thread(h);
+        return thread_row(t, 0);
+    }
+    if (table_room(h, t) != 0)
         return NULL;
-    t->field = 0;
-    t->row = t->buf[h->cur] + (size_t)t->nbuf[h->cur] * t->stride;   /* (stride 0 before the first row) */
-    t->set = h->cur;
+    t->cs = (bk_h5_cursor){t, 0, h->cur, t->buf[h->cur] + (size_t)t->nbuf[h->cur] * t->stride};
+    return &t->cs;
+}
+
+/* fp's table mirrored by results.h5's thread from now on, when w is that
+ * thread (the rows of the set being filled become the first of its own):
+ * called at the queue's start, before the thread has any of its rows. */
+static void *sink_table(void *ctx, FILE *fp, const bk_filewriter *w)
+{
+    bk_h5 *h = ctx;
+    if (!h->open || w != &h->fw)
+        return NULL;
+    bk_h5_table *t = table_of(h, fp);
+    if (!t || t->ncol == 0)
+        return NULL;
+    if (!t->threaded) {
+        const int k = h->cur;
+        t->tbuf = t->buf[k];
+        t->tcap = t->cap[k];
+        t->ntb = t->nbuf[k];
+        t->buf[k] = NULL;
+        t->cap[k] = t->nbuf[k] = 0;
+        t->threaded = 1;
+    }
     return t;
+}
+
+static void *sink_tbegin(void *table)
+{
+    return thread_row(table, 1);
 }
 
 /* Column c's type set (the first row's) and its offset in a row. */
@@ -129,10 +206,10 @@ static void settle(bk_h5_table *t, int c, int type)
         t->rowbytes = col->off + cell_size(type);
 }
 
-static void blank(bk_h5_table *t, int c)
+static void blank(bk_h5_cursor *r, int c)
 {
-    bk_h5_col *col = &t->col[c];
-    unsigned char *b = t->row + col->off;
+    bk_h5_col *col = &r->t->col[c];
+    unsigned char *b = r->row + col->off;
     if (col->type == 1) {
         double v = NAN;
         memcpy(b, &v, 8);
@@ -145,51 +222,60 @@ static void blank(bk_h5_table *t, int c)
 /* The cell of the row being given in the next column for a value of this
  * type; NULL (the cell blank) past the last column or when the column's type
  * (its first row's) is another. */
-static unsigned char *cell(bk_h5_table *t, int type)
+static unsigned char *cell(bk_h5_cursor *r, int type)
 {
-    if (t->field >= t->ncol)
+    bk_h5_table *t = r->t;
+    if (r->field >= t->ncol)
         return NULL;
-    const int c = t->field++;
+    const int c = r->field++;
     settle(t, c, type);
     if (t->col[c].type != type) {
-        blank(t, c);
+        blank(r, c);
         return NULL;
     }
-    return t->row + t->col[c].off;
+    return r->row + t->col[c].off;
 }
 
-static void sink_num(void *tab, double v)
+static void sink_num(void *row, double v)
 {
-    unsigned char *p = cell(tab, 1);
+    unsigned char *p = cell(row, 1);
     if (p)
         memcpy(p, &v, 8);
 }
 
-static void sink_int(void *tab, long v)
+static void sink_int(void *row, long v)
 {
-    unsigned char *p = cell(tab, 2);
+    unsigned char *p = cell(row, 2);
     int64_t w = v;
     if (p)
         memcpy(p, &w, 8);
 }
 
-static void sink_str(void *tab, const char *s)
+static void sink_str(void *row, const char *s, size_t len)
 {
-    unsigned char *p = cell(tab, 3);
-    if (p)
-        strncpy((char *)p, s, BK_H5_STR);     /* null-padded, cut at 64 bytes */
+    unsigned char *p = cell(row, 3);
+    if (p) {                                   /* null-padded, cut at 64 bytes */
+        const size_t k = len < BK_H5_STR ? len : BK_H5_STR;
+        memcpy(p, s, k);
+        memset(p + k, 0, BK_H5_STR - k);
+    }
 }
 
-static void sink_end(void *tab)
+static void sink_end(void *row)
 {
-    bk_h5_table *t = tab;
-    for (; t->field < t->ncol; ++t->field) {   /* a short row: the rest blank (no type yet: float64) */
-        settle(t, t->field, 1);
-        blank(t, t->field);
+    bk_h5_cursor *r = row;
+    bk_h5_table *t = r->t;
+    for (; r->field < t->ncol; ++r->field) {   /* a short row: the rest blank (no type yet: float64) */
+        settle(t, r->field, 1);
+        blank(r, r->field);
     }
     if (t->stride == 0)                        /* the first row: its layout is every row's */
         t->stride = t->rowbytes;
-    t->nbuf[t->set]++;
+    if (r->set < 0)
+        t->ntb++;
+    else
+        t->nbuf[r->set]++;
+    r->row = NULL;
 }
 
 /* ---- the solve thread's side ---- */
@@ -206,7 +292,7 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, int states, const char 
     h->ndof = m->ndof;
     h->with_qd = in_time;
     h->qd_step = -1;
-    h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end};
+    h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end, sink_table, sink_tbegin};
     snprintf(h->path, sizeof h->path, "%s/results.h5", dir);
     size_t nd = (size_t)m->ndof;
     /* the states' buffers: 1 MB of rows per set (at least 16, at most BK_H5_ROWS) */
@@ -280,8 +366,8 @@ void bk_h5_flush(bk_h5 *h)
     /* nothing written since the last flush: no HDF5 call (a long run's timed
      * flushes with no new output step would allocate in the library) */
     int empty = h->nbuf[h->cur] == 0 && !h->unflushed;
-    for (int j = 0; j < h->ntab && empty; ++j)
-        empty = h->tab[j].nbuf[h->cur] == 0;
+    for (int j = 0; j < h->ntab && empty; ++j)   /* (the thread's rows: maybe some) */
+        empty = h->tab[j]->nbuf[h->cur] == 0 && !h->tab[j]->threaded;
     if (!empty)
         hand_over(h, 1);
 }
@@ -311,7 +397,7 @@ static void hand_over(bk_h5 *h, int flush)
     h->ticket[h->cur] = 0;
     h->nbuf[h->cur] = 0;
     for (int j = 0; j < h->ntab; ++j)
-        h->tab[j].nbuf[h->cur] = 0;
+        h->tab[j]->nbuf[h->cur] = 0;
 }
 
 int bk_h5_close(bk_h5 *h, FILE *err)
@@ -320,8 +406,8 @@ int bk_h5_close(bk_h5 *h, FILE *err)
     if (h->open) {
         /* a run whose rows all came now: the file in one piece, here (the
          * writer is idle: the frames are written, the rows' queue stopped) */
-        int by_library = h->lib;
-        if (h->fw.ready && !h->lib)
+        int by_library = h->lib || h->tlib;
+        if (h->fw.ready && !by_library)
             by_library = bk_h5_write_whole(h, h->cur) == 1;
         if (h->fw.ready && by_library) {
             hand_over(h, 2);              /* the last rows (closing the file flushes it) */
@@ -329,6 +415,8 @@ int bk_h5_close(bk_h5 *h, FILE *err)
             bk_filewriter_call(&h->fw, bk_h5_run_job, &h->job[4]);   /* HDF5 ended by bk_h5_end */
         }
         h->open = 0;
+        for (int j = 0; j < h->ntab; ++j)    /* (the thread's: it is idle now) */
+            h->oom = h->oom || h->tab[j]->toom;
         if (!h->failed && h->oom) {
             h->failed = 1;
             snprintf(h->failure, sizeof h->failure, "out of memory for the rows (some are missing)");
@@ -347,9 +435,11 @@ void bk_h5_end(bk_h5 *h)
     bk_h5_close(h, NULL);
     bk_filewriter_close(&h->fw);          /* (drains: HDF5 ended) */
     for (int k = 0; k < h->ntab; ++k) {
-        free(h->tab[k].buf[0]);
-        free(h->tab[k].buf[1]);
-        free(h->tab[k].col);
+        free(h->tab[k]->buf[0]);
+        free(h->tab[k]->buf[1]);
+        free(h->tab[k]->tbuf);
+        free(h->tab[k]->col);
+        free(h->tab[k]);
     }
     free(h->tab);
     for (int k = 0; k < 2; ++k) {

@@ -14,8 +14,14 @@
  *                     the very values the CSV prints
  *
  * The rows (states, and the tables' rows given to the mirror, csvrow.h
- * bk_rowsink, on the solve thread whether or not the writer thread formats
- * their text) are kept in one of two sets of buffers.  A run whose rows all
+ * bk_rowsink, on the solve thread) are kept in one of two sets of buffers.
+ * A table whose rows this file's thread formats (csvrow.h bk_rowqueue on fw:
+ * from the run's first frames or 8th output step on) is mirrored by the
+ * thread instead, as it formats them, into rows of its own (bk_h5_table
+ * tbuf: written with the set handed over next, or by the thread itself past
+ * BK_H5_TABLE_BYTES, making the file if no set was handed over yet): the solve
+ * thread then only records the rows' values (the mirror's cells and their
+ * fresh memory took 2-10 ms of a 70-80 ms run).  A run whose rows all
  * come at its end (fewer than BK_H5_HANDOVER states, no table's buffer full,
  * shorter than the flush interval: most static runs and short dynamic ones)
  * gets its file in one
@@ -91,7 +97,19 @@ typedef struct bk_h5_col {
     size_t off;               /* its offset in a row */
 } bk_h5_col;
 
+struct bk_h5;
+struct bk_h5_table;
+
+/* A row being given (the sink's row handle, csvrow.h bk_rowsink). */
+typedef struct bk_h5_cursor {
+    struct bk_h5_table *t;
+    int field;                /* its next field */
+    int set;                  /* its set, or -1: the thread's rows */
+    unsigned char *row;       /* its place (NULL between rows) */
+} bk_h5_cursor;
+
 typedef struct bk_h5_table {
+    struct bk_h5 *h;
     const FILE *fp;           /* the CSV stream it mirrors */
     char name[64];            /* the CSV's name without ".csv" */
     int ncol;
@@ -99,14 +117,19 @@ typedef struct bk_h5_table {
     size_t rowbytes, stride;  /* a row's bytes (known once the first row's last column is), the buffers' */
     unsigned char *buf[2];    /* owned: per set, [cap] rows */
     int nbuf[2], cap[2];      /* per set: rows buffered, room */
-    int field;                /* the row being given: its next field, */
-    int set;                  /*   its set, */
-    unsigned char *row;       /*   its place */
+    bk_h5_cursor cs;          /* the row being given on the solve thread */
+    /* A table whose rows results.h5's thread formats (csvrow.h bk_rowqueue
+     * on h->fw) is mirrored by that thread from the queue's start on, into
+     * rows of its own (the rows buffered before moved there): */
+    int threaded;
+    unsigned char *tbuf;      /* owned: [tcap] rows */
+    long ntb, tcap;
+    bk_h5_cursor ct;          /* the row the thread is giving */
+    int toom;                 /* the thread ran out of memory for them (some are missing) */
     long nrow;                /* the thread's: rows in the file, */
     bk_h5_id ds, type;        /*   its dataset and compound type (0 before the first write) */
 } bk_h5_table;
 
-struct bk_h5;
 typedef struct bk_h5_job {
     struct bk_h5 *h;
     int what;                 /* 0 make the file, 1 write set `set`, 2 close the file, 3 end HDF5 */
@@ -132,12 +155,15 @@ typedef struct bk_h5 {
     double *time[2], *q[2], *qd[2];   /* owned: [cap], [cap ndof], [cap ndof] per set */
     double *qd_last;          /* owned: [ndof] the velocities given for step qd_step */
     int qd_step;              /* -1: none */
-    bk_h5_table *tab;         /* owned: [ntab] the mirrored tables */
+    bk_h5_table **tab;        /* owned: [ntab] the mirrored tables (each owned: a table's place is
+                               * kept, the thread's rows refer to it) */
     int ntab, captab;
     bk_rowsink sink;          /* the tables' mirror (csvrow.h), ctx = this */
     int oom;                  /* the solve thread ran out of memory for rows (some are missing) */
     /* the thread's */
     bk_h5_id file, tables_group, ds_step, ds_time, ds_q, ds_qd;
+    int tlib;                 /* the file was made by the thread for a table's rows (its rows past
+                               * BK_H5_TABLE_BYTES: written, not kept) before any set was handed over */
     long nstate;              /* states in the file */
     int failed;               /* an HDF5 call failed: */
     char failure[200];        /*   which */

@@ -188,6 +188,8 @@ out:
 
 static void make_file(bk_h5 *h)
 {
+    if (h->file || h->failed)
+        return;                                  /* (made for the thread's rows: bk_h5_write_thread_rows) */
     const bk_model *m = h->m;
     /* HDF5 is started and ended on this thread (H5close: the last job): its
      * exit handler would make per-thread state for the main thread at exit */
@@ -223,6 +225,62 @@ static int make_states(bk_h5 *h, hsize_t fixed)
                ? 0 : -1;
 }
 
+/* n rows of t appended to its dataset (made at its first rows: of exactly n
+ * rows when fixed); 0, or -1 (h->failed). */
+static int table_rows(bk_h5 *h, bk_h5_table *t, hid_t s64, const unsigned char *rows, long n, int fixed)
+{
+    if (n == 0)
+        return 0;
+    if (!t->ds) {
+        /* the row's compound type: a member per column, named by the header */
+        hid_t ct = H5Tcreate(H5T_COMPOUND, t->rowbytes);
+        int ok = ct >= 0;
+        for (int c = 0; c < t->ncol && ok; ++c)
+            ok = H5Tinsert(ct, t->col[c].name, t->col[c].off,
+                           t->col[c].type == 1 ? H5T_NATIVE_DOUBLE : t->col[c].type == 2 ? H5T_NATIVE_INT64 : s64)
+                 >= 0;
+        if (ok && (t->ds = make_dataset(h->tables_group, t->name, ct, 0, CHUNK_ROWS(t->rowbytes),
+                                      fixed ? (hsize_t)n : 0)) != 0)
+            t->type = ct;
+        else if (ct >= 0)
+            H5Tclose(ct);
+    }
+    if (!t->ds || append(t->ds, t->type, (hsize_t)t->nrow, (hsize_t)n, 0, rows, fixed) != 0)
+        return fail(h, "HDF5 failed to append a table's rows");
+    t->nrow += n;
+    return 0;
+}
+
+/* The thread's rows of t are in the file: a row it is giving (its fields may
+ * come in two chunks of the queue) moves to the start. */
+static void thread_rows_written(bk_h5_table *t)
+{
+    if (t->ct.row && t->ct.row != t->tbuf) {
+        memmove(t->tbuf, t->ct.row, t->stride);   /* (stride 0: the first row, at the start already) */
+        t->ct.row = t->tbuf;
+    }
+    t->ntb = 0;
+}
+
+int bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t)
+{
+    if (!h->file && !h->failed) {                /* no set handed over yet */
+        make_file(h);
+        h->tlib = 1;
+    }
+    if (!h->failed && h->file) {
+        hid_t s64 = str_type();
+        if (s64 < 0)
+            fail(h, "HDF5 failed to make a string type");
+        else {
+            table_rows(h, t, s64, t->tbuf, t->ntb, 0);
+            H5Tclose(s64);
+        }
+    }
+    thread_rows_written(t);                      /* (dropped after a failure: reported at the close) */
+    return 0;
+}
+
 static void write_set(bk_h5 *h, int k)
 {
     if (h->failed || !h->file)
@@ -249,30 +307,18 @@ static void write_set(bk_h5 *h, int k)
         fail(h, "HDF5 failed to make a string type");
         return;
     }
-    for (int j = 0; j < h->ntab; ++j) {
-        bk_h5_table *t = &h->tab[j];
-        if (t->ncol == 0 || t->nbuf[k] == 0)
+    for (int j = 0; j < h->ntab && !h->failed; ++j) {
+        bk_h5_table *t = h->tab[j];
+        const long nb = t->nbuf[k], nt = t->threaded ? t->ntb : 0;
+        if (t->ncol == 0 || nb + nt == 0)
             continue;
-        const int tfixed = last && !t->ds;
-        if (!t->ds) {
-            /* the row's compound type: a member per column, named by the header */
-            hid_t ct = H5Tcreate(H5T_COMPOUND, t->rowbytes);
-            int ok = ct >= 0;
-            for (int c = 0; c < t->ncol && ok; ++c)
-                ok = H5Tinsert(ct, t->col[c].name, t->col[c].off,
-                               t->col[c].type == 1 ? H5T_NATIVE_DOUBLE : t->col[c].type == 2 ? H5T_NATIVE_INT64 : s64)
-                     >= 0;
-            if (ok && (t->ds = make_dataset(h->tables_group, t->name, ct, 0, CHUNK_ROWS(t->rowbytes),
-                                          tfixed ? (hsize_t)t->nbuf[k] : 0)) != 0)
-                t->type = ct;
-            else if (ct >= 0)
-                H5Tclose(ct);
-        }
-        if (!t->ds || append(t->ds, t->type, (hsize_t)t->nrow, (hsize_t)t->nbuf[k], 0, t->buf[k], tfixed) != 0) {
-            fail(h, "HDF5 failed to append a table's rows");
+        /* the set's rows, then the thread's (a table mirrored by the thread
+         * from the queue's start: csvrow.h), in one piece when all are known */
+        const int tfixed = last && !t->ds && !(nb && nt);
+        if (table_rows(h, t, s64, t->buf[k], nb, tfixed) != 0 || table_rows(h, t, s64, t->tbuf, nt, tfixed) != 0)
             break;
-        }
-        t->nrow += t->nbuf[k];
+        if (nt)
+            thread_rows_written(t);
     }
     H5Tclose(s64);
     if (!h->failed && h->flush[k] == 1 && H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0)
@@ -286,10 +332,10 @@ static void close_file(bk_h5 *h)
         if (ids[k] > 0)
             H5Oclose(ids[k]);
     for (int k = 0; k < h->ntab; ++k) {
-        if (h->tab[k].ds > 0)
-            H5Dclose(h->tab[k].ds);
-        if (h->tab[k].type > 0)
-            H5Tclose(h->tab[k].type);
+        if (h->tab[k]->ds > 0)
+            H5Dclose(h->tab[k]->ds);
+        if (h->tab[k]->type > 0)
+            H5Tclose(h->tab[k]->type);
     }
     if (h->file > 0 && H5Fclose(h->file) < 0)
         fail(h, "HDF5 failed to close the file");

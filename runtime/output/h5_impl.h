@@ -23,6 +23,12 @@ typedef struct bk_h5_dofs {
 int bk_h5_dofs_make(const bk_model *m, bk_h5_dofs *d);   /* 0, or -1 out of memory (d freed) */
 void bk_h5_dofs_free(bk_h5_dofs *d);
 
+/* The thread's rows of t (h5.h bk_h5_table.tbuf) appended to its dataset, the
+ * file made first if no set was handed over yet (h->tlib); on the thread, at a
+ * row's start (none is being given).  0 (written, or dropped after a failure:
+ * h->failed), or -1 when not (the file could not be made for them). */
+int bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t);
+
 /* The whole file from set k when every row is in it (no set handed to the
  * thread before): 0 written, -1 it could not be (h->failed, failure), 1 left
  * to the library (no states, out of memory, a compound too large, a column

@@ -112,8 +112,11 @@ static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
     uint64_t *addrs = calloc((size_t)h->ntab + 1, sizeof *addrs);
     ok = names && addrs;
     for (int j = 0; j < h->ntab && ok; ++j) {
-        const bk_h5_table *t = &h->tab[j];
-        if (t->ncol == 0 || t->nbuf[k] == 0)
+        const bk_h5_table *t = h->tab[j];
+        /* a table mirrored by the thread: all its rows are the thread's (h5.h) */
+        const unsigned char *rows = t->threaded ? t->tbuf : t->buf[k];
+        const long nrow = t->threaded ? t->ntb : t->nbuf[k];
+        if (t->ncol == 0 || nrow == 0)
             continue;
         const char **mn = malloc((size_t)t->ncol * sizeof *mn);
         size_t *off = malloc((size_t)t->ncol * sizeof *off);
@@ -128,10 +131,10 @@ static uint64_t tables_group(bk_h5p *p, const bk_h5 *h, int k)
                 mt[c] = t->col[c].type == 1 ? &F64 : t->col[c].type == 2 ? &I64 : &S64;
             }
             bk_h5p_type row = {BK_H5P_COMPOUND, t->rowbytes, 0, t->ncol, mn, off, mt};
-            uint64_t dims[1] = {(uint64_t)t->nbuf[k]};
+            uint64_t dims[1] = {(uint64_t)nrow};
             names[n] = t->name;
             if (ok)
-                addrs[n++] = bk_h5p_dataset(p, &row, 1, dims, t->buf[k]);
+                addrs[n++] = bk_h5p_dataset(p, &row, 1, dims, rows);
         }
         free(mn);
         free(off);
