@@ -353,8 +353,9 @@ void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
     h->qd_step = -1;
     h->nbuf[s]++;
     /* every BK_H5_HANDOVER states to the thread, unflushed: the writing goes
-     * on beside the solve instead of after it (at fixed counts, so that a run
-     * shorter than the flush interval writes the same bytes each time) */
+     * on beside the solve instead of after it; while the thread still writes
+     * the other set, this one goes on filling (to its room: then
+     * bk_h5_flush waits) */
     if (h->nbuf[s] >= BK_H5_HANDOVER && (h->ticket[s ^ 1] <= 0 || bk_filewriter_done(&h->fw, h->ticket[s ^ 1])))
         hand_over(h, 0);
 }
