@@ -17,12 +17,14 @@ void bk_output_rows_to_writer(bk_output *o)
     if (o->rq.w)
         return;
     bk_filewriter *w = NULL;
+    const int due = ++o->row_steps >= BK_ROWS_THREAD_AFTER;   /* (counted once a call: counted in both
+                                                               * tests below, the output's own thread
+                                                               * was due a step before results.h5's) */
     if (o->vtk.background && o->vtk.wp->threaded)
         w = o->vtk.wp;
-    else if (o->h5.open && (o->h5.fw.threaded || ++o->row_steps >= BK_ROWS_THREAD_AFTER) &&
-             bk_filewriter_start(&o->h5.fw))
+    else if (o->h5.open && (o->h5.fw.threaded || due) && bk_filewriter_start(&o->h5.fw))
         w = &o->h5.fw;
-    else if (o->vtk.every <= 0 && !o->own_tried && ++o->row_steps >= BK_ROWS_THREAD_AFTER) {
+    else if (o->vtk.every <= 0 && !o->own_tried && due) {
         o->own_tried = 1;
         if (bk_filewriter_open(&o->fw, 1, 1) == 0 && o->fw.threaded) {
             o->own_fw = 1;
