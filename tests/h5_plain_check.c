@@ -150,6 +150,18 @@ static int write_lib(const char *path, const double *dbl, const row *rows, const
     return rc;
 }
 
+/* rows (k, k / 4, "pt<k>", -k) */
+static void fill_rows(row *rows, int n)
+{
+    memset(rows, 0, (size_t)n * sizeof *rows);
+    for (int k = 0; k < n; ++k) {
+        rows[k].step = k;
+        rows[k].time = k / 4.0;
+        snprintf(rows[k].name, sizeof rows[k].name, "pt%d", k);
+        rows[k].x = -k;
+    }
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 3) {
@@ -158,25 +170,13 @@ int main(int argc, char **argv)
     }
     const double dbl[6] = {1.5, -0.0, 1e-300, INFINITY, NAN, -2.25e17};
     row rows[3];
-    memset(rows, 0, sizeof rows);
-    for (int k = 0; k < 3; ++k) {
-        rows[k].step = k;
-        rows[k].time = k / 4.0;
-        snprintf(rows[k].name, sizeof rows[k].name, "pt%d", k);
-        rows[k].x = -k;
-    }
+    fill_rows(rows, 3);
     static double big[3000 * 4];
     for (int i = 0; i < 3000; ++i)
         for (int j = 0; j < 4; ++j)
             big[4 * i + j] = i / 2.0 - j;
     static row bigrows[400];
-    memset(bigrows, 0, sizeof bigrows);
-    for (int k = 0; k < 400; ++k) {
-        bigrows[k].step = k;
-        bigrows[k].time = k / 4.0;
-        snprintf(bigrows[k].name, sizeof bigrows[k].name, "pt%d", k);
-        bigrows[k].x = -k;
-    }
+    fill_rows(bigrows, 400);
     unsigned char b[300];
     srand(1);
     int same = 1;
