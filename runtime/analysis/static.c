@@ -289,8 +289,8 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                     snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
                 else
                     incr[0] = 0;
-                snprintf(info->message, sizeof info->message,
-                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %.400s; "
+                const int len = snprintf(info->message, sizeof info->message,
+                         "static solve failed at step %d, load factor %.6g (last converged %.6g): %s; "
                          "residual %.3e (tolerance %.3e)%s after %d iteration%s, %d cut-back%s%s%s",
                          info->steps + 1, target, lam, what, a.rnorm, a.rtol_abs, incr, a.iters,
                          a.iters == 1 ? "" : "s", cuts_in_row, cuts_in_row == 1 ? "" : "s",
@@ -300,6 +300,8 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                              ? "; the last equilibrium was unstable (negative tangent eigenvalues): "
                                "a bifurcation or limit point was passed"
                              : "", hint);
+                if (len >= (int)sizeof info->message)   /* (cut: said so) */
+                    memcpy(info->message + sizeof info->message - 4, "...", 4);
                 goto done;
             }
             cuts_in_row++;
