@@ -153,7 +153,7 @@ void bk_output_last_frame(bk_output *o, int step, double t, const double *q)
     double t0 = bk_clock_s();
     if (o->vtk.every > 0 && (o->vtk.nframe == 0 || o->vtk.frames[o->vtk.nframe - 1] != step))
         bk_vtk_frame(&o->vtk, o->sys, -step, t, q);
-    bk_output_rows_to_writer(o);
+    bk_output_rows_to_writer(o, t);
     spent(o, t0);
 }
 
@@ -174,7 +174,7 @@ void bk_output_step(bk_output *o, int step, double t, const double *q)
 {
     double t0 = bk_clock_s();
     bk_vtk_frame(&o->vtk, o->sys, step, t, q);
-    bk_output_rows_to_writer(o);
+    bk_output_rows_to_writer(o, t);
     bk_h5_state(&o->h5, step, t, q);
     if (!o->sensors) {
         spent(o, t0);
@@ -214,7 +214,7 @@ void bk_output_forces(bk_output *o, bk_system *s, int step, double t, const doub
                 o->write_failed = 1;
         }
     if (o->h5.open && o->h5.fw.threaded)  /* the rows to results.h5's thread from the first step's (sections.csv) */
-        bk_output_rows_to_writer(o);
+        bk_output_rows_to_writer(o, t);
     int with_sections = o->forces_calls++ % o->sections_every == 0;
     bk_forces_step(&o->forces, s, step, t, q, qd, qdd, nu, with_sections);
     for (int k = 0; k < s->ninter; ++k) {

@@ -131,8 +131,8 @@ int bk_output_summary(const bk_output *o, const bk_run_info *info, const double 
  * that could not be written. */
 int bk_output_close_tables(bk_output *o, FILE *err);
 /* (output.c's, in rows_writer.c) The tables' rows to a writer thread once one
- * runs, called at every output step. */
-void bk_output_rows_to_writer(bk_output *o);
+ * runs, called at every output step (t: its time or load factor). */
+void bk_output_rows_to_writer(bk_output *o, double t);
 /* Closes what is still open (the tables too, unreported), waits for results.h5's
  * thread to end and frees. */
 void bk_output_close(bk_output *o);

@@ -4,22 +4,28 @@
 
 /* The tables' rows are formatted by a writer thread (csvrow.h bk_rowqueue)
  * from the first output step that one runs: the frames' (vtk.h: a run with
- * enough frames), else results.h5's (h5.h: started for them from the
- * BK_ROWS_THREAD_AFTER-th output step on, if not by then for HDF5; a short
- * run formats its few rows itself), else, in a run without frames,
- * one of the output's own from its BK_ROWS_THREAD_AFTER-th output step on (a
- * dynamic run without frames formatted its rows on the solve thread: its
- * output took longer than with them).  From then on the tables are that
- * thread's until bk_output_close_tables. */
+ * enough frames), else results.h5's (h5.h: started for them once the run is
+ * due one, if not by then for HDF5; a short run formats its few rows
+ * itself), else, in a run without frames or results.h5, one of the output's
+ * own once due (a dynamic run without frames formatted its rows on the solve
+ * thread: its output took longer than with them).  A run is due a thread from
+ * its BK_ROWS_THREAD_AFTER-th output step, or earlier when it is expected to
+ * give that many, as the frames' thread is started (vtk.c maybe_background):
+ * known from the start (the plan's states: dynamics), or the steps so far over
+ * the fraction of the run done (t over the plan's end) from the second step
+ * (a roll-up of 25 increments without frames formatted and mirrored its first
+ * 8 steps' rows on the solve thread: its output took longer than with frames).
+ * From then on the tables are that thread's until bk_output_close_tables. */
 #define BK_ROWS_THREAD_AFTER 8
-void bk_output_rows_to_writer(bk_output *o)
+void bk_output_rows_to_writer(bk_output *o, double t)
 {
     if (o->rq.w)
         return;
     bk_filewriter *w = NULL;
-    const int due = ++o->row_steps >= BK_ROWS_THREAD_AFTER;   /* (counted once a call: counted in both
-                                                               * tests below, the output's own thread
-                                                               * was due a step before results.h5's) */
+    const int steps = ++o->row_steps;    /* (counted once a call) */
+    const double frac = o->plan.end > 0.0 ? t / o->plan.end : -1.0;
+    const int due = steps >= BK_ROWS_THREAD_AFTER || o->plan.states >= BK_ROWS_THREAD_AFTER ||
+                    (frac > 0.0 && steps >= 2 && steps >= BK_ROWS_THREAD_AFTER * frac);
     if (o->vtk.background && o->vtk.wp->threaded)
         w = o->vtk.wp;
     else if (o->h5.open && (o->h5.fw.threaded || due) && bk_filewriter_start(&o->h5.fw))
