@@ -16,7 +16,8 @@
  * The rows (states, and the tables' rows given to the mirror, csvrow.h
  * bk_rowsink, on the solve thread) are kept in one of two sets of buffers.
  * A table whose rows this file's thread formats (csvrow.h bk_rowqueue on fw:
- * from the run's first frames or 8th output step on) is mirrored by the
+ * from the run's first frames on, or once its rows are due a thread:
+ * rows_writer.c) is mirrored by the
  * thread instead, as it formats them, into rows of its own (bk_h5_table
  * tbuf: written with the set handed over next, or by the thread itself past
  * BK_H5_TABLE_BYTES, making the file if no set was handed over yet): the solve
