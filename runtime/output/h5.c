@@ -174,6 +174,7 @@ static void *sink_table(void *ctx, FILE *fp, const bk_filewriter *w)
     bk_h5 *h = ctx;
     if (!h->open || w != &h->fw)
         return NULL;
+    settle_thread(h);                     /* (a set being written reads the table's rows: not now) */
     bk_h5_table *t = table_of(h, fp);
     if (!t || t->ncol == 0)
         return NULL;
