@@ -138,8 +138,9 @@ static bk_h5_cursor *thread_row(bk_h5_table *t, int write)
 {
     if (t->ntb == t->tcap) {
         const long most = most_rows(t);
-        if (!(write && t->tcap >= most && bk_h5_write_thread_rows(t->h, t) == 0) &&
-            grow(t, &t->tbuf, &t->tcap, most) != 0) {
+        if (write && t->tcap >= most)
+            bk_h5_write_thread_rows(t->h, t);
+        else if (grow(t, &t->tbuf, &t->tcap, most) != 0) {
             t->toom = 1;
             return NULL;
         }

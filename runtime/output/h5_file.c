@@ -262,7 +262,7 @@ static void thread_rows_written(bk_h5_table *t)
     t->ntb = 0;
 }
 
-int bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t)
+void bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t)
 {
     if (!h->file && !h->failed) {                /* no set handed over yet */
         make_file(h);
@@ -278,7 +278,6 @@ int bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t)
         }
     }
     thread_rows_written(t);                      /* (dropped after a failure: reported at the close) */
-    return 0;
 }
 
 static void write_set(bk_h5 *h, int k)

@@ -25,9 +25,9 @@ void bk_h5_dofs_free(bk_h5_dofs *d);
 
 /* The thread's rows of t (h5.h bk_h5_table.tbuf) appended to its dataset, the
  * file made first if no set was handed over yet (h->tlib); on the thread, at a
- * row's start (none is being given).  0 (written, or dropped after a failure:
- * h->failed), or -1 when not (the file could not be made for them). */
-int bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t);
+ * row's start (none is being given).  Afterwards t holds none: written, or
+ * dropped after a failure (h->failed, reported by bk_h5_close). */
+void bk_h5_write_thread_rows(bk_h5 *h, bk_h5_table *t);
 
 /* The whole file from set k when every row is in it (no set handed to the
  * thread before): 0 written, -1 it could not be (h->failed, failure), 1 left
