@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #define WRITER_STACK (256 << 10)
@@ -69,13 +70,50 @@ static void record(bk_filewriter *w, const char *path, int err)
     snprintf(w->failed_path, sizeof w->failed_path, "%s", path);
 }
 
+/* The thread, out of work, first naps: waits of BK_FILEWRITER_NAP_US each,
+ * BK_FILEWRITER_NAPS times, in which a hand-over is found without being
+ * signalled; then it sleeps until one signals it (see wake).  On a virtual
+ * machine waking a sleeping thread costs the waker 20-30 us (a futex wake and
+ * an interrupt to the other processor), as much as handing a frame over; a
+ * run that writes an output step every millisecond or two paid it at each. */
+#define BK_FILEWRITER_NAP_US 200
+#define BK_FILEWRITER_NAPS 50
+
+static void nap(bk_filewriter *w)
+{
+    w->idle = 1;
+    for (int k = 0; k < BK_FILEWRITER_NAPS && w->count == 0 && !w->stop; ++k) {
+        struct timespec ts;
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        ts.tv_nsec += BK_FILEWRITER_NAP_US * 1000L;
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&w->cv, &w->mu, &ts);
+    }
+    w->idle = 2;
+    while (w->count == 0 && !w->stop)
+        pthread_cond_wait(&w->cv, &w->mu);
+    w->idle = 0;
+}
+
+/* After a hand-over (lock held): the thread signalled when it sleeps, or when
+ * the caller needs it now (urgent: it is about to wait for it, or the last
+ * free buffer was taken); a napping thread finds the work itself. */
+static void wake(bk_filewriter *w, int urgent)
+{
+    if (w->idle == 2 || (urgent && w->idle))
+        pthread_cond_broadcast(&w->cv);
+}
+
 static void *writer_main(void *arg)
 {
     bk_filewriter *w = arg;
     pthread_mutex_lock(&w->mu);
     for (;;) {
-        while (w->count == 0 && !w->stop)
-            pthread_cond_wait(&w->cv, &w->mu);
+        if (w->count == 0 && !w->stop)
+            nap(w);
         if (w->count == 0)
             break;
         const bk_filewriter_entry e = w->queue[w->head];
@@ -95,10 +133,20 @@ static void *writer_main(void *arg)
         }
         w->head = (w->head + 1) % BK_FILEWRITER_QUEUE;
         w->count--;
-        pthread_cond_broadcast(&w->cv);
+        if (w->waiting)                  /* (the caller waits for this thread) */
+            pthread_cond_broadcast(&w->cv);
     }
     pthread_mutex_unlock(&w->mu);
     return NULL;
+}
+
+/* The caller waits for the thread (lock held): woken first if idle. */
+static void await(bk_filewriter *w)
+{
+    wake(w, 1);
+    w->waiting++;
+    pthread_cond_wait(&w->cv, &w->mu);
+    w->waiting--;
 }
 
 int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
@@ -110,7 +158,14 @@ int bk_filewriter_open(bk_filewriter *w, size_t cap, int threaded)
             return -1;
     if (pthread_mutex_init(&w->mu, NULL) != 0)
         return -1;
-    if (pthread_cond_init(&w->cv, NULL) != 0) {
+    pthread_condattr_t ca;              /* (the naps are timed on the monotonic clock) */
+    if (pthread_condattr_init(&ca) != 0) {
+        pthread_mutex_destroy(&w->mu);
+        return -1;
+    }
+    const int bad = pthread_condattr_setclock(&ca, CLOCK_MONOTONIC) != 0 || pthread_cond_init(&w->cv, &ca) != 0;
+    pthread_condattr_destroy(&ca);
+    if (bad) {
         pthread_mutex_destroy(&w->mu);
         return -1;
     }
@@ -143,7 +198,7 @@ int bk_filewriter_slot(bk_filewriter *w, int wait)
                 b = k;
         if (b >= 0 || !w->threaded || !wait)
             break;
-        pthread_cond_wait(&w->cv, &w->mu);
+        await(w);
     }
     if (b >= 0)
         w->state[b] = 1;
@@ -159,7 +214,10 @@ static int queue(bk_filewriter *w, int b, const char *path, bk_filewriter_make m
     w->state[b] = 2;
     w->queue[(w->head + w->count) % BK_FILEWRITER_QUEUE] = (bk_filewriter_entry){b, make, job};
     w->count++;
-    pthread_cond_broadcast(&w->cv);
+    int free_left = 0;
+    for (int k = 0; k < BK_FILEWRITER_BUFFERS; ++k)
+        free_left += w->state[k] == 0;
+    wake(w, free_left == 0);
     int failed = w->failed;
     pthread_mutex_unlock(&w->mu);
     return failed ? -1 : 0;
@@ -194,12 +252,12 @@ long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg
     }
     pthread_mutex_lock(&w->mu);
     while (w->ncall == BK_FILEWRITER_CALLS)     /* (each frame in the queue holds a buffer: room for the calls) */
-        pthread_cond_wait(&w->cv, &w->mu);
+        await(w);
     w->queue[(w->head + w->count) % BK_FILEWRITER_QUEUE] = (bk_filewriter_entry){-1, fn, arg};
     w->count++;
     w->ncall++;
     long ticket = ++w->calls;
-    pthread_cond_broadcast(&w->cv);
+    wake(w, 0);
     pthread_mutex_unlock(&w->mu);
     return ticket;
 }
@@ -210,7 +268,7 @@ void bk_filewriter_wait(bk_filewriter *w, long ticket)
         return;
     pthread_mutex_lock(&w->mu);
     while (w->calls_done < ticket)
-        pthread_cond_wait(&w->cv, &w->mu);
+        await(w);
     pthread_mutex_unlock(&w->mu);
 }
 
@@ -230,7 +288,7 @@ int bk_filewriter_drain(bk_filewriter *w)
         return w->failed ? -1 : 0;
     pthread_mutex_lock(&w->mu);
     while (w->count > 0)
-        pthread_cond_wait(&w->cv, &w->mu);
+        await(w);
     int failed = w->failed;
     pthread_mutex_unlock(&w->mu);
     return failed ? -1 : 0;

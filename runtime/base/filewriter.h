@@ -40,6 +40,11 @@
  *   bk_filewriter_drain   waits until every file and call handed over is done;
  *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
+ * Handing over does not wake the thread while it naps (for 10 ms after its
+ * last job it waits 0.2 ms at a time and finds new work itself): waking a
+ * sleeping thread costs the caller 20-30 us on a virtual machine; only a
+ * thread asleep, a caller about to wait for it, or the last free buffer
+ * taken signals it (filewriter.c nap, wake).
  * No allocation after open but for a job's stream on its buffer (fmemopen).
  * The signal mask is the opener's (the solver blocks SIGINT/SIGTERM before:
  * interrupt.h). */
@@ -77,6 +82,9 @@ typedef struct bk_filewriter {
     int ncall;                           /* calls in the queue */
     long calls, calls_done;              /* calls handed over, calls returned */
     int threaded, stop, ready;         /* ready: mu and cv made */
+    int idle;                            /* the thread: 0 working, 1 napping (finds hand-overs itself),
+                                          * 2 asleep (a hand-over signals it): filewriter.c nap */
+    int waiting;                         /* the caller waits on cv for the thread's progress */
     pthread_t thread;
     pthread_mutex_t mu;
     pthread_cond_t cv;
