@@ -10,7 +10,8 @@
  * over now and then; and the same rows into three other files with fprintf.
  * Prints "rows=N bytes=B chunks=C differ=D" (D: tables whose bytes differ) and
  * exits 0 only when D is 0 and more than two chunks were handed over (the rows
- * spanned chunk boundaries).  STEP_BYTES (default 0: the queue's two chunks)
+ * spanned chunk boundaries).  Rows are also offered now and then
+ * (bk_rowqueue_offer: handed over early when the next chunk is free).  STEP_BYTES (default 0: the queue's two chunks)
  * is bk_rowqueue_start's hint: a larger one cycles through more chunks. */
 #include <math.h>
 #include <stdint.h>
@@ -81,7 +82,7 @@ int main(int argc, char **argv)
             }
         }
     bk_filewriter w;
-    bk_rowqueue q;
+    bk_rowqueue q = {0};
     FILE *queued[3] = {fp[0][1], fp[1][1], fp[2][1]};
     if (bk_filewriter_open(&w, 1, 1) != 0 || !w.threaded || bk_rowqueue_start(&q, &w, queued, 3, argc == 4 ? (size_t)atol(argv[3]) : 0) != 0) {
         fprintf(stderr, "no writer thread or no memory\n");
@@ -129,10 +130,12 @@ int main(int argc, char **argv)
         fputc('\n', ref);
         if (next() % 5000 == 0)
             bk_rowqueue_submit(&q, 1);
+        else if (next() % 300 == 0)      /* an output step's offer: handed over when the next chunk is free */
+            bk_rowqueue_offer(&q, 1000);
     }
     const long chunks = w.calls;
     printf("cycle=%d ", q.nchunk);
-    bk_rowqueue_stop(&q);
+    bk_rowqueue_free(&q);
     bk_filewriter_close(&w);
     long bytes = 0;
     int differ = 0;

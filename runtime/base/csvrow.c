@@ -225,9 +225,8 @@ static void format_chunk(const void *arg, FILE *unused)
 
 int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n, size_t step_bytes)
 {
+    bk_rowqueue_free(q);                 /* (keeps the sink) */
     const bk_rowsink *sink = q->sink;
-    memset(q, 0, sizeof *q);
-    q->sink = sink;
     for (int k = 0; k < n && q->nfp < BK_ROWQ_TABLES; ++k)
         if (fp[k])
             q->fp[q->nfp++] = fp[k];
@@ -239,7 +238,7 @@ int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n, 
         q->job[k] = (struct bk_rowqueue_job){q, k};
     }
     if (!ok) {
-        bk_rowqueue_stop(q);
+        bk_rowqueue_free(q);
         return -1;
     }
     for (int t = 0; t < q->nfp && sink && sink->table; ++t)   /* (before the thread has any row) */
@@ -266,12 +265,26 @@ void bk_rowqueue_submit(bk_rowqueue *q, int flush)
     q->ticket[q->cur] = 0;
 }
 
+void bk_rowqueue_offer(bk_rowqueue *q, size_t min_bytes)
+{
+    const int next = q->w ? (q->cur + 1) % q->nchunk : 0;
+    if (q->w && q->pos >= min_bytes && (q->ticket[next] == 0 || bk_filewriter_done(q->w, q->ticket[next])))
+        bk_rowqueue_submit(q, 0);
+}
+
 void bk_rowqueue_stop(bk_rowqueue *q)
 {
     if (q->w) {
         bk_rowqueue_submit(q, 0);        /* (not flushed: the caller's fclose does, and reports a failure's errno) */
         bk_filewriter_wait(q->w, q->last);
     }
+    q->w = NULL;                         /* (the chunks are kept until bk_rowqueue_free) */
+    q->nfp = 0;
+}
+
+void bk_rowqueue_free(bk_rowqueue *q)
+{
+    bk_rowqueue_stop(q);
     for (int k = 0; k < BK_ROWQ_CHUNKS; ++k)
         free(q->chunk[k]);
     free(q->row);

@@ -391,6 +391,7 @@ int bk_output_close_tables(bk_output *o, FILE *err)
 void bk_output_close(bk_output *o)
 {
     bk_output_close_tables(o, NULL);     /* (before their buffers are freed) */
+    bk_rowqueue_free(&o->rq);
     bk_h5_end(&o->h5);                   /* (HDF5, if started, ended meanwhile) */
     free(o->mode_q);
     o->mode_q = NULL;

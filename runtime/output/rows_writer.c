@@ -17,10 +17,18 @@
  * 8 steps' rows on the solve thread: its output took longer than with frames).
  * From then on the tables are that thread's until bk_output_close_tables. */
 #define BK_ROWS_THREAD_AFTER 8
+/* Once the thread has the rows, what an output step recorded is handed over
+ * when it reaches BK_ROWS_OFFER bytes and the thread is done with the chunk
+ * before (csvrow.h bk_rowqueue_offer): rows formatted as the run goes, not
+ * 128 kB of them left for the close to wait for (0.5-1 ms in a 1000-step
+ * pendulum), and fewer fresh pages of the chunks touched. */
+#define BK_ROWS_OFFER (16 << 10)
 void bk_output_rows_to_writer(bk_output *o, double t)
 {
-    if (o->rq.w)
+    if (o->rq.w) {
+        bk_rowqueue_offer(&o->rq, BK_ROWS_OFFER);
         return;
+    }
     bk_filewriter *w = NULL;
     const int steps = ++o->row_steps;    /* (counted once a call) */
     const double frac = o->plan.end > 0.0 ? t / o->plan.end : -1.0;
