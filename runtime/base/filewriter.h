@@ -55,7 +55,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#define BK_FILEWRITER_BUFFERS 2
+#define BK_FILEWRITER_BUFFERS 4   /* (2 before: frames queued behind results.h5's HDF5 start, 5-10 ms,
+                                   * were written on the solve thread) */
 #define BK_FILEWRITER_CALLS 36    /* (a row queue's chunks, csvrow.h BK_ROWQ_CHUNKS, and results.h5's) */
 #define BK_FILEWRITER_QUEUE (BK_FILEWRITER_BUFFERS + BK_FILEWRITER_CALLS)
 #define BK_FILEWRITER_PATH 1200

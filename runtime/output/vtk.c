@@ -377,7 +377,7 @@ static void frame_job(const void *job, FILE *fp)
 
 /* The frame file `path`: its inputs copied for the background writer's thread,
  * which makes, creates and writes it; or made and written here (no writer, a
- * large frame, or both buffers still taken: the thread is busy with other
+ * large frame, or every buffer still taken: the thread is busy with other
  * work, e.g. results.h5's HDF5 start of 5-10 ms, and writing the frame here
  * takes 0.1-0.3 ms where waiting for a buffer took up to that long). */
 static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,

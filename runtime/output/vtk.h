@@ -51,8 +51,9 @@ typedef struct bk_vtk {
 /* From a run's second frame on (its third when its length is unknown, its
  * first when it is known to write many),
  * frames up to this size are made and written by a background thread
- * (filewriter.h: two buffers of a frame each; the frames' inputs are copied
- * for it; a frame that finds both still taken is written directly), larger
+ * (filewriter.h: BK_FILEWRITER_BUFFERS buffers of a frame each; the frames'
+ * inputs are copied for it; a frame that finds every one still taken is
+ * written directly), larger
  * ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
 
