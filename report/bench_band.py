@@ -82,12 +82,12 @@ def matrices(log, scenes=SCENES, work=WORK / "band"):
 def programs(log=print, fetch=False):
     """{LAPACK name: bench_band executable} (reference LAPACK, and OpenBLAS: installed,
     or Debian's package unpacked into out/openblas)."""
-    from gen.solver_build import BUILD, CC, WARN
+    from gen.solver_build import BUILD, CC, VARIANTS, WARN
     out = BUILD / "release" / "bench"
     out.mkdir(parents=True, exist_ok=True)
     src = [str(ROOT / "bench" / "band_lapack.c"), str(ROOT / "runtime" / "linalg" / "bandlu.c"),
            str(ROOT / "runtime" / "base" / "bigalloc.c")]
-    flags = ["-O2", "-march=native", "-fopenmp"] + WARN + ["-I" + str(ROOT / "runtime")]
+    flags = VARIANTS["release"] + WARN + ["-I" + str(ROOT / "runtime")]
     progs = {}
     exe = out / "bench_band_reference"
     subprocess.run([CC] + flags + src + ["-o", str(exe), "-llapack", "-lblas", "-lm"], check=True)
