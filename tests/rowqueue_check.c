@@ -11,7 +11,7 @@
  * Prints "rows=N bytes=B chunks=C differ=D" (D: tables whose bytes differ) and
  * exits 0 only when D is 0 and more than two chunks were handed over (the rows
  * spanned chunk boundaries).  Rows are also offered now and then
- * (bk_rowqueue_offer: handed over early when the next chunk is free).  STEP_BYTES (default 0: the queue's two chunks)
+ * (bk_rowqueue_offer: handed over early when the next chunk is free).  STEP_BYTES (default 0: the queue's four chunks)
  * is bk_rowqueue_start's hint: a larger one cycles through more chunks. */
 #include <math.h>
 #include <stdint.h>

@@ -240,3 +240,38 @@ def test_plot_writes_pngs():
     for n in ("sensors.png", "energy.png", "beam.png"):
         data = (out / n).read_bytes()
         assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10000, n
+
+
+def test_frames_show_the_section_forces_of_their_own_step():
+    """Consistency of two outputs made on different paths (not a verification
+    against a reference): a small model's section forces and their rows are made
+    by the rows' writer thread from a copy of the state, and a frame made by that
+    thread reads them there (runtime/output/sections.c).  In every frame of a
+    dynamic run (HDF5 started on the thread) and of an arc-length run, the
+    section_force and section_moment arrays hold, bit for bit, each element end's
+    N, Q2, Q3 and T, M2, M3 of sections.csv's nodal rows of the frame's own step,
+    and no other step's."""
+    for scene, sets in (("pendulum_soft_ancf", ["dynamic.dt=1e-3", "dynamic.t_end=0.3"]), ("lee_frame", [])):
+        out = fresh()
+        r = run_cli(["run", scene, "--quiet", "--out", str(out)] + sum((["--set", x] for x in sets), []))
+        assert r.returncode == 0, r.stderr
+        nodal = {}
+        with open(out / "sections.csv", newline="") as fh:
+            for row in csv.DictReader(fh):
+                if row["source"] == "nodal":
+                    step = int(row["step"])
+                    nodal.setdefault(step, []).append((tuple(float(row[k]) for k in ("N", "Q2", "Q3")),
+                                                       tuple(float(row[k]) for k in ("T", "M2", "M3"))))
+        from report import vtu
+        frames = sorted(out.glob("step_*.vtu"))
+        assert len(frames) >= 10 and len(nodal) >= len(frames)
+        for path in frames:
+            step = int(path.stem.split("_")[1])
+            d = vtu.read(path)
+            forces = {tuple(v) for v in np.asarray(d["section_force"]).reshape(-1, 3)}
+            moments = {tuple(v) for v in np.asarray(d["section_moment"]).reshape(-1, 3)}
+            for f, m in nodal[step]:
+                assert f in forces and m in moments, (scene, path.name, f, m)
+            # (the check can tell steps apart: another step's forces are not all in this frame)
+            other = next((s for s in sorted(nodal) if s != step and set(nodal[s]) != set(nodal[step])), None)
+            assert other is not None and not all(f in forces for f, _ in nodal[other]), (scene, path.name)

@@ -23,11 +23,11 @@ def harness():
     return build_runtime_program(["rowqueue_check.c"], "rowqueue_check", "sanitize")
 
 
-@pytest.mark.parametrize("step_bytes, cycle", [(0, 2), (3_000_000, 24), (10**9, 32)])
+@pytest.mark.parametrize("step_bytes, cycle", [(0, 4), (3_000_000, 26), (10**9, 32)])
 def test_queued_rows_are_glibc_text(step_bytes, cycle):
     """60,000 random rows over three tables (spanning chunks, with flushes and names
     longer than a string piece and than a row buffer): not one byte differs from fprintf's,
-    with the queue's two chunks and with a cycle of 24 and of 32 (a large model's
+    with the queue's four chunks and with a cycle of 26 and of 32 (a large model's
     sections.csv: the solver goes on while the thread formats)."""
     d = fresh()
     r = subprocess.run([str(harness()), str(d), "60000", str(step_bytes)], capture_output=True, text=True,

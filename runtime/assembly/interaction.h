@@ -65,7 +65,9 @@
  *               over e's DOFs, added to Qe[ndof of e]: the section forces
  *               (output/sections.c) subtract them from the element's nodal
  *               forces.  Called from several threads at once (for different
- *               elements): it must not write self.
+ *               elements), and from the output's writer thread while the
+ *               solve goes on: it must not write self, nor read what the
+ *               other operations write (it answers from the model, q and x).
  *   summary     (optional) its entry of summary.json at the final state q:
  *               the JSON value's text into buf[n]; 0, or -1 for none
  *               (summary_key names the entry).

@@ -230,7 +230,7 @@ int bk_rowqueue_start(bk_rowqueue *q, bk_filewriter *w, FILE *const *fp, int n, 
     for (int k = 0; k < n && q->nfp < BK_ROWQ_TABLES; ++k)
         if (fp[k])
             q->fp[q->nfp++] = fp[k];
-    const size_t want = 2 + step_bytes / BK_ROWQ_CHUNK;
+    const size_t want = 4 + step_bytes / BK_ROWQ_CHUNK;
     q->nchunk = want < BK_ROWQ_CHUNKS ? (int)want : BK_ROWQ_CHUNKS;
     int ok = (q->row = malloc(sizeof *q->row)) != NULL;
     for (int k = 0; k < q->nchunk; ++k) {
@@ -301,6 +301,26 @@ int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp)
         if (q->fp[t] == fp)
             return 1;
     return 0;
+}
+
+int bk_rowqueue_thread_rows(const bk_rowqueue *q, FILE *fp)
+{
+    for (int t = 0; q && q->w && t < q->nfp; ++t)
+        if (q->fp[t] == fp)
+            return !q->sink || q->mirror[t] != NULL;
+    return 0;
+}
+
+void bk_row_begin_thread(bk_row *r, FILE *fp, const bk_rowqueue *q)
+{
+    fmt_begin(r, fp);
+    r->sink = NULL;
+    r->mirror = NULL;
+    for (int t = 0; t < q->nfp; ++t)
+        if (q->fp[t] == fp && q->mirror[t]) {
+            r->mirror = q->sink->tbegin(q->mirror[t]);
+            r->sink = r->mirror ? q->sink : NULL;
+        }
 }
 
 /* ---- the row API: recorded when fp is one of a started queue's streams ---- */

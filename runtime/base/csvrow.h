@@ -28,10 +28,11 @@
  *                       their recording), fp[n] (n <= BK_ROWQ_TABLES; NULL entries are
  *                       skipped), step_bytes: about what an output step
  *                       records (a 10,000-element beam's sections.csv: 3 MB),
- *                       to have chunks enough for it (2 .. BK_ROWQ_CHUNKS)
+ *                       to have chunks enough for it (4 .. BK_ROWQ_CHUNKS)
  *                       so that the caller goes on while the thread formats
  *                       (with two it waited for the thread at every
- *                       chunk).  0, or -1 when out of memory (the rows stay
+ *                       chunk; with two and small steps, while the thread
+ *                       was busy with other work, e.g. HDF5's start).  0, or -1 when out of memory (the rows stay
  *                       formatted here).
  *   bk_rowqueue_submit  hands over the chunk being filled; flush: the thread
  *                       then flushes every stream (the 0.5 s flush of output.c).
@@ -43,6 +44,13 @@
  *                       formatted it (not flushed: closing a stream flushes it
  *                       and reports a failure with its errno); the streams are
  *                       the caller's again.  Safe on a queue never started.
+ *   bk_rowqueue_thread_rows  1 when q runs, fp is one of its streams and fp's
+ *                       rows are mirrored by the thread (or not at all): a job
+ *                       handed to q's thread (bk_filewriter_call) may then
+ *                       write fp's rows itself with bk_row_begin_thread, in
+ *                       the order of the hand-overs (the caller records none
+ *                       of fp's rows meanwhile: they would come out when their
+ *                       chunk is formatted).
  *   bk_rowqueue_free    stops and frees the chunks (after the run's results are
  *                       written: unmapping them cost 0.1-0.3 ms).  q must be
  *                       zeroed before its first bk_rowqueue_start. */
@@ -85,7 +93,7 @@ typedef struct bk_rowqueue {
     struct bk_filewriter *w;           /* NULL: not started (rows are formatted by the caller) */
     FILE *fp[BK_ROWQ_TABLES];          /* the streams whose rows are queued */
     int nfp;
-    int nchunk;                        /* chunks in the cycle (2 .. BK_ROWQ_CHUNKS) */
+    int nchunk;                        /* chunks in the cycle (4 .. BK_ROWQ_CHUNKS) */
     unsigned char *chunk[BK_ROWQ_CHUNKS];   /* owned: [BK_ROWQ_CHUNK] each */
     size_t len[BK_ROWQ_CHUNKS];        /* bytes handed over in chunk k */
     int flush[BK_ROWQ_CHUNKS];         /* chunk k: flush the streams after it */
@@ -122,6 +130,10 @@ void bk_rowqueue_free(bk_rowqueue *q);
 /* 1 when q is started and fp is one of its streams (the writer thread's). */
 int bk_rowqueue_owns(const bk_rowqueue *q, FILE *fp);
 
+int bk_rowqueue_thread_rows(const bk_rowqueue *q, FILE *fp);
+/* A row of fp written by a job on q's thread (bk_rowqueue_thread_rows):
+ * formatted into fp there, and mirrored as the thread mirrors q's rows. */
+void bk_row_begin_thread(bk_row *r, FILE *fp, const bk_rowqueue *q);
 /* q: NULL or not started, or fp not one of its streams: formatted here.
  * Either way, q's sink (when it has one) is given the row's values. */
 void bk_row_begin(bk_row *r, FILE *fp, bk_rowqueue *q);

@@ -41,6 +41,7 @@ int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, b
     f->last = calloc((size_t)(m->nreaction ? m->nreaction : 1), sizeof *f->last);
     f->sec = bk_big_malloc(12 * (size_t)m->nelem * sizeof *f->sec);
     f->sec_step = -1;
+    f->scur = -1;
     int maxsample = 1;
     for (int e = 0; e < m->nelem; ++e)
         if (m->pairs[m->elems[e].pair]->sections && m->pairs[m->elems[e].pair]->nsample > maxsample)
@@ -144,6 +145,7 @@ void bk_forces_close(bk_forces *f)
     free(f->ssec);
     free(f->relem);
     free(f->rmass);
+    bk_forces_sections_free(f);
     memset(f, 0, sizeof *f);
 }
 

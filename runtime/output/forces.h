@@ -67,6 +67,18 @@ typedef struct bk_forces {
     int maxsample;                /* the most sample points of a pair's sections() (at least 1) */
     double *ssec;                 /* [6 maxsample nelem] N, Q2, Q3, T, M2, M3 of the element's own stress
                                    * resultants at its sample points, step sec_step (NaN: none) */
+    /* The section forces handed to the rows' writer thread (sections.c): once
+     * the rows queue runs there and the thread mirrors sections.csv, a small
+     * model's section forces (fewer than BK_SECTIONS_PAR_MIN records) and
+     * rows are made by that thread from a copy of the state, in one of
+     * BK_SECTIONS_JOBS jobs; made here when that job is still in use (the
+     * solve never waits for the thread). */
+    struct bk_filewriter *sw;     /* that thread, or NULL: made here */
+    struct bk_sections_job *sjob; /* owned: [BK_SECTIONS_JOBS] the states handed over */
+    int sjobk;                    /* the next one */
+    int scur;                     /* the job holding the values of sec_step (-1: sec, ssec, spos here) */
+    int srows;                    /* rows of sections.csv recorded in the queue since its last hand-over */
+    double *wbuf, *wsres;         /* owned: the thread's scratch (as sbuf, sres) */
 } bk_forces;
 
 /* Opens reactions.csv and, for a path (path: its kind, bk_options.h enum
@@ -81,6 +93,15 @@ int bk_forces_open(bk_forces *f, const bk_model *m, int path, const char *dir, b
  * the elements that touch them only. */
 void bk_forces_step(bk_forces *f, bk_system *s, int step, double x, const double *q, const double *qd,
                     const double *qdd, const double *nu, int with_sections);
+/* The section forces of output step sec_step for its ParaView frame: their
+ * arrays (12 values and 6 maxsample per element: sec, ssec) in *sec, *ssec.
+ * by: the writer thread whose job makes the frame, or NULL (made here).  0:
+ * they may be read now, until the next output step; 1: they are being made
+ * by a job of `by` before the frame's (read them there), and the caller, once
+ * it has handed the frame over, calls bk_forces_frame_handed with the ticket
+ * of a call after it (they are kept until that returns). */
+int bk_forces_frame_sections(bk_forces *f, const struct bk_filewriter *by, const double **sec, const double **ssec);
+void bk_forces_frame_handed(bk_forces *f, long ticket);
 /* The "reactions" and "joints" members of summary.json (with a trailing comma). */
 void bk_forces_summary(const bk_forces *f, FILE *fp);
 void bk_forces_close(bk_forces *f);

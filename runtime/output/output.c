@@ -100,9 +100,7 @@ static int output_open(bk_output *o, const bk_model *m, const bk_output_plan *pl
         if (share)
             o->vtk.ext = &o->h5.fw;
     }
-    o->vtk.sec = o->forces.sec;
-    o->vtk.sec_step = &o->forces.sec_step;
-    o->vtk.ssec = o->forces.ssec;
+    o->vtk.forces = &o->forces;
     o->vtk.maxsample = o->forces.maxsample;
     /* section forces at the steps that get a ParaView frame; without frames at
      * the stride their default would have (the analysis' plan: e.g. 50 frames

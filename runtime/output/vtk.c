@@ -29,6 +29,7 @@
 #include "base/clock.h"
 #include "assembly/system.h"
 
+#include "output/forces.h"
 #include "output/vtk_geometry.h"
 
 #define BK_PVD_INTERVAL 0.5
@@ -80,6 +81,8 @@ typedef struct bk_vtk_job {
     double eps, norm, scale; /*   its view (mode_view) */
     double *sec, *ssec;      /* 12 per element; 6 maxsample per element */
     int with_sec, with_ssec, maxsample;
+    const double *sec_live, *ssec_live;   /* or NULL: the section forces are read there when the frame
+                              * is made (made by this thread before: forces.h bk_forces_frame_sections) */
     double *pts;             /* 3 npts */
 } bk_vtk_job;
 
@@ -371,8 +374,16 @@ static void frame_job(const void *job, FILE *fp)
 {
     const bk_vtk_job *j = job;
     const mode_view mv = {j->qp, j->qm, j->eps, j->norm, j->scale};
-    vtu_contents(j->v, fp, j->nfield, j->fname, j->fval, j->q, j->is_mode ? &mv : NULL, j->with_sec ? j->sec : NULL,
-                 j->with_ssec ? j->ssec : NULL, j->maxsample, j->pts, 0);
+    const double *sec = j->sec_live ? j->sec_live : j->sec, *ssec = j->sec_live ? j->ssec_live : j->ssec;
+    vtu_contents(j->v, fp, j->nfield, j->fname, j->fval, j->q, j->is_mode ? &mv : NULL, j->with_sec ? sec : NULL,
+                 j->with_ssec ? ssec : NULL, j->maxsample, j->pts, 0);
+}
+
+/* A call that does nothing: its return marks the frames before it as made. */
+static void nothing(const void *arg, FILE *unused)
+{
+    (void)arg;
+    (void)unused;
 }
 
 /* The frame file `path`: its inputs copied for the background writer's thread,
@@ -381,8 +392,9 @@ static void frame_job(const void *job, FILE *fp)
  * work, e.g. results.h5's HDF5 start of 5-10 ms, and writing the frame here
  * takes 0.1-0.3 ms where waiting for a buffer took up to that long). */
 static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
-                     const double *q, const mode_view *mv, const double *sec, const double *ssec, int maxsample)
+                     const double *q, const mode_view *mv, int with_sec, int maxsample)
 {
+    const double *sec = NULL, *ssec = NULL;
     v->written++;
     const int b = v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(v->wp, 0) : -1;
     if (b >= 0) {
@@ -399,17 +411,26 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
             memcpy(j->qm, mv->qm, nq * sizeof *q);
             j->eps = mv->eps, j->norm = mv->norm, j->scale = mv->scale;
         }
-        j->with_sec = sec != NULL;
-        j->with_ssec = sec && ssec;      /* (vtu_contents: the stress arrays go with the section forces) */
+        j->with_sec = j->with_ssec = with_sec;   /* (the stress arrays go with the section forces) */
         j->maxsample = maxsample;
-        if (j->with_sec)
+        j->sec_live = j->ssec_live = NULL;
+        /* section forces being made by this frame's thread: read there, after them */
+        const int live = with_sec && bk_forces_frame_sections(v->forces, v->wp, &sec, &ssec) == 1;
+        if (live) {
+            j->sec_live = sec;
+            j->ssec_live = ssec;
+        } else if (with_sec) {
             memcpy(j->sec, sec, 12 * (size_t)m->nelem * sizeof *sec);
-        if (j->with_ssec)
             memcpy(j->ssec, ssec, 6 * (size_t)maxsample * (size_t)m->nelem * sizeof *ssec);
+        }
         /* queued: listed even after an earlier failure (bk_vtk_finish reports it) */
         bk_filewriter_submit_job(v->wp, b, path, frame_job, j);
+        if (live)                        /* (the values kept until the frame is made) */
+            bk_forces_frame_handed(v->forces, bk_filewriter_call(v->wp, nothing, NULL));
         return 0;
     }
+    if (with_sec)
+        bk_forces_frame_sections(v->forces, NULL, &sec, &ssec);
     FILE *fp = fopen(path, "wb");
     if (!fp) {
         record_failure(v, path, errno);
@@ -446,10 +467,10 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     int frame = step < 0 ? -step : step;
     char path[1200];
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
-    const double *sec = v->sec && v->sec_step && *v->sec_step == frame ? v->sec : NULL;
+    const int with_sec = v->forces && v->forces->sec_step == frame;
     maybe_background(v, v->end > 0.0 ? t / v->end : -1.0);    /* the analysis' plan (output.h) */
     static const char *const names[] = {"TIME"};
-    if (write_vtu(v, path, 1, names, &t, q, NULL, sec, v->ssec, v->maxsample) != 0)
+    if (write_vtu(v, path, 1, names, &t, q, NULL, with_sec, v->maxsample) != 0)
         return -1;
     if (s && bk_interactions_frame(s, v->dir, frame, t, q, stderr) != 0)     /* contact points, ... */
         return -1;
@@ -482,7 +503,7 @@ int bk_vtk_mode(bk_vtk *v, int mode, int nval, const char *const *names, const d
     int nf = bk_vtk_mode_fields(mode, nval, names, vals, scale, caps, fname, fval);
     mode_view mv = {qp, qm, eps, norm, scale};
     maybe_background(v, v->modes > 0 ? (double)mode / v->modes : -1.0);
-    if (write_vtu(v, path, nf, fname, fval, q, &mv, NULL, NULL, 0) != 0)
+    if (write_vtu(v, path, nf, fname, fval, q, &mv, 0, 0) != 0)
         return -1;
     if (mode > v->nmode)
         v->nmode = mode;

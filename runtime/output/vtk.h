@@ -9,6 +9,7 @@
 #include "model/model.h"
 
 struct bk_system;
+struct bk_forces;
 
 typedef struct bk_vtk {
     const bk_model *m;
@@ -21,11 +22,10 @@ typedef struct bk_vtk {
     int nmode;               /* mode files written (modes 1..nmode) */
     int pvd_stale;           /* results.pvd lacks frames written since its last write */
     double t_pvd;            /* wall clock of that write (s) */
-    const double *sec;       /* section forces per element end (forces.h bk_forces.sec), or NULL */
-    const int *sec_step;     /* the output step they are of */
-    const double *ssec;      /* the elements' own stress resultants at their sample points
-                              * (forces.h bk_forces.ssec), of the same step, or NULL */
-    int maxsample;           /* sample points per element in ssec */
+    struct bk_forces *forces;   /* not owned, or NULL: the section forces per element end and the
+                              * elements' own stress resultants at their sample points of its
+                              * sec_step (forces.h bk_forces_frame_sections) */
+    int maxsample;           /* sample points per element in those */
     double *ref;             /* owned: the frame points of the reference state m->q0 (3 per point) */
     double *pts;             /* owned: a frame's points (scratch, 3 per point) */
     unsigned char *topo;     /* owned: the cells block every frame appends (topology, in bk_vtk_open) */
