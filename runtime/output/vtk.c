@@ -30,6 +30,7 @@
 #include "assembly/system.h"
 
 #include "output/forces.h"
+#include "output/vtk_collection.h"
 #include "output/vtk_geometry.h"
 
 #define BK_PVD_INTERVAL 0.5
@@ -188,36 +189,16 @@ void bk_vtk_close(bk_vtk *v)
     v->topo = NULL;
 }
 
-/* A ParaView collection DIR/NAME of n files: entry k is file_fmt with id[k] (k + 1
- * when id is NULL) at time value t[k] (k + 1 when t is NULL); written to a
- * temporary file and renamed, so a reader never sees half a collection. */
+/* A collection DIR/NAME (vtk_collection.h); its failure recorded. */
 static int write_collection(bk_vtk *v, const char *dir, const char *name, int n, const double *t, const int *id,
                             const char *file_fmt)
 {
-    char path[1200], tmp[1210], file[64];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *fp = fopen(tmp, "w");
-    if (!fp) {
-        record_failure(v, tmp, errno);
-        return -1;
-    }
-    fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
-    for (int k = 0; k < n; ++k) {
-        snprintf(file, sizeof file, file_fmt, id ? id[k] : k + 1);
-        fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"%s\"/>\n", t ? t[k] : (double)(k + 1),
-                file);
-    }
-    fprintf(fp, "  </Collection>\n</VTKFile>\n");
-    if (fclose(fp) != 0) {
-        record_failure(v, tmp, errno);
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        record_failure(v, path, errno);
-        return -1;
-    }
-    return 0;
+    char path[1216];
+    int e = 0;
+    if (bk_vtk_collection(dir, name, n, t, id, file_fmt, path, sizeof path, &e) == 0)
+        return 0;
+    record_failure(v, path, e);
+    return -1;
 }
 
 static int write_pvd(bk_vtk *v)
