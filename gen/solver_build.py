@@ -94,7 +94,7 @@ VARIANTS = {
     "release": ["-O2", "-march=native", "-fopenmp", ALIGN],
     "sanitize": ["-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all", "-fopenmp"],
-    "memcheck": ["-O2", "-g", MEMCHECK_ARCH, "-fopenmp"],
+    "memcheck": ["-O2", "-g", MEMCHECK_ARCH, "-fopenmp", "-DBK_PLAIN_HEAP"],   # (valgrind's malloc: bigalloc.h)
 }
 # Generated kernels are long straight-line functions: debug info for them only
 # costs compile time, so the sanitizer build compiles them without -g.

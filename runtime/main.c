@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/bigalloc.h"
 #include "base/clock.h"
 #include "analysis/analysis.h"
 #include "base/interrupt.h"
@@ -44,6 +45,8 @@ static int results_dir(const char *dir, FILE *err)
     return -1;
 }
 
+static int run(const char *model_path, const char *out_dir, int verbose, int quiet);
+
 int main(int argc, char **argv)
 {
     const char *model_path = NULL, *out_dir = NULL;
@@ -68,6 +71,15 @@ int main(int argc, char **argv)
     }
     if (results_dir(out_dir, stderr) != 0)
         return 1;
+    void *heap_head = bk_big_heap();             /* (before the first large allocation) */
+    const int rc = run(model_path, out_dir, verbose, quiet);
+    free(heap_head);
+    return rc;
+}
+
+/* The run: model read to results written; the exit status. */
+static int run(const char *model_path, const char *out_dir, int verbose, int quiet)
+{
     double t0 = bk_clock_s();
     if (bk_interrupt_block() != 0) {
         fprintf(stderr, "error: cannot block SIGINT/SIGTERM for a clean interruption\n");

@@ -3,8 +3,12 @@
  * hold, and (where the kernel offers transparent huge pages) are backed by
  * them once touched.
  *
- * usage: bigalloc_check MIB
- * Allocates blocks of MIB MiB with bk_big_malloc, bk_big_calloc and
+ * usage: bigalloc_check MIB [heap]
+ * With heap: first bk_big_heap (as the solver's main does), then 256 small
+ * blocks of 4000 bytes written and read (small_bad; small_huge_kb: the
+ * AnonHugePages of the mappings that hold them; small_eligible: how many of
+ * them lie where huge pages may back them; heap: 1 when bk_big_heap advised
+ * the heap).  Then it allocates blocks of MIB MiB with bk_big_malloc, bk_big_calloc and
  * bk_big_realloc (a small block grown to MIB MiB, and a large one shrunk to
  * a quarter), writes and reads a pattern in each, and prints key=value
  * lines: bad (bytes that differ from what was written, or a calloc byte not
@@ -49,11 +53,59 @@ static long huge_kb(const void *const *blocks, const size_t *sizes, int n)
     return kb;
 }
 
+/* The number of the n blocks that lie whole in a mapping that may be backed
+ * by huge pages (its THPeligible line in /proc/self/smaps: the advice is in
+ * effect; whether a whole page was free when it was touched is the kernel's);
+ * -1 when unknown. */
+static int eligible(const void *const *blocks, const size_t *sizes, int n)
+{
+    FILE *f = fopen("/proc/self/smaps", "r");
+    if (!f)
+        return -1;
+    char line[512];
+    unsigned long a = 0, b = 0;
+    int count = 0;
+    while (fgets(line, sizeof line, f)) {
+        unsigned long x, y;
+        int v;
+        if (sscanf(line, "%lx-%lx ", &x, &y) == 2)
+            a = x, b = y;
+        else if (sscanf(line, "THPeligible: %d", &v) == 1 && v)
+            for (int k = 0; k < n; ++k)
+                count += (unsigned long)blocks[k] >= a && (unsigned long)blocks[k] + sizes[k] <= b;
+    }
+    fclose(f);
+    return count;
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s MIB\n", argv[0]);
+    if (argc != 2 && !(argc == 3 && strcmp(argv[2], "heap") == 0)) {
+        fprintf(stderr, "usage: %s MIB [heap]\n", argv[0]);
         return 2;
+    }
+    if (argc == 3) {
+        void *head = bk_big_heap();
+        enum { NSMALL = 256, SMALL = 4000 };
+        static unsigned char *small[NSMALL];
+        static size_t small_size[NSMALL];
+        long small_bad = 0;
+        for (int k = 0; k < NSMALL; ++k) {
+            if (!(small[k] = malloc(SMALL)))
+                return 1;
+            small_size[k] = SMALL;
+            for (size_t i = 0; i < SMALL; ++i)
+                small[k][i] = pat(i + (size_t)k);
+        }
+        for (int k = 0; k < NSMALL; ++k)
+            for (size_t i = 0; i < SMALL; ++i)
+                small_bad += small[k][i] != pat(i + (size_t)k);
+        printf("heap=%d\nsmall_bad=%ld\nsmall_huge_kb=%ld\nsmall_eligible=%d\n", head != NULL, small_bad,
+               huge_kb((const void *const *)small, small_size, NSMALL),
+               eligible((const void *const *)small, small_size, NSMALL));
+        for (int k = 0; k < NSMALL; ++k)
+            free(small[k]);
+        free(head);
     }
     const size_t n = (size_t)atol(argv[1]) << 20;
     long bad = 0;

@@ -6,6 +6,10 @@
 #include <stdlib.h>
 #ifdef __linux__
 #include <sys/mman.h>
+#include <unistd.h>
+#endif
+#ifdef __GLIBC__
+#include <malloc.h>
 #endif
 
 #define HUGE_PAGE ((uintptr_t)2 << 20)
@@ -25,6 +29,28 @@ void *bk_big_advise(void *p, size_t bytes)
     (void)bytes;
 #endif
     return p;
+}
+
+void *bk_big_heap(void)
+{
+#if defined(__linux__) && defined(__GLIBC__) && defined(MADV_HUGEPAGE) && !defined(__SANITIZE_ADDRESS__) && \
+    !defined(BK_PLAIN_HEAP)
+    if (mallopt(M_MMAP_THRESHOLD, (int)BK_HEAP_MMAP) != 1 || mallopt(M_TRIM_THRESHOLD, (int)BK_HEAP_MMAP) != 1 ||
+        mallopt(M_TOP_PAD, (int)BK_HEAP_PAD) != 1)
+        return NULL;
+    /* a block from the heap's top, which grows by the pad, given back to it */
+    char *probe = malloc(HUGE_PAGE / 2);
+    if (!probe)
+        return NULL;
+    const uintptr_t lo = ((uintptr_t)probe + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
+    const uintptr_t hi = (uintptr_t)sbrk(0) & ~(HUGE_PAGE - 1);
+    free(probe);
+    if (hi <= lo || lo - (uintptr_t)probe < 64 || madvise((void *)lo, hi - lo, MADV_HUGEPAGE) != 0)
+        return NULL;
+    return malloc(lo - (uintptr_t)probe - 32);   /* the head below the boundary, from the same place */
+#else
+    return NULL;
+#endif
 }
 
 void *bk_big_malloc(size_t bytes)
