@@ -257,14 +257,16 @@ def target_rows(res, met):
                      f"{_ms(fe['whole_s'])} (min {_ms(fe['whole_min_s'])}); through the Python front end "
                      f"{_ms(fe['whole_python_s'])}", met(fe["whole_s"] <= 0.005)))
     for r in res["output"]:
-        stab = "" if r["stability_share"] is None else (f", stability check {100 * r['stability_share']:.1f} % "
-                                                        f"(whole runs: {100 * r['stability_share_ab']:.0f} %)")
-        ok = r["output_share"] <= 0.10 and (r["stability_share"] is None or r["stability_share"] <= 0.05)
-        rows.append((f"output ≤ 10 %, static stability check ≤ 5 % of the solver's wall time: {r['problem']}",
+        rows.append((f"output ≤ 10 % of the solver's wall time: {r['problem']}",
                      f"{_ms(r['wall_s'])}; all output {100 * r['output_share']:.1f} % (whole runs: "
                      f"{r['frames']} ParaView frames {100 * r['vtu_share']:.0f} %, results.h5 "
-                     f"{100 * r['h5_share']:.0f} %){stab} "
-                     f"(max/min of the repeats {r['spread']:.2f})", met(ok)))
+                     f"{100 * r['h5_share']:.0f} %) (max/min of the repeats {r['spread']:.2f})",
+                     met(r["output_share"] <= 0.10)))
+    for r in res["output"]:
+        if r["stability_share"] is not None:
+            rows.append((f"static stability check ≤ 5 % of the solver's wall time: {r['problem']}",
+                         f"{100 * r['stability_share']:.1f} % of {_ms(r['wall_s'])} (whole runs: "
+                         f"{100 * r['stability_share_ab']:.0f} %)", met(r["stability_share"] <= 0.05)))
     for r in res["output"]:
         # fewer outputs never slower: without frames the output takes no longer (5 % or 0.2 ms of slack)
         ok = r["out_novtk_s"] <= max(1.05 * r["out_s"], r["out_s"] + 2e-4)
