@@ -26,16 +26,21 @@ static unsigned char pat(size_t i)
     return (unsigned char)(i * 2654435761u >> 13);
 }
 
-/* AnonHugePages (kB) of the mappings that overlap one of the n blocks, from /proc/self/smaps. */
-static long huge_kb(const void *const *blocks, const size_t *sizes, int n)
+/* From /proc/self/smaps, for the n blocks: *kb, the AnonHugePages (kB) of the
+ * mappings that overlap one of them, and *whole, how many lie whole in a
+ * mapping that may be backed by huge pages (its THPeligible line: the advice
+ * is in effect; whether a whole page was free when it was touched is the
+ * kernel's); both -1 when unreadable. */
+static void smaps(const void *const *blocks, const size_t *sizes, int n, long *kb, int *whole)
 {
+    *kb = *whole = -1;
     FILE *f = fopen("/proc/self/smaps", "r");
     if (!f)
-        return -1;
+        return;
+    *kb = *whole = 0;
     char line[512];
     unsigned long a = 0, b = 0;
     int inside = 0;
-    long kb = 0;
     while (fgets(line, sizeof line, f)) {
         unsigned long x, y;
         long v;
@@ -47,35 +52,12 @@ static long huge_kb(const void *const *blocks, const size_t *sizes, int n)
                     inside = 1;
             }
         } else if (inside && sscanf(line, "AnonHugePages: %ld kB", &v) == 1)
-            kb += v;
-    }
-    fclose(f);
-    return kb;
-}
-
-/* The number of the n blocks that lie whole in a mapping that may be backed
- * by huge pages (its THPeligible line in /proc/self/smaps: the advice is in
- * effect; whether a whole page was free when it was touched is the kernel's);
- * -1 when unknown. */
-static int eligible(const void *const *blocks, const size_t *sizes, int n)
-{
-    FILE *f = fopen("/proc/self/smaps", "r");
-    if (!f)
-        return -1;
-    char line[512];
-    unsigned long a = 0, b = 0;
-    int count = 0;
-    while (fgets(line, sizeof line, f)) {
-        unsigned long x, y;
-        int v;
-        if (sscanf(line, "%lx-%lx ", &x, &y) == 2)
-            a = x, b = y;
-        else if (sscanf(line, "THPeligible: %d", &v) == 1 && v)
+            *kb += v;
+        else if (sscanf(line, "THPeligible: %ld", &v) == 1 && v)
             for (int k = 0; k < n; ++k)
-                count += (unsigned long)blocks[k] >= a && (unsigned long)blocks[k] + sizes[k] <= b;
+                *whole += (unsigned long)blocks[k] >= a && (unsigned long)blocks[k] + sizes[k] <= b;
     }
     fclose(f);
-    return count;
 }
 
 int main(int argc, char **argv)
@@ -100,9 +82,10 @@ int main(int argc, char **argv)
         for (int k = 0; k < NSMALL; ++k)
             for (size_t i = 0; i < SMALL; ++i)
                 small_bad += small[k][i] != pat(i + (size_t)k);
-        printf("heap=%d\nsmall_bad=%ld\nsmall_huge_kb=%ld\nsmall_eligible=%d\n", head != NULL, small_bad,
-               huge_kb((const void *const *)small, small_size, NSMALL),
-               eligible((const void *const *)small, small_size, NSMALL));
+        long kb;
+        int whole;
+        smaps((const void *const *)small, small_size, NSMALL, &kb, &whole);
+        printf("heap=%d\nsmall_bad=%ld\nsmall_huge_kb=%ld\nsmall_eligible=%d\n", head != NULL, small_bad, kb, whole);
         for (int k = 0; k < NSMALL; ++k)
             free(small[k]);
         free(head);
@@ -148,7 +131,10 @@ int main(int argc, char **argv)
         }
         fclose(f);
     }
-    printf("bad=%ld\nhuge_kb=%ld\nthp=%s\n", bad, huge_kb(blocks, sizes, 3), mode);
+    long kb;
+    int whole;
+    smaps(blocks, sizes, 3, &kb, &whole);
+    printf("bad=%ld\nhuge_kb=%ld\nthp=%s\n", bad, kb, mode);
     free(m);
     free(c);
     free(r);
