@@ -4,7 +4,8 @@
  * them once touched.
  *
  * usage: bigalloc_check MIB [heap]
- * With heap: first bk_big_heap (as the solver's main does), then 256 small
+ * With heap: first bk_big_heap (as the solver's main does; advised_rss_kb: the
+ * resident kB of what it advised, right after it), then 256 small
  * blocks of 4000 bytes written and read (small_bad; small_huge_kb: the
  * AnonHugePages of the mappings that hold them; small_eligible: how many of
  * them lie where huge pages may back them; heap: 1 when bk_big_heap advised
@@ -15,9 +16,12 @@
  * zero, or a realloc'd byte not kept), huge_kb (AnonHugePages of the
  * mappings that hold the blocks, /proc/self/smaps; -1 when unreadable),
  * thp (the kernel's mode: always, madvise or never; "none" when unknown). */
+#define _DEFAULT_SOURCE /* ssize_t, read, close */
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/bigalloc.h"
 
@@ -60,6 +64,35 @@ static void smaps(const void *const *blocks, const size_t *sizes, int n, long *k
     fclose(f);
 }
 
+/* The resident kB of the mappings advised for huge pages (smaps VmFlags
+ * "hg"), read with read(2) into static memory: no heap block is touched by
+ * the reading; -1 when unreadable. */
+static long advised_rss_kb(void)
+{
+    static char text[1 << 20];
+    int fd = open("/proc/self/smaps", O_RDONLY);
+    if (fd < 0)
+        return -1;
+    size_t n = 0;
+    ssize_t r;
+    while (n < sizeof text - 1 && (r = read(fd, text + n, sizeof text - 1 - n)) > 0)
+        n += (size_t)r;
+    close(fd);
+    text[n] = '\0';
+    long total = 0, rss = 0, v;
+    for (char *line = text; *line; ) {
+        char *end = strchr(line, '\n');
+        if (end)
+            *end = '\0';
+        if (sscanf(line, "Rss: %ld kB", &v) == 1)
+            rss = v;
+        else if (strncmp(line, "VmFlags:", 8) == 0 && strstr(line, " hg"))
+            total += rss;
+        line = end ? end + 1 : line + strlen(line);
+    }
+    return total;
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2 && !(argc == 3 && strcmp(argv[2], "heap") == 0)) {
@@ -68,6 +101,7 @@ int main(int argc, char **argv)
     }
     if (argc == 3) {
         void *head = bk_big_heap();
+        const long untouched = advised_rss_kb();     /* before any block is taken from the heap */
         enum { NSMALL = 256, SMALL = 4000 };
         static unsigned char *small[NSMALL];
         static size_t small_size[NSMALL];
@@ -85,7 +119,8 @@ int main(int argc, char **argv)
         long kb;
         int whole;
         smaps((const void *const *)small, small_size, NSMALL, &kb, &whole);
-        printf("heap=%d\nsmall_bad=%ld\nsmall_huge_kb=%ld\nsmall_eligible=%d\n", head != NULL, small_bad, kb, whole);
+        printf("heap=%d\nadvised_rss_kb=%ld\nsmall_bad=%ld\nsmall_huge_kb=%ld\nsmall_eligible=%d\n", head != NULL,
+               untouched, small_bad, kb, whole);
         for (int k = 0; k < NSMALL; ++k)
             free(small[k]);
         free(head);

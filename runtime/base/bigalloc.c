@@ -38,11 +38,16 @@ void *bk_big_heap(void)
     if (mallopt(M_MMAP_THRESHOLD, (int)BK_HEAP_MMAP) != 1 || mallopt(M_TRIM_THRESHOLD, (int)BK_HEAP_MMAP) != 1 ||
         mallopt(M_TOP_PAD, (int)BK_HEAP_PAD) != 1)
         return NULL;
-    /* a block from the heap's top, which grows by the pad, given back to it */
+    /* a block from the heap's top, which grows by the pad, given back to it.
+     * Its allocation wrote the top's header just past its end: the advice
+     * starts at the first whole 2 MiB page above that.  (From the boundary
+     * inside the block, about every other run had that header's small page in
+     * the first huge page's range, and the kernel then gave the whole range
+     * small pages: some 150 page faults more for a small run.) */
     char *probe = malloc(HUGE_PAGE / 2);
     if (!probe)
         return NULL;
-    const uintptr_t lo = ((uintptr_t)probe + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
+    const uintptr_t lo = ((uintptr_t)probe + HUGE_PAGE / 2 + 64 + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
     const uintptr_t hi = (uintptr_t)sbrk(0) & ~(HUGE_PAGE - 1);
     free(probe);
     if (hi <= lo || lo - (uintptr_t)probe < 64 || madvise((void *)lo, hi - lo, MADV_HUGEPAGE) != 0)

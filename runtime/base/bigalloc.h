@@ -50,8 +50,9 @@ static inline size_t bk_thread_stride(size_t n, int nthreads)
 
 /* The process's small blocks on huge pages too (called first thing in main):
  * glibc's heap made to grow BK_HEAP_PAD at a time and to keep what is freed,
- * blocks below BK_HEAP_MMAP taken from it, and the heap from its next 2 MiB
- * boundary advised as above.  A small run touched 200 fresh 4 kB pages at 10
+ * blocks below BK_HEAP_MMAP taken from it, and the heap advised as above from
+ * the first 2 MiB boundary past every page touched so far (a range with one
+ * small page in it gets small pages only).  A small run touched 200 fresh 4 kB pages at 10
  * us each on a virtual machine (its model, system and output buffers); a huge
  * page's first touch costs 0.12-0.18 ms there.  Returns the block that fills
  * the heap up to that boundary (never touched; the caller frees it at the
