@@ -102,18 +102,29 @@ static int run(const char *model_path, const char *out_dir, int verbose, int qui
     const bk_analysis_module *an = bk_analysis_for(m);
     bk_output_plan plan;
     bk_analysis_plan(an, m, &plan);              /* what it will write, told to the output */
-    bk_output out;
-    if (bk_output_open(&out, m, &plan, out_dir, !quiet && !verbose, stderr) != 0) {
-        bk_output_close(&out);
+    /* on the heap, not this stack: its 29 kB would be fresh stack pages (a
+     * fault each; 10 us apiece on a virtual machine with shadow page tables,
+     * a tenth of a small run's output), the heap's are touched already */
+    bk_output *out = malloc(sizeof *out);
+    if (!out) {
+        fprintf(stderr, "error: out of memory\n");
         bk_system_free(s);
         bk_model_free(m);
         return 1;
     }
-    out.console = quiet ? NULL : stderr;
+    if (bk_output_open(out, m, &plan, out_dir, !quiet && !verbose, stderr) != 0) {
+        bk_output_close(out);
+        free(out);
+        bk_system_free(s);
+        bk_model_free(m);
+        return 1;
+    }
+    out->console = quiet ? NULL : stderr;
     double *q = malloc((size_t)m->ndof * sizeof *q);
     if (!q) {
         fprintf(stderr, "error: out of memory\n");
-        bk_output_close(&out);
+        bk_output_close(out);
+        free(out);
         bk_system_free(s);
         bk_model_free(m);
         return 1;
@@ -121,10 +132,10 @@ static int run(const char *model_path, const char *out_dir, int verbose, int qui
     bk_run_info info = {0};
     int rc = 1;
     if (an)
-        rc = an->run(s, q, &out, &info, verbose ? stderr : NULL);
+        rc = an->run(s, q, out, &info, verbose ? stderr : NULL);
     else
         snprintf(info.message, sizeof info.message, "no analysis module of this solver runs the model's analysis");
-    bk_output_final(&out, info.steps, info.load_factor, q);
+    bk_output_final(out, info.steps, info.load_factor, q);
     info.strain_energy = bk_strain_energy(s, q);
     char nthr[16];
     snprintf(nthr, sizeof nthr, "%d", s->npart > 1 ? s->nthreads : 1);
@@ -138,15 +149,16 @@ static int run(const char *model_path, const char *out_dir, int verbose, int qui
     /* every table on disk before the summary, and inside wall_s and output_s
      * (a short run writes its tables only now) */
     double tc = bk_clock_s();
-    if (bk_output_close_tables(&out, stderr) != 0)
-        out.write_failed = 1;
-    out.t_output += bk_clock_s() - tc;
+    if (bk_output_close_tables(out, stderr) != 0)
+        out->write_failed = 1;
+    out->t_output += bk_clock_s() - tc;
     info.wall_s = bk_clock_s() - t0;
-    info.output_s = out.t_output;
-    int wrc = bk_output_summary(&out, &info, q, stderr);   /* before the close: it reports the reactions */
-    if (out.write_failed)
+    info.output_s = out->t_output;
+    int wrc = bk_output_summary(out, &info, q, stderr);   /* before the close: it reports the reactions */
+    if (out->write_failed)
         wrc = -1;
-    bk_output_close(&out);
+    bk_output_close(out);
+    free(out);
     if (rc != 0)
         fprintf(stderr, "%s: %s: %s\n", info.interrupted ? "interrupted" : "error", m->name, info.message);
     bk_run_info_free(&info);

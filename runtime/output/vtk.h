@@ -32,6 +32,8 @@ typedef struct bk_vtk {
     size_t ntopo;            /* its size in bytes */
     long npts, ncell, nconn; /* points, cells and connectivity entries of every frame */
     size_t frame_bytes;      /* the largest frame file (header allowance included) */
+    char *iobuf;             /* owned, or NULL until the first frame written here: its
+                              * stdio buffer (BK_VTK_IOBUF bytes) */
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
@@ -56,6 +58,9 @@ typedef struct bk_vtk {
  * written directly), larger
  * ones directly. */
 #define BK_VTK_BACKGROUND_MAX ((size_t)2 << 20)
+
+/* The buffer of a frame written on the solve thread (a few large writes). */
+#define BK_VTK_IOBUF ((size_t)1 << 16)
 
 /* capacity: room for this many frames (the arrays grow if exceeded);
  * expected: the frames the run will write when known in advance, else 0. */
