@@ -285,6 +285,31 @@ static void sink_end(void *row)
 static void hand_over(bk_h5 *h, int flush);
 static void start_library(bk_h5 *h);
 
+/* Set k's room for states: BK_H5_ROOM0, then twice what it was, at most
+ * h->cap (a set being filled: the thread does not read it).  0, or -1 when
+ * out of memory (the room as it was). */
+static int grow_states(bk_h5 *h, int k)
+{
+    const int room = h->room[k] ? 2 * h->room[k] : BK_H5_ROOM0;
+    const size_t r = (size_t)(room < h->cap ? room : h->cap), nd = (size_t)h->ndof;
+    long *step = realloc(h->step[k], r * sizeof *step);
+    if (step)
+        h->step[k] = step;
+    double *time = realloc(h->time[k], r * sizeof *time);
+    if (time)
+        h->time[k] = time;
+    double *q = bk_big_realloc(h->q[k], r * nd * sizeof *q + 1);
+    if (q)
+        h->q[k] = q;
+    double *qd = h->with_qd ? bk_big_realloc(h->qd[k], r * nd * sizeof *qd + 1) : NULL;
+    if (qd)
+        h->qd[k] = qd;
+    if (!step || !time || !q || (h->with_qd && !qd))
+        return -1;
+    h->room[k] = (int)r;
+    return 0;
+}
+
 int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, int states, const char *dir, const bk_tables *tables,
                size_t cap, FILE *err)
 {
@@ -297,16 +322,14 @@ int bk_h5_open(bk_h5 *h, const bk_model *m, int in_time, int states, const char 
     h->sink = (bk_rowsink){h, sink_begin, sink_num, sink_int, sink_str, sink_end, sink_table, sink_tbegin};
     snprintf(h->path, sizeof h->path, "%s/results.h5", dir);
     size_t nd = (size_t)m->ndof;
-    /* the states' buffers: 1 MB of rows per set (at least 16, at most BK_H5_ROWS) */
+    /* the states' buffers: up to 1 MB of rows per set (at least 16, at most
+     * BK_H5_ROWS), allocated as they fill: 2 MB at the start put every later
+     * block of a small run on a fresh huge page (bigalloc.h), a fault of
+     * 0.1-0.2 ms on a virtual machine */
     h->cap = (int)fmax(16.0, fmin((double)BK_H5_ROWS, (double)(1 << 20) / (8.0 * (double)(nd + 1))));
     int ok = 1;
-    for (int k = 0; k < 2; ++k) {
-        h->step[k] = malloc((size_t)h->cap * sizeof *h->step[k]);
-        h->time[k] = malloc((size_t)h->cap * sizeof *h->time[k]);
-        h->q[k] = bk_big_malloc((size_t)h->cap * nd * sizeof *h->q[k] + 1);
-        h->qd[k] = h->with_qd ? bk_big_malloc((size_t)h->cap * nd * sizeof *h->qd[k] + 1) : NULL;
-        ok = ok && h->step[k] && h->time[k] && h->q[k] && (!h->with_qd || h->qd[k]);
-    }
+    for (int k = 0; k < 2; ++k)
+        ok = ok && grow_states(h, k) == 0;
     h->qd_last = h->with_qd ? malloc(nd * sizeof *h->qd_last + 1) : NULL;
     if (!ok || (h->with_qd && !h->qd_last) || bk_filewriter_open(&h->fw, cap > 0 ? cap : 1, 0) != 0) {
         fprintf(err, "error: %s: out of memory\n", h->path);
@@ -341,6 +364,10 @@ void bk_h5_state(bk_h5 *h, int step, double t, const double *q)
     if (h->nbuf[h->cur] == h->cap)
         bk_h5_flush(h);
     const int s = h->cur;
+    if (h->nbuf[s] == h->room[s] && grow_states(h, s) != 0) {
+        h->oom = 1;                       /* (reported by bk_h5_close; the state is missing) */
+        return;
+    }
     size_t nd = (size_t)h->ndof, k = (size_t)h->nbuf[s];
     h->step[s][k] = step;
     h->time[s][k] = t;
@@ -422,7 +449,7 @@ int bk_h5_close(bk_h5 *h, FILE *err)
             h->oom = h->oom || h->tab[j]->toom;
         if (!h->failed && h->oom) {
             h->failed = 1;
-            snprintf(h->failure, sizeof h->failure, "out of memory for the rows (some are missing)");
+            snprintf(h->failure, sizeof h->failure, "out of memory for the rows or states (some are missing)");
         }
         if (h->failed) {
             if (err)

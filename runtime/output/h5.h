@@ -87,6 +87,7 @@
 
 #define BK_H5_ROWS 4096        /* rows of a dataset buffered at most before they are written, */
 #define BK_H5_TABLE_BYTES (4 << 20)   /*   or a table's rows of this many bytes if more */
+#define BK_H5_ROOM0 16         /* states per set allocated at first */
 #define BK_H5_HANDOVER 64      /* states handed to the thread at a time (a write costs 0.1-0.2 ms and more) */
 #define BK_H5_STR 64           /* bytes of a string cell (names: model.h's 64) */
 
@@ -149,11 +150,13 @@ typedef struct bk_h5 {
     long ticket[2];           /* the write of each set handed over (0: none pending) */
     int flush[2];             /* 1: the file is flushed after the set's write; 2: the set is the last */
     int cur;                  /* the set being filled */
-    int cap;                  /* states per set */
+    int cap;                  /* states per set (then the set is handed over) */
+    int room[2];              /* states allocated per set: from BK_H5_ROOM0, doubled up to cap as
+                               * they fill (a short run touches little fresh memory) */
     int nbuf[2];              /* states buffered per set */
     int unflushed;            /* sets handed over since the last flush without one */
-    long *step[2];            /* owned: [cap] per set */
-    double *time[2], *q[2], *qd[2];   /* owned: [cap], [cap ndof], [cap ndof] per set */
+    long *step[2];            /* owned: [room] per set */
+    double *time[2], *q[2], *qd[2];   /* owned: [room], [room ndof], [room ndof] per set */
     double *qd_last;          /* owned: [ndof] the velocities given for step qd_step */
     int qd_step;              /* -1: none */
     bk_h5_table **tab;        /* owned: [ntab] the mirrored tables (each owned: a table's place is
