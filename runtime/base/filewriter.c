@@ -1,6 +1,7 @@
 /* filewriter.c -- whole files written by a background thread (filewriter.h). */
 #include "base/filewriter.h"
 #include "base/bigalloc.h"
+#include "base/thread_start.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -110,6 +111,7 @@ static void wake(bk_filewriter *w, int urgent)
 static void *writer_main(void *arg)
 {
     bk_filewriter *w = arg;
+    bk_thread_started();
     pthread_mutex_lock(&w->mu);
     for (;;) {
         if (w->count == 0 && !w->stop)
@@ -179,12 +181,7 @@ int bk_filewriter_start(bk_filewriter *w)
 {
     if (w->threaded || !w->ready)
         return w->threaded;
-    pthread_attr_t at;
-    if (pthread_attr_init(&at) == 0) {
-        pthread_attr_setstacksize(&at, WRITER_STACK);
-        w->threaded = pthread_create(&w->thread, &at, writer_main, w) == 0;
-        pthread_attr_destroy(&at);
-    }
+    w->threaded = bk_thread_start(&w->thread, WRITER_STACK, writer_main, w) == 0;
     return w->threaded;
 }
 
