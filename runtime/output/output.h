@@ -133,6 +133,11 @@ int bk_output_close_tables(bk_output *o, FILE *err);
 /* (output.c's, in rows_writer.c) The tables' rows to a writer thread once one
  * runs, called at every output step (t: its time or load factor). */
 void bk_output_rows_to_writer(bk_output *o, double t);
+/* (rows_writer.c) The same decision at an output step's section forces, before
+ * they are computed, as bk_output_rows_to_writer will count the step (not
+ * counted here): when the step makes the run due a thread, it starts now and
+ * makes the step's section forces too (a small model's, forces.h). */
+void bk_output_rows_due(bk_output *o, double t);
 /* Closes what is still open (the tables too, unreported), waits for results.h5's
  * thread to end and frees. */
 void bk_output_close(bk_output *o);

@@ -23,14 +23,28 @@
  * 128 kB of them left for the close to wait for (0.5-1 ms in a 1000-step
  * pendulum), and fewer fresh pages of the chunks touched. */
 #define BK_ROWS_OFFER (16 << 10)
+static void start_rows(bk_output *o, double t, int steps);
+
 void bk_output_rows_to_writer(bk_output *o, double t)
 {
     if (o->rq.w) {
         bk_rowqueue_offer(&o->rq, BK_ROWS_OFFER);
         return;
     }
+    start_rows(o, t, ++o->row_steps);    /* (counted once a call) */
+}
+
+void bk_output_rows_due(bk_output *o, double t)
+{
+    if (!o->rq.w)
+        start_rows(o, t, o->row_steps + 1);
+}
+
+/* The rows to a thread when one runs or the run, at its steps-th output
+ * step, is due one. */
+static void start_rows(bk_output *o, double t, int steps)
+{
     bk_filewriter *w = NULL;
-    const int steps = ++o->row_steps;    /* (counted once a call) */
     const double frac = o->plan.end > 0.0 ? t / o->plan.end : -1.0;
     const int due = steps >= BK_ROWS_THREAD_AFTER || o->plan.states >= BK_ROWS_THREAD_AFTER ||
                     (frac > 0.0 && steps >= 2 && steps >= BK_ROWS_THREAD_AFTER * frac);
