@@ -1,7 +1,7 @@
 /* rowqueue_check.c -- the result tables' rows handed to a writer thread
  * (csvrow.h bk_rowqueue) against the same rows printed with glibc's fprintf.
  *
- *   rowqueue_check DIR NROWS [STEP_BYTES]
+ *   rowqueue_check DIR NROWS [STEP_BYTES [idle]]
  *
  * Writes NROWS random rows (integers, "%.17g" numbers, "%.Ne" and "%.Ng" with
  * random precisions, names up to 5000 bytes: longer than a string piece and
@@ -12,7 +12,10 @@
  * exits 0 only when D is 0 and more than two chunks were handed over (the rows
  * spanned chunk boundaries).  Rows are also offered now and then
  * (bk_rowqueue_offer: handed over early when the next chunk is free).  STEP_BYTES (default 0: the queue's four chunks)
- * is bk_rowqueue_start's hint: a larger one cycles through more chunks. */
+ * is bk_rowqueue_start's hint: a larger one cycles through more chunks.  With
+ * idle, the thread is first let finish all it was given, so that the stop
+ * formats the rows not yet handed over itself (prints "local=1" when there
+ * were some). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -66,8 +69,8 @@ static long same(const char *a, const char *b)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3 && argc != 4) {
-        fprintf(stderr, "usage: %s DIR NROWS [STEP_BYTES]\n", argv[0]);
+    if (argc < 3 || argc > 5 || (argc == 5 && strcmp(argv[4], "idle") != 0)) {
+        fprintf(stderr, "usage: %s DIR NROWS [STEP_BYTES [idle]]\n", argv[0]);
         return 2;
     }
     const long nrows = atol(argv[2]);
@@ -84,7 +87,7 @@ int main(int argc, char **argv)
     bk_filewriter w;
     bk_rowqueue q = {0};
     FILE *queued[3] = {fp[0][1], fp[1][1], fp[2][1]};
-    if (bk_filewriter_open(&w, 1, 1) != 0 || !w.threaded || bk_rowqueue_start(&q, &w, queued, 3, argc == 4 ? (size_t)atol(argv[3]) : 0) != 0) {
+    if (bk_filewriter_open(&w, 1, 1) != 0 || !w.threaded || bk_rowqueue_start(&q, &w, queued, 3, argc >= 4 ? (size_t)atol(argv[3]) : 0) != 0) {
         fprintf(stderr, "no writer thread or no memory\n");
         return 2;
     }
@@ -135,6 +138,10 @@ int main(int argc, char **argv)
     }
     const long chunks = w.calls;
     printf("cycle=%d ", q.nchunk);
+    if (argc == 5) {                     /* the stop on an idle thread: the last rows formatted by the caller */
+        bk_filewriter_drain(&w);
+        printf("local=%d ", q.pos > 0 && bk_filewriter_idle(&w));
+    }
     bk_rowqueue_free(&q);
     bk_filewriter_close(&w);
     long bytes = 0;

@@ -45,6 +45,18 @@ def _tables(scene, sets, names):
     return out, {n: (out / n).read_bytes() for n in names}
 
 
+def test_last_rows_formatted_by_the_stop_when_the_thread_is_idle():
+    """bk_rowqueue_stop formats the rows not yet handed over itself when the
+    thread has done all it was given (no wake-up and wait at a run's end): the
+    tables are still fprintf's bytes."""
+    d = fresh()
+    r = subprocess.run([str(harness()), str(d), "20000", "0", "idle"], capture_output=True, text=True, timeout=600)
+    assert "runtime error" not in r.stderr and "Sanitizer" not in r.stderr, r.stderr[-4000:]
+    assert r.returncode == 0, (r.stdout, r.stderr[-4000:])
+    got = dict(kv.split("=") for kv in r.stdout.split())
+    assert got["local"] == "1" and int(got["differ"]) == 0, got
+
+
 def test_tables_the_same_with_and_without_the_writer_thread():
     """The soft pendulum (dynamics, 200 steps, 41 frames: the writer thread from its first
     frame) and the two-turn roll-up (statics, a frame per step: the thread from its second)

@@ -274,7 +274,16 @@ void bk_rowqueue_offer(bk_rowqueue *q, size_t min_bytes)
 
 void bk_rowqueue_stop(bk_rowqueue *q)
 {
-    if (q->w) {
+    if (q->w && q->pos > 0 && bk_filewriter_idle(q->w)) {
+        /* the last rows formatted here when the thread has done all it was
+         * given (the tables are the caller's again): handing them over would
+         * cost its wake-up and the wait (roll-up: 0.1-0.2 ms at the end) */
+        const int k = q->cur;
+        q->len[k] = q->pos;
+        q->flush[k] = 0;
+        format_chunk(&q->job[k], NULL);
+        q->pos = 0;
+    } else if (q->w) {
         bk_rowqueue_submit(q, 0);        /* (not flushed: the caller's fclose does, and reports a failure's errno) */
         bk_filewriter_wait(q->w, q->last);
     }

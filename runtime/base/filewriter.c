@@ -279,6 +279,16 @@ int bk_filewriter_done(bk_filewriter *w, long ticket)
     return done;
 }
 
+int bk_filewriter_idle(bk_filewriter *w)
+{
+    if (!w->threaded)
+        return 1;
+    pthread_mutex_lock(&w->mu);
+    const int idle = w->count == 0;
+    pthread_mutex_unlock(&w->mu);
+    return idle;
+}
+
 int bk_filewriter_drain(bk_filewriter *w)
 {
     if (!w->threaded)

@@ -37,6 +37,10 @@
  *                         has returned.
  *   bk_filewriter_done    in: ticket: 1 when that call has returned (or the
  *                         writer is unthreaded), else 0; no wait.
+ *   bk_filewriter_idle    1 when every file and call handed over is done (or
+ *                         the writer is unthreaded), else 0; no wait.  Until
+ *                         the caller hands something over, what the jobs
+ *                         wrote is the caller's to read and write.
  *   bk_filewriter_drain   waits until every file and call handed over is done;
  *                         0 or -1 as above.
  *   bk_filewriter_close   drains, ends the thread, frees the buffers.
@@ -101,6 +105,7 @@ int bk_filewriter_submit_job(bk_filewriter *w, int slot, const char *path, bk_fi
 long bk_filewriter_call(bk_filewriter *w, bk_filewriter_make fn, const void *arg);
 void bk_filewriter_wait(bk_filewriter *w, long ticket);
 int bk_filewriter_done(bk_filewriter *w, long ticket);
+int bk_filewriter_idle(bk_filewriter *w);
 int bk_filewriter_drain(bk_filewriter *w);
 void bk_filewriter_close(bk_filewriter *w);
 
