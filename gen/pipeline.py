@@ -197,22 +197,6 @@ class _Signals:
         except ProcessLookupError:
             pass
 
-    def become(self, cmd):
-        """This process becomes the solver (a --quiet run prints nothing after
-        the solve; out/bin/run-cached does the same): no second process, and
-        no Python left to end.  SIGINT / SIGTERM are blocked across the exec and
-        stay pending until the solver polls them (it stops at its next step,
-        keeps its results and exits 130 / 143).  Returns when the exec fails."""
-        stop = set(EXIT_SIGNAL)
-        signal.pthread_sigmask(signal.SIG_BLOCK, stop)
-        try:
-            sys.stdout.flush()
-            sys.stderr.flush()
-            os.execv(cmd[0], cmd)
-        except OSError:
-            pass
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, stop)
-
     def run(self, cmd):
         self.pid = os.posix_spawnp(cmd[0], cmd, os.environ)   # cheaper than fork + exec of this process
         _, status = os.waitpid(self.pid, 0)
@@ -345,8 +329,6 @@ def run(scene, sets=(), out=None, *, doc=None, name=None, variant="release", mem
         else:
             if threads:                # (the command line's process: its environment is the solver's)
                 os.environ["OMP_NUM_THREADS"] = str(int(threads))
-            if quiet and not memcheck:
-                sig.become(cmd)        # returns only when the solver cannot be started so
             rc = sig.run(cmd)
     # (the solver lists the scene's warnings in its summary.json: they travel in the model file)
     if console and rc in EXIT_SIGNAL.values() and \
