@@ -15,15 +15,14 @@ case "$0" in
 esac
 ROOT="$PWD"
 # `run` first: a repeated run is started by out/bin/run-cached (frontend/,
-# built on the first `run` below) before the rest of this script is read.
-if [ "${1:-}" = run ] && [ $# -gt 1 ] && [ -z "${BK_NO_FAST_RUN:-}" ] && [ -x out/bin/run-cached ]; then
-    for f in frontend/*.[ch] ""; do
-        if [ -z "$f" ]; then
-            shift
-            BK_ROOT="$ROOT" exec out/bin/run-cached "$@"
-        fi
-        [ out/bin/run-cached -nt "$f" ] || break
-    done
+# built on the first `run` below, and again when this script is newer) before
+# the rest of this script is read.  It checks that it is newer than its sources
+# itself (in C: the same 19 tests here took 0.4 ms) and, when it is not, comes
+# back with BK_RUN_CACHED_STALE=1 to be rebuilt below.
+if [ "${1:-}" = run ] && [ $# -gt 1 ] && [ -z "${BK_NO_FAST_RUN:-}${BK_RUN_CACHED_STALE:-}" ] && \
+    [ out/bin/run-cached -nt build.sh ] && [ -x out/bin/run-cached ]; then
+    shift
+    BK_ROOT="$ROOT" exec out/bin/run-cached "$@"
 fi
 # The rest in bash.
 if [ -z "${BASH_VERSION:-}" ]; then
@@ -205,7 +204,7 @@ ensure_deps() {      # (--always: ask dpkg whatever the stamp says)
 # when it cannot be built, runs take the Python front end (same results).
 build_run_cached() {
     local exe="$1" tmp="$1.$$.tmp" f stale=
-    for f in "$ROOT"/frontend/*.[ch]; do
+    for f in "$ROOT"/frontend/*.[ch] "$ROOT/build.sh"; do
         [ "$exe" -nt "$f" ] || stale=1
     done
     [ -z "$stale" ] && return 0
@@ -276,8 +275,11 @@ case "$cmd" in
         # runtime and kernels) is run by out/bin/run-cached (frontend/) without
         # starting Python (see the top of this script); anything else it hands
         # back here with BK_NO_FAST_RUN=1.  Built here when missing or stale.
+        unset BK_RUN_CACHED_STALE        # (set until here: bash reads the lines above too)
         if [ -z "${BK_NO_FAST_RUN:-}" ] && build_run_cached "$ROOT/out/bin/run-cached"; then
-            BK_ROOT="$ROOT" exec "$ROOT/out/bin/run-cached" "$@"
+            # (checked just now: it need not check again, nor, with a source
+            # dated in the future, come back here for ever)
+            BK_ROOT="$ROOT" BK_RUN_CACHED_CHECKED=1 exec "$ROOT/out/bin/run-cached" "$@"
         fi
         ensure_deps
         # gen/cli.py (an identical earlier run is reused without the scene

@@ -339,3 +339,43 @@ def test_a_new_run_keys_its_record_with_the_launchers_fingerprint():
                         str(work / "again"), "--set", sets[0]], capture_output=True, text=True, timeout=600,
                        env=dict(ENV, **ONLY))
     assert r.returncode == 0, r.stderr[-2000:]            # the launcher took it
+
+
+def test_a_launcher_older_than_its_sources_goes_back_to_be_rebuilt():
+    """build.sh starts out/bin/run-cached without testing its sources' dates
+    (19 shell tests cost 0.4 ms of a 10 ms command); the launcher compares
+    them with its own date itself and, older than one of them, goes back to
+    build.sh's `run` with BK_RUN_CACHED_STALE=1 (which rebuilds it), unless
+    build.sh has just checked it (BK_RUN_CACHED_CHECKED=1: no loop with a
+    source dated in the future).  Run in a stand-in repository whose build.sh
+    prints what it was given."""
+    root = out_dir()
+    (root / "out" / "bin").mkdir(parents=True)
+    (root / "frontend").mkdir()
+    exe = root / "out" / "bin" / "run-cached"
+    shutil.copy(launcher(), exe)
+    src = root / "frontend" / "run_key.c"
+    src.write_text("/* a source */\n")
+    fake = root / "build.sh"
+    fake.write_text('#!/bin/sh\necho "stale=${BK_RUN_CACHED_STALE:-} python=${BK_NO_FAST_RUN:-} $*"\n')
+    fake.chmod(0o755)
+
+    def go(extra=None):
+        env = dict(ENV, BK_ROOT=str(root), **(extra or {}))
+        for k in ("BK_RUN_CACHED_STALE", "BK_NO_FAST_RUN", "BK_RUN_CACHED_CHECKED"):
+            if not extra or k not in extra:
+                env.pop(k, None)
+        r = subprocess.run([str(exe), "no_such_scene", "--quiet"], capture_output=True, text=True, env=env,
+                           cwd=root)
+        assert r.returncode == 0, r.stderr
+        return r.stdout.strip()
+
+    t = exe.stat().st_mtime_ns
+    os.utime(src, ns=(t, t - 10**9))                    # older: on to Python (no such scene)
+    assert go() == "stale= python=1 run no_such_scene --quiet"
+    os.utime(src, ns=(t, t + 10**9))                    # newer: back to be rebuilt
+    assert go() == "stale=1 python= run no_such_scene --quiet"
+    os.utime(src, ns=(t, t))                            # as old as the launcher: newer is required
+    assert go() == "stale=1 python= run no_such_scene --quiet"
+    # just checked by build.sh: on, whatever the dates
+    assert go({"BK_RUN_CACHED_CHECKED": "1"}) == "stale= python=1 run no_such_scene --quiet"
