@@ -2,12 +2,12 @@
  * python_start.h). */
 #define _DEFAULT_SOURCE
 #include "python_start.h"
+#include "read_file.h"
 
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #define PYTHON "/usr/bin/python3"
@@ -15,16 +15,8 @@
 /* 1 when the package stamp exists and is no older than build.sh. */
 static int deps_stamped(const char *root)
 {
-    char path[PATH_MAX];
-    struct stat st, sb;
-    snprintf(path, sizeof path, "%s/out/.deps-installed", root);
-    if (stat(path, &st) != 0)
-        return 0;
-    snprintf(path, sizeof path, "%s/build.sh", root);
-    if (stat(path, &sb) != 0)
-        return 0;
-    return st.st_mtim.tv_sec > sb.st_mtim.tv_sec ||
-           (st.st_mtim.tv_sec == sb.st_mtim.tv_sec && st.st_mtim.tv_nsec >= sb.st_mtim.tv_nsec);
+    const long long stamp = bk_mtime_ns(root, "out/.deps-installed"), build = bk_mtime_ns(root, "build.sh");
+    return stamp >= 0 && build >= 0 && stamp >= build;
 }
 
 void bk_start_python_front_end(const char *root, int argc, char **argv)

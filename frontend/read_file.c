@@ -1,8 +1,10 @@
-/* read_file.c -- a whole file into memory (read_file.h). */
+/* read_file.c -- a whole file into memory, and a file's date (read_file.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "read_file.h"
 
 #include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -24,4 +26,14 @@ char *bk_read_file(const char *path, size_t *len)
     }
     close(fd);
     return buf;
+}
+
+long long bk_mtime_ns(const char *dir, const char *name)
+{
+    char path[PATH_MAX];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (stat(path, &st) != 0)
+        return -1;
+    return (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
 }

@@ -323,54 +323,25 @@ static int run_solver(const char *solver, const char *dir, const args *a)
 static int stale(const char *root)
 {
     char path[PATH_MAX];
-    struct stat me, st;
-    snprintf(path, sizeof path, "%s/out/bin/run-cached", root);
-    if (stat(path, &me) != 0)
-        return 1;
+    const long long mine = bk_mtime_ns(root, "out/bin/run-cached");
     snprintf(path, sizeof path, "%s/frontend", root);
-    DIR *d = opendir(path);
+    DIR *d = mine < 0 ? NULL : opendir(path);
     if (!d)
         return 1;
     int old = 1;
     for (struct dirent *de; old && (de = readdir(d)) != NULL;) {
-        const size_t n = strlen(de->d_name);
-        if (n < 3 || de->d_name[n - 2] != '.' || (de->d_name[n - 1] != 'c' && de->d_name[n - 1] != 'h'))
-            continue;
-        old = fstatat(dirfd(d), de->d_name, &st, 0) == 0 &&
-              (me.st_mtim.tv_sec > st.st_mtim.tv_sec ||
-               (me.st_mtim.tv_sec == st.st_mtim.tv_sec && me.st_mtim.tv_nsec > st.st_mtim.tv_nsec));
+        const char *dot = strrchr(de->d_name, '.');
+        if (dot && dot != de->d_name && (strcmp(dot, ".c") == 0 || strcmp(dot, ".h") == 0))
+            old = mine > bk_mtime_ns(path, de->d_name);
     }
     closedir(d);
     return !old;
 }
 
-/* Back to build.sh's `run`, which rebuilds this program and starts it again. */
-static int rebuild(const char *root, int argc, char **argv)
+/* build.sh's `run` with the same arguments (returns only when it cannot be
+ * started: 1). */
+static int build_sh_run(const char *root, int argc, char **argv)
 {
-    setenv("BK_RUN_CACHED_STALE", "1", 1);
-    char build[PATH_MAX];
-    snprintf(build, sizeof build, "%s/build.sh", root);
-    char **cmd = calloc((size_t)argc + 3, sizeof *cmd);
-    if (!cmd)
-        return 1;
-    cmd[0] = build;
-    cmd[1] = "run";
-    for (int i = 0; i < argc; i++)
-        cmd[i + 2] = argv[i];
-    fflush(NULL);
-    execv(build, cmd);
-    fprintf(stderr, "error: cannot start %s: %s\n", build, strerror(errno));
-    free(cmd);
-    return 1;
-}
-
-/* The Python front end, with the same arguments: started here as build.sh's
- * `run` starts it when the packages are stamped installed (python_start.h),
- * else through build.sh, which installs them. */
-static int fall_back(const char *root, int argc, char **argv)
-{
-    setenv("BK_NO_FAST_RUN", "1", 1);
-    bk_start_python_front_end(root, argc, argv);
     char build[PATH_MAX];
     snprintf(build, sizeof build, "%s/build.sh", root ? root : ".");
     char **cmd = calloc((size_t)argc + 3, sizeof *cmd);
@@ -385,6 +356,23 @@ static int fall_back(const char *root, int argc, char **argv)
     fprintf(stderr, "error: cannot start %s: %s\n", build, strerror(errno));
     free(cmd);
     return 1;
+}
+
+/* Back to build.sh's `run`, which rebuilds this program and starts it again. */
+static int rebuild(const char *root, int argc, char **argv)
+{
+    setenv("BK_RUN_CACHED_STALE", "1", 1);
+    return build_sh_run(root, argc, argv);
+}
+
+/* The Python front end, with the same arguments: started here as build.sh's
+ * `run` starts it when the packages are stamped installed (python_start.h),
+ * else through build.sh, which installs them. */
+static int fall_back(const char *root, int argc, char **argv)
+{
+    setenv("BK_NO_FAST_RUN", "1", 1);
+    bk_start_python_front_end(root, argc, argv);
+    return build_sh_run(root, argc, argv);
 }
 
 int main(int argc, char **argv)
