@@ -370,17 +370,16 @@ static void nothing(const void *arg, FILE *unused)
 }
 
 /* The frame file `path`: its inputs copied for the background writer's thread,
- * which makes, creates and writes it; or made and written here (no writer, a
- * large frame, or every buffer still taken: the thread is busy with other
- * work, e.g. results.h5's HDF5 start of 5-10 ms, and writing the frame here
- * takes 0.1-0.3 ms where waiting for a buffer took up to that long). */
+ * which makes, creates and writes it; or made and written here (here: the
+ * run's last frame; no writer, a large frame, or every buffer still taken: the
+ * thread is busy with other work, e.g. results.h5's HDF5 start of 5-10 ms, and
+ * writing the frame here takes 0.1-0.3 ms where waiting took up to that long). */
 static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const *fname, const double *fval,
                      const double *q, const mode_view *mv, int with_sec, int maxsample, int here)
 {
     const double *sec = NULL, *ssec = NULL;
     v->written++;
-    const int b = !here && v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(v->wp, 0)
-                                                                                   : -1;
+    const int b = !here && v->background && v->jobs && nfield <= BK_VTK_MAX_FIELDS ? bk_filewriter_slot(v->wp, 0) : -1;
     if (b >= 0) {
         const bk_model *m = v->m;
         const size_t nq = (size_t)m->ndof;
@@ -415,10 +414,6 @@ static int write_vtu(bk_vtk *v, const char *path, int nfield, const char *const 
     }
     if (with_sec)
         bk_forces_frame_sections(v->forces, NULL, &sec, &ssec);
-    /* a few large writes instead of many small ones, through a buffer of its
-     * own on the heap: on this stack its 64 kB were 16 fresh pages at the first
-     * frame, a page fault each (10 us apiece on a virtual machine with shadow
-     * page tables: half the frame's time in a small run) */
     if (!v->iobuf && !(v->iobuf = malloc(BK_VTK_IOBUF))) {
         record_failure(v, path, ENOMEM);
         return -1;
@@ -460,10 +455,8 @@ int bk_vtk_frame(bk_vtk *v, const bk_system *s, int step, double t, const double
     snprintf(path, sizeof path, "%s/step_%06d.vtu", v->dir, frame);
     const int with_sec = v->forces && v->forces->sec_step == frame;
     maybe_background(v, v->end > 0.0 ? t / v->end : -1.0);    /* the analysis' plan (output.h) */
-    /* the run's last frame (its path variable at the end the plan knows) made
-     * here: the caller would only wait for it at the end, and the thread may
-     * still be busy with the step's rows and section forces meanwhile
-     * (roll-up: 0.35 ms of waiting at the end) */
+    /* the run's last frame here: the caller would wait for it at the end, while the
+     * thread makes the step's rows and section forces (roll-up: 0.35 ms of waiting) */
     const int last = v->end > 0.0 && t >= v->end * (1.0 - 1e-9);
     static const char *const names[] = {"TIME"};
     if (write_vtu(v, path, 1, names, &t, q, NULL, with_sec, v->maxsample, last) != 0)

@@ -33,7 +33,11 @@ typedef struct bk_vtk {
     long npts, ncell, nconn; /* points, cells and connectivity entries of every frame */
     size_t frame_bytes;      /* the largest frame file (header allowance included) */
     char *iobuf;             /* owned, or NULL until the first frame written here: its
-                              * stdio buffer (BK_VTK_IOBUF bytes) */
+                              * stdio buffer (BK_VTK_IOBUF bytes: a few large writes).  On
+                              * the heap: on the stack its 64 kB were 16 fresh pages at
+                              * the first frame, a page fault each (10 us apiece on a
+                              * virtual machine with shadow page tables: half the frame's
+                              * time in a small run) */
     int written;             /* frame files so far (step and mode frames) */
     int background, tried_background;   /* 1: frames go to fw, written by its thread */
     int expected;            /* frames the run will write when known in advance (dynamics), else 0 */
