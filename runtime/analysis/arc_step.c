@@ -80,9 +80,9 @@ double bk_arc_step_limit(void *ctx, const double *dx)
 
 /* The tangent at the equilibrium (q, w->nu, lam): t = -K^-1 dr/dlam into c->t;
  * its weighted square length into *tWt.  Returns 0, or a BK_NL_* code. */
-int bk_arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, double *tWt)
+int bk_arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, int assembled, double *tWt)
 {
-    if (bk_static_residual(s, c->w, q, c->w->nu, lam, 1) != 0)
+    if (!assembled && bk_static_residual(s, c->w, q, c->w->nu, lam, 1) != 0)
         return BK_NL_NONFINITE;
     int st = bk_lin_factor(&nl->ls, nl->Ax);
     if (st != BK_LIN_OK)
@@ -229,7 +229,7 @@ double bk_arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, const
     for (int k = 0; k < ARC_BISECTIONS; ++k) {
         double mid = 0.5 * (lo + hi), lam = A->lam, tWt;
         bk_arc_restore(s, c->w, q, &lam, A);
-        if (bk_arc_tangent(s, nl, c, q, lam, &tWt) != BK_NL_OK)
+        if (bk_arc_tangent(s, nl, c, q, lam, 0, &tWt) != BK_NL_OK)
             break;
         if (bk_arc_step(s, nl, c, q, lam, sigma_a, tWt, mid, o, a, step, info, 1.0) != BK_NL_OK)
             break;
@@ -239,7 +239,7 @@ double bk_arc_bisect_limit(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, const
             bk_arc_save(s, c->w, q, lam_m, best);
             have_best = 1;
         }
-        if (bk_arc_tangent(s, nl, c, q, lam_m, &tWt) != BK_NL_OK)
+        if (bk_arc_tangent(s, nl, c, q, lam_m, 0, &tWt) != BK_NL_OK)
             break;
         double sg = bk_arc_orientation(s, c, q, lam_m, A->q, A->lam);
         if (sg == sigma_a)

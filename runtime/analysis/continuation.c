@@ -85,9 +85,11 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                  "gravity load)");
         goto done;
     }
+    int assembled = 0;                  /* w->Ax: the matrix at (q, lam), made for the last step's stability check */
     for (;;) {
         double tWt;
-        int st = bk_arc_tangent(s, nl, &c, q, lam, &tWt);
+        int st = bk_arc_tangent(s, nl, &c, q, lam, assembled, &tWt);
+        assembled = 0;
         if (st != BK_NL_OK || !(tWt > 0.0)) {
             snprintf(info->message, sizeof info->message,
                      "arc-length: no tangent at the equilibrium of step %d, load factor %.6g (%s): the tangent "
@@ -129,7 +131,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                 info->stability[info->nstability - 1].lam_critical = lc;
             claimed = step;
             bk_arc_restore(s, w, q, &lam, &B);
-            if ((st = bk_arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+            if ((st = bk_arc_tangent(s, nl, &c, q, lam, 0, &tWt)) != BK_NL_OK) {
                 snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)", info->steps,
                          bk_nl_why(st));
                 goto done;
@@ -192,7 +194,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
                     bk_warn(info, out->console, m->name, "the branch switch at step %d (load factor %.6g) failed (%s): "
                             "the path goes on along the primary branch", info->steps, lam, bk_nl_why(st));
                 switching = 0;
-                if ((st = bk_arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+                if ((st = bk_arc_tangent(s, nl, &c, q, lam, 0, &tWt)) != BK_NL_OK) {
                     snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
                              info->steps, bk_nl_why(st));
                     goto done;
@@ -219,7 +221,7 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             dl *= 0.5;
             if (log)
                 fprintf(log, "  cut-back at load factor %.6g (%s): new arc length %.3g\n", lam, bk_static_why(st), dl);
-            if ((st = bk_arc_tangent(s, nl, &c, q, lam, &tWt)) != BK_NL_OK) {
+            if ((st = bk_arc_tangent(s, nl, &c, q, lam, 0, &tWt)) != BK_NL_OK) {
                 snprintf(info->message, sizeof info->message, "arc-length: no tangent at step %d (%s)",
                          info->steps, bk_nl_why(st));
                 goto done;
@@ -265,7 +267,11 @@ static int arc_length(bk_system *s, bk_nl *nl, work *w, double *q, bk_output *ou
             fprintf(log, "  step %d: load factor %.6g, arc length %.3g, %d iterations, residual %.3e\n", info->steps,
                     lam, dl, a.iters, a.rnorm);
         if (have_stab) {
-            bk_static_probe_stability(stab, s, w, q, lam, 0, &sres);
+            /* the matrix at this equilibrium, for the check and the next
+             * step's tangent alike (the Lee frame assembled it twice): the
+             * tangent's work, not the check's (stability_s) */
+            assembled = bk_static_residual(s, w, q, w->nu, lam, 1) == 0;
+            bk_static_probe_stability(stab, s, w, q, lam, assembled, &sres);
             bk_static_accept_stability(stab, &sres, lam, out, info, log, &prev_lam, 1, NAN, w->stability_csv);
         }
         /* a change of the negative-eigenvalue count in the last step without

@@ -89,7 +89,9 @@ void bk_load_derivative(bk_system *s, work *w, const double *q, double lam, doub
 int bk_arc_augment(void *ctx, bk_linsolver *ls, double *dx);
 void bk_arc_update(void *ctx, const double *dx, double alpha);
 double bk_arc_step_limit(void *ctx, const double *dx);
-int bk_arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, double *tWt);
+/* (arc_step.c) assembled: w->Ax already holds the Newton matrix at (q, w->nu,
+ * lam) (the stability check's assembly there): not assembled again. */
+int bk_arc_tangent(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam, int assembled, double *tWt);
 int bk_arc_step(bk_system *s, bk_nl *nl, arc_ctx *c, double *q, double lam0, double sigma, double tWt,
                 double dl, const bk_static_opts *o, attempt *a, int step, bk_run_info *info, double lam_scale);
 void bk_sensor_displacements(const bk_model *m, const double *q, bk_critical_point *cp);
