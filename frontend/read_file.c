@@ -35,5 +35,10 @@ long long bk_mtime_ns(const char *dir, const char *name)
     snprintf(path, sizeof path, "%s/%s", dir, name);
     if (stat(path, &st) != 0)
         return -1;
-    return (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
+    return bk_stat_ns(&st);
+}
+
+long long bk_stat_ns(const struct stat *st)
+{
+    return (long long)st->st_mtim.tv_sec * 1000000000LL + st->st_mtim.tv_nsec;
 }

@@ -10,13 +10,20 @@
  * bk_mtime_ns(dir, name)
  *   dir, name in   the file DIR/NAME
  * Returns its modification time in nanoseconds since the epoch, or -1 when it
- * cannot be read. */
+ * cannot be read.
+ *
+ * bk_stat_ns(st)
+ *   st   in   a stat(2) result
+ * Returns its modification time in nanoseconds since the epoch (the unit of
+ * the run cache's entries). */
 #ifndef BK_READ_FILE_H
 #define BK_READ_FILE_H
 
 #include <stddef.h>
+#include <sys/stat.h>
 
 char *bk_read_file(const char *path, size_t *len);
 long long bk_mtime_ns(const char *dir, const char *name);
+long long bk_stat_ns(const struct stat *st);
 
 #endif

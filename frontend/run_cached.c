@@ -228,7 +228,7 @@ static int kernels_unchanged(const char *root, const entry *e)
         struct stat st;
         *nl = '\0';
         if (sscanf(line, "%255s %lld %lld", name, &size, &ns) != 3 || fstatat(fd, name, &st, 0) != 0 ||
-            st.st_size != size || (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != ns)
+            st.st_size != size || bk_stat_ns(&st) != ns)
             rc = -1;
         *nl = '\n';
         line = nl + 1;
@@ -411,7 +411,7 @@ int main(int argc, char **argv)
     why = "no identical earlier run (scene, --set values, gen/, runtime/, out/kernels/), or its solver was "
           "rebuilt since";
     if (read_entry(cache_dir, &e) != 0 || stat(e.solver, &st) != 0 || st.st_size != e.size ||
-        (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec != e.mtime_ns ||
+        bk_stat_ns(&st) != e.mtime_ns ||
         kernels_unchanged(root, &e) != 0)
         goto done;
     size_t model_len;

@@ -5,6 +5,7 @@
  * out/kernels/ a run is made from are in its entry: run_cached.c.) */
 #define _DEFAULT_SOURCE            /* d_type, DT_DIR */
 #include "run_key.h"
+#include "read_file.h"
 #include "sha256.h"
 
 #include <dirent.h>
@@ -40,7 +41,7 @@ static void add(items *it, const char *path, const struct stat *st)
         it->cap = cap;
     }
     const char *rel = path + it->cut;
-    long long ns = (long long)st->st_mtim.tv_sec * 1000000000LL + st->st_mtim.tv_nsec;
+    long long ns = bk_stat_ns(st);
     char nums[64];
     int nn = snprintf(nums, sizeof nums, "%lld%c%lld", (long long)st->st_size, '\0', ns);
     size_t lr = strlen(rel), len = lr + 1 + (size_t)nn;
