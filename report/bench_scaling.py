@@ -85,8 +85,8 @@ def scaling(quick, log):
     return [best[k] for k in sorted(best)]
 
 
-def fit_exponent(rows, lo=100, hi=10000, threads=1):
-    pts = [(math.log(r["elements"]), math.log(r["iteration_s"])) for r in rows
+def fit_exponent(rows, lo=100, hi=10000, threads=1, key="iteration_s"):
+    pts = [(math.log(r["elements"]), math.log(r[key])) for r in rows
            if lo <= r["elements"] <= hi and r["threads"] == threads]
     if len(pts) < 2:
         return math.nan

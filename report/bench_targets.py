@@ -98,13 +98,34 @@ def front_end(work, repeats, log):
             raise RuntimeError(err.strip())
         return t - json.loads((out / "summary.json").read_text())["wall_s"], err, t
 
-    repeat, changed, whole_c, whole_py = [], [], [], []
+    def spawn(cmd):                             # a process started as whole() starts build.sh
+        with open(errf, "w") as fh:
+            t0 = time.perf_counter()
+            pid = os.posix_spawn(cmd[0], cmd, os.environ, file_actions=[(os.POSIX_SPAWN_DUP2, fh.fileno(), 2)])
+            os.waitpid(pid, 0)
+            return time.perf_counter() - t0
+
+    # the floor of the whole command on this machine: a process that does nothing
+    # (/bin/true), and the solver started alone on the same model into a fresh
+    # directory (one process where the command has three: sh, run-cached, the solver)
+    model = work / "front_model.dat"
+    shutil.copyfile(out / "model.dat", model)
+    alone_dir = work / "front_alone"
+
+    def solver_alone():
+        shutil.rmtree(alone_dir, ignore_errors=True)
+        alone_dir.mkdir()
+        return spawn([str(solver), str(model), str(alone_dir), "--quiet"])
+
+    repeat, changed, whole_c, whole_py, true_s, alone_s = [], [], [], [], [], []
     python_only = dict(os.environ, BK_NO_FAST_RUN="1")
     nonce = time.time_ns() % 999983
     for k in range(repeats):                    # interleaved: a slow spell of the machine reaches both alike
         beyond, _, t = whole([])
         repeat.append(beyond)
         whole_c.append(t)
+        true_s.append(spawn(["/bin/true"]))
+        alone_s.append(solver_alone())
         whole_py.append(whole([], python_only)[2])
         # a value no earlier run used (not even an earlier bench's: that run would be reused)
         changed.append(whole([f"material.alu.E={7.2e10 * (1 + 1e-6 * (k + 1) + 1e-12 * nonce)!r}"])[0])
@@ -116,6 +137,7 @@ def front_end(work, repeats, log):
     return {"repeat_s": statistics.median(repeat), "repeat_min_s": min(repeat),
             "whole_s": statistics.median(whole_c), "whole_min_s": min(whole_c),
             "whole_python_s": statistics.median(whole_py),
+            "true_s": statistics.median(true_s), "solver_alone_s": statistics.median(alone_s),
             "set_s": statistics.median(changed), "set_min_s": min(changed),
             "set_imports_sympy": sympy, "set_rebuilt_solver": rebuilt}
 
@@ -129,8 +151,27 @@ OUTPUT_SCENES = [("Table 3 (-100 N, nu = 0.3)", TABLE3, []),
                  ("silicone fall (ancf3363, 0.5 s)", "silicone_fall", [])]
 
 
+def file_creation(work, repeats, nfiles=10):
+    """Median time to create a file as a run's output does (open with
+    O_CREAT | O_TRUNC in a fresh directory whose predecessor's files were just
+    deleted, as between the timed runs; 1 kB written and closed after it)."""
+    d, times, data = work / "creation", [], b"x" * 1024
+    for _ in range(repeats):
+        shutil.rmtree(d, ignore_errors=True)
+        d.mkdir()
+        for i in range(nfiles):
+            t0 = time.perf_counter()
+            fd = os.open(d / f"f{i}.csv", os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+            times.append(time.perf_counter() - t0)
+            os.write(fd, data)
+            os.close(fd)
+    shutil.rmtree(d, ignore_errors=True)
+    return statistics.median(times)
+
+
 def output_share(work, repeats, log):
     rows = []
+    create_s = file_creation(work, repeats)
     for label, scene, sets in OUTPUT_SCENES:
         solver, m_def = _build_run(scene, sets, work / f"o_{scene}_def")
         _, m_novtk = _build_run(scene, sets + ["output.vtk_every=0"], work / f"o_{scene}_novtk")
@@ -143,6 +184,8 @@ def output_share(work, repeats, log):
         t = _solver_times(cases, repeats, work)
         med = {k: statistics.median(v["wall"]) for k, v in t.items()}
         frames = len(list((work / "t_default").glob("step_*.vtu")))
+        files = sum(1 for f in (work / "t_default").iterdir()       # the files created within wall_s
+                    if f.is_file() and f.name != "summary.json")
         rows.append({"problem": label, "scene": scene, "wall_s": med["default"], "frames": frames,
                      "output_share": statistics.median(t["default"]["out_share"]),
                      "stability_share": statistics.median(t["default"]["stab_share"]) if static else None,
@@ -151,7 +194,8 @@ def output_share(work, repeats, log):
                      "out_s": statistics.median(t["default"]["out"]),
                      "out_novtk_s": statistics.median(t["novtk"]["out"]),
                      "stability_share_ab": ((med["default"] - med["nostab"]) / med["default"]) if static else None,
-                     "spread": max(t["default"]["wall"]) / min(t["default"]["wall"])})
+                     "spread": max(t["default"]["wall"]) / min(t["default"]["wall"]),
+                     "files": files, "create_s": create_s})
         log(f"  targets: output share {scene}")
     return rows
 
@@ -255,12 +299,17 @@ def target_rows(res, met):
     if "whole_s" in fe:
         rows.append((f"the whole command of a repeated run ≤ 5 ms ({TABLE3}; out/bin/run-cached, no Python)",
                      f"{_ms(fe['whole_s'])} (min {_ms(fe['whole_min_s'])}); through the Python front end "
-                     f"{_ms(fe['whole_python_s'])}", met(fe["whole_s"] <= 0.005)))
+                     f"{_ms(fe['whole_python_s'])}. The floor on this machine, started the same way: a process "
+                     f"that does nothing (/bin/true) {_ms(fe['true_s'])}, the solver alone on the same model "
+                     f"{_ms(fe['solver_alone_s'])}; the command is three programs in one process (sh on "
+                     f"build.sh, out/bin/run-cached, the solver)", met(fe["whole_s"] <= 0.005)))
     for r in res["output"]:
         rows.append((f"output ≤ 10 % of the solver's wall time: {r['problem']}",
                      f"{_ms(r['wall_s'])}; all output {100 * r['output_share']:.1f} % (whole runs: "
                      f"{r['frames']} ParaView frames {100 * r['vtu_share']:.0f} %, results.h5 "
-                     f"{100 * r['h5_share']:.0f} %) (max/min of the repeats {r['spread']:.2f})",
+                     f"{100 * r['h5_share']:.0f} %) (max/min of the repeats {r['spread']:.2f}); "
+                     f"{r['files']} files created, {1e6 * r['create_s']:.0f} us each here: "
+                     f"{100 * r['files'] * r['create_s'] / r['wall_s']:.0f} % of the wall before a byte is written",
                      met(r["output_share"] <= 0.10)))
     for r in res["output"]:
         if r["stability_share"] is not None:
