@@ -34,11 +34,16 @@ def bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, pro
     ops_pt = int(k1["hdr_force_tangent_per_point"]) if k1 and k1["hdr_force_tangent_per_point"].isdigit() else None
     expo = fit_exponent(srows, 100, 10000 if not quick else 1000)
     expo_big = fit_exponent(srows, 1000, 100000) if not quick else math.nan
-    # where the growth is: the same fit past 10,000 elements (the working set far beyond the caches), per part
-    beyond = {k: fit_exponent(srows, 10000, 100000, key=k) if not quick else math.nan
-              for k in ("iteration_s", "assembly_s", "factor_s")}
     s1 = {r["elements"]: r for r in srows if r["threads"] == 1}
     s2 = {r["elements"]: r for r in srows if r["threads"] == 2}
+    # where the growth is: the same fit from 10,000 elements on, per part, and the cost per unit
+    beyond = {k: fit_exponent(srows, 10000, 100000, key=k) if not quick else math.nan
+              for k in ("iteration_s", "assembly_s", "factor_s")}
+    per_unit = [n for n in (1000, 10000, 100000) if n in s1]
+    unit = {"n": " / ".join(f"{n:,}" for n in per_unit),
+            "factor": " / ".join(f"{1e9 * s1[n]['factor_s'] / s1[n]['equations']:.0f}" for n in per_unit),
+            "assembly": " / ".join(f"{1e9 * s1[n]['assembly_s'] / n:.0f}" for n in per_unit),
+            "mb": " / ".join(f"{s1[n]['maxrss_kb'] / 1024:.0f}" for n in per_unit)}
     nbig = max(s2) if s2 else None
     par = s2[nbig].get("assembly_speedup", s1[nbig]["assembly_s"] / s2[nbig]["assembly_s"]) \
         if nbig in s2 else math.nan
@@ -116,13 +121,9 @@ def bench_markdown(quick, cpu, krows, points, spoints, snotes, dnotes, best, pro
                  f"{big['elements']:,}); memory per element | {expo_big:.3f}; {kb_per_el:.1f} kB per element "
                  f"(peak memory {s1[n_a]['maxrss_kb'] / 1024:.0f} MB at {n_a:,}, {s1[n_b]['maxrss_kb'] / 1024:.0f} MB "
                  f"at {n_b:,} elements); from 10,000 to {big['elements']:,}: {beyond['iteration_s']:.3f} (assembly "
-                 f"{beyond['assembly_s']:.3f}, factor + solve {beyond['factor_s']:.3f}): the cost per unit rises from "
-                 f"1,000 to 10,000 elements, as the working set grows from {s1[1000]['maxrss_kb'] / 1024:.0f} to "
-                 f"{s1[10000]['maxrss_kb'] / 1024:.0f} MB, past the processor's caches (factor + solve per equation "
-                 f"{1e9 * s1[1000]['factor_s'] / s1[1000]['equations']:.0f} → "
-                 f"{1e9 * s1[10000]['factor_s'] / s1[10000]['equations']:.0f} ns, assembly per element "
-                 f"{1e9 * s1[1000]['assembly_s'] / 1000:.0f} → {1e9 * s1[10000]['assembly_s'] / 10000:.0f} ns), "
-                 f"and stays flat beyond | {met(expo_big <= 1.05)} |")
+                 f"{beyond['assembly_s']:.3f}, factor + solve {beyond['factor_s']:.3f}); per unit at "
+                 f"{unit['n']} elements: factor + solve per equation {unit['factor']} ns, assembly per element "
+                 f"{unit['assembly']} ns, working set {unit['mb']} MB | {met(expo_big <= 1.05)} |")
     fa = [r for r in srows]
     one_an = all(r["analyses"] == 1 for r in fa)
     no_full = all(r["full_factorizations"] == 1 for r in fa)
