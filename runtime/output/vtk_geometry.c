@@ -70,23 +70,42 @@ static void unit(double *v)
             v[i] /= n;
 }
 
-/* Position of section point (y, z) at station xi of element e for coordinates q. */
-static void section_point(const bk_model *m, const double *q, int e, double xi, double y, double z, double *x)
+/* Station xi of element e for coordinates q, evaluated once for all its
+ * section points: a beam's centre and section frame (bk_eval_point, the
+ * costly part for the rods); the continuum elements' own field is evaluated
+ * at each point (field = 1). */
+typedef struct station {
+    const double *q;
+    int e, field;
+    double xi, x[3], d[9];
+} station;
+
+static void station_at(const bk_model *m, const double *q, int e, double xi, station *st)
 {
-    const bk_elem *el = &m->elems[e];
+    st->q = q, st->e = e, st->xi = xi;
+    st->field = (m->pairs[m->elems[e].pair]->element->caps & BK_CAP_SECTION_FIELD) != 0;
+    if (!st->field)
+        bk_eval_point(m, q, e, xi, st->x, st->d);
+}
+
+/* Position of section point (y, z) of station st. */
+static void section_point(const bk_model *m, const station *st, double y, double z, double *x)
+{
+    const bk_elem *el = &m->elems[st->e];
     const bk_element *et = m->pairs[el->pair]->element;
-    const double *g = m->geoms[el->geom];
-    double d[9], N[BK_MAX_SHAPE];
-    if (et->caps & BK_CAP_SECTION_FIELD) {         /* continuum: the element's own field */
-        et->shape(g, xi, y, z, N);
+    if (st->field) {                               /* continuum: the element's own field */
+        double N[BK_MAX_SHAPE];
+        et->shape(m->geoms[el->geom], st->xi, y, z, N);
         for (int i = 0; i < 3; ++i)
             x[i] = 0.0;
         for (int a = 0; a < et->nshape; ++a)
             for (int i = 0; i < 3; ++i)
-                x[i] += N[a] * q[el->dofs[et->shape_dof[a] + i]];
+                x[i] += N[a] * st->q[el->dofs[et->shape_dof[a] + i]];
         return;
     }
-    bk_eval_point(m, q, e, xi, x, d);
+    const double *d = st->d;
+    for (int i = 0; i < 3; ++i)
+        x[i] = st->x[i];
     if (isfinite(d[0]) && isfinite(d[3])) {        /* beams with a section frame */
         for (int i = 0; i < 3; ++i)
             x[i] += y * d[i] + z * d[3 + i];
@@ -106,18 +125,19 @@ static void section_point(const bk_model *m, const double *q, int e, double xi, 
 }
 
 
-/* A mode frame's point (y, z) at station xi of element e: pass 0 the displaced
+/* A mode frame's point (y, z) of a station at q, q + eps phi and q - eps phi
+ * (st[0], st[1], st[2]; st[0] is used by pass 0 only): pass 0 the displaced
  * point, 1 the scaled shape (displacement), 2 the shape. */
-static void point_value(const bk_model *m, const double *q, const mode_view *mv, int pass, int e, double xi,
-                        double y, double z, double *out)
+static void point_value(const bk_model *m, const station *st, const mode_view *mv, int pass, double y, double z,
+                        double *out)
 {
     double x[3], a[3], sh[3];
-    section_point(m, mv->qp, e, xi, y, z, x);
-    section_point(m, mv->qm, e, xi, y, z, a);
+    section_point(m, &st[1], y, z, x);
+    section_point(m, &st[2], y, z, a);
     for (int i = 0; i < 3; ++i)
         sh[i] = (x[i] - a[i]) / (2.0 * mv->eps * mv->norm);
     if (pass == 0) {
-        section_point(m, q, e, xi, y, z, x);
+        section_point(m, &st[0], y, z, x);
         for (int i = 0; i < 3; ++i)
             out[i] = x[i] + mv->scale * sh[i];
     } else {
@@ -143,16 +163,19 @@ void bk_vtk_mode_extent(const bk_model *m, const double *qp, const double *qm, d
         int r = bk_vtk_ring_points(m, e);
         for (int k = 0; k < NX; ++k) {
             double xi = (double)k / (NX - 1), c[3], a[3], b[3];
-            section_point(m, qp, e, xi, 0.0, 0.0, a);
-            section_point(m, qm, e, xi, 0.0, 0.0, b);
+            station sp, sm;
+            station_at(m, qp, e, xi, &sp);
+            station_at(m, qm, e, xi, &sm);
+            section_point(m, &sp, 0.0, 0.0, a);
+            section_point(m, &sm, 0.0, 0.0, b);
             for (int i = 0; i < 3; ++i)
                 c[i] = (a[i] - b[i]) / (2.0 * eps);
             tmax = fmax(tmax, sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
             for (int j = 0; j < r; ++j) {
                 double y, z, d[3];
                 ring_yz(g, r, j, &y, &z);
-                section_point(m, qp, e, xi, y, z, a);
-                section_point(m, qm, e, xi, y, z, b);
+                section_point(m, &sp, y, z, a);
+                section_point(m, &sm, y, z, b);
                 for (int i = 0; i < 3; ++i)
                     d[i] = (a[i] - b[i]) / (2.0 * eps);
                 tmax = fmax(tmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
@@ -209,14 +232,21 @@ void bk_vtk_frame_points(const bk_model *m, const double *q, const mode_view *mv
             int r = bk_vtk_ring_points(m, e);
             for (int k = 0; k < NX; ++k) {
                 double xi = (double)k / (NX - 1);
+                station st[3];                       /* at q, and at mv's q + eps phi, q - eps phi */
+                if (!mv || pass == 0)
+                    station_at(m, q, e, xi, &st[0]);
+                if (mv) {
+                    station_at(m, mv->qp, e, xi, &st[1]);
+                    station_at(m, mv->qm, e, xi, &st[2]);
+                }
                 for (int j = 0; j <= r; ++j) {
                     double y = 0.0, z = 0.0;
                     if (j < r)
                         ring_yz(g, r, j, &y, &z);
                     if (mv)
-                        point_value(m, q, mv, pass, e, xi, y, z, x + 3 * np++);
+                        point_value(m, st, mv, pass, y, z, x + 3 * np++);
                     else
-                        section_point(m, q, e, xi, y, z, x + 3 * np++);
+                        section_point(m, &st[0], y, z, x + 3 * np++);
                 }
             }
         }
