@@ -251,10 +251,11 @@ def sweep(scene, grid=None, random=None, samples=None, seed=0, sets=None, out=No
             # a key of the grid or the draws is named as the user gave it (the
             # scene reader applies every value as a --set)
             text = str(e)
-            for k in grid:
-                text = text.replace(f"--set {k}:", f"--grid {k}:")
-            for k in (random or {}):
-                text = text.replace(f"--set {k}:", f"--random {k}:")
+            for opt, keys in (("--grid", grid), ("--random", random or {})):
+                for k in keys:
+                    text = text.replace(f"--set {k}:", f"{opt} {k}:")
+                    if text.startswith(f"error: --set {k}="):      # (gen/scene blame_set: --set KEY=VALUE: ...)
+                        text = f"error: {opt} {k}: " + text.split(": ", 2)[2]
             if text != str(e):
                 raise BeamkitError(text) from None
             raise

@@ -90,6 +90,26 @@ def test_toml_syntax_and_missing_file():
     assert r.returncode == 1 and "material.steel" in r.stderr, r.stderr
 
 
+def test_a_bad_value_given_by_set_names_the_set_not_the_file():
+    """The scene file holds a good value; the message names the --set that gave
+    the bad one, with an array entry addressed by name or by index (the scene's
+    message writes it load[0])."""
+    cases = [(["beam.arm.elements=-4"], "error: --set beam.arm.elements=-4: beam.arm.elements: expected an integer"),
+             (["beam.0.elements=0"], "error: --set beam.0.elements=0: beam.arm.elements: expected an integer"),
+             (["beam.arm.elemnts=20"], "error: --set beam.arm.elemnts=20: beam.arm.elemnts: unknown key"),
+             (["static.loadsteps=3"], "error: --set static.loadsteps=3: static.loadsteps: unknown key"),
+             (["load.0.value=[0,0]"], "error: --set load.0.value=[0,0]: load[0].value: expected an array of 3"),
+             (["beam.arm.elements=8", "beam.arm.element=ancf9999"],
+              "error: --set beam.arm.element=ancf9999: beam.arm.element: expected one of")]
+    for sets, msg in cases:
+        r = run_cli(["run", "cantilever_bend_10N"] + [a for s in sets for a in ("--set", s)])
+        lines = [l for l in r.stderr.splitlines() if l.strip()]
+        assert r.returncode == 1 and len(lines) == 1 and lines[0].startswith(msg), (sets, r.stderr)
+    # a message about the file's own value still names the file
+    r, p, _ = run_text(BASE.replace("elements = 10", "elements = 0"), extra=["--set", "material.alu.E=7e10"])
+    assert r.returncode == 1 and f"error: {p}: beam.arm.elements:" in r.stderr, r.stderr
+
+
 def test_newton_failure_keeps_converged_steps():
     """Compression far beyond the St. Venant-Kirchhoff bar's limit load
     E A / (3 sqrt 3) (at stretch 1/sqrt 3): the first steps converge, then the solve

@@ -12,7 +12,7 @@ from gen.scene.bodies import mesh_bodies
 from gen.scene.buckling import buckling_options
 from gen.scene import interactions
 from gen.scene.cost import cost_check
-from gen.scene.files import apply_overrides, load_index, read_toml
+from gen.scene.files import apply_overrides, blame_set, load_index, read_toml
 from gen.scene.frame import rotating_frame
 from gen.scene.joints import constraints
 from gen.scene.loads import loads
@@ -22,13 +22,28 @@ from gen.scene.model_file import _f
 from gen.scene.options import initial_velocities, options, sensors
 from gen.scene.point_masses import point_masses
 from gen.scene.rigid_modes import check_static
-from gen.scene.values import NAME_RE, Ctx, check_keys, get_array_of_tables, get_name, get_str, get_table
+from gen.scene.values import NAME_RE, Ctx, SceneError, check_keys, get_array_of_tables, get_name, get_str, get_table
 
 ANALYSES = next(o.choices for o in OPTIONS if o.name == "scene.analysis")
 PLANNED_ANALYSES = ()
 
 
 def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None):
+    """Validate the scene and return the model as a dict of plain data (see
+    _build); a message about a value a --set gave names the --set."""
+    touched = []
+    try:
+        return _build(path, sets, name, log, out_dir, doc, base, touched)
+    except SceneError as e:
+        if not touched:
+            raise
+        msg = blame_set(str(e), path, touched)
+        if msg == str(e):
+            raise
+        raise SceneError(msg) from None
+
+
+def _build(path, sets, name, log, out_dir, doc, base, touched):
     """Validate the scene and return the model as a dict of plain data.  log: a
     function taking a line (cost estimates and meshing progress of large
     models); out_dir: where the results will go (disk space check); doc: the
@@ -42,7 +57,7 @@ def build(path, sets=(), name=None, log=None, out_dir=None, doc=None, base=None)
     else:
         doc = read_toml(path)
     if sets:
-        apply_overrides(doc, sets, path)
+        apply_overrides(doc, sets, path, touched)
     index = load_index()
     check_keys(ctx, doc, set(K.TOP) | interactions.tables(), "(top level)")
     scene = get_table(ctx, doc, "scene")

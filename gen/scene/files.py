@@ -17,15 +17,18 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def apply_overrides(doc, sets, path):
+def apply_overrides(doc, sets, path, touched=None):
     """Apply KEY=VALUE overrides to the parsed TOML document: numbers, booleans,
     strings where the scene has a string, TOML arrays and inline tables; arrays of
-    tables are addressed by an entry's `name` or its index."""
+    tables are addressed by an entry's `name` or its index.  touched (a list):
+    gets (the --set string, the forms of its key the scene's messages may use:
+    an array entry as NAME, N and [N]) for blame_set."""
     for item in sets:
         if "=" not in item:
             raise SceneError(f"error: --set {item}: expected KEY=VALUE")
         key, val = item.split("=", 1)
         parts = key.split(".")
+        forms = [""]                                 # the key's forms so far
         try:
             digits = val.strip()
             digits = digits[1:] if digits[:1] in "+-" else digits
@@ -42,6 +45,7 @@ def apply_overrides(doc, sets, path):
                 if p not in node:
                     raise SceneError(f"error: {path}: --set {key}: no table '{'.'.join(parts[:depth + 1])}' in the scene")
                 node = node[p]
+                forms = [f"{f}.{p}" if f else p for f in forms]
             elif isinstance(node, list):
                 match = [t for t in node if isinstance(t, dict) and t.get("name") == p]
                 if not match and p.isdigit() and int(p) < len(node):
@@ -49,7 +53,13 @@ def apply_overrides(doc, sets, path):
                 if len(match) != 1:
                     raise SceneError(f"error: {path}: --set {key}: no entry named or numbered '{p}' in "
                                      f"'{'.'.join(parts[:depth])}'")
+                i = next(k for k, t in enumerate(node) if t is match[0])
+                names = {str(i)} | ({match[0]["name"]} if isinstance(match[0].get("name"), str) else set())
+                forms = [g for f in forms for g in [f"{f}[{i}]"] + [f"{f}.{n}" for n in sorted(names)]]
                 node = match[0]
+        if touched is not None:
+            touched.append((item, [f"{f}.{parts[-1]}" if f else parts[-1] for f in forms]
+                            + ([f"{f}[{parts[-1]}]" for f in forms if f] if parts[-1].isdigit() else [])))
         last = parts[-1]
         if isinstance(node, list) and last.isdigit():
             i = int(last)
@@ -83,6 +93,21 @@ def apply_overrides(doc, sets, path):
             raise SceneError(f"error: --set {key}: expected a numeric value, found {val!r}")
         node[parts[-1]] = val if num is None else num
     return doc
+
+
+def blame_set(msg, path, touched):
+    """A scene message "error: PATH: KEY...: ..." about a value a --set gave
+    (touched: from apply_overrides) names the --set instead of the file,
+    which does not hold that value; any other message is returned as it is."""
+    head = f"error: {path}: "
+    if not msg.startswith(head):
+        return msg
+    rest = msg[len(head):]
+    for item, forms in reversed(touched):           # the last --set of a key wins
+        for f in forms:
+            if rest.startswith(f) and rest[len(f):len(f) + 1] in (":", ".", "[", " "):
+                return f"error: --set {item}: {rest}"
+    return msg
 
 
 def _toml_value(key, val):
