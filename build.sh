@@ -48,6 +48,7 @@ usage() {
     # (the same text as `beamkit --help`, bin/beamkit, with its own name)
     if [ "${BK_PROG:-}" = beamkit ]; then
         usage_text | sed -e 's|^usage: \./build\.sh \[COMMAND\]|usage: beamkit COMMAND|' \
+                         -e 's|^From any directory: bin/beamkit COMMAND \.\.\. is \./build\.sh COMMAND \.\.\.|beamkit COMMAND ... runs the repository'"'"'s build.sh COMMAND ...|' \
                          -e 's|^  (none)   |  setup    |' -e 's|\./build\.sh|beamkit|g'
     else
         usage_text
@@ -70,11 +71,14 @@ Commands:
                          tests/test_weld.py::test_x) runs just those
   run SCENE [options]    build the per-scene solver if stale and run it; SCENE is a
                          name in models/ or a path to a .toml file
-      --set KEY=VALUE      override a numeric scene value (repeatable), e.g.
-                           --set material.alu.E=3e7 --set beam.arm.elements=20
+      --set KEY=VALUE      override a scene value: a number, true/false, a string
+                           where the scene has one, a TOML [array] or {table}
+                           (repeatable), e.g. --set material.alu.E=3e7
+                           --set beam.arm.elements=20 --set beam.arm.element=gef
       --out DIR            results directory (default out/runs/SCENE)
       --threads N          OpenMP threads of the element evaluation (default:
-                           every core; the results are the same bits for any N)
+                           every core; models below 256 elements run on one;
+                           the results are the same bits for any N)
       --verbose            log every load step;  --quiet  print only errors
       --sanitize           build and run with AddressSanitizer + UBSan
       --memcheck           build for valgrind (-march=x86-64-v3) and run under
@@ -152,6 +156,7 @@ Exit status:
   2    the solve did not converge (results of the converged steps are kept);
        sweep: sweep.csv is written but some runs failed; fit: a run failed or
        the optimizer stopped before converging
+  3    run with BK_RUN_CACHED_ONLY=1: the run needs Python (the reason on stderr)
   64   usage error (unknown command or option, missing argument)
   99   run --memcheck: valgrind found an error or a leak
   130  interrupted by Ctrl-C (SIGINT), 143 by SIGTERM: results so far are kept,

@@ -15,6 +15,10 @@ EXIT_OK, EXIT_INPUT, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 64, 13
 
 
 class Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kw):
+        kw.setdefault("allow_abbrev", False)     # --thread is not --threads: unknown options exit 64
+        super().__init__(*args, **kw)
+
     def error(self, message):
         self.print_usage(sys.stderr)
         print(f"error: {self.prog}: {message}", file=sys.stderr)

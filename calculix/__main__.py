@@ -10,6 +10,7 @@ e.g. references/data/calculix_cantilever.json; calculix.data).
 """
 import argparse
 import json
+import os
 import shlex
 import sys
 
@@ -26,7 +27,8 @@ def command_line(argv):
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    ap = argparse.ArgumentParser(prog="python3 -m calculix", description=__doc__.split("\n\n")[1])
+    prog = "beamkit calculix" if os.environ.get("BK_PROG") == "beamkit" else "./build.sh calculix"
+    ap = argparse.ArgumentParser(prog=prog, description=__doc__.split("\n\n")[1], allow_abbrev=False)
     ap.add_argument("scene", help="a scene name in models/ or a .toml path")
     ap.add_argument("--set", dest="sets", action="append", default=[], metavar="KEY=VALUE",
                     help="override a scene value, as ./build.sh run --set")

@@ -42,6 +42,7 @@ def Parser(**kw):
             print(f"error: {self.prog}: {message}", file=sys.stderr)
             sys.exit(EXIT_USAGE)
 
+    kw.setdefault("allow_abbrev", False)         # --thread is not --threads: unknown options exit 64
     return _Parser(**kw)
 
 

@@ -1,7 +1,7 @@
 """The reference lists what the code does (issue 39 point 1):
 * docs/reference/outputs.md lists every file, CSV column, summary.json key and
-  ParaView field that small static, dynamic, modal, buckling, joint and contact
-  runs actually write (the runs are the source of truth, the page is checked
+  ParaView field that small static, dynamic, modal, buckling, joint, actuator
+  and contact runs actually write (the runs are the source of truth, the page is checked
   against them, not against an earlier copy of itself);
 * docs/reference/commands.md carries the text of `./build.sh --help` and every
   exit status it lists."""
@@ -17,7 +17,8 @@ from util import ENV, ROOT, run_cli
 OUTPUTS = ROOT / "docs" / "reference" / "outputs.md"
 COMMANDS = ROOT / "docs" / "reference" / "commands.md"
 
-# (scene, overrides): one of each analysis, joints with an axis, contact.
+# (scene, overrides): one of each analysis, joints with an axis, contact of
+# each kind (beam on a primitive, beam on beam, body on a primitive), an actuator.
 RUNS = [
     ("cantilever_bend_10N", []),
     ("pendulum_soft_ancf", ["dynamic.t_end=0.01"]),
@@ -25,7 +26,19 @@ RUNS = [
     ("column_buckling", []),
     ("two_link_arm", ["dynamic.t_end=0.01"]),
     ("contact_propped_cantilever", []),
+    ("contact_crossed_beams", []),
+    ("contact_box_table", []),
+    ("actuator_link", []),
 ]
+
+
+def _scene_text(name):
+    """Scenes of the runs that models/ does not have, as TOML text (else None)."""
+    if name == "actuator_link":                     # a hinged link held by a PD actuator (tests/test_actuators.py)
+        import test_actuators
+        return test_actuators.LINK + ('[[actuator]]\nname = "pd"\njoint = "hinge"\nkp = 4.0\nkd = 0.7\n'
+                                      'setpoint = 0.5\n')
+    return None
 
 
 def _section(text, heading):
@@ -78,7 +91,10 @@ def runs(tmp_path_factory):
     out = {}
     for scene, sets in RUNS:
         d = base / scene
-        args = ["run", scene, "--out", str(d), "--quiet"]
+        text = _scene_text(scene)
+        if text is not None:
+            (base / f"{scene}.toml").write_text(text)
+        args = ["run", str(base / f"{scene}.toml") if text is not None else scene, "--out", str(d), "--quiet"]
         for s in sets:
             args += ["--set", s]
         r = run_cli(args, timeout=600)
