@@ -1,6 +1,7 @@
 """Command-line traps of a new user: paths relative to the caller's directory,
 exit codes that tell bad input, usage errors and failed solves apart."""
 import json
+import re
 import shutil
 import subprocess
 import tempfile
@@ -116,6 +117,22 @@ def test_singular_tangent_is_named_with_its_likely_cause():
     w = " ".join(s["warnings"])
     assert "numerically singular tangent" in w and "not unique" in w and "likely cause" in w, s["warnings"]
     assert sum("numerically singular tangent" in x for x in s["warnings"]) == 1, s["warnings"]
+
+
+def test_an_iteration_limit_with_the_residual_met_says_which_test_failed():
+    """Too few iterations (static.max_iterations = 3): the residual meets its
+    tolerance, the increment does not.  Before: the message showed the residual
+    under its tolerance, the increment without one, and the slack-cable hint."""
+    d = Path(tempfile.mkdtemp(prefix="bk-maxit-", dir=ensure_dir(BUILD / "runs")))
+    r = run_cli(["run", "silicone_cantilever_sag", "--quiet", "--out", str(d), "--set", "static.load_steps=1",
+                 "--set", "static.max_iterations=3"])
+    assert r.returncode == 2, r.stderr
+    msg = json.loads((d / "summary.json").read_text())["error"]
+    m = re.search(r"residual (\S+) \(tolerance (\S+)\), last increment (\S+) \(tolerance (\S+)\)", msg)
+    assert m, msg
+    res, rtol, inc, utol = (float(x) for x in m.groups())
+    assert res <= rtol and inc > utol, msg
+    assert "raise static.max_iterations" in msg and "slack cable" not in msg, msg
 
 
 def test_cutback_counts_are_the_cutbacks_made():

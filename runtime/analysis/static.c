@@ -281,12 +281,18 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 /* a near-mechanism (slack cable, rope, chain) under loads with a
                  * potential: the trust region may converge where Newton cannot */
                 char why_not[8];
-                const char *hint = o->globalization == BK_GLOBALIZATION_NONE && st != NEWTON_INADMISSIBLE &&
-                                   !hopeless && !bk_static_trust_refusal(s, why_not, sizeof why_not)
+                /* the iteration limit reached with the residual met: the increments had not
+                 * settled yet (a low static.max_iterations), no sign of a mechanism */
+                const int settling = st == NEWTON_MAXIT && a.residual_met;
+                const char *hint = settling
+                    ? "; the residual met its tolerance, the increments had not settled: raise "
+                      "static.max_iterations"
+                    : o->globalization == BK_GLOBALIZATION_NONE && st != NEWTON_INADMISSIBLE && !hopeless &&
+                              !bk_static_trust_refusal(s, why_not, sizeof why_not)
                     ? "; for a near-mechanism (a slack cable, rope or chain) try [static] globalization = "
                       "\"trust_region\" with max_iterations = 2000" : "";
                 if (a.iters > 0 && isfinite(a.dnorm))
-                    snprintf(incr, sizeof incr, ", last increment %.3e", a.dnorm);
+                    snprintf(incr, sizeof incr, ", last increment %.3e (tolerance %.3e)", a.dnorm, a.utol_abs);
                 else
                     incr[0] = 0;
                 const int len = snprintf(info->message, sizeof info->message,

@@ -179,6 +179,7 @@ int bk_static_newton(bk_system *s, bk_nl *nl, work *w, double *q, double lam, do
     a->dnorm = res.dnorm;
     a->ref = res.ref;
     a->rtol_abs = res.rtol_abs;
+    a->utol_abs = res.utol_abs;
     a->rcond = res.rcond;
     a->residual_met = res.residual_met;
     a->singular_at_start = res.singular_at_start;

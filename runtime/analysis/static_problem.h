@@ -33,6 +33,7 @@ typedef struct attempt {
     int iters;
     double rnorm, dnorm, ref;
     double rtol_abs;                 /* the residual tolerance of the last iteration */
+    double utol_abs;                 /* and the increment's */
     double rcond;                    /* pivot ratio (min/max |u_jj|) of the last factorization */
     int residual_met;                /* the residual met its tolerance at some iteration */
     int singular_at_start;           /* NEWTON_SINGULAR at iteration 0               */

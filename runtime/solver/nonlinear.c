@@ -151,7 +151,7 @@ int bk_nl_solve(bk_nl *nl, const bk_nl_problem *p, const bk_nl_opts *o, double k
             break;
         }
         double rtol_abs = fmax(o->rtol * ev.ref, fl.force), utol_abs = fmax(o->utol * ev.uscale, fl.increment);
-        res->rtol_abs = rtol_abs;
+        res->rtol_abs = rtol_abs, res->utol_abs = utol_abs;
         if (rnorm <= rtol_abs)
             res->residual_met = 1;
         /* converged: residual (and constraints) within tolerance, and the last

@@ -105,6 +105,7 @@ typedef struct bk_nl_result {
     int code;
     int iters;            /* corrections made */
     double rnorm, dnorm, ref, rtol_abs;
+    double utol_abs;      /* the increment tolerance of the last iteration */
     double rcond;         /* KLU's pivot ratio of the last factorization (NaN: none) */
     int residual_met;     /* the residual met its tolerance at some iteration */
     int singular_at_start;
