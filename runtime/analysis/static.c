@@ -281,9 +281,9 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                 /* a near-mechanism (slack cable, rope, chain) under loads with a
                  * potential: the trust region may converge where Newton cannot */
                 char why_not[8];
-                /* the iteration limit reached with the residual met: the increments had not
+                /* the iteration limit reached with the last residual met: the increments had not
                  * settled yet (a low static.max_iterations), no sign of a mechanism */
-                const int settling = st == NEWTON_MAXIT && a.residual_met;
+                const int settling = st == NEWTON_MAXIT && a.rnorm <= a.rtol_abs;
                 const char *hint = settling
                     ? "; the residual met its tolerance, the increments had not settled: raise "
                       "static.max_iterations"
