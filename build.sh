@@ -92,7 +92,9 @@ Commands:
       --random KEY=lo:hi     uniform draws (with --samples N [--seed S])
       --set KEY=VALUE        in every run;  --out DIR;  --quiet
       --output OUT           a column: SENSOR.ux (.uy .uz .x .y .z), steps,
-                             newton_iterations, strain_energy, frequency.N, ...
+                             newton_iterations, strain_energy, frequency.N, ...;
+                             over time: NAME.FIELD:STAT[@T0:T1], STAT peak max
+                             min amplitude rms mean (e.g. joint.effort:peak)
       --plot OUT             the output drawn against each key (default the first)
       --scheduler tcp://HOST:PORT  an existing Dask cluster (or its
                              --scheduler-file, or DASK_SCHEDULER_ADDRESS);
