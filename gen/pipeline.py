@@ -110,8 +110,12 @@ def scene_path(spec):
     if not os.path.isfile(p):
         if not named:
             raise scene_error()(f"error: {spec}: no such scene file (looked for {p})")
-        raise scene_error()(f"error: scene {str(spec)!r}: no models/{spec}.toml "
-                            f"(scenes: {', '.join(scene_names())})")
+        import difflib
+        names = scene_names()
+        near = difflib.get_close_matches(str(spec), names, n=3, cutoff=0.75)
+        raise scene_error()(f"error: scene {str(spec)!r}: no models/{spec}.toml; "
+                            + (f"did you mean {' or '.join(near)}? (./build.sh scenes lists all {len(names)})"
+                               if near else f"expected one of: {', '.join(names)}"))
     return p
 
 

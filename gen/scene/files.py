@@ -51,8 +51,10 @@ def apply_overrides(doc, sets, path, touched=None):
                 if not match and p.isdigit() and int(p) < len(node):
                     match = [node[int(p)]]
                 if len(match) != 1:
+                    have = [t["name"] if isinstance(t, dict) and isinstance(t.get("name"), str) else str(k)
+                            for k, t in enumerate(node)]
                     raise SceneError(f"error: {path}: --set {key}: no entry named or numbered '{p}' in "
-                                     f"'{'.'.join(parts[:depth])}'")
+                                     f"'{'.'.join(parts[:depth])}' (it has: {', '.join(have) or 'none'})")
                 i = next(k for k, t in enumerate(node) if t is match[0])
                 names = {str(i)} | ({match[0]["name"]} if isinstance(match[0].get("name"), str) else set())
                 forms = [g for f in forms for g in [f"{f}[{i}]"] + [f"{f}.{n}" for n in sorted(names)]]
