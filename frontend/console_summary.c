@@ -147,7 +147,9 @@ int bk_print_summary(const char *run_dir, const char *shown)
     put_string(&t.node[scene]);
     printf(" (");
     put_string(&t.node[analysis]);
-    printf("): %s; ", bk_json_truthy(&t, bk_json_get(&t, 0, "converged")) ? "converged" : "NOT converged");
+    printf("): %s; ", bk_json_truthy(&t, bk_json_get(&t, 0, "converged"))     ? "converged"
+                      : bk_json_truthy(&t, bk_json_get(&t, 0, "interrupted")) ? "interrupted (results so far kept)"
+                                                                             : "NOT converged");
     int freqs = bk_json_get(&t, 0, "frequencies_hz");
     if (is_word(&t, analysis, "modal") && freqs >= 0 && t.node[freqs].type == BK_JARR) {
         int nm = t.node[freqs].count;           /* a modal run has modes, not steps */

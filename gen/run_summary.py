@@ -53,7 +53,8 @@ def add_scene_warnings(out, warnings):
 
 
 def print_summary(s, out):
-    status = "converged" if s["converged"] else "NOT converged"
+    status = ("converged" if s["converged"] else
+              "interrupted (results so far kept)" if s.get("interrupted") else "NOT converged")
     def n(k, word):
         return f"{k} {word}" + ("" if k == 1 else "s")
 
