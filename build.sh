@@ -123,7 +123,7 @@ Commands:
                          scene name and time.  --field NAME (default
                          displacement; e.g. strain_energy_density), --gif,
                          --fps N (default 10), --out FILE
-  scenes                 list the scenes in models/
+  scenes                 list the scenes in models/ with their descriptions
   report [--quick]       the seed cantilever tables beside the paper's, the
                          verification matrix (continuum elements x laws x
                          compressibility vs beam theory and CalculiX) and the
@@ -242,6 +242,7 @@ case "$cmd" in
         ;;
     deps)
         ensure_deps --always
+        echo "deps: the ${#PACKAGES[@]} Debian packages of build.sh are installed"
         ;;
     test)
         shift

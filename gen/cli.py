@@ -21,7 +21,7 @@ import os
 import sys
 
 from gen import pipeline
-from gen.pipeline import caller_path, scene_error, scene_names
+from gen.pipeline import MODELS, caller_path, scene_error, scene_names
 
 EXIT_OK, EXIT_INPUT, EXIT_NOT_CONVERGED, EXIT_USAGE = 0, 1, 2, 64   # 99, 130, 143: gen/pipeline.py
 
@@ -150,9 +150,22 @@ def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck, reuse=Fa
     return res.rc
 
 
+def _description(name):
+    """The scene's [scene] description (empty when it has none or cannot be read)."""
+    import tomllib
+    try:
+        with open(os.path.join(MODELS, f"{name}.toml"), "rb") as fh:
+            d = tomllib.load(fh).get("scene", {}).get("description", "")
+    except (OSError, tomllib.TOMLDecodeError):
+        return ""
+    return d if isinstance(d, str) else ""
+
+
 def cmd_scenes(argv):
     try:
-        print("\n".join(scene_names()), flush=True)
+        names = scene_names()
+        width = max(map(len, names), default=0)
+        print("\n".join(f"{n:<{width}}  {_description(n)}".rstrip() for n in names), flush=True)
     except BrokenPipeError:            # `./build.sh scenes | head`: the reader has enough
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
