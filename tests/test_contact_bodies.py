@@ -27,6 +27,14 @@ def test_a_ball_body_on_a_cantilever_passes_its_weight_and_bends_it_by_the_close
         tip = [r for r in csv.DictReader(fh) if r["sensor"] == "tip"][-1]
     ref = P * L ** 3 / (3 * EI) + Q * L ** 4 / (8 * EI)
     assert abs(-float(tip["uz"]) / ref - 1) < 1e-3, (tip["uz"], ref)
+    # the reference state (the ball placed within the barrier's reach: 26 N of
+    # barrier force at load factor 0) is no equilibrium: its negative eigenvalue
+    # is not compared with the path's.  Before: "went from 1 to 0 ... (critical
+    # load factor 1.1e-13): a point of regained stability was passed"
+    assert s["warnings"] == [] and s["stability"]["events"] == [], s["warnings"]
+    with open(out / "stability.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows[0]["negative_eigenvalues"] == "1" and all(r["negative_eigenvalues"] == "0" for r in rows[1:]), rows
 
 
 def _box_prop(extra, drop=0.0):

@@ -235,6 +235,15 @@ static int load_control(bk_system *s, double *q, bk_output *out, bk_run_info *in
                             info->steps, lam, a.iters, a.rnorm);
                 if (R.have_stab) {
                     double refined = NAN;
+                    /* a reference that is no equilibrium (its residual at load factor 0 above this
+                     * step's tolerance) has a count of no path: no change is drawn from it */
+                    if (info->steps == 1 && R.sres.ok && R.ref_rnorm > a.rtol_abs) {
+                        if (log && R.sres.negative != info->negative_eigenvalues)
+                            fprintf(log, "  stability: the reference state is no equilibrium (residual %.3e at "
+                                         "load factor 0): its %d negative eigenvalues are not compared\n",
+                                    R.ref_rnorm, info->negative_eigenvalues);
+                        info->negative_eigenvalues = R.sres.negative;
+                    }
                     if (R.sres.ok && R.sres.negative != info->negative_eigenvalues)
                         refined = refine_critical(s, &R.nl, w, &R.stab, q, R.prev_lam, lam,
                                                   info->negative_eigenvalues, o, &a, info);

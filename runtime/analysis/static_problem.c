@@ -377,6 +377,11 @@ int bk_static_begin(static_run *R, bk_system *s, double *q, bk_output *out, bk_r
         s->cscale = cnt && sum > 0.0 ? sum / cnt : 1.0;
     }
 
+    if (R->have_stab) {
+        double t0 = bk_clock_s();
+        R->ref_rnorm = bk_static_residual(s, w, q, w->nu, 0.0, 0) == 0 ? bk_norm2(w->r, s->neq) : 0.0;
+        R->stab.t_spent += bk_clock_s() - t0;
+    }
     bk_interactions_accept(s, q, &(bk_path){.factor = 0.0, .x = 0.0});   /* the lagged states (friction) */
     bk_output_forces(out, s, 0, 0.0, q, NULL, NULL, w->nu);
     bk_output_step(out, 0, 0.0, q);

@@ -104,6 +104,9 @@ typedef struct static_run {
     double prev_lam;                 /* the load factor of the last stability check */
     bk_stability_result sres;
     reference_probe ref;             /* the reference state's check, made on the first Newton matrix */
+    double ref_rnorm;                /* (static.stability) |r| at the reference state, load factor 0, no
+                                      * multipliers: more than the first step's tolerance, and the reference is
+                                      * no equilibrium (surfaces placed within a contact's reach, say) */
 } static_run;
 
 /* Allocates the work arrays, the nonlinear solver and (static.stability) the
