@@ -152,12 +152,12 @@ def run_and_report(scene, sets, out, variant, verbose, quiet, memcheck, reuse=Fa
 
 def _description(name):
     """The scene's [scene] description (empty when it has none or cannot be read)."""
-    import tomllib
+    from gen.scene.files import read_toml
     try:
-        with open(os.path.join(MODELS, f"{name}.toml"), "rb") as fh:
-            d = tomllib.load(fh).get("scene", {}).get("description", "")
-    except (OSError, tomllib.TOMLDecodeError):
+        scene = read_toml(os.path.join(MODELS, f"{name}.toml")).get("scene")
+    except scene_error():
         return ""
+    d = scene.get("description", "") if isinstance(scene, dict) else ""
     return d if isinstance(d, str) else ""
 
 
